@@ -1,0 +1,167 @@
+/* casteljau: polynomial Bézier curves of any degree and dimension.
+ *
+ * A curve of degree n in dimension d has n+1 control points b_0..b_n stored point-major in one
+ * array of (n+1)*d doubles: coordinate k of point i is pts[i*d + k]. It is
+ *
+ *     c(t) = Σ_{i=0..n} b_i B_i^n(t),   B_i^n(t) = C(n,i) t^i (1-t)^(n-i).
+ *
+ * cj_bezier is a non-owning view; the caller owns `pts` and every output buffer. No function in
+ * this header allocates: work space lives on the stack, bounded by CJ_BEZIER_MAX_DEGREE and
+ * CJ_MAX_DIM.
+ *
+ * Parameters: evaluation accepts any finite t (outside [0,1] it is polynomial extrapolation,
+ * with error growing like the size of the basis there); operations that produce pieces of the
+ * curve (split, subcurve) require parameters in [0,1] and return CJ_ERR_RANGE otherwise.
+ *
+ * Every function validates its input (degree, dimension, finite coordinates and parameters)
+ * and returns a status; on failure cj_last_error() names the offending input and outputs are
+ * untouched.
+ */
+#ifndef CASTELJAU_BEZIER_H
+#define CASTELJAU_BEZIER_H
+
+#include "casteljau/status.h"
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Largest dimension of a control point. */
+#define CJ_MAX_DIM 8
+/* Largest degree for de Casteljau, compensated de Casteljau, derivatives and subdivision. */
+#define CJ_BEZIER_MAX_DEGREE 255
+/* Largest degree for the methods that use binomial coefficients (Bernstein sum, Horner-like):
+ * C(n,i) is exact in double for every i only while n <= 56 (C(57,28) > 2^53). */
+#define CJ_BEZIER_BINOMIAL_MAX_DEGREE 56
+
+typedef struct cj_bezier {
+    int degree;        /* n >= 0; there are n+1 control points */
+    int dim;           /* 1..CJ_MAX_DIM */
+    const double *pts; /* (degree+1)*dim coordinates, point-major */
+} cj_bezier;
+
+typedef enum cj_eval_method {
+    CJ_EVAL_DECASTELJAU = 0, /* the triangle of convex combinations: stable, O(n^2 d) */
+    CJ_EVAL_BERNSTEIN,       /* direct sum Σ b_i B_i^n(t), basis by powers and binomials */
+    CJ_EVAL_HORNER,          /* Volk–Schumaker: Horner in t/(1-t) (or (1-t)/t), O(n d) */
+    CJ_EVAL_COMPENSATED      /* de Casteljau with error-free transformations (Graillat et al.) */
+} cj_eval_method;
+
+/* Builds a view. Convenience only: no validation happens until the view is used. */
+static inline cj_bezier cj_bezier_view(int degree, int dim, const double *pts) {
+    cj_bezier c;
+    c.degree = degree;
+    c.dim = dim;
+    c.pts = pts;
+    return c;
+}
+
+/* Validates a curve: degree in [0, max_degree], dim in [1, CJ_MAX_DIM], finite coordinates.
+ * Returns CJ_ERR_DEGREE / CJ_ERR_DIMENSION / CJ_ERR_NONFINITE with a message naming the point. */
+cj_status cj_bezier_check(const cj_bezier *c, int max_degree);
+
+/* Unit round-off u = 2^-53 and gamma(k) = k u / (1 - k u), used by the published bounds. */
+#define CJ_UNIT_ROUNDOFF 0x1p-53
+double cj_gamma(int k);
+
+/* ---- evaluation ---------------------------------------------------------------------- */
+
+/* c(t) by the chosen method into out[0..dim-1]. Degree limit: CJ_BEZIER_MAX_DEGREE for
+ * de Casteljau and compensated, CJ_BEZIER_BINOMIAL_MAX_DEGREE for Bernstein and Horner. */
+cj_status cj_bezier_eval(const cj_bezier *c, cj_eval_method method, double t, double *out);
+
+/* Individual methods, same contract as cj_bezier_eval. */
+cj_status cj_bezier_eval_decasteljau(const cj_bezier *c, double t, double *out);
+cj_status cj_bezier_eval_bernstein(const cj_bezier *c, double t, double *out);
+cj_status cj_bezier_eval_horner(const cj_bezier *c, double t, double *out);
+
+/* Compensated de Casteljau: out[k] is c_k(t) computed as if in twice the working precision,
+ * then rounded. If `bound` is not NULL, bound[k] receives a computable a-posteriori bound on
+ * |out[k] - c_k(t)| that holds for t in [0,1] (outside [0,1] it is still computed, and holds
+ * with 1-t and t replaced by their absolute values in the running-error analysis). */
+cj_status cj_bezier_eval_compensated(const cj_bezier *c, double t, double *out, double *bound);
+
+/* A-priori absolute error bound of a method at t, per coordinate:
+ *   de Casteljau (and Bernstein/Horner, which share its first-order form up to constants):
+ *       gamma(3n) * Σ|b_i,k| B_i^n(|t|)
+ *   compensated: u |c_k(t)| + 2 gamma(3n)^2 Σ|b_i,k| B_i^n(|t|)
+ * This is the bound quoted in the docs; it needs the exact value only through |c_k(t)|, for
+ * which the computed value is used. */
+cj_status cj_bezier_error_bound(const cj_bezier *c, cj_eval_method method, double t,
+                                double *bound);
+
+/* Condition number of each coordinate at t: cond_k = Σ|b_i,k| B_i^n(t) / |c_k(t)|.
+ * A coordinate whose value is exactly zero gets +INFINITY (the relative error is undefined). */
+cj_status cj_bezier_cond(const cj_bezier *c, double t, double *cond);
+
+/* Evaluates at nt parameters: out[j*dim + k] = c_k(ts[j]). Validates the curve once, then
+ * runs without allocation. All parameters are validated before anything is written. */
+cj_status cj_bezier_eval_batch(const cj_bezier *c, cj_eval_method method, const double *ts,
+                               size_t nt, double *out);
+
+/* ---- derivatives --------------------------------------------------------------------- */
+
+/* The k-th hodograph: the derivative c^(k) as a Bézier curve of degree n-k, whose control
+ * points n!/(n-k)! Δ^k b_i are written to out[(n-k+1)*dim]. For k > n the derivative is the
+ * zero curve of degree 0 (one zero point is written). k < 0 is CJ_ERR_ARGUMENT. */
+cj_status cj_bezier_hodograph(const cj_bezier *c, int k, double *out);
+
+/* Point and derivatives 0..kmax together in one pass of the de Casteljau triangle:
+ * out[j*dim + k] = coordinate k of c^(j)(t), j = 0..kmax. Orders above n are zero. */
+cj_status cj_bezier_eval_derivs(const cj_bezier *c, double t, int kmax, double *out);
+
+/* ---- subdivision and degree ---------------------------------------------------------- */
+
+/* Splits at t in [0,1]: left = c on [0,t], right = c on [t,1], each n+1 points reparametrised
+ * to [0,1]. Either output may be NULL. left[n] and right[0] are bit-identical. */
+cj_status cj_bezier_split(const cj_bezier *c, double t, double *left, double *right);
+
+/* The piece on [a,b] (0 <= a < b <= 1, or a > b for a reversed piece) as n+1 points. */
+cj_status cj_bezier_subcurve(const cj_bezier *c, double a, double b, double *out);
+
+/* Exact degree elevation by r >= 0 steps: out holds (n+r+1)*dim coordinates of the same curve.
+ * Fails with CJ_ERR_DEGREE if n+r exceeds CJ_BEZIER_MAX_DEGREE. */
+cj_status cj_bezier_elevate(const cj_bezier *c, int r, double *out);
+
+/* Reversal: out is the same curve traversed backwards, c'(t) = c(1-t). out may equal pts. */
+cj_status cj_bezier_reverse(const cj_bezier *c, double *out);
+
+/* ---- geometry ------------------------------------------------------------------------ */
+
+/* Tight axis-aligned bounding box of c([0,1]): endpoints plus the interior zeros of each
+ * coordinate's derivative (found by Bernstein-form root isolation). lo, hi: dim doubles. */
+cj_status cj_bezier_bbox(const cj_bezier *c, double *lo, double *hi);
+
+/* 2D convex hull of the control polygon (dim must be 2): indices of the hull vertices in
+ * counter-clockwise order starting from the lowest-then-leftmost point, collinear points
+ * dropped. idx must hold degree+1 entries; *count receives the number of hull vertices. */
+cj_status cj_bezier_hull2d(const cj_bezier *c, int *idx, int *count);
+
+/* Arc length of c on [a,b] (any a <= b in [0,1]) by adaptive Gauss–Legendre quadrature of |c'|,
+ * to absolute tolerance tol > 0. *length gets the value, *error_estimate (may be NULL) the
+ * error estimate reached. If the recursion cap is hit before tol is met, the best value and
+ * its estimate are still written and CJ_ERR_CAP is returned. */
+cj_status cj_bezier_arclength(const cj_bezier *c, double a, double b, double tol, double *length,
+                              double *error_estimate);
+
+/* Unit tangent at t. Where c'(t) vanishes (a cusp, repeated control points), the direction is
+ * the first non-vanishing derivative c^(j)(t), j >= 2, which is the limit of c'(s)/|c'(s)| as s
+ * approaches t from above; *order (may be NULL) receives the j used. A curve whose every
+ * derivative vanishes at t (a single point) is CJ_ERR_DEGENERATE. */
+cj_status cj_bezier_tangent(const cj_bezier *c, double t, double *tangent, int *order);
+
+/* Unit normal at t. In 2D: the tangent turned +90 degrees (left normal). In 3D: the principal
+ * normal, component of the next non-vanishing derivative orthogonal to the tangent; a straight
+ * piece with no such component is CJ_ERR_DEGENERATE. Other dimensions: CJ_ERR_DIMENSION. */
+cj_status cj_bezier_normal(const cj_bezier *c, double t, double *normal);
+
+/* Curvature at t: signed in 2D ((x'y'' - y'x'')/|c'|^3, positive turning left), |c' x c''|/|c'|^3
+ * in 3D (non-negative). At a zero-speed point the limit along the first non-vanishing
+ * derivatives is used where it exists; otherwise CJ_ERR_DEGENERATE. */
+cj_status cj_bezier_curvature(const cj_bezier *c, double t, double *kappa);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,77 @@
+/* The de Casteljau triangle: evaluation, derivatives and subdivision. */
+#include "bezier_internal.h"
+
+#include <assert.h>
+#include <string.h>
+
+/* Runs the triangle in place on w[(m+1)*d] down to one point: w[0..d-1] = value at t. */
+static void decasteljau_collapse(double *w, int m, int d, double t) {
+    const double s = 1.0 - t;
+    for (int r = m; r > 0; --r)
+        for (int i = 0; i < r * d; ++i) w[i] = s * w[i] + t * w[i + d];
+}
+
+cj_status cj_bezier_eval_decasteljau(const cj_bezier *c, double t, double *out) {
+    assert(out != NULL);
+    cj_status st = cj_bezier_check(c, CJ_BEZIER_MAX_DEGREE);
+    if (st) return st;
+    if ((st = cj_check_param(t, "parameter t"))) return st;
+    double w[CJ_BEZIER_WORK];
+    const int d = c->dim;
+    memcpy(w, c->pts, sizeof(double) * (size_t)(c->degree + 1) * (size_t)d);
+    decasteljau_collapse(w, c->degree, d, t);
+    memcpy(out, w, sizeof(double) * (size_t)d);
+    return CJ_OK;
+}
+
+cj_status cj_bezier_eval_derivs(const cj_bezier *c, double t, int kmax, double *out) {
+    assert(out != NULL);
+    cj_status st = cj_bezier_check(c, CJ_BEZIER_MAX_DEGREE);
+    if (st) return st;
+    if ((st = cj_check_param(t, "parameter t"))) return st;
+    if (kmax < 0) return cj_fail(CJ_ERR_ARGUMENT, "derivative order %d is negative", kmax);
+    const int n = c->degree, d = c->dim;
+    const int kk = kmax < n ? kmax : n;
+    /* c^(j)(t) = n!/(n-j)! Δ^j b_0^(n-j)(t), where b^(r) is level r of the triangle. Running
+     * n-kk levels once leaves kk+1 points; since de Casteljau steps and forward differences
+     * are both shift-invariant linear maps they commute, so each order j takes j differences
+     * of those points and then the remaining kk-j steps. */
+    double w[CJ_BEZIER_WORK];
+    memcpy(w, c->pts, sizeof(double) * (size_t)(n + 1) * (size_t)d);
+    const double s = 1.0 - t;
+    for (int r = n; r > kk; --r)
+        for (int i = 0; i < r * d; ++i) w[i] = s * w[i] + t * w[i + d];
+    for (int j = 0; j <= kk; ++j) {
+        double tmp[CJ_BEZIER_WORK];
+        const int m = kk; /* points 0..m */
+        memcpy(tmp, w, sizeof(double) * (size_t)(m + 1) * (size_t)d);
+        for (int q = 0; q < j; ++q) /* j forward differences: m-q points remain */
+            for (int i = 0; i < (m - q) * d; ++i) tmp[i] = tmp[i + d] - tmp[i];
+        decasteljau_collapse(tmp, m - j, d, t);
+        double f = 1.0;
+        for (int q = 0; q < j; ++q) f *= (double)(n - q);
+        for (int k = 0; k < d; ++k) out[j * d + k] = f * tmp[k];
+    }
+    for (int j = kk + 1; j <= kmax; ++j)
+        for (int k = 0; k < d; ++k) out[j * d + k] = 0.0;
+    return CJ_OK;
+}
+
+cj_status cj_bezier_split(const cj_bezier *c, double t, double *left, double *right) {
+    cj_status st = cj_bezier_check(c, CJ_BEZIER_MAX_DEGREE);
+    if (st) return st;
+    if ((st = cj_check_param(t, "split parameter t"))) return st;
+    if (t < 0.0 || t > 1.0) return cj_fail(CJ_ERR_RANGE, "split parameter t = %.17g is outside [0,1]", t);
+    const int n = c->degree, d = c->dim;
+    double w[CJ_BEZIER_WORK];
+    memcpy(w, c->pts, sizeof(double) * (size_t)(n + 1) * (size_t)d);
+    const double s = 1.0 - t;
+    /* Left points are the first entry of each level, right points the last. */
+    for (int r = n;; --r) {
+        if (left) memcpy(left + (size_t)(n - r) * d, w, sizeof(double) * (size_t)d);
+        if (right) memcpy(right + (size_t)r * d, w + (size_t)r * d, sizeof(double) * (size_t)d);
+        if (r == 0) break;
+        for (int i = 0; i < r * d; ++i) w[i] = s * w[i] + t * w[i + d];
+    }
+    return CJ_OK;
+}
