@@ -110,8 +110,7 @@ fail:
     return -1;
 }
 
-int cli_parse_list(const char *text, double **values, size_t *count, char *why,
-                   size_t why_size) {
+int cli_parse_list(const char *text, double **values, size_t *count, char *why, size_t why_size) {
     size_t n = 0;
     char sep = strchr(text, ';') ? ';' : ',';
     char *copy = split_fields(text, sep, &n);
@@ -141,4 +140,6 @@ int cli_parse_list(const char *text, double **values, size_t *count, char *why,
     return 0;
 }
 
-void cli_print_double(double v) { printf("%.17g", v); }
+void cli_print_double(double v) {
+    printf("%.17g", v);
+}

@@ -40,13 +40,16 @@ int cmd_eval(int argc, char **argv) {
         } else if (!strcmp(a, "--method")) {
             if (++i >= argc) return cli_fail("eval", "--method needs a value");
             if (parse_method(argv[i], &method))
-                return cli_fail("eval", "unknown method '%s' (decasteljau, bernstein, horner, compensated)", argv[i]);
+                return cli_fail("eval",
+                                "unknown method '%s' (decasteljau, bernstein, horner, compensated)",
+                                argv[i]);
         } else if (!strcmp(a, "--derivative")) {
             if (++i >= argc) return cli_fail("eval", "--derivative needs a value");
             char *end = NULL;
             long k = strtol(argv[i], &end, 10);
             if (end == argv[i] || *end != '\0' || k < 0 || k > CJ_BEZIER_MAX_DEGREE + 1)
-                return cli_fail("eval", "--derivative '%s' is not an order between 0 and %d", argv[i], CJ_BEZIER_MAX_DEGREE + 1);
+                return cli_fail("eval", "--derivative '%s' is not an order between 0 and %d",
+                                argv[i], CJ_BEZIER_MAX_DEGREE + 1);
             derivative = (int)k;
         } else if (!strcmp(a, "--bound")) {
             want_bound = 1;

@@ -9,13 +9,15 @@ double cj_gamma(int k) {
 }
 
 cj_status cj_check_param(double t, const char *what) {
-    if (!isfinite(t)) return cj_fail(CJ_ERR_NONFINITE, "%s is %s", what, isnan(t) ? "NaN" : "infinite");
+    if (!isfinite(t))
+        return cj_fail(CJ_ERR_NONFINITE, "%s is %s", what, isnan(t) ? "NaN" : "infinite");
     return CJ_OK;
 }
 
 cj_status cj_bezier_check(const cj_bezier *c, int max_degree) {
     assert(c != NULL);
-    if (c->degree < 0) return cj_fail(CJ_ERR_EMPTY, "curve has no control points (degree %d)", c->degree);
+    if (c->degree < 0)
+        return cj_fail(CJ_ERR_EMPTY, "curve has no control points (degree %d)", c->degree);
     if (c->degree > max_degree)
         return cj_fail(CJ_ERR_DEGREE, "degree %d exceeds this method's limit of %d", c->degree,
                        max_degree);

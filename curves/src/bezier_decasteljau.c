@@ -61,7 +61,8 @@ cj_status cj_bezier_split(const cj_bezier *c, double t, double *left, double *ri
     cj_status st = cj_bezier_check(c, CJ_BEZIER_MAX_DEGREE);
     if (st) return st;
     if ((st = cj_check_param(t, "split parameter t"))) return st;
-    if (t < 0.0 || t > 1.0) return cj_fail(CJ_ERR_RANGE, "split parameter t = %.17g is outside [0,1]", t);
+    if (t < 0.0 || t > 1.0)
+        return cj_fail(CJ_ERR_RANGE, "split parameter t = %.17g is outside [0,1]", t);
     const int n = c->degree, d = c->dim;
     double w[CJ_BEZIER_WORK];
     memcpy(w, c->pts, sizeof(double) * (size_t)(n + 1) * (size_t)d);

@@ -64,7 +64,7 @@ static void decasteljau_kernel(const cj_bezier *c, double t, double *out) {
 
 static int method_limit(cj_eval_method m) {
     return (m == CJ_EVAL_BERNSTEIN || m == CJ_EVAL_HORNER) ? CJ_BEZIER_BINOMIAL_MAX_DEGREE
-                                                            : CJ_BEZIER_MAX_DEGREE;
+                                                           : CJ_BEZIER_MAX_DEGREE;
 }
 
 static cj_status check_method(cj_eval_method m) {
@@ -75,11 +75,19 @@ static cj_status check_method(cj_eval_method m) {
 
 static void eval_kernel(const cj_bezier *c, cj_eval_method m, double t, double *out) {
     switch (m) {
-    case CJ_EVAL_BERNSTEIN: bernstein_kernel(c, t, out); break;
-    case CJ_EVAL_HORNER: horner_kernel(c, t, out); break;
-    case CJ_EVAL_COMPENSATED: cj_compensated_kernel(c, t, out, NULL); break;
+    case CJ_EVAL_BERNSTEIN:
+        bernstein_kernel(c, t, out);
+        break;
+    case CJ_EVAL_HORNER:
+        horner_kernel(c, t, out);
+        break;
+    case CJ_EVAL_COMPENSATED:
+        cj_compensated_kernel(c, t, out, NULL);
+        break;
     case CJ_EVAL_DECASTELJAU:
-    default: decasteljau_kernel(c, t, out); break;
+    default:
+        decasteljau_kernel(c, t, out);
+        break;
     }
 }
 

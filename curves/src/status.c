@@ -30,7 +30,9 @@ const char *cj_status_str(cj_status status) {
     return status_names[status];
 }
 
-const char *cj_last_error(void) { return last_message; }
+const char *cj_last_error(void) {
+    return last_message;
+}
 
 cj_status cj_fail(cj_status status, const char *fmt, ...) {
     va_list ap;

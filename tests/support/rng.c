@@ -11,7 +11,9 @@ static uint64_t splitmix64(uint64_t *x) {
     return z ^ (z >> 31);
 }
 
-static uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+static uint64_t rotl(uint64_t x, int k) {
+    return (x << k) | (x >> (64 - k));
+}
 
 uint64_t cj_test_seed(const char *test_name, uint64_t fallback) {
     uint64_t seed = fallback;
@@ -39,9 +41,13 @@ uint64_t cj_rng_next(cj_rng *r) {
     return result;
 }
 
-double cj_rng_unit(cj_rng *r) { return (double)(cj_rng_next(r) >> 11) * 0x1p-53; }
+double cj_rng_unit(cj_rng *r) {
+    return (double)(cj_rng_next(r) >> 11) * 0x1p-53;
+}
 
-double cj_rng_range(cj_rng *r, double lo, double hi) { return lo + (hi - lo) * cj_rng_unit(r); }
+double cj_rng_range(cj_rng *r, double lo, double hi) {
+    return lo + (hi - lo) * cj_rng_unit(r);
+}
 
 int cj_rng_int(cj_rng *r, int lo, int hi) {
     return lo + (int)(cj_rng_next(r) % (uint64_t)(hi - lo + 1));

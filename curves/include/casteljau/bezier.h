@@ -88,8 +88,7 @@ cj_status cj_bezier_eval_compensated(const cj_bezier *c, double t, double *out, 
  *   compensated: u |c_k(t)| + 2 gamma(3n)^2 Σ|b_i,k| B_i^n(|t|)
  * This is the bound quoted in the docs; it needs the exact value only through |c_k(t)|, for
  * which the computed value is used. */
-cj_status cj_bezier_error_bound(const cj_bezier *c, cj_eval_method method, double t,
-                                double *bound);
+cj_status cj_bezier_error_bound(const cj_bezier *c, cj_eval_method method, double t, double *bound);
 
 /* Condition number of each coordinate at t: cond_k = Σ|b_i,k| B_i^n(t) / |c_k(t)|.
  * A coordinate whose value is exactly zero gets +INFINITY (the relative error is undefined). */
