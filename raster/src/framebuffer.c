@@ -1,0 +1,145 @@
+/* The RGBA8 framebuffer: creation, clearing, pixel access and exact source-over blending. */
+#include "casteljau/framebuffer.h"
+#include "error_internal.h"
+#include "raster_internal.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void *default_alloc(void *user, size_t bytes) {
+    (void)user;
+    return malloc(bytes);
+}
+static void default_free(void *user, void *ptr) {
+    (void)user;
+    free(ptr);
+}
+
+void *cj_raster_alloc_(const cj_raster_allocator *a, size_t bytes) {
+    return a->alloc(a->user, bytes);
+}
+
+void cj_raster_free_(const cj_raster_allocator *a, void *ptr) {
+    if (ptr) a->free(a->user, ptr);
+}
+
+cj_status cj_framebuffer_create(int width, int height, unsigned flags,
+                                const cj_raster_allocator *alloc, cj_framebuffer **out) {
+    assert(out);
+    if (width < 1 || width > CJ_FRAMEBUFFER_MAX_SIDE)
+        return cj_fail(CJ_ERR_RANGE, "framebuffer width %d is outside [1, %d]", width,
+                       CJ_FRAMEBUFFER_MAX_SIDE);
+    if (height < 1 || height > CJ_FRAMEBUFFER_MAX_SIDE)
+        return cj_fail(CJ_ERR_RANGE, "framebuffer height %d is outside [1, %d]", height,
+                       CJ_FRAMEBUFFER_MAX_SIDE);
+    if (flags & ~(unsigned)CJ_FB_DEPTH)
+        return cj_fail(CJ_ERR_ARGUMENT, "framebuffer flags 0x%x contain unknown bits", flags);
+    cj_raster_allocator a = {default_alloc, default_free, NULL};
+    if (alloc) {
+        assert(alloc->alloc && alloc->free);
+        a = *alloc;
+    }
+    size_t n = (size_t)width * (size_t)height;
+    cj_framebuffer *fb = cj_raster_alloc_(&a, sizeof *fb);
+    if (!fb) return cj_fail(CJ_ERR_NOMEM, "no memory for a framebuffer header");
+    memset(fb, 0, sizeof *fb);
+    fb->alloc_ = a;
+    fb->width = width;
+    fb->height = height;
+    fb->stride = width;
+    fb->pixels = cj_raster_alloc_(&a, n * sizeof *fb->pixels);
+    if (!fb->pixels) {
+        cj_framebuffer_destroy(fb);
+        return cj_fail(CJ_ERR_NOMEM, "no memory for %dx%d RGBA pixels", width, height);
+    }
+    memset(fb->pixels, 0, n * sizeof *fb->pixels);
+    if (flags & CJ_FB_DEPTH) {
+        fb->depth = cj_raster_alloc_(&a, n * sizeof *fb->depth);
+        if (!fb->depth) {
+            cj_framebuffer_destroy(fb);
+            return cj_fail(CJ_ERR_NOMEM, "no memory for a %dx%d depth plane", width, height);
+        }
+        cj_framebuffer_clear_depth(fb, 1.0f);
+    }
+    *out = fb;
+    return CJ_OK;
+}
+
+void cj_framebuffer_destroy(cj_framebuffer *fb) {
+    if (!fb) return;
+    cj_raster_allocator a = fb->alloc_;
+    cj_raster_free_(&a, fb->pixels);
+    cj_raster_free_(&a, fb->depth);
+    cj_raster_free_(&a, fb->cover_);
+    cj_raster_free_(&a, fb->span_lo_);
+    cj_raster_free_(&a, fb->span_hi_);
+    cj_raster_free_(&a, fb);
+}
+
+void cj_framebuffer_clear(cj_framebuffer *fb, cj_rgba c) {
+    assert(fb);
+    size_t n = (size_t)fb->width * (size_t)fb->height;
+    cj_rgba *p = fb->pixels;
+    for (size_t i = 0; i < n; ++i) p[i] = c;
+}
+
+void cj_framebuffer_clear_depth(cj_framebuffer *fb, float z) {
+    assert(fb);
+    if (!fb->depth) return;
+    size_t n = (size_t)fb->width * (size_t)fb->height;
+    for (size_t i = 0; i < n; ++i) fb->depth[i] = z;
+}
+
+int cj_framebuffer_setpixel(cj_framebuffer *fb, long long x, long long y, cj_rgba c) {
+    assert(fb);
+    if (!cj_framebuffer_inside(fb, x, y)) return 0;
+    fb->pixels[(ptrdiff_t)y * fb->stride + (ptrdiff_t)x] = c;
+    return 1;
+}
+
+cj_status cj_framebuffer_getpixel(const cj_framebuffer *fb, long long x, long long y,
+                                  cj_rgba *out) {
+    assert(fb && out);
+    if (!cj_framebuffer_inside(fb, x, y))
+        return cj_fail(CJ_ERR_RANGE, "pixel (%lld, %lld) is outside the %dx%d framebuffer", x, y,
+                       fb->width, fb->height);
+    *out = fb->pixels[(ptrdiff_t)y * fb->stride + (ptrdiff_t)x];
+    return CJ_OK;
+}
+
+cj_rgba cj_rgba_over(cj_rgba s, cj_rgba d) {
+    uint32_t sa = s.a, da = d.a;
+    if (sa == 255) return s;
+    if (sa == 0) return d;
+    /* Everything scaled by 255^2: A = α_o 255², channel numerator = c_o α_o 255². */
+    uint32_t wd = da * (255u - sa);
+    uint32_t A = sa * 255u + wd;
+    cj_rgba o;
+    if (A == 0) return cj_rgba_make(0, 0, 0, 0);
+    o.a = (uint8_t)((2u * A + 255u) / 510u);
+    uint32_t ws = sa * 255u, A2 = 2u * A;
+    o.r = (uint8_t)((2u * (s.r * ws + d.r * wd) + A) / A2);
+    o.g = (uint8_t)((2u * (s.g * ws + d.g * wd) + A) / A2);
+    o.b = (uint8_t)((2u * (s.b * ws + d.b * wd) + A) / A2);
+    return o;
+}
+
+int cj_framebuffer_blend(cj_framebuffer *fb, long long x, long long y, cj_rgba c) {
+    assert(fb);
+    if (!cj_framebuffer_inside(fb, x, y)) return 0;
+    cj_rgba *p = &fb->pixels[(ptrdiff_t)y * fb->stride + (ptrdiff_t)x];
+    *p = cj_rgba_over(c, *p);
+    return 1;
+}
+
+int cj_framebuffer_blend_coverage(cj_framebuffer *fb, long long x, long long y, cj_rgba c,
+                                  float coverage) {
+    assert(fb);
+    if (!cj_framebuffer_inside(fb, x, y)) return 0;
+    c.a = cj_raster_scale_alpha_(c.a, coverage);
+    cj_rgba *p = &fb->pixels[(ptrdiff_t)y * fb->stride + (ptrdiff_t)x];
+    *p = cj_rgba_over(c, *p);
+    return 1;
+}
