@@ -1,0 +1,174 @@
+/* casteljau: flattening Bézier curves (polynomial and rational, any degree) to polylines.
+ *
+ * A flattening of c: [0,1] -> R^d at tolerance tol is a polyline p_0..p_m (m segments) with
+ * p_0 = c(0), p_m = c(1), every vertex a point of the curve, and
+ *
+ *     Hausdorff distance(curve, polyline) <= tol,
+ *
+ * guaranteed by a PROVEN bound computed for every segment (not by sampling). The bound each
+ * call reaches is reported in cj_flatten_stats.bound (always <= tol on success).
+ *
+ * Bounds used (b_i control points of the piece, S the chord segment b_0 b_n, n the degree):
+ *  - Wang (uniform method, polynomial): with M = max_i |b_i - 2 b_{i+1} + b_{i+2}|, m equal
+ *    parameter steps give |c(t) - chord(t)| <= n(n-1) M / (8 m^2), so
+ *        m = ceil( sqrt( n(n-1) M / (8 tol) ) ).
+ *    Rational: the same on the homogeneous curve (w_i (b_i - o), w_i), o the centre of the
+ *    control points' bounding box, R = max |b_i - o|, w_min = min w_i:
+ *        |c - chord| <= n(n-1) (M_wb + R M_w) / (8 m^2 w_min).
+ *  - Piece flatness (subdivision and near-optimal methods, also used to verify): the
+ *    component e(t) of c(t) - b_0 perpendicular to S (or the distance to S when some control
+ *    point projects outside S) is bounded two ways and the smaller is taken:
+ *      (a) convexity: dist(c(t), S) <= g * max_i dist(b_i, S), where g = sup_t of the weight
+ *          share of the inner control points (1 - 2^(1-n) for polynomials; for rational
+ *          curves wI (1-s) / (wE s + wI (1-s)), s = 2^(1-n), wI the largest inner weight,
+ *          wE the smaller end weight);
+ *      (b) factoring: e(t) = t(1-t) q(t) / W(t), q of degree n-2 with Bernstein coefficients
+ *          q_j = w_{j+1} e_{j+1} n(n-1) / ((j+1)(n-1-j)), so |e| <= max_j |q_j| / (4 min w),
+ *          which is exact for parabolas, symmetric cubic arcs and (in standard form, up to
+ *          the min-weight factor) circular arcs.
+ *    Because the curve stays within that distance of S and joins its end points, the bound
+ *    holds in both directions (curve to polyline and polyline to curve). A small rounding
+ *    allowance (a multiple of n u max|coordinate|) is added to every reported bound.
+ *
+ * Methods (the point is to show the trade):
+ *  - CJ_FLATTEN_UNIFORM: m equal parameter steps from Wang's formula; one pass, no search,
+ *    over-refines where the curve is straight.
+ *  - CJ_FLATTEN_SUBDIVIDE: recursive (dyadic) de Casteljau subdivision until each piece's
+ *    flatness bound is <= tol. Piece counts are powers-of-two-ish.
+ *  - CJ_FLATTEN_NEAR_OPTIMAL: segments grown greedily so that each one's proven flatness
+ *    bound lies in [0.9 tol, tol]; the step is predicted from the previous one (which spaces
+ *    points by the curvature integral, Levien's criterion ∫ sqrt(|κ|/(8 tol)) ds, since the
+ *    deviation of a short arc is κ l^2 / 8) and corrected by the proven bound, so every
+ *    produced segment is verified by construction. Count ~ ceil of the continuous optimum.
+ *
+ * Degenerate curves (all control points equal, collinear points out of order, cusps, loops,
+ * inflections) are handled: an all-equal curve flattens to one segment (two equal points).
+ *
+ * No function here allocates. Work space is on the stack, bounded by CJ_BEZIER_MAX_DEGREE
+ * and CJ_MAX_DIM (rational: CJ_RBEZIER_MAX_DIM). Results go either into a caller buffer
+ * (count-then-fill) or through a callback.
+ *
+ * Statuses common to all functions:
+ *   CJ_ERR_NONFINITE  tol is NaN/Inf, or a coordinate/weight is NaN/Inf
+ *   CJ_ERR_RANGE      tol <= 0, or tol is below what double rounding of these coordinates can
+ *                     guarantee (about 1e-13 of the curve's magnitude)
+ *   CJ_ERR_DEGREE     degree outside [0, CJ_BEZIER_MAX_DEGREE] (degree 0: one point, accepted
+ *                     as a single zero-length segment)
+ *   CJ_ERR_DIMENSION  dim outside [1, CJ_MAX_DIM] (rational: [1, CJ_RBEZIER_MAX_DIM]), or
+ *                     pieces of a sequence with different dims
+ *   CJ_ERR_ARGUMENT   a weight <= 0, an unknown method
+ *   CJ_ERR_EMPTY      a sequence with no pieces
+ *   CJ_ERR_CAP        more than opts->max_segments segments would be needed (the default cap
+ *                     is CJ_FLATTEN_DEFAULT_CAP). *npoints is not meaningful then; the
+ *                     callback variants may already have emitted a prefix (documented there).
+ *   CJ_ERR_BUFFER     the caller buffer is too small (*npoints receives the count needed)
+ */
+#ifndef CASTELJAU_FLATTEN_H
+#define CASTELJAU_FLATTEN_H
+
+#include "casteljau/bezier.h"
+#include "casteljau/rational.h"
+#include "casteljau/status.h"
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Default cap on the number of segments of one call (all pieces of a sequence together). */
+#define CJ_FLATTEN_DEFAULT_CAP ((size_t)1 << 22)
+
+typedef enum cj_flatten_method {
+    CJ_FLATTEN_UNIFORM = 0,  /* Wang's formula, equal parameter steps */
+    CJ_FLATTEN_SUBDIVIDE,    /* recursive de Casteljau halving with a proven flatness test */
+    CJ_FLATTEN_NEAR_OPTIMAL, /* curvature-spaced, each segment verified by the proven bound */
+    CJ_FLATTEN_METHOD_COUNT_
+} cj_flatten_method;
+
+typedef struct cj_flatten_opts {
+    cj_flatten_method method;
+    double tol;          /* > 0, finite: max distance curve <-> polyline */
+    size_t max_segments; /* cap on segments; 0 = CJ_FLATTEN_DEFAULT_CAP */
+} cj_flatten_opts;
+
+/* Options with the given method and tolerance and the default cap. */
+static inline cj_flatten_opts cj_flatten_defaults(cj_flatten_method method, double tol) {
+    cj_flatten_opts o;
+    o.method = method;
+    o.tol = tol;
+    o.max_segments = 0;
+    return o;
+}
+
+typedef struct cj_flatten_stats {
+    size_t segments; /* number of segments produced (points - 1 for one curve) */
+    double bound;    /* proven upper bound on the Hausdorff distance curve <-> polyline */
+} cj_flatten_stats;
+
+/* Receives each polyline vertex in order: pt[dim] coordinates (valid only during the call),
+ * the index of the piece it belongs to (0 for single curves) and its parameter t in [0,1] on
+ * that piece. The first vertex of a curve is emitted with t = 0, the last with t = 1. */
+typedef void (*cj_flatten_sink)(void *user, const double *pt, int dim, size_t piece, double t);
+
+/* One piece of a sequence: a polynomial Bézier curve (weights == NULL) or a rational one
+ * (weights: degree+1 positive weights for the control points of `curve`). */
+typedef struct cj_flatten_piece {
+    cj_bezier curve;
+    const double *weights;
+} cj_flatten_piece;
+
+/* ---- polynomial curves ------------------------------------------------------------------ */
+
+/* Count-then-fill. out: room for cap_points points of c->dim doubles each (point-major), or
+ * NULL to only count. *npoints receives the number of points (segments + 1) whether or not
+ * they fit; if out != NULL and they do not fit: CJ_ERR_BUFFER (the buffer's contents are then
+ * unspecified). stats may be NULL. The same input always gives the same points, so counting
+ * with out == NULL and then filling a buffer of *npoints points works. */
+cj_status cj_flatten_bezier(const cj_bezier *c, const cj_flatten_opts *opts, double *out,
+                            size_t cap_points, size_t *npoints, cj_flatten_stats *stats);
+
+/* Callback form: emits the vertices through sink as they are found (no buffer at all). On
+ * CJ_ERR_CAP the uniform method has emitted nothing (its count is known first); the other
+ * methods may have emitted a prefix of the polyline, which the caller must discard. */
+cj_status cj_flatten_bezier_cb(const cj_bezier *c, const cj_flatten_opts *opts,
+                               cj_flatten_sink sink, void *user, cj_flatten_stats *stats);
+
+/* ---- rational curves -------------------------------------------------------------------- */
+
+/* As cj_flatten_bezier for a rational curve (see rational.h); weights must be > 0. */
+cj_status cj_flatten_rbezier(const cj_rbezier *c, const cj_flatten_opts *opts, double *out,
+                             size_t cap_points, size_t *npoints, cj_flatten_stats *stats);
+
+cj_status cj_flatten_rbezier_cb(const cj_rbezier *c, const cj_flatten_opts *opts,
+                                cj_flatten_sink sink, void *user, cj_flatten_stats *stats);
+
+/* ---- sequences (splines, interpolants, conic arcs) -------------------------------------- */
+
+/* Flattens pieces[0..count-1] (all of one dim) into ONE polyline. Where piece i+1 starts
+ * exactly (bit for bit) at the end of piece i, that shared point appears once; otherwise both
+ * are kept and the polyline jumps between them with a straight segment (which is counted and
+ * is not part of any curve). The tolerance applies to every piece; stats->bound is the
+ * largest per-piece bound and stats->segments the total. Count-then-fill as above. */
+cj_status cj_flatten_sequence(const cj_flatten_piece *pieces, size_t count,
+                              const cj_flatten_opts *opts, double *out, size_t cap_points,
+                              size_t *npoints, cj_flatten_stats *stats);
+
+cj_status cj_flatten_sequence_cb(const cj_flatten_piece *pieces, size_t count,
+                                 const cj_flatten_opts *opts, cj_flatten_sink sink, void *user,
+                                 cj_flatten_stats *stats);
+
+/* ---- bounds (exposed for tests and callers that split curves themselves) ---------------- */
+
+/* The proven flatness bound described above for one piece: an upper bound on the Hausdorff
+ * distance between the curve and its chord b_0 b_n. weights may be NULL (polynomial).
+ * Validates like the flatteners. */
+cj_status cj_flatten_piece_bound(const cj_bezier *c, const double *weights, double *bound);
+
+/* Wang's segment count for tolerance tol (uniform method), without flattening. */
+cj_status cj_flatten_wang_count(const cj_bezier *c, const double *weights, double tol,
+                                size_t *segments);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
