@@ -1,0 +1,247 @@
+/* Flattening: validation, homogeneous subcurves and the proven flatness / Wang bounds. */
+#include "flatten_internal.h"
+
+#include <assert.h>
+#include <math.h>
+#include <string.h>
+
+cj_status cj_fl_init(cj_fl_curve *fc, const cj_bezier *c, const double *weights) {
+    assert(fc != NULL && c != NULL);
+    cj_status st = cj_bezier_check(c, CJ_BEZIER_MAX_DEGREE);
+    if (st) return st;
+    const int n = c->degree, d = c->dim;
+    if (weights) {
+        if (d > CJ_RBEZIER_MAX_DIM)
+            return cj_fail(CJ_ERR_DIMENSION,
+                           "rational curve dimension %d is outside 1..%d (one slot holds the "
+                           "weight)",
+                           d, CJ_RBEZIER_MAX_DIM);
+        for (int i = 0; i <= n; ++i) {
+            if (!isfinite(weights[i]))
+                return cj_fail(CJ_ERR_NONFINITE, "weight %d is %s", i,
+                               isnan(weights[i]) ? "NaN" : "infinite");
+            if (!(weights[i] > 0.0))
+                return cj_fail(CJ_ERR_ARGUMENT, "weight %d is %.17g, weights must be > 0", i,
+                               weights[i]);
+        }
+    }
+    fc->n = n;
+    fc->d = d;
+    fc->rational = weights != NULL;
+    fc->D = d + (weights != NULL);
+    double maxabs = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        for (int k = 0; k < d; ++k) {
+            const double x = c->pts[i * d + k];
+            if (fabs(x) > maxabs) maxabs = fabs(x);
+            fc->hom[i * fc->D + k] = weights ? weights[i] * x : x;
+        }
+        if (weights) fc->hom[i * fc->D + d] = weights[i];
+    }
+    /* Rounding allowance: the subcurve (two de Casteljau splits), the division by the weight
+     * and the point-to-chord arithmetic each lose O(n u) relative to the coordinates'
+     * magnitude; 32 (n+2) u max|coordinate| covers all of them with a wide margin. */
+    fc->slack = 32.0 * (double)(n + 2) * CJ_UNIT_ROUNDOFF * maxabs;
+    if (weights) {
+        double wmin = weights[0], wmax = weights[0];
+        for (int i = 1; i <= n; ++i) {
+            if (weights[i] < wmin) wmin = weights[i];
+            if (weights[i] > wmax) wmax = weights[i];
+        }
+        /* Homogeneous arithmetic loses relative to max w_i |b_i|, then divides by a weight. */
+        fc->slack *= 2.0 * wmax / wmin;
+    }
+    return CJ_OK;
+}
+
+/* Splits in place: w holds (m+1) points of D coords; keeps the part [0,t] (left=1) or [t,1]. */
+static void split_keep(double *w, int m, int D, double t, int left) {
+    const double s = 1.0 - t;
+    if (left) {
+        /* left points: first entry of each level, computed from the back. */
+        for (int r = 1; r <= m; ++r)
+            for (int i = m; i >= r; --i)
+                for (int k = 0; k < D; ++k)
+                    w[i * D + k] = s * w[(i - 1) * D + k] + t * w[i * D + k];
+    } else {
+        for (int r = m; r > 0; --r)
+            for (int i = 0; i < r * D; ++i) w[i] = s * w[i] + t * w[i + D];
+    }
+}
+
+void cj_fl_subcurve(const cj_fl_curve *fc, double a, double b, double *sub) {
+    const int n = fc->n, D = fc->D;
+    memcpy(sub, fc->hom, sizeof(double) * (size_t)(n + 1) * (size_t)D);
+    if (b < 1.0) split_keep(sub, n, D, b, 1);
+    if (a > 0.0) split_keep(sub, n, D, a / b, 0);
+}
+
+void cj_fl_point(const cj_fl_curve *fc, const double *h, int i, double *out) {
+    const int d = fc->d, D = fc->D;
+    if (fc->rational) {
+        const double w = h[i * D + d];
+        for (int k = 0; k < d; ++k) out[k] = h[i * D + k] / w;
+    } else {
+        for (int k = 0; k < d; ++k) out[k] = h[i * D + k];
+    }
+}
+
+void cj_fl_eval(const cj_fl_curve *fc, double t, double *out) {
+    double w[CJ_FL_WORK];
+    const int n = fc->n, D = fc->D;
+    memcpy(w, fc->hom, sizeof(double) * (size_t)(n + 1) * (size_t)D);
+    split_keep(w, n, D, t, 0); /* w[0] = c(t) */
+    cj_fl_point(fc, w, 0, out);
+}
+
+static double norm(const double *v, int d) {
+    double s = 0.0;
+    for (int k = 0; k < d; ++k) s += v[k] * v[k];
+    return sqrt(s);
+}
+
+double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
+    const int n = fc->n, d = fc->d, D = fc->D;
+    if (n <= 1) return 0.0; /* a segment (rational or not) is its own chord */
+    double p[CJ_FL_WORK];
+    double w[CJ_BEZIER_MAX_DEGREE + 1];
+    for (int i = 0; i <= n; ++i) {
+        cj_fl_point(fc, sub, i, p + i * d);
+        w[i] = fc->rational ? sub[i * D + d] : 1.0;
+    }
+    if (fc->rational) {
+        /* Standard form w_0 = w_n by the Möbius reparametrisation w_i -> w_i λ^i (same curve),
+         * which makes the min-weight and weight-share factors below as small as possible. */
+        const double lam = pow(w[0] / w[n], 1.0 / (double)n);
+        double f = 1.0;
+        for (int i = 0; i <= n; ++i) {
+            w[i] *= f;
+            f *= lam;
+        }
+    }
+    const double *b0 = p, *bn = p + n * d;
+    double v[CJ_MAX_DIM], L2 = 0.0;
+    for (int k = 0; k < d; ++k) {
+        v[k] = bn[k] - b0[k];
+        L2 += v[k] * v[k];
+    }
+    double maxdist = 0.0; /* max_i dist(b_i, S) */
+    double maxq = 0.0;    /* max_j |q_j| for the perpendicular part */
+    int inside = 1;
+    const double nn1 = (double)n * (double)(n - 1);
+    for (int i = 1; i < n; ++i) {
+        double r[CJ_MAX_DIM], e[CJ_MAX_DIM];
+        double s = 0.0;
+        for (int k = 0; k < d; ++k) r[k] = p[i * d + k] - b0[k];
+        if (L2 > 0.0) {
+            for (int k = 0; k < d; ++k) s += r[k] * v[k];
+            s /= L2;
+        }
+        for (int k = 0; k < d; ++k) e[k] = r[k] - s * v[k];
+        double dist;
+        if (s < 0.0) {
+            dist = norm(r, d);
+            inside = 0;
+        } else if (s > 1.0) {
+            double q[CJ_MAX_DIM];
+            for (int k = 0; k < d; ++k) q[k] = p[i * d + k] - bn[k];
+            dist = norm(q, d);
+            inside = 0;
+        } else {
+            dist = norm(e, d);
+        }
+        if (dist > maxdist) maxdist = dist;
+        /* q_{i-1} = w_i e_i n(n-1) / (i (n-i)) */
+        const double qn = w[i] * norm(e, d) * nn1 / ((double)i * (double)(n - i));
+        if (qn > maxq) maxq = qn;
+    }
+    double wmin = w[0], wE = w[0] < w[n] ? w[0] : w[n], wI = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        if (w[i] < wmin) wmin = w[i];
+        if (i > 0 && i < n && w[i] > wI) wI = w[i];
+    }
+    /* (a) convexity: dist(c(t), S) <= g max_i dist(b_i, S). */
+    const double s2 = ldexp(1.0, 1 - n);
+    const double g = wI * (1.0 - s2) / (wE * s2 + wI * (1.0 - s2));
+    double best = g * maxdist;
+    /* (b) factoring t(1-t) out of the perpendicular numerator (valid when every control point
+     * projects onto S, so that distance to the line is distance to the segment). */
+    if (inside) {
+        const double bb = maxq / (4.0 * wmin);
+        if (bb < best) best = bb;
+    }
+    if (!fc->rational) {
+        /* (b') the same on the full parametric error c(t) - chord(t), valid always. */
+        double mq = 0.0, md2 = 0.0;
+        for (int i = 1; i < n; ++i) {
+            double e[CJ_MAX_DIM];
+            const double ti = (double)i / (double)n;
+            for (int k = 0; k < d; ++k) e[k] = p[i * d + k] - ((1.0 - ti) * b0[k] + ti * bn[k]);
+            const double qn = norm(e, d) * nn1 / ((double)i * (double)(n - i));
+            if (qn > mq) mq = qn;
+        }
+        /* (c) second differences: |c - chord| <= n(n-1)/8 max|Δ² b|. */
+        for (int i = 0; i + 2 <= n; ++i) {
+            double e[CJ_MAX_DIM];
+            for (int k = 0; k < d; ++k)
+                e[k] = p[i * d + k] - 2.0 * p[(i + 1) * d + k] + p[(i + 2) * d + k];
+            const double m2 = norm(e, d);
+            if (m2 > md2) md2 = m2;
+        }
+        if (mq / 4.0 < best) best = mq / 4.0;
+        if (nn1 * md2 / 8.0 < best) best = nn1 * md2 / 8.0;
+    }
+    return best;
+}
+
+double cj_fl_wang_coefficient(const cj_fl_curve *fc) {
+    const int n = fc->n, d = fc->d, D = fc->D;
+    if (n <= 1) return 0.0;
+    const double nn1 = (double)n * (double)(n - 1);
+    if (!fc->rational) {
+        double M = 0.0;
+        for (int i = 0; i + 2 <= n; ++i) {
+            double e[CJ_MAX_DIM];
+            for (int k = 0; k < d; ++k)
+                e[k] =
+                    fc->hom[i * D + k] - 2.0 * fc->hom[(i + 1) * D + k] + fc->hom[(i + 2) * D + k];
+            const double m2 = norm(e, d);
+            if (m2 > M) M = m2;
+        }
+        return nn1 * M / 8.0;
+    }
+    /* Rational: with o the centre of the control points' box, P = Σ w_i (b_i - o) B_i and
+     * W = Σ w_i B_i, the chord point c_L = P_L / W_L of the linear interpolants satisfies
+     * c - c_L = ((P - P_L) - (c_L - o)(W - W_L)) / W, so on a step of length h
+     * |c - c_L| <= h^2/8 (max|P''| + R max|W''|) / w_min. */
+    double lo[CJ_MAX_DIM], hi[CJ_MAX_DIM], o[CJ_MAX_DIM], pt[CJ_MAX_DIM];
+    for (int i = 0; i <= n; ++i) {
+        cj_fl_point(fc, fc->hom, i, pt);
+        for (int k = 0; k < d; ++k) {
+            if (i == 0 || pt[k] < lo[k]) lo[k] = pt[k];
+            if (i == 0 || pt[k] > hi[k]) hi[k] = pt[k];
+        }
+    }
+    for (int k = 0; k < d; ++k) o[k] = 0.5 * (lo[k] + hi[k]);
+    double R = 0.0, Mwb = 0.0, Mw = 0.0, wmin = fc->hom[d];
+    for (int i = 0; i <= n; ++i) {
+        cj_fl_point(fc, fc->hom, i, pt);
+        for (int k = 0; k < d; ++k) pt[k] -= o[k];
+        const double r = norm(pt, d);
+        if (r > R) R = r;
+        if (fc->hom[i * D + d] < wmin) wmin = fc->hom[i * D + d];
+    }
+    for (int i = 0; i + 2 <= n; ++i) {
+        double e[CJ_MAX_DIM];
+        const double w0 = fc->hom[i * D + d], w1 = fc->hom[(i + 1) * D + d],
+                     w2 = fc->hom[(i + 2) * D + d];
+        for (int k = 0; k < d; ++k)
+            e[k] = (fc->hom[i * D + k] - w0 * o[k]) - 2.0 * (fc->hom[(i + 1) * D + k] - w1 * o[k]) +
+                   (fc->hom[(i + 2) * D + k] - w2 * o[k]);
+        const double m2 = norm(e, d);
+        if (m2 > Mwb) Mwb = m2;
+        const double mw = fabs(w0 - 2.0 * w1 + w2);
+        if (mw > Mw) Mw = mw;
+    }
+    return nn1 * (Mwb + R * Mw) / (8.0 * wmin);
+}

@@ -1,0 +1,39 @@
+/* Private: the working form of a curve being flattened and its proven bounds. */
+#ifndef CASTELJAU_FLATTEN_INTERNAL_H
+#define CASTELJAU_FLATTEN_INTERNAL_H
+
+#include "casteljau/flatten.h"
+#include "error_internal.h"
+
+/* Homogeneous work space: (n+1) points of up to CJ_MAX_DIM (+1 weight) coordinates. */
+#define CJ_FL_WORK ((CJ_BEZIER_MAX_DEGREE + 1) * (CJ_MAX_DIM + 1))
+
+/* A validated curve in homogeneous form: hom[i*D + k] = w_i b_i,k (k < d), hom[i*D + d] = w_i
+ * for rational curves (D = d+1); hom = b for polynomial ones (D = d). */
+typedef struct cj_fl_curve {
+    int n, d, D;
+    int rational;
+    double slack; /* rounding allowance added to every bound */
+    double hom[CJ_FL_WORK];
+} cj_fl_curve;
+
+/* Validates (tolerance excluded) and fills fc. weights may be NULL. */
+cj_status cj_fl_init(cj_fl_curve *fc, const cj_bezier *c, const double *weights);
+
+/* Homogeneous control points of the piece on [a,b] (0 <= a < b <= 1) into sub[(n+1)*D]. */
+void cj_fl_subcurve(const cj_fl_curve *fc, double a, double b, double *sub);
+
+/* Proven Hausdorff bound between the piece with homogeneous control points sub and its chord
+ * (without the rounding slack). */
+double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub);
+
+/* Euclidean point i of homogeneous control points h into out[d]. */
+void cj_fl_point(const cj_fl_curve *fc, const double *h, int i, double *out);
+
+/* Point of the curve at t (de Casteljau on the homogeneous points) into out[d]. */
+void cj_fl_eval(const cj_fl_curve *fc, double t, double *out);
+
+/* Wang's bound coefficient K: m equal steps give a bound of K / m^2 (plus slack). */
+double cj_fl_wang_coefficient(const cj_fl_curve *fc);
+
+#endif
