@@ -1,0 +1,41 @@
+/* Private to raster/: the drawing canvas of cj_plot_render and its primitives (anti-aliased
+ * strokes with round joins, discs, convex fills, arrows). */
+#ifndef CASTELJAU_PLOT_INTERNAL_H
+#define CASTELJAU_PLOT_INTERNAL_H
+
+#include "casteljau/framebuffer.h"
+#include "casteljau/status.h"
+#include <stddef.h>
+
+typedef struct cj_plot_canvas {
+    cj_framebuffer *fb; /* the panel being drawn, w x h */
+    float *cover;       /* w*h coverage accumulator of the current stroke, kept at 0 between */
+    double *poly;       /* scratch polyline (2 doubles per point) */
+    size_t poly_cap, poly_n;
+    double arrow_len; /* length of frame arrows in pixels */
+} cj_plot_canvas;
+
+cj_status cj_plot_canvas_init(cj_plot_canvas *cv, int w, int h);
+void cj_plot_canvas_free(cj_plot_canvas *cv);
+/* Makes room for n points in cv->poly. */
+cj_status cj_plot_canvas_reserve(cj_plot_canvas *cv, size_t n);
+
+/* Strokes the polyline xy[2n] (pixel coordinates, y up; closed: back to the start) with the
+ * given width: coverage of each pixel is the exact-distance estimate
+ * clamp(width/2 + 1/2 - d, 0, 1) of its centre to the nearest segment, maximised over the
+ * segments (round joins and caps, no double blending where segments meet), then blended once.
+ * Widths below 1 px are drawn 1 px wide with alpha scaled by the width. */
+cj_status cj_plot_stroke(cj_plot_canvas *cv, const double *xy, size_t n, int closed, cj_rgba c,
+                         double width);
+/* Filled anti-aliased disc of radius r centred at (x, y). */
+void cj_plot_disc(cj_plot_canvas *cv, double x, double y, double r, cj_rgba c);
+/* Filled convex polygon (either orientation), 4x4 supersampled coverage. */
+void cj_plot_fill_convex(cj_plot_canvas *cv, const double *xy, size_t n, cj_rgba c);
+/* Arrow from (x0, y0) to the tip (x1, y1): a shaft and a filled head. */
+cj_status cj_plot_arrow(cj_plot_canvas *cv, double x0, double y0, double x1, double y1, cj_rgba c,
+                        double width);
+/* Sets every pixel outside [x0, x1] x [y0, y1] (rounded outwards) to c. */
+void cj_plot_blank_outside(cj_plot_canvas *cv, double x0, double y0, double x1, double y1,
+                           cj_rgba c);
+
+#endif
