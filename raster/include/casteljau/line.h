@@ -1,0 +1,188 @@
+/* casteljau: lines, anti-aliased lines, wide polylines with joins and caps, and curves.
+ *
+ * Coordinates follow framebuffer.h: pixel (x, y) is the unit square [x, x+1) x [y, y+1) with
+ * centre (x + 0.5, y + 0.5), row 0 at the bottom. Every function comes in two forms: one draws
+ * into a cj_framebuffer, the other ("_visit") hands each pixel to a callback together with a
+ * clip rectangle, so tests and other consumers can collect the exact pixel set without a
+ * framebuffer.
+ *
+ * 1. Exact lines (Bresenham, integer arithmetic only)
+ *
+ * The line between integer pixels (x0, y0) and (x1, y1) is the pixel set
+ *   - x-major when |dx| >= |dy| (dx = x1 - x0, dy = y1 - y0): for every x between x0 and x1
+ *     the pixel (x, Y(x)) with  Y(x) = floor( y0 + (x - x0) dy/dx + 1/2 );
+ *   - y-major when |dy| > |dx|: for every y the pixel (X(y), y), X(y) = floor(x0 +
+ *     (y - y0) dx/dy + 1/2).
+ * TIE RULE: when the exact rational minor coordinate lies exactly halfway between two pixels,
+ * the pixel with the LARGER minor coordinate is taken (round half up, towards +infinity). The
+ * rule depends only on the exact value on the line, so the pixel set is the same whatever the
+ * order of the end points. There is exactly one pixel per step along the major axis (the same
+ * brightness whatever the slope), both end points are drawn, and the count is
+ * max(|dx|, |dy|) + 1.
+ *
+ * Clipping happens BEFORE stepping and is exact: the first and last visible major steps are
+ * computed with 128-bit integer arithmetic from the formula above, so the pixels drawn are
+ * exactly the pixels of the unclipped line that lie in the clip rectangle, and a line from
+ * (-1e9, -1e9) to (1e9, 1e9) costs only its visible pixels.
+ *
+ * Double end points are mapped to the pixel containing them, (floor(x), floor(y)), and then
+ * drawn as above. End points must satisfy |coordinate| <= CJ_RASTER_COORD_MAX.
+ *
+ * 2. Anti-aliased thin lines (Xiaolin Wu): one pair of pixels per major step whose coverages
+ *    sum to 1 (the fractional end steps are weighted by their overlap). Fast; for plots.
+ *
+ * 3. Strokes: a polyline (or a curve flattened to one) drawn with a width, a join
+ *    (miter/round/bevel) at interior vertices and a cap (butt/round/square) at the two ends.
+ *    The stroke is the union of convex pieces (one rectangle per segment, join wedges or discs,
+ *    caps); each pixel gets the coverage
+ *        cov = clamp(1/2 - d, 0, 1),
+ *    where d is the exact signed distance from the pixel centre to the union (negative
+ *    inside). This is a box filter one pixel wide: a straight stroke of width w >= 1 has total
+ *    coverage w per unit length. Strokes thinner than one pixel are drawn one pixel wide with
+ *    coverage scaled by the width, so the total stays w per unit length. Overlapping pieces of
+ *    one call are not blended twice (coverage is the max over pieces, which is the coverage
+ *    of the union).
+ *
+ * Statuses: CJ_ERR_NONFINITE for a NaN/Inf coordinate, width, tolerance (naming it);
+ * CJ_ERR_RANGE for a coordinate beyond CJ_RASTER_COORD_MAX, a width <= 0 or above
+ * CJ_RASTER_MAX_WIDTH, a tolerance <= 0, a miter limit < 1; CJ_ERR_EMPTY for a polyline with no
+ * point; CJ_ERR_ARGUMENT for an unknown join/cap; CJ_ERR_NOMEM if the framebuffer's stroke
+ * scratch cannot be allocated (once, on the first stroke); CJ_ERR_BUFFER if a visit workspace
+ * is too small. Flattening statuses come from flatten.h. Nothing is drawn on failure.
+ */
+#ifndef CASTELJAU_LINE_H
+#define CASTELJAU_LINE_H
+
+#include "casteljau/bezier.h"
+#include "casteljau/framebuffer.h"
+#include "casteljau/status.h"
+#include "casteljau/vec.h"
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Largest |coordinate| of a line end point (2^52: every such double is an integer or
+ * half-integer multiple, and all clipping products fit in 128 bits). */
+#define CJ_RASTER_COORD_MAX 4503599627370496.0
+/* Largest stroke width in pixels. */
+#define CJ_RASTER_MAX_WIDTH 65536.0
+/* Default flattening tolerance for curves, in pixels. */
+#define CJ_RASTER_DEFAULT_TOL 0.25
+
+/* Inclusive pixel rectangle [x0, x1] x [y0, y1]; empty when x1 < x0 or y1 < y0. */
+typedef struct cj_raster_rect {
+    int x0, y0, x1, y1;
+} cj_raster_rect;
+
+/* The whole framebuffer as a clip rectangle. */
+static inline cj_raster_rect cj_raster_rect_of(const cj_framebuffer *fb) {
+    cj_raster_rect r;
+    r.x0 = 0;
+    r.y0 = 0;
+    r.x1 = fb->width - 1;
+    r.y1 = fb->height - 1;
+    return r;
+}
+
+/* Receives one pixel of an exact line, in order from one end to the other. */
+typedef void (*cj_raster_pixel_fn)(void *user, int x, int y);
+/* Receives one pixel with its coverage in (0, 1]. */
+typedef void (*cj_raster_cover_fn)(void *user, int x, int y, float coverage);
+
+/* ---- exact (Bresenham) lines ------------------------------------------------------------- */
+
+/* Visits the pixels of the line (x0,y0)-(x1,y1) that lie in `clip`, each once, calling fn for
+ * each (fn may be NULL to only count). *visited (may be NULL) receives the number of pixels
+ * visited. Work is proportional to the visited pixels plus a constant. */
+cj_status cj_raster_line_visit(long long x0, long long y0, long long x1, long long y1,
+                               cj_raster_rect clip, cj_raster_pixel_fn fn, void *user,
+                               long long *visited);
+
+/* As cj_raster_line_visit for double end points, mapped to pixels by floor(). */
+cj_status cj_raster_line_visit_d(double x0, double y0, double x1, double y1, cj_raster_rect clip,
+                                 cj_raster_pixel_fn fn, void *user, long long *visited);
+
+/* Draws the exact line into fb with colour c (stored when c.a == 255, else blended
+ * source-over). Inner loop: pointer stepping, no per-pixel bounds checks. */
+cj_status cj_raster_line(cj_framebuffer *fb, long long x0, long long y0, long long x1, long long y1,
+                         cj_rgba c);
+cj_status cj_raster_line_d(cj_framebuffer *fb, double x0, double y0, double x1, double y1,
+                           cj_rgba c);
+
+/* ---- anti-aliased thin lines (Wu) --------------------------------------------------------- */
+
+/* Visits the Wu pixels of the segment between the points (x0,y0) and (x1,y1) (continuous
+ * coordinates, pixel centres at +0.5) that lie in clip. The output does not depend on the order
+ * of the end points. Coverages: per major step the two pixels straddling the line get 1 - f and
+ * f (f the fractional distance), times the overlap of the step with the segment at the ends. */
+cj_status cj_raster_line_aa_visit(double x0, double y0, double x1, double y1, cj_raster_rect clip,
+                                  cj_raster_cover_fn fn, void *user);
+cj_status cj_raster_line_aa(cj_framebuffer *fb, double x0, double y0, double x1, double y1,
+                            cj_rgba c);
+
+/* ---- strokes ------------------------------------------------------------------------------ */
+
+typedef enum cj_raster_join {
+    CJ_JOIN_MITER = 0, /* sharp corner, bevelled when longer than miter_limit * width / 2 */
+    CJ_JOIN_ROUND,     /* disc of radius width/2 at the vertex */
+    CJ_JOIN_BEVEL      /* corner cut straight */
+} cj_raster_join;
+
+typedef enum cj_raster_cap {
+    CJ_CAP_BUTT = 0, /* ends exactly at the end point */
+    CJ_CAP_ROUND,    /* half disc of radius width/2 */
+    CJ_CAP_SQUARE    /* extended by width/2 */
+} cj_raster_cap;
+
+typedef struct cj_raster_stroke {
+    double width; /* > 0, <= CJ_RASTER_MAX_WIDTH, in pixels */
+    cj_raster_join join;
+    cj_raster_cap cap;
+    double miter_limit; /* >= 1: max ratio (miter length)/(width/2) = 1/sin(angle/2), as SVG */
+} cj_raster_stroke;
+
+/* width, round joins, round caps, miter limit 4. */
+static inline cj_raster_stroke cj_raster_stroke_default(double width) {
+    cj_raster_stroke s;
+    s.width = width;
+    s.join = CJ_JOIN_ROUND;
+    s.cap = CJ_CAP_ROUND;
+    s.miter_limit = 4.0;
+    return s;
+}
+
+/* Strokes the polyline pts[0..n-1] (closed: also the segment back to pts[0], with joins
+ * everywhere and no caps) with colour c, blending round(c.a * coverage) source-over.
+ * Consecutive equal points are skipped; a polyline whose points are all equal draws a dot
+ * (round: disc, square: square, butt: nothing). The first call allocates the framebuffer's
+ * stroke scratch (one float and two ints per row/pixel); later calls allocate nothing. */
+cj_status cj_raster_stroke_polyline(cj_framebuffer *fb, const cj_vec2 *pts, size_t n, int closed,
+                                    const cj_raster_stroke *style, cj_rgba c);
+
+/* Bytes of workspace cj_raster_stroke_polyline_visit needs for clip (0 for an empty clip). */
+size_t cj_raster_stroke_work_size(cj_raster_rect clip);
+
+/* As cj_raster_stroke_polyline, but each covered pixel of clip goes to fn (row by row, from
+ * the bottom). work: work_bytes >= cj_raster_stroke_work_size(clip) bytes, suitably aligned
+ * (from malloc), contents on entry ignored; CJ_ERR_BUFFER if too small. */
+cj_status cj_raster_stroke_polyline_visit(const cj_vec2 *pts, size_t n, int closed,
+                                          const cj_raster_stroke *style, cj_raster_rect clip,
+                                          void *work, size_t work_bytes, cj_raster_cover_fn fn,
+                                          void *user);
+
+/* Strokes a 2D Bézier curve (c->dim must be 2, else CJ_ERR_DIMENSION) flattened at tolerance
+ * tol pixels (CJ_RASTER_DEFAULT_TOL is a good choice) with the near-optimal method of
+ * flatten.h; flattening statuses (CJ_ERR_CAP ...) are passed on. The polyline is built in a
+ * stack buffer of CJ_RASTER_CURVE_CHUNK points and stroked chunk by chunk with joins carried
+ * across chunks, so any length works without allocation. *bound (may be NULL) receives the
+ * proven distance bound between the curve and the stroked polyline. */
+#define CJ_RASTER_CURVE_CHUNK 256
+cj_status cj_raster_stroke_bezier(cj_framebuffer *fb, const cj_bezier *curve, double tol,
+                                  const cj_raster_stroke *style, cj_rgba c, double *bound);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
