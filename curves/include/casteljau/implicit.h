@@ -19,7 +19,7 @@
  *      (Illinois) until |f|/|∇f| <= tol or the bracket is narrower than tol/4.
  *   3. Chords: between consecutive crossings, the chord midpoint is projected onto the curve by
  *      Newton steps along ∇f; if it moved more than tol, the projected point is inserted and
- *      both halves are checked again (depth cap 20 per grid chord).
+ *      both halves are checked again (depth cap 12 per grid chord).
  *   4. Linking: crossings are chained into polylines. A chain that returns to its start is a
  *      closed loop and is emitted with closed = 1 and its last point bit-identical to its first;
  *      a chain ending on the box boundary is open.
