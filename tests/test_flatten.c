@@ -1,0 +1,416 @@
+/* Flattening: the proven bound holds against dense sampling of the exact curve (an independent
+ * long-double evaluator), on random curves of degrees 2-10 (polynomial and rational, 2D and
+ * 3D) and on hard shapes; the quarter circle needs 12 segments; caps and errors are reported. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "casteljau/flatten.h"
+#include "rng.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- oracle: long-double de Casteljau on homogeneous points, independent of the library --- */
+
+static void oracle_eval(int n, int d, const double *pts, const double *w, long double t,
+                        long double *out) {
+    long double h[(CJ_BEZIER_MAX_DEGREE + 1) * (CJ_MAX_DIM + 1)];
+    const int D = d + 1;
+    for (int i = 0; i <= n; ++i) {
+        const long double wi = w ? (long double)w[i] : 1.0L;
+        for (int k = 0; k < d; ++k) h[i * D + k] = wi * (long double)pts[i * d + k];
+        h[i * D + d] = wi;
+    }
+    for (int r = n; r > 0; --r)
+        for (int i = 0; i < r * D; ++i) h[i] = (1.0L - t) * h[i] + t * h[i + D];
+    for (int k = 0; k < d; ++k) out[k] = h[k] / h[d];
+}
+
+static long double dist_point_segment(const long double *p, const double *a, const double *b,
+                                      int d) {
+    long double ab2 = 0, ap_ab = 0;
+    for (int k = 0; k < d; ++k) {
+        const long double ab = (long double)b[k] - a[k];
+        ab2 += ab * ab;
+        ap_ab += (p[k] - a[k]) * ab;
+    }
+    long double s = ab2 > 0 ? ap_ab / ab2 : 0;
+    if (s < 0) s = 0;
+    if (s > 1) s = 1;
+    long double dd = 0;
+    for (int k = 0; k < d; ++k) {
+        const long double q = p[k] - (a[k] + s * ((long double)b[k] - a[k]));
+        dd += q * q;
+    }
+    return sqrtl(dd);
+}
+
+/* Collects vertices and parameters from the callback. */
+typedef struct poly {
+    int d;
+    size_t n, cap;
+    double *pts, *ts;
+    size_t *piece;
+} poly;
+
+static void sink(void *user, const double *pt, int dim, size_t piece, double t) {
+    poly *p = user;
+    assert_int_equal(dim, p->d);
+    if (p->n == p->cap) {
+        p->cap = p->cap ? 2 * p->cap : 64;
+        p->pts = realloc(p->pts, sizeof(double) * p->cap * (size_t)p->d);
+        p->ts = realloc(p->ts, sizeof(double) * p->cap);
+        p->piece = realloc(p->piece, sizeof(size_t) * p->cap);
+        assert_non_null(p->pts);
+        assert_non_null(p->ts);
+        assert_non_null(p->piece);
+    }
+    memcpy(p->pts + p->n * (size_t)p->d, pt, sizeof(double) * (size_t)dim);
+    p->ts[p->n] = t;
+    p->piece[p->n] = piece;
+    p->n++;
+}
+
+static void poly_free(poly *p) {
+    free(p->pts);
+    free(p->ts);
+    free(p->piece);
+    memset(p, 0, sizeof *p);
+}
+
+/* Largest distance from dense samples of the curve (per segment, `per` samples plus the
+ * segment's own parameters) to that segment of the polyline. Distance to the own segment is
+ * at least the distance to the whole polyline, so this is a stricter check. Also checks the
+ * vertices lie on the curve. */
+static double measure(int n, int d, const double *pts, const double *w, const poly *p, int per,
+                      double *vertex_err) {
+    long double worst = 0, verr = 0;
+    /* keep the cost bounded on very fine flattenings */
+    if (p->n > 1 && (size_t)per * (p->n - 1) > 400000) per = (int)(400000 / (p->n - 1));
+    if (per < 2) per = 2;
+    for (size_t j = 0; j < p->n; ++j) {
+        long double c[CJ_MAX_DIM], e = 0;
+        oracle_eval(n, d, pts, w, p->ts[j], c);
+        for (int k = 0; k < d; ++k) e += (c[k] - p->pts[j * d + k]) * (c[k] - p->pts[j * d + k]);
+        if (sqrtl(e) > verr) verr = sqrtl(e);
+    }
+    for (size_t j = 0; j + 1 < p->n; ++j) {
+        const long double t0 = p->ts[j], t1 = p->ts[j + 1];
+        for (int s = 0; s <= per; ++s) {
+            long double c[CJ_MAX_DIM];
+            oracle_eval(n, d, pts, w, t0 + (t1 - t0) * s / per, c);
+            const long double dd = dist_point_segment(c, p->pts + j * d, p->pts + (j + 1) * d, d);
+            if (dd > worst) worst = dd;
+        }
+    }
+    if (vertex_err) *vertex_err = (double)verr;
+    return (double)worst;
+}
+
+static const char *mname(int m) {
+    return m == CJ_FLATTEN_UNIFORM     ? "uniform"
+           : m == CJ_FLATTEN_SUBDIVIDE ? "subdivide"
+                                       : "near-opt";
+}
+
+/* Flattens with every method and checks the contract; returns the near-optimal count. */
+static size_t check_curve(int n, int d, const double *pts, const double *w, double tol,
+                          const char *what, int per) {
+    size_t nopt = 0;
+    double scale = 0;
+    for (int i = 0; i < (n + 1) * d; ++i) scale = fmax(scale, fabs(pts[i]));
+    for (int m = 0; m < CJ_FLATTEN_METHOD_COUNT_; ++m) {
+        cj_flatten_opts o = cj_flatten_defaults((cj_flatten_method)m, tol);
+        poly p = {.d = d};
+        cj_flatten_stats st;
+        cj_bezier c = cj_bezier_view(n, d, pts);
+        cj_rbezier rc = cj_rbezier_view(n, d, pts, w);
+        cj_status s = w ? cj_flatten_rbezier_cb(&rc, &o, sink, &p, &st)
+                        : cj_flatten_bezier_cb(&c, &o, sink, &p, &st);
+        if (s != CJ_OK)
+            fail_msg("%s (%s, tol %g): status %d: %s", what, mname(m), tol, s, cj_last_error());
+        double verr;
+        const double dev = measure(n, d, pts, w, &p, per, &verr);
+        if (!(st.bound <= tol) || !(dev <= st.bound * (1 + 1e-9) + 1e-12 * scale) ||
+            st.segments + 1 != p.n || p.ts[0] != 0.0 || p.ts[p.n - 1] != 1.0 ||
+            verr > 1e-11 * (scale + 1))
+            fail_msg("%s (%s, tol %g): segments %zu points %zu bound %g measured %g vertex err %g",
+                     what, mname(m), tol, st.segments, p.n, st.bound, dev, verr);
+        /* Endpoints exact, parameters increasing. */
+        for (int k = 0; k < d; ++k) {
+            assert_true(p.pts[k] == pts[k]);
+            assert_true(p.pts[(p.n - 1) * d + k] == pts[n * d + k]);
+        }
+        for (size_t j = 0; j + 1 < p.n; ++j) assert_true(p.ts[j] < p.ts[j + 1]);
+        /* Count-then-fill agrees with the callback, bit for bit. */
+        size_t np = 0;
+        s = w ? cj_flatten_rbezier(&rc, &o, NULL, 0, &np, NULL)
+              : cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL);
+        assert_int_equal(s, CJ_OK);
+        assert_int_equal(np, p.n);
+        double *buf = malloc(sizeof(double) * np * (size_t)d);
+        assert_non_null(buf);
+        s = w ? cj_flatten_rbezier(&rc, &o, buf, np, &np, NULL)
+              : cj_flatten_bezier(&c, &o, buf, np, &np, NULL);
+        assert_int_equal(s, CJ_OK);
+        assert_memory_equal(buf, p.pts, sizeof(double) * np * (size_t)d);
+        free(buf);
+        if (m == CJ_FLATTEN_NEAR_OPTIMAL) nopt = st.segments;
+        poly_free(&p);
+    }
+    return nopt;
+}
+
+/* ---- tests -------------------------------------------------------------------------------- */
+
+static void test_quarter_circle(void **state) {
+    (void)state;
+    const double pts[] = {100, 0, 100, 100, 0, 100};
+    const double w[] = {1, sqrt(0.5), 1};
+    const size_t nopt = check_curve(2, 2, pts, w, 0.25, "quarter circle r=100", 64);
+    /* Continuous optimum (π/2) r sqrt(1/(8 r tol)) = 11.1, so 12 is the least whole count. */
+    assert_int_equal(nopt, 12);
+    /* Dense check with the exact circle: every vertex at radius 100, max sagitta <= 0.25. */
+    cj_rbezier rc = cj_rbezier_view(2, 2, pts, w);
+    cj_flatten_opts o = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, 0.25);
+    double buf[64 * 2];
+    size_t np;
+    cj_flatten_stats st;
+    assert_int_equal(cj_flatten_rbezier(&rc, &o, buf, 64, &np, &st), CJ_OK);
+    double worst = 0;
+    for (size_t j = 0; j + 1 < np; ++j) {
+        assert_true(fabs(hypot(buf[2 * j], buf[2 * j + 1]) - 100) < 1e-10);
+        /* sagitta of the chord on a circle: r - distance of the chord from the centre */
+        const double mx = 0.5 * (buf[2 * j] + buf[2 * j + 2]),
+                     my = 0.5 * (buf[2 * j + 1] + buf[2 * j + 3]);
+        worst = fmax(worst, 100 - hypot(mx, my));
+    }
+    assert_true(worst <= 0.25);
+    printf("quarter circle r=100 tol 0.25: near-optimal %zu segments, exact sagitta max %.4f, "
+           "proven bound %.4f\n",
+           np - 1, worst, st.bound);
+}
+
+static void random_curve(cj_rng *r, int n, int d, double box, double *pts) {
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < d; ++k) pts[i * d + k] = cj_rng_range(r, -box, box);
+}
+
+static void test_random_polynomial(void **state) {
+    (void)state;
+    const uint64_t seed = cj_test_seed("test_flatten_random", 20261121);
+    cj_rng r;
+    cj_rng_init(&r, seed);
+    double pts[11 * 3];
+    char what[128];
+    int count = 0;
+    for (int c = 0; c < 1000; ++c) {
+        const int n = 2 + c % 9, d = 2 + (c / 9) % 2;
+        random_curve(&r, n, d, 100, pts);
+        const double tol = pow(10.0, cj_rng_range(&r, -2, 1));
+        snprintf(what, sizeof what, "seed %llu case %d (degree %d dim %d)",
+                 (unsigned long long)seed, c, n, d);
+        check_curve(n, d, pts, NULL, tol, what, 12);
+        ++count;
+    }
+    printf("random polynomial: %d curves (degrees 2-10, 2D/3D, tol 0.01-10), 3 methods each: "
+           "bound <= tol and sampled deviation <= bound\n",
+           count);
+}
+
+static void test_random_rational(void **state) {
+    (void)state;
+    const uint64_t seed = cj_test_seed("test_flatten_rational", 4242);
+    cj_rng r;
+    cj_rng_init(&r, seed);
+    double pts[11 * 3], w[11];
+    char what[128];
+    int count = 0;
+    for (int c = 0; c < 300; ++c) {
+        const int n = 2 + c % 7, d = 2 + (c / 7) % 2;
+        random_curve(&r, n, d, 100, pts);
+        for (int i = 0; i <= n; ++i) w[i] = exp(cj_rng_range(&r, -1.5, 1.5));
+        const double tol = pow(10.0, cj_rng_range(&r, -2, 1));
+        snprintf(what, sizeof what, "seed %llu rational case %d (degree %d dim %d)",
+                 (unsigned long long)seed, c, n, d);
+        check_curve(n, d, pts, w, tol, what, 12);
+        ++count;
+    }
+    printf("random rational: %d curves (degrees 2-8, weights e^[-1.5,1.5]), bound holds\n", count);
+}
+
+static void test_hard_shapes(void **state) {
+    (void)state;
+    static const struct {
+        const char *name;
+        int n;
+        double p[11 * 2];
+    } shapes[] = {
+        {"cusp", 3, {0, 0, 100, 100, 0, 100, 100, 0}},
+        {"near-cusp", 3, {0, 0, 100, 100, 0, 100, 100.5, 0}},
+        {"loop", 3, {0, 0, 150, 100, -50, 100, 100, 0}},
+        {"inflection", 3, {0, 0, 100, 100, 200, -100, 300, 0}},
+        {"all equal", 3, {7, 7, 7, 7, 7, 7, 7, 7}},
+        {"collinear out of order", 3, {0, 0, 300, 0, -100, 0, 200, 0}},
+        {"collinear deg 6 shuffled", 6, {0, 0, 5, 5, -3, -3, 9, 9, 1, 1, -7, -7, 2, 2}},
+        {"closed (ends equal)", 3, {0, 0, 100, 100, -100, 100, 0, 0}},
+        {"degree 10 zigzag", 10, {0,   0,  10,   100, 20,  -100, 30,   100, 40,  -100, 50,
+                                  100, 60, -100, 70,  100, 80,   -100, 90,  100, 100,  0}},
+        {"straight line", 2, {0, 0, 1, 1, 2, 2}},
+    };
+    const double tols[] = {1e-6, 1e-3, 0.25, 1, 1e3, 1e9};
+    int count = 0;
+    for (size_t s = 0; s < sizeof shapes / sizeof shapes[0]; ++s)
+        for (size_t j = 0; j < sizeof tols / sizeof tols[0]; ++j) {
+            char what[96];
+            snprintf(what, sizeof what, "%s", shapes[s].name);
+            const size_t n = check_curve(shapes[s].n, 2, shapes[s].p, NULL, tols[j], what, 48);
+            if (tols[j] >= 1e9) assert_int_equal(n, 1);
+            ++count;
+        }
+    /* A 3D cusp-and-twist curve, and degree 0. */
+    const double p3[] = {0, 0, 0, 100, 100, 50, 0, 100, -50, 100, 0, 0};
+    for (size_t j = 0; j < 4; ++j) check_curve(3, 3, p3, NULL, tols[j], "3D cusp", 48);
+    const double p0[] = {1, 2};
+    cj_bezier c0 = cj_bezier_view(0, 2, p0);
+    cj_flatten_opts o = cj_flatten_defaults(CJ_FLATTEN_SUBDIVIDE, 0.1);
+    double buf[4];
+    size_t np;
+    assert_int_equal(cj_flatten_bezier(&c0, &o, buf, 2, &np, NULL), CJ_OK);
+    assert_int_equal(np, 2);
+    assert_true(buf[2] == 1 && buf[3] == 2);
+    printf("hard shapes: %d shape/tolerance pairs (cusp, loop, inflection, equal, collinear "
+           "unordered, tol 1e-6..1e9) plus 3D cusp and degree 0\n",
+           count);
+}
+
+static void test_caps(void **state) {
+    (void)state;
+    const double pts[] = {0, 0, 100, 100, 0, 100, 100, 0};
+    cj_bezier c = cj_bezier_view(3, 2, pts);
+    for (int m = 0; m < CJ_FLATTEN_METHOD_COUNT_; ++m) {
+        cj_flatten_opts o = cj_flatten_defaults((cj_flatten_method)m, 0.01);
+        size_t np;
+        cj_flatten_stats st;
+        assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, &st), CJ_OK);
+        o.max_segments = st.segments; /* exactly enough */
+        assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL), CJ_OK);
+        o.max_segments = st.segments - 1; /* one short: reported, not silently applied */
+        assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL), CJ_ERR_CAP);
+        assert_true(strstr(cj_last_error(), "max_segments") != NULL);
+    }
+    /* Tiny tolerance: the default cap (2^22 segments) is hit, or the rounding floor. */
+    cj_flatten_opts o = cj_flatten_defaults(CJ_FLATTEN_UNIFORM, 1e-11);
+    size_t np;
+    assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL), CJ_ERR_CAP);
+    o.tol = 1e-14;
+    assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL), CJ_ERR_RANGE);
+    /* Buffer too small: count reported. */
+    o = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, 1);
+    double buf[2 * 4];
+    assert_int_equal(cj_flatten_bezier(&c, &o, buf, 4, &np, NULL), CJ_ERR_BUFFER);
+    assert_true(np > 4);
+    printf("caps: exact cap passes, one less is CJ_ERR_CAP for all 3 methods; tiny tol -> CAP / "
+           "RANGE; small buffer -> CJ_ERR_BUFFER with the count\n");
+}
+
+static void test_errors(void **state) {
+    (void)state;
+    double pts[] = {0, 0, 1, 1, 2, 0};
+    double w[] = {1, 1, 1};
+    cj_bezier c = cj_bezier_view(2, 2, pts);
+    size_t np;
+    cj_flatten_opts o = cj_flatten_defaults(CJ_FLATTEN_SUBDIVIDE, NAN);
+    assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL), CJ_ERR_NONFINITE);
+    o.tol = INFINITY;
+    assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL), CJ_ERR_NONFINITE);
+    o.tol = 0;
+    assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL), CJ_ERR_RANGE);
+    o.tol = -1;
+    assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL), CJ_ERR_RANGE);
+    o.tol = 0.1;
+    o.method = (cj_flatten_method)7;
+    assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL), CJ_ERR_ARGUMENT);
+    o.method = CJ_FLATTEN_NEAR_OPTIMAL;
+    pts[3] = NAN;
+    assert_int_equal(cj_flatten_bezier(&c, &o, NULL, 0, &np, NULL), CJ_ERR_NONFINITE);
+    pts[3] = 1;
+    cj_bezier bad = cj_bezier_view(2, 0, pts);
+    assert_int_equal(cj_flatten_bezier(&bad, &o, NULL, 0, &np, NULL), CJ_ERR_DIMENSION);
+    bad = cj_bezier_view(CJ_BEZIER_MAX_DEGREE + 1, 2, pts);
+    assert_int_equal(cj_flatten_bezier(&bad, &o, NULL, 0, &np, NULL), CJ_ERR_DEGREE);
+    cj_rbezier rc = cj_rbezier_view(2, 2, pts, w);
+    w[1] = 0;
+    assert_int_equal(cj_flatten_rbezier(&rc, &o, NULL, 0, &np, NULL), CJ_ERR_ARGUMENT);
+    w[1] = -2;
+    assert_int_equal(cj_flatten_rbezier(&rc, &o, NULL, 0, &np, NULL), CJ_ERR_ARGUMENT);
+    w[1] = NAN;
+    assert_int_equal(cj_flatten_rbezier(&rc, &o, NULL, 0, &np, NULL), CJ_ERR_NONFINITE);
+    w[1] = 1;
+    /* huge coordinates whose bound overflows */
+    double big[] = {0, 0, 1e300, 1e300, -1e300, 0};
+    cj_bezier cb = cj_bezier_view(2, 2, big);
+    o.tol = 1e290;
+    assert_int_equal(cj_flatten_bezier(&cb, &o, NULL, 0, &np, NULL), CJ_ERR_RANGE);
+    /* sequences */
+    o.tol = 0.1;
+    assert_int_equal(cj_flatten_sequence(NULL, 0, &o, NULL, 0, &np, NULL), CJ_ERR_EMPTY);
+    double p3[] = {0, 0, 0, 1, 1, 1};
+    cj_flatten_piece seq[2] = {{cj_bezier_view(2, 2, pts), NULL}, {cj_bezier_view(1, 3, p3), NULL}};
+    assert_int_equal(cj_flatten_sequence(seq, 2, &o, NULL, 0, &np, NULL), CJ_ERR_DIMENSION);
+    printf("errors: NaN/Inf/<=0 tol, bad method, NaN point, dim, degree, weights <=0/NaN, "
+           "overflow, empty and mixed-dim sequences\n");
+}
+
+static void test_sequence(void **state) {
+    (void)state;
+    /* A cubic, a rational quarter circle joined at its end, and a detached line. */
+    const double a[] = {0, 0, 50, 100, 100, 100, 200, 0};
+    const double b[] = {200, 0, 200, -100, 100, -100};
+    const double wb[] = {1, sqrt(0.5), 1};
+    const double c[] = {0, 0, 10, 10};
+    cj_flatten_piece seq[3] = {{cj_bezier_view(3, 2, a), NULL},
+                               {cj_bezier_view(2, 2, b), wb},
+                               {cj_bezier_view(1, 2, c), NULL}};
+    cj_flatten_opts o = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, 0.25);
+    poly p = {.d = 2};
+    cj_flatten_stats st;
+    assert_int_equal(cj_flatten_sequence_cb(seq, 3, &o, sink, &p, &st), CJ_OK);
+    size_t sa, sb;
+    cj_flatten_stats s1;
+    cj_bezier ca = cj_bezier_view(3, 2, a);
+    cj_rbezier cbr = cj_rbezier_view(2, 2, b, wb);
+    assert_int_equal(cj_flatten_bezier(&ca, &o, NULL, 0, &sa, &s1), CJ_OK);
+    assert_int_equal(cj_flatten_rbezier(&cbr, &o, NULL, 0, &sb, &s1), CJ_OK);
+    /* shared point once: (sa) + (sb - 1); then the detached line adds 2 points */
+    assert_int_equal(p.n, sa + sb - 1 + 2);
+    assert_int_equal(st.segments, p.n - 1);
+    assert_true(p.piece[sa - 1] == 0 && p.piece[sa] == 1 && p.piece[p.n - 1] == 2);
+    assert_true(st.bound <= 0.25);
+    double buf[256 * 2];
+    size_t np;
+    assert_int_equal(cj_flatten_sequence(seq, 3, &o, buf, 256, &np, NULL), CJ_OK);
+    assert_int_equal(np, p.n);
+    assert_memory_equal(buf, p.pts, sizeof(double) * 2 * np);
+    poly_free(&p);
+    printf("sequence: joined pieces share their end point once (%zu points), detached piece "
+           "kept, buffer == callback\n",
+           np);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_quarter_circle),
+        cmocka_unit_test(test_hard_shapes),
+        cmocka_unit_test(test_random_polynomial),
+        cmocka_unit_test(test_random_rational),
+        cmocka_unit_test(test_caps),
+        cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_sequence),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
