@@ -33,5 +33,6 @@ void cli_print_double(double v);
 
 /* One entry per sub-command. */
 int cmd_eval(int argc, char **argv);
+int cmd_plot(int argc, char **argv);
 
 #endif

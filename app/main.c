@@ -12,6 +12,7 @@ typedef struct command {
 
 static const command commands[] = {
     {"eval", cmd_eval, "evaluate a Bezier curve (or a derivative) at parameters"},
+    {"plot", cmd_plot, "render curves described in JSON (or --demo) to a PNG image"},
 };
 
 static void usage(FILE *f) {

@@ -667,12 +667,12 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
 
     cj_plot_canvas cv;
     if ((st = cj_plot_canvas_init(&cv, w, h))) return st;
-    cv.arrow_len = fmax(24.0, fmin(70.0, 0.12 * fmin(ax1 - ax0, ay1 - ay0)));
+    cv.arrow_len = fmax(36.0, fmin(90.0, 0.16 * fmin(ax1 - ax0, ay1 - ay0)));
     cj_framebuffer_clear(cv.fb, plot->background);
 
     const double vx0 = x.cx + (ax0 - x.ox) / x.s, vx1 = x.cx + (ax1 - x.ox) / x.s;
     const double vy0 = x.cy + (ay0 - x.oy) / x.s, vy1 = x.cy + (ay1 - x.oy) / x.s;
-    ticks tx = make_ticks(vx0, vx1, fmax(2.0, (ax1 - ax0) / 90.0));
+    ticks tx = make_ticks(vx0, vx1, fmax(2.0, (ax1 - ax0) / 75.0));
     ticks ty = make_ticks(vy0, vy1, fmax(2.0, (ay1 - ay0) / 70.0));
     const cj_rgba grid = cj_rgba_make(0xe6, 0xe6, 0xe6, 255);
     const cj_rgba ink = cj_rgba_make(0x40, 0x40, 0x40, 255);

@@ -1,6 +1,7 @@
 /* Drawing primitives of the plot canvas (see plot_internal.h). */
 #include "plot_internal.h"
 
+#include "casteljau/line.h"
 #include "error_internal.h"
 
 #include <math.h>
@@ -23,6 +24,7 @@ void cj_plot_canvas_free(cj_plot_canvas *cv) {
     cj_framebuffer_destroy(cv->fb);
     free(cv->cover);
     free(cv->poly);
+    free(cv->vec);
     memset(cv, 0, sizeof *cv);
 }
 
@@ -42,77 +44,21 @@ static int clampi(double v, int lo, int hi) {
     return (int)v;
 }
 
-static void cover_segment(cj_plot_canvas *cv, double ax, double ay, double bx, double by, double hw,
-                          int *bb) {
-    const int w = cv->fb->width, h = cv->fb->height;
-    const double ext = hw + 1.0;
-    int i0 = clampi(floor(fmin(ax, bx) - ext), 0, w - 1);
-    int i1 = clampi(ceil(fmax(ax, bx) + ext), 0, w - 1);
-    int j0 = clampi(floor(fmin(ay, by) - ext), 0, h - 1);
-    int j1 = clampi(ceil(fmax(ay, by) + ext), 0, h - 1);
-    if (fmax(ax, bx) + ext < 0 || fmin(ax, bx) - ext > w || fmax(ay, by) + ext < 0 ||
-        fmin(ay, by) - ext > h)
-        return;
-    const double dx = bx - ax, dy = by - ay;
-    const double len2 = dx * dx + dy * dy;
-    const double len = sqrt(len2);
-    for (int j = j0; j <= j1; ++j) {
-        const double py = j + 0.5;
-        /* Only the x range where the distance to the segment's line can be < ext. */
-        int a = i0, b = i1;
-        if (len > 0 && fabs(dy) > 1e-12) {
-            /* line: |(p - A) x D| / len < ext  ->  x range on this row */
-            double xc = ax + (py - ay) * dx / dy;
-            double half = ext * len / fabs(dy);
-            double lo = fmax(fmin(xc - half, xc + half), fmin(ax, bx) - ext);
-            double hi = fmin(fmax(xc - half, xc + half), fmax(ax, bx) + ext);
-            a = clampi(floor(lo), i0, i1);
-            b = clampi(ceil(hi), i0, i1);
-        }
-        float *row = cv->cover + (size_t)j * (size_t)w;
-        for (int i = a; i <= b; ++i) {
-            const double px = i + 0.5;
-            double u = len2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / len2 : 0.0;
-            u = u < 0 ? 0 : u > 1 ? 1 : u;
-            const double ex = px - (ax + u * dx), ey = py - (ay + u * dy);
-            const double d = sqrt(ex * ex + ey * ey);
-            double c = hw + 0.5 - d;
-            if (c <= 0) continue;
-            if (c > 1) c = 1;
-            if ((float)c > row[i]) row[i] = (float)c;
-        }
-        if (a < bb[0]) bb[0] = a;
-        if (b > bb[1]) bb[1] = b;
-    }
-    if (j0 < bb[2]) bb[2] = j0;
-    if (j1 > bb[3]) bb[3] = j1;
-}
-
+/* Strokes through the raster/ stroker (line.h): round joins and caps, exact-distance coverage
+ * maximised over the pieces, blended once. */
 cj_status cj_plot_stroke(cj_plot_canvas *cv, const double *xy, size_t n, int closed, cj_rgba c,
                          double width) {
     if (n == 0) return CJ_OK;
-    for (size_t i = 0; i < 2 * n; ++i)
-        if (!isfinite(xy[i]))
-            return cj_fail(CJ_ERR_NONFINITE, "stroke point %zu is not finite", i / 2);
-    if (width < 1.0) {
-        c.a = (uint8_t)lround(c.a * fmax(width, 0.0));
-        width = 1.0;
+    if (n > cv->vec_cap) {
+        size_t cap = n + n / 2 + 16;
+        cj_vec2 *v = realloc(cv->vec, cap * sizeof *v);
+        if (!v) return cj_fail(CJ_ERR_NOMEM, "no memory for a polyline of %zu points", n);
+        cv->vec = v;
+        cv->vec_cap = cap;
     }
-    const double hw = width / 2;
-    int bb[4] = {cv->fb->width, -1, cv->fb->height, -1};
-    if (n == 1) cover_segment(cv, xy[0], xy[1], xy[0], xy[1], hw, bb);
-    for (size_t i = 0; i + 1 < n; ++i)
-        cover_segment(cv, xy[2 * i], xy[2 * i + 1], xy[2 * i + 2], xy[2 * i + 3], hw, bb);
-    if (closed && n > 2) cover_segment(cv, xy[2 * n - 2], xy[2 * n - 1], xy[0], xy[1], hw, bb);
-    for (int j = bb[2]; j <= bb[3]; ++j) {
-        float *row = cv->cover + (size_t)j * (size_t)cv->fb->width;
-        for (int i = bb[0]; i <= bb[1]; ++i)
-            if (row[i] > 0.0f) {
-                cj_framebuffer_blend_coverage(cv->fb, i, j, c, row[i]);
-                row[i] = 0.0f;
-            }
-    }
-    return CJ_OK;
+    for (size_t i = 0; i < n; ++i) cv->vec[i] = cj_v2(xy[2 * i], xy[2 * i + 1]);
+    cj_raster_stroke style = cj_raster_stroke_default(width);
+    return cj_raster_stroke_polyline(cv->fb, cv->vec, n, closed, &style, c);
 }
 
 void cj_plot_disc(cj_plot_canvas *cv, double x, double y, double r, cj_rgba c) {

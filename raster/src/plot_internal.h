@@ -5,6 +5,7 @@
 
 #include "casteljau/framebuffer.h"
 #include "casteljau/status.h"
+#include "casteljau/vec.h"
 #include <stddef.h>
 
 typedef struct cj_plot_canvas {
@@ -12,6 +13,8 @@ typedef struct cj_plot_canvas {
     float *cover;       /* w*h coverage accumulator of the current stroke, kept at 0 between */
     double *poly;       /* scratch polyline (2 doubles per point) */
     size_t poly_cap, poly_n;
+    cj_vec2 *vec; /* scratch points for the stroker */
+    size_t vec_cap;
     double arrow_len; /* length of frame arrows in pixels */
 } cj_plot_canvas;
 
@@ -21,10 +24,8 @@ void cj_plot_canvas_free(cj_plot_canvas *cv);
 cj_status cj_plot_canvas_reserve(cj_plot_canvas *cv, size_t n);
 
 /* Strokes the polyline xy[2n] (pixel coordinates, y up; closed: back to the start) with the
- * given width: coverage of each pixel is the exact-distance estimate
- * clamp(width/2 + 1/2 - d, 0, 1) of its centre to the nearest segment, maximised over the
- * segments (round joins and caps, no double blending where segments meet), then blended once.
- * Widths below 1 px are drawn 1 px wide with alpha scaled by the width. */
+ * given width through cj_raster_stroke_polyline (round joins and caps, anti-aliased, no double
+ * blending where segments meet). */
 cj_status cj_plot_stroke(cj_plot_canvas *cv, const double *xy, size_t n, int closed, cj_rgba c,
                          double width);
 /* Filled anti-aliased disc of radius r centred at (x, y). */
