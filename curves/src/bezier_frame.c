@@ -173,6 +173,11 @@ cj_status cj_bezier_curvature(const cj_bezier *c, double t, double *kappa) {
         return cj_fail(CJ_ERR_DEGENERATE,
                        "curvature is unbounded at the cusp t = %.17g (derivative orders %d, %d)", t,
                        j, m);
+    /* |a x b| / |a|^3 = |u x (b/|a|)| / |a| with u = a/|a|: no overflow at extreme scales. */
+    for (int k = 0; k < f.d; ++k) {
+        a[k] = tan[k];
+        b[k] /= alen;
+    }
     double cross;
     if (f.d == 2) {
         cross = a[0] * b[1] - a[1] * b[0];
@@ -185,6 +190,9 @@ cj_status cj_bezier_curvature(const cj_bezier *c, double t, double *kappa) {
     double factor = 1.0, binom = 1.0; /* binom = C(2j-1, j-1) built as Π (j+q)/(q+1) */
     for (int q = 0; q < j; ++q) factor *= (double)(f.n - j - q) / (double)(f.n - q);
     for (int q = 0; q < j - 1; ++q) binom = binom * (double)(j + 1 + q) / (double)(q + 1);
-    *kappa = cross / (alen * alen * alen) * factor / binom;
+    const double kap = cross / alen * factor / binom;
+    if (!isfinite(kap))
+        return cj_fail(CJ_ERR_DEGENERATE, "curvature at t = %.17g overflows (%g)", t, kap);
+    *kappa = kap;
     return CJ_OK;
 }

@@ -116,11 +116,16 @@ cj_status cj_bezier_eval_derivs(const cj_bezier *c, double t, int kmax, double *
  * to [0,1]. Either output may be NULL. left[n] and right[0] are bit-identical. */
 cj_status cj_bezier_split(const cj_bezier *c, double t, double *left, double *right);
 
-/* The piece on [a,b] (0 <= a < b <= 1, or a > b for a reversed piece) as n+1 points. */
+/* The piece on [a,b] (0 <= a < b <= 1, or a > b for a reversed piece) as n+1 points: out(u) =
+ * c(a + (b-a) u). Computed by two de Casteljau splits (at max(a,b), then at min/max), so the
+ * points carry the split's rounding. a == b is CJ_ERR_ARGUMENT (empty piece); a or b outside
+ * [0,1] is CJ_ERR_RANGE. */
 cj_status cj_bezier_subcurve(const cj_bezier *c, double a, double b, double *out);
 
 /* Exact degree elevation by r >= 0 steps: out holds (n+r+1)*dim coordinates of the same curve.
- * Fails with CJ_ERR_DEGREE if n+r exceeds CJ_BEZIER_MAX_DEGREE. */
+ * One degree at a time, b'_i = i/(m+1) b_{i-1} + (1 - i/(m+1)) b_i (convex combinations, no
+ * large binomials). Fails with CJ_ERR_DEGREE if n+r exceeds CJ_BEZIER_MAX_DEGREE, with
+ * CJ_ERR_ARGUMENT if r < 0. */
 cj_status cj_bezier_elevate(const cj_bezier *c, int r, double *out);
 
 /* Reversal: out is the same curve traversed backwards, c'(t) = c(1-t). out may equal pts. */
@@ -129,25 +134,44 @@ cj_status cj_bezier_reverse(const cj_bezier *c, double *out);
 /* ---- geometry ------------------------------------------------------------------------ */
 
 /* Tight axis-aligned bounding box of c([0,1]): endpoints plus the interior zeros of each
- * coordinate's derivative (found by Bernstein-form root isolation). lo, hi: dim doubles. */
+ * coordinate's derivative (found by Bernstein-form root isolation: sign-variation test,
+ * midpoint subdivision to depth 48, safeguarded Newton/bisection on isolated simple zeros).
+ * lo, hi: dim doubles. The box is the hull of computed curve points, so it is tight up to the
+ * evaluation error (cj_bezier_error_bound) at the extremal parameters. Any degree up to
+ * CJ_BEZIER_MAX_DEGREE; about 100 KiB of stack. */
 cj_status cj_bezier_bbox(const cj_bezier *c, double *lo, double *hi);
 
-/* 2D convex hull of the control polygon (dim must be 2): indices of the hull vertices in
- * counter-clockwise order starting from the lowest-then-leftmost point, collinear points
- * dropped. idx must hold degree+1 entries; *count receives the number of hull vertices. */
+/* 2D convex hull of the control polygon (dim must be 2, else CJ_ERR_DIMENSION): indices of the
+ * hull vertices in counter-clockwise order starting from the lowest-then-leftmost point,
+ * collinear points dropped. idx must hold degree+1 entries; *count receives the number of hull
+ * vertices. Andrew's monotone chain with an exact orientation predicate (filtered, then
+ * error-free expansion), so near-collinear input never yields a non-convex hull.
+ * Degenerate input is not an error: coincident points are reported once (the lowest index);
+ * if all points coincide, *count = 1; if all are collinear, *count = 2 (the two extremes, the
+ * lowest-then-leftmost first). */
 cj_status cj_bezier_hull2d(const cj_bezier *c, int *idx, int *count);
 
 /* Arc length of c on [a,b] (any a <= b in [0,1]) by adaptive Gauss–Legendre quadrature of |c'|,
  * to absolute tolerance tol > 0. *length gets the value, *error_estimate (may be NULL) the
  * error estimate reached. If the recursion cap is hit before tol is met, the best value and
- * its estimate are still written and CJ_ERR_CAP is returned. */
+ * its estimate are still written and CJ_ERR_CAP is returned.
+ * Method: globally adaptive Gauss–Kronrod 7/15 (worst interval bisected first), at most 2000
+ * intervals, no allocation. The estimate is Σ|K15 - G7| plus a rounding floor
+ * gamma(3n + 2d + 17) * length, so a tol below what double precision can deliver ends in
+ * CJ_ERR_CAP rather than a false claim. a > b or a, b outside [0,1]: CJ_ERR_RANGE; tol <= 0:
+ * CJ_ERR_ARGUMENT; NaN: CJ_ERR_NONFINITE. */
 cj_status cj_bezier_arclength(const cj_bezier *c, double a, double b, double tol, double *length,
                               double *error_estimate);
 
 /* Unit tangent at t. Where c'(t) vanishes (a cusp, repeated control points), the direction is
  * the first non-vanishing derivative c^(j)(t), j >= 2, which is the limit of c'(s)/|c'(s)| as s
  * approaches t from above; *order (may be NULL) receives the j used. A curve whose every
- * derivative vanishes at t (a single point) is CJ_ERR_DEGENERATE. */
+ * derivative vanishes at t (a single point) is CJ_ERR_DEGENERATE.
+ * "Vanishing" is relative to the curve's scale: with S = max |b_i,k| and D_j(t) =
+ * c^(j)(t) (n-j)!/n! = Σ Δ^j b_i B_i^{n-j}(t), the derivative counts as zero when
+ * max_k |D_j,k(t)| <= 8 n u 2^j S (u = 2^-53), a small multiple of the rounding noise of D_j.
+ * The rule is invariant under uniform scaling of the control points. The same test decides
+ * "non-vanishing" in cj_bezier_normal and cj_bezier_curvature. */
 cj_status cj_bezier_tangent(const cj_bezier *c, double t, double *tangent, int *order);
 
 /* Unit normal at t. In 2D: the tangent turned +90 degrees (left normal). In 3D: the principal
@@ -157,7 +181,13 @@ cj_status cj_bezier_normal(const cj_bezier *c, double t, double *normal);
 
 /* Curvature at t: signed in 2D ((x'y'' - y'x'')/|c'|^3, positive turning left), |c' x c''|/|c'|^3
  * in 3D (non-negative). At a zero-speed point the limit along the first non-vanishing
- * derivatives is used where it exists; otherwise CJ_ERR_DEGENERATE. */
+ * derivatives is used where it exists; otherwise CJ_ERR_DEGENERATE.
+ * Precisely: with c^(j) the first non-vanishing derivative and c^(m) the first one with a
+ * non-vanishing component across c^(j), the limit as s -> t+ is
+ * |c^(j) x c^(m)| (m-j) ((j-1)!)^2 / ((m-1)! |c^(j)|^3) if m = 2j (j = 1, m = 2 is the formula
+ * above), 0 if m > 2j or no such m exists (straight, inflection), and unbounded if m < 2j (an
+ * ordinary cusp): CJ_ERR_DEGENERATE. A single point is CJ_ERR_DEGENERATE; dims other than 2, 3
+ * are CJ_ERR_DIMENSION. */
 cj_status cj_bezier_curvature(const cj_bezier *c, double t, double *kappa);
 
 #ifdef __cplusplus
