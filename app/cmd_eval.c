@@ -3,6 +3,7 @@
 
 #include "casteljau/bezier.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +26,35 @@ static int parse_method(const char *s, cj_eval_method *m) {
             return 0;
         }
     return -1;
+}
+
+/* The K-th hodograph's control points are computed with K levels of differences, each
+ * scaled: h <- m (h_{i+1} - h_i). Every level costs two roundings, so the computed points
+ * differ from the exact ones by at most gamma(2K) A_i, where A is the same recurrence run on
+ * absolute values with sums, A <- m (A_{i+1} + A_i), from |b|. This writes A (n-K+1 points),
+ * inflated by 1 + gamma(2K+2) for its own roundings. */
+static void hodograph_magnitude(const double *pts, int n, int dim, int k, double *a) {
+    const size_t count = (size_t)(n + 1) * (size_t)dim;
+    for (size_t i = 0; i < count; ++i) a[i] = fabs(pts[i]);
+    for (int q = 0; q < k; ++q) {
+        const double m = (double)(n - q);
+        for (int i = 0; i < (n - q) * dim; ++i) a[i] = m * (a[i + dim] + a[i]);
+    }
+    const double up = 1.0 + cj_gamma(2 * k + 2);
+    for (int i = 0; i < (n - k + 1) * dim; ++i) a[i] *= up;
+}
+
+/* Adds to the evaluation bound b the effect of the hodograph's own rounding errors:
+ * gamma(2K) Σ A_i B_i^m(|t|) (m = n-K), the magnitude evaluated by de Casteljau on |1-t|, |t|
+ * and inflated by 1 + gamma(3m+4) for its roundings. */
+static void add_hodograph_error(const double *a, int m, int dim, int k, double t, double *b) {
+    double w[(CJ_BEZIER_MAX_DEGREE + 1) * CJ_MAX_DIM];
+    memcpy(w, a, sizeof(double) * (size_t)(m + 1) * (size_t)dim);
+    const double s = fabs(1.0 - t), at = fabs(t);
+    for (int r = m; r > 0; --r)
+        for (int i = 0; i < r * dim; ++i) w[i] = s * w[i] + at * w[i + dim];
+    const double g = cj_gamma(2 * k) * (1.0 + cj_gamma(3 * m + 6));
+    for (int c = 0; c < dim; ++c) b[c] += g * w[c];
 }
 
 int cmd_eval(int argc, char **argv) {
@@ -70,7 +100,7 @@ int cmd_eval(int argc, char **argv) {
     if (!points_text) return cli_fail("eval", "missing --points");
     if (first_t < 0) return cli_fail("eval", "no parameter T given");
 
-    double *pts = NULL;
+    double *pts = NULL, *hodo = NULL, *habs = NULL;
     size_t npts = 0;
     int dim = 0;
     char why[256];
@@ -97,20 +127,22 @@ int cmd_eval(int argc, char **argv) {
 
     /* The derivative of order K is itself a Bézier curve (the hodograph): evaluate that. */
     cj_bezier curve = cj_bezier_view((int)npts - 1, dim, pts);
-    double *hodo = NULL;
+    const int degree = curve.degree;
     if (derivative > 0) {
         int hd = derivative > curve.degree ? 0 : curve.degree - derivative;
         hodo = malloc(sizeof(double) * (size_t)(hd + 1) * (size_t)dim);
-        if (!hodo) {
+        habs = malloc(sizeof(double) * (size_t)(degree + 1) * (size_t)dim);
+        if (!hodo || !habs) {
             rc = cli_fail("eval", "out of memory");
             goto done;
         }
         cj_status st = cj_bezier_hodograph(&curve, derivative, hodo);
         if (st) {
             rc = cli_fail("eval", "%s", cj_last_error());
-            free(hodo);
             goto done;
         }
+        if (want_bound && derivative <= degree)
+            hodograph_magnitude(pts, degree, dim, derivative, habs);
         curve = cj_bezier_view(hd, dim, hodo);
     }
     for (int j = 0; j < nt && rc == 0; ++j) {
@@ -122,9 +154,11 @@ int cmd_eval(int argc, char **argv) {
             st = cj_bezier_eval(&curve, method, ts[j], v);
             if (!st && want_bound) st = cj_bezier_error_bound(&curve, method, ts[j], b);
         }
-        if (st) rc = cli_fail("eval", "%s", cj_last_error());
+        if (st)
+            rc = cli_fail("eval", "%s", cj_last_error());
+        else if (want_bound && derivative > 0 && derivative <= degree)
+            add_hodograph_error(habs, degree - derivative, dim, derivative, ts[j], b);
     }
-    free(hodo);
     if (rc) goto done;
     for (int j = 0; j < nt; ++j) {
         const double *v = vals + (size_t)j * (size_t)dim * 2, *b = v + dim;
@@ -142,6 +176,8 @@ int cmd_eval(int argc, char **argv) {
         putchar('\n');
     }
 done:
+    free(hodo);
+    free(habs);
     free(ts);
     free(vals);
     free(pts);

@@ -1,5 +1,6 @@
 /* The de Casteljau triangle: evaluation, derivatives and subdivision. */
 #include "bezier_internal.h"
+#include "eval_internal.h"
 
 #include <assert.h>
 #include <string.h>
@@ -11,16 +12,50 @@ static void decasteljau_collapse(double *w, int m, int d, double t) {
         for (int i = 0; i < r * d; ++i) w[i] = s * w[i] + t * w[i + d];
 }
 
+/* The triangle with the dimension a compile-time constant at each call site below (so the
+ * inner loops unroll), reading the control points directly for the first level instead of
+ * copying them. Three roundings per level and path (fl(1-t), the product, the sum): the
+ * classical bound |res - c(t)| <= gamma(3n) Σ|b_i| B_i^n(t) for t in [0,1]. */
+CJ_ALWAYS_INLINE void dc_run(const double *restrict p, int n, int d, double t,
+                             double *restrict out) {
+    if (n == 0) {
+        for (int k = 0; k < d; ++k) out[k] = p[k];
+        return;
+    }
+    double w[CJ_BEZIER_WORK];
+    const double s = 1.0 - t;
+    for (int i = 0; i < n * d; ++i) w[i] = s * p[i] + t * p[i + d];
+    for (int r = n - 1; r > 0; --r)
+        for (int i = 0; i < r * d; ++i) w[i] = s * w[i] + t * w[i + d];
+    for (int k = 0; k < d; ++k) out[k] = w[k];
+}
+
+void cj_decasteljau_kernel(const cj_bezier *c, double t, double *out) {
+    switch (c->dim) {
+    case 1:
+        dc_run(c->pts, c->degree, 1, t, out);
+        break;
+    case 2:
+        dc_run(c->pts, c->degree, 2, t, out);
+        break;
+    case 3:
+        dc_run(c->pts, c->degree, 3, t, out);
+        break;
+    case 4:
+        dc_run(c->pts, c->degree, 4, t, out);
+        break;
+    default:
+        dc_run(c->pts, c->degree, c->dim, t, out);
+        break;
+    }
+}
+
 cj_status cj_bezier_eval_decasteljau(const cj_bezier *c, double t, double *out) {
     assert(out != NULL);
     cj_status st = cj_bezier_check(c, CJ_BEZIER_MAX_DEGREE);
     if (st) return st;
     if ((st = cj_check_param(t, "parameter t"))) return st;
-    double w[CJ_BEZIER_WORK];
-    const int d = c->dim;
-    memcpy(w, c->pts, sizeof(double) * (size_t)(c->degree + 1) * (size_t)d);
-    decasteljau_collapse(w, c->degree, d, t);
-    memcpy(out, w, sizeof(double) * (size_t)d);
+    cj_decasteljau_kernel(c, t, out);
     return CJ_OK;
 }
 

@@ -2,69 +2,114 @@
  * dispatcher, batch evaluation, condition numbers and a-priori error bounds. */
 #include "binomial_internal.h"
 #include "bezier_internal.h"
-#include "eft_internal.h"
+#include "eval_internal.h"
 
 #include <assert.h>
 #include <math.h>
-#include <string.h>
 
-/* Unchecked kernels: the curve and t have been validated by the caller. */
+/* Unchecked kernels: the curve and t have been validated by the caller. Each is written once
+ * with the dimension as a parameter and instantiated for d = 1..4 by the dispatchers below, so
+ * the per-coordinate loops unroll. */
 
-static void bernstein_kernel(const cj_bezier *c, double t, double *out) {
-    const int n = c->degree, d = c->dim;
+/* Σ C(n,i) t^i s^(n-i) b_i with the powers formed by repeated products. Rounding count for the
+ * term i (s = fl(1-t) counts (n-i) times): at most 2n for the basis value, 1 for the product
+ * with b_i and n for the running sum, so |res - c(t)| <= gamma(3n+1) Σ|b_i| B_i^n(|t|). */
+CJ_ALWAYS_INLINE void bernstein_run(const double *restrict p, int n, int d, double t,
+                                    double *restrict out) {
     const double *binom = cj_binomial_row(n);
     const double s = 1.0 - t;
     double spow[CJ_BEZIER_BINOMIAL_MAX_DEGREE + 1]; /* spow[j] = s^j */
     spow[0] = 1.0;
     for (int j = 1; j <= n; ++j) spow[j] = spow[j - 1] * s;
-    double acc[CJ_MAX_DIM] = {0};
+    double acc[CJ_MAX_DIM];
+    for (int k = 0; k < d; ++k) acc[k] = 0.0;
     double tpow = 1.0;
     for (int i = 0; i <= n; ++i) {
         const double basis = binom[i] * tpow * spow[n - i];
-        const double *b = c->pts + (size_t)i * (size_t)d;
-        for (int k = 0; k < d; ++k) acc[k] += basis * b[k];
+        for (int k = 0; k < d; ++k) acc[k] += basis * p[i * d + k];
         tpow *= t;
     }
-    memcpy(out, acc, sizeof(double) * (size_t)d);
+    for (int k = 0; k < d; ++k) out[k] = acc[k];
 }
 
 /* Volk–Schumaker: c(t) = s^n Σ C(n,i) b_i q^i with q = t/s for t <= 1/2, and the mirrored
- * form t^n Σ C(n,i) b_{n-i} q^i with q = s/t above, so that |q| <= 1 on [0,1] and Horner's
- * rule runs in O(n d) with one division, always by a number >= 1/2 (never zero, even when
- * extrapolating). fma keeps each Horner step to one rounding. */
-static void horner_kernel(const cj_bezier *c, double t, double *out) {
-    const int n = c->degree, d = c->dim;
+ * form t^n Σ C(n,i) b_i q^(n-i) with q = s/t above, so that |q| <= 1 on [0,1] and Horner's rule
+ * runs in O(n d) with one division, always by a number >= 1/2 (never zero, even when
+ * extrapolating). fma keeps each Horner step to one rounding. Rounding count for the term of
+ * b_i: s = fl(1-t) enters q^i and s^(n-i) (n times in all when t <= 1/2, at most n when
+ * mirrored), the division i times, C(n,i) b_i once, the Horner steps i+1, base^n by repeated
+ * squaring n-1 and the final product once: at most 4n+2 (3n+2 when t <= 1/2), so
+ * |res - c(t)| <= gamma(4n+2) Σ|b_i| B_i^n(|t|). */
+CJ_ALWAYS_INLINE void horner_run(const double *restrict p, int n, int d, double t,
+                                 double *restrict out) {
     const double *binom = cj_binomial_row(n);
     const double s = 1.0 - t;
-    const int mirrored = t > 0.5;
-    const double base = mirrored ? t : s;
-    const double q = mirrored ? s / t : t / s;
-    double acc[CJ_MAX_DIM];
-    const double *bn = c->pts + (size_t)(mirrored ? 0 : n) * (size_t)d;
-    for (int k = 0; k < d; ++k) acc[k] = bn[k]; /* C(n,n) = 1 */
-    for (int i = n - 1; i >= 0; --i) {
-        const double *b = c->pts + (size_t)(mirrored ? n - i : i) * (size_t)d;
-        for (int k = 0; k < d; ++k) acc[k] = fma(acc[k], q, binom[i] * b[k]);
+    double acc[CJ_MAX_DIM], base, q;
+    if (t > 0.5) { /* t^n Σ_i C(n,i) b_i q^(n-i): Horner from b_0 up */
+        base = t;
+        q = s / t;
+        for (int k = 0; k < d; ++k) acc[k] = p[k];
+        for (int i = 1; i <= n; ++i)
+            for (int k = 0; k < d; ++k) acc[k] = fma(acc[k], q, binom[i] * p[i * d + k]);
+    } else { /* s^n Σ_i C(n,i) b_i q^i: Horner from b_n down */
+        base = s;
+        q = t / s;
+        for (int k = 0; k < d; ++k) acc[k] = p[n * d + k];
+        for (int i = n - 1; i >= 0; --i)
+            for (int k = 0; k < d; ++k) acc[k] = fma(acc[k], q, binom[i] * p[i * d + k]);
     }
-    double scale = 1.0, p = base; /* base^n by repeated squaring */
-    for (int e = n; e; e >>= 1, p *= p)
-        if (e & 1) scale *= p;
+    double scale = 1.0, pw = base; /* base^n by repeated squaring */
+    for (int e = n; e; e >>= 1, pw *= pw)
+        if (e & 1) scale *= pw;
     for (int k = 0; k < d; ++k) out[k] = acc[k] * scale;
 }
 
-static void decasteljau_kernel(const cj_bezier *c, double t, double *out) {
-    const int n = c->degree, d = c->dim;
-    double w[CJ_BEZIER_WORK];
-    memcpy(w, c->pts, sizeof(double) * (size_t)(n + 1) * (size_t)d);
-    const double s = 1.0 - t;
-    for (int r = n; r > 0; --r)
-        for (int i = 0; i < r * d; ++i) w[i] = s * w[i] + t * w[i + d];
-    memcpy(out, w, sizeof(double) * (size_t)d);
+#define CJ_DISPATCH_DIM(run, c, t, out)                                                            \
+    do {                                                                                           \
+        switch ((c)->dim) {                                                                        \
+        case 1:                                                                                    \
+            run((c)->pts, (c)->degree, 1, t, out);                                                 \
+            break;                                                                                 \
+        case 2:                                                                                    \
+            run((c)->pts, (c)->degree, 2, t, out);                                                 \
+            break;                                                                                 \
+        case 3:                                                                                    \
+            run((c)->pts, (c)->degree, 3, t, out);                                                 \
+            break;                                                                                 \
+        case 4:                                                                                    \
+            run((c)->pts, (c)->degree, 4, t, out);                                                 \
+            break;                                                                                 \
+        default:                                                                                   \
+            run((c)->pts, (c)->degree, (c)->dim, t, out);                                          \
+            break;                                                                                 \
+        }                                                                                          \
+    } while (0)
+
+static void bernstein_kernel(const cj_bezier *c, double t, double *out) {
+    CJ_DISPATCH_DIM(bernstein_run, c, t, out);
+}
+
+static void horner_kernel(const cj_bezier *c, double t, double *out) {
+    CJ_DISPATCH_DIM(horner_run, c, t, out);
 }
 
 static int method_limit(cj_eval_method m) {
     return (m == CJ_EVAL_BERNSTEIN || m == CJ_EVAL_HORNER) ? CJ_BEZIER_BINOMIAL_MAX_DEGREE
                                                            : CJ_BEZIER_MAX_DEGREE;
+}
+
+static const char *method_name(cj_eval_method m) {
+    switch (m) {
+    case CJ_EVAL_BERNSTEIN:
+        return "Bernstein";
+    case CJ_EVAL_HORNER:
+        return "Horner";
+    case CJ_EVAL_COMPENSATED:
+        return "compensated de Casteljau";
+    case CJ_EVAL_DECASTELJAU:
+    default:
+        return "de Casteljau";
+    }
 }
 
 static cj_status check_method(cj_eval_method m) {
@@ -86,15 +131,25 @@ static void eval_kernel(const cj_bezier *c, cj_eval_method m, double t, double *
         break;
     case CJ_EVAL_DECASTELJAU:
     default:
-        decasteljau_kernel(c, t, out);
+        cj_decasteljau_kernel(c, t, out);
         break;
     }
 }
 
-static cj_status check_eval(const cj_bezier *c, cj_eval_method m, double t) {
+static cj_status check_curve(const cj_bezier *c, cj_eval_method m) {
     cj_status st = check_method(m);
     if (st) return st;
-    if ((st = cj_bezier_check(c, method_limit(m)))) return st;
+    const int limit = method_limit(m);
+    assert(c != NULL);
+    if (c->degree > limit)
+        return cj_fail(CJ_ERR_DEGREE, "degree %d exceeds the %s method's limit of %d", c->degree,
+                       method_name(m), limit);
+    return cj_bezier_check(c, limit);
+}
+
+static cj_status check_eval(const cj_bezier *c, cj_eval_method m, double t) {
+    cj_status st = check_curve(c, m);
+    if (st) return st;
     return cj_check_param(t, "parameter t");
 }
 
@@ -118,18 +173,33 @@ cj_status cj_bezier_eval_batch(const cj_bezier *c, cj_eval_method method, const 
                                size_t nt, double *out) {
     assert(ts != NULL || nt == 0);
     assert(out != NULL || nt == 0);
-    cj_status st = check_method(method);
+    cj_status st = check_curve(c, method);
     if (st) return st;
-    if ((st = cj_bezier_check(c, method_limit(method)))) return st;
     if ((st = cj_check_finite(ts, nt, "parameter"))) return st;
     const size_t d = (size_t)c->dim;
-    for (size_t j = 0; j < nt; ++j) eval_kernel(c, method, ts[j], out + j * d);
+    /* The same kernels as the single-point calls: results are bit-identical. */
+    switch (method) {
+    case CJ_EVAL_BERNSTEIN:
+        for (size_t j = 0; j < nt; ++j) bernstein_kernel(c, ts[j], out + j * d);
+        break;
+    case CJ_EVAL_HORNER:
+        for (size_t j = 0; j < nt; ++j) horner_kernel(c, ts[j], out + j * d);
+        break;
+    case CJ_EVAL_COMPENSATED:
+        for (size_t j = 0; j < nt; ++j) cj_compensated_kernel(c, ts[j], out + j * d, NULL);
+        break;
+    case CJ_EVAL_DECASTELJAU:
+    default:
+        for (size_t j = 0; j < nt; ++j) cj_decasteljau_kernel(c, ts[j], out + j * d);
+        break;
+    }
     return CJ_OK;
 }
 
-/* Σ|b_i,k| B_i^n(|t|) per coordinate, by de Casteljau on absolute values with |1-t| and |t|:
- * the magnitude every first-order error analysis of these methods is proportional to. The
- * result carries a relative error of at most gamma(2n), absorbed by the slack in callers. */
+/* Σ|b_i,k| B_i^n(|t|) per coordinate (B with |1-t| and |t|), by de Casteljau on absolute values:
+ * the magnitude every first-order error analysis of these methods is proportional to. Every
+ * term is non-negative and goes through at most 3n roundings (fl(1-t) n-i times, one product
+ * and one sum per level), so the exact magnitude is at most (1 + gamma(3n)) times the result. */
 static void abs_sum(const cj_bezier *c, double t, double *out) {
     const int n = c->degree, d = c->dim;
     double w[CJ_BEZIER_WORK];
@@ -137,7 +207,7 @@ static void abs_sum(const cj_bezier *c, double t, double *out) {
     const double s = fabs(1.0 - t), a = fabs(t);
     for (int r = n; r > 0; --r)
         for (int i = 0; i < r * d; ++i) w[i] = s * w[i] + a * w[i + d];
-    memcpy(out, w, sizeof(double) * (size_t)d);
+    for (int k = 0; k < d; ++k) out[k] = w[k];
 }
 
 cj_status cj_bezier_cond(const cj_bezier *c, double t, double *cond) {
@@ -147,8 +217,7 @@ cj_status cj_bezier_cond(const cj_bezier *c, double t, double *cond) {
     double num[CJ_MAX_DIM], val[CJ_MAX_DIM];
     abs_sum(c, t, num);
     cj_compensated_kernel(c, t, val, NULL);
-    for (int k = 0; k < c->dim; ++k)
-        cond[k] = val[k] == 0.0 ? (num[k] == 0.0 ? 1.0 : INFINITY) : num[k] / fabs(val[k]);
+    for (int k = 0; k < c->dim; ++k) cond[k] = val[k] == 0.0 ? INFINITY : num[k] / fabs(val[k]);
     return CJ_OK;
 }
 
@@ -160,21 +229,34 @@ cj_status cj_bezier_error_bound(const cj_bezier *c, cj_eval_method method, doubl
     const int n = c->degree, d = c->dim;
     double mag[CJ_MAX_DIM];
     abs_sum(c, t, mag);
-    /* The magnitude itself is computed in floating point: inflate by (1 + gamma(2n+2)). */
-    const double slack = 1.0 + cj_gamma(2 * n + 2);
+    /* The magnitude is low by at most a factor 1 + gamma(3n); the few products forming the
+     * bound below cost 4 more roundings, all covered by inflating with 1 + gamma(3n+8). */
+    const double slack = 1.0 + cj_gamma(3 * n + 8);
     if (method == CJ_EVAL_COMPENSATED) {
+        /* u|c(t)| is taken at the computed value; |c(t)| <= |val| + (the error), whose
+         * u-multiple is second order and absorbed by the same slack. */
         double val[CJ_MAX_DIM];
         cj_compensated_kernel(c, t, val, NULL);
         const double g = cj_gamma(3 * n);
+        const double uf = cj_underflow_allowance(n, t, 8.0);
         for (int k = 0; k < d; ++k)
-            bound[k] = (CJ_UNIT_ROUNDOFF * fabs(val[k]) + 2.0 * g * g * mag[k] * slack) * slack;
+            bound[k] = (CJ_UNIT_ROUNDOFF * fabs(val[k]) + 2.0 * g * g * mag[k]) * slack + uf;
+    } else if (method == CJ_EVAL_DECASTELJAU) {
+        /* Underflow: 2 products per entry and level may each lose eta/2; 2 more for abs_sum. */
+        const double g = cj_gamma(3 * n);
+        const double uf = cj_underflow_allowance(n, t, 4.0);
+        for (int k = 0; k < d; ++k) bound[k] = g * mag[k] * slack + uf;
     } else {
-        /* Bernstein and Horner carry larger constants than de Casteljau's 3n: the basis is
-         * formed from up to n products and the binomial, and Horner adds a division and the
-         * power s^n; gamma(4n+2) covers both. */
-        const int k_ops = method == CJ_EVAL_DECASTELJAU ? 3 * n : 4 * n + 2;
-        const double g = cj_gamma(k_ops);
-        for (int k = 0; k < d; ++k) bound[k] = g * mag[k] * slack;
+        /* gamma(4n+2) covers both (see the kernels). Underflow: an eta lost in a power of t or
+         * q is later multiplied by at most C(n,i)|b_i| A^n, hence the binomial-weighted sum. */
+        const double g = cj_gamma(4 * n + 2);
+        const double uf = cj_underflow_allowance(n, t, 8.0);
+        const double *binom = cj_binomial_row(n);
+        for (int k = 0; k < d; ++k) {
+            double wsum = 1.0;
+            for (int i = 0; i <= n; ++i) wsum += binom[i] * fabs(c->pts[i * d + k]);
+            bound[k] = g * mag[k] * slack + uf * wsum * (1.0 + 0x1p-40);
+        }
     }
     return CJ_OK;
 }

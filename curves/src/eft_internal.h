@@ -1,5 +1,5 @@
-/* Private: error-free transformations (Knuth's TwoSum, TwoProd by fma) and the compensated
- * de Casteljau kernel built on them. */
+/* Private: error-free transformations (Knuth's TwoSum, TwoProd by fma). The compensated
+ * de Casteljau kernel built on them is declared in eval_internal.h. */
 #ifndef CASTELJAU_EFT_INTERNAL_H
 #define CASTELJAU_EFT_INTERNAL_H
 
@@ -29,10 +29,5 @@ static inline void cj_two_prod(double a, double b, double *p, double *e) {
 #endif
     *p = x;
 }
-
-/* Compensated de Casteljau on a validated curve: out[k] = c_k(t) as if computed in twice the
- * working precision and rounded once. If bound is not NULL, bound[k] is a rigorous
- * a-posteriori bound of |out[k] - c_k(t)| (see bezier_compensated.c). */
-void cj_compensated_kernel(const cj_bezier *c, double t, double *out, double *bound);
 
 #endif

@@ -1,0 +1,159 @@
+/* bench_eval: cost and accuracy of the four Bézier evaluation methods.
+ *
+ * Part 1, cost: ns per evaluation for degrees 3, 8, 20 (planar curves, 256 parameters spread
+ * over [0,1]), batch (cj_bezier_eval_batch) and single (cj_bezier_eval per parameter), median
+ * of 15 runs of at least ~1.5 ms each, and the ratio to de Casteljau (batch).
+ * Part 2, accuracy: the hard case p(s) = (s-1)(s-3/4)^7 in Bernstein form near s = 3/4: the
+ * condition number and relative errors measured against an exact MPFR oracle, next to the
+ * a-priori bounds gamma(3n) cond (de Casteljau) and u + 2 gamma(3n)^2 cond (compensated) and
+ * the a-posteriori bound returned by cj_bezier_eval_compensated. */
+#define _POSIX_C_SOURCE 199309L
+#include "casteljau/bezier.h"
+#include "oracle_mpfr.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define NT   256
+#define RUNS 15
+
+static volatile double sink;
+
+static double now_ns(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+typedef enum { MODE_BATCH, MODE_SINGLE, MODE_BOUND } mode;
+
+/* One run: reps passes over the NT parameters; returns ns per evaluation. */
+static double run_once(const cj_bezier *c, cj_eval_method m, mode md, const double *ts, double *out,
+                       long reps) {
+    double bnd[CJ_MAX_DIM];
+    const double t0 = now_ns();
+    for (long r = 0; r < reps; ++r) {
+        if (md == MODE_BATCH) {
+            if (cj_bezier_eval_batch(c, m, ts, NT, out)) abort();
+        } else if (md == MODE_SINGLE) {
+            for (int j = 0; j < NT; ++j)
+                if (cj_bezier_eval(c, m, ts[j], out + (size_t)j * (size_t)c->dim)) abort();
+        } else {
+            for (int j = 0; j < NT; ++j)
+                if (cj_bezier_eval_compensated(c, ts[j], out + (size_t)j * (size_t)c->dim, bnd))
+                    abort();
+        }
+        sink += out[(size_t)(r % NT) * (size_t)c->dim] + bnd[0] * 0.0;
+    }
+    const double t1 = now_ns();
+    return (t1 - t0) / ((double)reps * NT);
+}
+
+static double median_ns(const cj_bezier *c, cj_eval_method m, mode md, const double *ts,
+                        double *out) {
+    long reps = 1;
+    for (;;) { /* calibrate: one run should last at least 1.5 ms */
+        const double ns = run_once(c, m, md, ts, out, reps);
+        if (ns * (double)reps * NT >= 1.5e6 || reps > (1L << 24)) break;
+        reps *= 2;
+    }
+    double v[RUNS];
+    for (int k = 0; k < RUNS; ++k) v[k] = run_once(c, m, md, ts, out, reps);
+    qsort(v, RUNS, sizeof v[0], cmp_double);
+    return v[RUNS / 2];
+}
+
+static void cost_table(void) {
+    static const struct {
+        const char *name;
+        cj_eval_method m;
+    } methods[] = {{"decasteljau", CJ_EVAL_DECASTELJAU},
+                   {"bernstein", CJ_EVAL_BERNSTEIN},
+                   {"horner", CJ_EVAL_HORNER},
+                   {"compensated", CJ_EVAL_COMPENSATED}};
+    static const int degrees[] = {3, 8, 20};
+    double ts[NT], out[NT * 2];
+    for (int j = 0; j < NT; ++j) ts[j] = (j + 0.5) / NT;
+    uint64_t x = 0x9e3779b97f4a7c15u;
+    printf("cost: dimension 2, %d parameters in (0,1), median of %d runs, fma %s\n", NT, RUNS,
+#if defined(__FMA__) || defined(FP_FAST_FMA)
+           "in hardware"
+#else
+           "in software"
+#endif
+    );
+    printf("%-6s %-22s %10s %10s %12s\n", "degree", "method", "batch ns", "single ns",
+           "vs decast.");
+    for (size_t di = 0; di < sizeof degrees / sizeof degrees[0]; ++di) {
+        const int n = degrees[di];
+        double pts[(20 + 1) * 2];
+        for (int i = 0; i < (n + 1) * 2; ++i) {
+            x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+            pts[i] = (double)(x >> 11) * 0x1p-53 * 2.0 - 1.0;
+        }
+        const cj_bezier c = cj_bezier_view(n, 2, pts);
+        double base = 0.0;
+        for (size_t mi = 0; mi < sizeof methods / sizeof methods[0]; ++mi) {
+            const double batch = median_ns(&c, methods[mi].m, MODE_BATCH, ts, out);
+            const double single = median_ns(&c, methods[mi].m, MODE_SINGLE, ts, out);
+            if (mi == 0) base = batch;
+            printf("%-6d %-22s %10.1f %10.1f %11.2fx\n", n, methods[mi].name, batch, single,
+                   batch / base);
+        }
+        const double bnd = median_ns(&c, CJ_EVAL_COMPENSATED, MODE_BOUND, ts, out);
+        printf("%-6d %-22s %10s %10.1f %11.2fx\n", n, "compensated+bound", "-", bnd, bnd / base);
+    }
+}
+
+static void accuracy_table(void) {
+    /* b_i = -(8-i)/8 (-3/4)^(7-i) (1/4)^i, b_8 = 0: (1-s) times the degree-7 Bernstein form
+     * of (s-3/4)^7, elevated. Every coefficient is a dyadic rational with few bits, so exact. */
+    double b[9];
+    for (int i = 0; i <= 8; ++i)
+        b[i] = i == 8 ? 0.0 : -(8.0 - i) / 8.0 * pow(-0.75, 7 - i) * pow(0.25, i);
+    const cj_bezier c = cj_bezier_view(8, 1, b);
+    const double u = CJ_UNIT_ROUNDOFF, g = cj_gamma(24);
+    printf("\naccuracy: p(s) = (s-1)(s-3/4)^7, degree 8, s = 3/4 + delta; relative errors\n"
+           "against an exact MPFR value; bounds relative to |p(s)|\n");
+    printf("%-7s %9s | %9s %9s | %9s %9s %9s | %9s %9s\n", "delta", "cond", "decast.", "g3n*cond",
+           "compens.", "u+2g^2c", "a-post.", "bernst.", "horner");
+    mpfr_t val, mag;
+    mpfr_inits2(256, val, mag, (mpfr_ptr)0);
+    for (int e = 1; e <= 10; ++e) {
+        const double s = 0.75 + pow(10.0, -e);
+        cj_oracle_bezier(b, 8, 1, 0, s, 1 << 16, val, mag);
+        mpfr_t cond;
+        mpfr_init2(cond, 64);
+        mpfr_div(cond, mag, val, MPFR_RNDN);
+        mpfr_abs(cond, cond, MPFR_RNDN);
+        const double cnd = mpfr_get_d(cond, MPFR_RNDN);
+        mpfr_clear(cond);
+        double vd, vc, vb, vh, bound;
+        cj_bezier_eval(&c, CJ_EVAL_DECASTELJAU, s, &vd);
+        cj_bezier_eval_compensated(&c, s, &vc, &bound);
+        cj_bezier_eval(&c, CJ_EVAL_BERNSTEIN, s, &vb);
+        cj_bezier_eval(&c, CJ_EVAL_HORNER, s, &vh);
+        const double absval = fabs(mpfr_get_d(val, MPFR_RNDN));
+        printf("1e-%-4d %9.2e | %9.2e %9.2e | %9.2e %9.2e %9.2e | %9.2e %9.2e\n", e, cnd,
+               cj_oracle_rel_error(vd, val), g * cnd, cj_oracle_rel_error(vc, val),
+               u + 2 * g * g * cnd, bound / absval, cj_oracle_rel_error(vb, val),
+               cj_oracle_rel_error(vh, val));
+    }
+    mpfr_clears(val, mag, (mpfr_ptr)0);
+}
+
+int main(void) {
+    cost_table();
+    accuracy_table();
+    printf("(checksum %g)\n", sink);
+    return 0;
+}

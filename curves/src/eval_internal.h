@@ -1,0 +1,33 @@
+/* Private: unchecked evaluation kernels shared by the Bézier sources. The caller has validated
+ * the curve (degree within the method's limit, dimension, finite points) and the parameter. */
+#ifndef CASTELJAU_EVAL_INTERNAL_H
+#define CASTELJAU_EVAL_INTERNAL_H
+
+#include "casteljau/bezier.h"
+
+#if defined(__GNUC__)
+#define CJ_ALWAYS_INLINE static inline __attribute__((always_inline))
+#else
+#define CJ_ALWAYS_INLINE static inline
+#endif
+
+/* The smallest positive subnormal, 2^-1074: every rounding that underflows (a product, or an
+ * fma, landing below 2^-1022) may add an absolute error of half of it on top of the relative
+ * error u the published bounds account for. */
+#define CJ_ETA 0x1p-1074
+
+/* Plain de Casteljau: out[0..dim-1] = c(t). */
+void cj_decasteljau_kernel(const cj_bezier *c, double t, double *out);
+
+/* Compensated de Casteljau: out[k] = c_k(t) as if computed in twice the working precision and
+ * rounded once. If bound is not NULL, bound[k] is a rigorous a-posteriori bound of
+ * |out[k] - c_k(t)| (see bezier_compensated.c). */
+void cj_compensated_kernel(const cj_bezier *c, double t, double *out, double *bound);
+
+/* Allowance for underflow in an evaluation of degree n with `ops` possibly underflowing
+ * roundings per triangle entry and level: ops (n+1) eta A^n with A = |1-t| + |t| (1 on [0,1]),
+ * the factor by which an absolute error can grow through the remaining levels. Rounded up;
+ * +INFINITY when A^n overflows. */
+double cj_underflow_allowance(int n, double t, double ops);
+
+#endif
