@@ -383,6 +383,11 @@ static void test_vertices(void **state) {
     assert_int_equal(cj_deform_vertices(&d, pos, nrm, N), CJ_ERR_DEGENERATE);
     assert_non_null(strstr(cj_last_error(), "vertex 7"));
     assert_true(memcmp(pos, p0, sizeof pos) == 0 && memcmp(nrm, n0, sizeof nrm) == 0);
+    /* A zero normal means "unknown" (mesh convention) and stays zero. */
+    double zp[6] = {1, 2, 0.5, 0, 1, 1}, zn[6] = {0, 0, 0, 1, 0, 0};
+    assert_int_equal(cj_deform_vertices(&d, zp, zn, 2), CJ_OK);
+    assert_true(zn[0] == 0 && zn[1] == 0 && zn[2] == 0 &&
+                cj_v3_norm(cj_v3(zn[3], zn[4], zn[5])) > 0.99);
     /* Without normals the collapse is allowed (points are well defined). */
     assert_int_equal(cj_deform_vertices(&d, pos, NULL, N), CJ_OK);
     memcpy(pos, p0, sizeof pos);

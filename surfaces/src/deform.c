@@ -235,8 +235,7 @@ cj_status cj_deform_vertices(const cj_deform *d, double *pos, double *nrm, size_
             if (!finite3(n))
                 return cj_fail(CJ_ERR_NONFINITE, "%s: vertex %zu normal is not finite",
                                kind_name(d), i);
-            if (!(cj_v3_norm(n) > 0.0))
-                return cj_fail(CJ_ERR_DEGENERATE, "%s: vertex %zu normal is zero", kind_name(d), i);
+            if (!(cj_v3_norm(n) > 0.0)) continue; /* unknown normal: stays zero */
             if (deform_normal(d, p, n, &m) != CJ_OK)
                 return cj_fail(CJ_ERR_DEGENERATE,
                                "%s: vertex %zu: normal undefined after deformation (r(s) = 0 "
@@ -248,8 +247,8 @@ cj_status cj_deform_vertices(const cj_deform *d, double *pos, double *nrm, size_
     for (size_t i = 0; i < count; ++i) {
         cj_vec3 p = cj_v3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
         if (nrm) {
-            cj_vec3 n = cj_v3(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]), m;
-            cj_status st = deform_normal(d, p, n, &m);
+            cj_vec3 n = cj_v3(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]), m = n;
+            cj_status st = cj_v3_norm(n) > 0.0 ? deform_normal(d, p, n, &m) : CJ_OK;
             assert(st == CJ_OK);
             (void)st;
             nrm[3 * i] = m.x;

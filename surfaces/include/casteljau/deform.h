@@ -67,7 +67,9 @@ cj_status cj_deform_tangent(const cj_deform *d, cj_vec3 p, cj_vec3 t, cj_vec3 *o
 cj_status cj_deform_normal(const cj_deform *d, cj_vec3 p, cj_vec3 n, cj_vec3 *out);
 
 /* Deforms `count` vertices in place: positions pos[3i..3i+2] and, if nrm != NULL, unit
- * normals nrm[3i..3i+2] (each normal uses its vertex's undeformed position). Validates and
+ * normals nrm[3i..3i+2] (each normal uses its vertex's undeformed position; a zero normal
+ * means "unknown", as in cj_mesh, and stays zero). This is the layout of cj_mesh (mesh.h):
+ * cj_deform_vertices(d, mesh->positions, mesh->normals, mesh->vertex_count). Validates and
  * computes everything before writing anything: on failure both arrays are untouched and the
  * message names the vertex. count == 0 is CJ_OK. Allocation-free. */
 cj_status cj_deform_vertices(const cj_deform *d, double *pos, double *nrm, size_t count);
