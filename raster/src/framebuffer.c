@@ -116,8 +116,7 @@ cj_rgba cj_rgba_over(cj_rgba s, cj_rgba d) {
     /* Everything scaled by 255^2: A = α_o 255², channel numerator = c_o α_o 255². */
     uint32_t wd = da * (255u - sa);
     uint32_t A = sa * 255u + wd;
-    cj_rgba o;
-    if (A == 0) return cj_rgba_make(0, 0, 0, 0);
+    cj_rgba o; /* A >= 255 since sa >= 1 */
     o.a = (uint8_t)((2u * A + 255u) / 510u);
     uint32_t ws = sa * 255u, A2 = 2u * A;
     o.r = (uint8_t)((2u * (s.r * ws + d.r * wd) + A) / A2);

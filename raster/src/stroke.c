@@ -1,10 +1,17 @@
-/* Wide anti-aliased strokes: union of convex pieces, coverage clamp(1/2 - signed distance).
+/* Wide anti-aliased strokes with exact area coverage.
  *
- * Every piece (segment rectangle, join wedge, round disc, square cap) is rasterised row by row
- * over the pixels whose centre can lie within 1/2 of it, and its coverage is max-combined into a
- * float coverage plane. The max over pieces is the coverage of their union, so overlaps are not
- * counted twice. When the stroke is complete, the touched spans (one [lo, hi] per row) are
- * composited once and the plane is cleared again, leaving it zeroed for the next call. */
+ * The stroke is cut into convex pieces that do not overlap: one rectangle per segment, a wedge
+ * (miter quadrilateral, bevel triangle, or circular sector) on the outer side of each join, and
+ * the caps (square: rectangle; round: half-disc sector). Where two consecutive rectangles
+ * overlap on the inner side of a join, the area of their intersection (again convex) is
+ * subtracted. For every pixel the exact area of (pixel square ∩ piece) is accumulated, computed
+ * by clipping the piece to the square (Sutherland-Hodgman) and taking the shoelace area; pixels
+ * lying wholly inside a piece are found per row from the piece's x-intervals and get 1 without
+ * clipping. Circular sectors are polygons with at most 0.02 px sagitta whose radius is enlarged
+ * so that each triangle has the exact sector area. Accumulation goes into a float plane over
+ * touched spans (one [lo, hi] per row) which is composited once, clamped to [0, 1], and cleared
+ * again for the next call. Pieces of non-adjacent segments that overlap (self-intersections)
+ * add up and are clamped at 1. */
 #include "casteljau/flatten.h"
 #include "casteljau/line.h"
 #include "error_internal.h"
@@ -16,6 +23,8 @@
 #include <math.h>
 #include <string.h>
 
+#define CJ_PI_ 3.14159265358979323846
+
 typedef struct cover_target {
     float *cover;     /* w*h, zero outside touched spans */
     int *lo, *hi;     /* per row, relative x; empty when lo > hi */
@@ -23,145 +32,170 @@ typedef struct cover_target {
     int ymin, ymax;   /* touched rows, relative; empty when ymin > ymax */
 } cover_target;
 
+#define POLY_MAX 16
+typedef struct poly {
+    cj_vec2 v[POLY_MAX];
+    int n;
+} poly;
+
 typedef struct stroker {
     cover_target *t;
-    double hw;   /* half width actually rasterised (>= 1/2) */
-    float scale; /* coverage scale (< 1 for strokes thinner than a pixel) */
+    double hw; /* half width */
     cj_raster_join join;
     cj_raster_cap cap;
     double miter_limit;
     double rxlo, rxhi, rylo, ryhi; /* visibility rectangle: target grown by the piece reach */
-    size_t npts;                   /* distinct points so far */
+    int closed;
+    size_t npts; /* distinct points so far */
     cj_vec2 first, first_dir, prev, prev_dir;
+    poly first_rect, prev_rect; /* clipped rectangles (n == 0: not visible) */
 } stroker;
 
-/* ---- coverage of one piece ------------------------------------------------------------- */
+/* ---- exact coverage of one convex piece ------------------------------------------------- */
 
-static void touch_rows(cover_target *t, int y) {
-    if (y < t->ymin) t->ymin = y;
-    if (y > t->ymax) t->ymax = y;
+/* Keeps the part of p with s*(coord k) <= lim (k = 0: x, 1: y). */
+static void clip_half(const poly *in, poly *out, int k, double s, double lim) {
+    out->n = 0;
+    if (in->n == 0) return;
+    cj_vec2 a = in->v[in->n - 1];
+    double fa = s * (k ? a.y : a.x) - lim;
+    for (int i = 0; i < in->n; ++i) {
+        cj_vec2 b = in->v[i];
+        double fb = s * (k ? b.y : b.x) - lim;
+        if ((fa <= 0) != (fb <= 0)) {
+            double t = fa / (fa - fb);
+            cj_vec2 m = {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
+            if (k)
+                m.y = s * lim;
+            else
+                m.x = s * lim;
+            out->v[out->n++] = m;
+        }
+        if (fb <= 0) out->v[out->n++] = b;
+        a = b, fa = fb;
+    }
 }
 
-/* Pixels of row y (absolute) with centre x in [xlo, xhi] get max(cover, f(centre)). */
-typedef double (*sdf_fn)(const void *piece, double px, double py);
+static double poly_area(const poly *p) {
+    double a = 0;
+    for (int i = 0, j = p->n - 1; i < p->n; j = i++)
+        a += p->v[j].x * p->v[i].y - p->v[i].x * p->v[j].y;
+    return 0.5 * fabs(a);
+}
 
-static void cover_row(stroker *s, int y, double xlo, double xhi, sdf_fn sdf, const void *piece) {
+/* Area of piece ∩ [x, x+1] x [y, y+1]. */
+static double pixel_area(const poly *pc, int x, int y) {
+    poly a, b;
+    a.n = pc->n;
+    for (int i = 0; i < pc->n; ++i) a.v[i] = cj_v2(pc->v[i].x - x, pc->v[i].y - y);
+    clip_half(&a, &b, 0, -1.0, 0.0); /* x >= 0 */
+    clip_half(&b, &a, 0, 1.0, 1.0);  /* x <= 1 */
+    clip_half(&a, &b, 1, -1.0, 0.0); /* y >= 0 */
+    clip_half(&b, &a, 1, 1.0, 1.0);  /* y <= 1 */
+    return a.n >= 3 ? poly_area(&a) : 0.0;
+}
+
+/* x-interval of the piece on the horizontal line Y; 0 if it misses. */
+static int x_on_line(const poly *p, double Y, double *lo, double *hi) {
+    double l = DBL_MAX, h = -DBL_MAX;
+    for (int i = 0, j = p->n - 1; i < p->n; j = i++) {
+        cj_vec2 a = p->v[j], b = p->v[i];
+        if ((a.y - Y) * (b.y - Y) > 0) continue;
+        if (a.y == b.y) {
+            if (a.y != Y) continue;
+            l = fmin(l, fmin(a.x, b.x));
+            h = fmax(h, fmax(a.x, b.x));
+        } else {
+            double x = a.x + (Y - a.y) * (b.x - a.x) / (b.y - a.y);
+            l = fmin(l, x);
+            h = fmax(h, x);
+        }
+    }
+    *lo = l, *hi = h;
+    return l <= h;
+}
+
+/* x extent of the piece inside the band [y0, y1]; 0 if it misses. */
+static int x_in_band(const poly *p, double y0, double y1, double *lo, double *hi) {
+    double l = DBL_MAX, h = -DBL_MAX;
+    for (int i = 0, j = p->n - 1; i < p->n; j = i++) {
+        cj_vec2 a = p->v[j], b = p->v[i];
+        double t0 = 0.0, t1 = 1.0, dy = b.y - a.y;
+        if (dy == 0.0) {
+            if (a.y < y0 || a.y > y1) continue;
+        } else {
+            double ta = (y0 - a.y) / dy, tb = (y1 - a.y) / dy;
+            if (ta > tb) {
+                double tmp = ta;
+                ta = tb, tb = tmp;
+            }
+            if (ta > t0) t0 = ta;
+            if (tb < t1) t1 = tb;
+            if (t0 > t1) continue;
+        }
+        double xa = a.x + t0 * (b.x - a.x), xb = a.x + t1 * (b.x - a.x);
+        l = fmin(l, fmin(xa, xb));
+        h = fmax(h, fmax(xa, xb));
+    }
+    *lo = l, *hi = h;
+    return l <= h;
+}
+
+/* Accumulates sign * area(pixel ∩ p) over the pixels of the target. */
+static void add_poly(stroker *s, const poly *p, float sign) {
+    if (p->n < 3) return;
     cover_target *t = s->t;
-    double fx0 = floor(xlo - 0.5), fx1 = floor(xhi + 0.5);
-    if (fx0 < t->ox) fx0 = t->ox;
-    if (fx1 > t->ox + t->w - 1) fx1 = t->ox + t->w - 1;
-    if (fx0 > fx1) return;
-    int x0 = (int)fx0 - t->ox, x1 = (int)fx1 - t->ox, ry = y - t->oy;
-    float *row = t->cover + (ptrdiff_t)ry * t->w;
-    double pyc = y + 0.5;
-    int any = 0;
-    for (int x = x0; x <= x1; ++x) {
-        double d = sdf(piece, x + t->ox + 0.5, pyc);
-        double c = 0.5 - d;
-        if (!(c > 0.0)) continue;
-        float cov = (c >= 1.0 ? 1.0f : (float)c) * s->scale;
-        if (cov > row[x]) row[x] = cov;
-        if (x < t->lo[ry]) t->lo[ry] = x;
-        if (x > t->hi[ry]) t->hi[ry] = x;
-        any = 1;
-    }
-    if (any) touch_rows(t, ry);
-}
-
-/* Row range [r0, r1] (absolute) of pixels whose centre may be within 1/2 of [ylo, yhi]. */
-static int row_range(const cover_target *t, double ylo, double yhi, int *r0, int *r1) {
-    double a = floor(ylo - 0.5), b = floor(yhi + 0.5);
-    if (a < t->oy) a = t->oy;
-    if (b > t->oy + t->h - 1) b = t->oy + t->h - 1;
-    if (a > b) return 0;
-    *r0 = (int)a;
-    *r1 = (int)b;
-    return 1;
-}
-
-typedef struct convex {
-    cj_vec2 v[5];
-    int n;
-} convex;
-
-static double sdf_convex(const void *piece, double px, double py) {
-    const convex *c = piece;
-    double best = DBL_MAX;
-    int pos = 0, neg = 0;
-    for (int k = 0; k < c->n; ++k) {
-        cj_vec2 a = c->v[k], b = c->v[k + 1 == c->n ? 0 : k + 1];
-        double ex = b.x - a.x, ey = b.y - a.y, wx = px - a.x, wy = py - a.y;
-        double ee = ex * ex + ey * ey, t = 0.0;
-        if (ee > 0.0) {
-            t = (wx * ex + wy * ey) / ee;
-            t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-        }
-        double qx = wx - t * ex, qy = wy - t * ey, dd = qx * qx + qy * qy;
-        if (dd < best) best = dd;
-        double cr = ex * wy - ey * wx;
-        pos |= cr > 0.0;
-        neg |= cr < 0.0;
-    }
-    double d = sqrt(best);
-    return pos && neg ? d : -d;
-}
-
-static void add_convex(stroker *s, const convex *c) {
     double ylo = DBL_MAX, yhi = -DBL_MAX;
-    for (int k = 0; k < c->n; ++k) {
-        if (c->v[k].y < ylo) ylo = c->v[k].y;
-        if (c->v[k].y > yhi) yhi = c->v[k].y;
-    }
-    int r0, r1;
-    if (!row_range(s->t, ylo, yhi, &r0, &r1)) return;
-    for (int y = r0; y <= r1; ++y) {
-        /* x extent of the polygon inside the band [y, y+1]. */
-        double bl = y, bh = y + 1.0, xlo = DBL_MAX, xhi = -DBL_MAX;
-        for (int k = 0; k < c->n; ++k) {
-            cj_vec2 a = c->v[k], b = c->v[k + 1 == c->n ? 0 : k + 1];
-            double t0 = 0.0, t1 = 1.0, dy = b.y - a.y;
-            if (dy == 0.0) {
-                if (a.y < bl || a.y > bh) continue;
-            } else {
-                double ta = (bl - a.y) / dy, tb = (bh - a.y) / dy;
-                if (ta > tb) {
-                    double tmp = ta;
-                    ta = tb, tb = tmp;
-                }
-                if (ta > t0) t0 = ta;
-                if (tb < t1) t1 = tb;
-                if (t0 > t1) continue;
-            }
-            double xa = a.x + t0 * (b.x - a.x), xb = a.x + t1 * (b.x - a.x);
-            if (xa > xb) {
-                double tmp = xa;
-                xa = xb, xb = tmp;
-            }
-            if (xa < xlo) xlo = xa;
-            if (xb > xhi) xhi = xb;
+    for (int k = 0; k < p->n; ++k) ylo = fmin(ylo, p->v[k].y), yhi = fmax(yhi, p->v[k].y);
+    double r0 = fmax(floor(ylo), t->oy), r1 = fmin(ceil(yhi) - 1.0, t->oy + t->h - 1.0);
+    for (int y = (int)r0; y <= (int)r1 && r0 <= r1; ++y) {
+        double xlo, xhi;
+        if (!x_in_band(p, y, y + 1.0, &xlo, &xhi)) continue;
+        double c0 = fmax(floor(xlo), t->ox), c1 = fmin(ceil(xhi) - 1.0, t->ox + t->w - 1.0);
+        if (xhi == xlo || c0 > c1) continue;
+        /* Pixels whose four corners are inside are full: x >= fa, x + 1 <= fb. */
+        double a0, b0, a1, b1, fa = 1.0, fb = 0.0;
+        if (x_on_line(p, y, &a0, &b0) && x_on_line(p, y + 1.0, &a1, &b1)) {
+            fa = ceil(fmax(a0, a1));
+            fb = floor(fmin(b0, b1)) - 1.0;
         }
-        if (xlo <= xhi) cover_row(s, y, xlo, xhi, sdf_convex, c);
+        int ry = y - t->oy, x0 = (int)c0 - t->ox, x1 = (int)c1 - t->ox;
+        float *row = t->cover + (ptrdiff_t)ry * t->w;
+        for (int x = x0; x <= x1; ++x) {
+            double ax = x + t->ox;
+            double area = ax >= fa && ax <= fb ? 1.0 : pixel_area(p, x + t->ox, y);
+            row[x] += sign * (float)area;
+        }
+        if (x0 < t->lo[ry]) t->lo[ry] = x0;
+        if (x1 > t->hi[ry]) t->hi[ry] = x1;
+        if (ry < t->ymin) t->ymin = ry;
+        if (ry > t->ymax) t->ymax = ry;
     }
 }
 
-typedef struct disc {
-    double cx, cy, r;
-} disc;
-
-static double sdf_disc(const void *piece, double px, double py) {
-    const disc *d = piece;
-    return hypot(px - d->cx, py - d->cy) - d->r;
-}
-
-static void add_disc(stroker *s, cj_vec2 c, double r) {
-    disc d = {c.x, c.y, r};
-    int r0, r1;
-    if (!row_range(s->t, c.y - r, c.y + r, &r0, &r1)) return;
-    for (int y = r0; y <= r1; ++y) {
-        double dy = c.y < y ? y - c.y : (c.y > y + 1.0 ? c.y - (y + 1.0) : 0.0);
-        if (dy > r) continue;
-        double half = sqrt(r * r - dy * dy);
-        cover_row(s, y, c.x - half, c.x + half, sdf_disc, &d);
+/* Circular sector centred at c, radius r, from unit direction u0 turning by phi in [0, pi]
+ * (counter-clockwise when ccw, else clockwise), as fans of at most 4 triangles per piece. */
+static void add_sector(stroker *s, cj_vec2 c, cj_vec2 u0, double phi, int ccw, double r) {
+    if (!(phi > 0.0) || !(r > 0.0)) return;
+    double dmax = 2.0 * acos(fmax(0.0, 1.0 - 0.02 / r));
+    if (!(dmax > 0.0) || dmax > CJ_PI_ / 8) dmax = CJ_PI_ / 8;
+    int k = (int)ceil(phi / dmax);
+    if (k < 1) k = 1;
+    double d = phi / k, sg = ccw ? 1.0 : -1.0;
+    double rr = r * sqrt(d / sin(d)); /* each triangle gets the exact sector area */
+    double a0 = atan2(u0.y, u0.x);
+    poly p;
+    p.v[0] = c;
+    p.n = 1;
+    for (int i = 0; i <= k; ++i) {
+        double a = a0 + sg * d * i;
+        p.v[p.n++] = cj_v2(c.x + rr * cos(a), c.y + rr * sin(a));
+        if (p.n == 6 || i == k) {
+            add_poly(s, &p, 1.0f);
+            cj_vec2 last = p.v[p.n - 1];
+            p.v[1] = last;
+            p.n = 2;
+        }
     }
 }
 
@@ -173,10 +207,11 @@ static int visible(const stroker *s, cj_vec2 p) {
 
 /* Rectangle of the segment a-b (unit direction d), clipped to the visibility rectangle first
  * so that far-away coordinates never enter the per-pixel arithmetic. */
-static void add_segment(stroker *s, cj_vec2 a, cj_vec2 b, cj_vec2 d) {
+static void segment_rect(const stroker *s, cj_vec2 a, cj_vec2 b, cj_vec2 d, poly *out) {
     double dx = b.x - a.x, dy = b.y - a.y, t0 = 0.0, t1 = 1.0;
     const double p[4] = {-dx, dx, -dy, dy};
     const double q[4] = {a.x - s->rxlo, s->rxhi - a.x, a.y - s->rylo, s->ryhi - a.y};
+    out->n = 0;
     for (int k = 0; k < 4; ++k) {
         if (p[k] == 0.0) {
             if (q[k] < 0.0) return;
@@ -193,48 +228,97 @@ static void add_segment(stroker *s, cj_vec2 a, cj_vec2 b, cj_vec2 d) {
     cj_vec2 a2 = t0 > 0.0 ? cj_v2(a.x + t0 * dx, a.y + t0 * dy) : a;
     cj_vec2 b2 = t1 < 1.0 ? cj_v2(a.x + t1 * dx, a.y + t1 * dy) : b;
     cj_vec2 n = cj_v2_scale(cj_v2_perp(d), s->hw);
-    convex c = {{cj_v2_add(a2, n), cj_v2_sub(a2, n), cj_v2_sub(b2, n), cj_v2_add(b2, n)}, 4};
-    add_convex(s, &c);
+    out->v[0] = cj_v2_sub(a2, n);
+    out->v[1] = cj_v2_sub(b2, n);
+    out->v[2] = cj_v2_add(b2, n);
+    out->v[3] = cj_v2_add(a2, n);
+    out->n = 4;
+}
+
+/* Subtracts the intersection of two rectangles (counter-clockwise convex polygons). */
+static void subtract_overlap(stroker *s, const poly *r1, const poly *r2) {
+    if (r1->n < 3 || r2->n < 3) return;
+    poly a = *r2, b;
+    for (int i = 0, j = r1->n - 1; i < r1->n; j = i++) {
+        cj_vec2 e0 = r1->v[j], e1 = r1->v[i];
+        double ex = e1.x - e0.x, ey = e1.y - e0.y;
+        /* keep cross(e, p - e0) >= 0 (left of the edge) */
+        b.n = 0;
+        for (int q = 0, w = a.n - 1; q < a.n; w = q++) {
+            cj_vec2 pa = a.v[w], pb = a.v[q];
+            double fa = ex * (pa.y - e0.y) - ey * (pa.x - e0.x);
+            double fb = ex * (pb.y - e0.y) - ey * (pb.x - e0.x);
+            if ((fa >= 0) != (fb >= 0)) {
+                double t = fa / (fa - fb);
+                b.v[b.n++] = cj_v2(pa.x + t * (pb.x - pa.x), pa.y + t * (pb.y - pa.y));
+            }
+            if (fb >= 0) b.v[b.n++] = pb;
+            if (b.n > POLY_MAX - 2) break;
+        }
+        a = b;
+        if (a.n < 3) return;
+    }
+    add_poly(s, &a, -1.0f);
 }
 
 static void add_join(stroker *s, cj_vec2 v, cj_vec2 din, cj_vec2 dout) {
     if (!visible(s, v)) return;
     double cr = cj_v2_cross(din, dout), dt = cj_v2_dot(din, dout);
     if (fabs(cr) < 1e-12 && dt > 0.0) return; /* straight on: the rectangles already meet */
-    if (s->join == CJ_JOIN_ROUND) {
-        add_disc(s, v, s->hw);
-        return;
-    }
     /* Outer normals: on the right of a left turn, on the left of a right turn. */
     cj_vec2 a = cj_v2_perp(din), b = cj_v2_perp(dout);
     if (cr > 0.0) a = cj_v2_scale(a, -1.0), b = cj_v2_scale(b, -1.0);
     double h = s->hw, ab = cj_v2_dot(a, b);
-    cj_vec2 pa = cj_v2_add(v, cj_v2_scale(a, h)), pb = cj_v2_add(v, cj_v2_scale(b, h));
-    if (s->join == CJ_JOIN_MITER && 1.0 + ab > 1e-12 && sqrt(2.0 / (1.0 + ab)) <= s->miter_limit) {
-        cj_vec2 m = cj_v2_add(v, cj_v2_scale(cj_v2_add(a, b), h / (1.0 + ab)));
-        convex c = {{v, pa, m, pb}, 4};
-        add_convex(s, &c);
-    } else {
-        convex c = {{v, pa, pb}, 3};
-        add_convex(s, &c);
+    if (s->join == CJ_JOIN_ROUND) {
+        double phi = acos(fmax(-1.0, fmin(1.0, ab)));
+        add_sector(s, v, a, phi, cj_v2_cross(a, din) > 0.0, h);
+        return;
     }
+    cj_vec2 pa = cj_v2_add(v, cj_v2_scale(a, h)), pb = cj_v2_add(v, cj_v2_scale(b, h));
+    poly p;
+    p.v[0] = v;
+    p.v[1] = pa;
+    if (s->join == CJ_JOIN_MITER && 1.0 + ab > 1e-12 && sqrt(2.0 / (1.0 + ab)) <= s->miter_limit) {
+        p.v[2] = cj_v2_add(v, cj_v2_scale(cj_v2_add(a, b), h / (1.0 + ab)));
+        p.v[3] = pb;
+        p.n = 4;
+    } else {
+        p.v[2] = pb;
+        p.n = 3;
+    }
+    add_poly(s, &p, 1.0f);
 }
 
 /* Cap at end point p; d points out of the stroke. */
 static void add_cap(stroker *s, cj_vec2 p, cj_vec2 d) {
     if (!visible(s, p)) return;
+    cj_vec2 n = cj_v2_perp(d);
     if (s->cap == CJ_CAP_ROUND) {
-        add_disc(s, p, s->hw);
+        add_sector(s, p, n, CJ_PI_, cj_v2_cross(n, d) > 0.0, s->hw);
     } else if (s->cap == CJ_CAP_SQUARE) {
-        cj_vec2 n = cj_v2_scale(cj_v2_perp(d), s->hw), e = cj_v2_add(p, cj_v2_scale(d, s->hw));
-        convex c = {{cj_v2_add(p, n), cj_v2_sub(p, n), cj_v2_sub(e, n), cj_v2_add(e, n)}, 4};
-        add_convex(s, &c);
+        cj_vec2 hn = cj_v2_scale(n, s->hw), e = cj_v2_add(p, cj_v2_scale(d, s->hw));
+        poly c = {{cj_v2_add(p, hn), cj_v2_sub(p, hn), cj_v2_sub(e, hn), cj_v2_add(e, hn)}, 4};
+        add_poly(s, &c, 1.0f);
     }
 }
 
 static cj_vec2 unit(cj_vec2 a, cj_vec2 b) {
     cj_vec2 d = cj_v2_sub(b, a);
     return cj_v2_scale(d, 1.0 / cj_v2_norm(d));
+}
+
+/* The segment prev -> p (direction d) after a join at prev when it is not the first. */
+static void segment_to(stroker *s, cj_vec2 p, cj_vec2 d) {
+    poly r;
+    segment_rect(s, s->prev, p, d, &r);
+    add_poly(s, &r, 1.0f);
+    if (s->npts == 1) {
+        s->first_rect = r;
+    } else {
+        add_join(s, s->prev, s->prev_dir, d);
+        subtract_overlap(s, &s->prev_rect, &r);
+    }
+    s->prev_rect = r;
 }
 
 static void stroker_point(stroker *s, cj_vec2 p) {
@@ -246,37 +330,35 @@ static void stroker_point(stroker *s, cj_vec2 p) {
     if (p.x == s->prev.x && p.y == s->prev.y) return;
     cj_vec2 d = unit(s->prev, p);
     if (!(isfinite(d.x) && isfinite(d.y))) return; /* distinct but too close to normalise */
-    if (s->npts == 1)
-        s->first_dir = d;
-    else
-        add_join(s, s->prev, s->prev_dir, d);
-    add_segment(s, s->prev, p, d);
+    if (s->npts == 1) s->first_dir = d;
+    segment_to(s, p, d);
     s->prev = p;
     s->prev_dir = d;
     s->npts++;
 }
 
-static void stroker_finish(stroker *s, int closed) {
+static void stroker_finish(stroker *s) {
     if (s->npts == 1) { /* a dot */
-        if (s->cap == CJ_CAP_ROUND)
-            add_disc(s, s->first, s->hw);
-        else if (s->cap == CJ_CAP_SQUARE && visible(s, s->first)) {
+        if (s->cap == CJ_CAP_ROUND) {
+            add_cap(s, s->first, cj_v2(1.0, 0.0));
+            add_cap(s, s->first, cj_v2(-1.0, 0.0));
+        } else if (s->cap == CJ_CAP_SQUARE && visible(s, s->first)) {
             double h = s->hw, x = s->first.x, y = s->first.y;
-            convex c = {{{x - h, y - h}, {x + h, y - h}, {x + h, y + h}, {x - h, y + h}}, 4};
-            add_convex(s, &c);
+            poly c = {{{x - h, y - h}, {x + h, y - h}, {x + h, y + h}, {x - h, y + h}}, 4};
+            add_poly(s, &c, 1.0f);
         }
         return;
     }
-    if (closed) {
+    if (s->closed) {
         if (s->prev.x != s->first.x || s->prev.y != s->first.y) {
             cj_vec2 d = unit(s->prev, s->first);
             if (isfinite(d.x) && isfinite(d.y)) {
-                add_join(s, s->prev, s->prev_dir, d);
-                add_segment(s, s->prev, s->first, d);
+                segment_to(s, s->first, d);
                 s->prev_dir = d;
             }
         }
         add_join(s, s->first, s->prev_dir, s->first_dir);
+        subtract_overlap(s, &s->prev_rect, &s->first_rect);
     } else {
         add_cap(s, s->first, cj_v2_scale(s->first_dir, -1.0));
         add_cap(s, s->prev, s->prev_dir);
@@ -320,17 +402,16 @@ static cj_status check_points(const cj_vec2 *pts, size_t n) {
     return CJ_OK;
 }
 
-static void stroker_init(stroker *s, cover_target *t, const cj_raster_stroke *st) {
+static void stroker_init(stroker *s, cover_target *t, const cj_raster_stroke *st, int closed) {
     memset(s, 0, sizeof *s);
+    s->closed = closed;
     s->t = t;
-    double h = 0.5 * st->width;
-    s->hw = h < 0.5 ? 0.5 : h;
-    s->scale = h < 0.5 ? (float)(2.0 * h) : 1.0f;
+    s->hw = 0.5 * st->width;
     s->join = st->join;
     s->cap = st->cap;
     s->miter_limit = st->miter_limit;
-    double reach =
-        s->hw * (st->join == CJ_JOIN_MITER && st->miter_limit > 1.5 ? st->miter_limit : 1.5) + 2.0;
+    double k = st->join == CJ_JOIN_MITER && st->miter_limit > 1.5 ? st->miter_limit : 1.5;
+    double reach = s->hw * k + 2.0;
     s->rxlo = t->ox - reach;
     s->rxhi = t->ox + t->w + reach;
     s->rylo = t->oy - reach;
@@ -346,7 +427,9 @@ static void compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_raster_co
         float *row = t->cover + (ptrdiff_t)ry * t->w;
         for (int x = t->lo[ry]; x <= t->hi[ry]; ++x) {
             float cov = row[x];
-            if (cov > 0.0f) {
+            row[x] = 0.0f;
+            if (cov > 1e-6f) { /* below: rounding residue of subtracted overlaps */
+                if (cov > 1.0f) cov = 1.0f;
                 if (fn) {
                     fn(user, x + t->ox, ry + t->oy, cov);
                 } else if (fb) {
@@ -355,7 +438,6 @@ static void compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_raster_co
                     cj_rgba *p = fb->pixels + (ptrdiff_t)(ry + t->oy) * fb->stride + x + t->ox;
                     *p = cj_rgba_over(s, *p);
                 }
-                row[x] = 0.0f;
             }
         }
         t->lo[ry] = INT_MAX;
@@ -402,9 +484,9 @@ cj_status cj_raster_stroke_polyline(cj_framebuffer *fb, const cj_vec2 *pts, size
     cover_target t;
     if ((st = fb_target(fb, &t))) return st;
     stroker s;
-    stroker_init(&s, &t, style);
+    stroker_init(&s, &t, style, closed);
     for (size_t i = 0; i < n; ++i) stroker_point(&s, pts[i]);
-    stroker_finish(&s, closed);
+    stroker_finish(&s);
     compose(&t, fb, c, NULL, NULL);
     return CJ_OK;
 }
@@ -440,9 +522,9 @@ cj_status cj_raster_stroke_polyline_visit(const cj_vec2 *pts, size_t n, int clos
     memset(t.cover, 0, (size_t)t.w * (size_t)t.h * sizeof(float));
     for (int y = 0; y < t.h; ++y) t.lo[y] = INT_MAX, t.hi[y] = -1;
     stroker s;
-    stroker_init(&s, &t, style);
+    stroker_init(&s, &t, style, closed);
     for (size_t i = 0; i < n; ++i) stroker_point(&s, pts[i]);
-    stroker_finish(&s, closed);
+    stroker_finish(&s);
     compose(&t, NULL, cj_rgba_make(0, 0, 0, 0), fn, user);
     return CJ_OK;
 }
@@ -464,7 +546,7 @@ cj_status cj_raster_stroke_bezier(cj_framebuffer *fb, const cj_bezier *curve, do
     cover_target t;
     if ((st = fb_target(fb, &t))) return st;
     stroker s;
-    stroker_init(&s, &t, style);
+    stroker_init(&s, &t, style, 0);
     cj_flatten_opts opts = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, tol);
     cj_flatten_stats stats;
     st = cj_flatten_bezier_cb(curve, &opts, curve_sink, &s, &stats);
@@ -472,7 +554,7 @@ cj_status cj_raster_stroke_bezier(cj_framebuffer *fb, const cj_bezier *curve, do
         compose(&t, NULL, c, NULL, NULL); /* clear whatever was accumulated, draw nothing */
         return st;
     }
-    stroker_finish(&s, 0);
+    stroker_finish(&s);
     compose(&t, fb, c, NULL, NULL);
     if (bound) *bound = stats.bound;
     return CJ_OK;

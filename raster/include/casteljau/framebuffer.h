@@ -104,8 +104,8 @@ cj_status cj_framebuffer_getpixel(const cj_framebuffer *fb, long long x, long lo
 /* Porter-Duff source-over of straight-alpha colours, exactly rounded: with α_s = s.a/255 and
  * α_d = d.a/255,
  *     α_o = α_s + α_d (1 - α_s),   c_o = (c_s α_s + c_d α_d (1 - α_s)) / α_o,
- * each result channel is the nearest 8-bit value to the exact rational result (halves round up);
- * α_o = 0 gives (0,0,0,0). An opaque source returns s unchanged; a transparent one returns d. */
+ * each result channel is the nearest 8-bit value to the exact rational result (halves round up).
+ * An opaque source returns s unchanged; a transparent one (s.a == 0) returns d unchanged. */
 cj_rgba cj_rgba_over(cj_rgba s, cj_rgba d);
 
 /* Blends c over the pixel at (x, y) (source-over, see cj_rgba_over). Out-of-range pixels are

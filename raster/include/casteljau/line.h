@@ -33,15 +33,15 @@
  *
  * 3. Strokes: a polyline (or a curve flattened to one) drawn with a width, a join
  *    (miter/round/bevel) at interior vertices and a cap (butt/round/square) at the two ends.
- *    The stroke is the union of convex pieces (one rectangle per segment, join wedges or discs,
- *    caps); each pixel gets the coverage
- *        cov = clamp(1/2 - d, 0, 1),
- *    where d is the exact signed distance from the pixel centre to the union (negative
- *    inside). This is a box filter one pixel wide: a straight stroke of width w >= 1 has total
- *    coverage w per unit length. Strokes thinner than one pixel are drawn one pixel wide with
- *    coverage scaled by the width, so the total stays w per unit length. Overlapping pieces of
- *    one call are not blended twice (coverage is the max over pieces, which is the coverage
- *    of the union).
+ *    Coverage is the EXACT AREA of (pixel square ∩ stroke), a one-pixel box filter: the stroke
+ *    is cut into non-overlapping convex pieces (a rectangle per segment, a wedge or circular
+ *    sector on the outer side of each join, the caps), the inner overlap of consecutive
+ *    rectangles is subtracted, and each piece's area inside each pixel is computed by clipping
+ *    it to the pixel square. Round parts are polygons within 0.02 px of the circle with the
+ *    exact sector area. So a straight stroke of length L and width w has total coverage L*w
+ *    (plus the caps), at any angle and for any w > 0 (thin strokes simply get partial
+ *    coverage). Where non-adjacent parts of one polyline overlap (self-intersections, very
+ *    short segments at sharp turns) coverage adds up and is clamped at 1.
  *
  * Statuses: CJ_ERR_NONFINITE for a NaN/Inf coordinate, width, tolerance (naming it);
  * CJ_ERR_RANGE for a coordinate beyond CJ_RASTER_COORD_MAX, a width <= 0 or above
