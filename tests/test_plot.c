@@ -1,0 +1,260 @@
+#define _POSIX_C_SOURCE 200809L /* setenv */
+/* Plots (raster/plot.h) and text (raster/text.h): curve pixels against the exact curve, equal
+ * aspect, clipping to the panel, hull fill and construction point, bad input, fonts. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "casteljau/plot.h"
+#include "casteljau/text.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static cj_rgba px_at(const cj_framebuffer *fb, int x, int y) {
+    return fb->pixels[(ptrdiff_t)y * fb->stride + x];
+}
+
+/* Cubic by the explicit Bernstein formula (independent of the library's de Casteljau). */
+static void cubic_at(const double *b, double t, double *out) {
+    const double s = 1 - t;
+    const double w[4] = {s * s * s, 3 * s * s * t, 3 * s * t * t, t * t * t};
+    out[0] = out[1] = 0;
+    for (int i = 0; i < 4; ++i) {
+        out[0] += w[i] * b[2 * i];
+        out[1] += w[i] * b[2 * i + 1];
+    }
+}
+
+/* A plot whose data-to-pixel map is the identity: view = the framebuffer, no margin, no axes. */
+static cj_plot *identity_plot(int w, int h) {
+    cj_plot *p = NULL;
+    assert_int_equal(cj_plot_create(NULL, &p), CJ_OK);
+    cj_plot_set_axes(p, 0);
+    assert_int_equal(cj_plot_set_margin(p, 0), CJ_OK);
+    assert_int_equal(cj_plot_set_view(p, 0, 0, w, h), CJ_OK);
+    return p;
+}
+
+static void test_curve_pixels_follow_the_curve(void **state) {
+    (void)state;
+    const int W = 240, H = 160;
+    const double b[8] = {10, 10, 60, 190, 170, -40, 230, 140};
+    const double width = 2.0;
+    cj_plot *p = identity_plot(W, H);
+    cj_plot_bezier_opts o = cj_plot_bezier_defaults();
+    o.color = cj_rgba_make(255, 0, 0, 255);
+    o.width = width;
+    o.control_polygon = 0;
+    o.control_points = 0;
+    cj_bezier c = cj_bezier_view(3, 2, b);
+    assert_int_equal(cj_plot_add_bezier(p, &c, &o), CJ_OK);
+    cj_framebuffer *fb = NULL;
+    assert_int_equal(cj_framebuffer_create(W, H, 0, NULL, &fb), CJ_OK);
+    assert_int_equal(cj_plot_render(p, fb, 0, 0, W, H, NULL), CJ_OK);
+
+    enum { NS = 20001 };
+    static double samp[NS][2];
+    for (int i = 0; i < NS; ++i) cubic_at(b, (double)i / (NS - 1), samp[i]);
+    /* (1) every tinted pixel is within width/2 + 1/2 (pixel footprint) + 0.25 (flattening)
+     *     + sampling slack of the exact curve; */
+    double worst = 0;
+    long tinted = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            cj_rgba q = px_at(fb, x, y);
+            if (q.r - q.g <= 25) continue; /* white, or coverage below 10 % */
+            ++tinted;
+            double best = INFINITY;
+            for (int i = 0; i < NS; ++i)
+                best = fmin(best, hypot(samp[i][0] - (x + 0.5), samp[i][1] - (y + 0.5)));
+            worst = fmax(worst, best);
+        }
+    assert_true(tinted > 200);
+    assert_true(worst <= width / 2 + 0.5 + 0.25 + 0.05);
+    /* (2) the pixel containing each curve point is strongly covered. */
+    int weakest = 255;
+    for (int i = 0; i < NS; i += 7) {
+        int x = (int)floor(samp[i][0]), y = (int)floor(samp[i][1]);
+        if (x < 0 || y < 0 || x >= W || y >= H) continue;
+        cj_rgba q = px_at(fb, x, y);
+        if (q.r - q.g < weakest) weakest = q.r - q.g;
+    }
+    assert_true(weakest > 100);
+    printf("test_plot: %ld curve pixels, farthest %.3f px from the exact cubic (limit %.2f); "
+           "every curve point's pixel covered (min red-green %d)\n",
+           tinted, worst, width / 2 + 0.8, weakest);
+    cj_framebuffer_destroy(fb);
+    cj_plot_destroy(p);
+}
+
+static void test_rect_equal_aspect_and_clip(void **state) {
+    (void)state;
+    cj_plot *p = NULL;
+    assert_int_equal(cj_plot_create(NULL, &p), CJ_OK);
+    cj_implicit_shape shape;
+    cj_implicit f;
+    assert_int_equal(cj_implicit_circle(3, -2, 1.5, &shape, &f), CJ_OK);
+    const double box[4] = {0, -5, 6, 1};
+    const cj_rgba blue = cj_rgba_make(0, 0, 255, 255);
+    assert_int_equal(cj_plot_add_implicit(p, &f, box, 0, blue, 2.0), CJ_OK);
+    cj_framebuffer *fb = NULL;
+    assert_int_equal(cj_framebuffer_create(400, 260, 0, NULL, &fb), CJ_OK);
+    const cj_rgba magenta = cj_rgba_make(255, 0, 255, 255);
+    cj_framebuffer_clear(fb, magenta);
+    const int x0 = 30, y0 = 20, w = 330, h = 200;
+    assert_int_equal(cj_plot_render(p, fb, x0, y0, w, h, NULL), CJ_OK);
+    int lo[2] = {1 << 30, 1 << 30}, hi[2] = {-1, -1};
+    for (int y = 0; y < fb->height; ++y)
+        for (int x = 0; x < fb->width; ++x) {
+            cj_rgba q = px_at(fb, x, y);
+            int inside = x >= x0 && x < x0 + w && y >= y0 && y < y0 + h;
+            if (!inside) {
+                assert_memory_equal(&q, &magenta, sizeof q); /* nothing drawn outside */
+                continue;
+            }
+            if (q.b > 200 && q.r < 90 && q.g < 90) { /* the circle's stroke */
+                if (x < lo[0]) lo[0] = x;
+                if (y < lo[1]) lo[1] = y;
+                if (x > hi[0]) hi[0] = x;
+                if (y > hi[1]) hi[1] = y;
+            }
+        }
+    const int dx = hi[0] - lo[0], dy = hi[1] - lo[1];
+    assert_true(dx > 50);
+    assert_true(abs(dx - dy) <= 1);
+    printf("test_plot: circle drawn %d x %d px in a %dx%d panel (equal aspect), nothing outside "
+           "the panel touched\n",
+           dx, dy, w, h);
+    cj_framebuffer_destroy(fb);
+    cj_plot_destroy(p);
+}
+
+static void test_hull_and_construction(void **state) {
+    (void)state;
+    const int W = 200, H = 200;
+    const double b[8] = {20, 20, 40, 180, 180, 180, 180, 20};
+    cj_plot *p = identity_plot(W, H);
+    cj_plot_bezier_opts o = cj_plot_bezier_defaults();
+    o.hull = 1;
+    o.control_polygon = 0;
+    o.construction = 1;
+    o.construction_t = 0.25;
+    cj_bezier c = cj_bezier_view(3, 2, b);
+    assert_int_equal(cj_plot_add_bezier(p, &c, &o), CJ_OK);
+    cj_framebuffer *fb = NULL;
+    assert_int_equal(cj_framebuffer_create(W, H, 0, NULL, &fb), CJ_OK);
+    assert_int_equal(cj_plot_render(p, fb, 0, 0, W, H, NULL), CJ_OK);
+    /* Inside the hull, away from every stroke: tinted, not white. Outside: white. */
+    cj_rgba in = px_at(fb, 150, 60), out = px_at(fb, 5, 195);
+    assert_true(in.r < 245 && in.b > in.r);
+    assert_true(out.r == 255 && out.g == 255 && out.b == 255);
+    /* The construction's end point c(0.25) (explicit formula) carries the red marker. */
+    double q[2];
+    cubic_at(b, 0.25, q);
+    cj_rgba m = px_at(fb, (int)floor(q[0]), (int)floor(q[1]));
+    assert_true(m.r > 150 && m.g < 90 && m.b < 90);
+    printf("test_plot: hull interior tinted (%d,%d,%d), outside white, c(0.25) marker red\n", in.r,
+           in.g, in.b);
+    cj_framebuffer_destroy(fb);
+    cj_plot_destroy(p);
+}
+
+static void test_bad_input(void **state) {
+    (void)state;
+    cj_plot *p = NULL;
+    assert_int_equal(cj_plot_create(NULL, &p), CJ_OK);
+    cj_framebuffer *fb = NULL;
+    assert_int_equal(cj_framebuffer_create(100, 100, 0, NULL, &fb), CJ_OK);
+    assert_int_equal(cj_plot_render(p, fb, 0, 0, 100, 100, NULL), CJ_ERR_EMPTY);
+    const double p3[6] = {0, 0, 0, 1, 1, 1};
+    cj_bezier c3 = cj_bezier_view(1, 3, p3);
+    assert_int_equal(cj_plot_add_bezier(p, &c3, NULL), CJ_ERR_DIMENSION);
+    double bad[4] = {0, 0, NAN, 1};
+    cj_bezier cn = cj_bezier_view(1, 2, bad);
+    assert_int_equal(cj_plot_add_bezier(p, &cn, NULL), CJ_ERR_NONFINITE);
+    const double ok[4] = {0, 0, 1, 1};
+    cj_bezier c = cj_bezier_view(1, 2, ok);
+    cj_plot_bezier_opts o = cj_plot_bezier_defaults();
+    o.construction = 1;
+    o.construction_t = 1.5;
+    assert_int_equal(cj_plot_add_bezier(p, &c, &o), CJ_ERR_RANGE);
+    o = cj_plot_bezier_defaults();
+    o.nframes = CJ_PLOT_MAX_FRAMES + 1;
+    assert_int_equal(cj_plot_add_bezier(p, &c, &o), CJ_ERR_RANGE);
+    o = cj_plot_bezier_defaults();
+    o.width = 0;
+    assert_int_equal(cj_plot_add_bezier(p, &c, &o), CJ_ERR_RANGE);
+    assert_int_equal(cj_plot_add_polyline(p, ok, 1, 0, o.color, 1, 0), CJ_ERR_EMPTY);
+    assert_int_equal(cj_plot_add_points(p, bad, 2, o.color, 3), CJ_ERR_NONFINITE);
+    const double twice[4] = {1, 1, 1, 1};
+    assert_int_equal(cj_plot_add_spline(p, twice, 1, NULL, o.color, 2, 1), CJ_ERR_EMPTY);
+    assert_int_equal(cj_plot_set_view(p, 1, 0, 1, 2), CJ_ERR_DEGENERATE);
+    assert_int_equal(cj_plot_set_margin(p, -1), CJ_ERR_RANGE);
+    assert_int_equal(cj_plot_item_count(p), 0); /* nothing was added by failing calls */
+    /* All data at one point: nothing to scale. */
+    assert_int_equal(cj_plot_add_points(p, twice, 2, o.color, 3), CJ_OK);
+    assert_int_equal(cj_plot_render(p, fb, 0, 0, 100, 100, NULL), CJ_ERR_DEGENERATE);
+    assert_int_equal(cj_plot_add_bezier(p, &c, NULL), CJ_OK);
+    assert_int_equal(cj_plot_render(p, fb, 0, 0, 20, 100, NULL), CJ_ERR_RANGE);  /* too small */
+    assert_int_equal(cj_plot_render(p, fb, 50, 50, 60, 60, NULL), CJ_ERR_RANGE); /* sticks out */
+    assert_int_equal(cj_plot_render(p, fb, 0, 0, 100, 100, NULL), CJ_OK);
+    cj_framebuffer_destroy(fb);
+    cj_plot_destroy(p);
+    printf("test_plot: bad curves, options, rectangles refused with the documented statuses\n");
+}
+
+static void test_fonts(void **state) {
+    (void)state;
+    cj_font *font = NULL;
+    assert_int_equal(cj_font_open(NULL, &font), CJ_OK);
+    double a1 = 0, a2 = 0, asc = 0, desc = 0;
+    assert_int_equal(cj_font_measure(font, 14, "1", &a1, &asc, &desc), CJ_OK);
+    assert_int_equal(cj_font_measure(font, 14, "10", &a2, NULL, NULL), CJ_OK);
+    assert_true(a1 > 3 && a2 > a1 + 3 && asc > 8 && desc > 1);
+    assert_int_equal(cj_font_measure(font, 2, "1", &a1, NULL, NULL), CJ_ERR_RANGE);
+    assert_int_equal(cj_font_measure(font, 14, "\xff", &a1, NULL, NULL), CJ_ERR_PARSE);
+    cj_framebuffer *fb = NULL;
+    assert_int_equal(cj_framebuffer_create(80, 40, 0, NULL, &fb), CJ_OK);
+    cj_framebuffer_clear(fb, cj_rgba_make(255, 255, 255, 255));
+    double adv = 0;
+    assert_int_equal(cj_font_measure(font, 16, "Hg", &adv, &asc, &desc), CJ_OK);
+    assert_int_equal(cj_font_draw(font, fb, 10, 15, 16, cj_rgba_make(0, 0, 0, 255), "Hg"), CJ_OK);
+    long inked = 0;
+    for (int y = 0; y < fb->height; ++y)
+        for (int x = 0; x < fb->width; ++x)
+            if (px_at(fb, x, y).r < 250) {
+                ++inked;
+                assert_true(x >= 10 && x <= 10 + adv + 1);
+                assert_true(y >= 15 - desc - 1 && y <= 15 + asc + 1);
+            }
+    assert_true(inked > 30);
+    assert_int_equal(cj_font_draw(font, fb, NAN, 1, 16, cj_rgba_make(0, 0, 0, 255), "x"),
+                     CJ_ERR_NONFINITE);
+    cj_font_close(font);
+    cj_framebuffer_destroy(fb);
+
+    assert_int_equal(cj_font_open("/nonexistent/font.ttf", &font), CJ_ERR_IO);
+    assert_non_null(strstr(cj_last_error(), "/nonexistent/font.ttf"));
+    setenv("CJ_FONT", "/nonexistent/env.ttf", 1);
+    assert_int_equal(cj_font_open(NULL, &font), CJ_ERR_UNSUPPORTED);
+    assert_non_null(strstr(cj_last_error(), "CJ_FONT"));
+    unsetenv("CJ_FONT");
+    printf("test_plot: font found, text inked (%ld px) inside its measured box, missing fonts "
+           "reported\n",
+           inked);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_curve_pixels_follow_the_curve),
+        cmocka_unit_test(test_rect_equal_aspect_and_clip),
+        cmocka_unit_test(test_hull_and_construction),
+        cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_fonts),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
