@@ -1,0 +1,103 @@
+/* casteljau: tessellation of Bézier patches (uniform and adaptive to a tolerance, watertight)
+ * and of parametric surfaces, into a cj_mesh.
+ *
+ * PATCHES. Each patch becomes a triangulation of its parameter square whose vertices lie on
+ * the surface; triangle orientation is counter-clockwise in (u,v), hence counter-clockwise
+ * seen from the side S_u x S_v points to. Per patch:
+ *  - every boundary edge gets k_e segments chosen FROM THAT EDGE'S CURVE ALONE
+ *    (cj_tess_edge_segments, or K in uniform mode), and its points are evaluated from the
+ *    edge's own control points in one canonical direction (the lexicographically smaller of
+ *    the control sequence and its reverse; corners are the control points themselves). Two
+ *    patches sharing an edge (same control points, either direction) therefore produce
+ *    bit-identical vertices along it: no cracks. A collapsed edge (all control points
+ *    identical) maps every one of its vertices to that point exactly; its count follows the
+ *    interior (it cannot crack) and the triangles that degenerate there (two vertices at the
+ *    same position) are dropped.
+ *  - the interior is a grid of nu x nv uniform cells; where edge counts differ from the grid,
+ *    the outer ring of cells is replaced by a zipper strip between the edge points and the
+ *    first inner grid row/column.
+ *
+ * PROVEN BOUND. For a triangle T with vertex parameters p_i and barycentric λ_i, the linear
+ * interpolant L satisfies S(x) - L(x) = -Σ λ_i R_i with R_i the Taylor remainder of S from x
+ * to p_i, so |S(x) - L(x)| <= ½ Σ λ_i Q(p_i - x), Q(h,k) = Muu h² + 2 Muv |h||k| + Mvv k²,
+ * where Muu >= |S_uu|, Muv >= |S_uv|, Mvv >= |S_vv| on the region. Since Σλ_i(u_i-u)² <= du²/4
+ * (du = the triangle's extent in u) and likewise in v (Cauchy-Schwarz for the mixed term):
+ *     |S(x) - L(x)| <= (Muu du² + 2 Muv du dv + Mvv dv²) / 8.
+ * The M's come from the control net of the sub-patch over the row (or column) strip of cells
+ * the triangle lies in (convex hull property of the derivative patches):
+ *     Muu = m(m-1) max |Δ²_u b_ij|,  Muv = m n max |Δ_u Δ_v b_ij|,  Mvv = n(n-1) max |Δ²_v b_ij|,
+ * rescaled to the patch's parameters, inflated for the rounding of the differences, plus the
+ * rounding error of evaluating the vertices (gamma(3(m+n)+2) max|b|). Since S(x) lies within
+ * that distance of the point L(x) of the mesh, it bounds the distance from surface to mesh.
+ * Rational patches have no such bound here: adaptive mode rejects them (CJ_ERR_UNSUPPORTED)
+ * and uniform mode reports bound = +INFINITY.
+ *
+ * ADAPTIVE CHOICE. Edge counts: smallest k with d(d-1) max|Δ²b| / (8 k²) <= tol/4 (the chord
+ * error bound of the edge curve). Grid: nu, nv from the patch's global M so that
+ * (Muu/nu² + 2 Muv/(nu nv) + Mvv/nv²)/8 <= tol, then the per-triangle bound above is computed
+ * and the grid refined in the direction of the dominant term until the bound is <= tol.
+ *
+ * MEASURED DEVIATION (opt->measure = L > 0): for every triangle, max |S(x) - L(x)| over the
+ * barycentric lattice of step 1/L (including dropped triangles), i.e. a sampled value of the
+ * quantity the bound bounds.
+ */
+#ifndef CASTELJAU_TESSELLATE_H
+#define CASTELJAU_TESSELLATE_H
+
+#include "casteljau/mesh.h"
+#include "casteljau/patch.h"
+#include "casteljau/status.h"
+#include "casteljau/surface.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Default cap on the segments per direction of one patch. */
+#define CJ_TESS_DEFAULT_MAX_SEGMENTS 4096
+
+typedef struct cj_tess_options {
+    double tol;       /* adaptive: bound on the distance surface -> mesh, > 0 and finite */
+    int uniform;      /* > 0: uniform K x K segments per patch (seed 5.9); tol is then unused */
+    int measure;      /* > 0: measure the deviation on a lattice of step 1/measure per triangle */
+    int max_segments; /* cap per direction and patch; 0 = CJ_TESS_DEFAULT_MAX_SEGMENTS */
+} cj_tess_options;
+
+typedef struct cj_tess_report {
+    size_t triangles;   /* triangles added to the mesh */
+    size_t vertices;    /* vertices added */
+    size_t dropped;     /* degenerate triangles dropped (collapsed edges) */
+    double bound;       /* proven max distance from the patches to the mesh (+INF: rational) */
+    double measured;    /* measured max deviation (-1 when opt->measure == 0) */
+    int max_nu, max_nv; /* largest grid used by a patch */
+} cj_tess_report;
+
+/* Tessellates `count` patches into `mesh` (appending; triangle_patch = patch index). Vertices
+ * are per patch (each carries its patch's (u,v) and normal); positions along shared edges
+ * are bit-identical, so cj_mesh_weld() or the OBJ writer merge them into a watertight mesh.
+ * Status: errors of cj_patch_check (naming the patch), CJ_ERR_ARGUMENT (bad options: tol <= 0
+ * in adaptive mode, negative counts), CJ_ERR_NONFINITE (tol), CJ_ERR_UNSUPPORTED (rational
+ * patch in adaptive mode), CJ_ERR_CAP (a patch needs more than max_segments per direction:
+ * the mesh holds the patches done so far and report describes them), CJ_ERR_NOMEM. */
+cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_tess_options *opt,
+                                cj_mesh *mesh, cj_tess_report *report);
+
+/* The edge rule: the number of segments (>= 1) for a polynomial edge curve of the given degree
+ * (3D control points, degree+1 of them) so that the chord error bound
+ * d(d-1) max|Δ²b| / (8 k²) is <= tol. Capped at `cap` (returns cap+1 if more are needed). */
+int cj_tess_edge_segments(const double *pts, int degree, double tol, int cap);
+
+/* Uniform grid of a parametric surface (cj_param_surface of surface.h): nu x nv cells over the
+ * domain, vertices S(u_i, v_j) with cj_surface_normal normals and (u,v). Closure flags are
+ * honoured: a periodic direction reuses its first column/row instead of evaluating the last
+ * (so the seam is shared), a collapsed edge becomes a single vertex, and the triangles that
+ * degenerate there are dropped (*dropped, may be NULL). Triangles are CCW in (u,v), i.e.
+ * outward for the library's closed surfaces. nu, nv >= 1 (>= 3 in a periodic direction).
+ * Status: CJ_ERR_ARGUMENT (counts), errors of the surface callbacks, CJ_ERR_NOMEM. */
+cj_status cj_tessellate_surface(const cj_param_surface *s, int nu, int nv, int32_t id,
+                                cj_mesh *mesh, size_t *dropped);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
