@@ -13,6 +13,7 @@
 #include "casteljau/bezier.h"
 #include "casteljau/quadric.h"
 #include "casteljau/surface.h"
+#include "casteljau/transform.h"
 #include "rng.h"
 
 #include <float.h>
@@ -557,6 +558,82 @@ static void test_bad_input(void **state) {
            n_expect);
 }
 
+/* Affine placement. A unit sphere scaled by (2, 1, 0.5), rotated and translated must be the
+ * ellipsoid (2, 1, 0.5) under the same rigid motion: its points satisfy the ellipsoid's
+ * implicit form moved by the rigid motion only, and its normals agree with that gradient. */
+static void test_affine_placement(void **state) {
+    (void)state;
+    cj_rng r;
+    cj_rng_init(&r, seed + 4);
+    cj_quadric unit, ell;
+    assert_int_equal(cj_quadric_ellipsoid(&unit, 1, 1, 1), CJ_OK);
+    assert_int_equal(cj_quadric_ellipsoid(&ell, 2, 1, 0.5), CJ_OK);
+    cj_xform3 rot, scale = cj_xform3_scale(2, 1, 0.5), tr = cj_xform3_translate(1, -2, 3);
+    assert_int_equal(cj_xform3_rotate_axis(cj_v3(1, 2, 0.5), 0.8, &rot), CJ_OK);
+    cj_xform3 rigid = cj_xform3_compose(&tr, &rot), full = cj_xform3_compose(&rigid, &scale);
+    cj_param_surface us, ps;
+    cj_implicit_surface ei, pi;
+    cj_quadric_surface(&unit, &us);
+    cj_quadric_implicit(&ell, &ei);
+    cj_transformed_surface st_p, st_i;
+    assert_int_equal(cj_surface_transform(&full, &us, &st_p, &ps), CJ_OK);
+    assert_int_equal(cj_implicit_transform(&rigid, &ei, &st_i, &pi), CJ_OK);
+    assert_true(ps.flags == us.flags && ps.v0 == us.v0);
+    tcase t = {"placed ellipsoid", ps, pi, 1, {1, -2, 3}, 1};
+    double worst = 0.0, worst_fd = 0.0;
+    for (int k = 0; k < 1000; ++k) {
+        double u, v, rel;
+        draw_uv(&r, &ps, 0.0, &u, &v);
+        cj_vec3 p, su, sv, n, g;
+        assert_int_equal(cj_surface_eval(&ps, u, v, &p, &su, &sv), CJ_OK);
+        if (!on_surface(&t, p, &rel))
+            fail_msg("placed ellipsoid: S(%.17g,%.17g) off the surface (%g); seed %llu", u, v, rel,
+                     (unsigned long long)seed);
+        assert_int_equal(cj_surface_normal(&ps, u, v, &n), CJ_OK);
+        assert_int_equal(cj_implicit_normal(&pi, p, &g), CJ_OK);
+        double d = 1.0 - cj_v3_dot(n, g);
+        if (d > worst) worst = d;
+        if (d > 1e-12)
+            fail_msg("placed ellipsoid: normal vs gradient at (%.17g,%.17g): %g; seed %llu", u, v,
+                     d, (unsigned long long)seed);
+        assert_true(cj_v3_dot(n, cj_v3_sub(p, t.center)) > 0.0);
+        if (v > ps.v0 + 1e-4 && v < ps.v1 - 1e-4 && u > ps.u0 + 1e-4 && u < ps.u1 - 1e-4) {
+            double h = 1e-5;
+            cj_vec3 a, b;
+            cj_surface_eval(&ps, u + h, v, &a, NULL, NULL);
+            cj_surface_eval(&ps, u - h, v, &b, NULL, NULL);
+            double e = cj_v3_norm(cj_v3_sub(cj_v3_scale(cj_v3_sub(a, b), 0.5 / h), su)) /
+                       (cj_v3_norm(p) + cj_v3_norm(su) + 1);
+            if (e > worst_fd) worst_fd = e;
+            assert_true(e < 1e-8);
+        }
+    }
+    /* A mirror turns the parametric normal inward; the implicit gradient stays outward. */
+    cj_xform3 mirror = cj_xform3_scale(-1, 1, 1);
+    cj_transformed_surface st_m, st_mi;
+    cj_param_surface ms;
+    cj_implicit_surface mi;
+    cj_quadric_implicit(&unit, &ei);
+    assert_int_equal(cj_surface_transform(&mirror, &us, &st_m, &ms), CJ_OK);
+    assert_int_equal(cj_implicit_transform(&mirror, &ei, &st_mi, &mi), CJ_OK);
+    cj_vec3 p, n, g;
+    assert_int_equal(cj_surface_eval(&ms, 0.3, 0.2, &p, NULL, NULL), CJ_OK);
+    assert_int_equal(cj_surface_normal(&ms, 0.3, 0.2, &n), CJ_OK);
+    assert_int_equal(cj_implicit_normal(&mi, p, &g), CJ_OK);
+    assert_true(cj_v3_dot(n, g) < -1.0 + 1e-14 && cj_v3_dot(g, p) > 0.0);
+    /* Bad matrices. */
+    cj_xform3 proj = cj_xform3_identity(), sing = cj_xform3_scale(1, 0, 1), nanm = proj;
+    proj.m[3][2] = 0.5;
+    nanm.m[1][3] = NAN;
+    expect(cj_surface_transform(&proj, &us, &st_m, &ms), CJ_ERR_UNSUPPORTED, "projective");
+    expect(cj_surface_transform(&sing, &us, &st_m, &ms), CJ_ERR_SINGULAR, NULL);
+    expect(cj_implicit_transform(&nanm, &ei, &st_mi, &mi), CJ_ERR_NONFINITE, "(1,3)");
+    printf("affine placement: scaled+rotated+translated unit sphere = placed ellipsoid (1000 "
+           "points, worst 1-cos %.2e, partials vs FD %.2e); mirror flips the parametric normal "
+           "only; projective/singular/NaN matrices refused\n",
+           worst, worst_fd);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_partials_vs_finite_differences),
@@ -566,6 +643,7 @@ int main(void) {
         cmocka_unit_test(test_flags_and_periodicity),
         cmocka_unit_test(test_frame),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_affine_placement),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -45,6 +45,7 @@
 #define CASTELJAU_SURFACE_H
 
 #include "casteljau/status.h"
+#include "casteljau/transform.h"
 #include "casteljau/vec.h"
 
 #ifdef __cplusplus
@@ -138,6 +139,34 @@ cj_status cj_curve2_from_bezier(const struct cj_bezier *b, cj_curve2 *out);
 
 /* Validates the struct: eval non-NULL, finite t0 < t1. */
 cj_status cj_curve2_check(const cj_curve2 *c);
+
+/* ---- placing a surface: affine transforms ----------------------------------------------- */
+
+/* A surface moved by an affine map x -> M x = L x + t (cj_xform3 of transform.h with last row
+ * 0 0 0 1). Parametric: S'(u,v) = M S(u,v), S'_u = L S_u, S'_v = L S_v, normal
+ * cof(L) n_S / |.| (cof(L) = det(L) L^-T, so the normal is exactly the direction of
+ * S'_u x S'_v, pole limits included, and CCW-in-(u,v) triangles stay CCW seen from the
+ * normal's side). Implicit: f'(x) = f(M^-1 x), grad f'(x) = L^-T grad f(M^-1 x), so "inside"
+ * stays inside. A mirroring map (det L < 0) therefore turns the parametric normal of a closed
+ * surface INWARD while the implicit gradient stays outward: compose with a reflection of the
+ * parameter (or avoid mirrors) where outward parametric normals matter.
+ * Both structs hold copies of the map, its inverse and the base view (the base's own `data`
+ * must stay alive); `out->data` points at the storage struct. Domain and flags are the base's.
+ * Status: CJ_ERR_NONFINITE (a NaN/Inf matrix entry), CJ_ERR_UNSUPPORTED (a projective matrix:
+ * last row not 0 0 0 1), CJ_ERR_SINGULAR (L not invertible to working precision), and the
+ * base's cj_param_surface_check errors. */
+typedef struct cj_transformed_surface {
+    double m[3][4];    /* L | t */
+    double minv[3][4]; /* L^-1 | -L^-1 t */
+    double cof[3][3];  /* det(L) L^-T */
+    cj_param_surface base;
+    cj_implicit_surface ibase;
+} cj_transformed_surface;
+
+cj_status cj_surface_transform(const cj_xform3 *m, const cj_param_surface *base,
+                               cj_transformed_surface *storage, cj_param_surface *out);
+cj_status cj_implicit_transform(const cj_xform3 *m, const cj_implicit_surface *base,
+                                cj_transformed_surface *storage, cj_implicit_surface *out);
 
 /* ---- frames ---------------------------------------------------------------------------- */
 
