@@ -11,7 +11,7 @@
 enum { SHAPE_LINE = 1, SHAPE_CIRCLE, SHAPE_ELLIPSE, SHAPE_POLY };
 
 #define POLY_MAX_DEGREE 32
-#define CHORD_DEPTH     12
+#define CHORD_DEPTH     24
 #define EDGE_ITERS      200
 
 /* ---- built-ins --------------------------------------------------------------------------- */
@@ -293,7 +293,7 @@ static size_t vedge(const contour_ctx *c, int i, int j) { /* (i,j)-(i,j+1) */
 }
 
 /* Finds the crossing on the segment a→b (values fa, fb of opposite inside-ness) by Illinois
- * regula falsi, stopping at |f|/|∇f| <= tol or a bracket narrower than tol/4. */
+ * regula falsi, stopping at |f|/|∇f| <= tol/4 or a bracket narrower than tol/8. */
 static cj_status refine_edge(contour_ctx *c, const double a[2], const double b[2], double fa,
                              double fb, double *out, double *res) {
     const double len = hypot(b[0] - a[0], b[1] - a[1]);
@@ -311,7 +311,7 @@ static cj_status refine_edge(contour_ctx *c, const double a[2], const double b[2
         best[0] = p[0];
         best[1] = p[1];
         bres = r;
-        if (r <= c->tol || v == 0.0) break;
+        if (r <= 0.25 * c->tol || v == 0.0) break;
         if ((v < 0.0) == (f0 < 0.0)) {
             s0 = s;
             f0 = v;
@@ -323,8 +323,8 @@ static cj_status refine_edge(contour_ctx *c, const double a[2], const double b[2
             if (side == 1) f0 *= 0.5;
             side = 1;
         }
-        if ((s1 - s0) * len < 0.25 * c->tol) {
-            /* The root is bracketed within tol/4: the vertex is that close to the curve. */
+        if ((s1 - s0) * len < 0.125 * c->tol) {
+            /* The root is bracketed within tol/8: the vertex is that close to the curve. */
             break;
         }
         if (it + 1 == EDGE_ITERS) c->capped = 1;
@@ -360,7 +360,7 @@ static int refine_chord(contour_ctx *c, const double a[2], const double b[2], in
     double m[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
     const double m0[2] = {m[0], m[1]};
     double res;
-    cj_status st = cj_implicit_project(c->f, m, 0.125 * c->tol, &res);
+    cj_status st = cj_implicit_project(c->f, m, 0.0625 * c->tol, &res);
     if (st == CJ_ERR_NONFINITE) {
         c->err = st;
         return -1;
@@ -371,7 +371,7 @@ static int refine_chord(contour_ctx *c, const double a[2], const double b[2], in
         c->capped = 1;
         return 0;
     }
-    if (moved <= c->tol) return 0;
+    if (moved <= 0.5 * c->tol) return 0;
     if (depth >= CHORD_DEPTH) {
         c->capped = 1;
         return 0;

@@ -16,10 +16,12 @@
  *      centre is inside, separated otherwise. The same rule is applied to every cell, and
  *      crossings live on edges shared by both neighbouring cells, so the linking is consistent.
  *   2. Refinement: every crossing is moved along its edge by safeguarded regula falsi
- *      (Illinois) until |f|/|∇f| <= tol or the bracket is narrower than tol/4.
+ *      (Illinois) until |f|/|∇f| <= tol/4 or the bracket is narrower than tol/8.
  *   3. Chords: between consecutive crossings, the chord midpoint is projected onto the curve by
- *      Newton steps along ∇f; if it moved more than tol, the projected point is inserted and
- *      both halves are checked again (depth cap 12 per grid chord).
+ *      Newton steps along ∇f; if it moved more than tol/2, the projected point is inserted and
+ *      both halves are checked again (depth cap 24 per grid chord). With vertices within tol/4
+ *      and chord sagitta below tol/2 (to first order), the polyline stays within tol of the
+ *      curve.
  *   4. Linking: crossings are chained into polylines. A chain that returns to its start is a
  *      closed loop and is emitted with closed = 1 and its last point bit-identical to its first;
  *      a chain ending on the box boundary is open.
