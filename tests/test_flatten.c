@@ -18,7 +18,8 @@
 
 static void oracle_eval(int n, int d, const double *pts, const double *w, long double t,
                         long double *out) {
-    long double h[(CJ_BEZIER_MAX_DEGREE + 1) * (CJ_MAX_DIM + 1)];
+    long double h[16 * (CJ_MAX_DIM + 1)]; /* the tests use degrees <= 15 */
+    assert_true(n < 16);
     const int D = d + 1;
     for (int i = 0; i <= n; ++i) {
         const long double wi = w ? (long double)w[i] : 1.0L;
@@ -402,6 +403,35 @@ static void test_sequence(void **state) {
            np);
 }
 
+static void test_bounds_direct(void **state) {
+    (void)state;
+    /* Parabola (0,0) (50,100) (100,0): farthest from its chord at t = 1/2, distance 50. */
+    const double par[] = {0, 0, 50, 100, 100, 0};
+    cj_bezier c = cj_bezier_view(2, 2, par);
+    double b;
+    assert_int_equal(cj_flatten_piece_bound(&c, NULL, &b), CJ_OK);
+    assert_true(b >= 50 && b <= 50 + 1e-9);
+    /* Circular arc of 90 degrees, r = 100: sagitta r (1 - cos 45°) = 29.29; the bound may
+     * exceed it only by the min-weight factor (1 + w)/(2w) with w = cos 45°. */
+    const double arc[] = {100, 0, 100, 100, 0, 100}, w[] = {1, sqrt(0.5), 1};
+    const double sag = 100 * (1 - sqrt(0.5));
+    assert_int_equal(cj_flatten_piece_bound(&c, NULL, &b), CJ_OK);
+    cj_bezier ca = cj_bezier_view(2, 2, arc);
+    assert_int_equal(cj_flatten_piece_bound(&ca, w, &b), CJ_OK);
+    assert_true(b >= sag && b <= sag * (1 + sqrt(0.5)) / (2 * sqrt(0.5)) + 1e-9);
+    /* Wang's count against the formula computed here: cubic with max|Δ²b| = |(-300, 0)|. */
+    const double cub[] = {0, 0, 100, 100, 0, 100, 100, 0};
+    cj_bezier cc = cj_bezier_view(3, 2, cub);
+    size_t m;
+    assert_int_equal(cj_flatten_wang_count(&cc, NULL, 0.5, &m), CJ_OK);
+    /* Δ² b_0 = (0,0)-2(100,100)+(0,100) = (-200,-100); Δ² b_1 = (100,100)-2(0,100)+(100,0) =
+     * (200,-100): M = sqrt(50000); m = ceil(sqrt(6 M / (8 * 0.5))) */
+    assert_int_equal(m, (size_t)ceil(sqrt(6 * sqrt(50000.0) / 4)));
+    printf("bounds: parabola bound = exact 50, 90° arc bound within the min-weight factor of "
+           "the sagitta %.3f (%.3f), Wang count %zu as computed by hand\n",
+           sag, b, m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_quarter_circle),
@@ -411,6 +441,7 @@ int main(void) {
         cmocka_unit_test(test_caps),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_sequence),
+        cmocka_unit_test(test_bounds_direct),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
