@@ -7,6 +7,7 @@
  *  - exact geometric identities: a cylinder twisted about its axis is the same cylinder; a
  *    cylinder tapered by r(s) = k s is an elliptic cone (normals vs the cone's gradient),
  *  - vertex arrays: same results as the point/normal functions, all-or-nothing on failure,
+ *  - meshes: deforming a tessellation = tessellating the deformed surface; still manifold,
  *  - bad input. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -16,7 +17,9 @@
 #include "casteljau/analytic.h"
 #include "casteljau/bezier.h"
 #include "casteljau/deform.h"
+#include "casteljau/mesh.h"
 #include "casteljau/quadric.h"
+#include "casteljau/tessellate.h"
 #include "rng.h"
 
 #include <math.h>
@@ -401,6 +404,72 @@ static void test_vertices(void **state) {
            N);
 }
 
+/* Meshes: a torus tessellated (cj_tessellate_surface) and then deformed with cj_deform_mesh is
+ * the tessellation of the deformed torus surface, bit for bit (same parameters, same
+ * arithmetic); the deformed mesh stays a closed manifold (Euler characteristic 0 for the
+ * torus, 2 for the ellipsoid) and its faces stay counter-clockwise seen from the side of the
+ * vertex normals. */
+static void test_mesh(void **state) {
+    (void)state;
+    cj_torus tor;
+    cj_quadric ell;
+    assert_int_equal(cj_torus_init(&tor, cj_v3(0, 0, 0.2), cj_v3(0.3, 0.1, 1), 1.5, 0.5), CJ_OK);
+    assert_int_equal(cj_quadric_ellipsoid(&ell, 1.0, 0.8, 1.6), CJ_OK);
+    cj_param_surface bases[2];
+    cj_torus_surface(&tor, &bases[0]);
+    cj_quadric_surface(&ell, &bases[1]);
+    const long euler[2] = {0, 2};
+    cj_deform defs[2];
+    assert_int_equal(cj_deform_twist(&defs[0], cj_v3(0, 0, 0), cj_v3(0, 0, 1), 1.1), CJ_OK);
+    assert_int_equal(cj_deform_taper(&defs[1], cj_v3(0, 0, -2), cj_v3(0, 0, 1), 0.5, 0.3, 0.05),
+                     CJ_OK);
+    int meshes = 0;
+    size_t tris = 0;
+    for (int b = 0; b < 2; ++b)
+        for (int k = 0; k < 2; ++k) {
+            cj_mesh *m1 = NULL, *m2 = NULL;
+            assert_int_equal(cj_mesh_create(NULL, &m1), CJ_OK);
+            assert_int_equal(cj_mesh_create(NULL, &m2), CJ_OK);
+            assert_int_equal(cj_tessellate_surface(&bases[b], 24, 16, 0, m1, NULL), CJ_OK);
+            assert_int_equal(cj_deform_mesh(&defs[k], m1), CJ_OK);
+            cj_deformed_surface store;
+            cj_param_surface ds;
+            assert_int_equal(cj_deform_surface(&defs[k], &bases[b], &store, &ds), CJ_OK);
+            assert_int_equal(cj_tessellate_surface(&ds, 24, 16, 0, m2, NULL), CJ_OK);
+            assert_int_equal(m1->vertex_count, m2->vertex_count);
+            assert_int_equal(m1->triangle_count, m2->triangle_count);
+            assert_memory_equal(m1->positions, m2->positions,
+                                3 * m1->vertex_count * sizeof(double));
+            assert_memory_equal(m1->normals, m2->normals, 3 * m1->vertex_count * sizeof(double));
+            cj_mesh_topology topo;
+            assert_int_equal(cj_mesh_topology_compute(m1, &topo), CJ_OK);
+            assert_int_equal(topo.boundary_edges, 0);
+            assert_int_equal(topo.nonmanifold_edges, 0);
+            assert_int_equal(topo.misoriented_edges, 0);
+            assert_int_equal(topo.euler, euler[b]);
+            for (size_t t = 0; t < m1->triangle_count; ++t) {
+                const uint32_t *ix = &m1->triangles[3 * t];
+                cj_vec3 p[3], nsum = cj_v3(0, 0, 0);
+                for (int c = 0; c < 3; ++c) {
+                    const double *q = &m1->positions[3 * ix[c]], *n = &m1->normals[3 * ix[c]];
+                    p[c] = cj_v3(q[0], q[1], q[2]);
+                    nsum = cj_v3_add(nsum, cj_v3(n[0], n[1], n[2]));
+                }
+                cj_vec3 fn = cj_v3_cross(cj_v3_sub(p[1], p[0]), cj_v3_sub(p[2], p[0]));
+                if (!(cj_v3_dot(fn, nsum) > 0.0))
+                    fail_msg("mesh %d/%d: triangle %zu is not CCW seen from its normals", b, k, t);
+            }
+            tris += m1->triangle_count;
+            ++meshes;
+            cj_mesh_destroy(m1);
+            cj_mesh_destroy(m2);
+        }
+    printf("meshes: %d deformed tessellations (torus, ellipsoid x twist, taper; %zu triangles) "
+           "equal the tessellations of the deformed surfaces bit for bit, closed manifolds with "
+           "the right Euler characteristic, faces CCW w.r.t. vertex normals\n",
+           meshes, tris);
+}
+
 static void test_bad_input(void **state) {
     (void)state;
     cj_deform d;
@@ -439,6 +508,7 @@ int main(void) {
         cmocka_unit_test(test_geometric_identities),
         cmocka_unit_test(test_deformed_surfaces),
         cmocka_unit_test(test_vertices),
+        cmocka_unit_test(test_mesh),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, setup, NULL);

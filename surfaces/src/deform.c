@@ -263,6 +263,11 @@ cj_status cj_deform_vertices(const cj_deform *d, double *pos, double *nrm, size_
     return CJ_OK;
 }
 
+cj_status cj_deform_mesh(const cj_deform *d, cj_mesh *mesh) {
+    assert(d && mesh);
+    return cj_deform_vertices(d, mesh->positions, mesh->normals, mesh->vertex_count);
+}
+
 /* ---- deformed parametric surface ------------------------------------------------------ */
 
 static cj_status deformed_cb(const void *data, double u, double v, cj_vec3 *p, cj_vec3 *su,

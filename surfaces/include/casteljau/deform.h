@@ -30,6 +30,7 @@
 #ifndef CASTELJAU_DEFORM_H
 #define CASTELJAU_DEFORM_H
 
+#include "casteljau/mesh.h"
 #include "casteljau/surface.h"
 #include <stddef.h>
 
@@ -73,6 +74,13 @@ cj_status cj_deform_normal(const cj_deform *d, cj_vec3 p, cj_vec3 n, cj_vec3 *ou
  * computes everything before writing anything: on failure both arrays are untouched and the
  * message names the vertex. count == 0 is CJ_OK. Allocation-free. */
 cj_status cj_deform_vertices(const cj_deform *d, double *pos, double *nrm, size_t count);
+
+/* Deforms a whole cj_mesh in place (positions and normals; uvs, triangles and patch ids are
+ * unchanged): cj_deform_vertices on its arrays, with the same all-or-nothing rule. Both
+ * deformations have det J > 0 wherever the normal is defined (twist: 1; taper: r(s)^2, a
+ * negative r turns the cross-section by pi, it does not mirror it), so counter-clockwise
+ * triangles stay counter-clockwise seen from the side the normals point to. */
+cj_status cj_deform_mesh(const cj_deform *d, cj_mesh *mesh);
 
 /* A deformed parametric surface D(S(u,v)): partials J S_u, J S_v; normal cof(J) n_S where n_S
  * is cj_surface_normal of the base (so pole limits carry over). Same domain and closure flags
