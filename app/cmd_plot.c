@@ -43,11 +43,11 @@ int cmd_plot(int argc, char **argv) {
 static const char demo_json[] =
     "{\"width\": 1200, \"height\": 900, \"columns\": 2, \"panels\": ["
     /* 1: a cubic with its de Casteljau construction (seed figure 12) and a Frenet frame. */
-    "{\"title\": \"Cubic B\xc3\xa9zier: de Casteljau construction at t = 0.25\","
+    "{\"title\": \"Cubic B\xc3\xa9zier, de Casteljau at t = 0.25\","
     " \"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,2.4],[3.2,2.6],[4,0.2]],"
     "  \"construction_t\": 0.25, \"frames_t\": [0.7]}]},"
     /* 2: Catmull-Rom through points, uniform and centripetal, with the knots. */
-    "{\"title\": \"Catmull-Rom through 7 points (uniform, centripetal)\","
+    "{\"title\": \"Catmull-Rom: uniform and centripetal\","
     " \"items\": ["
     "  {\"type\": \"catmull-rom\", \"kind\": \"uniform\", \"tension\": 0.5, \"color\": \"#1f77b4\","
     "   \"points\": [[0,0],[1,1.6],[1.4,1.7],[3,0.2],[4,1.8],[5.2,1.2],[6,2.4]]},"
@@ -55,12 +55,12 @@ static const char demo_json[] =
     "   \"width\": 1.75, \"knots\": false,"
     "   \"points\": [[0,0],[1,1.6],[1.4,1.7],[3,0.2],[4,1.8],[5.2,1.2],[6,2.4]]}]},"
     /* 3: a degree-10 curve inside the convex hull of its control points. */
-    "{\"title\": \"Degree 10 and the convex hull of its control points\","
+    "{\"title\": \"Degree 10 inside its convex hull\","
     " \"items\": [{\"type\": \"bezier\", \"color\": \"#2ca02c\", \"hull\": true,"
     "  \"points\": [[0,0],[0.6,2.2],[1.5,-0.6],[2.1,2.8],[3,1.1],[3.6,3.1],[4.4,-0.4],"
     "              [5,2.2],[5.7,0.3],[6.3,2.6],[7,1]]}]},"
     /* 4: implicit curves contoured to polylines. */
-    "{\"title\": \"Implicit curves: lemniscate, circle, ellipse\","
+    "{\"title\": \"Implicit: lemniscate, circle, ellipse\","
     " \"items\": ["
     "  {\"type\": \"implicit\", \"color\": \"#d62728\", \"box\": [-1.6,-1,1.6,1],"
     "   \"poly\": {\"degree\": 4, \"coef\": [0, 0,0, -2,0,2, 0,0,0,0, 1,0,2,0,1]}},"

@@ -624,13 +624,18 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
 
     const double unit = fmin(w, h);
     const double label_size = fmin(16.0, fmax(10.0, 0.028 * unit));
-    const double title_size = label_size * 1.25;
+    double title_size = label_size * 1.25;
     const double tick_len = 5.0;
     double left = plot->margin, right = plot->margin, top = plot->margin, bottom = plot->margin;
     double lab_asc = 0.0, lab_desc = 0.0;
     cj_status st = CJ_OK;
     if (font && plot->title) {
         double a = 0, d = 0;
+        double adv = 0;
+        if ((st = cj_font_measure(font, title_size, plot->title, &adv, NULL, NULL))) return st;
+        /* A title wider than the panel is set smaller (down to 8 px), then clipped. */
+        const double room = w - 2 * plot->margin;
+        if (adv > room && room > 0) title_size = fmax(8.0, floor(title_size * room / adv));
         if ((st = cj_font_measure(font, title_size, plot->title, NULL, &a, &d))) return st;
         top += a + d + 4.0;
     }

@@ -1,0 +1,173 @@
+/* The JSON plot format of `casteljau plot` (app/plot_json.c), in-process: every kind of bad
+ * field is refused with a message naming its JSON path and nothing allocated; good documents
+ * produce the expected panels and render. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "plot_json.h"
+
+#include <stdio.h>
+#include <string.h>
+
+typedef struct bad_case {
+    const char *json;
+    const char *expect; /* substring of the message */
+} bad_case;
+
+static const bad_case bad_cases[] = {
+    {"{\"items\": [", "JSON syntax error at line 1"},
+    {"{\n  \"items\": [\n    {\"type\": \"bezier\" \"points\": []}\n  ]\n}",
+     "JSON syntax error at line 3"},
+    {"[1, 2]", "document is not a JSON object"},
+    {"{}", "missing \"items\""},
+    {"{\"items\": []}", "items is not a non-empty array"},
+    {"{\"items\": [3]}", "items[0] is not an object"},
+    {"{\"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,1]]},"
+     " {\"type\": \"bezier\", \"points\": [[0,0],[1,1],[2,0],[3]]}]}",
+     "items[1].points[3] is not a pair of numbers"},
+    {"{\"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,\"a\"]]}]}",
+     "items[0].points[1] is not a pair of numbers"},
+    {"{\"items\": [{\"type\": \"bezier\", \"points\": {\"x\": 1}}]}",
+     "items[0].points is not an array of [x, y] pairs"},
+    {"{\"items\": [{\"type\": \"bezier\", \"points\": []}]}",
+     "items[0].points has 0 points, at least 1 needed"},
+    {"{\"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,1e999]]}]}",
+     "items[0].points[1] has a coordinate that is not finite"},
+    {"{\"items\": [{\"type\": \"bezier\"}]}", "items[0]: a bezier needs \"points\""},
+    {"{\"items\": [{\"type\": \"bezier\", \"colour\": \"#fff\", \"points\": [[0,0],[1,1]]}]}",
+     "items[0]: unknown field 'colour'"},
+    {"{\"items\": [{\"type\": \"bezier\", \"color\": \"blue\", \"points\": [[0,0],[1,1]]}]}",
+     "items[0].color is not a colour"},
+    {"{\"items\": [{\"type\": \"bezier\", \"color\": \"#12345\", \"points\": [[0,0],[1,1]]}]}",
+     "items[0].color is not a colour"},
+    {"{\"items\": [{\"type\": \"bezier\", \"width\": \"2\", \"points\": [[0,0],[1,1]]}]}",
+     "items[0].width is not a number"},
+    {"{\"items\": [{\"type\": \"bezier\", \"hull\": 1, \"points\": [[0,0],[1,1]]}]}",
+     "items[0].hull is not true or false"},
+    {"{\"items\": [{\"type\": \"bezier\", \"construction_t\": 1.5, \"points\": [[0,0],[1,1]]}]}",
+     "items[0].construction_t = 1.5 is outside [0, 1]"},
+    {"{\"items\": [{\"type\": \"bezier\", \"frames_t\": [0.5, -1], \"points\": [[0,0],[1,1]]}]}",
+     "items[0].frames_t[1] = -1 is outside [0, 1]"},
+    {"{\"items\": [{\"type\": \"spline\", \"points\": [[0,0],[1,1]]}]}",
+     "items[0].type 'spline' is not"},
+    {"{\"items\": [{\"points\": [[0,0],[1,1]]}]}", "items[0].type is missing"},
+    {"{\"items\": [{\"type\": \"implicit\", \"line\": [1, 1, 0]}]}",
+     "items[0]: a \"line\" needs a \"box\""},
+    {"{\"items\": [{\"type\": \"implicit\"}]}", "items[0]: an implicit item needs one of"},
+    {"{\"items\": [{\"type\": \"implicit\", \"circle\": [0, 0, 1], \"ellipse\": [0,0,1,1,0]}]}",
+     "items[0] has both \"circle\" and \"ellipse\""},
+    {"{\"items\": [{\"type\": \"implicit\", \"circle\": [0, 0]}]}",
+     "items[0].circle is not an array of 3 numbers"},
+    {"{\"items\": [{\"type\": \"implicit\", \"circle\": [0, 0, -1]}]}",
+     "items[0].circle: the radius -1 is not positive"},
+    {"{\"items\": [{\"type\": \"implicit\", \"circle\": [0, 0, 1], \"box\": [1, 0, 0, 1]}]}",
+     "items[0].box is not [x0, y0, x1, y1]"},
+    {"{\"items\": [{\"type\": \"implicit\", \"circle\": [9, 9, 1], \"box\": [0,0,1,1]}]}",
+     "items[0]: the implicit curve has no point in the box"},
+    {"{\"items\": [{\"type\": \"implicit\", \"poly\": {\"degree\": 2, \"coef\": [1,2,3]},"
+     " \"box\": [0,0,1,1]}]}",
+     "items[0].poly.coef is not an array of 6 numbers (degree 2)"},
+    {"{\"items\": [{\"type\": \"implicit\", \"poly\": {\"degree\": 2.5, \"coef\": []},"
+     " \"box\": [0,0,1,1]}]}",
+     "items[0].poly.degree = 2.5 is not an integer"},
+    {"{\"items\": [{\"type\": \"catmull-rom\", \"kind\": \"centripetal\","
+     " \"points\": [[0,0],[1,1],[1,1],[2,0]]}]}",
+     "items[0]: "},
+    {"{\"items\": [{\"type\": \"catmull-rom\", \"kind\": \"cubic\", \"points\": [[0,0],[1,1]]}]}",
+     "items[0].kind is not"},
+    {"{\"items\": [{\"type\": \"catmull-rom\", \"closed\": true, \"points\": [[0,0],[1,1]]}]}",
+     "items[0].points has 2 points, at least 3 needed"},
+    {"{\"items\": [{\"type\": \"polyline\", \"points\": [[0,0]]}]}",
+     "items[0].points has 1 point, at least 2 needed"},
+    {"{\"width\": 10, \"items\": [{\"type\": \"points\", \"points\": [[0,0]]}]}",
+     "width = 10 is outside [64, 8192]"},
+    {"{\"height\": 100.5, \"items\": [{\"type\": \"points\", \"points\": [[0,0]]}]}",
+     "height = 100.5 is not an integer"},
+    {"{\"view\": [0, 0, 0, 1], \"items\": [{\"type\": \"points\", \"points\": [[0,0]]}]}",
+     "view: "},
+    {"{\"panels\": [{\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]},"
+     " {\"title\": \"x\"}]}",
+     "panels[1]: missing \"items\""},
+    {"{\"panels\": [{\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]],"
+     " \"radius\": 0}]}]}",
+     "panels[0].items[0].radius = 0 is outside"},
+    {"{\"panels\": [{\"items\": [{\"type\": \"points\", \"points\": [[0,0]]}],"
+     " \"width\": 3}]}",
+     "panels[0]: unknown field 'width'"},
+    {"{\"panels\": [], \"columns\": 1}", "panels is not an array of 1 to 64 panels"},
+    {"{\"items\": [{\"type\": \"points\", \"points\": [[0,0]]}], \"panels\": []}",
+     "document: unknown field 'items'"},
+};
+
+static void test_bad_documents(void **state) {
+    (void)state;
+    const size_t n = sizeof bad_cases / sizeof bad_cases[0];
+    for (size_t i = 0; i < n; ++i) {
+        plot_doc doc;
+        char why[512] = "";
+        int rc = plot_json_parse(bad_cases[i].json, &doc, why, sizeof why);
+        if (rc != -1 || !strstr(why, bad_cases[i].expect) || strchr(why, '\n')) {
+            printf("case %zu: rc %d, message '%s', expected '%s'\n", i, rc, why,
+                   bad_cases[i].expect);
+            fail();
+        }
+        assert_int_equal(doc.npanels, 0);
+    }
+    printf("test_plot_json: %zu bad documents refused, each message naming the JSON path\n", n);
+}
+
+static void test_good_documents(void **state) {
+    (void)state;
+    const char *single =
+        "{\"width\": 300, \"height\": 200, \"background\": \"#fafafa\", \"title\": \"t\","
+        " \"axes\": false, \"margin\": 4, \"items\": ["
+        " {\"type\": \"bezier\", \"points\": [[0,0],[1,2],[2,0]], \"hull\": true,"
+        "  \"construction_t\": 0.5, \"frames_t\": [0, 1], \"normals\": false},"
+        " {\"type\": \"catmull-rom\", \"points\": [[0,0],[1,1],[2,0]], \"closed\": true,"
+        "  \"tension\": 0.3, \"knots\": false, \"color\": \"#abc\"},"
+        " {\"type\": \"implicit\", \"ellipse\": [1, 0, 1, 0.5, 0.3], \"grid\": 16},"
+        " {\"type\": \"implicit\", \"poly\": {\"degree\": 2, \"coef\": [-1, 0, 0, 1, 0, 1]},"
+        "  \"box\": [-2, -2, 2, 2], \"color\": \"#11223380\"},"
+        " {\"type\": \"implicit\", \"line\": [1, -1, 0], \"box\": [-1, -1, 1, 1]},"
+        " {\"type\": \"polyline\", \"points\": [[0,0],[1,1]], \"closed\": true, \"markers\": "
+        "true},"
+        " {\"type\": \"points\", \"points\": [[0.5, 0.5]], \"radius\": 3}]}";
+    plot_doc doc;
+    char why[512] = "";
+    assert_int_equal(plot_json_parse(single, &doc, why, sizeof why), 0);
+    assert_int_equal(doc.width, 300);
+    assert_int_equal(doc.height, 200);
+    assert_int_equal(doc.npanels, 1);
+    assert_int_equal(cj_plot_item_count(doc.panels[0]), 7);
+    assert_int_equal(doc.background.r, 0xfa);
+    cj_framebuffer *fb = NULL;
+    assert_int_equal(cj_framebuffer_create(doc.width, doc.height, 0, NULL, &fb), CJ_OK);
+    assert_int_equal(plot_doc_render(&doc, fb, NULL), CJ_OK);
+    assert_int_equal(fb->pixels[0].r, 0xfa); /* corner: background */
+    cj_framebuffer_destroy(fb);
+    plot_doc_free(&doc);
+
+    const char *multi = "{\"columns\": 3, \"panels\": ["
+                        " {\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]},"
+                        " {\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]},"
+                        " {\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]},"
+                        " {\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]}]}";
+    assert_int_equal(plot_json_parse(multi, &doc, why, sizeof why), 0);
+    assert_int_equal(doc.npanels, 4);
+    assert_int_equal(doc.columns, 3);
+    assert_int_equal(doc.width, 800);
+    assert_int_equal(doc.height, 600);
+    plot_doc_free(&doc);
+    printf("test_plot_json: every item kind and option accepted; single and multi-panel "
+           "documents parse and render\n");
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bad_documents),
+        cmocka_unit_test(test_good_documents),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
