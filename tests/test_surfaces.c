@@ -12,6 +12,7 @@
 #include "casteljau/analytic.h"
 #include "casteljau/bezier.h"
 #include "casteljau/quadric.h"
+#include "casteljau/rational.h"
 #include "casteljau/surface.h"
 #include "casteljau/transform.h"
 #include "rng.h"
@@ -63,8 +64,12 @@ static const double bez_profile_pts[] = {0, -1, 1.3, -1, 1.3, 1, 0, 1};
 static const double bez_dir_pts[] = {0, 0, 1, 2, 3, -1, 4, 1};
 static cj_bezier bez_profile, bez_dir;
 static cj_cylinder cyl_for_gcyl;
+static double arc_pts[6], arc_w[3];
+static cj_rbezier arc;
+static cj_curve2 arc_curve;
+static cj_revolution rev_hemi;
 
-#define NCASES 20
+#define NCASES 24
 static tcase cases[NCASES];
 static int ncases;
 
@@ -162,6 +167,16 @@ static int setup(void **state) {
                      CJ_OK);
     cj_gen_cylinder_surface(&gcyl_bez, &ps);
     add_case("general cylinder (Bezier)", ps, NULL, o, 0);
+    /* Upper hemisphere of radius 1.5: revolution of an exact rational quarter circle from
+     * (r, z) = (1.5, 0) to (0, 1.5). */
+    assert_int_equal(cj_rbezier_ellipse_arc(0, 0, 1.5, 1.5, 0, 0, 0.5 * PI, arc_pts, arc_w), CJ_OK);
+    arc = cj_rbezier_view(2, 2, arc_pts, arc_w);
+    assert_int_equal(cj_curve2_from_rbezier(&arc, &arc_curve), CJ_OK);
+    assert_int_equal(cj_revolution_init(&rev_hemi, &arc_curve, o, cj_v3(0, 0, 1)), CJ_OK);
+    assert_true(rev_hemi.flags == (CJ_SURF_PERIODIC_U | CJ_SURF_COLLAPSED_V1));
+    cj_revolution_surface(&rev_hemi, &ps);
+    cj_quadric_implicit(&q_sph, &is);
+    add_case("rational hemisphere of revolution", ps, &is, o, 1);
     seed = cj_test_seed("test_surfaces", 20261121);
     return 0;
 }

@@ -1,6 +1,7 @@
 /* Generic operations on parametric and implicit surfaces and planar curves. */
 #include "casteljau/surface.h"
 #include "casteljau/bezier.h"
+#include "casteljau/rational.h"
 #include "error_internal.h"
 
 #include <assert.h>
@@ -171,6 +172,31 @@ cj_status cj_curve2_from_bezier(const struct cj_bezier *b, cj_curve2 *out) {
                        b->dim);
     const double *first = b->pts, *last = b->pts + 2 * b->degree;
     out->eval = bezier_curve2;
+    out->data = b;
+    out->t0 = 0.0;
+    out->t1 = 1.0;
+    out->closed = b->degree > 0 && first[0] == last[0] && first[1] == last[1];
+    return CJ_OK;
+}
+
+static cj_status rbezier_curve2(const void *data, double t, cj_vec2 d[3]) {
+    const cj_rbezier *b = data;
+    double out[3 * 2];
+    cj_status st = cj_rbezier_eval_derivs(b, t, 2, out);
+    if (st != CJ_OK) return st;
+    for (int j = 0; j < 3; ++j) d[j] = cj_v2(out[2 * j], out[2 * j + 1]);
+    return CJ_OK;
+}
+
+cj_status cj_curve2_from_rbezier(const struct cj_rbezier *b, cj_curve2 *out) {
+    assert(b && out);
+    cj_status st = cj_rbezier_check(b);
+    if (st != CJ_OK) return st;
+    if (b->dim != 2)
+        return cj_fail(CJ_ERR_DIMENSION,
+                       "planar curve: rational Bezier curve has dimension %d, need 2", b->dim);
+    const double *first = b->pts, *last = b->pts + 2 * b->degree;
+    out->eval = rbezier_curve2;
     out->data = b;
     out->t0 = 0.0;
     out->t1 = 1.0;

@@ -137,6 +137,13 @@ typedef struct cj_curve2 {
 struct cj_bezier;
 cj_status cj_curve2_from_bezier(const struct cj_bezier *b, cj_curve2 *out);
 
+/* Views a 2D rational Bézier curve (dim 2, weights > 0) as a cj_curve2 on [0,1]: exact conic
+ * profiles (cj_rbezier_ellipse_arc) give exact spheres, tori and cones of revolution. Same
+ * ownership and `closed` rule as cj_curve2_from_bezier; errors of cj_rbezier_check, and
+ * CJ_ERR_DIMENSION for dim != 2. */
+struct cj_rbezier;
+cj_status cj_curve2_from_rbezier(const struct cj_rbezier *b, cj_curve2 *out);
+
 /* Validates the struct: eval non-NULL, finite t0 < t1. */
 cj_status cj_curve2_check(const cj_curve2 *c);
 
