@@ -132,6 +132,11 @@ extern "C" cj_status cj_vtk_write_curves(const char *path, const cj_bezier *curv
     }
     vtkSmartPointer<vtkUnstructuredGrid> grid = build_grid(in);
     const std::string tmp = std::string(path) + ".tmp";
+    // Probe the location first so that an unwritable path fails with our message alone.
+    if (std::FILE *probe = std::fopen(tmp.c_str(), "wb"))
+        std::fclose(probe);
+    else
+        return cj_fail(CJ_ERR_IO, "cannot create %s", tmp.c_str());
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
     writer->SetFileName(tmp.c_str());
     writer->SetInputData(grid);
