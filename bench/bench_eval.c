@@ -1,8 +1,9 @@
 /* bench_eval: cost and accuracy of the four Bézier evaluation methods.
  *
  * Part 1, cost: ns per evaluation for degrees 3, 8, 20 (planar curves, 256 parameters spread
- * over [0,1]), batch (cj_bezier_eval_batch) and single (cj_bezier_eval per parameter), median
- * of 15 runs of at least ~1.5 ms each, and the ratio to de Casteljau (batch).
+ * over [0,1]), batch (cj_bezier_eval_batch) and single (cj_bezier_eval per parameter, which
+ * validates the curve each time), median of 41 runs of at least 0.25 ms each, the methods
+ * interleaved run by run so that a busy machine slows them alike; ratios to de Casteljau.
  * Part 2, accuracy: the hard case p(s) = (s-1)(s-3/4)^7 in Bernstein form near s = 3/4: the
  * condition number and relative errors measured against an exact MPFR oracle, next to the
  * a-priori bounds gamma(3n) cond (de Casteljau) and u + 2 gamma(3n)^2 cond (compensated) and
@@ -19,7 +20,7 @@
 #include <time.h>
 
 #define NT   256
-#define RUNS 15
+#define RUNS 41
 
 static volatile double sink;
 
@@ -58,19 +59,23 @@ static double run_once(const cj_bezier *c, cj_eval_method m, mode md, const doub
     return (t1 - t0) / ((double)reps * NT);
 }
 
-static double median_ns(const cj_bezier *c, cj_eval_method m, mode md, const double *ts,
-                        double *out) {
+/* Calibrates reps so that one run lasts at least 0.25 ms: short runs are rarely interrupted by
+ * other processes on a shared machine, and the median over many of them ignores those that
+ * were. */
+static long calibrate(const cj_bezier *c, cj_eval_method m, mode md, const double *ts,
+                      double *out) {
     long reps = 1;
-    for (;;) { /* calibrate: one run should last at least 1.5 ms */
-        const double ns = run_once(c, m, md, ts, out, reps);
-        if (ns * (double)reps * NT >= 1.5e6 || reps > (1L << 24)) break;
+    while (run_once(c, m, md, ts, out, reps) * (double)reps * NT < 2.5e5 && reps < (1L << 24))
         reps *= 2;
-    }
-    double v[RUNS];
-    for (int k = 0; k < RUNS; ++k) v[k] = run_once(c, m, md, ts, out, reps);
-    qsort(v, RUNS, sizeof v[0], cmp_double);
-    return v[RUNS / 2];
+    return reps;
 }
+
+static double median(double *v, int count) {
+    qsort(v, (size_t)count, sizeof v[0], cmp_double);
+    return v[count / 2];
+}
+
+#define NCOL 9 /* 4 methods x (batch, single) + compensated with bound */
 
 static void cost_table(void) {
     static const struct {
@@ -84,15 +89,17 @@ static void cost_table(void) {
     double ts[NT], out[NT * 2];
     for (int j = 0; j < NT; ++j) ts[j] = (j + 0.5) / NT;
     uint64_t x = 0x9e3779b97f4a7c15u;
-    printf("cost: dimension 2, %d parameters in (0,1), median of %d runs, fma %s\n", NT, RUNS,
+    printf("cost: dimension 2, %d parameters in (0,1), ns per evaluation, median of %d runs "
+           "(interleaved), fma %s\n",
+           NT, RUNS,
 #if defined(__FMA__) || defined(FP_FAST_FMA)
            "in hardware"
 #else
            "in software"
 #endif
     );
-    printf("%-6s %-22s %10s %10s %12s\n", "degree", "method", "batch ns", "single ns",
-           "vs decast.");
+    printf("%-6s %-18s %10s %10s %11s %11s\n", "degree", "method", "batch ns", "single ns",
+           "batch/dc", "single/dc");
     for (size_t di = 0; di < sizeof degrees / sizeof degrees[0]; ++di) {
         const int n = degrees[di];
         double pts[(20 + 1) * 2];
@@ -101,16 +108,24 @@ static void cost_table(void) {
             pts[i] = (double)(x >> 11) * 0x1p-53 * 2.0 - 1.0;
         }
         const cj_bezier c = cj_bezier_view(n, 2, pts);
-        double base = 0.0;
-        for (size_t mi = 0; mi < sizeof methods / sizeof methods[0]; ++mi) {
-            const double batch = median_ns(&c, methods[mi].m, MODE_BATCH, ts, out);
-            const double single = median_ns(&c, methods[mi].m, MODE_SINGLE, ts, out);
-            if (mi == 0) base = batch;
-            printf("%-6d %-22s %10.1f %10.1f %11.2fx\n", n, methods[mi].name, batch, single,
-                   batch / base);
+        long reps[NCOL];
+        static double v[NCOL][RUNS];
+        for (int col = 0; col < NCOL; ++col) {
+            const mode md = col == 8 ? MODE_BOUND : (col % 2 ? MODE_SINGLE : MODE_BATCH);
+            reps[col] = calibrate(&c, methods[col == 8 ? 3 : col / 2].m, md, ts, out);
         }
-        const double bnd = median_ns(&c, CJ_EVAL_COMPENSATED, MODE_BOUND, ts, out);
-        printf("%-6d %-22s %10s %10.1f %11.2fx\n", n, "compensated+bound", "-", bnd, bnd / base);
+        for (int r = 0; r < RUNS; ++r)
+            for (int col = 0; col < NCOL; ++col) {
+                const mode md = col == 8 ? MODE_BOUND : (col % 2 ? MODE_SINGLE : MODE_BATCH);
+                v[col][r] = run_once(&c, methods[col == 8 ? 3 : col / 2].m, md, ts, out, reps[col]);
+            }
+        double med[NCOL];
+        for (int col = 0; col < NCOL; ++col) med[col] = median(v[col], RUNS);
+        for (int mi = 0; mi < 4; ++mi)
+            printf("%-6d %-18s %10.1f %10.1f %10.2fx %10.2fx\n", n, methods[mi].name, med[2 * mi],
+                   med[2 * mi + 1], med[2 * mi] / med[0], med[2 * mi + 1] / med[1]);
+        printf("%-6d %-18s %10s %10.1f %11s %10.2fx\n", n, "compensated+bound", "-", med[8], "-",
+               med[8] / med[1]);
     }
 }
 

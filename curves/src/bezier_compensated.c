@@ -92,7 +92,18 @@ CJ_ALWAYS_INLINE void comp_run(const double *restrict p, int n, int d, double t,
 }
 
 /* The same arithmetic (bit-identical result) plus the magnitude recurrence M. */
-static void comp_run_bound(const double *p, int n, int d, double t, double *out, double *bound) {
+#define CJ_COMP_STEP_M(b0, b1, sum, w, e)                                                          \
+    do {                                                                                           \
+        double s_, ps_, v_, pv_, sig_;                                                             \
+        cj_two_prod(r, (b0), &s_, &ps_);                                                           \
+        cj_two_prod(t, (b1), &v_, &pv_);                                                           \
+        cj_two_sum(s_, v_, &(sum), &sig_);                                                         \
+        (w) = (ps_ + pv_) + fma(rho, (b0), sig_);                                                  \
+        (e) = fabs(ps_) + fabs(pv_) + fabs(sig_) + fabs(rho * (b0));                               \
+    } while (0)
+
+CJ_ALWAYS_INLINE void comp_run_bound(const double *restrict p, int n, int d, double t,
+                                     double *restrict out, double *restrict bound) {
     if (n == 0) {
         for (int k = 0; k < d; ++k) {
             out[k] = p[k];
@@ -104,25 +115,20 @@ static void comp_run_bound(const double *p, int n, int d, double t, double *out,
     double r, rho;
     cj_two_sum(1.0, -t, &r, &rho);
     const double ar = fabs(r) + fabs(rho), at = fabs(t);
-    for (int lvl = n; lvl > 0; --lvl) {
-        const double *src = lvl == n ? p : b;
+    for (int i = 0; i < n * d; ++i) {
+        double w, e;
+        CJ_COMP_STEP_M(p[i], p[i + d], b[i], w, e);
+        db[i] = w;
+        m[i] = e;
+    }
+    for (int lvl = n - 1; lvl > 0; --lvl)
         for (int i = 0; i < lvl * d; ++i) {
-            double s, ps, v, pv, sum, sig;
-            cj_two_prod(r, src[i], &s, &ps);
-            cj_two_prod(t, src[i + d], &v, &pv);
-            cj_two_sum(s, v, &sum, &sig);
-            const double w = (ps + pv) + fma(rho, src[i], sig);
-            const double e = fabs(ps) + fabs(pv) + fabs(sig) + fabs(rho * src[i]);
-            if (lvl == n) {
-                db[i] = w;
-                m[i] = e;
-            } else {
-                db[i] = fma(r, db[i], fma(t, db[i + d], w));
-                m[i] = e + ar * m[i] + at * m[i + d];
-            }
+            double sum, w, e;
+            CJ_COMP_STEP_M(b[i], b[i + d], sum, w, e);
+            db[i] = fma(r, db[i], fma(t, db[i + d], w));
+            m[i] = e + ar * m[i] + at * m[i + d];
             b[i] = sum;
         }
-    }
     const double g = cj_gamma(3 * n + 4);
     const double uf = cj_underflow_allowance(n, t, 8.0);
     for (int k = 0; k < d; ++k) {
@@ -136,7 +142,17 @@ static void comp_run_bound(const double *p, int n, int d, double t, double *out,
 void cj_compensated_kernel(const cj_bezier *c, double t, double *out, double *bound) {
     const int n = c->degree;
     if (bound) {
-        comp_run_bound(c->pts, n, c->dim, t, out, bound);
+        switch (c->dim) {
+        case 2:
+            comp_run_bound(c->pts, n, 2, t, out, bound);
+            break;
+        case 3:
+            comp_run_bound(c->pts, n, 3, t, out, bound);
+            break;
+        default:
+            comp_run_bound(c->pts, n, c->dim, t, out, bound);
+            break;
+        }
         return;
     }
     switch (c->dim) {

@@ -32,36 +32,47 @@ CJ_ALWAYS_INLINE void bernstein_run(const double *restrict p, int n, int d, doub
     for (int k = 0; k < d; ++k) out[k] = acc[k];
 }
 
-/* Volk–Schumaker: c(t) = s^n Σ C(n,i) b_i q^i with q = t/s for t <= 1/2, and the mirrored
- * form t^n Σ C(n,i) b_i q^(n-i) with q = s/t above, so that |q| <= 1 on [0,1] and Horner's rule
- * runs in O(n d) with one division, always by a number >= 1/2 (never zero, even when
- * extrapolating). fma keeps each Horner step to one rounding. Rounding count for the term of
- * b_i: s = fl(1-t) enters q^i and s^(n-i) (n times in all when t <= 1/2, at most n when
- * mirrored), the division i times, C(n,i) b_i once, the Horner steps i+1, base^n by repeated
- * squaring n-1 and the final product once: at most 4n+2 (3n+2 when t <= 1/2), so
- * |res - c(t)| <= gamma(4n+2) Σ|b_i| B_i^n(|t|). */
+/* Volk–Schumaker: c(t) = s^n Σ_j c_j q^j with q = t/s and c_j = C(n,j) b_j for t <= 1/2, and
+ * the mirrored form t^n Σ_j c_j q^j with q = s/t and c_j = C(n,j) b_(n-j) above, so that
+ * |q| <= 1 on [0,1] and the polynomial in q costs O(n d) with one division, always by a number
+ * >= 1/2 (never zero, even when extrapolating). The polynomial in q is split into its even and
+ * odd parts, E(q^2) + q O(q^2), two independent Horner chains in q^2 (half the latency of one
+ * chain: each step waits for the previous fma), joined by one fma; fma keeps each step to one
+ * rounding.
+ *
+ * Rounding count for the term c_j q^j, j = 2m or 2m+1: s = fl(1-t) and the division enter q^j
+ * j times each, q^2 m times, c_j once (not at all when C(n,j) = 1), the chain m+1 times, the
+ * join once, base^n by repeated squaring n-1 times and the final product once. For t <= 1/2
+ * the fl(1-t) in q^j and in s^n combine to n-j+j = n: at most 3n+2 in all. Mirrored, fl(1-t)
+ * is exact for t in [1/2, 2] (Sterbenz) and enters j times otherwise: at most 3j + n + 2 <=
+ * 4n+2 (j = n has c_n = b_0 exactly). Hence |res - c(t)| <= gamma(4n+2) Σ|b_i| B_i^n(|t|). */
 CJ_ALWAYS_INLINE void horner_run(const double *restrict p, int n, int d, double t,
                                  double *restrict out) {
     const double *binom = cj_binomial_row(n);
     const double s = 1.0 - t;
-    double acc[CJ_MAX_DIM], base, q;
-    if (t > 0.5) { /* t^n Σ_i C(n,i) b_i q^(n-i): Horner from b_0 up */
-        base = t;
-        q = s / t;
-        for (int k = 0; k < d; ++k) acc[k] = p[k];
-        for (int i = 1; i <= n; ++i)
-            for (int k = 0; k < d; ++k) acc[k] = fma(acc[k], q, binom[i] * p[i * d + k]);
-    } else { /* s^n Σ_i C(n,i) b_i q^i: Horner from b_n down */
-        base = s;
-        q = t / s;
-        for (int k = 0; k < d; ++k) acc[k] = p[n * d + k];
-        for (int i = n - 1; i >= 0; --i)
-            for (int k = 0; k < d; ++k) acc[k] = fma(acc[k], q, binom[i] * p[i * d + k]);
+    const int mirrored = t > 0.5;
+    const double base = mirrored ? t : s;
+    const double q = mirrored ? s / t : t / s;
+    const double q2 = q * q;
+    /* Coefficient j reads point pj + j*step. */
+    const double *pj = mirrored ? p + (size_t)n * (size_t)d : p;
+    const int step = mirrored ? -d : d;
+    const int je = n - (n & 1), jo = n - 1 + (n & 1); /* highest even and odd powers */
+    double ev[CJ_MAX_DIM], od[CJ_MAX_DIM];
+    for (int k = 0; k < d; ++k) ev[k] = binom[je] * pj[je * step + k];
+    for (int a = je - 2; a >= 0; a -= 2)
+        for (int k = 0; k < d; ++k) ev[k] = fma(ev[k], q2, binom[a] * pj[a * step + k]);
+    if (jo > 0) {
+        for (int k = 0; k < d; ++k) od[k] = binom[jo] * pj[jo * step + k];
+        for (int b = jo - 2; b > 0; b -= 2)
+            for (int k = 0; k < d; ++k) od[k] = fma(od[k], q2, binom[b] * pj[b * step + k]);
+    } else {
+        for (int k = 0; k < d; ++k) od[k] = 0.0;
     }
     double scale = 1.0, pw = base; /* base^n by repeated squaring */
     for (int e = n; e; e >>= 1, pw *= pw)
         if (e & 1) scale *= pw;
-    for (int k = 0; k < d; ++k) out[k] = acc[k] * scale;
+    for (int k = 0; k < d; ++k) out[k] = fma(od[k], q, ev[k]) * scale;
 }
 
 #define CJ_DISPATCH_DIM(run, c, t, out)                                                            \
