@@ -21,7 +21,8 @@ typedef struct cj_eval_stats {
 
 /* Per coordinate of c at t, exact value and magnitude M = Σ|b_i|B_i(|t|) by the oracle
  * (precision up to max_prec bits), then for each method allowed at this degree:
- *   error <= published bound, where published is (with U the documented underflow allowance)
+ *   error <= published bound, where published is (eta = 2^-1074; the eta terms are the
+ *   documented underflow allowance, absent for n = 0)
  *     de Casteljau:        gamma(3n) M + 4(n+1) eta
  *     Bernstein, Horner:   gamma(4n+2) M + 8(n+1) eta (1 + Σ C(n,i)|b_i|)
  *     compensated:         u|c(t)| + 2 gamma(3n)^2 M + 8(n+1) eta
