@@ -13,6 +13,7 @@
 #include "rng.h"
 
 #include <float.h>
+#include <gmp.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -166,6 +167,33 @@ static void test_batch_equals_single(void **state) {
            combos, nt);
 }
 
+/* The binomial table behind Bernstein and Horner, checked through the public API: with the
+ * unit coefficient vector e_i and t = 1/2 every power is exact, so the Bernstein sum must be
+ * exactly C(n,i) 2^-n, compared with GMP's exact binomial for every n <= 56. */
+static void test_binomials_exact(void **state) {
+    (void)state;
+    static double e[CJ_BEZIER_BINOMIAL_MAX_DEGREE + 1];
+    mpz_t bin;
+    mpz_init(bin);
+    int checked = 0;
+    for (int n = 0; n <= CJ_BEZIER_BINOMIAL_MAX_DEGREE; ++n)
+        for (int i = 0; i <= n; ++i) {
+            memset(e, 0, sizeof e);
+            e[i] = 1.0;
+            const cj_bezier c = cj_bezier_view(n, 1, e);
+            double v;
+            assert_int_equal(cj_bezier_eval_bernstein(&c, 0.5, &v), CJ_OK);
+            mpz_bin_uiui(bin, (unsigned long)n, (unsigned long)i);
+            const double want = ldexp(mpz_get_d(bin), -n); /* exact: C(n,i) < 2^53 */
+            if (v != want)
+                fail_msg("C(%d,%d): table gives %.17g 2^%d, exact %.17g", n, i, ldexp(v, n), -n,
+                         mpz_get_d(bin));
+            ++checked;
+        }
+    mpz_clear(bin);
+    printf("binomial table: %d entries C(n,i), n <= 56, exact\n", checked);
+}
+
 static void expect_fail(cj_status got, cj_status want, const char *needle, const char *what) {
     if (got != want)
         fail_msg("%s: status %d (%s), expected %d (%s)", what, (int)got, cj_status_str(got),
@@ -231,6 +259,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_degree_against_oracle),
         cmocka_unit_test(test_degree_limits),
+        cmocka_unit_test(test_binomials_exact),
         cmocka_unit_test(test_batch_equals_single),
         cmocka_unit_test(test_bad_input),
     };

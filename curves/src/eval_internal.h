@@ -27,7 +27,7 @@ void cj_compensated_kernel(const cj_bezier *c, double t, double *out, double *bo
 /* Allowance for underflow in an evaluation of degree n with `ops` possibly underflowing
  * roundings per triangle entry and level: ops (n+1) eta A^n with A = |1-t| + |t| (1 on [0,1]),
  * the factor by which an absolute error can grow through the remaining levels. Rounded up;
- * +INFINITY when A^n overflows. */
+ * +INFINITY when A^n overflows; 0 for n = 0 (a constant is returned without arithmetic). */
 double cj_underflow_allowance(int n, double t, double ops);
 
 #endif
