@@ -28,6 +28,8 @@ cj_status cj_fl_init(cj_fl_curve *fc, const cj_bezier *c, const double *weights)
     fc->n = n;
     fc->d = d;
     fc->rational = weights != NULL;
+    fc->pts = c->pts;
+    fc->s2 = ldexp(1.0, 1 - n);
     fc->D = d + (weights != NULL);
     double maxabs = 0.0;
     for (int i = 0; i <= n; ++i) {
@@ -86,6 +88,10 @@ void cj_fl_point(const cj_fl_curve *fc, const double *h, int i, double *out) {
     }
 }
 
+void cj_fl_end(const cj_fl_curve *fc, int i, double *out) {
+    memcpy(out, fc->pts + (size_t)i * (size_t)fc->d, sizeof(double) * (size_t)fc->d);
+}
+
 void cj_fl_eval(const cj_fl_curve *fc, double t, double *out) {
     double w[CJ_FL_WORK];
     const int n = fc->n, D = fc->D;
@@ -100,16 +106,25 @@ static double norm(const double *v, int d) {
     return sqrt(s);
 }
 
+static double norm2(const double *v, int d) {
+    double s = 0.0;
+    for (int k = 0; k < d; ++k) s += v[k] * v[k];
+    return s;
+}
+
 double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
     const int n = fc->n, d = fc->d, D = fc->D;
     if (n <= 1) return 0.0; /* a segment (rational or not) is its own chord */
-    double p[CJ_FL_WORK];
+    /* Squared magnitudes throughout; one square root per bound at the end. */
+    double pbuf[CJ_FL_WORK];
     double w[CJ_BEZIER_MAX_DEGREE + 1];
-    for (int i = 0; i <= n; ++i) {
-        cj_fl_point(fc, sub, i, p + i * d);
-        w[i] = fc->rational ? sub[i * D + d] : 1.0;
-    }
+    const double *p = sub; /* Euclidean points, stride d */
     if (fc->rational) {
+        for (int i = 0; i <= n; ++i) {
+            cj_fl_point(fc, sub, i, pbuf + i * d);
+            w[i] = sub[i * D + d];
+        }
+        p = pbuf;
         /* Standard form w_0 = w_n by the Möbius reparametrisation w_i -> w_i λ^i (same curve),
          * which makes the min-weight and weight-share factors below as small as possible. */
         const double lam = pow(w[0] / w[n], 1.0 / (double)n);
@@ -125,71 +140,81 @@ double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
         v[k] = bn[k] - b0[k];
         L2 += v[k] * v[k];
     }
-    double maxdist = 0.0; /* max_i dist(b_i, S) */
-    double maxq = 0.0;    /* max_j |q_j| for the perpendicular part */
+    const double invL2 = L2 > 0.0 ? 1.0 / L2 : 0.0;
+    double maxdist2 = 0.0; /* max_i dist(b_i, S)^2 */
+    double maxq2 = 0.0;    /* max_j |q_j|^2 for the perpendicular part */
+    double mq2 = 0.0;      /* the same for the parametric error (polynomials) */
     int inside = 1;
     const double nn1 = (double)n * (double)(n - 1);
     for (int i = 1; i < n; ++i) {
         double r[CJ_MAX_DIM], e[CJ_MAX_DIM];
         double s = 0.0;
-        for (int k = 0; k < d; ++k) r[k] = p[i * d + k] - b0[k];
-        if (L2 > 0.0) {
-            for (int k = 0; k < d; ++k) s += r[k] * v[k];
-            s /= L2;
+        for (int k = 0; k < d; ++k) {
+            r[k] = p[i * d + k] - b0[k];
+            s += r[k] * v[k];
         }
+        s *= invL2;
         for (int k = 0; k < d; ++k) e[k] = r[k] - s * v[k];
-        double dist;
+        const double e2 = norm2(e, d);
+        double dist2;
         if (s < 0.0) {
-            dist = norm(r, d);
+            dist2 = norm2(r, d);
             inside = 0;
         } else if (s > 1.0) {
             double q[CJ_MAX_DIM];
             for (int k = 0; k < d; ++k) q[k] = p[i * d + k] - bn[k];
-            dist = norm(q, d);
+            dist2 = norm2(q, d);
             inside = 0;
         } else {
-            dist = norm(e, d);
+            dist2 = e2;
         }
-        if (dist > maxdist) maxdist = dist;
+        if (dist2 > maxdist2) maxdist2 = dist2;
         /* q_{i-1} = w_i e_i n(n-1) / (i (n-i)) */
-        const double qn = w[i] * norm(e, d) * nn1 / ((double)i * (double)(n - i));
-        if (qn > maxq) maxq = qn;
+        const double coef = nn1 / ((double)i * (double)(n - i));
+        const double wi = fc->rational ? w[i] : 1.0;
+        const double q2 = wi * wi * coef * coef * e2;
+        if (q2 > maxq2) maxq2 = q2;
+        if (!fc->rational) {
+            /* (b') parametric error e_i = b_i - chord(i/n), valid without projection */
+            const double ti = (double)i / (double)n;
+            for (int k = 0; k < d; ++k) e[k] = r[k] - ti * v[k];
+            const double m2 = coef * coef * norm2(e, d);
+            if (m2 > mq2) mq2 = m2;
+        }
     }
-    double wmin = w[0], wE = w[0] < w[n] ? w[0] : w[n], wI = 0.0;
-    for (int i = 0; i <= n; ++i) {
-        if (w[i] < wmin) wmin = w[i];
-        if (i > 0 && i < n && w[i] > wI) wI = w[i];
+    double wmin = 1.0, wE = 1.0, wI = 1.0;
+    if (fc->rational) {
+        wmin = w[0];
+        wE = w[0] < w[n] ? w[0] : w[n];
+        wI = 0.0;
+        for (int i = 0; i <= n; ++i) {
+            if (w[i] < wmin) wmin = w[i];
+            if (i > 0 && i < n && w[i] > wI) wI = w[i];
+        }
     }
     /* (a) convexity: dist(c(t), S) <= g max_i dist(b_i, S). */
-    const double s2 = ldexp(1.0, 1 - n);
+    const double s2 = fc->s2;
     const double g = wI * (1.0 - s2) / (wE * s2 + wI * (1.0 - s2));
-    double best = g * maxdist;
+    double best = g * sqrt(maxdist2);
     /* (b) factoring t(1-t) out of the perpendicular numerator (valid when every control point
      * projects onto S, so that distance to the line is distance to the segment). */
     if (inside) {
-        const double bb = maxq / (4.0 * wmin);
+        const double bb = sqrt(maxq2) / (4.0 * wmin);
         if (bb < best) best = bb;
     }
     if (!fc->rational) {
-        /* (b') the same on the full parametric error c(t) - chord(t), valid always. */
-        double mq = 0.0, md2 = 0.0;
-        for (int i = 1; i < n; ++i) {
-            double e[CJ_MAX_DIM];
-            const double ti = (double)i / (double)n;
-            for (int k = 0; k < d; ++k) e[k] = p[i * d + k] - ((1.0 - ti) * b0[k] + ti * bn[k]);
-            const double qn = norm(e, d) * nn1 / ((double)i * (double)(n - i));
-            if (qn > mq) mq = qn;
-        }
         /* (c) second differences: |c - chord| <= n(n-1)/8 max|Δ² b|. */
+        double md2 = 0.0;
         for (int i = 0; i + 2 <= n; ++i) {
             double e[CJ_MAX_DIM];
             for (int k = 0; k < d; ++k)
                 e[k] = p[i * d + k] - 2.0 * p[(i + 1) * d + k] + p[(i + 2) * d + k];
-            const double m2 = norm(e, d);
+            const double m2 = norm2(e, d);
             if (m2 > md2) md2 = m2;
         }
-        if (mq / 4.0 < best) best = mq / 4.0;
-        if (nn1 * md2 / 8.0 < best) best = nn1 * md2 / 8.0;
+        const double bp = sqrt(mq2) / 4.0, bc = nn1 * sqrt(md2) / 8.0;
+        if (bp < best) best = bp;
+        if (bc < best) best = bc;
     }
     return best;
 }

@@ -13,7 +13,9 @@
 typedef struct cj_fl_curve {
     int n, d, D;
     int rational;
-    double slack; /* rounding allowance added to every bound */
+    double slack;      /* rounding allowance added to every bound */
+    double s2;         /* 2^(1-n), the smallest end-weight share of a polynomial piece */
+    const double *pts; /* the caller's Euclidean control points (exact end points) */
     double hom[CJ_FL_WORK];
 } cj_fl_curve;
 
@@ -26,6 +28,9 @@ void cj_fl_subcurve(const cj_fl_curve *fc, double a, double b, double *sub);
 /* Proven Hausdorff bound between the piece with homogeneous control points sub and its chord
  * (without the rounding slack). */
 double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub);
+
+/* End point (i = 0 or n) of the curve, exactly the caller's control point, into out[d]. */
+void cj_fl_end(const cj_fl_curve *fc, int i, double *out);
 
 /* Euclidean point i of homogeneous control points h into out[d]. */
 void cj_fl_point(const cj_fl_curve *fc, const double *h, int i, double *out);
