@@ -250,8 +250,22 @@ static void test_bad_input(void **state) {
     expect_fail(cj_bezier_cond(&c, -INFINITY, out), CJ_ERR_NONFINITE, "parameter t",
                 "cond infinite t");
     assert_true(out[0] == 7 && out[1] == 7 && bnd[0] == 7 && bnd[1] == 7);
+    /* Far extrapolation overflows: reported, never a silent NaN or infinity. */
+    for (int m = 0; m < 4; ++m) {
+        expect_fail(cj_bezier_eval(&c, all[m], 1e200, out), CJ_ERR_RANGE, "overflows",
+                    "overflowing extrapolation");
+        const double far[] = {0.5, -1e300};
+        expect_fail(cj_bezier_eval_batch(&c, all[m], far, 2, batch), CJ_ERR_RANGE, "overflows",
+                    "overflowing extrapolation in batch");
+    }
+    expect_fail(cj_bezier_eval_compensated(&c, 1e200, out, bnd), CJ_ERR_RANGE, "overflows",
+                "compensated overflow");
+    expect_fail(cj_bezier_eval_decasteljau(&c, -1e200, out), CJ_ERR_RANGE, "overflows",
+                "de Casteljau overflow");
+    expect_fail(cj_bezier_cond(&c, 1e200, out), CJ_ERR_RANGE, "overflows", "cond overflow");
+    assert_true(out[0] == 7 && out[1] == 7 && bnd[0] == 7 && bnd[1] == 7);
     printf("bad input: NaN/inf coordinates and parameters, dimension 0/9, degree -1, unknown "
-           "method; statuses, messages, untouched outputs\n");
+           "method, overflowing extrapolation; statuses, messages, untouched outputs\n");
 }
 
 int main(void) {

@@ -311,6 +311,7 @@ static void test_bad_input(void **state) {
         {"NaN parameter", {"--points", "0,0;1,1", "0.5", "nan"}},
         {"infinite parameter", {"--points", "0,0;1,1", "-infinity"}},
         {"bad parameter", {"--points", "0,0;1,1", "0.5", "abc"}},
+        {"overflowing extrapolation", {"--points", "1,2;3,-4;5,1", "0.5", "1e200"}},
         {"mismatched dimension", {"--points", "0,0;1,2,3;2,0", "0.5"}},
         {"too many coordinates", {"--points", "1,2,3,4,5,6,7,8,9", "0.5"}},
         {"empty points", {"--points", "", "0.5"}},

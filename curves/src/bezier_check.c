@@ -1,4 +1,5 @@
 #include "bezier_internal.h"
+#include "eval_internal.h"
 
 #include <assert.h>
 #include <math.h>
@@ -44,4 +45,10 @@ cj_status cj_bezier_check(const cj_bezier *c, int max_degree) {
     if (all_finite(c->pts, count * (size_t)c->dim)) return CJ_OK;
     /* Slow path only to name the offending point and coordinate. */
     return cj_check_points(c->pts, count, c->dim, "control point");
+}
+
+cj_status cj_check_value(const double *v, int dim, double t) {
+    if (all_finite(v, (size_t)dim)) return CJ_OK;
+    return cj_fail(CJ_ERR_RANGE,
+                   "the value at t = %.17g overflows the double range (extrapolating too far?)", t);
 }

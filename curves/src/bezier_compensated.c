@@ -179,6 +179,12 @@ cj_status cj_bezier_eval_compensated(const cj_bezier *c, double t, double *out, 
     cj_status st = cj_bezier_check(c, CJ_BEZIER_MAX_DEGREE);
     if (st) return st;
     if ((st = cj_check_param(t, "parameter t"))) return st;
-    cj_compensated_kernel(c, t, out, bound);
+    double v[CJ_MAX_DIM], b[CJ_MAX_DIM];
+    cj_compensated_kernel(c, t, v, bound ? b : NULL);
+    if ((st = cj_check_value(v, c->dim, t))) return st;
+    for (int k = 0; k < c->dim; ++k) {
+        out[k] = v[k];
+        if (bound) bound[k] = b[k];
+    }
     return CJ_OK;
 }

@@ -55,7 +55,10 @@ cj_status cj_bezier_eval_decasteljau(const cj_bezier *c, double t, double *out) 
     cj_status st = cj_bezier_check(c, CJ_BEZIER_MAX_DEGREE);
     if (st) return st;
     if ((st = cj_check_param(t, "parameter t"))) return st;
-    cj_decasteljau_kernel(c, t, out);
+    double v[CJ_MAX_DIM];
+    cj_decasteljau_kernel(c, t, v);
+    if ((st = cj_check_value(v, c->dim, t))) return st;
+    for (int k = 0; k < c->dim; ++k) out[k] = v[k];
     return CJ_OK;
 }
 

@@ -168,7 +168,10 @@ cj_status cj_bezier_eval(const cj_bezier *c, cj_eval_method method, double t, do
     assert(out != NULL);
     cj_status st = check_eval(c, method, t);
     if (st) return st;
-    eval_kernel(c, method, t, out);
+    double v[CJ_MAX_DIM];
+    eval_kernel(c, method, t, v);
+    if ((st = cj_check_value(v, c->dim, t))) return st;
+    for (int k = 0; k < c->dim; ++k) out[k] = v[k];
     return CJ_OK;
 }
 
@@ -204,6 +207,9 @@ cj_status cj_bezier_eval_batch(const cj_bezier *c, cj_eval_method method, const 
         for (size_t j = 0; j < nt; ++j) cj_decasteljau_kernel(c, ts[j], out + j * d);
         break;
     }
+    /* Overflow (far extrapolation) is reported; the results before it are valid. */
+    for (size_t j = 0; j < nt; ++j)
+        if ((st = cj_check_value(out + j * d, c->dim, ts[j]))) return st;
     return CJ_OK;
 }
 
@@ -228,6 +234,7 @@ cj_status cj_bezier_cond(const cj_bezier *c, double t, double *cond) {
     double num[CJ_MAX_DIM], val[CJ_MAX_DIM];
     abs_sum(c, t, num);
     cj_compensated_kernel(c, t, val, NULL);
+    if ((st = cj_check_value(val, c->dim, t))) return st;
     for (int k = 0; k < c->dim; ++k) cond[k] = val[k] == 0.0 ? INFINITY : num[k] / fabs(val[k]);
     return CJ_OK;
 }
@@ -248,6 +255,7 @@ cj_status cj_bezier_error_bound(const cj_bezier *c, cj_eval_method method, doubl
          * u-multiple is second order and absorbed by the same slack. */
         double val[CJ_MAX_DIM];
         cj_compensated_kernel(c, t, val, NULL);
+        if ((st = cj_check_value(val, c->dim, t))) return st;
         const double g = cj_gamma(3 * n);
         const double uf = cj_underflow_allowance(n, t, 8.0);
         for (int k = 0; k < d; ++k)

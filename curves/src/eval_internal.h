@@ -16,6 +16,11 @@
  * error u the published bounds account for. */
 #define CJ_ETA 0x1p-1074
 
+/* CJ_OK if the dim values are finite, else CJ_ERR_RANGE naming t: a finite curve evaluated at a
+ * finite t can still overflow when extrapolating far outside [0,1], and the methods would then
+ * return NaN or infinity; that is reported instead. */
+cj_status cj_check_value(const double *v, int dim, double t);
+
 /* Plain de Casteljau: out[0..dim-1] = c(t). */
 void cj_decasteljau_kernel(const cj_bezier *c, double t, double *out);
 
