@@ -18,8 +18,8 @@
 
 static void oracle_eval(int n, int d, const double *pts, const double *w, long double t,
                         long double *out) {
-    long double h[16 * (CJ_MAX_DIM + 1)]; /* the tests use degrees <= 15 */
-    assert_true(n < 16);
+    long double h[64 * (CJ_MAX_DIM + 1)]; /* the tests use degrees < 64 */
+    assert_true(n < 64);
     const int D = d + 1;
     for (int i = 0; i <= n; ++i) {
         const long double wi = w ? (long double)w[i] : 1.0L;
@@ -273,6 +273,15 @@ static void test_hard_shapes(void **state) {
             if (tols[j] >= 1e9) assert_int_equal(n, 1);
             ++count;
         }
+    /* Degree 40 (too big for the subdivision stack: takes the stack-free dyadic walk). */
+    {
+        cj_rng r;
+        cj_rng_init(&r, 99);
+        double p40[41 * 2];
+        random_curve(&r, 40, 2, 100, p40);
+        check_curve(40, 2, p40, NULL, 0.5, "degree 40", 16);
+        check_curve(40, 2, p40, NULL, 0.01, "degree 40", 8);
+    }
     /* A 3D cusp-and-twist curve, and degree 0. */
     const double p3[] = {0, 0, 0, 100, 100, 50, 0, 100, -50, 100, 0, 0};
     for (size_t j = 0; j < 4; ++j) check_curve(3, 3, p3, NULL, tols[j], "3D cusp", 48);
@@ -285,7 +294,7 @@ static void test_hard_shapes(void **state) {
     assert_int_equal(np, 2);
     assert_true(buf[2] == 1 && buf[3] == 2);
     printf("hard shapes: %d shape/tolerance pairs (cusp, loop, inflection, equal, collinear "
-           "unordered, tol 1e-6..1e9) plus 3D cusp and degree 0\n",
+           "unordered, tol 1e-6..1e9) plus degree 40, 3D cusp and degree 0\n",
            count);
 }
 

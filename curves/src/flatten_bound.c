@@ -78,6 +78,17 @@ void cj_fl_subcurve(const cj_fl_curve *fc, double a, double b, double *sub) {
     if (a > 0.0) split_keep(sub, n, D, a / b, 0);
 }
 
+void cj_fl_split_half(const double *src, int n, int D, double *left, double *right) {
+    double w[CJ_FL_WORK];
+    memcpy(w, src, sizeof(double) * (size_t)(n + 1) * (size_t)D);
+    for (int r = n;; --r) {
+        memcpy(left + (size_t)(n - r) * D, w, sizeof(double) * (size_t)D);
+        memcpy(right + (size_t)r * D, w + (size_t)r * D, sizeof(double) * (size_t)D);
+        if (r == 0) break;
+        for (int i = 0; i < r * D; ++i) w[i] = 0.5 * (w[i] + w[i + D]);
+    }
+}
+
 void cj_fl_point(const cj_fl_curve *fc, const double *h, int i, double *out) {
     const int d = fc->d, D = fc->D;
     if (fc->rational) {

@@ -25,6 +25,9 @@ cj_status cj_fl_init(cj_fl_curve *fc, const cj_bezier *c, const double *weights)
 /* Homogeneous control points of the piece on [a,b] (0 <= a < b <= 1) into sub[(n+1)*D]. */
 void cj_fl_subcurve(const cj_fl_curve *fc, double a, double b, double *sub);
 
+/* Splits homogeneous points src at t = 1/2 into left and right (neither may alias src). */
+void cj_fl_split_half(const double *src, int n, int D, double *left, double *right);
+
 /* Proven Hausdorff bound between the piece with homogeneous control points sub and its chord
  * (without the rounding slack). */
 double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub);

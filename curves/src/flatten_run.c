@@ -49,27 +49,85 @@ static cj_status run_uniform(const cj_fl_curve *fc, double tol_eff, emitter *em,
     /* room - 1 more segments fit (the first point of this curve may be shared). */
     if (!(mf <= (double)(room - 1))) return cap_fail(em, "uniform");
     const size_t m = (size_t)mf;
-    cj_fl_point(fc, fc->hom, 0, pt);
+    cj_fl_end(fc, 0, pt);
     if (emit(em, pt, 0.0)) return cap_fail(em, "uniform");
     for (size_t j = 1; j < m; ++j) {
         const double t = (double)j / (double)m;
         cj_fl_eval(fc, t, pt);
         if (emit(em, pt, t)) return cap_fail(em, "uniform");
     }
-    cj_fl_point(fc, fc->hom, fc->n, pt);
+    cj_fl_end(fc, fc->n, pt);
     if (emit(em, pt, 1.0)) return cap_fail(em, "uniform");
     *bound = K / (mf * mf) + fc->slack;
     return CJ_OK;
 }
 
-/* ---- recursive subdivision (dyadic, without a stack) -------------------------------------- */
+/* ---- recursive subdivision ---------------------------------------------------------------- */
 
+#define SUBDIV_MAX_DEPTH     60
+#define SUBDIV_STACK_DOUBLES 4096
+
+static cj_status subdiv_too_deep(double tol_eff, double a) {
+    return cj_fail(CJ_ERR_RANGE,
+                   "tolerance %.3g cannot be reached by subdivision near t = %.17g (parameter "
+                   "resolution exhausted)",
+                   tol_eff, a);
+}
+
+/* Pieces of small curves live on an explicit stack: halving a piece costs one de Casteljau
+ * triangle. Curves too large for the stack take the stack-free walk below. */
+static cj_status run_subdivide_stack(const cj_fl_curve *fc, double tol_eff, emitter *em,
+                                     double *bound) {
+    const size_t S = (size_t)(fc->n + 1) * (size_t)fc->D;
+    double stk[SUBDIV_STACK_DOUBLES], pa[SUBDIV_MAX_DEPTH + 2], pb[SUBDIV_MAX_DEPTH + 2];
+    int lev[SUBDIV_MAX_DEPTH + 2];
+    double pt[CJ_MAX_DIM], tmp[CJ_FL_WORK];
+    double worst = 0.0;
+    cj_fl_end(fc, 0, pt);
+    if (emit(em, pt, 0.0)) return cap_fail(em, "subdivide");
+    int top = 1;
+    memcpy(stk, fc->hom, sizeof(double) * S);
+    pa[0] = 0.0, pb[0] = 1.0, lev[0] = 0;
+    while (top > 0) {
+        double *cur = stk + (size_t)(top - 1) * S;
+        const double D = cj_fl_piece_bound(fc, cur);
+        if (!isfinite(D))
+            return cj_fail(CJ_ERR_RANGE, "flatness bound overflows: coordinates too large");
+        if (D <= tol_eff) {
+            if (D > worst) worst = D;
+            const double b = pb[top - 1];
+            if (b == 1.0)
+                cj_fl_end(fc, fc->n, pt);
+            else
+                cj_fl_point(fc, cur, fc->n, pt);
+            if (emit(em, pt, b)) return cap_fail(em, "subdivide");
+            --top;
+            continue;
+        }
+        if (lev[top - 1] >= SUBDIV_MAX_DEPTH) return subdiv_too_deep(tol_eff, pa[top - 1]);
+        /* right half replaces the piece, left half goes on top (processed first) */
+        const double a = pa[top - 1], b = pb[top - 1], m = 0.5 * (a + b);
+        cj_fl_split_half(cur, fc->n, fc->D, tmp, cur + S);
+        memcpy(cur, cur + S, sizeof(double) * S);
+        memcpy(cur + S, tmp, sizeof(double) * S);
+        pa[top - 1] = m;
+        pa[top] = a, pb[top] = m;
+        lev[top] = ++lev[top - 1];
+        ++top;
+    }
+    *bound = worst + fc->slack;
+    return CJ_OK;
+}
+
+/* Stack-free walk over the dyadic pieces [k 2^-L, (k+1) 2^-L], each computed from the whole
+ * curve; accepted pieces advance k, climbing while k is even. */
 static cj_status run_subdivide(const cj_fl_curve *fc, double tol_eff, emitter *em, double *bound) {
+    if ((size_t)(fc->n + 1) * (size_t)fc->D * (SUBDIV_MAX_DEPTH + 2) <= SUBDIV_STACK_DOUBLES)
+        return run_subdivide_stack(fc, tol_eff, em, bound);
     double sub[CJ_FL_WORK], pt[CJ_MAX_DIM];
     double worst = 0.0;
-    cj_fl_point(fc, fc->hom, 0, pt);
+    cj_fl_end(fc, 0, pt);
     if (emit(em, pt, 0.0)) return cap_fail(em, "subdivide");
-    /* The piece [k 2^-L, (k+1) 2^-L]; accepted pieces advance k, climbing while k is even. */
     int L = 0;
     unsigned long long k = 0;
     for (;;) {
@@ -81,7 +139,7 @@ static cj_status run_subdivide(const cj_fl_curve *fc, double tol_eff, emitter *e
         if (D <= tol_eff) {
             if (D > worst) worst = D;
             if (b == 1.0)
-                cj_fl_point(fc, fc->hom, fc->n, pt);
+                cj_fl_end(fc, fc->n, pt);
             else
                 cj_fl_point(fc, sub, fc->n, pt);
             if (emit(em, pt, b)) return cap_fail(em, "subdivide");
@@ -92,11 +150,7 @@ static cj_status run_subdivide(const cj_fl_curve *fc, double tol_eff, emitter *e
                 --L;
             }
         } else {
-            if (L >= 60)
-                return cj_fail(CJ_ERR_RANGE,
-                               "tolerance %.3g cannot be reached by subdivision near t = %.17g "
-                               "(parameter resolution exhausted)",
-                               tol_eff, a);
+            if (L >= SUBDIV_MAX_DEPTH) return subdiv_too_deep(tol_eff, a);
             ++L;
             k <<= 1;
         }
@@ -113,7 +167,7 @@ static cj_status run_near_optimal(const cj_fl_curve *fc, double tol_eff, emitter
     const size_t nsub = (size_t)(fc->n + 1) * (size_t)fc->D;
     const double target = 0.95 * tol_eff, accept_lo = 0.9 * tol_eff;
     double worst = 0.0;
-    cj_fl_point(fc, fc->hom, 0, pt);
+    cj_fl_end(fc, 0, pt);
     if (emit(em, pt, 0.0)) return cap_fail(em, "near-optimal");
     /* First step from Wang's count (its steps are safe everywhere, so a bit more is a good
      * first guess); afterwards the previous step predicts the next one. */
@@ -181,7 +235,7 @@ static cj_status run_near_optimal(const cj_fl_curve *fc, double tol_eff, emitter
         }
         if (Dacc > worst) worst = Dacc;
         if (bacc == 1.0)
-            cj_fl_point(fc, fc->hom, fc->n, pt);
+            cj_fl_end(fc, fc->n, pt);
         else
             cj_fl_point(fc, acc, fc->n, pt);
         if (emit(em, pt, bacc)) return cap_fail(em, "near-optimal");
@@ -215,7 +269,7 @@ static cj_status flatten_one(const cj_fl_curve *fc, const cj_flatten_opts *opts,
     const double tol_eff = opts->tol - fc->slack;
     if (fc->n == 0) { /* a single point: one zero-length segment */
         double pt[CJ_MAX_DIM];
-        cj_fl_point(fc, fc->hom, 0, pt);
+        cj_fl_end(fc, 0, pt);
         if (emit(em, pt, 0.0) || emit(em, pt, 1.0)) return cap_fail(em, "any");
         *bound = 0.0;
         return CJ_OK;
