@@ -111,9 +111,6 @@ typedef struct ptess {
     double bound, measured;
     double worst_terms[3]; /* uu, uv, vv contributions of the worst triangle */
     size_t dropped;
-    /* strip bounds, rescaled to the patch's parameters */
-    dbounds *row; /* nv entries */
-    dbounds col0, col1;
 } ptess;
 
 static int cmp_point(const double *a, double wa, const double *b, double wb) {
@@ -197,6 +194,8 @@ static int same_pos(const double *a, const double *b) {
     return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
 }
 
+static dbounds strip_bounds(const ptess *P, double u0, double u1, double v0, double v1);
+
 /* Adds triangle (a,b,c) (reordered CCW in (u,v)), accounting its bound with strip bounds
  * `db` and its measured deviation; degenerate triangles are counted and not added. */
 static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbounds *db) {
@@ -213,8 +212,15 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         uc = tu;
     }
     if (!P->rational) {
-        const double du = fmax(fmax(ua[0], ub[0]), uc[0]) - fmin(fmin(ua[0], ub[0]), uc[0]);
-        const double dv = fmax(fmax(ua[1], ub[1]), uc[1]) - fmin(fmin(ua[1], ub[1]), uc[1]);
+        const double u0 = fmin(fmin(ua[0], ub[0]), uc[0]), u1 = fmax(fmax(ua[0], ub[0]), uc[0]);
+        const double v0 = fmin(fmin(ua[1], ub[1]), uc[1]), v1 = fmax(fmax(ua[1], ub[1]), uc[1]);
+        const double du = u1 - u0, dv = v1 - v0;
+        dbounds local;
+        if (!db) { /* bounds over the triangle's own (u,v) box */
+            local = (du > 0.0 && dv > 0.0) ? strip_bounds(P, u0, u1, v0, v1)
+                                           : strip_bounds(P, 0.0, 1.0, 0.0, 1.0);
+            db = &local;
+        }
         const double t0 = db->uu * du * du, t1 = 2.0 * db->uv * du * dv, t2 = db->vv * dv * dv;
         const double bnd = (t0 + t1 + t2) * 0.125 * (1.0 + 8.0 * U_ROUND) + P->evalerr;
         if (bnd > P->bound) {
@@ -266,10 +272,11 @@ static dbounds strip_bounds(const ptess *P, double u0, double u1, double v0, dou
     return b;
 }
 
-/* Zipper between outer points o[0..k] (side parameters a/k) and inner points in[0..L] with
- * side parameters tin[0..L]. */
-static cj_status zipper(ptess *P, const uint32_t *o, int k, const uint32_t *in, const double *tin,
-                        int L, const dbounds *db) {
+/* Zipper between outer points o[0..k] with side parameters tout[0..k] and inner points
+ * in[0..L] with side parameters tin[0..L]: advances the row whose next segment's midpoint
+ * comes first. */
+static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, const uint32_t *in,
+                        const double *tin, int L, const dbounds *db) {
     int a = 0, b = 0;
     while (a < k || b < L) {
         int adv_outer;
@@ -278,7 +285,7 @@ static cj_status zipper(ptess *P, const uint32_t *o, int k, const uint32_t *in, 
         else if (b == L)
             adv_outer = 1;
         else
-            adv_outer = ((double)a + 0.5) / (double)k < 0.5 * (tin[b] + tin[b + 1]);
+            adv_outer = tout[a] + tout[a + 1] < tin[b] + tin[b + 1];
         cj_status st;
         if (adv_outer) {
             st = add_tri(P, o[a], o[a + 1], in[b], db);
@@ -292,35 +299,50 @@ static cj_status zipper(ptess *P, const uint32_t *o, int k, const uint32_t *in, 
     return CJ_OK;
 }
 
-/* One build of a patch with grid nu x nv and edge counts k[4]. */
-static cj_status build_patch(ptess *P, int nu, int nv, const int k[4]) {
+/* One build of a patch: interior breakpoints ub[0..nu] (ub[0] = 0, ub[nu] = 1) and
+ * vb[0..nv]; k[s] segments on side s (a collapsed side uses the interior breakpoints of its
+ * direction, k[s] = nu or nv). */
+static cj_status build_patch(ptess *P, int nu, const double *ub, int nv, const double *vb,
+                             const int k[4]) {
     const int m = P->m, n = P->n;
     cj_status st = CJ_OK;
     P->bound = 0.0;
     P->measured = 0.0;
     P->dropped = 0;
     P->worst_terms[0] = P->worst_terms[1] = P->worst_terms[2] = 0.0;
-    const int regular = k[0] == nu && k[2] == nu && k[1] == nv && k[3] == nv;
-    size_t nouter = (size_t)(k[0] + k[1] + k[2] + k[3] + 4);
-    size_t ngrid = (size_t)(nu + 1) * (size_t)(nv + 1);
-    uint32_t *buf = malloc(sizeof(uint32_t) * (nouter + ngrid));
-    double *tin = malloc(sizeof(double) * (size_t)(nu > nv ? nu : nv) + sizeof(double));
-    uint32_t *inner = malloc(sizeof(uint32_t) * (size_t)(nu > nv ? nu : nv) + sizeof(uint32_t));
-    P->row = malloc(sizeof(dbounds) * (size_t)nv);
-    if (!buf || !tin || !inner || !P->row) {
+    const size_t nouter = (size_t)(k[0] + k[1] + k[2] + k[3] + 4);
+    const size_t ngrid = (size_t)(nu + 1) * (size_t)(nv + 1);
+    const size_t nmax = (size_t)(nu > nv ? nu : nv) + 1;
+    uint32_t *buf = malloc(sizeof(uint32_t) * (nouter + ngrid + nmax));
+    double *tbuf = malloc(sizeof(double) * (nouter + nmax));
+    if (!buf || !tbuf) {
         st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %d", (int)P->id);
         goto done;
     }
-    if (!P->rational) {
-        for (int j = 0; j < nv; ++j)
-            P->row[j] = strip_bounds(P, 0.0, 1.0, (double)j / nv, (double)(j + 1) / nv);
-        P->col0 = strip_bounds(P, 0.0, 1.0 / nu, 0.0, 1.0);
-        P->col1 = strip_bounds(P, (double)(nu - 1) / nu, 1.0, 0.0, 1.0);
-    }
     uint32_t *o[4];
+    double *tout[4];
     o[0] = buf;
-    for (int s = 1; s < 4; ++s) o[s] = o[s - 1] + k[s - 1] + 1;
+    tout[0] = tbuf;
+    for (int s = 1; s < 4; ++s) {
+        o[s] = o[s - 1] + k[s - 1] + 1;
+        tout[s] = tout[s - 1] + k[s - 1] + 1;
+    }
     uint32_t *g = buf + nouter; /* grid indices, (j*(nu+1)+i) */
+    uint32_t *inner = g + ngrid;
+    double *tin = tbuf + nouter;
+    int regular = 1;
+    for (int s = 0; s < 4; ++s) {
+        const int along_u = !(s & 1);
+        const double *br = along_u ? ub : vb;
+        const int nb = along_u ? nu : nv;
+        for (int a = 0; a <= k[s]; ++a)
+            tout[s][a] = P->e[s].collapsed ? br[a] : (double)a / (double)k[s];
+        if (k[s] != nb)
+            regular = 0;
+        else
+            for (int a = 0; a <= k[s] && regular; ++a)
+                if (tout[s][a] != br[a]) regular = 0;
+    }
     /* corners: the control points themselves */
     const int m1 = m + 1;
     uint32_t c00, c10, c11, c01;
@@ -335,7 +357,7 @@ static cj_status build_patch(ptess *P, int nu, int nv, const int k[4]) {
         for (int a = 1; a < k[s]; ++a) {
             double pos[3];
             edge_point(&P->e[s], P->rational, a, k[s], pos);
-            const double t = (double)a / k[s];
+            const double t = tout[s][a];
             double u, v;
             switch (s) {
             case 0:
@@ -357,11 +379,11 @@ static cj_status build_patch(ptess *P, int nu, int nv, const int k[4]) {
     for (int j = 1; j < nv; ++j)
         for (int i = 1; i < nu; ++i) {
             double pos[3];
-            const double u = (double)i / nu, v = (double)j / nv;
-            eval_point(P, u, v, pos);
-            if ((st = add_vertex(P, pos, u, v, &g[j * (nu + 1) + i]))) goto done;
+            eval_point(P, ub[i], vb[j], pos);
+            if ((st = add_vertex(P, pos, ub[i], vb[j], &g[j * (nu + 1) + i]))) goto done;
         }
     static const dbounds zero = {0.0, 0.0, 0.0};
+    int j0 = 0, j1 = nv, i0 = 0, i1 = nu; /* the block of regular cells */
     if (regular) {
         for (int i = 0; i <= nu; ++i) {
             g[i] = o[0][i];
@@ -371,57 +393,153 @@ static cj_status build_patch(ptess *P, int nu, int nv, const int k[4]) {
             g[j * (nu + 1)] = o[3][j];
             g[j * (nu + 1) + nu] = o[1][j];
         }
-        for (int j = 0; j < nv; ++j)
-            for (int i = 0; i < nu; ++i) {
-                const dbounds *db = P->rational ? &zero : &P->row[j];
-                const uint32_t A = g[j * (nu + 1) + i], B = g[j * (nu + 1) + i + 1],
-                               C = g[(j + 1) * (nu + 1) + i + 1], D = g[(j + 1) * (nu + 1) + i];
-                if ((st = add_tri(P, A, B, C, db))) goto done;
-                if ((st = add_tri(P, A, C, D, db))) goto done;
-            }
     } else {
         assert(nu >= 2 && nv >= 2);
-        /* bottom: inner row j=1, i=1..nu-1 */
         int L = nu - 2;
         for (int i = 1; i < nu; ++i) {
             inner[i - 1] = g[1 * (nu + 1) + i];
-            tin[i - 1] = (double)i / nu;
+            tin[i - 1] = ub[i];
         }
-        if ((st = zipper(P, o[0], k[0], inner, tin, L, P->rational ? &zero : &P->row[0])))
+        if ((st = zipper(P, o[0], tout[0], k[0], inner, tin, L, P->rational ? &zero : NULL)))
             goto done;
         for (int i = 1; i < nu; ++i) inner[i - 1] = g[(nv - 1) * (nu + 1) + i];
-        if ((st = zipper(P, o[2], k[2], inner, tin, L, P->rational ? &zero : &P->row[nv - 1])))
+        if ((st = zipper(P, o[2], tout[2], k[2], inner, tin, L, P->rational ? &zero : NULL)))
             goto done;
         L = nv - 2;
         for (int j = 1; j < nv; ++j) {
             inner[j - 1] = g[j * (nu + 1) + 1];
-            tin[j - 1] = (double)j / nv;
+            tin[j - 1] = vb[j];
         }
-        if ((st = zipper(P, o[3], k[3], inner, tin, L, P->rational ? &zero : &P->col0))) goto done;
+        if ((st = zipper(P, o[3], tout[3], k[3], inner, tin, L, P->rational ? &zero : NULL)))
+            goto done;
         for (int j = 1; j < nv; ++j) inner[j - 1] = g[j * (nu + 1) + nu - 1];
-        if ((st = zipper(P, o[1], k[1], inner, tin, L, P->rational ? &zero : &P->col1))) goto done;
-        for (int j = 1; j + 1 < nv; ++j)
-            for (int i = 1; i + 1 < nu; ++i) {
-                const dbounds *db = P->rational ? &zero : &P->row[j];
-                const uint32_t A = g[j * (nu + 1) + i], B = g[j * (nu + 1) + i + 1],
-                               C = g[(j + 1) * (nu + 1) + i + 1], D = g[(j + 1) * (nu + 1) + i];
-                if ((st = add_tri(P, A, B, C, db))) goto done;
-                if ((st = add_tri(P, A, C, D, db))) goto done;
-            }
+        if ((st = zipper(P, o[1], tout[1], k[1], inner, tin, L, P->rational ? &zero : NULL)))
+            goto done;
+        j0 = i0 = 1;
+        j1 = nv - 1;
+        i1 = nu - 1;
     }
+    for (int j = j0; j < j1; ++j)
+        for (int i = i0; i < i1; ++i) {
+            const dbounds cb =
+                P->rational ? zero : strip_bounds(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
+            const uint32_t A = g[j * (nu + 1) + i], B = g[j * (nu + 1) + i + 1],
+                           C = g[(j + 1) * (nu + 1) + i + 1], D = g[(j + 1) * (nu + 1) + i];
+            if ((st = add_tri(P, A, B, C, &cb))) goto done;
+            if ((st = add_tri(P, A, C, D, &cb))) goto done;
+        }
     if (P->rational) P->bound = INFINITY;
 done:
     free(buf);
-    free(tin);
-    free(inner);
-    free(P->row);
-    P->row = NULL;
+    free(tbuf);
     return st;
 }
 
-static int ceil_grow(int x) {
-    const int y = (int)ceil(x * 1.25);
-    return y > x ? y : x + 1;
+/* Adaptive choice for one patch: edge counts from the edges alone; an interior grid of
+ * nu x nv = ceil(s sqrt(Muu/(4 tol))) x ceil(s sqrt(Mvv/(4 tol))) uniform cells (global
+ * second-derivative bounds set the aspect), with the scale s the smallest (found by doubling
+ * then bisection) for which the per-triangle bound with cell-local derivative bounds is <= tol.
+ * The mesh keeps the passing build with the fewest triangles. */
+static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu_out, int *nv_out) {
+    int ke[4];
+    for (int s = 0; s < 4; ++s) {
+        ke[s] = P->e[s].collapsed
+                    ? 0
+                    : cj_tess_edge_segments(P->e[s].pts, P->e[s].degree, 0.25 * tol, cap);
+        if (ke[s] > cap)
+            return cj_fail(CJ_ERR_CAP,
+                           "patch %zu, edge %d needs more than %d segments for tolerance %.3g", q,
+                           s, cap, tol);
+    }
+    const dbounds gb = net_bounds(P->h, P->m, P->n);
+    const double base_u = sqrt(gb.uu / (4.0 * tol)), base_v = sqrt(gb.vv / (4.0 * tol));
+    const size_t vs = P->mesh->vertex_count, ts = P->mesh->triangle_count;
+    double lo = 0.0, hi = 0.0, s = 1.0;
+    int best_nu = 0, best_nv = 0;
+    size_t best_tris = (size_t)-1;
+    double *ub = NULL, *vb = NULL;
+    cj_status st = CJ_OK;
+    int last_nu = -1, last_nv = -1, last_pass = 0;
+    for (int iter = 0; iter < 60; ++iter) {
+        int nu = (int)fmin(ceil(s * base_u), (double)cap + 1.0);
+        int nv = (int)fmin(ceil(s * base_v), (double)cap + 1.0);
+        if (nu < 2) nu = 2;
+        if (nv < 2) nv = 2;
+        if (nu > cap || nv > cap) {
+            if (best_nu) break; /* a finer passing build exists */
+            st = cj_fail(CJ_ERR_CAP,
+                         "patch %zu needs more than %d segments per direction for tolerance %.3g",
+                         q, cap, tol);
+            break;
+        }
+        int pass;
+        if (nu == last_nu && nv == last_nv) {
+            pass = last_pass;
+        } else {
+            free(ub);
+            free(vb);
+            ub = malloc(sizeof(double) * (size_t)(nu + 1));
+            vb = malloc(sizeof(double) * (size_t)(nv + 1));
+            if (!ub || !vb) {
+                st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %zu", q);
+                break;
+            }
+            for (int i = 0; i <= nu; ++i) ub[i] = (double)i / nu;
+            for (int j = 0; j <= nv; ++j) vb[j] = (double)j / nv;
+            int k[4];
+            for (int e = 0; e < 4; ++e) k[e] = P->e[e].collapsed ? ((e & 1) ? nv : nu) : ke[e];
+            cj_mesh_truncate(P->mesh, vs, ts);
+            if ((st = build_patch(P, nu, ub, nv, vb, k))) break;
+            pass = P->bound <= tol;
+            const size_t tris = P->mesh->triangle_count - ts;
+            if (pass && tris < best_tris) {
+                best_tris = tris;
+                best_nu = nu;
+                best_nv = nv;
+            }
+            last_nu = nu;
+            last_nv = nv;
+            last_pass = pass;
+        }
+        if (pass)
+            hi = s;
+        else
+            lo = s;
+        if (hi == 0.0)
+            s *= 1.5; /* no passing scale yet */
+        else if (lo == 0.0 && iter < 8)
+            s *= 0.6; /* passing: look for a smaller scale */
+        else if (hi - lo > 0.03 * hi)
+            s = 0.5 * (lo + hi);
+        else
+            break;
+        if (lo == 0.0 && iter >= 8) lo = s; /* stop shrinking */
+    }
+    if (!st && best_nu == 0)
+        st = cj_fail(CJ_ERR_CAP, "patch %zu: no grid met tolerance %.3g", q, tol);
+    if (!st && (best_nu != last_nu || best_nv != last_nv)) {
+        /* rebuild the best passing grid */
+        free(ub);
+        free(vb);
+        ub = malloc(sizeof(double) * (size_t)(best_nu + 1));
+        vb = malloc(sizeof(double) * (size_t)(best_nv + 1));
+        if (!ub || !vb) {
+            st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %zu", q);
+        } else {
+            for (int i = 0; i <= best_nu; ++i) ub[i] = (double)i / best_nu;
+            for (int j = 0; j <= best_nv; ++j) vb[j] = (double)j / best_nv;
+            int k[4];
+            for (int e = 0; e < 4; ++e)
+                k[e] = P->e[e].collapsed ? ((e & 1) ? best_nv : best_nu) : ke[e];
+            cj_mesh_truncate(P->mesh, vs, ts);
+            st = build_patch(P, best_nu, ub, best_nv, vb, k);
+        }
+    }
+    *nu_out = best_nu;
+    *nv_out = best_nv;
+    free(ub);
+    free(vb);
+    return st;
 }
 
 cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_tess_options *opt,
@@ -456,7 +574,14 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
                            q);
     }
     ptess *P = malloc(sizeof *P);
-    if (!P) return cj_fail(CJ_ERR_NOMEM, "out of memory");
+    double *br = opt->uniform > 0 ? malloc(sizeof(double) * (size_t)(opt->uniform + 1)) : NULL;
+    if (!P || (opt->uniform > 0 && !br)) {
+        free(P);
+        free(br);
+        return cj_fail(CJ_ERR_NOMEM, "out of memory");
+    }
+    if (br)
+        for (int i = 0; i <= opt->uniform; ++i) br[i] = (double)i / (double)opt->uniform;
     const size_t v_start = mesh->vertex_count, t_start = mesh->triangle_count;
     cj_status st = CJ_OK;
     for (size_t q = 0; q < count && !st; ++q) {
@@ -475,79 +600,23 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
         /* vertex rounding (de Casteljau) plus the sample's own rounding, in 3D norm */
         P->evalerr = 2.0 * cj_gamma(3 * (P->m + P->n) + 4) * mx * sqrt(3.0);
         for (int s = 0; s < 4; ++s) edge_setup(p, s, &P->e[s]);
-        int k[4], nu, nv;
+        int nu = 0, nv = 0;
         if (opt->uniform > 0) {
+            const int k[4] = {opt->uniform, opt->uniform, opt->uniform, opt->uniform};
             nu = nv = opt->uniform;
-            for (int s = 0; s < 4; ++s) k[s] = opt->uniform;
-            st = build_patch(P, nu, nv, k);
+            st = build_patch(P, nu, br, nv, br, k);
         } else {
-            const double tol = opt->tol;
-            int ke[4];
-            for (int s = 0; s < 4; ++s) {
-                ke[s] = P->e[s].collapsed
-                            ? 0
-                            : cj_tess_edge_segments(P->e[s].pts, P->e[s].degree, 0.25 * tol, cap);
-                if (ke[s] > cap) {
-                    st = cj_fail(CJ_ERR_CAP,
-                                 "patch %zu, edge %d needs more than %d segments for "
-                                 "tolerance %.3g",
-                                 q, s, cap, tol);
-                    break;
-                }
-            }
-            if (st) break;
-            const dbounds gb = net_bounds(P->h, P->m, P->n);
-            const double rho = (gb.uu > 0.0 && gb.vv > 0.0) ? gb.uv / sqrt(gb.uu * gb.vv) : 0.0;
-            const double a = sqrt(4.0 * tol / (1.0 + rho));
-            nu = (int)fmin(ceil(sqrt(gb.uu) / a), (double)cap + 1.0);
-            nv = (int)fmin(ceil(sqrt(gb.vv) / a), (double)cap + 1.0);
-            if (nu < 1) nu = 1;
-            if (nv < 1) nv = 1;
-            while ((gb.uu / ((double)nu * nu) + 2.0 * gb.uv / ((double)nu * nv) +
-                    gb.vv / ((double)nv * nv)) *
-                           0.125 >
-                       tol &&
-                   nu <= cap && nv <= cap) {
-                if (gb.uu / ((double)nu * nu) >= gb.vv / ((double)nv * nv))
-                    nu = ceil_grow(nu);
-                else
-                    nv = ceil_grow(nv);
-            }
-            for (int iter = 0;; ++iter) {
-                for (int s = 0; s < 4; ++s) k[s] = P->e[s].collapsed ? ((s & 1) ? nv : nu) : ke[s];
-                const int regular = k[0] == nu && k[2] == nu && k[1] == nv && k[3] == nv;
-                if (!regular) {
-                    if (nu < 2) nu = 2;
-                    if (nv < 2) nv = 2;
-                    for (int s = 0; s < 4; ++s)
-                        k[s] = P->e[s].collapsed ? ((s & 1) ? nv : nu) : ke[s];
-                }
-                if (nu > cap || nv > cap) {
-                    st = cj_fail(CJ_ERR_CAP,
-                                 "patch %zu needs more than %d segments per direction "
-                                 "for tolerance %.3g",
-                                 q, cap, tol);
-                    break;
-                }
-                const size_t vs = mesh->vertex_count, ts = mesh->triangle_count;
-                if ((st = build_patch(P, nu, nv, k))) break;
-                if (P->bound <= tol) break;
-                cj_mesh_truncate(mesh, vs, ts);
-                const double *w = P->worst_terms;
-                const int grow_u = w[0] >= w[2] || iter >= 4 || w[1] > w[0] + w[2];
-                const int grow_v = w[2] >= w[0] || iter >= 4 || w[1] > w[0] + w[2];
-                if (grow_u) nu = ceil_grow(nu);
-                if (grow_v) nv = ceil_grow(nv);
-            }
+            st = adaptive_patch(P, opt->tol, cap, q, &nu, &nv);
         }
         if (st) break;
-        if (P->bound > rep.bound || isinf(P->bound)) rep.bound = fmax(rep.bound, P->bound);
+        rep.bound = fmax(rep.bound, P->bound);
         if (opt->measure > 0 && P->measured > rep.measured) rep.measured = P->measured;
         rep.dropped += P->dropped;
         if (nu > rep.max_nu) rep.max_nu = nu;
         if (nv > rep.max_nv) rep.max_nv = nv;
     }
     free(P);
+    free(br);
     rep.vertices = mesh->vertex_count - v_start;
     rep.triangles = mesh->triangle_count - t_start;
     if (report) *report = rep;

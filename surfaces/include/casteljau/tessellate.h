@@ -23,20 +23,20 @@
  * where Muu >= |S_uu|, Muv >= |S_uv|, Mvv >= |S_vv| on the region. Since Σλ_i(u_i-u)² <= du²/4
  * (du = the triangle's extent in u) and likewise in v (Cauchy-Schwarz for the mixed term):
  *     |S(x) - L(x)| <= (Muu du² + 2 Muv du dv + Mvv dv²) / 8.
- * The M's come from the control net of the sub-patch over the row (or column) strip of cells
- * the triangle lies in (convex hull property of the derivative patches):
+ * The M's come from the control net of the sub-patch over the triangle's own (u,v) box (zipper
+ * triangles) or over its grid cell (convex hull property of the derivative patches):
  *     Muu = m(m-1) max |Δ²_u b_ij|,  Muv = m n max |Δ_u Δ_v b_ij|,  Mvv = n(n-1) max |Δ²_v b_ij|,
  * rescaled to the patch's parameters, inflated for the rounding of the differences, plus the
- * rounding error of evaluating the vertices (gamma(3(m+n)+2) max|b|). Since S(x) lies within
- * that distance of the point L(x) of the mesh, it bounds the distance from surface to mesh.
+ * rounding error of evaluating the vertices (gamma(3(m+n)+4) max|b|, twice). Since S(x) lies
+ * within that distance of the point L(x) of the mesh, it bounds the distance surface -> mesh.
  * Rational patches have no such bound here: adaptive mode rejects them (CJ_ERR_UNSUPPORTED)
  * and uniform mode reports bound = +INFINITY.
  *
  * ADAPTIVE CHOICE. Edge counts: smallest k with d(d-1) max|Δ²b| / (8 k²) <= tol/4 (the chord
- * error bound of the edge curve). Grid: nu, nv from the patch's global M so that
- * (Muu/nu² + 2 Muv/(nu nv) + Mvv/nv²)/8 <= tol, then the per-triangle bound above is computed
- * and the grid refined in the direction of the dominant term until the bound is <= tol.
- *
+ * error bound of the edge curve). Grid: nu x nv uniform cells with nu : nv set by the patch's
+ * global sqrt(Muu) : sqrt(Mvv); the scale is the smallest (doubling, then bisection to 3%)
+ * for which the per-triangle bound above is <= tol; the mesh keeps that build.
+ * UNIFORM MODE: K x K cells and K segments on every edge (seed 5.9), same bound.
  * MEASURED DEVIATION (opt->measure = L > 0): for every triangle, max |S(x) - L(x)| over the
  * barycentric lattice of step 1/L (including dropped triangles), i.e. a sampled value of the
  * quantity the bound bounds.
