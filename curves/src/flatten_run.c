@@ -165,7 +165,7 @@ static cj_status run_near_optimal(const cj_fl_curve *fc, double tol_eff, emitter
                                   double *bound) {
     double sub[CJ_FL_WORK], sublo[CJ_FL_WORK], pt[CJ_MAX_DIM];
     const size_t nsub = (size_t)(fc->n + 1) * (size_t)fc->D;
-    const double target = 0.95 * tol_eff, accept_lo = 0.9 * tol_eff;
+    const double target = 0.975 * tol_eff, accept_lo = 0.95 * tol_eff;
     double worst = 0.0;
     cj_fl_end(fc, 0, pt);
     if (emit(em, pt, 0.0)) return cap_fail(em, "near-optimal");

@@ -40,7 +40,7 @@
  *  - CJ_FLATTEN_SUBDIVIDE: recursive (dyadic) de Casteljau subdivision until each piece's
  *    flatness bound is <= tol. Piece counts are powers-of-two-ish.
  *  - CJ_FLATTEN_NEAR_OPTIMAL: each segment is grown greedily from the previous end point until
- *    its proven flatness bound lies in [0.9 tol, tol] (log-log secant on the bound, the
+ *    its proven flatness bound lies in [0.95 tol, tol] (log-log secant on the bound, the
  *    previous step as the first guess, bracketed), so every produced segment is verified by
  *    construction and carries nearly the whole allowed error. Since a short arc deviates from
  *    its chord by κ l^2 / 8, equalising the error per segment is the spacing by the curvature
