@@ -33,6 +33,9 @@ void cli_print_double(double v);
 
 /* One entry per sub-command. */
 int cmd_eval(int argc, char **argv);
+int cmd_interp(int argc, char **argv);
+int cmd_contour(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
+int cmd_tessellate(int argc, char **argv);
 
 #endif

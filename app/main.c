@@ -12,7 +12,10 @@ typedef struct command {
 
 static const command commands[] = {
     {"eval", cmd_eval, "evaluate a Bezier curve (or a derivative) at parameters"},
+    {"interp", cmd_interp, "curves through points (Catmull-Rom, polynomial) as Bezier segments"},
+    {"contour", cmd_contour, "polylines of an implicit curve f(x,y) = 0 inside a box"},
     {"plot", cmd_plot, "render curves described in JSON (or --demo) to a PNG image"},
+    {"tessellate", cmd_tessellate, "Bezier patches (or the Utah teapot) to an OBJ/PLY mesh within a tolerance"},
 };
 
 static void usage(FILE *f) {

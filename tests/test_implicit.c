@@ -157,7 +157,7 @@ static void test_polynomial_two_loops(void **state) {
     assert_int_equal(cj_implicit_poly(4, coef, &sh, &f), CJ_OK);
     /* the exact gradient agrees with the product rule computed here */
     double v, g[2];
-    assert_int_equal(cj_implicit_eval(&f, 0.3, -0.7, &v, g), CJ_OK);
+    assert_int_equal(cj_implicit_curve_eval(&f, 0.3, -0.7, &v, g), CJ_OK);
     const double x = 0.3, y = -0.7, A = (x - 1) * (x - 1) + y * y - 0.25,
                  B = (x + 1) * (x + 1) + y * y - 0.25;
     assert_true(fabs(v - A * B) < 1e-14);
@@ -241,16 +241,16 @@ static void test_user_function_and_normals(void **state) {
     for (int k = 0; k < 16; ++k) {
         const double th = k * 0.41, px = cos(th), py = sin(th);
         double n1[2], n2[2];
-        assert_int_equal(cj_implicit_normal(&fc, px, py, n1), CJ_OK);
-        assert_int_equal(cj_implicit_normal(&f, px, py, n2), CJ_OK);
+        assert_int_equal(cj_implicit_curve_normal(&fc, px, py, n1), CJ_OK);
+        assert_int_equal(cj_implicit_curve_normal(&f, px, py, n2), CJ_OK);
         assert_true(fabs(n1[0] - px) < 1e-15 && fabs(n1[1] - py) < 1e-15);
         worst_fd = fmax(worst_fd, fmax(fabs(n2[0] - px), fabs(n2[1] - py)));
     }
     assert_true(worst_fd < 1e-9);
     double xy[2] = {1.7, 0.3}, res;
-    assert_int_equal(cj_implicit_project(&fc, xy, 1e-12, &res), CJ_OK);
+    assert_int_equal(cj_implicit_curve_project(&fc, xy, 1e-12, &res), CJ_OK);
     assert_true(fabs(hypot(xy[0], xy[1]) - 1) < 1e-12);
-    assert_int_equal(cj_implicit_normal(&fc, 0, 0, xy), CJ_ERR_DEGENERATE);
+    assert_int_equal(cj_implicit_curve_normal(&fc, 0, 0, xy), CJ_ERR_DEGENERATE);
     printf("user callback without gradient contours within tol; normals exact for built-ins, "
            "%.1e for central differences\n",
            worst_fd);

@@ -187,7 +187,8 @@ static void grad_raw(const cj_implicit *f, double x, double y, double g[2]) {
     g[1] = (f->f(f->user, x, yp) - f->f(f->user, x, ym)) / (yp - ym);
 }
 
-cj_status cj_implicit_eval(const cj_implicit *f, double x, double y, double *value, double g[2]) {
+cj_status cj_implicit_curve_eval(const cj_implicit *f, double x, double y, double *value,
+                                 double g[2]) {
     assert(f != NULL && f->f != NULL);
     if (!isfinite(x) || !isfinite(y))
         return cj_fail(CJ_ERR_NONFINITE, "implicit curve evaluated at a non-finite point");
@@ -207,10 +208,10 @@ cj_status cj_implicit_eval(const cj_implicit *f, double x, double y, double *val
     return CJ_OK;
 }
 
-cj_status cj_implicit_normal(const cj_implicit *f, double x, double y, double n[2]) {
+cj_status cj_implicit_curve_normal(const cj_implicit *f, double x, double y, double n[2]) {
     assert(n != NULL);
     double g[2];
-    cj_status st = cj_implicit_eval(f, x, y, NULL, g);
+    cj_status st = cj_implicit_curve_eval(f, x, y, NULL, g);
     if (st) return st;
     const double len = hypot(g[0], g[1]);
     if (!(len > 0.0))
@@ -227,14 +228,15 @@ static double residual_of(double v, const double g[2]) {
     return len > 0.0 ? fabs(v) / len : INFINITY;
 }
 
-cj_status cj_implicit_project(const cj_implicit *f, double xy[2], double tol, double *residual) {
+cj_status cj_implicit_curve_project(const cj_implicit *f, double xy[2], double tol,
+                                    double *residual) {
     assert(xy != NULL);
     if (!(tol > 0.0) || !isfinite(tol))
         return cj_fail(CJ_ERR_ARGUMENT, "projection tolerance %g must be positive and finite", tol);
     double p[2] = {xy[0], xy[1]}, res = INFINITY;
     for (int it = 0; it <= 50; ++it) {
         double v, g[2];
-        cj_status st = cj_implicit_eval(f, p[0], p[1], &v, g);
+        cj_status st = cj_implicit_curve_eval(f, p[0], p[1], &v, g);
         if (st) return st;
         res = residual_of(v, g);
         if (res <= tol) {
@@ -305,7 +307,7 @@ static cj_status refine_edge(contour_ctx *c, const double a[2], const double b[2
         if (!(s > s0 && s < s1)) s = 0.5 * (s0 + s1);
         const double p[2] = {a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])};
         double v, g[2];
-        cj_status st = cj_implicit_eval(c->f, p[0], p[1], &v, g);
+        cj_status st = cj_implicit_curve_eval(c->f, p[0], p[1], &v, g);
         if (st) return st;
         const double r = residual_of(v, g);
         best[0] = p[0];
@@ -360,7 +362,7 @@ static int refine_chord(contour_ctx *c, const double a[2], const double b[2], in
     double m[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
     const double m0[2] = {m[0], m[1]};
     double res;
-    cj_status st = cj_implicit_project(c->f, m, 0.0625 * c->tol, &res);
+    cj_status st = cj_implicit_curve_project(c->f, m, 0.0625 * c->tol, &res);
     if (st == CJ_ERR_NONFINITE) {
         c->err = st;
         return -1;
@@ -486,7 +488,7 @@ cj_status cj_implicit_contour(const cj_implicit *f, const double box[4],
     for (int j = 0; j <= ny; ++j)
         for (int i = 0; i <= nx; ++i) {
             double v;
-            if ((st = cj_implicit_eval(f, gx(&c, i), gy(&c, j), &v, NULL))) goto done;
+            if ((st = cj_implicit_curve_eval(f, gx(&c, i), gy(&c, j), &v, NULL))) goto done;
             c.val[(size_t)j * (size_t)(nx + 1) + (size_t)i] = v;
         }
     /* 2. crossings on sign-changing edges, each computed once */
@@ -528,8 +530,8 @@ cj_status cj_implicit_contour(const cj_implicit *f, const double box[4],
                 /* Saddle: the corners sharing the centre's state are joined through the
                  * centre; the curve cuts off the other two corners. */
                 double fc;
-                if ((st = cj_implicit_eval(f, 0.5 * (gx(&c, i) + gx(&c, i + 1)),
-                                           0.5 * (gy(&c, j) + gy(&c, j + 1)), &fc, NULL)))
+                if ((st = cj_implicit_curve_eval(f, 0.5 * (gx(&c, i) + gx(&c, i + 1)),
+                                                 0.5 * (gy(&c, j) + gy(&c, j + 1)), &fc, NULL)))
                     goto done;
                 const int centre = fc < 0.0;
                 if (centre == bl) { /* bl–tr joined: cut br (bottom,right) and tl (top,left) */

@@ -85,16 +85,18 @@ cj_status cj_implicit_poly(int degree, const double *coef, cj_implicit_shape *sh
 
 /* f and ∇f at (x, y); either output may be NULL. CJ_ERR_NONFINITE if the point or a result is
  * not finite. */
-cj_status cj_implicit_eval(const cj_implicit *f, double x, double y, double *value, double g[2]);
+cj_status cj_implicit_curve_eval(const cj_implicit *f, double x, double y, double *value,
+                                 double g[2]);
 
 /* Unit normal ∇f/|∇f| at (x, y) (pointing towards increasing f: outwards for the built-in
  * circle and ellipse). CJ_ERR_DEGENERATE where ∇f = 0. */
-cj_status cj_implicit_normal(const cj_implicit *f, double x, double y, double n[2]);
+cj_status cj_implicit_curve_normal(const cj_implicit *f, double x, double y, double n[2]);
 
 /* Moves (x, y) onto the curve by Newton steps along the gradient,
  * p ← p − f(p) ∇f(p)/|∇f(p)|², until |f|/|∇f| <= tol (at most 50 steps: CJ_ERR_CAP, with the
  * last point written). xy is updated in place; *residual (may be NULL) gets |f|/|∇f|. */
-cj_status cj_implicit_project(const cj_implicit *f, double xy[2], double tol, double *residual);
+cj_status cj_implicit_curve_project(const cj_implicit *f, double xy[2], double tol,
+                                    double *residual);
 
 /* Receives one polyline: npts points xy[2*npts]; closed = 1 for a loop (last point == first);
  * max_residual = max over its vertices of |f|/|∇f|. The points are valid only during the call.
