@@ -3,7 +3,8 @@
  * The hodograph is formed once; each rule evaluates it by de Casteljau at 15 nodes. The
  * intervals live in a max-heap keyed by their error estimate; while the total estimate exceeds
  * tol, the worst interval is bisected (QUADPACK QAG style). An interval's estimate is
- * |K15 - G7| plus a rounding floor (see gk15); the total is their sum, pessimistic for smooth
+ * |K15 - G7| plus a rounding floor, raised to a rigorous bound where the nodes are too sparse
+ * to see a dip of the speed (see gk15); the total is their sum, pessimistic for smooth
  * integrands (K15 is exact for polynomials of degree 22, G7 for degree 13). Cusps, where |c'|
  * has a kink, are handled by the bisection concentrating there.
  *
@@ -17,6 +18,8 @@
 #include <string.h>
 
 #define CJ_ARCLEN_MAX_INTERVALS 2000
+/* Initial uniform pieces for degree n. */
+#define CJ_ARCLEN_INITIAL(n) (2 + (n) / 2)
 
 /* Kronrod nodes (positive half, decreasing; the odd ones are the Gauss nodes) and weights. */
 static const double xgk[8] = {
@@ -37,6 +40,7 @@ static const double wg[4] = {
 typedef struct speed_fn {
     const double *h; /* hodograph control points */
     int m, d;        /* its degree and dimension */
+    double d2;       /* upper bound of |c''| on [0,1] */
 } speed_fn;
 
 static double speed(const speed_fn *f, double t) {
@@ -83,21 +87,35 @@ static void sift_up(arc_iv *h, int i) {
     }
 }
 
-/* GK15 on [x0,x1]: returns K15, writes |K15 - G7| plus the rounding floor to *err. The
- * floor covers the speed evaluations (de Casteljau on the hodograph, then the norm) and the
- * 15-term weighted sum: gamma(3m + 2d + 20) times the integral of |c'|, so that tolerances
- * below what double precision can deliver are reported as a cap, not claimed as met. */
+/* GK15 on [x0,x1]: returns K15 and writes the interval's error estimate to *err.
+ *
+ * Estimate: |K15 - G7| plus a rounding floor gamma(3m + 2d + 20) |K15| (speed evaluations by
+ * de Casteljau on the hodograph and the norm, and the 15-term sum), so that tolerances below
+ * what double precision can deliver are reported as a cap, not claimed as met.
+ *
+ * Resolution guard: K15 and G7 can agree by accident when |c'| has a narrow valley (a near
+ * cusp) between the nodes. No point of [x0,x1] is farther than 0.052 (x1-x0) from a node, and
+ * |c''| <= D2 (the hull bound of the second hodograph), so the speed between nodes is at least
+ * s_min - 0.052 h D2. Unless 0.25 h D2 <= s_min (the speed cannot dip below ~0.8 s_min unseen),
+ * the estimate is raised to the rigorous bound max(K15, max ∫|c'|) <= h (s_max + 0.052 h D2):
+ * both the integral and K15 lie in [0, that], so it bounds their difference. Near a true cusp
+ * this bound shrinks like h^2 and bisection still converges. */
 static double gk15(const speed_fn *f, double x0, double x1, double *err) {
-    const double c = 0.5 * (x0 + x1), hw = 0.5 * (x1 - x0);
+    const double c = 0.5 * (x0 + x1), hw = 0.5 * (x1 - x0), h = x1 - x0;
     const double fc = speed(f, c);
-    double k = wgk[7] * fc, g = wg[3] * fc;
+    double k = wgk[7] * fc, g = wg[3] * fc, smin = fc, smax = fc;
     for (int j = 0; j < 7; ++j) {
         const double dx = hw * xgk[j];
-        const double s = speed(f, c - dx) + speed(f, c + dx);
+        const double s1 = speed(f, c - dx), s2 = speed(f, c + dx);
+        const double s = s1 + s2;
+        smin = fmin(smin, fmin(s1, s2));
+        smax = fmax(smax, fmax(s1, s2));
         k += wgk[j] * s;
         if (j & 1) g += wg[j / 2] * s;
     }
-    *err = fabs((k - g) * hw) + cj_gamma(3 * f->m + 2 * f->d + 20) * fabs(k * hw);
+    double e = fabs((k - g) * hw) + cj_gamma(3 * f->m + 2 * f->d + 20) * fabs(k * hw);
+    if (!(0.25 * h * f->d2 <= smin)) e = fmax(e, h * (smax + 0.052 * h * f->d2));
+    *err = e;
     return k * hw;
 }
 
@@ -126,14 +144,35 @@ cj_status cj_bezier_arclength(const cj_bezier *c, double a, double b, double tol
     }
     double h[CJ_BEZIER_WORK];
     (void)cj_bezier_hodograph(c, 1, h);
-    const speed_fn f = {h, n - 1, d};
+    /* |c''(t)| <= max_i |(n-1) (h_{i+1} - h_i)| by the convex hull property. */
+    double d2 = 0.0;
+    for (int i = 0; i + 1 < n; ++i) {
+        double q = 0.0;
+        for (int k = 0; k < d; ++k) {
+            const double v = (double)(n - 1) * (h[(i + 1) * d + k] - h[i * d + k]);
+            q += v * v;
+        }
+        d2 = fmax(d2, sqrt(q));
+    }
+    d2 *= 1.0 + cj_gamma(d + 4); /* the bound itself is rounded */
+    const speed_fn f = {h, n - 1, d, d2};
 
     arc_iv heap[CJ_ARCLEN_MAX_INTERVALS];
-    int count = 1, capped = 0;
-    heap[0].x0 = a;
+    const double span = b - a;
+    /* Start from a uniform partition that grows with the degree: a single 15-point rule over
+     * a long, wiggly piece can have K15 and G7 agree by accident (both wrong), which would
+     * end the refinement with an optimistic estimate. */
+    int count = CJ_ARCLEN_INITIAL(n), capped = 0;
+    double total_err = 0.0;
+    heap[0].x0 = a; /* (count >= 2; this only tells the compiler heap[0] is set) */
     heap[0].x1 = b;
-    heap[0].val = gk15(&f, a, b, &heap[0].err);
-    double total_err = heap[0].err;
+    for (int i = 0; i < count; ++i) {
+        heap[i].x0 = i == 0 ? a : a + span * ((double)i / count);
+        heap[i].x1 = i == count - 1 ? b : a + span * ((double)(i + 1) / count);
+        heap[i].val = gk15(&f, heap[i].x0, heap[i].x1, &heap[i].err);
+        total_err += heap[i].err;
+        sift_up(heap, i);
+    }
     while (total_err > tol) {
         const arc_iv worst = heap[0];
         const double mid = 0.5 * (worst.x0 + worst.x1);

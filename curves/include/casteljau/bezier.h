@@ -156,9 +156,12 @@ cj_status cj_bezier_hull2d(const cj_bezier *c, int *idx, int *count);
  * error estimate reached. If the recursion cap is hit before tol is met, the best value and
  * its estimate are still written and CJ_ERR_CAP is returned.
  * Method: globally adaptive Gauss–Kronrod 7/15 (worst interval bisected first), at most 2000
- * intervals, no allocation. The estimate is Σ|K15 - G7| plus a rounding floor
- * gamma(3n + 2d + 17) * length, so a tol below what double precision can deliver ends in
- * CJ_ERR_CAP rather than a false claim. a > b or a, b outside [0,1]: CJ_ERR_RANGE; tol <= 0:
+ * intervals (initially 2 + n/2 uniform pieces), no allocation. The estimate is Σ|K15 - G7| plus
+ * a rounding floor gamma(3n + 2d + 17) * length, so a tol below what double precision can
+ * deliver ends in CJ_ERR_CAP rather than a false claim; on an interval whose nodes are too
+ * sparse to exclude a hidden dip of the speed (h max|c''| > 4 min node speed) the estimate is
+ * replaced by the rigorous bound h (max node speed + 0.052 h max|c''|), so near-cusps are
+ * refined instead of being missed. a > b or a, b outside [0,1]: CJ_ERR_RANGE; tol <= 0:
  * CJ_ERR_ARGUMENT; NaN: CJ_ERR_NONFINITE. */
 cj_status cj_bezier_arclength(const cj_bezier *c, double a, double b, double tol, double *length,
                               double *error_estimate);
