@@ -234,6 +234,7 @@ static void test_vtu_round_trip(void **state) {
     assert_int_equal(cj_vtk_read_curves("no_such_file.vtu", deg, 3, pts, w, 13, &nc, &np, NULL),
                      CJ_ERR_IO);
     assert_int_equal(cj_vtk_write_curves(path, NULL, 0, NULL, 0), CJ_ERR_EMPTY);
+    remove(path);
     printf(".vtu round trip: 2 polynomial + 1 rational VTK_BEZIER_CURVE cells read back "
            "bit-exactly (node order and weights), failed writes leave no file\n");
 }
