@@ -31,14 +31,26 @@ cj_status cj_fl_init(cj_fl_curve *fc, const cj_bezier *c, const double *weights)
     fc->pts = c->pts;
     fc->s2 = ldexp(1.0, 1 - n);
     fc->D = d + (weights != NULL);
-    double maxabs = 0.0;
+    /* Coordinates and weights are scaled by powers of two (exact) to magnitudes near 1, so
+     * that squared distances in the bounds neither overflow nor underflow; results are scaled
+     * back by fc->escale. */
+    double maxabs = 0.0, wmaxs = 1.0;
     for (int i = 0; i <= n; ++i) {
+        for (int k = 0; k < d; ++k)
+            if (fabs(c->pts[i * d + k]) > maxabs) maxabs = fabs(c->pts[i * d + k]);
+        if (weights && (i == 0 || weights[i] > wmaxs)) wmaxs = weights[i];
+    }
+    int ew = 0;
+    fc->escale = 0;
+    if (maxabs > 0.0) (void)frexp(maxabs, &fc->escale);
+    (void)frexp(wmaxs, &ew);
+    for (int i = 0; i <= n; ++i) {
+        const double wi = weights ? ldexp(weights[i], -ew) : 1.0;
         for (int k = 0; k < d; ++k) {
-            const double x = c->pts[i * d + k];
-            if (fabs(x) > maxabs) maxabs = fabs(x);
-            fc->hom[i * fc->D + k] = weights ? weights[i] * x : x;
+            const double x = ldexp(c->pts[i * d + k], -fc->escale);
+            fc->hom[i * fc->D + k] = weights ? wi * x : x;
         }
-        if (weights) fc->hom[i * fc->D + d] = weights[i];
+        if (weights) fc->hom[i * fc->D + d] = wi;
     }
     /* Rounding allowance: the subcurve (two de Casteljau splits), the division by the weight
      * and the point-to-chord arithmetic each lose O(n u) relative to the coordinates'
@@ -89,7 +101,8 @@ void cj_fl_split_half(const double *src, int n, int D, double *left, double *rig
     }
 }
 
-void cj_fl_point(const cj_fl_curve *fc, const double *h, int i, double *out) {
+/* Point i in the scaled coordinates. */
+static void point_scaled(const cj_fl_curve *fc, const double *h, int i, double *out) {
     const int d = fc->d, D = fc->D;
     if (fc->rational) {
         const double w = h[i * D + d];
@@ -97,6 +110,11 @@ void cj_fl_point(const cj_fl_curve *fc, const double *h, int i, double *out) {
     } else {
         for (int k = 0; k < d; ++k) out[k] = h[i * D + k];
     }
+}
+
+void cj_fl_point(const cj_fl_curve *fc, const double *h, int i, double *out) {
+    point_scaled(fc, h, i, out);
+    for (int k = 0; k < fc->d; ++k) out[k] = ldexp(out[k], fc->escale);
 }
 
 void cj_fl_end(const cj_fl_curve *fc, int i, double *out) {
@@ -132,7 +150,7 @@ double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
     const double *p = sub; /* Euclidean points, stride d */
     if (fc->rational) {
         for (int i = 0; i <= n; ++i) {
-            cj_fl_point(fc, sub, i, pbuf + i * d);
+            point_scaled(fc, sub, i, pbuf + i * d);
             w[i] = sub[i * D + d];
         }
         p = pbuf;
@@ -227,7 +245,7 @@ double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
         if (bp < best) best = bp;
         if (bc < best) best = bc;
     }
-    return best;
+    return ldexp(best, fc->escale);
 }
 
 double cj_fl_wang_coefficient(const cj_fl_curve *fc) {
@@ -244,7 +262,7 @@ double cj_fl_wang_coefficient(const cj_fl_curve *fc) {
             const double m2 = norm(e, d);
             if (m2 > M) M = m2;
         }
-        return nn1 * M / 8.0;
+        return ldexp(nn1 * M / 8.0, fc->escale);
     }
     /* Rational: with o the centre of the control points' box, P = Σ w_i (b_i - o) B_i and
      * W = Σ w_i B_i, the chord point c_L = P_L / W_L of the linear interpolants satisfies
@@ -252,7 +270,7 @@ double cj_fl_wang_coefficient(const cj_fl_curve *fc) {
      * |c - c_L| <= h^2/8 (max|P''| + R max|W''|) / w_min. */
     double lo[CJ_MAX_DIM], hi[CJ_MAX_DIM], o[CJ_MAX_DIM], pt[CJ_MAX_DIM];
     for (int i = 0; i <= n; ++i) {
-        cj_fl_point(fc, fc->hom, i, pt);
+        point_scaled(fc, fc->hom, i, pt);
         for (int k = 0; k < d; ++k) {
             if (i == 0 || pt[k] < lo[k]) lo[k] = pt[k];
             if (i == 0 || pt[k] > hi[k]) hi[k] = pt[k];
@@ -261,7 +279,7 @@ double cj_fl_wang_coefficient(const cj_fl_curve *fc) {
     for (int k = 0; k < d; ++k) o[k] = 0.5 * (lo[k] + hi[k]);
     double R = 0.0, Mwb = 0.0, Mw = 0.0, wmin = fc->hom[d];
     for (int i = 0; i <= n; ++i) {
-        cj_fl_point(fc, fc->hom, i, pt);
+        point_scaled(fc, fc->hom, i, pt);
         for (int k = 0; k < d; ++k) pt[k] -= o[k];
         const double r = norm(pt, d);
         if (r > R) R = r;
@@ -279,5 +297,5 @@ double cj_fl_wang_coefficient(const cj_fl_curve *fc) {
         const double mw = fabs(w0 - 2.0 * w1 + w2);
         if (mw > Mw) Mw = mw;
     }
-    return nn1 * (Mwb + R * Mw) / (8.0 * wmin);
+    return ldexp(nn1 * (Mwb + R * Mw) / (8.0 * wmin), fc->escale);
 }

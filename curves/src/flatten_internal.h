@@ -9,11 +9,13 @@
 #define CJ_FL_WORK ((CJ_BEZIER_MAX_DEGREE + 1) * (CJ_MAX_DIM + 1))
 
 /* A validated curve in homogeneous form: hom[i*D + k] = w_i b_i,k (k < d), hom[i*D + d] = w_i
- * for rational curves (D = d+1); hom = b for polynomial ones (D = d). */
+ * for rational curves (D = d+1); hom = b for polynomial ones (D = d). Coordinates and weights
+ * are stored scaled by powers of two (see escale); cj_fl_point and the bounds undo it. */
 typedef struct cj_fl_curve {
     int n, d, D;
     int rational;
     double slack;      /* rounding allowance added to every bound */
+    int escale;        /* coordinates are stored times 2^-escale (exact scaling) */
     double s2;         /* 2^(1-n), the smallest end-weight share of a polynomial piece */
     const double *pts; /* the caller's Euclidean control points (exact end points) */
     double hom[CJ_FL_WORK];
