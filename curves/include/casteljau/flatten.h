@@ -58,7 +58,9 @@
  *   CJ_ERR_NONFINITE  tol is NaN/Inf, or a coordinate/weight is NaN/Inf
  *   CJ_ERR_RANGE      tol <= 0, or tol is below what double rounding of these coordinates can
  *                     guarantee (4x the rounding allowance, ~1e-13 of the largest coordinate
- *                     for cubics), or the coordinates are so large (~1e150) the bounds overflow
+ *                     for cubics), or a bound exceeds the double range (deviations ~1e308;
+ *                     coordinates are scaled by powers of two internally, so 1e-300..1e307
+ *                     work)
  *   CJ_ERR_EMPTY      degree < 0 (no control points); a sequence with no pieces
  *   CJ_ERR_DEGREE     degree > CJ_BEZIER_MAX_DEGREE (degree 0, one point, is accepted as a
  *                     single zero-length segment)
