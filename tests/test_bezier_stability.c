@@ -246,6 +246,58 @@ static void test_far_from_origin(void **state) {
     cj_eval_stats_print("coordinates offset by 1e8", &st);
 }
 
+/* Extrapolation (t outside [0,1]): the published bounds are stated on [0,1], but the library's
+ * bounds use |1-t| and |t| and must hold everywhere; checked for every method against the
+ * exact value. */
+static void test_extrapolation(void **state) {
+    (void)state;
+    cj_rng r;
+    cj_rng_init(&r, seed ^ 0xe7);
+    static const int degrees[] = {1, 3, 8, 20, 56};
+    static const double ts[] = {-1.0, -0.25, -1e-3, 1.001, 1.25, 2.0, 2.5, 5.0};
+    mpfr_t val;
+    mpfr_init2(val, 256);
+    double worst[CJ_N_METHODS + 1] = {0};
+    int checked = 0;
+    for (size_t di = 0; di < sizeof degrees / sizeof degrees[0]; ++di)
+        for (int cv = 0; cv < 3; ++cv) {
+            const int n = degrees[di], d = 1 + cv;
+            double pts[57 * 3];
+            for (int i = 0; i < (n + 1) * d; ++i) pts[i] = cj_rng_range(&r, -1.0, 1.0);
+            const cj_bezier c = cj_bezier_view(n, d, pts);
+            for (size_t j = 0; j < sizeof ts / sizeof ts[0]; ++j) {
+                double v[CJ_N_METHODS][CJ_MAX_DIM], b[CJ_N_METHODS][CJ_MAX_DIM], vc[CJ_MAX_DIM],
+                    ap[CJ_MAX_DIM];
+                for (int m = 0; m < CJ_N_METHODS; ++m) {
+                    assert_int_equal(cj_bezier_eval(&c, (cj_eval_method)m, ts[j], v[m]), CJ_OK);
+                    assert_int_equal(cj_bezier_error_bound(&c, (cj_eval_method)m, ts[j], b[m]),
+                                     CJ_OK);
+                }
+                assert_int_equal(cj_bezier_eval_compensated(&c, ts[j], vc, ap), CJ_OK);
+                for (int k = 0; k < d; ++k) {
+                    assert_true(cj_oracle_bezier(pts, n, d, k, ts[j], 1 << 15, val, NULL) == 0.0);
+                    for (int m = 0; m <= CJ_N_METHODS; ++m) {
+                        const double got = m < CJ_N_METHODS ? v[m][k] : vc[k];
+                        const double bound = m < CJ_N_METHODS ? b[m][k] : ap[k];
+                        const double err = cj_oracle_abs_error(got, val);
+                        if (!(err <= bound))
+                            fail_msg("extrapolation, degree %d dim %d, t = %g, method %d%s, "
+                                     "coordinate %d: error %.3e > bound %.3e (seed %llu)",
+                                     n, d, ts[j], m < CJ_N_METHODS ? m : 3,
+                                     m < CJ_N_METHODS ? "" : " (a-posteriori)", k, err, bound,
+                                     (unsigned long long)seed);
+                        if (bound > 0 && err / bound > worst[m]) worst[m] = err / bound;
+                    }
+                    ++checked;
+                }
+            }
+        }
+    mpfr_clear(val);
+    printf("extrapolation t in [-1,5] \\ [0,1]: %d coordinates, degrees 1..56; worst error/bound "
+           "dc %.2g bern %.2g horner %.2g comp %.2g a-posteriori %.2g\n",
+           checked, worst[0], worst[1], worst[2], worst[3], worst[4]);
+}
+
 /* cj_bezier_cond against the exact condition number. */
 static void test_condition_number(void **state) {
     (void)state;
@@ -290,6 +342,7 @@ int main(void) {
         cmocka_unit_test(test_random_degree_80),
         cmocka_unit_test(test_parameters_near_ends),
         cmocka_unit_test(test_far_from_origin),
+        cmocka_unit_test(test_extrapolation),
         cmocka_unit_test(test_condition_number),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
