@@ -452,7 +452,9 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu
                            s, cap, tol);
     }
     const dbounds gb = net_bounds(P->h, P->m, P->n);
-    const double base_u = sqrt(gb.uu / (4.0 * tol)), base_v = sqrt(gb.vv / (4.0 * tol));
+    /* the mixed term needs both directions refined even when one is straight */
+    const double base_u = sqrt(fmax(gb.uu, gb.uv) / (4.0 * tol));
+    const double base_v = sqrt(fmax(gb.vv, gb.uv) / (4.0 * tol));
     const size_t vs = P->mesh->vertex_count, ts = P->mesh->triangle_count;
     double lo = 0.0, hi = 0.0, s = 1.0;
     int best_nu = 0, best_nv = 0;

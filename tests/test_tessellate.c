@@ -1,0 +1,550 @@
+/* Tessellation: the surface-to-mesh deviation, measured by dense sampling with an independent
+ * Bernstein-sum evaluator, stays within the reported bound and the tolerance (random patches
+ * and the teapot at three tolerances); the teapot mesh has zero cracks (every shared patch edge
+ * carries bit-identical vertices on both sides; boundary edges only on the true open boundary);
+ * closed meshes (torus, ellipsoid) are manifold with Euler characteristic 0 and 2; the teapot
+ * data's shared edges; OBJ/PLY export; the .bpt loader's messages. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "casteljau/analytic.h"
+#include "casteljau/patchset.h"
+#include "casteljau/quadric.h"
+#include "casteljau/tessellate.h"
+#include "rng.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define PI      3.14159265358979323846
+#define SQRT1_2 0.70710678118654752440
+
+#ifndef CJ_TEAPOT_PATH
+#define CJ_TEAPOT_PATH "data/teapot.bpt"
+#endif
+
+static uint64_t seed;
+
+static double binom(int n, int k) {
+    double r = 1.0;
+    for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
+    return r;
+}
+
+/* Independent evaluation: the Bernstein sum (polynomial or rational). */
+static void bern_eval(const cj_patch *p, double u, double v, double out[3]) {
+    const int m = p->deg_u, n = p->deg_v;
+    double bu[CJ_PATCH_MAX_DEGREE + 1], bv[CJ_PATCH_MAX_DEGREE + 1];
+    for (int i = 0; i <= m; ++i) bu[i] = binom(m, i) * pow(u, i) * pow(1 - u, m - i);
+    for (int j = 0; j <= n; ++j) bv[j] = binom(n, j) * pow(v, j) * pow(1 - v, n - j);
+    double num[3] = {0, 0, 0}, den = 0;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= m; ++i) {
+            const int q = j * (m + 1) + i;
+            const double w = bu[i] * bv[j] * (p->weights ? p->weights[q] : 1.0);
+            den += w;
+            for (int k = 0; k < 3; ++k) num[k] += w * p->pts[3 * q + k];
+        }
+    for (int k = 0; k < 3; ++k) out[k] = p->weights ? num[k] / den : num[k];
+}
+
+/* max over triangles of max over the barycentric lattice (step 1/L) of |S(x) - L(x)|, with
+ * S evaluated by the oracle at the interpolated (u,v). Also checks every vertex lies on its
+ * patch (within 1e-12 of the size). */
+static double sample_deviation(const cj_mesh *mesh, const cj_patch *patches, int L, double size) {
+    double worst = 0.0;
+    for (size_t t = 0; t < mesh->triangle_count; ++t) {
+        const cj_patch *p = &patches[mesh->triangle_patch[t]];
+        const uint32_t *v = mesh->triangles + 3 * t;
+        const double *uv[3], *P[3];
+        for (int k = 0; k < 3; ++k) {
+            uv[k] = mesh->uvs + 2 * (size_t)v[k];
+            P[k] = mesh->positions + 3 * (size_t)v[k];
+            double s[3];
+            bern_eval(p, uv[k][0], uv[k][1], s);
+            for (int c = 0; c < 3; ++c)
+                if (fabs(s[c] - P[k][c]) > 1e-12 * size)
+                    fail_msg("triangle %zu vertex %d is not on patch %d", t, k,
+                             (int)mesh->triangle_patch[t]);
+        }
+        for (int i = 0; i <= L; ++i)
+            for (int j = 0; i + j <= L; ++j) {
+                const double a = (double)i / L, b = (double)j / L, c = 1.0 - a - b;
+                double s[3], d2 = 0.0;
+                bern_eval(p, a * uv[0][0] + b * uv[1][0] + c * uv[2][0],
+                          a * uv[0][1] + b * uv[1][1] + c * uv[2][1], s);
+                for (int k = 0; k < 3; ++k) {
+                    const double x = s[k] - (a * P[0][k] + b * P[1][k] + c * P[2][k]);
+                    d2 += x * x;
+                }
+                worst = fmax(worst, sqrt(d2));
+            }
+    }
+    return worst;
+}
+
+static void test_random_patches_within_tol(void **state) {
+    (void)state;
+    cj_rng r;
+    cj_rng_init(&r, seed);
+    int cases = 0;
+    double worst_ratio = 0.0;
+    for (int c = 0; c < 24; ++c) {
+        const int m = cj_rng_int(&r, 1, 5), n = cj_rng_int(&r, 1, 5);
+        double pts[36 * 3];
+        for (int q = 0; q < (m + 1) * (n + 1); ++q) {
+            pts[3 * q] = (double)(q % (m + 1)) / m + cj_rng_range(&r, -0.4, 0.4);
+            pts[3 * q + 1] = (double)(q / (m + 1)) / n + cj_rng_range(&r, -0.4, 0.4);
+            pts[3 * q + 2] = cj_rng_range(&r, -0.8, 0.8);
+        }
+        cj_patch p = cj_patch_view(m, n, pts, NULL);
+        double size;
+        cj_patch_size(&p, &size);
+        const double tol = (c % 2 ? 1e-2 : 2e-3) * size;
+        for (int mode = 0; mode < 2; ++mode) {
+            cj_mesh *mesh;
+            assert_int_equal(cj_mesh_create(NULL, &mesh), CJ_OK);
+            cj_tess_options opt = {tol, mode ? 9 : 0, 0, 0};
+            cj_tess_report rep;
+            const cj_status st = cj_tessellate_patches(&p, 1, &opt, mesh, &rep);
+            if (st != CJ_OK)
+                fail_msg("seed %llu case %d mode %d (deg %d,%d): %s", (unsigned long long)seed, c,
+                         mode, m, n, cj_last_error());
+            const double dev = sample_deviation(mesh, &p, 6, size);
+            if (dev > rep.bound)
+                fail_msg("seed %llu case %d mode %d: sampled deviation %.6g > proven bound %.6g",
+                         (unsigned long long)seed, c, mode, dev, rep.bound);
+            if (mode == 0 && rep.bound > tol)
+                fail_msg("seed %llu case %d: bound %.6g > tol %.6g", (unsigned long long)seed, c,
+                         rep.bound, tol);
+            worst_ratio = fmax(worst_ratio, dev / rep.bound);
+            /* all triangles counter-clockwise in (u,v) */
+            for (size_t t = 0; t < mesh->triangle_count; ++t) {
+                const double *a = mesh->uvs + 2 * (size_t)mesh->triangles[3 * t],
+                             *b = mesh->uvs + 2 * (size_t)mesh->triangles[3 * t + 1],
+                             *cc = mesh->uvs + 2 * (size_t)mesh->triangles[3 * t + 2];
+                assert_true((b[0] - a[0]) * (cc[1] - a[1]) - (b[1] - a[1]) * (cc[0] - a[0]) > 0);
+            }
+            cj_mesh_destroy(mesh);
+            ++cases;
+        }
+    }
+    printf(
+        "random patches (deg 1..5): %d tessellations (adaptive to tol and uniform 9x9), "
+        "sampled deviation <= proven bound <= tol; worst deviation/bound %.3f; all CCW in (u,v)\n",
+        cases, worst_ratio);
+}
+
+/* ---- teapot ---------------------------------------------------------------------------- */
+
+typedef struct edge_ref {
+    int patch, side, degree, collapsed;
+    double pts[4 * 3];
+} edge_ref;
+
+static void teapot_edges(const cj_patchset *set, edge_ref *e) {
+    for (size_t q = 0; q < set->count; ++q)
+        for (int s = 0; s < 4; ++s) {
+            edge_ref *x = &e[q * 4 + (size_t)s];
+            x->patch = (int)q;
+            x->side = s;
+            assert_int_equal(
+                cj_patch_boundary(&set->patches[q], (cj_patch_edge)s, x->pts, NULL, &x->degree),
+                CJ_OK);
+            x->collapsed = 1;
+            for (int a = 1; a <= x->degree; ++a)
+                if (memcmp(x->pts, x->pts + 3 * a, 3 * sizeof(double))) x->collapsed = 0;
+        }
+}
+
+/* Whether edges x and y have the same control points, forward or reversed. */
+static int same_edge(const edge_ref *x, const edge_ref *y) {
+    if (x->degree != y->degree) return 0;
+    const int d = x->degree;
+    int fwd = 1, rev = 1;
+    for (int a = 0; a <= d; ++a) {
+        if (memcmp(x->pts + 3 * a, y->pts + 3 * a, 24)) fwd = 0;
+        if (memcmp(x->pts + 3 * a, y->pts + 3 * (d - a), 24)) rev = 0;
+    }
+    return fwd || rev;
+}
+
+static void test_teapot_data(void **state) {
+    (void)state;
+    cj_patchset *set;
+    assert_int_equal(cj_patchset_load_bpt(CJ_TEAPOT_PATH, NULL, &set), CJ_OK);
+    assert_int_equal((int)set->count, 32);
+    for (size_t q = 0; q < 32; ++q) {
+        assert_int_equal(set->patches[q].deg_u, 3);
+        assert_int_equal(set->patches[q].deg_v, 3);
+    }
+    double lo[3], hi[3], diag;
+    assert_int_equal(cj_patchset_bbox(set, lo, hi, &diag), CJ_OK);
+    const double elo[3] = {-3.0, -2.0, 0.0}, ehi[3] = {3.525, 2.0, 3.15};
+    for (int k = 0; k < 3; ++k) {
+        assert_true(lo[k] == elo[k]);
+        assert_true(hi[k] == ehi[k]);
+    }
+    edge_ref e[128];
+    teapot_edges(set, e);
+    int pairs = 0, open = 0, collapsed = 0;
+    for (int i = 0; i < 128; ++i) {
+        if (e[i].collapsed) {
+            ++collapsed;
+            continue;
+        }
+        int partners = 0;
+        for (int j = 0; j < 128; ++j)
+            if (j != i && !e[j].collapsed && same_edge(&e[i], &e[j])) ++partners;
+        assert_true(partners <= 1);
+        if (partners == 0) ++open;
+        if (partners == 1) ++pairs;
+    }
+    pairs /= 2;
+    /* rim/body/bottom 4+4+4+4+4+4+4, handle 6, spout 6, lid 4+4+4 = 52; open: rim, lid rim,
+     * handle and spout ends (4 each); collapsed: lid top and bottom centre (4 each) */
+    assert_int_equal(pairs, 52);
+    assert_int_equal(open, 16);
+    assert_int_equal(collapsed, 8);
+    cj_patchset_destroy(set);
+    printf("teapot data: 32 bicubic patches, control box [-3,3.525]x[-2,2]x[0,3.15], 52 shared "
+           "edge pairs (exact control points), 16 open and 8 collapsed edges\n");
+}
+
+static int cmp3(const void *a, const void *b) {
+    const double *x = a, *y = b;
+    for (int k = 0; k < 3; ++k)
+        if (x[k] != y[k]) return x[k] < y[k] ? -1 : 1;
+    return 0;
+}
+
+/* Positions of patch q's vertices on side s (by their (u,v)), sorted. Returns the count. */
+static size_t side_positions(const cj_mesh *mesh, const size_t *vlo, const size_t *vhi, int q,
+                             int s, double *out) {
+    size_t n = 0;
+    for (size_t i = vlo[q]; i <= vhi[q]; ++i) {
+        const double *uv = mesh->uvs + 2 * i;
+        const int on = (s == 0 && uv[1] == 0.0) || (s == 1 && uv[0] == 1.0) ||
+                       (s == 2 && uv[1] == 1.0) || (s == 3 && uv[0] == 0.0);
+        if (on) memcpy(out + 3 * n++, mesh->positions + 3 * i, 3 * sizeof(double));
+    }
+    qsort(out, n, 3 * sizeof(double), cmp3);
+    return n;
+}
+
+static void teapot_at(const cj_patchset *set, const edge_ref *e, double tol, int uniform,
+                      int lattice) {
+    double lo[3], hi[3], size;
+    cj_patchset_bbox(set, lo, hi, &size);
+    cj_mesh *mesh;
+    assert_int_equal(cj_mesh_create(NULL, &mesh), CJ_OK);
+    cj_tess_options opt = {tol, uniform, 0, 0};
+    cj_tess_report rep;
+    assert_int_equal(cj_tessellate_patches(set->patches, set->count, &opt, mesh, &rep), CJ_OK);
+    if (!uniform) assert_true(rep.bound <= tol);
+    const double dev = sample_deviation(mesh, set->patches, lattice, size);
+    if (dev > rep.bound)
+        fail_msg("teapot tol %g: deviation %.6g > bound %.6g", tol, dev, rep.bound);
+    /* vertex ranges per patch (the tessellator appends patch by patch) */
+    size_t vlo[32], vhi[32];
+    for (int q = 0; q < 32; ++q) vlo[q] = (size_t)-1, vhi[q] = 0;
+    for (size_t t = 0; t < mesh->triangle_count; ++t) {
+        const int q = mesh->triangle_patch[t];
+        for (int k = 0; k < 3; ++k) {
+            const size_t v = mesh->triangles[3 * t + k];
+            if (v < vlo[q]) vlo[q] = v;
+            if (v > vhi[q]) vhi[q] = v;
+        }
+    }
+    /* every shared edge: the same positions, bit for bit, on both sides */
+    double *a = malloc(sizeof(double) * 3 * 8192), *b = malloc(sizeof(double) * 3 * 8192);
+    assert_non_null(a);
+    assert_non_null(b);
+    int shared_checked = 0;
+    size_t expected_boundary = 0;
+    for (int i = 0; i < 128; ++i) {
+        if (e[i].collapsed) continue;
+        int partner = -1;
+        for (int j = 0; j < 128; ++j)
+            if (j != i && !e[j].collapsed && same_edge(&e[i], &e[j])) partner = j;
+        if (partner < 0) {
+            expected_boundary +=
+                uniform ? (size_t)uniform
+                        : (size_t)cj_tess_edge_segments(e[i].pts, e[i].degree, 0.25 * tol, 1 << 20);
+            continue;
+        }
+        if (partner < i) continue;
+        const size_t na = side_positions(mesh, vlo, vhi, e[i].patch, e[i].side, a);
+        const size_t nb = side_positions(mesh, vlo, vhi, e[partner].patch, e[partner].side, b);
+        if (na != nb || memcmp(a, b, na * 3 * sizeof(double)))
+            fail_msg("teapot tol %g: patches %d and %d disagree along their shared edge (%zu vs "
+                     "%zu vertices)",
+                     tol, e[i].patch, e[partner].patch, na, nb);
+        ++shared_checked;
+    }
+    free(a);
+    free(b);
+    assert_int_equal(shared_checked, 52);
+    cj_mesh_topology topo;
+    assert_int_equal(cj_mesh_topology_compute(mesh, &topo), CJ_OK);
+    /* no cracks: boundary edges are exactly the segments of the 16 open edges */
+    if (topo.boundary_edges != expected_boundary)
+        fail_msg("teapot tol %g: %zu boundary edges, expected %zu on the open boundary", tol,
+                 topo.boundary_edges, expected_boundary);
+    assert_int_equal((int)topo.nonmanifold_edges, 0);
+    assert_int_equal((int)topo.misoriented_edges, 0);
+    /* welding keeps the same topology */
+    const size_t tris = mesh->triangle_count;
+    size_t dropped;
+    assert_int_equal(cj_mesh_weld(mesh, &dropped), CJ_OK);
+    assert_int_equal((int)dropped, 0);
+    assert_int_equal(mesh->triangle_count, tris);
+    cj_mesh_topology t2;
+    cj_mesh_topology_compute(mesh, &t2);
+    assert_int_equal(t2.vertices, mesh->vertex_count);
+    assert_int_equal(t2.boundary_edges, topo.boundary_edges);
+    printf("teapot %s %-8g: %7zu triangles, bound %.4g, sampled deviation %.4g; 52 shared edges "
+           "bit-identical, %zu boundary edges = open-boundary segments, manifold, consistently "
+           "oriented\n",
+           uniform ? "uniform K" : "tol", uniform ? (double)uniform : tol, tris, rep.bound, dev,
+           topo.boundary_edges);
+    cj_mesh_destroy(mesh);
+}
+
+static void test_teapot_tolerances_and_cracks(void **state) {
+    (void)state;
+    cj_patchset *set;
+    assert_int_equal(cj_patchset_load_bpt(CJ_TEAPOT_PATH, NULL, &set), CJ_OK);
+    edge_ref e[128];
+    teapot_edges(set, e);
+    double lo[3], hi[3], size;
+    cj_patchset_bbox(set, lo, hi, &size);
+    teapot_at(set, e, 1e-2 * size, 0, 6);
+    teapot_at(set, e, 1e-3 * size, 0, 4);
+    teapot_at(set, e, 3e-4 * size, 0, 2);
+    teapot_at(set, e, 0.0, 12, 4);
+    cj_patchset_destroy(set);
+}
+
+static double signed_volume(const cj_mesh *m) {
+    double vol = 0.0;
+    for (size_t t = 0; t < m->triangle_count; ++t) {
+        const double *a = m->positions + 3 * (size_t)m->triangles[3 * t],
+                     *b = m->positions + 3 * (size_t)m->triangles[3 * t + 1],
+                     *c = m->positions + 3 * (size_t)m->triangles[3 * t + 2];
+        vol += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                a[2] * (b[0] * c[1] - b[1] * c[0])) /
+               6.0;
+    }
+    return vol;
+}
+
+static void test_closed_meshes(void **state) {
+    (void)state;
+    /* torus R = 2, r = 0.5 */
+    cj_torus to;
+    assert_int_equal(cj_torus_init(&to, cj_v3(0, 0, 0), cj_v3(0, 0, 1), 2.0, 0.5), CJ_OK);
+    cj_param_surface s;
+    cj_torus_surface(&to, &s);
+    cj_mesh *mesh;
+    assert_int_equal(cj_mesh_create(NULL, &mesh), CJ_OK);
+    assert_int_equal(cj_tessellate_surface(&s, 48, 24, 0, mesh, NULL), CJ_OK);
+    cj_mesh_topology t;
+    assert_int_equal(cj_mesh_topology_compute(mesh, &t), CJ_OK);
+    assert_int_equal((int)t.boundary_edges, 0);
+    assert_int_equal((int)t.nonmanifold_edges, 0);
+    assert_int_equal((int)t.misoriented_edges, 0);
+    assert_int_equal((int)t.euler, 0);
+    const double vt = signed_volume(mesh), vt_exact = 2 * PI * PI * 2.0 * 0.25;
+    assert_true(fabs(vt - vt_exact) < 0.02 * vt_exact); /* outward: positive volume */
+    cj_mesh_clear(mesh);
+    /* ellipsoid 1 x 2 x 3 */
+    cj_quadric q;
+    assert_int_equal(cj_quadric_ellipsoid(&q, 1.0, 2.0, 3.0), CJ_OK);
+    cj_quadric_surface(&q, &s);
+    size_t dropped = 0;
+    assert_int_equal(cj_tessellate_surface(&s, 40, 20, 1, mesh, &dropped), CJ_OK);
+    assert_int_equal(cj_mesh_topology_compute(mesh, &t), CJ_OK);
+    assert_int_equal((int)t.boundary_edges, 0);
+    assert_int_equal((int)t.nonmanifold_edges, 0);
+    assert_int_equal((int)t.misoriented_edges, 0);
+    assert_int_equal((int)t.euler, 2);
+    assert_int_equal((int)dropped, 2 * 40); /* one fan row of degenerate triangles per pole */
+    const double ve = signed_volume(mesh), ve_exact = 4.0 / 3.0 * PI * 6.0;
+    assert_true(fabs(ve - ve_exact) < 0.02 * ve_exact);
+    /* normals of the mesh point outward: n . (p - centre) > 0 */
+    for (size_t i = 0; i < mesh->vertex_count; ++i) {
+        const double *p = mesh->positions + 3 * i, *n = mesh->normals + 3 * i;
+        assert_true(p[0] * n[0] + p[1] * n[1] + p[2] * n[2] > 0.0);
+    }
+    cj_mesh_destroy(mesh);
+    printf("closed meshes: torus 48x24 and ellipsoid 40x20 are manifold, boundary-free, "
+           "consistently oriented, Euler 0 and 2, outward (volumes %.4f ~ %.4f, %.4f ~ %.4f)\n",
+           vt, vt_exact, ve, ve_exact);
+}
+
+static void test_rational_and_options(void **state) {
+    (void)state;
+    /* a rational quadratic patch (quarter cylinder): uniform works with bound +INF, adaptive is
+     * refused */
+    const double pts[27] = {1,   0, 0, 1,   1, 0, 0, 1, 0, 1, 0, 0.5, 1, 1,
+                            0.5, 0, 1, 0.5, 1, 0, 1, 1, 1, 1, 0, 1,   1};
+    const double w[9] = {1, SQRT1_2, 1, 1, SQRT1_2, 1, 1, SQRT1_2, 1};
+    cj_patch p = cj_patch_view(2, 2, pts, w);
+    cj_mesh *mesh;
+    assert_int_equal(cj_mesh_create(NULL, &mesh), CJ_OK);
+    cj_tess_options opt = {0.0, 8, 0, 0};
+    cj_tess_report rep;
+    assert_int_equal(cj_tessellate_patches(&p, 1, &opt, mesh, &rep), CJ_OK);
+    assert_true(isinf(rep.bound));
+    for (size_t i = 0; i < mesh->vertex_count; ++i) { /* on the unit cylinder */
+        const double *x = mesh->positions + 3 * i;
+        assert_true(fabs(hypot(x[0], x[1]) - 1.0) < 1e-14);
+    }
+    opt.uniform = 0;
+    opt.tol = 1e-3;
+    assert_int_equal(cj_tessellate_patches(&p, 1, &opt, mesh, &rep), CJ_ERR_UNSUPPORTED);
+    opt.tol = -1;
+    assert_int_equal(cj_tessellate_patches(&p, 1, &opt, mesh, &rep), CJ_ERR_ARGUMENT);
+    opt.tol = NAN;
+    assert_int_equal(cj_tessellate_patches(&p, 1, &opt, mesh, &rep), CJ_ERR_NONFINITE);
+    /* the cap is reported */
+    const double hp[27] = {0,  0, 0, 1, 0, 5, 2, 0, 0, 0, 1, 5, 1, 1,
+                           -9, 2, 1, 5, 0, 2, 0, 1, 2, 5, 2, 2, 0};
+    cj_patch hpp = cj_patch_view(2, 2, hp, NULL);
+    cj_tess_options capped = {1e-9, 0, 0, 16};
+    assert_int_equal(cj_tessellate_patches(&hpp, 1, &capped, mesh, &rep), CJ_ERR_CAP);
+    cj_mesh_destroy(mesh);
+    printf("rational patch: uniform on the exact cylinder (bound +INF), adaptive refused "
+           "(UNSUPPORTED); bad tolerances; segment cap reported as CJ_ERR_CAP\n");
+}
+
+static void slurp(const char *path, char **buf, size_t *len) {
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    *buf = malloc((size_t)n + 1);
+    assert_true(fread(*buf, 1, (size_t)n, f) == (size_t)n);
+    (*buf)[n] = '\0';
+    *len = (size_t)n;
+    fclose(f);
+}
+
+static void test_export(void **state) {
+    (void)state;
+    cj_patchset *set;
+    assert_int_equal(cj_patchset_load_bpt(CJ_TEAPOT_PATH, NULL, &set), CJ_OK);
+    cj_mesh *mesh;
+    assert_int_equal(cj_mesh_create(NULL, &mesh), CJ_OK);
+    cj_tess_options opt = {0.0, 3, 0, 0};
+    assert_int_equal(cj_tessellate_patches(set->patches, set->count, &opt, mesh, NULL), CJ_OK);
+    char dir[] = "/tmp/cj_tess_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char obj[256], ply[256], bad[256], plya[256];
+    snprintf(obj, sizeof obj, "%s/t.obj", dir);
+    snprintf(ply, sizeof ply, "%s/t.ply", dir);
+    snprintf(plya, sizeof plya, "%s/ta.ply", dir);
+    snprintf(bad, sizeof bad, "%s/missing/t.obj", dir);
+    assert_int_equal(cj_mesh_write(mesh, obj), CJ_OK);
+    assert_int_equal(cj_mesh_write(mesh, ply), CJ_OK);
+    assert_int_equal(cj_mesh_write_ply(mesh, plya, 0), CJ_OK);
+    assert_int_equal(cj_mesh_write(mesh, bad), CJ_ERR_IO);
+    assert_int_equal(access(bad, F_OK), -1);
+    assert_int_equal(cj_mesh_write(mesh, "x.stl"), CJ_ERR_ARGUMENT);
+    /* OBJ: one v per distinct position, vt/vn per vertex, a g per patch, faces p/t/n */
+    cj_mesh_topology topo;
+    cj_mesh_topology_compute(mesh, &topo);
+    char *text;
+    size_t len;
+    slurp(obj, &text, &len);
+    size_t nv = 0, nvt = 0, nvn = 0, nf = 0, ng = 0;
+    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
+        if (!strncmp(line, "v ", 2)) ++nv;
+        if (!strncmp(line, "vt ", 3)) ++nvt;
+        if (!strncmp(line, "vn ", 3)) ++nvn;
+        if (!strncmp(line, "g patch_", 8)) ++ng;
+        if (!strncmp(line, "f ", 2)) {
+            unsigned a[9];
+            assert_int_equal(sscanf(line, "f %u/%u/%u %u/%u/%u %u/%u/%u", &a[0], &a[1], &a[2],
+                                    &a[3], &a[4], &a[5], &a[6], &a[7], &a[8]),
+                             9);
+            ++nf;
+        }
+    }
+    free(text);
+    assert_int_equal(nvt, mesh->vertex_count);
+    assert_int_equal(nvn, mesh->vertex_count);
+    assert_int_equal(nf, mesh->triangle_count);
+    assert_int_equal(ng, 32);
+    assert_true(nv < mesh->vertex_count); /* welded: seam vertices written once */
+    /* PLY binary: header + 8 doubles per vertex + (1 + 3*4) bytes per face */
+    slurp(ply, &text, &len);
+    char *end = strstr(text, "end_header\n");
+    assert_non_null(end);
+    assert_non_null(strstr(text, "binary_little_endian"));
+    const size_t header = (size_t)(end - text) + strlen("end_header\n");
+    assert_int_equal(len, header + 64 * mesh->vertex_count + 13 * mesh->triangle_count);
+    double x0;
+    memcpy(&x0, text + header, 8);
+    assert_true(x0 == mesh->positions[0]);
+    free(text);
+    slurp(plya, &text, &len);
+    assert_non_null(strstr(text, "format ascii 1.0"));
+    free(text);
+    unlink(obj);
+    unlink(ply);
+    unlink(plya);
+    rmdir(dir);
+    cj_mesh_destroy(mesh);
+    cj_patchset_destroy(set);
+    printf("export: OBJ (welded v, per-vertex vt/vn, 32 g groups, p/t/n faces), binary and ascii "
+           "PLY layout, unwritable path -> CJ_ERR_IO and no file, unknown extension\n");
+}
+
+static void test_bpt_errors(void **state) {
+    (void)state;
+    cj_patchset *set = NULL;
+    assert_int_equal(
+        cj_patchset_parse_bpt("1\n1 1\n0 0 0\n1 0 0\n0 x 0\n1 1 1\n", "a.bpt", NULL, &set),
+        CJ_ERR_PARSE);
+    assert_non_null(strstr(cj_last_error(), "a.bpt:5:"));
+    assert_non_null(strstr(cj_last_error(), "'x'"));
+    assert_int_equal(cj_patchset_parse_bpt("1\n1 1\n0 0 0\n1 0 0\n", "b.bpt", NULL, &set),
+                     CJ_ERR_PARSE);
+    assert_non_null(strstr(cj_last_error(), "end of file"));
+    assert_int_equal(cj_patchset_parse_bpt("1\n40 1\n", "c.bpt", NULL, &set), CJ_ERR_DEGREE);
+    assert_non_null(strstr(cj_last_error(), "c.bpt:2:"));
+    assert_int_equal(cj_patchset_parse_bpt("1 # one patch\n0 0\n1 2 3\n7\n", "d.bpt", NULL, &set),
+                     CJ_ERR_PARSE);
+    assert_non_null(strstr(cj_last_error(), "d.bpt:4:"));
+    assert_int_equal(
+        cj_patchset_parse_bpt("1 # one patch\n0 0\n1 2 3 # a point\n", "e.bpt", NULL, &set), CJ_OK);
+    assert_true(set->count == 1 && set->patches[0].pts[2] == 3.0);
+    cj_patchset_destroy(set);
+    assert_int_equal(cj_patchset_load_bpt("/nonexistent/x.bpt", NULL, &set), CJ_ERR_IO);
+    assert_non_null(strstr(cj_last_error(), "/nonexistent/x.bpt"));
+    printf(".bpt loader: line-numbered messages for a bad number, end of file, a degree over the "
+           "limit, trailing data; comments; missing file names the path\n");
+}
+
+int main(void) {
+    seed = cj_test_seed("test_tessellate", 5905);
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_random_patches_within_tol),
+        cmocka_unit_test(test_teapot_data),
+        cmocka_unit_test(test_teapot_tolerances_and_cracks),
+        cmocka_unit_test(test_closed_meshes),
+        cmocka_unit_test(test_rational_and_options),
+        cmocka_unit_test(test_export),
+        cmocka_unit_test(test_bpt_errors),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
