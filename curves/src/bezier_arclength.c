@@ -38,10 +38,29 @@ static const double wg[4] = {
     0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
 
 typedef struct speed_fn {
-    const double *h; /* hodograph control points */
-    int m, d;        /* its degree and dimension */
-    double d2;       /* upper bound of |c''| on [0,1] */
+    const double *h;  /* hodograph control points */
+    int m, d;         /* its degree and dimension */
+    double d2;        /* upper bound of |c''| on [0,1] */
+    const double *h2; /* second hodograph control points (degree m-1), NULL if m == 0 */
+    double h2_noise;  /* rounding allowance for its control points on a subinterval */
 } speed_fn;
+
+/* Upper bound of |c''| on [x0,x1]: the largest control point of the second hodograph
+ * restricted to [x0,x1] (convex hull property), plus the rounding of that subdivision. Much
+ * tighter than the global bound once intervals are short. */
+static double local_d2(const speed_fn *f, double x0, double x1) {
+    if (!f->h2) return 0.0;
+    double q[CJ_BEZIER_WORK];
+    const cj_bezier c2 = cj_bezier_view(f->m - 1, f->d, f->h2);
+    if (cj_bezier_subcurve(&c2, x0, x1, q) != CJ_OK) return f->d2;
+    double best = 0.0;
+    for (int i = 0; i < f->m; ++i) {
+        double s = 0.0;
+        for (int k = 0; k < f->d; ++k) s += q[i * f->d + k] * q[i * f->d + k];
+        best = fmax(best, sqrt(s));
+    }
+    return fmin(f->d2, best * (1.0 + cj_gamma(f->d + 4)) + f->h2_noise);
+}
 
 static double speed(const speed_fn *f, double t) {
     double w[CJ_BEZIER_WORK];
@@ -95,7 +114,8 @@ static void sift_up(arc_iv *h, int i) {
  *
  * Resolution guard: K15 and G7 can agree by accident when |c'| has a narrow valley (a near
  * cusp) between the nodes. No point of [x0,x1] is farther than 0.052 (x1-x0) from a node, and
- * |c''| <= D2 (the hull bound of the second hodograph), so the speed between nodes is at least
+ * |c''| <= D2 (the hull bound of the second hodograph, globally and, if that is not enough,
+ * restricted to the interval), so the speed between nodes is at least
  * s_min - 0.052 h D2. Unless 0.25 h D2 <= s_min (the speed cannot dip below ~0.8 s_min unseen),
  * the estimate is raised to the rigorous bound max(K15, max ∫|c'|) <= h (s_max + 0.052 h D2):
  * both the integral and K15 lie in [0, that], so it bounds their difference. Near a true cusp
@@ -114,7 +134,10 @@ static double gk15(const speed_fn *f, double x0, double x1, double *err) {
         if (j & 1) g += wg[j / 2] * s;
     }
     double e = fabs((k - g) * hw) + cj_gamma(3 * f->m + 2 * f->d + 20) * fabs(k * hw);
-    if (!(0.25 * h * f->d2 <= smin)) e = fmax(e, h * (smax + 0.052 * h * f->d2));
+    if (!(0.25 * h * f->d2 <= smin)) {
+        const double d2 = local_d2(f, x0, x1);
+        if (!(0.25 * h * d2 <= smin)) e = fmax(e, h * (smax + 0.052 * h * d2));
+    }
     *err = e;
     return k * hw;
 }
@@ -144,18 +167,22 @@ cj_status cj_bezier_arclength(const cj_bezier *c, double a, double b, double tol
     }
     double h[CJ_BEZIER_WORK];
     (void)cj_bezier_hodograph(c, 1, h);
-    /* |c''(t)| <= max_i |(n-1) (h_{i+1} - h_i)| by the convex hull property. */
-    double d2 = 0.0;
+    /* |c''(t)| <= max_i |h2_i| (convex hull property), h2_i = (n-1) (h_{i+1} - h_i). */
+    double h2[CJ_BEZIER_WORK];
+    double d2 = 0.0, h2max = 0.0;
     for (int i = 0; i + 1 < n; ++i) {
         double q = 0.0;
         for (int k = 0; k < d; ++k) {
             const double v = (double)(n - 1) * (h[(i + 1) * d + k] - h[i * d + k]);
+            h2[i * d + k] = v;
             q += v * v;
+            h2max = fmax(h2max, fabs(v));
         }
         d2 = fmax(d2, sqrt(q));
     }
     d2 *= 1.0 + cj_gamma(d + 4); /* the bound itself is rounded */
-    const speed_fn f = {h, n - 1, d, d2};
+    const speed_fn f = {
+        h, n - 1, d, d2, n >= 2 ? h2 : NULL, cj_gamma(6 * n + 8) * h2max * sqrt((double)d)};
 
     arc_iv heap[CJ_ARCLEN_MAX_INTERVALS];
     const double span = b - a;
