@@ -176,7 +176,7 @@ static cj_status run_near_optimal(const cj_fl_curve *fc, double tol_eff, emitter
         return cj_fail(CJ_ERR_RANGE, "flatness bound overflows: coordinates too large");
     double h = K > 0.0 ? 1.5 / sqrt(K / tol_eff) : 1.0;
     if (h > 1.0) h = 1.0;
-    double a = 0.0;
+    double a = 0.0, hprev = 0.0;
     while (a < 1.0) {
         const double hmax = 1.0 - a;
         if (h > hmax) h = hmax;
@@ -240,7 +240,12 @@ static cj_status run_near_optimal(const cj_fl_curve *fc, double tol_eff, emitter
             cj_fl_point(fc, acc, fc->n, pt);
         if (emit(em, pt, bacc)) return cap_fail(em, "near-optimal");
         a = bacc;
-        h = hacc;
+        /* Next guess: this step, corrected for the error it left unused and extrapolated by
+         * the trend of the last two steps (curvature varies smoothly along most curves). */
+        double hn = Dacc > 0.0 && bacc < 1.0 ? hacc * fmin(1.5, sqrt(target / Dacc)) : hacc;
+        if (hprev > 0.0) hn *= fmax(0.7, fmin(1.4, hacc / hprev));
+        hprev = hacc;
+        h = hn;
     }
     *bound = worst + fc->slack;
     return CJ_OK;
