@@ -503,6 +503,72 @@ static void test_frame_degenerate(void **state) {
     assert_int_equal(cj_bezier_tangent(&ce, 0.5, v, NULL), CJ_ERR_EMPTY);
 }
 
+/* The largest degree the API accepts: bbox, hull, arc length, frames and elevation still work
+ * (fixed stack work space) and agree with independent checks. */
+static void test_max_degree(void **state) {
+    (void)state;
+    enum { N = CJ_BEZIER_MAX_DEGREE };
+    static double p[(N + 1) * 2];
+    cj_rng rng;
+    cj_rng_init(&rng, cj_test_seed("max degree", 255));
+    for (int i = 0; i < (N + 1) * 2; ++i) p[i] = cj_rng_range(&rng, -1, 1);
+    cj_bezier c = cj_bezier_view(N, 2, p);
+    /* bbox vs 8001 samples: contains them, and sampling gets within O(h^2) of each face. The
+     * same samples give inscribed polylines with 4000 and 8000 segments for the length. */
+    double lo[2], hi[2];
+    assert_int_equal(cj_bezier_bbox(&c, lo, hi), CJ_OK);
+    double slo[2] = {INFINITY, INFINITY}, shi[2] = {-INFINITY, -INFINITY};
+    double poly = 0, poly_half = 0, prev[2], prev2[2];
+    const int ns = 8000;
+    for (int j = 0; j <= ns; ++j) {
+        double v[2];
+        eval(&c, (double)j / ns, v);
+        for (int k = 0; k < 2; ++k) {
+            slo[k] = fmin(slo[k], v[k]);
+            shi[k] = fmax(shi[k], v[k]);
+        }
+        if (j) poly += hypot(v[0] - prev[0], v[1] - prev[1]);
+        if (j && j % 2 == 0) poly_half += hypot(v[0] - prev2[0], v[1] - prev2[1]);
+        prev[0] = v[0];
+        prev[1] = v[1];
+        if (j % 2 == 0) {
+            prev2[0] = v[0];
+            prev2[1] = v[1];
+        }
+    }
+    for (int k = 0; k < 2; ++k) {
+        assert_true(lo[k] <= slo[k] + 1e-13 && hi[k] >= shi[k] - 1e-13);
+        assert_true(slo[k] - lo[k] < 1e-5 && hi[k] - shi[k] < 1e-5);
+    }
+    /* Hull of 256 points, exact check. */
+    int idx[N + 1], count;
+    assert_int_equal(cj_bezier_hull2d(&c, idx, &count), CJ_OK);
+    check_hull_exact(p, N + 1, idx, count);
+    /* Arc length: at least the inscribed polyline, at most the control polygon, and equal to
+     * the Richardson limit of the polylines (their error falls like h^2) up to a fraction of
+     * the last correction. */
+    double len, err, ctrl = 0;
+    for (int i = 0; i < N; ++i) ctrl += hypot(p[2 * i + 2] - p[2 * i], p[2 * i + 3] - p[2 * i + 1]);
+    const cj_status st = cj_bezier_arclength(&c, 0, 1, 1e-9, &len, &err);
+    assert_int_equal(st, CJ_OK);
+    assert_true(len >= poly - 1e-9 && len <= ctrl);
+    const double rich = poly + (poly - poly_half) / 3;
+    if (!(fabs(len - rich) <= 0.05 * (poly - poly_half) + 1e-9))
+        fail_msg("length %.15g, polylines %.15g %.15g, Richardson %.15g", len, poly_half, poly,
+                 rich);
+    /* Frames and elevation to the limit. */
+    double tg[2], k;
+    assert_int_equal(cj_bezier_tangent(&c, 0.37, tg, NULL), CJ_OK);
+    assert_int_equal(cj_bezier_curvature(&c, 0.37, &k), CJ_OK);
+    cj_bezier c200 = cj_bezier_view(200, 2, p);
+    static double el[(N + 1) * 2];
+    assert_int_equal(cj_bezier_elevate(&c200, N - 200, el), CJ_OK);
+    assert_int_equal(cj_bezier_elevate(&c200, N - 199, el), CJ_ERR_DEGREE);
+    printf("degree %d: bbox [%.6f,%.6f]x[%.6f,%.6f], hull %d vertices, length %.12f (polyline "
+           "Richardson %.12f, estimate %.2g)\n",
+           N, lo[0], hi[0], lo[1], hi[1], count, len, rich, err);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_subcurve),
@@ -516,6 +582,7 @@ int main(void) {
         cmocka_unit_test(test_frame_regular),
         cmocka_unit_test(test_frame_zero_speed),
         cmocka_unit_test(test_frame_degenerate),
+        cmocka_unit_test(test_max_degree),
     };
     printf("bezier geometry: subcurve/elevate/reverse, bbox closed forms, hull vs MPFR, arc "
            "length closed forms, frames incl. cusps and zero speed\n");
