@@ -99,6 +99,18 @@ static void test_degree_limits(void **state) {
         assert_non_null(strstr(cj_last_error(), "256"));
         assert_int_equal(cj_bezier_cond(&c256, 0.6, out), CJ_ERR_DEGREE);
     }
+    /* Derivatives of every order of a degree-255 constant curve are exactly zero: the factor
+     * 255!/(255-j)! overflows for large j, and must not turn 0 into a NaN (t = 1/4 keeps the
+     * triangle exact). */
+    static double konst[(CJ_BEZIER_MAX_DEGREE + 1) * 2], dv[(CJ_BEZIER_MAX_DEGREE + 3) * 2];
+    for (int i = 0; i <= CJ_BEZIER_MAX_DEGREE; ++i) konst[2 * i] = 3.0, konst[2 * i + 1] = -1.5;
+    const cj_bezier ck = cj_bezier_view(CJ_BEZIER_MAX_DEGREE, 2, konst);
+    assert_int_equal(cj_bezier_eval_derivs(&ck, 0.25, CJ_BEZIER_MAX_DEGREE + 2, dv), CJ_OK);
+    assert_true(dv[0] == 3.0 && dv[1] == -1.5);
+    for (int j = 1; j <= CJ_BEZIER_MAX_DEGREE + 2; ++j)
+        if (dv[2 * j] != 0.0 || dv[2 * j + 1] != 0.0)
+            fail_msg("derivative %d of a constant degree-255 curve is (%g, %g)", j, dv[2 * j],
+                     dv[2 * j + 1]);
     printf("degree limits: 56 for Bernstein/Horner, 255 for de Casteljau/compensated, dims 1..4\n");
 }
 
@@ -263,6 +275,10 @@ static void test_bad_input(void **state) {
     expect_fail(cj_bezier_eval_decasteljau(&c, -1e200, out), CJ_ERR_RANGE, "overflows",
                 "de Casteljau overflow");
     expect_fail(cj_bezier_cond(&c, 1e200, out), CJ_ERR_RANGE, "overflows", "cond overflow");
+    double dv[3 * 2] = {7, 7, 7, 7, 7, 7};
+    expect_fail(cj_bezier_eval_derivs(&c, 1e200, 2, dv), CJ_ERR_RANGE, "overflows",
+                "derivatives overflow");
+    for (int i = 0; i < 6; ++i) assert_true(dv[i] == 7);
     assert_true(out[0] == 7 && out[1] == 7 && bnd[0] == 7 && bnd[1] == 7);
     printf("bad input: NaN/inf coordinates and parameters, dimension 0/9, degree -1, unknown "
            "method, overflowing extrapolation; statuses, messages, untouched outputs\n");

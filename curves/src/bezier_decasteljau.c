@@ -79,17 +79,26 @@ cj_status cj_bezier_eval_derivs(const cj_bezier *c, double t, int kmax, double *
     const double s = 1.0 - t;
     for (int r = n; r > kk; --r)
         for (int i = 0; i < r * d; ++i) w[i] = s * w[i] + t * w[i + d];
+    /* Each difference level is scaled by its degree as it is formed (as in the hodograph), not
+     * by n!/(n-j)! at the end: that factor overflows for high orders even when the derivative
+     * does not, and inf * 0 would be a NaN. Results go to a local buffer first so that an
+     * overflow (far extrapolation) leaves out untouched. */
+    double res[CJ_BEZIER_WORK];
     for (int j = 0; j <= kk; ++j) {
         double tmp[CJ_BEZIER_WORK];
         const int m = kk; /* points 0..m */
         memcpy(tmp, w, sizeof(double) * (size_t)(m + 1) * (size_t)d);
-        for (int q = 0; q < j; ++q) /* j forward differences: m-q points remain */
-            for (int i = 0; i < (m - q) * d; ++i) tmp[i] = tmp[i + d] - tmp[i];
+        for (int q = 0; q < j; ++q) { /* j scaled differences: m-q points remain */
+            const double f = (double)(n - q);
+            for (int i = 0; i < (m - q) * d; ++i) tmp[i] = f * (tmp[i + d] - tmp[i]);
+        }
         decasteljau_collapse(tmp, m - j, d, t);
-        double f = 1.0;
-        for (int q = 0; q < j; ++q) f *= (double)(n - q);
-        for (int k = 0; k < d; ++k) out[j * d + k] = f * tmp[k];
+        for (int k = 0; k < d; ++k) res[j * d + k] = tmp[k];
+        if ((st = cj_check_value(res + j * d, d, t)))
+            return cj_fail(CJ_ERR_RANGE,
+                           "derivative of order %d at t = %.17g overflows the double range", j, t);
     }
+    memcpy(out, res, sizeof(double) * (size_t)(kk + 1) * (size_t)d);
     for (int j = kk + 1; j <= kmax; ++j)
         for (int k = 0; k < d; ++k) out[j * d + k] = 0.0;
     return CJ_OK;
