@@ -25,6 +25,8 @@ static void fill(cj_rng *r, int n, int d) {
     for (int i = 0; i < (n + 1) * d; ++i) pts[i] = cj_rng_range(r, -1.0, 1.0);
 }
 
+static void expect_fail(cj_status got, cj_status want, const char *needle, const char *what);
+
 static void test_every_degree_against_oracle(void **state) {
     (void)state;
     cj_rng r;
@@ -111,6 +113,12 @@ static void test_degree_limits(void **state) {
         if (dv[2 * j] != 0.0 || dv[2 * j + 1] != 0.0)
             fail_msg("derivative %d of a constant degree-255 curve is (%g, %g)", j, dv[2 * j],
                      dv[2 * j + 1]);
+    /* A hodograph whose points exceed the double range is reported, not returned as inf. */
+    for (int i = 0; i <= CJ_BEZIER_MAX_DEGREE; ++i) konst[i] = (i % 2) ? 1e300 : -1e300;
+    const cj_bezier big = cj_bezier_view(CJ_BEZIER_MAX_DEGREE, 1, konst);
+    dv[0] = 7.0;
+    expect_fail(cj_bezier_hodograph(&big, 5, dv), CJ_ERR_RANGE, "overflows", "hodograph overflow");
+    assert_true(dv[0] == 7.0);
     printf("degree limits: 56 for Bernstein/Horner, 255 for de Casteljau/compensated, dims 1..4\n");
 }
 

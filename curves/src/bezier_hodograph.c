@@ -1,6 +1,7 @@
 #include "bezier_internal.h"
 
 #include <assert.h>
+#include <math.h>
 #include <string.h>
 
 cj_status cj_bezier_hodograph(const cj_bezier *c, int k, double *out) {
@@ -21,6 +22,14 @@ cj_status cj_bezier_hodograph(const cj_bezier *c, int k, double *out) {
         const double m = (double)(n - q);
         for (int i = 0; i < (n - q) * d; ++i) w[i] = m * (w[i + d] - w[i]);
     }
-    memcpy(out, w, sizeof(double) * (size_t)(n - k + 1) * (size_t)d);
+    /* The factor n!/(n-k)! can push the points past the double range for high orders of
+     * high-degree curves: report it rather than hand back infinities (out stays untouched). */
+    const size_t count = (size_t)(n - k + 1) * (size_t)d;
+    for (size_t i = 0; i < count; ++i)
+        if (!isfinite(w[i]))
+            return cj_fail(CJ_ERR_RANGE,
+                           "hodograph of order %d: control point %zu overflows the double range", k,
+                           i / (size_t)d);
+    memcpy(out, w, sizeof(double) * count);
     return CJ_OK;
 }
