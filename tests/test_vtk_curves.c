@@ -91,9 +91,10 @@ static void test_vtk_evaluates_our_curves(void **state) {
     printf("VTK's evaluation of our rational circle arc: max radius error %.1e\n", rad);
     /* contract: parameters in [0,1], dimension <= 3, degree >= 1 */
     double t2 = 1.5;
-    cj_bezier c1 = cj_bezier_view(1, 2, arc);
+    const double p8[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+    cj_bezier c1 = cj_bezier_view(1, 2, p8);
     assert_int_equal(cj_vtk_eval_bezier(&c1, &t2, 1, vtk), CJ_ERR_RANGE);
-    c1.dim = 4;
+    c1.dim = 4; /* two points of dimension 4: p8 holds them */
     assert_int_equal(cj_vtk_eval_bezier(&c1, ts, 1, vtk), CJ_ERR_DIMENSION);
     c1.dim = 2;
     c1.degree = 0;
