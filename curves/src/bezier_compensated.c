@@ -155,23 +155,31 @@ void cj_compensated_kernel(const cj_bezier *c, double t, double *out, double *bo
         }
         return;
     }
+#define CJ_COMP_DIM(d)                                                                             \
+    do {                                                                                           \
+        if (n == 3) /* cubics: fully unrolled, the triangle in registers; same bits */             \
+            comp_run(c->pts, 3, d, t, out);                                                        \
+        else                                                                                       \
+            comp_run(c->pts, n, d, t, out);                                                        \
+    } while (0)
     switch (c->dim) {
     case 1:
-        comp_run(c->pts, n, 1, t, out);
+        CJ_COMP_DIM(1);
         break;
     case 2:
-        comp_run(c->pts, n, 2, t, out);
+        CJ_COMP_DIM(2);
         break;
     case 3:
-        comp_run(c->pts, n, 3, t, out);
+        CJ_COMP_DIM(3);
         break;
     case 4:
-        comp_run(c->pts, n, 4, t, out);
+        CJ_COMP_DIM(4);
         break;
     default:
         comp_run(c->pts, n, c->dim, t, out);
         break;
     }
+#undef CJ_COMP_DIM
 }
 
 cj_status cj_bezier_eval_compensated(const cj_bezier *c, double t, double *out, double *bound) {
