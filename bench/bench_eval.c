@@ -143,8 +143,8 @@ static void accuracy_table(void) {
            "compens.", "u+2g^2c", "a-post.", "bernst.", "horner");
     mpfr_t val, mag;
     mpfr_inits2(256, val, mag, (mpfr_ptr)0);
-    for (int e = 1; e <= 10; ++e) {
-        const double s = 0.75 + pow(10.0, -e);
+    for (int e = 2; e <= 20; ++e) {
+        const double s = 0.75 + pow(10.0, -0.5 * e);
         cj_oracle_bezier(b, 8, 1, 0, s, 1 << 16, val, mag);
         mpfr_t cond;
         mpfr_init2(cond, 64);
@@ -158,10 +158,10 @@ static void accuracy_table(void) {
         cj_bezier_eval(&c, CJ_EVAL_BERNSTEIN, s, &vb);
         cj_bezier_eval(&c, CJ_EVAL_HORNER, s, &vh);
         const double absval = fabs(mpfr_get_d(val, MPFR_RNDN));
-        printf("1e-%-4d %9.2e | %9.2e %9.2e | %9.2e %9.2e %9.2e | %9.2e %9.2e\n", e, cnd,
-               cj_oracle_rel_error(vd, val), g * cnd, cj_oracle_rel_error(vc, val),
-               u + 2 * g * g * cnd, bound / absval, cj_oracle_rel_error(vb, val),
-               cj_oracle_rel_error(vh, val));
+        printf("%-7.1e %9.2e | %9.2e %9.2e | %9.2e %9.2e %9.2e | %9.2e %9.2e\n",
+               pow(10.0, -0.5 * e), cnd, cj_oracle_rel_error(vd, val), g * cnd,
+               cj_oracle_rel_error(vc, val), u + 2 * g * g * cnd, bound / absval,
+               cj_oracle_rel_error(vb, val), cj_oracle_rel_error(vh, val));
     }
     mpfr_clears(val, mag, (mpfr_ptr)0);
 }
