@@ -89,6 +89,14 @@ int cj_tess_edge_segments(const double *pts, int degree, double tol, int cap) {
     return k < 1.0 ? 1 : (int)k;
 }
 
+/* Temporaries go through the mesh's allocator (a mesh always has one). */
+static void *t_alloc(const cj_mesh *mesh, size_t bytes) {
+    return mesh->alloc_.alloc(mesh->alloc_.user, bytes ? bytes : 1);
+}
+static void t_free(const cj_mesh *mesh, void *ptr) {
+    if (ptr) mesh->alloc_.free(mesh->alloc_.user, ptr);
+}
+
 /* ---- per-patch state ----------------------------------------------------------------- */
 
 typedef struct edge_info {
@@ -313,8 +321,8 @@ static cj_status build_patch(ptess *P, int nu, const double *ub, int nv, const d
     const size_t nouter = (size_t)(k[0] + k[1] + k[2] + k[3] + 4);
     const size_t ngrid = (size_t)(nu + 1) * (size_t)(nv + 1);
     const size_t nmax = (size_t)(nu > nv ? nu : nv) + 1;
-    uint32_t *buf = malloc(sizeof(uint32_t) * (nouter + ngrid + nmax));
-    double *tbuf = malloc(sizeof(double) * (nouter + nmax));
+    uint32_t *buf = t_alloc(P->mesh, sizeof(uint32_t) * (nouter + ngrid + nmax));
+    double *tbuf = t_alloc(P->mesh, sizeof(double) * (nouter + nmax));
     if (!buf || !tbuf) {
         st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %d", (int)P->id);
         goto done;
@@ -430,8 +438,8 @@ static cj_status build_patch(ptess *P, int nu, const double *ub, int nv, const d
         }
     if (P->rational) P->bound = INFINITY;
 done:
-    free(buf);
-    free(tbuf);
+    t_free(P->mesh, buf);
+    t_free(P->mesh, tbuf);
     return st;
 }
 
@@ -478,10 +486,10 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu
         if (nu == last_nu && nv == last_nv) {
             pass = last_pass;
         } else {
-            free(ub);
-            free(vb);
-            ub = malloc(sizeof(double) * (size_t)(nu + 1));
-            vb = malloc(sizeof(double) * (size_t)(nv + 1));
+            t_free(P->mesh, ub);
+            t_free(P->mesh, vb);
+            ub = t_alloc(P->mesh, sizeof(double) * (size_t)(nu + 1));
+            vb = t_alloc(P->mesh, sizeof(double) * (size_t)(nv + 1));
             if (!ub || !vb) {
                 st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %zu", q);
                 break;
@@ -521,10 +529,10 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu
         st = cj_fail(CJ_ERR_CAP, "patch %zu: no grid met tolerance %.3g", q, tol);
     if (!st && (best_nu != last_nu || best_nv != last_nv)) {
         /* rebuild the best passing grid */
-        free(ub);
-        free(vb);
-        ub = malloc(sizeof(double) * (size_t)(best_nu + 1));
-        vb = malloc(sizeof(double) * (size_t)(best_nv + 1));
+        t_free(P->mesh, ub);
+        t_free(P->mesh, vb);
+        ub = t_alloc(P->mesh, sizeof(double) * (size_t)(best_nu + 1));
+        vb = t_alloc(P->mesh, sizeof(double) * (size_t)(best_nv + 1));
         if (!ub || !vb) {
             st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %zu", q);
         } else {
@@ -539,8 +547,8 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu
     }
     *nu_out = best_nu;
     *nv_out = best_nv;
-    free(ub);
-    free(vb);
+    t_free(P->mesh, ub);
+    t_free(P->mesh, vb);
     return st;
 }
 
@@ -575,11 +583,12 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
                            "rational patches (use uniform mode)",
                            q);
     }
-    ptess *P = malloc(sizeof *P);
-    double *br = opt->uniform > 0 ? malloc(sizeof(double) * (size_t)(opt->uniform + 1)) : NULL;
+    ptess *P = t_alloc(mesh, sizeof *P);
+    double *br =
+        opt->uniform > 0 ? t_alloc(mesh, sizeof(double) * (size_t)(opt->uniform + 1)) : NULL;
     if (!P || (opt->uniform > 0 && !br)) {
-        free(P);
-        free(br);
+        t_free(mesh, P);
+        t_free(mesh, br);
         return cj_fail(CJ_ERR_NOMEM, "out of memory");
     }
     if (br)
@@ -617,8 +626,8 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
         if (nu > rep.max_nu) rep.max_nu = nu;
         if (nv > rep.max_nv) rep.max_nv = nv;
     }
-    free(P);
-    free(br);
+    t_free(mesh, P);
+    t_free(mesh, br);
     rep.vertices = mesh->vertex_count - v_start;
     rep.triangles = mesh->triangle_count - t_start;
     if (report) *report = rep;
@@ -637,7 +646,7 @@ cj_status cj_tessellate_surface(const cj_param_surface *s, int nu, int nv, int32
         return cj_fail(CJ_ERR_ARGUMENT, "grid %d x %d too small (need >= %d x %d)", nu, nv,
                        pu ? 3 : 1, pv ? 3 : 1);
     const size_t nvert = (size_t)(nu + 1) * (size_t)(nv + 1);
-    uint32_t *idx = malloc(sizeof(uint32_t) * nvert);
+    uint32_t *idx = t_alloc(mesh, sizeof(uint32_t) * nvert);
     if (!idx) return cj_fail(CJ_ERR_NOMEM, "out of memory tessellating a surface");
     const size_t v_start = mesh->vertex_count, t_start = mesh->triangle_count;
     const unsigned f = s->flags;
@@ -680,11 +689,11 @@ cj_status cj_tessellate_surface(const cj_param_surface *s, int nu, int nv, int32
                 if ((st = cj_mesh_add_triangle(mesh, a, b, c, id))) goto fail;
             }
         }
-    free(idx);
+    t_free(mesh, idx);
     if (dropped) *dropped = drop;
     return CJ_OK;
 fail:
-    free(idx);
+    t_free(mesh, idx);
     cj_mesh_truncate(mesh, v_start, t_start);
     return st;
 }

@@ -33,10 +33,13 @@
  * and uniform mode reports bound = +INFINITY.
  *
  * ADAPTIVE CHOICE. Edge counts: smallest k with d(d-1) max|Δ²b| / (8 k²) <= tol/4 (the chord
- * error bound of the edge curve). Grid: nu x nv uniform cells with nu : nv set by the patch's
- * global sqrt(Muu) : sqrt(Mvv); the scale is the smallest (doubling, then bisection to 3%)
- * for which the per-triangle bound above is <= tol; the mesh keeps that build.
+ * error bound of the edge curve). Grid: nu x nv uniform cells in the ratio
+ * sqrt(max(Muu,Muv)) : sqrt(max(Mvv,Muv)) of the patch's global bounds; the scale is the
+ * smallest (doubling, then bisection to 3%) for which the per-triangle bound above is <= tol;
+ * the mesh keeps that build.
  * UNIFORM MODE: K x K cells and K segments on every edge (seed 5.9), same bound.
+ * MEMORY: the mesh grows through its allocator; temporaries (index grids, one per patch build)
+ * also come from the mesh's allocator.
  * MEASURED DEVIATION (opt->measure = L > 0): for every triangle, max |S(x) - L(x)| over the
  * barycentric lattice of step 1/L (including dropped triangles), i.e. a sampled value of the
  * quantity the bound bounds.
