@@ -98,8 +98,8 @@ size_t cj_implicit_poly_ncoef(int degree) {
     return (size_t)(degree + 1) * (size_t)(degree + 2) / 2;
 }
 
-static void set_out(cj_implicit_shape *s, int kind, cj_implicit_fn f, cj_implicit_grad_fn g,
-                    cj_implicit *out) {
+static void set_out(cj_implicit_shape *s, int kind, cj_implicit_curve_fn f,
+                    cj_implicit_curve_grad_fn g, cj_implicit *out) {
     s->kind = kind;
     out->f = f;
     out->grad = g;

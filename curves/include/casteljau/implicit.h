@@ -45,14 +45,14 @@ extern "C" {
 
 /* f(x, y); must be deterministic. A non-finite value makes the operation fail with
  * CJ_ERR_NONFINITE naming the point. */
-typedef double (*cj_implicit_fn)(const void *user, double x, double y);
+typedef double (*cj_implicit_curve_fn)(const void *user, double x, double y);
 /* ∇f(x, y) into g[0] = ∂f/∂x, g[1] = ∂f/∂y. */
-typedef void (*cj_implicit_grad_fn)(const void *user, double x, double y, double g[2]);
+typedef void (*cj_implicit_curve_grad_fn)(const void *user, double x, double y, double g[2]);
 
 typedef struct cj_implicit {
-    cj_implicit_fn f;         /* required */
-    cj_implicit_grad_fn grad; /* optional: NULL = central differences */
-    const void *user;         /* passed to f and grad */
+    cj_implicit_curve_fn f;         /* required */
+    cj_implicit_curve_grad_fn grad; /* optional: NULL = central differences */
+    const void *user;               /* passed to f and grad */
 } cj_implicit;
 
 /* Storage for a built-in curve. Fields are private to the library. */
