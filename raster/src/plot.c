@@ -596,7 +596,7 @@ static cj_status widest_label(cj_font *font, double size, ticks t, double *w) {
 /* ---- render --------------------------------------------------------------------------- */
 
 cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0, int w, int h,
-                         cj_font *font) {
+                         cj_font *font_in) {
     assert(plot && fb);
     if (x0 < 0 || y0 < 0 || w < 32 || h < 32 || w > fb->width - x0 || h > fb->height - y0)
         return cj_fail(CJ_ERR_RANGE,
@@ -626,40 +626,54 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
     const double label_size = fmin(16.0, fmax(10.0, 0.028 * unit));
     double title_size = label_size * 1.25;
     const double tick_len = 5.0;
-    double left = plot->margin, right = plot->margin, top = plot->margin, bottom = plot->margin;
+    /* Layout; a rectangle too small for the text falls back to a bare plot (no axes, no
+     * text, 2 px margin) before giving up. */
+    cj_font *font = font_in;
+    int axes = plot->axes;
+    double margin = plot->margin;
+    double left, right, top, bottom, ax0, ay0, ax1, ay1, pad;
     double lab_asc = 0.0, lab_desc = 0.0;
     cj_status st = CJ_OK;
-    if (font && plot->title) {
-        double a = 0, d = 0;
-        double adv = 0;
-        if ((st = cj_font_measure(font, title_size, plot->title, &adv, NULL, NULL))) return st;
-        /* A title wider than the panel is set smaller (down to 8 px), then clipped. */
-        const double room = w - 2 * plot->margin;
-        if (adv > room && room > 0) title_size = fmax(8.0, floor(title_size * room / adv));
-        if ((st = cj_font_measure(font, title_size, plot->title, NULL, &a, &d))) return st;
-        top += a + d + 4.0;
-    }
-    if (plot->axes) {
-        left += tick_len;
-        bottom += tick_len;
-        if (font) {
-            double wl = 0;
-            if ((st = cj_font_measure(font, label_size, "0", NULL, &lab_asc, &lab_desc))) return st;
-            ticks ty = make_ticks(box[1], box[3], 5.0);
-            if ((st = widest_label(font, label_size, ty, &wl))) return st;
-            left += wl + 4.0;
-            bottom += lab_asc + lab_desc + 2.0;
-            right += wl / 2; /* the last x label is centred on the right edge */
+    for (int attempt = 0;; ++attempt) {
+        left = right = top = bottom = margin;
+        if (font && plot->title) {
+            double a = 0, d = 0;
+            double adv = 0;
+            if ((st = cj_font_measure(font, title_size, plot->title, &adv, NULL, NULL))) return st;
+            /* A title wider than the panel is set smaller (down to 8 px), then clipped. */
+            const double room = w - 2 * margin;
+            if (adv > room && room > 0) title_size = fmax(8.0, floor(title_size * room / adv));
+            if ((st = cj_font_measure(font, title_size, plot->title, NULL, &a, &d))) return st;
+            top += a + d + 4.0;
         }
+        if (axes) {
+            left += tick_len;
+            bottom += tick_len;
+            if (font) {
+                double wl = 0;
+                if ((st = cj_font_measure(font, label_size, "0", NULL, &lab_asc, &lab_desc)))
+                    return st;
+                ticks ty = make_ticks(box[1], box[3], 5.0);
+                if ((st = widest_label(font, label_size, ty, &wl))) return st;
+                left += wl + 4.0;
+                bottom += lab_asc + lab_desc + 2.0;
+                right += wl / 2; /* the last x label is centred on the right edge */
+            }
+        }
+        /* Padding inside the frame so that strokes and markers are not cut by it. */
+        double widest = 6.0;
+        for (size_t i = 0; i < plot->count; ++i)
+            if (plot->items[i].width > widest) widest = plot->items[i].width;
+        pad = plot->has_view ? 0.0 : widest + 4.0;
+        ax0 = left, ay0 = bottom, ax1 = w - right, ay1 = h - top;
+        if (ax1 - ax0 >= 2 * pad + 8 && ay1 - ay0 >= 2 * pad + 8) break;
+        if (attempt == 1 || (!axes && !font && margin <= 2.0))
+            return cj_fail(CJ_ERR_RANGE, "plot rectangle %dx%d is too small for its contents", w,
+                           h);
+        axes = 0;
+        font = NULL;
+        margin = fmin(margin, 2.0);
     }
-    /* Padding inside the frame so that strokes and markers are not cut by it. */
-    double widest = 6.0;
-    for (size_t i = 0; i < plot->count; ++i)
-        if (plot->items[i].width > widest) widest = plot->items[i].width;
-    const double pad = plot->has_view ? 0.0 : widest + 4.0;
-    const double ax0 = left, ay0 = bottom, ax1 = w - right, ay1 = h - top;
-    if (ax1 - ax0 < 2 * pad + 8 || ay1 - ay0 < 2 * pad + 8)
-        return cj_fail(CJ_ERR_RANGE, "plot rectangle %dx%d is too small for its margins", w, h);
     xform x;
     x.s =
         fmin((ax1 - ax0 - 2 * pad) / (box[2] - box[0]), (ay1 - ay0 - 2 * pad) / (box[3] - box[1]));
@@ -681,7 +695,7 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
     ticks ty = make_ticks(vy0, vy1, fmax(2.0, (ay1 - ay0) / 70.0));
     const cj_rgba grid = cj_rgba_make(0xe6, 0xe6, 0xe6, 255);
     const cj_rgba ink = cj_rgba_make(0x40, 0x40, 0x40, 255);
-    if (plot->axes) {
+    if (axes) {
         for (int i = 0; !st && i < tx.count; ++i) {
             double px = x.ox + x.s * (tx.first + i * tx.step - x.cx);
             double seg[4] = {px, ay0, px, ay1};
@@ -726,7 +740,7 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
             break;
         }
     }
-    if (!st && plot->axes) {
+    if (!st && axes) {
         /* Blank out anything outside the frame (arrows may reach out), then frame and ticks. */
         cj_plot_blank_outside(&cv, ax0, ay0, ax1, ay1, plot->background);
         double frame[8] = {ax0, ay0, ax1, ay0, ax1, ay1, ax0, ay1};
@@ -766,8 +780,8 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
         double adv = 0, a = 0;
         st = cj_font_measure(font, title_size, plot->title, &adv, &a, NULL);
         if (!st)
-            st = cj_font_draw(font, cv.fb, 0.5 * (ax0 + ax1) - adv / 2, h - plot->margin - a,
-                              title_size, cj_rgba_make(0x20, 0x20, 0x20, 255), plot->title);
+            st = cj_font_draw(font, cv.fb, 0.5 * (ax0 + ax1) - adv / 2, h - margin - a, title_size,
+                              cj_rgba_make(0x20, 0x20, 0x20, 255), plot->title);
     }
     if (!st) {
         for (int row = 0; row < h; ++row)

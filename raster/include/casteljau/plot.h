@@ -111,10 +111,12 @@ cj_status cj_plot_add_points(cj_plot *plot, const double *xy, size_t npts, cj_rg
 size_t cj_plot_item_count(const cj_plot *plot);
 
 /* Renders into the rectangle [x0, x0+w) x [y0, y0+h) of fb (pixels outside it are not touched;
- * the rectangle is filled with the background first). font may be NULL (no text).
- * Statuses: CJ_ERR_RANGE if the rectangle is not inside fb or is smaller than 32 x 32 px
- * (nothing drawn), CJ_ERR_EMPTY if the plot has no items and no view, CJ_ERR_DEGENERATE if the
- * data occupy a single point and no view is set, errors of the font. */
+ * the rectangle is filled with the background first). font may be NULL (no text). A rectangle
+ * too small for the axes and text gets a bare plot (no axes, no text, 2 px margin).
+ * Statuses: CJ_ERR_RANGE if the rectangle is not inside fb, is smaller than 32 x 32 px or
+ * cannot hold even the bare plot (nothing drawn), CJ_ERR_EMPTY if the plot has no items and no
+ * view, CJ_ERR_DEGENERATE if the data occupy a single point and no view is set, errors of the font.
+ */
 cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0, int w, int h,
                          cj_font *font);
 
