@@ -18,7 +18,7 @@ cj_status cj_check_param(double t, const char *what) {
 /* 1 if every value is finite: x - x is +0 for finite x and NaN for NaN or ±inf, and a NaN
  * survives any sum. Four independent accumulators, no branch per value: this runs on every
  * evaluation call, so it must cost little next to a cubic's evaluation. */
-static int all_finite(const double *v, size_t count) {
+int cj_all_finite(const double *v, size_t count) {
     double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
     size_t i = 0;
     for (; i + 4 <= count; i += 4) {
@@ -42,13 +42,13 @@ cj_status cj_bezier_check(const cj_bezier *c, int max_degree) {
         return cj_fail(CJ_ERR_DIMENSION, "dimension %d is outside 1..%d", c->dim, CJ_MAX_DIM);
     assert(c->pts != NULL);
     const size_t count = (size_t)c->degree + 1;
-    if (all_finite(c->pts, count * (size_t)c->dim)) return CJ_OK;
+    if (cj_all_finite(c->pts, count * (size_t)c->dim)) return CJ_OK;
     /* Slow path only to name the offending point and coordinate. */
     return cj_check_points(c->pts, count, c->dim, "control point");
 }
 
 cj_status cj_check_value(const double *v, int dim, double t) {
-    if (all_finite(v, (size_t)dim)) return CJ_OK;
+    if (cj_all_finite(v, (size_t)dim)) return CJ_OK;
     return cj_fail(CJ_ERR_RANGE,
                    "the value at t = %.17g overflows the double range (extrapolating too far?)", t);
 }

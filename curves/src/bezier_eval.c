@@ -208,8 +208,9 @@ cj_status cj_bezier_eval_batch(const cj_bezier *c, cj_eval_method method, const 
         break;
     }
     /* Overflow (far extrapolation) is reported; the results before it are valid. */
-    for (size_t j = 0; j < nt; ++j)
-        if ((st = cj_check_value(out + j * d, c->dim, ts[j]))) return st;
+    if (!cj_all_finite(out, nt * d))
+        for (size_t j = 0; j < nt; ++j)
+            if ((st = cj_check_value(out + j * d, c->dim, ts[j]))) return st;
     return CJ_OK;
 }
 

@@ -4,6 +4,7 @@
 #define CASTELJAU_EVAL_INTERNAL_H
 
 #include "casteljau/bezier.h"
+#include <stddef.h>
 
 #if defined(__GNUC__)
 #define CJ_ALWAYS_INLINE static inline __attribute__((always_inline))
@@ -15,6 +16,9 @@
  * fma, landing below 2^-1022) may add an absolute error of half of it on top of the relative
  * error u the published bounds account for. */
 #define CJ_ETA 0x1p-1074
+
+/* 1 if all count values are finite (branch-free; for the hot validation paths). */
+int cj_all_finite(const double *v, size_t count);
 
 /* CJ_OK if the dim values are finite, else CJ_ERR_RANGE naming t: a finite curve evaluated at a
  * finite t can still overflow when extrapolating far outside [0,1], and the methods would then
