@@ -190,9 +190,7 @@ cj_status cj_bezier_eval_compensated(const cj_bezier *c, double t, double *out, 
     double v[CJ_MAX_DIM], b[CJ_MAX_DIM];
     cj_compensated_kernel(c, t, v, bound ? b : NULL);
     if ((st = cj_check_value(v, c->dim, t))) return st;
-    for (int k = 0; k < c->dim; ++k) {
-        out[k] = v[k];
-        if (bound) bound[k] = b[k];
-    }
+    cj_copy_point(out, v, c->dim);
+    if (bound) cj_copy_point(bound, b, c->dim);
     return CJ_OK;
 }

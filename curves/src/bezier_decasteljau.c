@@ -68,7 +68,7 @@ cj_status cj_bezier_eval_decasteljau(const cj_bezier *c, double t, double *out) 
     double v[CJ_MAX_DIM];
     cj_decasteljau_kernel(c, t, v);
     if ((st = cj_check_value(v, c->dim, t))) return st;
-    for (int k = 0; k < c->dim; ++k) out[k] = v[k];
+    cj_copy_point(out, v, c->dim);
     return CJ_OK;
 }
 

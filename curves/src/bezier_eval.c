@@ -171,7 +171,7 @@ cj_status cj_bezier_eval(const cj_bezier *c, cj_eval_method method, double t, do
     double v[CJ_MAX_DIM];
     eval_kernel(c, method, t, v);
     if ((st = cj_check_value(v, c->dim, t))) return st;
-    for (int k = 0; k < c->dim; ++k) out[k] = v[k];
+    cj_copy_point(out, v, c->dim);
     return CJ_OK;
 }
 

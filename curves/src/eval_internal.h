@@ -25,6 +25,28 @@ int cj_all_finite(const double *v, size_t count);
  * return NaN or infinity; that is reported instead. */
 cj_status cj_check_value(const double *v, int dim, double t);
 
+/* out[0..dim-1] = v[0..dim-1], unrolled for the common dimensions (a plain loop becomes a
+ * memcpy call, which costs more than the copy for a point). */
+static inline void cj_copy_point(double *out, const double *v, int dim) {
+    switch (dim) {
+    case 4:
+        out[3] = v[3];
+        /* fallthrough */
+    case 3:
+        out[2] = v[2];
+        /* fallthrough */
+    case 2:
+        out[1] = v[1];
+        /* fallthrough */
+    case 1:
+        out[0] = v[0];
+        break;
+    default:
+        for (int k = 0; k < dim; ++k) out[k] = v[k];
+        break;
+    }
+}
+
 /* Plain de Casteljau: out[0..dim-1] = c(t). */
 void cj_decasteljau_kernel(const cj_bezier *c, double t, double *out);
 
