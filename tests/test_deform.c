@@ -476,6 +476,8 @@ static void test_bad_input(void **state) {
     cj_vec3 o = cj_v3(0, 0, 0), z = cj_v3(0, 0, 1), q;
     assert_int_equal(cj_deform_twist(&d, o, cj_v3(0, 0, 0), 1.0), CJ_ERR_DEGENERATE);
     assert_non_null(strstr(cj_last_error(), "axis"));
+    assert_int_equal(cj_deform_twist(&d, o, cj_v3(0, 0, 1e-310), 1.0), CJ_OK); /* subnormal */
+    assert_true(d.a.z == 1.0);
     assert_int_equal(cj_deform_twist(&d, o, z, NAN), CJ_ERR_NONFINITE);
     assert_non_null(strstr(cj_last_error(), "rate"));
     assert_int_equal(cj_deform_twist(&d, cj_v3(0, INFINITY, 0), z, 1.0), CJ_ERR_NONFINITE);

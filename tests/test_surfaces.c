@@ -527,6 +527,11 @@ static void test_bad_input(void **state) {
     expect(cj_torus_init(&t, o, z, 1, 1), CJ_ERR_ARGUMENT, "minor radius");
     expect(cj_torus_init(&t, o, z, 2, 0), CJ_ERR_DEGENERATE, "minor radius");
     expect(cj_torus_init(&t, cj_v3(INFINITY, 0, 0), z, 2, 1), CJ_ERR_NONFINITE, "center");
+    /* Huge and subnormal (but non-zero) axes are fine: they are normalised safely. */
+    assert_int_equal(cj_torus_init(&t, o, cj_v3(1e300, 1e300, 0), 2, 1), CJ_OK);
+    assert_true(fabs(cj_v3_norm(t.a) - 1.0) < 1e-15);
+    assert_int_equal(cj_torus_init(&t, o, cj_v3(0, 4e-320, 0), 2, 1), CJ_OK);
+    assert_true(t.a.y == 1.0);
     cj_cylinder cy;
     expect(cj_cylinder_init(&cy, o, z, 0.0, 0, 1), CJ_ERR_DEGENERATE, "radius");
     expect(cj_cylinder_init(&cy, o, z, 1.0, 1, 1), CJ_ERR_ARGUMENT, "height");

@@ -31,6 +31,9 @@ static cj_status check_radius(const char *what, const char *name, double r) {
 static cj_status make_axis(const char *what, cj_vec3 axis, cj_vec3 *a, cj_vec3 *e1, cj_vec3 *e2) {
     cj_status st = check_vec(what, "axis", axis);
     if (st != CJ_OK) return st;
+    /* Pre-scale by the largest component so that huge or tiny finite vectors normalise. */
+    double big = fmax(fabs(axis.x), fmax(fabs(axis.y), fabs(axis.z)));
+    if (big > 0.0) axis = cj_v3(axis.x / big, axis.y / big, axis.z / big);
     double len = cj_v3_norm(axis);
     if (!(len > 0.0) || !isfinite(len))
         return cj_fail(CJ_ERR_DEGENERATE, "%s: axis has zero length", what);
@@ -50,6 +53,9 @@ cj_status cj_plane_from_point_normal(cj_plane *pl, cj_vec3 p, cj_vec3 n) {
     cj_status st = check_vec("plane", "point", p);
     if (st == CJ_OK) st = check_vec("plane", "normal", n);
     if (st != CJ_OK) return st;
+    /* Pre-scale by the largest component so that huge or tiny finite vectors normalise. */
+    double big = fmax(fabs(n.x), fmax(fabs(n.y), fabs(n.z)));
+    if (big > 0.0) n = cj_v3(n.x / big, n.y / big, n.z / big);
     double len = cj_v3_norm(n);
     if (!(len > 0.0) || !isfinite(len))
         return cj_fail(CJ_ERR_DEGENERATE, "plane: normal has zero length");

@@ -16,6 +16,9 @@ static cj_status setup_axis(cj_deform *d, const char *what, cj_vec3 origin, cj_v
     if (!finite3(axis))
         return cj_fail(CJ_ERR_NONFINITE, "%s: axis direction (%g, %g, %g) is not finite", what,
                        axis.x, axis.y, axis.z);
+    /* Pre-scale by the largest component so that huge or tiny finite vectors normalise. */
+    double big = fmax(fabs(axis.x), fmax(fabs(axis.y), fabs(axis.z)));
+    if (big > 0.0) axis = cj_v3(axis.x / big, axis.y / big, axis.z / big);
     double len = cj_v3_norm(axis);
     if (!(len > 0.0) || !isfinite(len))
         return cj_fail(CJ_ERR_DEGENERATE, "%s: axis direction has zero length", what);
