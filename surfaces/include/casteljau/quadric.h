@@ -2,20 +2,20 @@
  * origin, axes along x, y, z), each in implicit form f(x,y,z) with its gradient and in
  * parametric form. Semi-axes a, b, c must be finite and > 0.
  *
- *  kind                   implicit f (f < 0 "inside")          parametric S(u,v), u in [0,2pi]
- *  ---------------------  -----------------------------------  -----------------------------------
- *  ELLIPSOID              x²/a² + y²/b² + z²/c² - 1            (a cos v cos u, b cos v sin u, c sin
- * v) v in [-pi/2, pi/2]; poles at v=±pi/2 HYPERBOLOID1 (1 sheet) x²/a² + y²/b² - z²/c² - 1 (a cosh
- * v cos u, b cosh v sin u, c sinh v) v in [v0, v1]; no singular point HYPERBOLOID2 (2 sheets)x²/a²
- * + y²/b² - z²/c² + 1            upper sheet (z > 0): (a sinh v cos u, b sinh v sin u, c cosh v)
- *                                                              lower sheet: (x, -y, -z) of it
- *                                                              v in [0, v1]; pole (vertex) at v = 0
- *  CONE (elliptic)        x²/a² + y²/b² - z²/c²                (a v cos u, b v sin u, c v)
- *                                                              v in [v0, v1]; apex at v = 0
- *  PARABOLOID (elliptic)  x²/a² + y²/b² - z                    (a v cos u, b v sin u, v²)
- *                                                              v in [0, v1]; pole (vertex) at v = 0
- *  HYPERBOLIC_PARABOLOID  z - x²/a² + y²/b²                    (a u, b v, u² - v²)
- *                                                              u in [u0,u1], v in [v0,v1]; none
+ *  ELLIPSOID              f = x²/a² + y²/b² + z²/c² - 1
+ *      S = (a cos v cos u, b cos v sin u, c sin v),   v in [-pi/2, pi/2]; poles at v = ±pi/2
+ *  HYPERBOLOID1 (one sheet)   f = x²/a² + y²/b² - z²/c² - 1
+ *      S = (a cosh v cos u, b cosh v sin u, c sinh v),   v in [v0, v1]; no singular point
+ *  HYPERBOLOID2 (two sheets)  f = x²/a² + y²/b² - z²/c² + 1
+ *      upper sheet (z > 0): S = (a sinh v cos u, b sinh v sin u, c cosh v); lower sheet: the
+ *      upper one turned by pi about x, (x, -y, -z);   v in [0, v1]; pole (vertex) at v = 0
+ *  CONE (elliptic)        f = x²/a² + y²/b² - z²/c²
+ *      S = (a v cos u, b v sin u, c v),   v in [v0, v1]; apex at v = 0
+ *  PARABOLOID (elliptic)  f = x²/a² + y²/b² - z
+ *      S = (a v cos u, b v sin u, v²),   v in [0, v1]; pole (vertex) at v = 0
+ *  HYPERBOLIC_PARABOLOID  f = z - x²/a² + y²/b²
+ *      S = (a u, b v, u² - v²),   u in [u0, u1], v in [v0, v1]; no singular point
+ * In all but the last, u in [0, 2pi] is the angle about the z axis. f < 0 is "inside".
  *
  * (c is unused by the two paraboloids.) The parametric normal S_u x S_v / |S_u x S_v| points
  * the same way as grad f everywhere (outward for the ellipsoid; away from the axis for the
