@@ -41,7 +41,7 @@ int cmd_plot(int argc, char **argv) {
 
 /* The gallery: the same JSON format users write, so the demo also exercises the parser. */
 static const char demo_json[] =
-    "{\"width\": 1200, \"height\": 900, \"columns\": 2, \"panels\": ["
+    "{\"width\": 1500, \"height\": 900, \"columns\": 3, \"panels\": ["
     /* 1: a cubic with its de Casteljau construction (seed figure 12) and a Frenet frame. */
     "{\"title\": \"Cubic B\xc3\xa9zier, de Casteljau at t = 0.25\","
     " \"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,2.4],[3.2,2.6],[4,0.2]],"
@@ -65,7 +65,24 @@ static const char demo_json[] =
     "  {\"type\": \"implicit\", \"color\": \"#d62728\", \"box\": [-1.6,-1,1.6,1],"
     "   \"poly\": {\"degree\": 4, \"coef\": [0, 0,0, -2,0,2, 0,0,0,0, 1,0,2,0,1]}},"
     "  {\"type\": \"implicit\", \"color\": \"#1f77b4\", \"circle\": [0, 0, 1.2]},"
-    "  {\"type\": \"implicit\", \"color\": \"#9467bd\", \"ellipse\": [0, 0, 1.55, 0.65, 0.35]}]}"
+    "  {\"type\": \"implicit\", \"color\": \"#9467bd\", \"ellipse\": [0, 0, 1.55, 0.65, 0.35]}]},"
+    /* 5: rational quadratics: the exact quarter circle (weights 1, cos 45°, 1) and others. */
+    "{\"title\": \"Rational quadratics: w\xe2\x82\x81 = 0.5, cos 45\xc2\xb0, 2\","
+    " \"view\": [-0.12, -0.12, 1.12, 1.12], \"items\": ["
+    "  {\"type\": \"implicit\", \"color\": \"#c8c8c8\", \"width\": 1, \"circle\": [0, 0, 1]},"
+    "  {\"type\": \"bezier\", \"color\": \"#ff7f0e\", \"width\": 2,"
+    "   \"control_polygon\": false, \"control_points\": false,"
+    "   \"points\": [[1,0],[1,1],[0,1]], \"weights\": [1, 0.5, 1]},"
+    "  {\"type\": \"bezier\", \"color\": \"#2ca02c\", \"width\": 2,"
+    "   \"control_polygon\": false, \"control_points\": false,"
+    "   \"points\": [[1,0],[1,1],[0,1]], \"weights\": [1, 2, 1]},"
+    "  {\"type\": \"bezier\", \"color\": \"#1f77b4\", \"construction_t\": 0.5,"
+    "   \"points\": [[1,0],[1,1],[0,1]], \"weights\": [1, 0.70710678118654757, 1]}]},"
+    /* 6: unit tangents and (left) normals along an S-shaped cubic with an inflection. */
+    "{\"title\": \"Tangents and normals along an S-curve\","
+    " \"items\": [{\"type\": \"bezier\", \"color\": \"#8c564b\","
+    "  \"points\": [[0,0],[1.4,2.2],[1.6,-1.2],[3,1]],"
+    "  \"frames_t\": [0.1, 0.3, 0.5, 0.7, 0.9]}]}"
     "]}";
 
 static char *read_file(const char *path, char *why, size_t why_size) {

@@ -14,7 +14,8 @@
  *   view             [x0, y0, x1, y1] data box to show (default: fitted to the items)
  *   items  required  [item, ...] drawn in order
  * Item (all: "type" required, "color" (default: a palette by position), "width" px):
- *   "bezier"       points [[x,y],...] (>= 1, any degree), control_polygon (true),
+ *   "bezier"       points [[x,y],...] (>= 1, any degree), weights [w,...] (optional, one
+ *                  per point, > 0: a rational curve), control_polygon (true),
  *                  control_points (true), hull (false), construction_t (t in [0,1]: draw the
  *                  de Casteljau construction), frames_t ([t,...]: tangent arrows), normals
  *                  (true: normal arrows with the tangents)
@@ -200,17 +201,9 @@ static const cJSON *field(const cJSON *obj, const char *key) {
     } while (0)
 
 static int parse_bezier(ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color) {
-    static const char *const keys[] = {"type",
-                                       "points",
-                                       "color",
-                                       "width",
-                                       "control_polygon",
-                                       "control_points",
-                                       "hull",
-                                       "construction_t",
-                                       "frames_t",
-                                       "normals",
-                                       NULL};
+    static const char *const keys[] = {
+        "type", "points",         "color",    "width",   "control_polygon", "control_points",
+        "hull", "construction_t", "frames_t", "normals", "weights",         NULL};
     if (check_keys(c, it, path, keys)) return -1;
     cj_plot_bezier_opts o = cj_plot_bezier_defaults();
     o.color = color;
@@ -251,9 +244,30 @@ static int parse_bezier(ctx *c, const cJSON *it, const char *path, cj_plot *plot
         free(pts);
         return fail(c, "%s has %zu points: the degree is at most %d", p, n, CJ_BEZIER_MAX_DEGREE);
     }
+    double *w = NULL;
+    const cJSON *wv = field(it, "weights");
+    if (wv) {
+        pathf(p, sizeof p, "%s.weights", path);
+        int bad = 0;
+        if (!cJSON_IsArray(wv) || (size_t)cJSON_GetArraySize(wv) != n)
+            bad = fail(c, "%s is not an array of %zu weights (one per point)", p, n);
+        else if (!(w = malloc(n * sizeof *w)))
+            bad = fail(c, "%s: out of memory", p);
+        else if (parse_numbers(c, wv, p, (int)n, w))
+            bad = -1;
+        for (size_t i = 0; !bad && i < n; ++i)
+            if (!(w[i] > 0)) bad = fail(c, "%s[%zu] = %g is not a positive weight", p, i, w[i]);
+        if (bad) {
+            free(pts);
+            free(w);
+            return -1;
+        }
+    }
     cj_bezier b = cj_bezier_view((int)n - 1, 2, pts);
-    cj_status st = cj_plot_add_bezier(plot, &b, &o);
+    cj_rbezier rb = cj_rbezier_view((int)n - 1, 2, pts, w);
+    cj_status st = w ? cj_plot_add_rbezier(plot, &rb, &o) : cj_plot_add_bezier(plot, &b, &o);
     free(pts);
+    free(w);
     return st ? lib_fail(c, path) : 0;
 }
 

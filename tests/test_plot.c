@@ -91,6 +91,52 @@ static void test_curve_pixels_follow_the_curve(void **state) {
     cj_plot_destroy(p);
 }
 
+/* A rational quadratic with weights 1, cos(45°), 1 is an exact quarter circle: its pixels must
+ * lie within the stroke's reach of the circle |p - c| = r (an independent description). */
+static void test_rational_quarter_circle(void **state) {
+    (void)state;
+    const int W = 200, H = 200;
+    const double cx = 20, cy = 20, r = 160;
+    const double b[6] = {cx + r, cy, cx + r, cy + r, cx, cy + r};
+    const double w[3] = {1, sqrt(0.5), 1};
+    cj_plot *p = identity_plot(W, H);
+    cj_plot_bezier_opts o = cj_plot_bezier_defaults();
+    o.color = cj_rgba_make(255, 0, 0, 255);
+    o.width = 1.5;
+    o.control_polygon = 0;
+    o.control_points = 0;
+    cj_rbezier c = cj_rbezier_view(2, 2, b, w);
+    assert_int_equal(cj_plot_add_rbezier(p, &c, &o), CJ_OK);
+    const double bad_w[3] = {1, 0, 1};
+    cj_rbezier cb = cj_rbezier_view(2, 2, b, bad_w);
+    assert_int_equal(cj_plot_add_rbezier(p, &cb, &o), CJ_ERR_ARGUMENT);
+    cj_framebuffer *fb = NULL;
+    assert_int_equal(cj_framebuffer_create(W, H, 0, NULL, &fb), CJ_OK);
+    assert_int_equal(cj_plot_render(p, fb, 0, 0, W, H, NULL), CJ_OK);
+    double worst = 0;
+    long tinted = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            cj_rgba q = px_at(fb, x, y);
+            if (q.r - q.g <= 25) continue;
+            ++tinted;
+            const double px = x + 0.5, py = y + 0.5;
+            /* distance to the quarter arc: radial where the angle is inside [0, 90°] */
+            double d = (px >= cx && py >= cy)
+                           ? fabs(hypot(px - cx, py - cy) - r)
+                           : fmin(hypot(px - cx - r, py - cy), hypot(px - cx, py - cy - r));
+            worst = fmax(worst, d);
+        }
+    /* pixels along the arc: ~ (pi/2) r long, at least one per unit length */
+    assert_true(tinted > 250);
+    assert_true(worst <= o.width / 2 + 0.5 + 0.25 + 1e-9);
+    printf("test_plot: rational quarter circle r = %g: %ld pixels, farthest %.3f px from the "
+           "circle (limit %.2f)\n",
+           r, tinted, worst, o.width / 2 + 0.75);
+    cj_framebuffer_destroy(fb);
+    cj_plot_destroy(p);
+}
+
 static void test_rect_equal_aspect_and_clip(void **state) {
     (void)state;
     cj_plot *p = NULL;
@@ -251,6 +297,7 @@ static void test_fonts(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_curve_pixels_follow_the_curve),
+        cmocka_unit_test(test_rational_quarter_circle),
         cmocka_unit_test(test_rect_equal_aspect_and_clip),
         cmocka_unit_test(test_hull_and_construction),
         cmocka_unit_test(test_bad_input),

@@ -105,12 +105,12 @@ static void test_golden_gallery(void **state) {
     (void)state;
     char out[256], args[512];
     snprintf(out, sizeof out, "%s/gallery.png", dir);
-    snprintf(args, sizeof args, "plot --demo --width 600 --height 450 -o '%s'", out);
+    snprintf(args, sizeof args, "plot --demo --width 750 --height 450 -o '%s'", out);
     assert_int_equal(run(args), 0);
     char *o = slurp("out.txt");
     free(o);
-    double d = image_difference(out, CJ_GOLDEN_DIR "/gallery_600x450.png");
-    printf("test_plot_cli: gallery 600x450 vs golden: %.4f %% of pixels differ (limit %.2f %%)\n",
+    double d = image_difference(out, CJ_GOLDEN_DIR "/gallery_750x450.png");
+    printf("test_plot_cli: gallery 750x450 vs golden: %.4f %% of pixels differ (limit %.2f %%)\n",
            100 * d, 100 * GOLDEN_MAX_DIFF);
     assert_true(d <= GOLDEN_MAX_DIFF);
     remove(out);

@@ -50,6 +50,12 @@ static const bad_case bad_cases[] = {
      "items[0].construction_t = 1.5 is outside [0, 1]"},
     {"{\"items\": [{\"type\": \"bezier\", \"frames_t\": [0.5, -1], \"points\": [[0,0],[1,1]]}]}",
      "items[0].frames_t[1] = -1 is outside [0, 1]"},
+    {"{\"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,1]], \"weights\": [1]}]}",
+     "items[0].weights is not an array of 2 weights (one per point)"},
+    {"{\"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,1]], \"weights\": [1, 0]}]}",
+     "items[0].weights[1] = 0 is not a positive weight"},
+    {"{\"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,1]], \"weights\": [1, \"x\"]}]}",
+     "items[0].weights[1] is not a number"},
     {"{\"items\": [{\"type\": \"spline\", \"points\": [[0,0],[1,1]]}]}",
      "items[0].type 'spline' is not"},
     {"{\"items\": [{\"points\": [[0,0],[1,1]]}]}", "items[0].type is missing"},
@@ -123,6 +129,8 @@ static void test_good_documents(void **state) {
     const char *single =
         "{\"width\": 300, \"height\": 200, \"background\": \"#fafafa\", \"title\": \"t\","
         " \"axes\": false, \"margin\": 4, \"items\": ["
+        " {\"type\": \"bezier\", \"points\": [[0,0],[1,2],[2,0]], \"weights\": [1, 2, 1],"
+        "  \"construction_t\": 0.4, \"frames_t\": [0.5]},"
         " {\"type\": \"bezier\", \"points\": [[0,0],[1,2],[2,0]], \"hull\": true,"
         "  \"construction_t\": 0.5, \"frames_t\": [0, 1], \"normals\": false},"
         " {\"type\": \"catmull-rom\", \"points\": [[0,0],[1,1],[2,0]], \"closed\": true,"
@@ -140,7 +148,7 @@ static void test_good_documents(void **state) {
     assert_int_equal(doc.width, 300);
     assert_int_equal(doc.height, 200);
     assert_int_equal(doc.npanels, 1);
-    assert_int_equal(cj_plot_item_count(doc.panels[0]), 7);
+    assert_int_equal(cj_plot_item_count(doc.panels[0]), 8);
     assert_int_equal(doc.background.r, 0xfa);
     cj_framebuffer *fb = NULL;
     assert_int_equal(cj_framebuffer_create(doc.width, doc.height, 0, NULL, &fb), CJ_OK);

@@ -3,6 +3,7 @@
 #include "casteljau/plot.h"
 
 #include "casteljau/flatten.h"
+#include "casteljau/rational.h"
 #include "error_internal.h"
 #include "plot_internal.h"
 #include "raster_internal.h"
@@ -37,6 +38,7 @@ typedef struct plot_item {
     int closed;        /* polyline */
     int markers;       /* polyline markers, spline knots */
     int degree;        /* bezier */
+    double *weights;   /* rational bezier: degree+1 weights; NULL for a polynomial curve */
     cj_plot_bezier_opts bopts;
 } plot_item;
 
@@ -73,6 +75,7 @@ static void item_free(const cj_plot *p, plot_item *it) {
     pfree(p, it->segs);
     pfree(p, it->offsets);
     pfree(p, it->closed_flags);
+    pfree(p, it->weights);
 }
 
 cj_plot_bezier_opts cj_plot_bezier_defaults(void) {
@@ -196,11 +199,10 @@ static double *copy_doubles(const cj_plot *p, const double *src, size_t n) {
     return d;
 }
 
-cj_status cj_plot_add_bezier(cj_plot *plot, const cj_bezier *c, const cj_plot_bezier_opts *opts) {
-    assert(plot && c);
+static cj_status add_bezier(cj_plot *plot, const cj_bezier *c, const double *weights,
+                            const cj_plot_bezier_opts *opts) {
     cj_plot_bezier_opts o = opts ? *opts : cj_plot_bezier_defaults();
-    cj_status st = cj_bezier_check(c, CJ_BEZIER_MAX_DEGREE);
-    if (st) return st;
+    cj_status st;
     if (c->dim != 2)
         return cj_fail(CJ_ERR_DIMENSION, "a plotted Bezier curve must be 2D, not %dD", c->dim);
     if ((st = check_width(o.width, "curve width"))) return st;
@@ -220,8 +222,27 @@ cj_status cj_plot_add_bezier(cj_plot *plot, const cj_bezier *c, const cj_plot_be
     it.npts = (size_t)c->degree + 1;
     it.bopts = o;
     it.pts = copy_doubles(plot, c->pts, 2 * it.npts);
-    if (!it.pts) return cj_fail(CJ_ERR_NOMEM, "no memory for %zu control points", it.npts);
+    if (weights) it.weights = copy_doubles(plot, weights, it.npts);
+    if (!it.pts || (weights && !it.weights)) {
+        item_free(plot, &it);
+        return cj_fail(CJ_ERR_NOMEM, "no memory for %zu control points", it.npts);
+    }
     return push_item(plot, &it);
+}
+
+cj_status cj_plot_add_bezier(cj_plot *plot, const cj_bezier *c, const cj_plot_bezier_opts *opts) {
+    assert(plot && c);
+    cj_status st = cj_bezier_check(c, CJ_BEZIER_MAX_DEGREE);
+    if (st) return st;
+    return add_bezier(plot, c, NULL, opts);
+}
+
+cj_status cj_plot_add_rbezier(cj_plot *plot, const cj_rbezier *c, const cj_plot_bezier_opts *opts) {
+    assert(plot && c);
+    cj_status st = cj_rbezier_check(c);
+    if (st) return st;
+    cj_bezier b = cj_bezier_view(c->degree, c->dim, c->pts);
+    return add_bezier(plot, &b, c->weights, opts);
 }
 
 cj_status cj_plot_add_spline(cj_plot *plot, const double *pts, size_t npts,
@@ -400,14 +421,19 @@ static cj_rgba with_alpha(cj_rgba c, uint8_t a) {
 }
 
 /* Flattens a 2D Bézier given in pixel coordinates into the scratch polyline. */
-static cj_status flatten_px(cj_plot_canvas *cv, const double *ctrl_px, int degree) {
+/* (An affine map of the control points maps a rational curve exactly too, weights unchanged.) */
+static cj_status flatten_px(cj_plot_canvas *cv, const double *ctrl_px, const double *weights,
+                            int degree) {
     cj_bezier b = cj_bezier_view(degree, 2, ctrl_px);
+    cj_rbezier rb = cj_rbezier_view(degree, 2, ctrl_px, weights);
     cj_flatten_opts fo = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, CJ_PLOT_FLATTEN_TOL);
     size_t n = 0;
-    cj_status st = cj_flatten_bezier(&b, &fo, NULL, 0, &n, NULL);
+    cj_status st = weights ? cj_flatten_rbezier(&rb, &fo, NULL, 0, &n, NULL)
+                           : cj_flatten_bezier(&b, &fo, NULL, 0, &n, NULL);
     if (st) return st;
     if ((st = cj_plot_canvas_reserve(cv, n))) return st;
-    st = cj_flatten_bezier(&b, &fo, cv->poly, cv->poly_cap, &n, NULL);
+    st = weights ? cj_flatten_rbezier(&rb, &fo, cv->poly, cv->poly_cap, &n, NULL)
+                 : cj_flatten_bezier(&b, &fo, cv->poly, cv->poly_cap, &n, NULL);
     if (st) return st;
     cv->poly_n = n;
     return CJ_OK;
@@ -450,27 +476,37 @@ static cj_status draw_bezier(cj_plot_canvas *cv, const xform *x, const plot_item
     }
     if (!st && o->control_polygon && n >= 1)
         st = cj_plot_stroke(cv, px, np, 0, with_alpha(grey, 200), 1.25);
-    if (!st) st = flatten_px(cv, px, n);
+    if (!st) st = flatten_px(cv, px, it->weights, n);
     if (!st) st = cj_plot_stroke(cv, cv->poly, cv->poly_n, 0, it->color, it->width);
 
     if (!st && o->construction && n >= 1) {
         /* The de Casteljau triangle at t: level r has points b_i^r, i = 0..n-r; each level's
          * polygon is drawn in its own colour, its points as small dots. */
-        double *tri = malloc(np * 2 * sizeof *tri);
+        double *tri = malloc(np * 3 * sizeof *tri);
         if (!tri) st = cj_fail(CJ_ERR_NOMEM, "no memory for the construction");
         const double t = o->construction_t;
-        if (!st) memcpy(tri, it->pts, np * 2 * sizeof *tri);
+        /* tri[3i..3i+2] = (x, y, w); rational levels are convex combinations with weights
+         * (1-t) w_i, t w_{i+1} (the projection of the homogeneous de Casteljau step). */
+        for (size_t i = 0; !st && i < np; ++i) {
+            tri[3 * i] = it->pts[2 * i];
+            tri[3 * i + 1] = it->pts[2 * i + 1];
+            tri[3 * i + 2] = it->weights ? it->weights[i] : 1.0;
+        }
         for (int r = 1; !st && r <= n; ++r) {
-            for (int i = 0; i + r <= n; ++i)
+            for (int i = 0; i + r <= n; ++i) {
+                double *a = tri + 3 * i, *b = tri + 3 * (i + 1);
+                const double wa = (1.0 - t) * a[2], wb = t * b[2], w = wa + wb;
                 for (int k = 0; k < 2; ++k)
-                    tri[2 * i + k] = (1.0 - t) * tri[2 * i + k] + t * tri[2 * (i + 1) + k];
+                    a[k] = it->weights ? (wa * a[k] + wb * b[k]) / w : (1.0 - t) * a[k] + t * b[k];
+                a[2] = w;
+            }
             const size_t m = (size_t)(n - r + 1);
             double *lp = malloc(m * 2 * sizeof *lp);
             if (!lp) {
                 st = cj_fail(CJ_ERR_NOMEM, "no memory for the construction");
                 break;
             }
-            for (size_t i = 0; i < m; ++i) to_px(x, tri + 2 * i, lp + 2 * i);
+            for (size_t i = 0; i < m; ++i) to_px(x, tri + 3 * i, lp + 2 * i);
             cj_rgba lc = level_colors[(r - 1) % (int)(sizeof level_colors / sizeof *level_colors)];
             if (m >= 2) st = cj_plot_stroke(cv, lp, m, 0, lc, 1.5);
             for (size_t i = 0; !st && i < m; ++i) {
@@ -493,13 +529,25 @@ static cj_status draw_bezier(cj_plot_canvas *cv, const xform *x, const plot_item
     }
     for (size_t f = 0; !st && f < o->nframes; ++f) {
         double p[2], tan[2], nor[2], pp[2];
-        if (cj_bezier_eval_decasteljau(&c, o->frames_t[f], p) != CJ_OK) continue;
-        if (cj_bezier_tangent(&c, o->frames_t[f], tan, NULL) != CJ_OK) continue;
+        if (it->weights) {
+            /* Rational: c' from the quotient rule; a zero first derivative has no arrow. */
+            double d[4];
+            cj_rbezier rc = cj_rbezier_view(n, 2, it->pts, it->weights);
+            if (cj_rbezier_eval_derivs(&rc, o->frames_t[f], 1, d) != CJ_OK) continue;
+            const double len = hypot(d[2], d[3]);
+            if (!(len > 0.0)) continue;
+            p[0] = d[0], p[1] = d[1], tan[0] = d[2] / len, tan[1] = d[3] / len;
+            nor[0] = -tan[1], nor[1] = tan[0];
+        } else {
+            if (cj_bezier_eval_decasteljau(&c, o->frames_t[f], p) != CJ_OK) continue;
+            if (cj_bezier_tangent(&c, o->frames_t[f], tan, NULL) != CJ_OK) continue;
+            if (cj_bezier_normal(&c, o->frames_t[f], nor) != CJ_OK) nor[0] = nor[1] = 0.0;
+        }
         to_px(x, p, pp);
         const double len = cv->arrow_len;
         st = cj_plot_arrow(cv, pp[0], pp[1], pp[0] + len * tan[0], pp[1] + len * tan[1],
                            cj_rgba_make(0xd6, 0x27, 0x28, 255), 2.0);
-        if (!st && o->normals && cj_bezier_normal(&c, o->frames_t[f], nor) == CJ_OK)
+        if (!st && o->normals && (nor[0] != 0.0 || nor[1] != 0.0))
             st = cj_plot_arrow(cv, pp[0], pp[1], pp[0] + len * nor[0], pp[1] + len * nor[1],
                                cj_rgba_make(0x2c, 0xa0, 0x2c, 255), 2.0);
         if (!st) cj_plot_disc(cv, pp[0], pp[1], 3.5, cj_rgba_make(0x20, 0x20, 0x20, 255));
@@ -515,7 +563,7 @@ static cj_status draw_spline(cj_plot_canvas *cv, const xform *x, const plot_item
      * separately joins them (round joins of the stroker). */
     for (size_t s = 0; !st && s < it->nsegs; ++s) {
         for (int i = 0; i < 4; ++i) to_px(x, it->segs + 8 * s + 2 * i, seg + 2 * i);
-        st = flatten_px(cv, seg, 3);
+        st = flatten_px(cv, seg, NULL, 3);
         if (!st) st = cj_plot_stroke(cv, cv->poly, cv->poly_n, 0, it->color, it->width);
     }
     if (!st && it->markers)

@@ -26,6 +26,7 @@
 #include "casteljau/catmull_rom.h"
 #include "casteljau/framebuffer.h"
 #include "casteljau/implicit.h"
+#include "casteljau/rational.h"
 #include "casteljau/status.h"
 #include "casteljau/text.h"
 #include <stddef.h>
@@ -82,6 +83,12 @@ cj_status cj_plot_set_view(cj_plot *plot, double x0, double y0, double x1, doubl
  * CJ_ERR_NOMEM. A frame at a point where the curve has no tangent (all points equal) is
  * skipped at render time. */
 cj_status cj_plot_add_bezier(cj_plot *plot, const cj_bezier *c, const cj_plot_bezier_opts *opts);
+
+/* A 2D rational Bézier curve (weights > 0, see rational.h), with the same options: the hull
+ * still contains the curve, the construction shows the rational de Casteljau levels
+ * ((1-t) w_i b_i + t w_{i+1} b_{i+1}) / ((1-t) w_i + t w_{i+1}), and a frame is skipped where
+ * c'(t) = 0. Statuses: those of cj_rbezier_check, then as cj_plot_add_bezier. */
+cj_status cj_plot_add_rbezier(cj_plot *plot, const cj_rbezier *c, const cj_plot_bezier_opts *opts);
 
 /* An interpolating spline through npts 2D points (cj_catmull_rom with sopts, NULL = classic
  * uniform Catmull-Rom κ = 0.5); show_knots draws the points it passes through as markers.
