@@ -293,11 +293,17 @@ static void test_framebuffer_basics(void **state) {
     /* A line drawn into the framebuffer covers exactly the visited pixels, opaque or blended,
      * including clipped lines (pointer-stepping loop vs callback loop). */
     cj_framebuffer_destroy(fb);
-    assert_int_equal(cj_framebuffer_create(64, 48, 0, &al, &fb), CJ_OK);
+    fb = NULL;
     cj_rng r;
     cj_rng_init(&r, g_seed + 2);
-    cj_raster_rect clip = cj_raster_rect_of(fb);
     for (int i = 0; i < 400; ++i) {
+        /* Half the cases in a framebuffer with padded rows (stride > width). */
+        if (i == 0 || i == 200) {
+            cj_framebuffer_destroy(fb);
+            assert_int_equal(cj_framebuffer_create(64, 48, i ? CJ_FB_PADDED : 0u, &al, &fb), CJ_OK);
+            assert_true(i ? fb->stride > 64 && fb->stride % 32 == 16 : fb->stride == 64);
+        }
+        cj_raster_rect clip = cj_raster_rect_of(fb);
         long long x0 = cj_rng_int(&r, -100, 160), y0 = cj_rng_int(&r, -100, 150);
         long long x1 = cj_rng_int(&r, -100, 160), y1 = cj_rng_int(&r, -100, 150);
         cj_rgba bg = cj_rgba_make(10, 20, 30, 255), c = cj_rgba_make(200, 100, 50, 255);
@@ -310,7 +316,7 @@ static void test_framebuffer_basics(void **state) {
         size_t marked = 0;
         for (int y = 0; y < 48; ++y)
             for (int x = 0; x < 64; ++x) {
-                cj_rgba p = fb->pixels[y * 64 + x];
+                cj_rgba p = fb->pixels[y * fb->stride + x];
                 if (memcmp(&p, &bg, 4) != 0) {
                     assert_memory_equal(&p, &expect, 4);
                     marked++;
@@ -318,11 +324,26 @@ static void test_framebuffer_basics(void **state) {
             }
         assert_int_equal(marked, s.n);
         free(s.p);
+        /* Stroke and Wu output lands in the right place whatever the stride. */
+        if (i % 50 == 1) {
+            cj_framebuffer_clear(fb, bg);
+            cj_vec2 pts[2] = {{20.5, 10.0}, {20.5, 30.0}};
+            cj_raster_stroke st = cj_raster_stroke_default(1);
+            st.cap = CJ_CAP_BUTT;
+            cj_raster_stroke_polyline(fb, pts, 2, 0, &st, cj_rgba_make(255, 255, 255, 255));
+            cj_raster_line_aa(fb, 40.5, 5.0, 40.5, 26.0, cj_rgba_make(255, 255, 255, 255));
+            for (int y = 0; y < 48; ++y)
+                for (int x = 0; x < 64; ++x) {
+                    int on = (x == 20 && y >= 10 && y < 30) || (x == 40 && y >= 5 && y <= 25);
+                    cj_rgba p = fb->pixels[y * fb->stride + x];
+                    assert_int_equal(p.r, on ? 255 : 10);
+                }
+        }
     }
     cj_framebuffer_destroy(fb);
     assert_int_equal(g_allocs, 0);
     printf("framebuffer: size/flag checks, origin lower-left, file row order, out-of-range "
-           "ignored, 400 fb lines == visited set, allocator balanced\n");
+           "ignored, 400 fb lines == visited set (plain and padded rows), allocator balanced\n");
 }
 
 /* Blending against the exact rational definition: the result channel is the integer nearest
@@ -476,6 +497,58 @@ static void test_stroke_area(void **state) {
            "(1e-4)\n");
 }
 
+/* Per-pixel coverage against an independent oracle: 32x32 point samples per pixel of the
+ * exact shape (a capsule for round caps, a rectangle for butt caps). */
+static int in_stroke(double px, double py, cj_vec2 a, cj_vec2 b, double h, int round) {
+    double dx = b.x - a.x, dy = b.y - a.y, L2 = dx * dx + dy * dy;
+    double t = ((px - a.x) * dx + (py - a.y) * dy) / L2;
+    if (!round && (t < 0 || t > 1)) return 0;
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    double qx = a.x + t * dx - px, qy = a.y + t * dy - py;
+    return qx * qx + qy * qy <= h * h;
+}
+
+static void test_stroke_pixels_supersampled(void **state) {
+    (void)state;
+    cj_rng r;
+    cj_rng_init(&r, g_seed + 6);
+    double worst = 0, sum = 0;
+    long count = 0;
+    for (int i = 0; i < 16; ++i) {
+        double w = cj_rng_range(&r, 0.3, 8), ang = cj_rng_range(&r, 0, 6.283185307179586);
+        double len = cj_rng_range(&r, 5, 40);
+        cj_vec2 a = {cj_rng_range(&r, 50, 110), cj_rng_range(&r, 40, 80)};
+        cj_vec2 b = {a.x + len * cos(ang), a.y + len * sin(ang)};
+        cj_vec2 p[2] = {a, b};
+        cj_raster_stroke st = cj_raster_stroke_default(w);
+        int round = i & 1;
+        st.cap = round ? CJ_CAP_ROUND : CJ_CAP_BUTT;
+        stroke_total(p, 2, 0, st);
+        int x0 = (int)floor(fmin(a.x, b.x) - w - 1), x1 = (int)ceil(fmax(a.x, b.x) + w + 1);
+        int y0 = (int)floor(fmin(a.y, b.y) - w - 1), y1 = (int)ceil(fmax(a.y, b.y) + w + 1);
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                int in = 0;
+                for (int sy = 0; sy < 32; ++sy)
+                    for (int sx = 0; sx < 32; ++sx)
+                        in += in_stroke(x + (sx + 0.5) / 32, y + (sy + 0.5) / 32, a, b, 0.5 * w,
+                                        round);
+                double err = fabs(in / 1024.0 - g_cov[y][x]);
+                if (err > worst) worst = err;
+                sum += err;
+                count++;
+                if (err > 0.02)
+                    fail_msg("stroke pixel (%d,%d): coverage %g, supersampled %g (seed %llu case "
+                             "%d)",
+                             x, y, g_cov[y][x], in / 1024.0, (unsigned long long)g_seed, i);
+            }
+    }
+    assert_true(sum / count < 0.001);
+    printf("strokes: %ld pixels of 16 random strokes vs 32x32 supersampling: max |diff| %.4f, "
+           "mean %.5f\n",
+           count, worst, sum / count);
+}
+
 static void test_stroke_clip_and_errors(void **state) {
     (void)state;
     cj_vec2 p[2] = {{-1e9, -1e9}, {1e9, 1e9}};
@@ -555,6 +628,7 @@ int main(void) {
         cmocka_unit_test(test_blend_exact),
         cmocka_unit_test(test_wu),
         cmocka_unit_test(test_stroke_area),
+        cmocka_unit_test(test_stroke_pixels_supersampled),
         cmocka_unit_test(test_stroke_clip_and_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

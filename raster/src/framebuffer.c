@@ -34,21 +34,26 @@ cj_status cj_framebuffer_create(int width, int height, unsigned flags,
     if (height < 1 || height > CJ_FRAMEBUFFER_MAX_SIDE)
         return cj_fail(CJ_ERR_RANGE, "framebuffer height %d is outside [1, %d]", height,
                        CJ_FRAMEBUFFER_MAX_SIDE);
-    if (flags & ~(unsigned)CJ_FB_DEPTH)
+    if (flags & ~(unsigned)(CJ_FB_DEPTH | CJ_FB_PADDED))
         return cj_fail(CJ_ERR_ARGUMENT, "framebuffer flags 0x%x contain unknown bits", flags);
     cj_raster_allocator a = {default_alloc, default_free, NULL};
     if (alloc) {
         assert(alloc->alloc && alloc->free);
         a = *alloc;
     }
-    size_t n = (size_t)width * (size_t)height;
+    ptrdiff_t stride = width;
+    if (flags & CJ_FB_PADDED) {
+        stride = (width + 15) / 16 * 16; /* 16 pixels = one 64-byte line */
+        if ((stride / 16) % 2 == 0) stride += 16;
+    }
+    size_t n = (size_t)stride * (size_t)height;
     cj_framebuffer *fb = cj_raster_alloc_(&a, sizeof *fb);
     if (!fb) return cj_fail(CJ_ERR_NOMEM, "no memory for a framebuffer header");
     memset(fb, 0, sizeof *fb);
     fb->alloc_ = a;
     fb->width = width;
     fb->height = height;
-    fb->stride = width;
+    fb->stride = stride;
     fb->pixels = cj_raster_alloc_(&a, n * sizeof *fb->pixels);
     if (!fb->pixels) {
         cj_framebuffer_destroy(fb);
@@ -80,7 +85,7 @@ void cj_framebuffer_destroy(cj_framebuffer *fb) {
 
 void cj_framebuffer_clear(cj_framebuffer *fb, cj_rgba c) {
     assert(fb);
-    size_t n = (size_t)fb->width * (size_t)fb->height;
+    size_t n = (size_t)fb->stride * (size_t)fb->height; /* padding included: harmless */
     cj_rgba *p = fb->pixels;
     for (size_t i = 0; i < n; ++i) p[i] = c;
 }
@@ -88,7 +93,7 @@ void cj_framebuffer_clear(cj_framebuffer *fb, cj_rgba c) {
 void cj_framebuffer_clear_depth(cj_framebuffer *fb, float z) {
     assert(fb);
     if (!fb->depth) return;
-    size_t n = (size_t)fb->width * (size_t)fb->height;
+    size_t n = (size_t)fb->stride * (size_t)fb->height;
     for (size_t i = 0; i < n; ++i) fb->depth[i] = z;
 }
 
@@ -110,26 +115,14 @@ cj_status cj_framebuffer_getpixel(const cj_framebuffer *fb, long long x, long lo
 }
 
 cj_rgba cj_rgba_over(cj_rgba s, cj_rgba d) {
-    uint32_t sa = s.a, da = d.a;
-    if (sa == 255) return s;
-    if (sa == 0) return d;
-    /* Everything scaled by 255^2: A = α_o 255², channel numerator = c_o α_o 255². */
-    uint32_t wd = da * (255u - sa);
-    uint32_t A = sa * 255u + wd;
-    cj_rgba o; /* A >= 255 since sa >= 1 */
-    o.a = (uint8_t)((2u * A + 255u) / 510u);
-    uint32_t ws = sa * 255u, A2 = 2u * A;
-    o.r = (uint8_t)((2u * (s.r * ws + d.r * wd) + A) / A2);
-    o.g = (uint8_t)((2u * (s.g * ws + d.g * wd) + A) / A2);
-    o.b = (uint8_t)((2u * (s.b * ws + d.b * wd) + A) / A2);
-    return o;
+    return cj_rgba_over_inl_(s, d);
 }
 
 int cj_framebuffer_blend(cj_framebuffer *fb, long long x, long long y, cj_rgba c) {
     assert(fb);
     if (!cj_framebuffer_inside(fb, x, y)) return 0;
     cj_rgba *p = &fb->pixels[(ptrdiff_t)y * fb->stride + (ptrdiff_t)x];
-    *p = cj_rgba_over(c, *p);
+    *p = cj_rgba_over_inl_(c, *p);
     return 1;
 }
 
@@ -139,6 +132,6 @@ int cj_framebuffer_blend_coverage(cj_framebuffer *fb, long long x, long long y, 
     if (!cj_framebuffer_inside(fb, x, y)) return 0;
     c.a = cj_raster_scale_alpha_(c.a, coverage);
     cj_rgba *p = &fb->pixels[(ptrdiff_t)y * fb->stride + (ptrdiff_t)x];
-    *p = cj_rgba_over(c, *p);
+    *p = cj_rgba_over_inl_(c, *p);
     return 1;
 }

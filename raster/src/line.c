@@ -7,6 +7,7 @@
  * remainder 2du - 1 - r is used so that the loop always adds 2|dv| and wraps at 2du. */
 #include "casteljau/line.h"
 #include "error_internal.h"
+#include "raster_internal.h"
 
 #include <assert.h>
 #include <math.h>
@@ -186,7 +187,7 @@ static void draw_run(cj_framebuffer *fb, const line_run *run, cj_rgba c) {
         }
     } else if (c.a != 0) {
         for (; n > 0; --n) {
-            *p = cj_rgba_over(c, *p);
+            *p = cj_rgba_over_inl_(c, *p);
             e += inc;
             if (e >= lim) {
                 e -= lim;

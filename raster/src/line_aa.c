@@ -61,8 +61,12 @@ static void emit(const aa_sink *s, long long x, long long y, float cov, cj_raste
     if (!(cov > 0.0f) || x < clip.x0 || x > clip.x1 || y < clip.y0 || y > clip.y1) return;
     if (s->fn)
         s->fn(s->user, (int)x, (int)y, cov);
-    else
-        cj_framebuffer_blend_coverage(s->fb, x, y, s->c, cov);
+    else {
+        cj_rgba c = s->c;
+        c.a = cj_raster_scale_alpha_(c.a, cov);
+        cj_rgba *p = s->fb->pixels + (ptrdiff_t)y * s->fb->stride + (ptrdiff_t)x;
+        *p = cj_rgba_over_inl_(c, *p);
+    }
 }
 
 static cj_status wu(double x0, double y0, double x1, double y1, cj_raster_rect clip,

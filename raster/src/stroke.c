@@ -25,10 +25,19 @@
 
 #define CJ_PI_ 3.14159265358979323846
 
+/* min/max without the NaN rules of fmin/fmax (inputs here are finite), so they inline. */
+static inline double dmin(double a, double b) {
+    return a < b ? a : b;
+}
+static inline double dmax(double a, double b) {
+    return a > b ? a : b;
+}
+
 typedef struct cover_target {
     float *cover;     /* w*h, zero outside touched spans */
     int *lo, *hi;     /* per row, relative x; empty when lo > hi */
-    int ox, oy, w, h; /* pixel (x, y) is cover[(y-oy)*w + (x-ox)] */
+    int ox, oy, w, h; /* pixel (x, y) is cover[(y-oy)*cs + (x-ox)] */
+    ptrdiff_t cs;     /* row pitch of the plane (padded: see CJ_FB_PADDED) */
     int ymin, ymax;   /* touched rows, relative; empty when ymin > ymax */
 } cover_target;
 
@@ -95,6 +104,68 @@ static double pixel_area(const poly *pc, int x, int y) {
     return a.n >= 3 ? poly_area(&a) : 0.0;
 }
 
+/* Area of {q in the unit square centred at distance d inside the line n.q <= c}, |n| = 1: the
+ * integral of the square's width profile along n, a trapezoid of half-extents
+ * s = (a+b)/2, r = (a-b)/2 with a = max(|nx|,|ny|), b = min(|nx|,|ny|). */
+static double halfplane_area(double d, double nx, double ny) {
+    double a = fabs(nx), b = fabs(ny);
+    if (b > a) {
+        double t = a;
+        a = b, b = t;
+    }
+    double s = 0.5 * (a + b), r = 0.5 * (a - b);
+    if (d <= -s) return 0.0;
+    if (d >= s) return 1.0;
+    if (d > -r && d < r) return 0.5 + d / a;
+    if (b < 1e-12) return d > 0 ? 1.0 : 0.0; /* |d| == r == s up to rounding */
+    if (d <= -r) return (d + s) * (d + s) / (2.0 * a * b);
+    return 1.0 - (s - d) * (s - d) / (2.0 * a * b);
+}
+
+/* A piece with its edge lines: inside <=> n_k . q <= c_k for every edge k (|n_k| = 1). */
+typedef struct prepared {
+    const poly *p;
+    double nx[POLY_MAX], ny[POLY_MAX], c[POLY_MAX];
+    int m;
+} prepared;
+
+static void prepare(const poly *p, prepared *q) {
+    double area2 = 0;
+    for (int i = 0, j = p->n - 1; i < p->n; j = i++)
+        area2 += p->v[j].x * p->v[i].y - p->v[i].x * p->v[j].y;
+    double o = area2 >= 0 ? 1.0 : -1.0; /* outward normal of edge e is o * (ey, -ex) */
+    q->p = p;
+    q->m = 0;
+    for (int i = 0, j = p->n - 1; i < p->n; j = i++) {
+        double ex = p->v[i].x - p->v[j].x, ey = p->v[i].y - p->v[j].y, len = hypot(ex, ey);
+        if (!(len > 0)) continue;
+        double nx = o * ey / len, ny = -o * ex / len;
+        q->nx[q->m] = nx;
+        q->ny[q->m] = ny;
+        q->c[q->m] = nx * p->v[j].x + ny * p->v[j].y;
+        q->m++;
+    }
+}
+
+/* Area of piece ∩ pixel (x, y): 0 or 1 when no edge line crosses the pixel, closed form when
+ * exactly one does, polygon clipping otherwise. */
+static double pixel_coverage(const prepared *q, int x, int y) {
+    double cx = x + 0.5, cy = y + 0.5, dcut = 0, nxc = 0, nyc = 0;
+    int cuts = 0;
+    for (int k = 0; k < q->m; ++k) {
+        double d = q->c[k] - (q->nx[k] * cx + q->ny[k] * cy);
+        double s = 0.5 * (fabs(q->nx[k]) + fabs(q->ny[k]));
+        if (d <= -s) return 0.0;
+        if (d < s) {
+            ++cuts;
+            dcut = d, nxc = q->nx[k], nyc = q->ny[k];
+        }
+    }
+    if (cuts == 0) return 1.0;
+    if (cuts == 1) return halfplane_area(dcut, nxc, nyc);
+    return pixel_area(q->p, x, y);
+}
+
 /* x-interval of the piece on the horizontal line Y; 0 if it misses. */
 static int x_on_line(const poly *p, double Y, double *lo, double *hi) {
     double l = DBL_MAX, h = -DBL_MAX;
@@ -103,12 +174,12 @@ static int x_on_line(const poly *p, double Y, double *lo, double *hi) {
         if ((a.y - Y) * (b.y - Y) > 0) continue;
         if (a.y == b.y) {
             if (a.y != Y) continue;
-            l = fmin(l, fmin(a.x, b.x));
-            h = fmax(h, fmax(a.x, b.x));
+            l = dmin(l, dmin(a.x, b.x));
+            h = dmax(h, dmax(a.x, b.x));
         } else {
             double x = a.x + (Y - a.y) * (b.x - a.x) / (b.y - a.y);
-            l = fmin(l, x);
-            h = fmax(h, x);
+            l = dmin(l, x);
+            h = dmax(h, x);
         }
     }
     *lo = l, *hi = h;
@@ -134,8 +205,8 @@ static int x_in_band(const poly *p, double y0, double y1, double *lo, double *hi
             if (t0 > t1) continue;
         }
         double xa = a.x + t0 * (b.x - a.x), xb = a.x + t1 * (b.x - a.x);
-        l = fmin(l, fmin(xa, xb));
-        h = fmax(h, fmax(xa, xb));
+        l = dmin(l, dmin(xa, xb));
+        h = dmax(h, dmax(xa, xb));
     }
     *lo = l, *hi = h;
     return l <= h;
@@ -145,25 +216,27 @@ static int x_in_band(const poly *p, double y0, double y1, double *lo, double *hi
 static void add_poly(stroker *s, const poly *p, float sign) {
     if (p->n < 3) return;
     cover_target *t = s->t;
+    prepared q;
+    prepare(p, &q);
     double ylo = DBL_MAX, yhi = -DBL_MAX;
-    for (int k = 0; k < p->n; ++k) ylo = fmin(ylo, p->v[k].y), yhi = fmax(yhi, p->v[k].y);
-    double r0 = fmax(floor(ylo), t->oy), r1 = fmin(ceil(yhi) - 1.0, t->oy + t->h - 1.0);
+    for (int k = 0; k < p->n; ++k) ylo = dmin(ylo, p->v[k].y), yhi = dmax(yhi, p->v[k].y);
+    double r0 = dmax(floor(ylo), t->oy), r1 = dmin(ceil(yhi) - 1.0, t->oy + t->h - 1.0);
     for (int y = (int)r0; y <= (int)r1 && r0 <= r1; ++y) {
         double xlo, xhi;
         if (!x_in_band(p, y, y + 1.0, &xlo, &xhi)) continue;
-        double c0 = fmax(floor(xlo), t->ox), c1 = fmin(ceil(xhi) - 1.0, t->ox + t->w - 1.0);
+        double c0 = dmax(floor(xlo), t->ox), c1 = dmin(ceil(xhi) - 1.0, t->ox + t->w - 1.0);
         if (xhi == xlo || c0 > c1) continue;
         /* Pixels whose four corners are inside are full: x >= fa, x + 1 <= fb. */
         double a0, b0, a1, b1, fa = 1.0, fb = 0.0;
         if (x_on_line(p, y, &a0, &b0) && x_on_line(p, y + 1.0, &a1, &b1)) {
-            fa = ceil(fmax(a0, a1));
-            fb = floor(fmin(b0, b1)) - 1.0;
+            fa = ceil(dmax(a0, a1));
+            fb = floor(dmin(b0, b1)) - 1.0;
         }
         int ry = y - t->oy, x0 = (int)c0 - t->ox, x1 = (int)c1 - t->ox;
-        float *row = t->cover + (ptrdiff_t)ry * t->w;
+        float *row = t->cover + (ptrdiff_t)ry * t->cs;
         for (int x = x0; x <= x1; ++x) {
             double ax = x + t->ox;
-            double area = ax >= fa && ax <= fb ? 1.0 : pixel_area(p, x + t->ox, y);
+            double area = ax >= fa && ax <= fb ? 1.0 : pixel_coverage(&q, x + t->ox, y);
             row[x] += sign * (float)area;
         }
         if (x0 < t->lo[ry]) t->lo[ry] = x0;
@@ -177,9 +250,9 @@ static void add_poly(stroker *s, const poly *p, float sign) {
  * (counter-clockwise when ccw, else clockwise), as fans of at most 4 triangles per piece. */
 static void add_sector(stroker *s, cj_vec2 c, cj_vec2 u0, double phi, int ccw, double r) {
     if (!(phi > 0.0) || !(r > 0.0)) return;
-    double dmax = 2.0 * acos(fmax(0.0, 1.0 - 0.02 / r));
-    if (!(dmax > 0.0) || dmax > CJ_PI_ / 8) dmax = CJ_PI_ / 8;
-    int k = (int)ceil(phi / dmax);
+    double step = 2.0 * acos(dmax(0.0, 1.0 - 0.02 / r));
+    if (!(step > 0.0) || step > CJ_PI_ / 8) step = CJ_PI_ / 8;
+    int k = (int)ceil(phi / step);
     if (k < 1) k = 1;
     double d = phi / k, sg = ccw ? 1.0 : -1.0;
     double rr = r * sqrt(d / sin(d)); /* each triangle gets the exact sector area */
@@ -270,7 +343,7 @@ static void add_join(stroker *s, cj_vec2 v, cj_vec2 din, cj_vec2 dout) {
     if (cr > 0.0) a = cj_v2_scale(a, -1.0), b = cj_v2_scale(b, -1.0);
     double h = s->hw, ab = cj_v2_dot(a, b);
     if (s->join == CJ_JOIN_ROUND) {
-        double phi = acos(fmax(-1.0, fmin(1.0, ab)));
+        double phi = acos(dmax(-1.0, dmin(1.0, ab)));
         add_sector(s, v, a, phi, cj_v2_cross(a, din) > 0.0, h);
         return;
     }
@@ -424,7 +497,7 @@ static void stroker_init(stroker *s, cover_target *t, const cj_raster_stroke *st
 static void compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_raster_cover_fn fn,
                     void *user) {
     for (int ry = t->ymin; ry <= t->ymax; ++ry) {
-        float *row = t->cover + (ptrdiff_t)ry * t->w;
+        float *row = t->cover + (ptrdiff_t)ry * t->cs;
         for (int x = t->lo[ry]; x <= t->hi[ry]; ++x) {
             float cov = row[x];
             row[x] = 0.0f;
@@ -436,7 +509,10 @@ static void compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_raster_co
                     cj_rgba s = c;
                     s.a = cj_raster_scale_alpha_(c.a, cov);
                     cj_rgba *p = fb->pixels + (ptrdiff_t)(ry + t->oy) * fb->stride + x + t->ox;
-                    *p = cj_rgba_over(s, *p);
+                    if (s.a == 255)
+                        *p = s;
+                    else if (s.a != 0)
+                        *p = cj_rgba_over_inl_(s, *p);
                 }
             }
         }
@@ -447,9 +523,16 @@ static void compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_raster_co
     t->ymax = -1;
 }
 
+/* Row pitch of the framebuffer's coverage plane: an odd number of 64-byte lines, so that a
+ * steep stroke does not map every row to the same cache set. */
+static ptrdiff_t cover_pitch(int width) {
+    ptrdiff_t cs = ((ptrdiff_t)width + 15) / 16 * 16;
+    return (cs / 16) % 2 ? cs : cs + 16;
+}
+
 static cj_status fb_target(cj_framebuffer *fb, cover_target *t) {
     if (!fb->cover_) {
-        size_t n = (size_t)fb->width * (size_t)fb->height;
+        size_t n = (size_t)cover_pitch(fb->width) * (size_t)fb->height;
         float *cover = cj_raster_alloc_(&fb->alloc_, n * sizeof *cover);
         int *lo = cj_raster_alloc_(&fb->alloc_, (size_t)fb->height * sizeof *lo);
         int *hi = cj_raster_alloc_(&fb->alloc_, (size_t)fb->height * sizeof *hi);
@@ -472,6 +555,7 @@ static cj_status fb_target(cj_framebuffer *fb, cover_target *t) {
     t->ox = 0;
     t->oy = 0;
     t->w = fb->width;
+    t->cs = cover_pitch(fb->width);
     t->h = fb->height;
     return CJ_OK;
 }
@@ -515,6 +599,7 @@ cj_status cj_raster_stroke_polyline_visit(const cj_vec2 *pts, size_t n, int clos
     t.ox = clip.x0;
     t.oy = clip.y0;
     t.w = clip.x1 - clip.x0 + 1;
+    t.cs = t.w;
     t.h = clip.y1 - clip.y0 + 1;
     t.cover = work;
     t.lo = (int *)(t.cover + (size_t)t.w * (size_t)t.h);

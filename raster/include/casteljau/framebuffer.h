@@ -2,7 +2,8 @@
  *
  * Coordinates: pixel (x, y) covers the square [x, x+1) x [y, y+1) of the plane and its centre is
  * (x + 0.5, y + 0.5). The origin is the LOWER-LEFT pixel, as in OpenGL: row 0 is the bottom row
- * and y grows upwards. Pixel (x, y) lives at pixels[y * stride + x].
+ * and y grows upwards. Pixel (x, y) lives at pixels[y * stride + x]; stride == width unless the
+ * framebuffer was created with CJ_FB_PADDED (always index with stride).
  *
  * Image files are the other way round: they store the TOP row first. Whoever writes a
  * framebuffer to a file (the viz/ image writer) flips the rows, and whoever reads one flips back;
@@ -55,15 +56,20 @@ static inline cj_rgba cj_rgba_make(uint8_t r, uint8_t g, uint8_t b, uint8_t a) {
 
 /* Flags for cj_framebuffer_create(). */
 enum {
-    CJ_FB_DEPTH = 1u /* also allocate a float depth plane (for the 3D renderer) */
+    CJ_FB_DEPTH = 1u, /* also allocate a float depth plane (for the 3D renderer) */
+    /* Pad rows so that the row pitch is an odd number of 64-byte cache lines. With power-of-two
+     * widths (512, 1024, 2048) every pixel of a column maps to the same cache set and steep
+     * lines run ~10x slower (bench_lines shows both); padding removes that. Rows are then not
+     * contiguous: stride > width. */
+    CJ_FB_PADDED = 2u
 };
 
 typedef struct cj_framebuffer {
     int width;        /* 1..CJ_FRAMEBUFFER_MAX_SIDE */
     int height;       /* 1..CJ_FRAMEBUFFER_MAX_SIDE */
-    ptrdiff_t stride; /* pixels from one row to the next (== width) */
-    cj_rgba *pixels;  /* width*height pixels, row 0 = bottom row */
-    float *depth;     /* width*height depths laid out like pixels, or NULL without CJ_FB_DEPTH */
+    ptrdiff_t stride; /* pixels from one row to the next (== width unless CJ_FB_PADDED) */
+    cj_rgba *pixels;  /* stride*height pixels, row 0 = bottom row */
+    float *depth;     /* depths laid out like pixels (same stride), or NULL without CJ_FB_DEPTH */
     /* private: allocator and the scratch planes of the anti-aliased stroker */
     cj_raster_allocator alloc_;
     float *cover_;
@@ -71,7 +77,8 @@ typedef struct cj_framebuffer {
 } cj_framebuffer;
 
 /* Creates a width x height framebuffer cleared to transparent black (0,0,0,0), with a depth plane
- * cleared to +1 (the far end of pseudodepth [-1, 1]) when flags has CJ_FB_DEPTH.
+ * cleared to +1 (the far end of pseudodepth [-1, 1]) when flags has CJ_FB_DEPTH, and padded rows
+ * with CJ_FB_PADDED.
  * `alloc` may be NULL (malloc/free); it is copied.
  * Returns CJ_ERR_RANGE if width or height is outside [1, CJ_FRAMEBUFFER_MAX_SIDE],
  * CJ_ERR_ARGUMENT for unknown flags, CJ_ERR_NOMEM if an allocation fails; *out is set only on
