@@ -93,10 +93,19 @@ static cj_status diagnose_singular(const double *a, int m, const cj_interp_const
                        "determine the polynomial",
                        cond);
     const int j = (int)jpvt[m - 1] - 1; /* 1-based */
+    /* |R_mm| / |R_11| tells a numerically dependent constraint from a merely ill-conditioned
+     * (but determined) set, e.g. equispaced parameters at high degree. */
+    const double r11 = fabs(at[0]), rmm = fabs(at[(m - 1) * m + (m - 1)]);
+    if (rmm <= 1e3 * (double)m * CJ_UNIT_ROUNDOFF * r11)
+        return cj_fail(CJ_ERR_SINGULAR,
+                       "constraints do not determine the polynomial (condition estimate %g): "
+                       "constraint %d (order %d at t = %.17g) depends linearly on the others",
+                       cond, j, cons[j].order, cons[j].t);
     return cj_fail(CJ_ERR_SINGULAR,
-                   "constraints do not determine the polynomial (condition estimate %g): "
-                   "constraint %d (order %d at t = %.17g) depends linearly on the others",
-                   cond, j, cons[j].order, cons[j].t);
+                   "constraint set too ill-conditioned for double precision (condition estimate "
+                   "%g > %g); closest to dependent: constraint %d (order %d at t = %.17g); "
+                   "use fewer constraints or Chebyshev-like parameters",
+                   cond, 1.0 / (64.0 * CJ_UNIT_ROUNDOFF), j, cons[j].order, cons[j].t);
 }
 
 cj_status cj_interp_solve(const cj_interp_constraint *cons, size_t m, int dim, double a, double b,

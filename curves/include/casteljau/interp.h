@@ -19,7 +19,9 @@
  *   - any other set that does not determine the polynomial (e.g. only derivatives, no value):
  *     found by QR with column pivoting of the transposed matrix (dgeqp3), which names a
  *     constraint that depends linearly on the others.
- * A condition estimate above 1/(64 u) ≈ 5.6e14 counts as singular.
+ * A condition estimate above 1/(64 u) ≈ 5.6e14 counts as singular; the message then says
+ * whether a constraint is numerically dependent on the others or the set is merely too
+ * ill-conditioned for double precision (equispaced parameters at degree 40, say).
  */
 #ifndef CASTELJAU_INTERP_H
 #define CASTELJAU_INTERP_H
