@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include "casteljau/image_io.h"
+#include "casteljau/plot.h" // with text.h, framebuffer.h: must compile as C++ too
 
 #include <OpenImageIO/imageio.h>
 
@@ -173,12 +174,30 @@ static void test_bad_arguments_and_reads(void **state) {
     std::printf("test_image_io: bad sizes/strides refused, missing and non-image files reported\n");
 }
 
+// The raster/ plot and text headers (and what they include) compile and link from C++.
+static void test_plot_headers_from_cxx(void **state) {
+    (void)state;
+    cj_plot *plot = nullptr;
+    assert_int_equal(cj_plot_create(nullptr, &plot), CJ_OK);
+    cj_plot_bezier_opts o = cj_plot_bezier_defaults();
+    const double pts[6] = {0, 0, 1, 2, 2, 0};
+    cj_bezier c = cj_bezier_view(2, 2, pts);
+    assert_int_equal(cj_plot_add_bezier(plot, &c, &o), CJ_OK);
+    cj_framebuffer *fb = nullptr;
+    assert_int_equal(cj_framebuffer_create(64, 48, 0, nullptr, &fb), CJ_OK);
+    assert_int_equal(cj_plot_render(plot, fb, 0, 0, 64, 48, nullptr), CJ_OK);
+    cj_framebuffer_destroy(fb);
+    cj_plot_destroy(plot);
+    std::printf("test_image_io: plot.h/text.h/framebuffer.h used from C++\n");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_round_trip_random),
         cmocka_unit_test(test_file_is_top_row_first),
         cmocka_unit_test(test_failed_write_leaves_nothing),
         cmocka_unit_test(test_bad_arguments_and_reads),
+        cmocka_unit_test(test_plot_headers_from_cxx),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }
