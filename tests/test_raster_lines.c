@@ -617,6 +617,48 @@ static void test_stroke_clip_and_errors(void **state) {
            maxdiff);
 }
 
+/* Curves through flattening: a rational quarter circle (exact conic) of radius 40 stroked with
+ * width 4 and butt caps covers the quarter annulus, area 2 pi R (within 0.5%: the polyline is
+ * within 0.25 px of the arc); a two-piece sequence covers like one curve. */
+static double ink_total(const cj_framebuffer *fb) {
+    double t = 0;
+    for (int y = 0; y < fb->height; ++y)
+        for (int x = 0; x < fb->width; ++x) t += fb->pixels[y * fb->stride + x].r / 255.0;
+    return t;
+}
+
+static void test_stroke_curves(void **state) {
+    (void)state;
+    cj_framebuffer *fb;
+    assert_int_equal(cj_framebuffer_create(CW, CH, CJ_FB_PADDED, NULL, &fb), CJ_OK);
+    cj_framebuffer_clear(fb, cj_rgba_make(0, 0, 0, 255));
+    const double R = 40, cx = 60, cy = 30;
+    const double pts[6] = {cx + R, cy, cx + R, cy + R, cx, cy + R};
+    const double wts[3] = {1, sqrt(0.5), 1};
+    cj_rbezier arc = {2, 2, pts, wts};
+    cj_raster_stroke st = cj_raster_stroke_default(4);
+    st.cap = CJ_CAP_BUTT;
+    double bound = -1;
+    cj_rgba white = cj_rgba_make(255, 255, 255, 255);
+    assert_int_equal(cj_raster_stroke_rbezier(fb, &arc, 0.25, &st, white, &bound), CJ_OK);
+    double area = ink_total(fb), expect = 2 * 3.141592653589793 * R;
+    assert_true(bound > 0 && bound <= 0.25);
+    assert_true(fabs(area - expect) < 0.005 * expect);
+    /* Sequence: the two halves of a straight cubic stroke like the whole. */
+    cj_framebuffer_clear(fb, cj_rgba_make(0, 0, 0, 255));
+    const double h1[8] = {10, 10, 20, 20, 30, 30, 40, 40}, h2[8] = {40, 40, 50, 50, 60, 60, 70, 70};
+    cj_flatten_piece seq[2] = {{cj_bezier_view(3, 2, h1), NULL}, {cj_bezier_view(3, 2, h2), NULL}};
+    assert_int_equal(cj_raster_stroke_sequence(fb, seq, 2, 0.25, &st, white, NULL), CJ_OK);
+    double seq_area = ink_total(fb), line_area = 60 * sqrt(2.0) * 4;
+    assert_true(fabs(seq_area - line_area) < 0.005 * line_area);
+    assert_int_equal(cj_raster_stroke_rbezier(fb, &arc, 0.0, &st, white, NULL), CJ_ERR_RANGE);
+    assert_int_equal(cj_raster_stroke_rbezier(fb, &arc, NAN, &st, white, NULL), CJ_ERR_NONFINITE);
+    cj_framebuffer_destroy(fb);
+    printf("curves: rational quarter circle R=40 w=4 covers %.2f px^2 (2 pi R = %.2f, bound %.3f); "
+           "2-piece sequence %.2f vs %.2f; bad tolerances refused\n",
+           area, expect, bound, seq_area, line_area);
+}
+
 int main(void) {
     g_seed = cj_test_seed("test_raster_lines", 20261121);
     const struct CMUnitTest tests[] = {
@@ -630,6 +672,7 @@ int main(void) {
         cmocka_unit_test(test_stroke_area),
         cmocka_unit_test(test_stroke_pixels_supersampled),
         cmocka_unit_test(test_stroke_clip_and_errors),
+        cmocka_unit_test(test_stroke_curves),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -621,20 +621,21 @@ static void curve_sink(void *user, const double *pt, int dim, size_t piece, doub
     stroker_point(user, cj_v2(pt[0], pt[1]));
 }
 
-cj_status cj_raster_stroke_bezier(cj_framebuffer *fb, const cj_bezier *curve, double tol,
-                                  const cj_raster_stroke *style, cj_rgba c, double *bound) {
-    assert(fb && curve && style);
-    cj_status st;
-    if ((st = check_style(style))) return st;
-    if (curve->dim != 2)
-        return cj_fail(CJ_ERR_DIMENSION, "curve dimension %d: strokes need 2D curves", curve->dim);
+/* Runs one flattening call (which emits vertices into the stroker) and composites. */
+typedef cj_status (*flatten_call)(const void *what, const cj_flatten_opts *opts, void *stroker,
+                                  cj_flatten_stats *stats);
+
+static cj_status stroke_flattened(cj_framebuffer *fb, const void *what, flatten_call run,
+                                  double tol, const cj_raster_stroke *style, cj_rgba c,
+                                  double *bound) {
     cover_target t;
-    if ((st = fb_target(fb, &t))) return st;
+    cj_status st = fb_target(fb, &t);
+    if (st) return st;
     stroker s;
     stroker_init(&s, &t, style, 0);
     cj_flatten_opts opts = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, tol);
     cj_flatten_stats stats;
-    st = cj_flatten_bezier_cb(curve, &opts, curve_sink, &s, &stats);
+    st = run(what, &opts, &s, &stats);
     if (st) {
         compose(&t, NULL, c, NULL, NULL); /* clear whatever was accumulated, draw nothing */
         return st;
@@ -643,4 +644,57 @@ cj_status cj_raster_stroke_bezier(cj_framebuffer *fb, const cj_bezier *curve, do
     compose(&t, fb, c, NULL, NULL);
     if (bound) *bound = stats.bound;
     return CJ_OK;
+}
+
+static cj_status run_bezier(const void *what, const cj_flatten_opts *opts, void *s,
+                            cj_flatten_stats *stats) {
+    return cj_flatten_bezier_cb(what, opts, curve_sink, s, stats);
+}
+static cj_status run_rbezier(const void *what, const cj_flatten_opts *opts, void *s,
+                             cj_flatten_stats *stats) {
+    return cj_flatten_rbezier_cb(what, opts, curve_sink, s, stats);
+}
+
+typedef struct seq {
+    const cj_flatten_piece *pieces;
+    size_t count;
+} seq;
+static cj_status run_sequence(const void *what, const cj_flatten_opts *opts, void *s,
+                              cj_flatten_stats *stats) {
+    const seq *q = what;
+    return cj_flatten_sequence_cb(q->pieces, q->count, opts, curve_sink, s, stats);
+}
+
+cj_status cj_raster_stroke_bezier(cj_framebuffer *fb, const cj_bezier *curve, double tol,
+                                  const cj_raster_stroke *style, cj_rgba c, double *bound) {
+    assert(fb && curve && style);
+    cj_status st;
+    if ((st = check_style(style))) return st;
+    if (curve->dim != 2)
+        return cj_fail(CJ_ERR_DIMENSION, "curve dimension %d: strokes need 2D curves", curve->dim);
+    return stroke_flattened(fb, curve, run_bezier, tol, style, c, bound);
+}
+
+cj_status cj_raster_stroke_rbezier(cj_framebuffer *fb, const cj_rbezier *curve, double tol,
+                                   const cj_raster_stroke *style, cj_rgba c, double *bound) {
+    assert(fb && curve && style);
+    cj_status st;
+    if ((st = check_style(style))) return st;
+    if (curve->dim != 2)
+        return cj_fail(CJ_ERR_DIMENSION, "curve dimension %d: strokes need 2D curves", curve->dim);
+    return stroke_flattened(fb, curve, run_rbezier, tol, style, c, bound);
+}
+
+cj_status cj_raster_stroke_sequence(cj_framebuffer *fb, const cj_flatten_piece *pieces,
+                                    size_t count, double tol, const cj_raster_stroke *style,
+                                    cj_rgba c, double *bound) {
+    assert(fb && style && (pieces || count == 0));
+    cj_status st;
+    if ((st = check_style(style))) return st;
+    for (size_t i = 0; i < count; ++i)
+        if (pieces[i].curve.dim != 2)
+            return cj_fail(CJ_ERR_DIMENSION, "piece %zu has dimension %d: strokes need 2D curves",
+                           i, pieces[i].curve.dim);
+    seq q = {pieces, count};
+    return stroke_flattened(fb, &q, run_sequence, tol, style, c, bound);
 }

@@ -54,6 +54,8 @@
 #define CASTELJAU_LINE_H
 
 #include "casteljau/bezier.h"
+#include "casteljau/flatten.h"
+#include "casteljau/rational.h"
 #include "casteljau/framebuffer.h"
 #include "casteljau/status.h"
 #include "casteljau/vec.h"
@@ -174,13 +176,24 @@ cj_status cj_raster_stroke_polyline_visit(const cj_vec2 *pts, size_t n, int clos
 
 /* Strokes a 2D Bézier curve (c->dim must be 2, else CJ_ERR_DIMENSION) flattened at tolerance
  * tol pixels (CJ_RASTER_DEFAULT_TOL is a good choice) with the near-optimal method of
- * flatten.h; flattening statuses (CJ_ERR_CAP ...) are passed on. The polyline is built in a
- * stack buffer of CJ_RASTER_CURVE_CHUNK points and stroked chunk by chunk with joins carried
- * across chunks, so any length works without allocation. *bound (may be NULL) receives the
- * proven distance bound between the curve and the stroked polyline. */
-#define CJ_RASTER_CURVE_CHUNK 256
+ * flatten.h. The flattener's vertices stream straight into the stroker (joins between all
+ * consecutive segments, caps at the two ends), so any length works without allocation.
+ * Flattening statuses (CJ_ERR_CAP, CJ_ERR_RANGE for tol, ...) are passed on and nothing is drawn
+ * then. *bound (may be NULL) receives the proven distance bound between the curve and the
+ * stroked polyline (<= tol). */
 cj_status cj_raster_stroke_bezier(cj_framebuffer *fb, const cj_bezier *curve, double tol,
                                   const cj_raster_stroke *style, cj_rgba c, double *bound);
+
+/* As cj_raster_stroke_bezier for a rational 2D curve (rational.h; weights > 0). */
+cj_status cj_raster_stroke_rbezier(cj_framebuffer *fb, const cj_rbezier *curve, double tol,
+                                   const cj_raster_stroke *style, cj_rgba c, double *bound);
+
+/* Strokes a sequence of 2D pieces (a spline or interpolant as flatten.h's cj_flatten_piece,
+ * polynomial or rational) as ONE polyline, with joins between pieces; see
+ * cj_flatten_sequence for how pieces that do not meet are connected. */
+cj_status cj_raster_stroke_sequence(cj_framebuffer *fb, const cj_flatten_piece *pieces,
+                                    size_t count, double tol, const cj_raster_stroke *style,
+                                    cj_rgba c, double *bound);
 
 #ifdef __cplusplus
 }
