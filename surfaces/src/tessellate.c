@@ -443,6 +443,35 @@ done:
     return st;
 }
 
+/* Breakpoints 0 = b[0] < ... < b[cnt] = 1 equidistributing the piecewise constant density
+ * rho[0..S-1] on S equal slabs (uniform where the density vanishes everywhere). */
+static void equidistribute(const double *rho, int S, int cnt, double *b) {
+    double total = 0.0;
+    for (int a = 0; a < S; ++a) total += rho[a] / S;
+    b[0] = 0.0;
+    b[cnt] = 1.0;
+    if (!(total > 0.0)) {
+        for (int i = 1; i < cnt; ++i) b[i] = (double)i / cnt;
+        return;
+    }
+    int a = 0;
+    double acc = 0.0;
+    for (int i = 1; i < cnt; ++i) {
+        const double target = total * i / cnt;
+        while (a < S - 1 && acc + rho[a] / S < target) {
+            acc += rho[a] / S;
+            ++a;
+        }
+        double x = rho[a] > 0.0 ? (double)a / S + (target - acc) / rho[a] : (double)(a + 1) / S;
+        if (x > (double)(a + 1) / S) x = (double)(a + 1) / S;
+        b[i] = x;
+    }
+    for (int i = 1; i < cnt; ++i) /* strictly increasing */
+        if (!(b[i] > b[i - 1]) || !(b[i] < 1.0)) b[i] = b[i - 1] + (1.0 - b[i - 1]) / (cnt - i + 1);
+}
+
+#define SLABS 16
+
 /* Adaptive choice for one patch: edge counts from the edges alone; an interior grid of
  * nu x nv = ceil(s sqrt(Muu/(4 tol))) x ceil(s sqrt(Mvv/(4 tol))) uniform cells (global
  * second-derivative bounds set the aspect), with the scale s the smallest (found by doubling
@@ -459,10 +488,25 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu
                            "patch %zu, edge %d needs more than %d segments for tolerance %.3g", q,
                            s, cap, tol);
     }
-    const dbounds gb = net_bounds(P->h, P->m, P->n);
-    /* the mixed term needs both directions refined even when one is straight */
-    const double base_u = sqrt(fmax(gb.uu, gb.uv) / (4.0 * tol));
-    const double base_v = sqrt(fmax(gb.vv, gb.uv) / (4.0 * tol));
+    /* grid densities: sqrt of the second-derivative bound on SLABS slabs per direction (the
+     * mixed term counts in both, so a straight direction is still refined where it twists) */
+    double base_u, base_v;
+    double rho_u[SLABS], rho_v[SLABS];
+    {
+        double su = 0.0, sv = 0.0;
+        for (int a = 0; a < SLABS; ++a) {
+            const dbounds bu =
+                strip_bounds(P, (double)a / SLABS, (double)(a + 1) / SLABS, 0.0, 1.0);
+            const dbounds bv =
+                strip_bounds(P, 0.0, 1.0, (double)a / SLABS, (double)(a + 1) / SLABS);
+            rho_u[a] = sqrt(fmax(bu.uu, bu.uv));
+            rho_v[a] = sqrt(fmax(bv.vv, bv.uv));
+            su += rho_u[a] / SLABS;
+            sv += rho_v[a] / SLABS;
+        }
+        base_u = su / sqrt(4.0 * tol);
+        base_v = sv / sqrt(4.0 * tol);
+    }
     const size_t vs = P->mesh->vertex_count, ts = P->mesh->triangle_count;
     double lo = 0.0, hi = 0.0, s = 1.0;
     int best_nu = 0, best_nv = 0;
@@ -494,8 +538,8 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu
                 st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %zu", q);
                 break;
             }
-            for (int i = 0; i <= nu; ++i) ub[i] = (double)i / nu;
-            for (int j = 0; j <= nv; ++j) vb[j] = (double)j / nv;
+            equidistribute(rho_u, SLABS, nu, ub);
+            equidistribute(rho_v, SLABS, nv, vb);
             int k[4];
             for (int e = 0; e < 4; ++e) k[e] = P->e[e].collapsed ? ((e & 1) ? nv : nu) : ke[e];
             cj_mesh_truncate(P->mesh, vs, ts);
@@ -536,8 +580,8 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu
         if (!ub || !vb) {
             st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %zu", q);
         } else {
-            for (int i = 0; i <= best_nu; ++i) ub[i] = (double)i / best_nu;
-            for (int j = 0; j <= best_nv; ++j) vb[j] = (double)j / best_nv;
+            equidistribute(rho_u, SLABS, best_nu, ub);
+            equidistribute(rho_v, SLABS, best_nv, vb);
             int k[4];
             for (int e = 0; e < 4; ++e)
                 k[e] = P->e[e].collapsed ? ((e & 1) ? best_nv : best_nu) : ke[e];

@@ -13,7 +13,7 @@
  *    identical) maps every one of its vertices to that point exactly; its count follows the
  *    interior (it cannot crack) and the triangles that degenerate there (two vertices at the
  *    same position) are dropped.
- *  - the interior is a grid of nu x nv uniform cells; where edge counts differ from the grid,
+ *  - the interior is a tensor grid of nu x nv cells; where edge counts differ from the grid,
  *    the outer ring of cells is replaced by a zipper strip between the edge points and the
  *    first inner grid row/column.
  *
@@ -33,10 +33,11 @@
  * and uniform mode reports bound = +INFINITY.
  *
  * ADAPTIVE CHOICE. Edge counts: smallest k with d(d-1) max|Δ²b| / (8 k²) <= tol/4 (the chord
- * error bound of the edge curve). Grid: nu x nv uniform cells in the ratio
- * sqrt(max(Muu,Muv)) : sqrt(max(Mvv,Muv)) of the patch's global bounds; the scale is the
- * smallest (doubling, then bisection to 3%) for which the per-triangle bound above is <= tol;
- * the mesh keeps that build.
+ * error bound of the edge curve). Interior: a tensor grid of nu x nv cells whose lines
+ * equidistribute the density sqrt(max(Muu, Muv)) along u (sqrt(max(Mvv, Muv)) along v), the
+ * bounds taken on 16 slabs per direction (1D-optimal spacing for a second-order error); nu and
+ * nv scale together, and the scale is the smallest (doubling, then bisection to 3%) for which
+ * the per-triangle bound above is <= tol; the mesh keeps that build.
  * UNIFORM MODE: K x K cells and K segments on every edge (seed 5.9), same bound.
  * MEMORY: the mesh grows through its allocator; temporaries (index grids, one per patch build)
  * also come from the mesh's allocator.
