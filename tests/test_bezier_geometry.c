@@ -179,6 +179,15 @@ static void test_bbox_hard_cases(void **state) {
     assert_int_equal(cj_bezier_bbox(&cp, &lo, &hi), CJ_OK);
     CHECK_CLOSE(lo, -1, 0);
     CHECK_CLOSE(hi, 1, 0);
+    /* x = -(t-1/2)^4/4 + 9/128 (t-1/2)^2: global minimum 0 at t = 1/2, exactly where the
+     * isolator splits (its derivative's Bernstein coefficients (7,-19,19,-7)/512 have three sign
+     * changes), and maximum 81/16384 at t = 1/8 and 7/8. Bernstein coefficients by hand from
+     * the power form. */
+    const double split_root[] = {1.0 / 512, 1.0 / 64, -11.0 / 512, 1.0 / 64, 1.0 / 512};
+    cj_bezier cr = cj_bezier_view(4, 1, split_root);
+    assert_int_equal(cj_bezier_bbox(&cr, &lo, &hi), CJ_OK);
+    CHECK_CLOSE(lo, 0.0, 1e-18);
+    CHECK_CLOSE(hi, 81.0 / 16384, 1e-17);
     /* Degree 30 in 1D: sum of cosines sampled into control points (any data will do). */
     double w[31];
     for (int i = 0; i <= 30; ++i) w[i] = cos(1.7 * i) + 0.3 * sin(5.1 * i);

@@ -7,9 +7,10 @@
  * at its midpoint by de Casteljau. At the depth cap (width 2^-CJ_BBOX_MAX_DEPTH) the midpoint
  * is used as a candidate, which moves the candidate by at most that width.
  *
- * Every end point of every visited leaf is also a candidate. This costs a few evaluations but
- * makes the result independent of how a zero that sits exactly on a split point is counted:
- * the box is the hull of c at a set of parameters that contains every interior extremum. */
+ * A zero can escape the sign tests only by sitting exactly on a split point (the shared
+ * coefficient of both halves is then 0); such split points are candidates too. Any other zero
+ * lies strictly inside one half, whose end coefficients (the values there) then differ in sign.
+ * The box is the hull of c at a set of parameters that contains every interior extremum. */
 #include "bezier_internal.h"
 
 #include <assert.h>
@@ -104,8 +105,9 @@ static void isolate(bbox_acc *acc, double *a, int m, double *stack) {
         const int v = sign_changes(a, m);
         int leaf = 1;
         if (v == 0) {
-            /* monotone on [t0,t1]: its ends are candidates */
+            /* monotone on [t0,t1]: no extremum strictly inside */
         } else if (v == 1 && a[0] != 0.0 && a[m] != 0.0) {
+            /* exactly one simple zero inside */
             candidate(acc, t0 + (t1 - t0) * polish(a, m));
         } else if (depth >= CJ_BBOX_MAX_DEPTH) {
             candidate(acc, 0.5 * (t0 + t1));
@@ -113,8 +115,6 @@ static void isolate(bbox_acc *acc, double *a, int m, double *stack) {
             leaf = 0;
         }
         if (leaf) {
-            candidate(acc, t0);
-            candidate(acc, t1);
             if (top == 0) return;
             --top;
             t0 = todo[top].t0;
@@ -134,6 +134,8 @@ static void isolate(bbox_acc *acc, double *a, int m, double *stack) {
             for (int i = 0; i < r; ++i) w[i] = 0.5 * (w[i] + w[i + 1]);
         }
         const double mid = 0.5 * (t0 + t1);
+        /* A zero exactly on the split point hides from both halves' strict sign tests. */
+        if (right[0] == 0.0) candidate(acc, mid);
         todo[top].t0 = mid;
         todo[top].t1 = t1;
         todo[top].depth = depth + 1;
