@@ -492,6 +492,19 @@ static void test_stroke_area(void **state) {
     st.join = CJ_JOIN_MITER;
     double got = stroke_total(sq, 4, 1, st);
     assert_true(fabs(got - (44.0 * 44 - 36.0 * 36)) < 1e-4 * (44.0 * 44 - 36.0 * 36));
+    /* Closed two-point polylines (with and without the repeated first point): a capsule. */
+    cj_vec2 two[3] = {{40, 40}, {80, 40}, {40, 40}};
+    st = cj_raster_stroke_default(4);
+    for (size_t n = 2; n <= 3; ++n) {
+        got = stroke_total(two, n, 1, st);
+        assert_true(fabs(got - (40 * 4 + pi * 4)) < 1e-4 * (40 * 4 + pi * 4));
+    }
+    /* A tiny closed triangle under a wide stroke: every rectangle covers the centre, which must
+     * stay fully covered (coverage 1 at the pixel of the centroid). */
+    cj_vec2 tri[3] = {{80, 60}, {83, 60}, {81.5, 62.5}};
+    st = cj_raster_stroke_default(12);
+    stroke_total(tri, 3, 1, st);
+    assert_true(fabs(g_cov[60][81] - 1.0f) < 1e-5);
     printf("strokes: 200 random widths 0.2..16 and caps, coverage == exact area (1e-4), reversal "
            "and mirror symmetric; miter/bevel/round L joins and a closed square == exact area "
            "(1e-4)\n");

@@ -56,6 +56,12 @@ typedef struct stroker {
     double rxlo, rxhi, rylo, ryhi; /* visibility rectangle: target grown by the piece reach */
     int closed;
     size_t npts; /* distinct points so far */
+    size_t nseg; /* segments so far */
+    /* Closed polylines: intersection of all rectangles so far (inter_ok = 0 once it no longer
+     * fits a poly). A point inside every rectangle is counted n times and subtracted n times
+     * around the cycle of joins; adding this intersection back makes its count 1. */
+    poly inter;
+    int inter_ok;
     cj_vec2 first, first_dir, prev, prev_dir;
     poly first_rect, prev_rect; /* clipped rectangles (n == 0: not visible) */
 } stroker;
@@ -308,30 +314,35 @@ static void segment_rect(const stroker *s, cj_vec2 a, cj_vec2 b, cj_vec2 d, poly
     out->n = 4;
 }
 
-/* Subtracts the intersection of two rectangles (counter-clockwise convex polygons). */
-static void subtract_overlap(stroker *s, const poly *r1, const poly *r2) {
-    if (r1->n < 3 || r2->n < 3) return;
-    poly a = *r2, b;
-    for (int i = 0, j = r1->n - 1; i < r1->n; j = i++) {
-        cj_vec2 e0 = r1->v[j], e1 = r1->v[i];
+/* subject := subject ∩ clipper (clipper convex, counter-clockwise). Returns 0 if the result
+ * would not fit in a poly (then subject is unusable). */
+static int clip_convex(const poly *clipper, poly *subject) {
+    poly b;
+    for (int i = 0, j = clipper->n - 1; i < clipper->n && subject->n > 0; j = i++) {
+        cj_vec2 e0 = clipper->v[j], e1 = clipper->v[i];
         double ex = e1.x - e0.x, ey = e1.y - e0.y;
-        /* keep cross(e, p - e0) >= 0 (left of the edge) */
-        b.n = 0;
-        for (int q = 0, w = a.n - 1; q < a.n; w = q++) {
-            cj_vec2 pa = a.v[w], pb = a.v[q];
+        b.n = 0; /* keep cross(e, p - e0) >= 0: left of the edge */
+        for (int q = 0, w = subject->n - 1; q < subject->n; w = q++) {
+            cj_vec2 pa = subject->v[w], pb = subject->v[q];
             double fa = ex * (pa.y - e0.y) - ey * (pa.x - e0.x);
             double fb = ex * (pb.y - e0.y) - ey * (pb.x - e0.x);
+            if (b.n > POLY_MAX - 2) return 0;
             if ((fa >= 0) != (fb >= 0)) {
                 double t = fa / (fa - fb);
                 b.v[b.n++] = cj_v2(pa.x + t * (pb.x - pa.x), pa.y + t * (pb.y - pa.y));
             }
             if (fb >= 0) b.v[b.n++] = pb;
-            if (b.n > POLY_MAX - 2) break;
         }
-        a = b;
-        if (a.n < 3) return;
+        *subject = b;
     }
-    add_poly(s, &a, -1.0f);
+    return 1;
+}
+
+/* Subtracts the intersection of two consecutive rectangles (counted twice otherwise). */
+static void subtract_overlap(stroker *s, const poly *r1, const poly *r2) {
+    if (r1->n < 3 || r2->n < 3) return;
+    poly a = *r2;
+    if (clip_convex(r1, &a) && a.n >= 3) add_poly(s, &a, -1.0f);
 }
 
 static void add_join(stroker *s, cj_vec2 v, cj_vec2 din, cj_vec2 dout) {
@@ -385,6 +396,13 @@ static void segment_to(stroker *s, cj_vec2 p, cj_vec2 d) {
     poly r;
     segment_rect(s, s->prev, p, d, &r);
     add_poly(s, &r, 1.0f);
+    s->nseg++;
+    if (s->closed) {
+        if (s->nseg == 1)
+            s->inter = r, s->inter_ok = 1;
+        else if (s->inter_ok && s->inter.n >= 3)
+            s->inter_ok = r.n >= 3 && clip_convex(&r, &s->inter);
+    }
     if (s->npts == 1) {
         s->first_rect = r;
     } else {
@@ -431,7 +449,11 @@ static void stroker_finish(stroker *s) {
             }
         }
         add_join(s, s->first, s->prev_dir, s->first_dir);
-        subtract_overlap(s, &s->prev_rect, &s->first_rect);
+        /* With two segments the closing pair is the pair already subtracted at the other end. */
+        if (s->nseg > 2) {
+            subtract_overlap(s, &s->prev_rect, &s->first_rect);
+            if (s->inter_ok && s->inter.n >= 3) add_poly(s, &s->inter, 1.0f);
+        }
     } else {
         add_cap(s, s->first, cj_v2_scale(s->first_dir, -1.0));
         add_cap(s, s->prev, s->prev_dir);
