@@ -19,7 +19,7 @@
 
 #define CJ_ARCLEN_MAX_INTERVALS 2000
 /* Initial uniform pieces for degree n. */
-#define CJ_ARCLEN_INITIAL(n) (2 + (n) / 2)
+#define CJ_ARCLEN_INITIAL(n) (2 + (n) / 8)
 
 /* Kronrod nodes (positive half, decreasing; the odd ones are the Gauss nodes) and weights. */
 static const double xgk[8] = {

@@ -156,7 +156,7 @@ cj_status cj_bezier_hull2d(const cj_bezier *c, int *idx, int *count);
  * error estimate reached. If the recursion cap is hit before tol is met, the best value and
  * its estimate are still written and CJ_ERR_CAP is returned.
  * Method: globally adaptive Gauss–Kronrod 7/15 (worst interval bisected first), at most 2000
- * intervals (initially 2 + n/2 uniform pieces), no allocation. The estimate is Σ|K15 - G7| plus
+ * intervals (initially 2 + n/8 uniform pieces), no allocation. The estimate is Σ|K15 - G7| plus
  * a rounding floor gamma(3n + 2d + 17) * length, so a tol below what double precision can
  * deliver ends in CJ_ERR_CAP rather than a false claim; on an interval whose nodes are too
  * sparse to exclude a hidden dip of the speed (h max|c''| > 4 min node speed) the estimate is
