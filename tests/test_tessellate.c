@@ -541,6 +541,44 @@ static void test_bpt_errors(void **state) {
            "limit, trailing data; comments; missing file names the path\n");
 }
 
+typedef struct counting {
+    size_t allocs, frees;
+} counting;
+
+static void *count_alloc(void *user, size_t bytes) {
+    ++((counting *)user)->allocs;
+    return malloc(bytes);
+}
+static void count_free(void *user, void *ptr) {
+    if (ptr) ++((counting *)user)->frees;
+    free(ptr);
+}
+
+static void test_allocator_and_mesh_errors(void **state) {
+    (void)state;
+    counting c = {0, 0};
+    const cj_mesh_allocator a = {count_alloc, count_free, &c};
+    cj_patchset *set;
+    assert_int_equal(cj_patchset_load_bpt(CJ_TEAPOT_PATH, &a, &set), CJ_OK);
+    cj_mesh *mesh;
+    assert_int_equal(cj_mesh_create(&a, &mesh), CJ_OK);
+    cj_tess_options opt = {1e-2, 0, 0, 0};
+    assert_int_equal(cj_tessellate_patches(set->patches, set->count, &opt, mesh, NULL), CJ_OK);
+    assert_true(c.allocs > 10);
+    const double p[3] = {0, 0, 0}, bad[3] = {0, NAN, 0};
+    uint32_t idx;
+    assert_int_equal(cj_mesh_add_vertex(mesh, bad, NULL, NULL, &idx), CJ_ERR_NONFINITE);
+    assert_int_equal(cj_mesh_add_vertex(mesh, p, NULL, NULL, &idx), CJ_OK);
+    assert_int_equal(cj_mesh_add_triangle(mesh, idx, idx + 1, 0, 0), CJ_ERR_RANGE);
+    assert_non_null(strstr(cj_last_error(), "vertex index"));
+    cj_mesh_destroy(mesh);
+    cj_patchset_destroy(set);
+    assert_int_equal(c.allocs, c.frees);
+    printf("allocator: %zu allocations of the teapot set, mesh and tessellation temporaries all "
+           "through the caller's allocator and all released; NaN vertex and bad index rejected\n",
+           c.allocs);
+}
+
 int main(void) {
     seed = cj_test_seed("test_tessellate", 5905);
     const struct CMUnitTest tests[] = {
@@ -551,6 +589,7 @@ int main(void) {
         cmocka_unit_test(test_rational_and_options),
         cmocka_unit_test(test_export),
         cmocka_unit_test(test_bpt_errors),
+        cmocka_unit_test(test_allocator_and_mesh_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
