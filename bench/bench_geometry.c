@@ -105,7 +105,12 @@ int main(void) {
     printf("\n");
     for (int o = 0; o < OP_COUNT; ++o) {
         printf("%-14s", names[o]);
-        for (int j = 0; j < nd; ++j) printf("%10.2f", run((enum op)o, degrees[j], NULL));
+        for (int j = 0; j < nd; ++j) {
+            if (o == OP_ELEV && degrees[j] >= CJ_BEZIER_MAX_DEGREE)
+                printf("%10s", "n/a"); /* already at the degree limit */
+            else
+                printf("%10.2f", run((enum op)o, degrees[j], NULL));
+        }
         printf("\n");
     }
     printf("%-14s", "  mean est.");
