@@ -77,6 +77,9 @@ static void line_plan(long long x0, long long y0, long long x1, long long y1, cj
     long long e = 0, vstart = v0;
     if (dv == 0) {
         if (v0 < cv0 || v0 > cv1) return;
+    } else if (ilo == 0 && ihi == du && v0 >= cv0 && v0 <= cv1 && v1 >= cv0 && v1 <= cv1) {
+        /* Wholly inside (the common case): r(0) = du mod 2du = du, no 128-bit work. */
+        e = dv > 0 ? du : du - 1;
     } else {
         /* Minor-axis window: cv0 <= V(i) <= cv1 as exact integer inequalities in i. */
         i128 a = 2 * (i128)dv, two_du = 2 * (i128)du;

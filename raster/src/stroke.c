@@ -172,45 +172,37 @@ static double pixel_coverage(const prepared *q, int x, int y) {
     return pixel_area(q->p, x, y);
 }
 
-/* x-interval of the piece on the horizontal line Y; 0 if it misses. */
-static int x_on_line(const poly *p, double Y, double *lo, double *hi) {
-    double l = DBL_MAX, h = -DBL_MAX;
+/* Edges of a piece prepared for scanning: y range and dx/dy. */
+typedef struct scan_edges {
+    double ax[POLY_MAX], ay[POLY_MAX], bx[POLY_MAX], ylo[POLY_MAX], yhi[POLY_MAX], k[POLY_MAX];
+    int horiz[POLY_MAX];
+    int n;
+} scan_edges;
+
+static void scan_prepare(const poly *p, scan_edges *e) {
+    e->n = p->n;
     for (int i = 0, j = p->n - 1; i < p->n; j = i++) {
         cj_vec2 a = p->v[j], b = p->v[i];
-        if ((a.y - Y) * (b.y - Y) > 0) continue;
-        if (a.y == b.y) {
-            if (a.y != Y) continue;
-            l = dmin(l, dmin(a.x, b.x));
-            h = dmax(h, dmax(a.x, b.x));
-        } else {
-            double x = a.x + (Y - a.y) * (b.x - a.x) / (b.y - a.y);
-            l = dmin(l, x);
-            h = dmax(h, x);
-        }
+        e->ax[i] = a.x, e->ay[i] = a.y, e->bx[i] = b.x;
+        e->ylo[i] = dmin(a.y, b.y), e->yhi[i] = dmax(a.y, b.y);
+        e->horiz[i] = a.y == b.y;
+        e->k[i] = e->horiz[i] ? 0.0 : (b.x - a.x) / (b.y - a.y);
     }
-    *lo = l, *hi = h;
-    return l <= h;
 }
 
-/* x extent of the piece inside the band [y0, y1]; 0 if it misses. */
-static int x_in_band(const poly *p, double y0, double y1, double *lo, double *hi) {
+/* x extent of the piece inside the band [y0, y1] (y0 == y1: on that line); 0 if it misses. */
+static int x_in_band(const scan_edges *e, double y0, double y1, double *lo, double *hi) {
     double l = DBL_MAX, h = -DBL_MAX;
-    for (int i = 0, j = p->n - 1; i < p->n; j = i++) {
-        cj_vec2 a = p->v[j], b = p->v[i];
-        double t0 = 0.0, t1 = 1.0, dy = b.y - a.y;
-        if (dy == 0.0) {
-            if (a.y < y0 || a.y > y1) continue;
+    for (int i = 0; i < e->n; ++i) {
+        if (e->yhi[i] < y0 || e->ylo[i] > y1) continue;
+        double xa, xb;
+        if (e->horiz[i]) {
+            xa = e->ax[i], xb = e->bx[i];
         } else {
-            double ta = (y0 - a.y) / dy, tb = (y1 - a.y) / dy;
-            if (ta > tb) {
-                double tmp = ta;
-                ta = tb, tb = tmp;
-            }
-            if (ta > t0) t0 = ta;
-            if (tb < t1) t1 = tb;
-            if (t0 > t1) continue;
+            double ya = dmax(y0, e->ylo[i]), yb = dmin(y1, e->yhi[i]);
+            xa = e->ax[i] + (ya - e->ay[i]) * e->k[i];
+            xb = e->ax[i] + (yb - e->ay[i]) * e->k[i];
         }
-        double xa = a.x + t0 * (b.x - a.x), xb = a.x + t1 * (b.x - a.x);
         l = dmin(l, dmin(xa, xb));
         h = dmax(h, dmax(xa, xb));
     }
@@ -224,17 +216,19 @@ static void add_poly(stroker *s, const poly *p, float sign) {
     cover_target *t = s->t;
     prepared q;
     prepare(p, &q);
+    scan_edges e;
+    scan_prepare(p, &e);
     double ylo = DBL_MAX, yhi = -DBL_MAX;
     for (int k = 0; k < p->n; ++k) ylo = dmin(ylo, p->v[k].y), yhi = dmax(yhi, p->v[k].y);
     double r0 = dmax(floor(ylo), t->oy), r1 = dmin(ceil(yhi) - 1.0, t->oy + t->h - 1.0);
     for (int y = (int)r0; y <= (int)r1 && r0 <= r1; ++y) {
         double xlo, xhi;
-        if (!x_in_band(p, y, y + 1.0, &xlo, &xhi)) continue;
+        if (!x_in_band(&e, y, y + 1.0, &xlo, &xhi)) continue;
         double c0 = dmax(floor(xlo), t->ox), c1 = dmin(ceil(xhi) - 1.0, t->ox + t->w - 1.0);
         if (xhi == xlo || c0 > c1) continue;
         /* Pixels whose four corners are inside are full: x >= fa, x + 1 <= fb. */
         double a0, b0, a1, b1, fa = 1.0, fb = 0.0;
-        if (x_on_line(p, y, &a0, &b0) && x_on_line(p, y + 1.0, &a1, &b1)) {
+        if (x_in_band(&e, y, y, &a0, &b0) && x_in_band(&e, y + 1.0, y + 1.0, &a1, &b1)) {
             fa = ceil(dmax(a0, a1));
             fb = floor(dmin(b0, b1)) - 1.0;
         }
