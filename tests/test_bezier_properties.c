@@ -772,6 +772,84 @@ static void prop_arclength(void **state) {
            CASES, worst, worst_spread);
 }
 
+/* ---- frames ------------------------------------------------------------------------------ */
+
+/* Unit tangent, normal and curvature against the textbook formulas evaluated from
+ * cj_bezier_eval_derivs. Relative tolerance from first-order perturbation: the derivatives
+ * carry about gamma(3n+4) 2^k n^k M of rounding (k = order), so the formulas are trusted to
+ * that over the speed; points with speed below 1e-6 of its scale are counted, not compared. */
+static void prop_frames(void **state) {
+    (void)state;
+    cj_rng r;
+    rng_for(&r, 12);
+    int compared = 0, slow = 0;
+    for (int cs = 0; cs < CASES; ++cs) {
+        rcurve rc;
+        random_curve(&r, &rc, 0);
+        const int n = rc.n, d = rc.d;
+        const double t = cj_rng_unit(&r);
+        double dv[9];
+        assert_int_equal(cj_bezier_eval_derivs(&rc.c, t, 2, dv), CJ_OK);
+        const double *d1 = dv + d, *d2 = dv + 2 * d;
+        double sp = 0;
+        for (int k = 0; k < d; ++k) sp += d1[k] * d1[k];
+        sp = sqrt(sp);
+        const double scale1 = 2.0 * n * rc.mag, scale2 = 4.0 * n * n * rc.mag;
+        if (sp < 1e-6 * scale1) {
+            ++slow;
+            continue;
+        }
+        ++compared;
+        const double g = cj_gamma(3 * n + 8);
+        double tg[3], nm[3], kap;
+        int order;
+        assert_int_equal(cj_bezier_tangent(&rc.c, t, tg, &order), CJ_OK);
+        const cj_status ns = cj_bezier_normal(&rc.c, t, nm);
+        if (n == 1 && d == 3) { /* a 3D line has no principal normal */
+            if (ns != CJ_ERR_DEGENERATE) PFAIL("frames", cs, "3D line normal: %d", (int)ns);
+        } else if (ns != CJ_OK) {
+            PFAIL("unit normal", cs, "status %s", cj_status_str(ns));
+        }
+        const cj_status ks = cj_bezier_curvature(&rc.c, t, &kap);
+        if (order != 1) PFAIL("frames", cs, "tangent order %d at a regular point", order);
+        const double rel1 = 8 * g * scale1 / sp;
+        const int has_normal = ns == CJ_OK;
+        double dot_tn = 0, nn = 0;
+        for (int k = 0; k < d; ++k) {
+            if (fabs(tg[k] - d1[k] / sp) > rel1)
+                PFAIL("unit tangent", cs, "t %.17g coord %d: %.17g vs %.17g", t, k, tg[k],
+                      d1[k] / sp);
+            if (has_normal) {
+                dot_tn += tg[k] * nm[k];
+                nn += nm[k] * nm[k];
+            }
+        }
+        if (has_normal && (fabs(dot_tn) > 1e-13 || fabs(nn - 1) > 1e-13))
+            PFAIL("unit normal", cs, "T.N = %.3g, |N|^2 - 1 = %.3g", dot_tn, nn - 1);
+        double cr;
+        if (d == 2) {
+            cr = d1[0] * d2[1] - d1[1] * d2[0];
+            if (fabs(nm[0] + tg[1]) > 1e-15 || fabs(nm[1] - tg[0]) > 1e-15)
+                PFAIL("2D normal", cs, "not the left normal at t %.17g", t);
+        } else {
+            const double c0 = d1[1] * d2[2] - d1[2] * d2[1], c1 = d1[2] * d2[0] - d1[0] * d2[2],
+                         c2 = d1[0] * d2[1] - d1[1] * d2[0];
+            cr = sqrt(c0 * c0 + c1 * c1 + c2 * c2);
+        }
+        const double kref = cr / (sp * sp * sp);
+        /* error of the cross product ~ g (|c'| scale2 + |c''| scale1), then divided by sp^3 */
+        const double ktol =
+            16 * g * (sp * scale2 + scale2 * scale1) / (sp * sp * sp) + 8 * rel1 * fabs(kref);
+        if (ks != CJ_OK && ks != CJ_ERR_DEGENERATE)
+            PFAIL("curvature", cs, "status %s", cj_status_str(ks));
+        if (ks == CJ_OK && fabs(kap - kref) > ktol)
+            PFAIL("curvature", cs, "t %.17g: %.17g vs %.17g (tol %.3g)", t, kap, kref, ktol);
+    }
+    printf("frames: %d of %d random curves compared (tangent, normal, curvature vs eval_derivs "
+           "formulas); %d near-zero-speed points skipped\n",
+           compared, CASES, slow);
+}
+
 int main(void) {
     g_seed = cj_test_seed("bezier properties", 20261121);
     const struct CMUnitTest tests[] = {
@@ -786,6 +864,7 @@ int main(void) {
         cmocka_unit_test(prop_methods_agree),
         cmocka_unit_test(prop_bbox),
         cmocka_unit_test(prop_arclength),
+        cmocka_unit_test(prop_frames),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
