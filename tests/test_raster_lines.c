@@ -672,6 +672,37 @@ static void test_stroke_curves(void **state) {
            area, expect, bound, seq_area, line_area);
 }
 
+/* Fills: exact area of a convex polygon (20-gon: the fan is split into pieces) and of a disc. */
+static void test_fills(void **state) {
+    (void)state;
+    cj_framebuffer *fb;
+    assert_int_equal(cj_framebuffer_create(CW, CH, 0, NULL, &fb), CJ_OK);
+    cj_rgba white = cj_rgba_make(255, 255, 255, 255);
+    cj_framebuffer_clear(fb, cj_rgba_make(0, 0, 0, 255));
+    cj_vec2 poly[20];
+    double area = 0;
+    for (int i = 0; i < 20; ++i) {
+        double a = 2 * 3.141592653589793 * i / 20;
+        poly[i] = cj_v2(70.3 + 30 * cos(a), 55.7 + 30 * sin(a));
+    }
+    for (int i = 0; i < 20; ++i) area += cj_v2_cross(poly[i], poly[(i + 1) % 20]) / 2;
+    assert_int_equal(cj_raster_fill_convex(fb, poly, 20, white), CJ_OK);
+    double got = ink_total(fb);
+    assert_true(fabs(got - area) < 1e-3 * area);
+    cj_framebuffer_clear(fb, cj_rgba_make(0, 0, 0, 255));
+    assert_int_equal(cj_raster_fill_disc(fb, cj_v2(40.25, 50.6), 17.5, white), CJ_OK);
+    double disc = ink_total(fb), exact = 3.141592653589793 * 17.5 * 17.5;
+    assert_true(fabs(disc - exact) < 1e-3 * exact);
+    cj_vec2 concave[4] = {{0, 0}, {10, 0}, {2, 2}, {0, 10}};
+    assert_int_equal(cj_raster_fill_convex(fb, concave, 4, white), CJ_ERR_ARGUMENT);
+    assert_int_equal(cj_raster_fill_convex(fb, concave, 2, white), CJ_ERR_EMPTY);
+    assert_int_equal(cj_raster_fill_disc(fb, cj_v2(1, 1), 0, white), CJ_ERR_RANGE);
+    cj_framebuffer_destroy(fb);
+    printf("fills: convex 20-gon %.3f vs shoelace %.3f, disc %.3f vs pi r^2 %.3f; concave "
+           "refused\n",
+           got, area, disc, exact);
+}
+
 int main(void) {
     g_seed = cj_test_seed("test_raster_lines", 20261121);
     const struct CMUnitTest tests[] = {
@@ -686,6 +717,7 @@ int main(void) {
         cmocka_unit_test(test_stroke_pixels_supersampled),
         cmocka_unit_test(test_stroke_clip_and_errors),
         cmocka_unit_test(test_stroke_curves),
+        cmocka_unit_test(test_fills),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -714,3 +714,63 @@ cj_status cj_raster_stroke_sequence(cj_framebuffer *fb, const cj_flatten_piece *
     seq q = {pieces, count};
     return stroke_flattened(fb, &q, run_sequence, tol, style, c, bound);
 }
+
+/* ---- filled shapes ----------------------------------------------------------------------- */
+
+cj_status cj_raster_fill_convex(cj_framebuffer *fb, const cj_vec2 *pts, size_t n, cj_rgba c) {
+    assert(fb && (pts || n == 0));
+    if (n < 3) return cj_fail(CJ_ERR_EMPTY, "polygon has %zu points, at least 3 needed", n);
+    cj_status st = check_points(pts, n);
+    if (st) return st;
+    int sign = 0;
+    for (size_t i = 0; i < n; ++i) {
+        cj_vec2 a = pts[i], b = pts[(i + 1) % n], d = pts[(i + 2) % n];
+        double cr = cj_v2_cross(cj_v2_sub(b, a), cj_v2_sub(d, b));
+        int sg = cr > 0 ? 1 : (cr < 0 ? -1 : 0);
+        if (sg && sign && sg != sign)
+            return cj_fail(CJ_ERR_ARGUMENT,
+                           "polygon is not convex: the turn at point %zu has "
+                           "the opposite sign",
+                           (i + 1) % n);
+        if (sg) sign = sg;
+    }
+    cover_target t;
+    if ((st = fb_target(fb, &t))) return st;
+    cj_raster_stroke style = cj_raster_stroke_default(1.0);
+    stroker s;
+    stroker_init(&s, &t, &style, 0);
+    /* A fan of pieces of at most POLY_MAX - 2 vertices around pts[0]: disjoint, areas add. */
+    for (size_t i = 1; i + 1 < n;) {
+        poly p;
+        p.n = 0;
+        p.v[p.n++] = pts[0];
+        size_t j = i;
+        for (; j < n && p.n < POLY_MAX - 2; ++j) p.v[p.n++] = pts[j];
+        add_poly(&s, &p, 1.0f);
+        i = j - 1;
+    }
+    compose(&t, fb, c, NULL, NULL);
+    return CJ_OK;
+}
+
+cj_status cj_raster_fill_disc(cj_framebuffer *fb, cj_vec2 centre, double radius, cj_rgba c) {
+    assert(fb);
+    cj_status st = check_points(&centre, 1);
+    if (st) return st;
+    if (!isfinite(radius))
+        return cj_fail(CJ_ERR_NONFINITE, "disc radius is %s", isnan(radius) ? "NaN" : "infinite");
+    if (!(radius > 0.0) || radius > CJ_RASTER_MAX_WIDTH)
+        return cj_fail(CJ_ERR_RANGE, "disc radius %g is outside (0, %g]", radius,
+                       CJ_RASTER_MAX_WIDTH);
+    cover_target t;
+    if ((st = fb_target(fb, &t))) return st;
+    cj_raster_stroke style = cj_raster_stroke_default(2.0 * radius);
+    stroker s;
+    stroker_init(&s, &t, &style, 0);
+    if (visible(&s, centre)) {
+        add_sector(&s, centre, cj_v2(1, 0), CJ_PI_, 1, radius);
+        add_sector(&s, centre, cj_v2(-1, 0), CJ_PI_, 1, radius);
+    }
+    compose(&t, fb, c, NULL, NULL);
+    return CJ_OK;
+}

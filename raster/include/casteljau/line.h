@@ -195,6 +195,18 @@ cj_status cj_raster_stroke_sequence(cj_framebuffer *fb, const cj_flatten_piece *
                                     size_t count, double tol, const cj_raster_stroke *style,
                                     cj_rgba c, double *bound);
 
+/* ---- filled shapes (same exact-area coverage as strokes) -------------------------------- */
+
+/* Fills the convex polygon pts[0..n-1] (either orientation; collinear points allowed) with
+ * colour c, coverage = exact area of (pixel ∩ polygon). CJ_ERR_EMPTY if n < 3,
+ * CJ_ERR_NONFINITE / CJ_ERR_RANGE for a bad point, CJ_ERR_ARGUMENT if the polygon is not convex
+ * (naming the vertex where the turn changes sign). A polygon of zero area draws nothing. */
+cj_status cj_raster_fill_convex(cj_framebuffer *fb, const cj_vec2 *pts, size_t n, cj_rgba c);
+
+/* Fills the disc of the given centre and radius (> 0) with exact-area coverage (the circle is a
+ * polygon within 0.02 px with the exact area). */
+cj_status cj_raster_fill_disc(cj_framebuffer *fb, cj_vec2 centre, double radius, cj_rgba c);
+
 #ifdef __cplusplus
 }
 #endif
