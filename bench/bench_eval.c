@@ -40,7 +40,7 @@ typedef enum { MODE_BATCH, MODE_SINGLE, MODE_BOUND } mode;
 /* One run: reps passes over the NT parameters; returns ns per evaluation. */
 static double run_once(const cj_bezier *c, cj_eval_method m, mode md, const double *ts, double *out,
                        long reps) {
-    double bnd[CJ_MAX_DIM];
+    double bnd[CJ_MAX_DIM] = {0};
     const double t0 = now_ns();
     for (long r = 0; r < reps; ++r) {
         if (md == MODE_BATCH) {
