@@ -156,19 +156,26 @@ static void prepare(const poly *p, prepared *q) {
 /* Area of piece ∩ pixel (x, y): 0 or 1 when no edge line crosses the pixel, closed form when
  * exactly one does, polygon clipping otherwise. */
 static double pixel_coverage(const prepared *q, int x, int y) {
-    double cx = x + 0.5, cy = y + 0.5, dcut = 0, nxc = 0, nyc = 0;
-    int cuts = 0;
+    double cx = x + 0.5, cy = y + 0.5, dc[2] = {0, 0};
+    int kc[2] = {0, 0}, cuts = 0;
     for (int k = 0; k < q->m; ++k) {
         double d = q->c[k] - (q->nx[k] * cx + q->ny[k] * cy);
         double s = 0.5 * (fabs(q->nx[k]) + fabs(q->ny[k]));
         if (d <= -s) return 0.0;
         if (d < s) {
+            if (cuts < 2) dc[cuts] = d, kc[cuts] = k;
             ++cuts;
-            dcut = d, nxc = q->nx[k], nyc = q->ny[k];
         }
     }
     if (cuts == 0) return 1.0;
-    if (cuts == 1) return halfplane_area(dcut, nxc, nyc);
+    if (cuts == 1) return halfplane_area(dc[0], q->nx[kc[0]], q->ny[kc[0]]);
+    /* Two opposite edges (the long sides of a thin rectangle): the slab H1 ∩ H2 with
+     * H1 ∪ H2 = plane, so its area is A1 + A2 - 1. */
+    if (cuts == 2 && q->nx[kc[0]] * q->nx[kc[1]] + q->ny[kc[0]] * q->ny[kc[1]] < -1.0 + 1e-12) {
+        double a = halfplane_area(dc[0], q->nx[kc[0]], q->ny[kc[0]]) +
+                   halfplane_area(dc[1], q->nx[kc[1]], q->ny[kc[1]]) - 1.0;
+        return a > 0.0 ? a : 0.0;
+    }
     return pixel_area(q->p, x, y);
 }
 
