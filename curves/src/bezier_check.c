@@ -15,22 +15,6 @@ cj_status cj_check_param(double t, const char *what) {
     return CJ_OK;
 }
 
-/* 1 if every value is finite: x - x is +0 for finite x and NaN for NaN or ±inf, and a NaN
- * survives any sum. Four independent accumulators, no branch per value: this runs on every
- * evaluation call, so it must cost little next to a cubic's evaluation. */
-int cj_all_finite(const double *v, size_t count) {
-    double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
-    size_t i = 0;
-    for (; i + 4 <= count; i += 4) {
-        a0 += v[i] - v[i];
-        a1 += v[i + 1] - v[i + 1];
-        a2 += v[i + 2] - v[i + 2];
-        a3 += v[i + 3] - v[i + 3];
-    }
-    for (; i < count; ++i) a0 += v[i] - v[i];
-    return (a0 + a1) + (a2 + a3) == 0.0;
-}
-
 cj_status cj_bezier_check(const cj_bezier *c, int max_degree) {
     assert(c != NULL);
     if (c->degree < 0)

@@ -164,13 +164,22 @@ static cj_status check_eval(const cj_bezier *c, cj_eval_method m, double t) {
     return cj_check_param(t, "parameter t");
 }
 
+/* The whole validation of an evaluation as one inline predicate for the common case of good
+ * input; only when it fails does check_eval run again to name what is wrong. */
+static inline int eval_inputs_ok(const cj_bezier *c, cj_eval_method m, double t) {
+    assert(c != NULL && c->pts != NULL);
+    return (unsigned)m <= CJ_EVAL_COMPENSATED && c->degree >= 0 && c->degree <= method_limit(m) &&
+           c->dim >= 1 && c->dim <= CJ_MAX_DIM && t - t == 0.0 &&
+           cj_all_finite(c->pts, (size_t)(c->degree + 1) * (size_t)c->dim);
+}
+
 cj_status cj_bezier_eval(const cj_bezier *c, cj_eval_method method, double t, double *out) {
     assert(out != NULL);
-    cj_status st = check_eval(c, method, t);
-    if (st) return st;
+    cj_status st;
+    if (!eval_inputs_ok(c, method, t) && (st = check_eval(c, method, t))) return st;
     double v[CJ_MAX_DIM];
     eval_kernel(c, method, t, v);
-    if ((st = cj_check_value(v, c->dim, t))) return st;
+    if (!cj_all_finite(v, (size_t)c->dim) && (st = cj_check_value(v, c->dim, t))) return st;
     cj_copy_point(out, v, c->dim);
     return CJ_OK;
 }
