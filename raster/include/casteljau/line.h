@@ -1,10 +1,10 @@
 /* casteljau: lines, anti-aliased lines, wide polylines with joins and caps, and curves.
  *
  * Coordinates follow framebuffer.h: pixel (x, y) is the unit square [x, x+1) x [y, y+1) with
- * centre (x + 0.5, y + 0.5), row 0 at the bottom. Every function comes in two forms: one draws
- * into a cj_framebuffer, the other ("_visit") hands each pixel to a callback together with a
- * clip rectangle, so tests and other consumers can collect the exact pixel set without a
- * framebuffer.
+ * centre (x + 0.5, y + 0.5), row 0 at the bottom. Lines and polyline strokes come in two forms:
+ * one draws into a cj_framebuffer, the other ("_visit") hands each pixel to a callback together
+ * with a clip rectangle, so tests and other consumers can collect the exact pixel set (or the
+ * coverage) without a framebuffer.
  *
  * 1. Exact lines (Bresenham, integer arithmetic only)
  *
@@ -31,10 +31,10 @@
  * 2. Anti-aliased thin lines (Xiaolin Wu): one pair of pixels per major step whose coverages
  *    sum to 1 (the fractional end steps are weighted by their overlap). Fast; for plots.
  *
- * 3. Strokes: a polyline (or a curve flattened to one) drawn with a width, a join
- *    (miter/round/bevel) at interior vertices and a cap (butt/round/square) at the two ends.
- *    Coverage is the EXACT AREA of (pixel square ∩ stroke), a one-pixel box filter: the stroke
- *    is cut into non-overlapping convex pieces (a rectangle per segment, a wedge or circular
+ * 3. Strokes (and the convex/disc fills at the end): a polyline (or a curve flattened to one) drawn
+ * with a width, a join (miter/round/bevel) at interior vertices and a cap (butt/round/square) at
+ * the two ends. Coverage is the EXACT AREA of (pixel square ∩ stroke), a one-pixel box filter: the
+ * stroke is cut into non-overlapping convex pieces (a rectangle per segment, a wedge or circular
  *    sector on the outer side of each join, the caps), the inner overlap of consecutive
  *    rectangles is subtracted, and each piece's area inside each pixel is computed by clipping
  *    it to the pixel square. Round parts are polygons within 0.02 px of the circle with the
@@ -65,8 +65,8 @@
 extern "C" {
 #endif
 
-/* Largest |coordinate| of a line end point (2^52: every such double is an integer or
- * half-integer multiple, and all clipping products fit in 128 bits). */
+/* Largest |coordinate| of a line end point (2^52: floor() of such a double is exact, and every
+ * clipping product fits in 128 bits). */
 #define CJ_RASTER_COORD_MAX 4503599627370496.0
 /* Largest stroke width in pixels. */
 #define CJ_RASTER_MAX_WIDTH 65536.0
