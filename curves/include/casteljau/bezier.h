@@ -68,7 +68,9 @@ double cj_gamma(int k);
 /* ---- evaluation ---------------------------------------------------------------------- */
 
 /* c(t) by the chosen method into out[0..dim-1]. Degree limit: CJ_BEZIER_MAX_DEGREE for
- * de Casteljau and compensated, CJ_BEZIER_BINOMIAL_MAX_DEGREE for Bernstein and Horner. */
+ * de Casteljau and compensated, CJ_BEZIER_BINOMIAL_MAX_DEGREE for Bernstein and Horner.
+ * A value that overflows (far extrapolation of a high degree) is CJ_ERR_RANGE naming t, with
+ * out untouched: a NaN or infinity is never returned. */
 cj_status cj_bezier_eval(const cj_bezier *c, cj_eval_method method, double t, double *out);
 
 /* Individual methods, same contract as cj_bezier_eval. */
@@ -82,20 +84,26 @@ cj_status cj_bezier_eval_horner(const cj_bezier *c, double t, double *out);
  * with 1-t and t replaced by their absolute values in the running-error analysis). */
 cj_status cj_bezier_eval_compensated(const cj_bezier *c, double t, double *out, double *bound);
 
-/* A-priori absolute error bound of a method at t, per coordinate:
- *   de Casteljau (and Bernstein/Horner, which share its first-order form up to constants):
- *       gamma(3n) * Σ|b_i,k| B_i^n(|t|)
- *   compensated: u |c_k(t)| + 2 gamma(3n)^2 Σ|b_i,k| B_i^n(|t|)
- * This is the bound quoted in the docs; it needs the exact value only through |c_k(t)|, for
- * which the computed value is used. */
+/* A-priori absolute error bound of a method at t, per coordinate. With M_k = Σ|b_i,k| B_i^n(|t|)
+ * (the numerator of the condition number), eta = 2^-1074 and A = |1-t| + |t| (A = 1 on [0,1]):
+ *   de Casteljau:      gamma(3n) M_k                       + 4 (n+1) eta A^n
+ *   Bernstein, Horner: gamma(4n+2) M_k                     + 8 (n+1) eta A^n (1 + Σ C(n,i)|b_i,k|)
+ *   compensated:       u |c_k(t)| + 2 gamma(3n)^2 M_k      + 8 (n+1) eta A^n
+ * The eta terms cover roundings that underflow into subnormals (where the relative model fails);
+ * they vanish for n = 0 and are negligible unless the values themselves are tiny. |c_k(t)| is
+ * taken at the compensated value, M_k is computed and inflated by 1 + gamma(3n+8) so the
+ * computed bound is an upper bound of the exact one. Checked against an MPFR oracle in
+ * tests/test_bezier_stability.c. */
 cj_status cj_bezier_error_bound(const cj_bezier *c, cj_eval_method method, double t, double *bound);
 
 /* Condition number of each coordinate at t: cond_k = Σ|b_i,k| B_i^n(t) / |c_k(t)|.
  * A coordinate whose value is exactly zero gets +INFINITY (the relative error is undefined). */
 cj_status cj_bezier_cond(const cj_bezier *c, double t, double *cond);
 
-/* Evaluates at nt parameters: out[j*dim + k] = c_k(ts[j]). Validates the curve once, then
- * runs without allocation. All parameters are validated before anything is written. */
+/* Evaluates at nt parameters: out[j*dim + k] = c_k(ts[j]), bit-identical to the single-point
+ * calls. Validates the curve once, then runs without allocation. All parameters are validated
+ * before anything is written; a value that overflows is CJ_ERR_RANGE naming its parameter, and
+ * the results before that parameter are valid. */
 cj_status cj_bezier_eval_batch(const cj_bezier *c, cj_eval_method method, const double *ts,
                                size_t nt, double *out);
 
@@ -103,11 +111,13 @@ cj_status cj_bezier_eval_batch(const cj_bezier *c, cj_eval_method method, const 
 
 /* The k-th hodograph: the derivative c^(k) as a Bézier curve of degree n-k, whose control
  * points n!/(n-k)! Δ^k b_i are written to out[(n-k+1)*dim]. For k > n the derivative is the
- * zero curve of degree 0 (one zero point is written). k < 0 is CJ_ERR_ARGUMENT. */
+ * zero curve of degree 0 (one zero point is written). k < 0 is CJ_ERR_ARGUMENT; control points
+ * beyond the double range (high orders of high degrees) are CJ_ERR_RANGE, out untouched. */
 cj_status cj_bezier_hodograph(const cj_bezier *c, int k, double *out);
 
 /* Point and derivatives 0..kmax together in one pass of the de Casteljau triangle:
- * out[j*dim + k] = coordinate k of c^(j)(t), j = 0..kmax. Orders above n are zero. */
+ * out[j*dim + k] = coordinate k of c^(j)(t), j = 0..kmax. Orders above n are zero.
+ * A derivative beyond the double range is CJ_ERR_RANGE, out untouched. */
 cj_status cj_bezier_eval_derivs(const cj_bezier *c, double t, int kmax, double *out);
 
 /* ---- subdivision and degree ---------------------------------------------------------- */
