@@ -15,7 +15,8 @@ static const command commands[] = {
     {"interp", cmd_interp, "curves through points (Catmull-Rom, polynomial) as Bezier segments"},
     {"contour", cmd_contour, "polylines of an implicit curve f(x,y) = 0 inside a box"},
     {"plot", cmd_plot, "render curves described in JSON (or --demo) to a PNG image"},
-    {"tessellate", cmd_tessellate, "Bezier patches (or the Utah teapot) to an OBJ/PLY mesh within a tolerance"},
+    {"tessellate", cmd_tessellate,
+     "Bezier patches (or the Utah teapot) to an OBJ/PLY mesh within a tolerance"},
 };
 
 static void usage(FILE *f) {
