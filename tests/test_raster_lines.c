@@ -274,7 +274,7 @@ static void test_framebuffer_basics(void **state) {
                      CJ_ERR_RANGE);
     assert_int_equal(cj_framebuffer_create(10, 10, 0x80, NULL, &fb), CJ_ERR_ARGUMENT);
     assert_null(fb);
-    cj_raster_allocator al = {count_alloc, count_free, NULL};
+    cj_allocator al = {count_alloc, count_free, NULL};
     assert_int_equal(cj_framebuffer_create(7, 5, CJ_FB_DEPTH, &al, &fb), CJ_OK);
     assert_true(fb->width == 7 && fb->height == 5 && fb->depth != NULL);
     for (int i = 0; i < 35; ++i) assert_true(fb->depth[i] == 1.0f && fb->pixels[i].a == 0);

@@ -557,7 +557,7 @@ static void count_free(void *user, void *ptr) {
 static void test_allocator_and_mesh_errors(void **state) {
     (void)state;
     counting c = {0, 0};
-    const cj_mesh_allocator a = {count_alloc, count_free, &c};
+    const cj_allocator a = {count_alloc, count_free, &c};
     cj_patchset *set;
     assert_int_equal(cj_patchset_load_bpt(CJ_TEAPOT_PATH, &a, &set), CJ_OK);
     cj_mesh *mesh;

@@ -1,32 +1,15 @@
 /* The RGBA8 framebuffer: creation, clearing, pixel access and exact source-over blending. */
 #include "casteljau/framebuffer.h"
+#include "alloc_internal.h"
 #include "error_internal.h"
 #include "raster_internal.h"
 
 #include <assert.h>
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
-static void *default_alloc(void *user, size_t bytes) {
-    (void)user;
-    return malloc(bytes);
-}
-static void default_free(void *user, void *ptr) {
-    (void)user;
-    free(ptr);
-}
-
-void *cj_raster_alloc_(const cj_raster_allocator *a, size_t bytes) {
-    return a->alloc(a->user, bytes);
-}
-
-void cj_raster_free_(const cj_raster_allocator *a, void *ptr) {
-    if (ptr) a->free(a->user, ptr);
-}
-
-cj_status cj_framebuffer_create(int width, int height, unsigned flags,
-                                const cj_raster_allocator *alloc, cj_framebuffer **out) {
+cj_status cj_framebuffer_create(int width, int height, unsigned flags, const cj_allocator *alloc,
+                                cj_framebuffer **out) {
     assert(out);
     if (width < 1 || width > CJ_FRAMEBUFFER_MAX_SIDE)
         return cj_fail(CJ_ERR_RANGE, "framebuffer width %d is outside [1, %d]", width,
@@ -36,32 +19,28 @@ cj_status cj_framebuffer_create(int width, int height, unsigned flags,
                        CJ_FRAMEBUFFER_MAX_SIDE);
     if (flags & ~(unsigned)(CJ_FB_DEPTH | CJ_FB_PADDED))
         return cj_fail(CJ_ERR_ARGUMENT, "framebuffer flags 0x%x contain unknown bits", flags);
-    cj_raster_allocator a = {default_alloc, default_free, NULL};
-    if (alloc) {
-        assert(alloc->alloc && alloc->free);
-        a = *alloc;
-    }
+    const cj_allocator a = cj_allocator_resolve(alloc);
     ptrdiff_t stride = width;
     if (flags & CJ_FB_PADDED) {
         stride = (width + 15) / 16 * 16; /* 16 pixels = one 64-byte line */
         if ((stride / 16) % 2 == 0) stride += 16;
     }
     size_t n = (size_t)stride * (size_t)height;
-    cj_framebuffer *fb = cj_raster_alloc_(&a, sizeof *fb);
+    cj_framebuffer *fb = cj_allocator_alloc(&a, sizeof *fb);
     if (!fb) return cj_fail(CJ_ERR_NOMEM, "no memory for a framebuffer header");
     memset(fb, 0, sizeof *fb);
     fb->alloc_ = a;
     fb->width = width;
     fb->height = height;
     fb->stride = stride;
-    fb->pixels = cj_raster_alloc_(&a, n * sizeof *fb->pixels);
+    fb->pixels = cj_allocator_alloc(&a, n * sizeof *fb->pixels);
     if (!fb->pixels) {
         cj_framebuffer_destroy(fb);
         return cj_fail(CJ_ERR_NOMEM, "no memory for %dx%d RGBA pixels", width, height);
     }
     memset(fb->pixels, 0, n * sizeof *fb->pixels);
     if (flags & CJ_FB_DEPTH) {
-        fb->depth = cj_raster_alloc_(&a, n * sizeof *fb->depth);
+        fb->depth = cj_allocator_alloc(&a, n * sizeof *fb->depth);
         if (!fb->depth) {
             cj_framebuffer_destroy(fb);
             return cj_fail(CJ_ERR_NOMEM, "no memory for a %dx%d depth plane", width, height);
@@ -74,13 +53,13 @@ cj_status cj_framebuffer_create(int width, int height, unsigned flags,
 
 void cj_framebuffer_destroy(cj_framebuffer *fb) {
     if (!fb) return;
-    cj_raster_allocator a = fb->alloc_;
-    cj_raster_free_(&a, fb->pixels);
-    cj_raster_free_(&a, fb->depth);
-    cj_raster_free_(&a, fb->cover_);
-    cj_raster_free_(&a, fb->span_lo_);
-    cj_raster_free_(&a, fb->span_hi_);
-    cj_raster_free_(&a, fb);
+    const cj_allocator a = fb->alloc_;
+    cj_allocator_free(&a, fb->pixels);
+    cj_allocator_free(&a, fb->depth);
+    cj_allocator_free(&a, fb->cover_);
+    cj_allocator_free(&a, fb->span_lo_);
+    cj_allocator_free(&a, fb->span_hi_);
+    cj_allocator_free(&a, fb);
 }
 
 void cj_framebuffer_clear(cj_framebuffer *fb, cj_rgba c) {

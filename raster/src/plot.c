@@ -43,7 +43,7 @@ typedef struct plot_item {
 } plot_item;
 
 struct cj_plot {
-    cj_raster_allocator alloc;
+    cj_allocator alloc;
     plot_item *items;
     size_t count, cap;
     cj_rgba background;
@@ -54,20 +54,11 @@ struct cj_plot {
     double view[4];
 };
 
-static void *default_alloc(void *user, size_t bytes) {
-    (void)user;
-    return malloc(bytes);
-}
-static void default_free(void *user, void *ptr) {
-    (void)user;
-    free(ptr);
-}
-
 static void *palloc(const cj_plot *p, size_t bytes) {
-    return cj_raster_alloc_(&p->alloc, bytes ? bytes : 1);
+    return cj_allocator_alloc(&p->alloc, bytes);
 }
 static void pfree(const cj_plot *p, void *ptr) {
-    cj_raster_free_(&p->alloc, ptr);
+    cj_allocator_free(&p->alloc, ptr);
 }
 
 static void item_free(const cj_plot *p, plot_item *it) {
@@ -93,14 +84,10 @@ cj_plot_bezier_opts cj_plot_bezier_defaults(void) {
     return o;
 }
 
-cj_status cj_plot_create(const cj_raster_allocator *alloc, cj_plot **out) {
+cj_status cj_plot_create(const cj_allocator *alloc, cj_plot **out) {
     assert(out);
-    cj_raster_allocator a = {default_alloc, default_free, NULL};
-    if (alloc) {
-        assert(alloc->alloc && alloc->free);
-        a = *alloc;
-    }
-    cj_plot *p = cj_raster_alloc_(&a, sizeof *p);
+    const cj_allocator a = cj_allocator_resolve(alloc);
+    cj_plot *p = cj_allocator_alloc(&a, sizeof *p);
     if (!p) return cj_fail(CJ_ERR_NOMEM, "no memory for a plot");
     memset(p, 0, sizeof *p);
     p->alloc = a;
@@ -116,8 +103,8 @@ void cj_plot_destroy(cj_plot *plot) {
     for (size_t i = 0; i < plot->count; ++i) item_free(plot, &plot->items[i]);
     pfree(plot, plot->items);
     pfree(plot, plot->title);
-    cj_raster_allocator a = plot->alloc;
-    cj_raster_free_(&a, plot);
+    const cj_allocator a = plot->alloc;
+    cj_allocator_free(&a, plot);
 }
 
 void cj_plot_set_background(cj_plot *plot, cj_rgba color) {

@@ -556,13 +556,13 @@ static ptrdiff_t cover_pitch(int width) {
 static cj_status fb_target(cj_framebuffer *fb, cover_target *t) {
     if (!fb->cover_) {
         size_t n = (size_t)cover_pitch(fb->width) * (size_t)fb->height;
-        float *cover = cj_raster_alloc_(&fb->alloc_, n * sizeof *cover);
-        int *lo = cj_raster_alloc_(&fb->alloc_, (size_t)fb->height * sizeof *lo);
-        int *hi = cj_raster_alloc_(&fb->alloc_, (size_t)fb->height * sizeof *hi);
+        float *cover = cj_allocator_alloc(&fb->alloc_, n * sizeof *cover);
+        int *lo = cj_allocator_alloc(&fb->alloc_, (size_t)fb->height * sizeof *lo);
+        int *hi = cj_allocator_alloc(&fb->alloc_, (size_t)fb->height * sizeof *hi);
         if (!cover || !lo || !hi) {
-            cj_raster_free_(&fb->alloc_, cover);
-            cj_raster_free_(&fb->alloc_, lo);
-            cj_raster_free_(&fb->alloc_, hi);
+            cj_allocator_free(&fb->alloc_, cover);
+            cj_allocator_free(&fb->alloc_, lo);
+            cj_allocator_free(&fb->alloc_, hi);
             return cj_fail(CJ_ERR_NOMEM, "no memory for the %dx%d stroke coverage plane", fb->width,
                            fb->height);
         }

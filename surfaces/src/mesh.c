@@ -1,5 +1,6 @@
 /* Indexed triangle mesh: growth, welding, topology, OBJ/PLY export. */
 #include "casteljau/mesh.h"
+#include "alloc_internal.h"
 #include "error_internal.h"
 
 #include <assert.h>
@@ -9,31 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void *std_alloc(void *user, size_t bytes) {
-    (void)user;
-    return malloc(bytes);
-}
-static void std_free(void *user, void *ptr) {
-    (void)user;
-    free(ptr);
-}
-
-static void *m_alloc(const cj_mesh_allocator *a, size_t bytes) {
-    return a->alloc(a->user, bytes ? bytes : 1);
-}
-
-cj_status cj_mesh_create(const cj_mesh_allocator *alloc, cj_mesh **out) {
+cj_status cj_mesh_create(const cj_allocator *alloc, cj_mesh **out) {
     assert(out != NULL);
-    cj_mesh_allocator a;
-    if (alloc) {
-        assert(alloc->alloc && alloc->free);
-        a = *alloc;
-    } else {
-        a.alloc = std_alloc;
-        a.free = std_free;
-        a.user = NULL;
-    }
-    cj_mesh *m = m_alloc(&a, sizeof *m);
+    const cj_allocator a = cj_allocator_resolve(alloc);
+    cj_mesh *m = cj_allocator_alloc(&a, sizeof *m);
     if (!m) return cj_fail(CJ_ERR_NOMEM, "out of memory creating a mesh");
     memset(m, 0, sizeof *m);
     m->alloc_ = a;
@@ -43,13 +23,13 @@ cj_status cj_mesh_create(const cj_mesh_allocator *alloc, cj_mesh **out) {
 
 void cj_mesh_destroy(cj_mesh *m) {
     if (!m) return;
-    cj_mesh_allocator a = m->alloc_;
-    a.free(a.user, m->positions);
-    a.free(a.user, m->normals);
-    a.free(a.user, m->uvs);
-    a.free(a.user, m->triangles);
-    a.free(a.user, m->triangle_patch);
-    a.free(a.user, m);
+    const cj_allocator a = m->alloc_;
+    cj_allocator_free(&a, m->positions);
+    cj_allocator_free(&a, m->normals);
+    cj_allocator_free(&a, m->uvs);
+    cj_allocator_free(&a, m->triangles);
+    cj_allocator_free(&a, m->triangle_patch);
+    cj_allocator_free(&a, m);
 }
 
 void cj_mesh_clear(cj_mesh *m) {
@@ -72,13 +52,13 @@ cj_status cj_mesh_reserve(cj_mesh *m, size_t nv, size_t nt) {
         size_t cap = m->vcap_ ? m->vcap_ : 64;
         while (cap < nv) cap *= 2;
         double *p = NULL, *n = NULL, *uv = NULL;
-        p = m_alloc(&m->alloc_, cap * 3 * sizeof(double));
-        n = m_alloc(&m->alloc_, cap * 3 * sizeof(double));
-        uv = m_alloc(&m->alloc_, cap * 2 * sizeof(double));
+        p = cj_allocator_alloc(&m->alloc_, cap * 3 * sizeof(double));
+        n = cj_allocator_alloc(&m->alloc_, cap * 3 * sizeof(double));
+        uv = cj_allocator_alloc(&m->alloc_, cap * 2 * sizeof(double));
         if (!p || !n || !uv) {
-            m->alloc_.free(m->alloc_.user, p);
-            m->alloc_.free(m->alloc_.user, n);
-            m->alloc_.free(m->alloc_.user, uv);
+            cj_allocator_free(&m->alloc_, p);
+            cj_allocator_free(&m->alloc_, n);
+            cj_allocator_free(&m->alloc_, uv);
             return cj_fail(CJ_ERR_NOMEM, "out of memory growing the mesh to %zu vertices", cap);
         }
         if (m->vertex_count) {
@@ -86,9 +66,9 @@ cj_status cj_mesh_reserve(cj_mesh *m, size_t nv, size_t nt) {
             memcpy(n, m->normals, m->vertex_count * 3 * sizeof(double));
             memcpy(uv, m->uvs, m->vertex_count * 2 * sizeof(double));
         }
-        m->alloc_.free(m->alloc_.user, m->positions);
-        m->alloc_.free(m->alloc_.user, m->normals);
-        m->alloc_.free(m->alloc_.user, m->uvs);
+        cj_allocator_free(&m->alloc_, m->positions);
+        cj_allocator_free(&m->alloc_, m->normals);
+        cj_allocator_free(&m->alloc_, m->uvs);
         m->positions = p;
         m->normals = n;
         m->uvs = uv;
@@ -98,19 +78,19 @@ cj_status cj_mesh_reserve(cj_mesh *m, size_t nv, size_t nt) {
         size_t cap = m->tcap_ ? m->tcap_ : 64;
         while (cap < nt) cap *= 2;
         void *t = m->triangles, *pid = m->triangle_patch;
-        uint32_t *nt_ = m_alloc(&m->alloc_, cap * 3 * sizeof(uint32_t));
-        int32_t *np = m_alloc(&m->alloc_, cap * sizeof(int32_t));
+        uint32_t *nt_ = cj_allocator_alloc(&m->alloc_, cap * 3 * sizeof(uint32_t));
+        int32_t *np = cj_allocator_alloc(&m->alloc_, cap * sizeof(int32_t));
         if (!nt_ || !np) {
-            m->alloc_.free(m->alloc_.user, nt_);
-            m->alloc_.free(m->alloc_.user, np);
+            cj_allocator_free(&m->alloc_, nt_);
+            cj_allocator_free(&m->alloc_, np);
             return cj_fail(CJ_ERR_NOMEM, "out of memory growing the mesh to %zu triangles", cap);
         }
         if (m->triangle_count) {
             memcpy(nt_, t, m->triangle_count * 3 * sizeof(uint32_t));
             memcpy(np, pid, m->triangle_count * sizeof(int32_t));
         }
-        m->alloc_.free(m->alloc_.user, t);
-        m->alloc_.free(m->alloc_.user, pid);
+        cj_allocator_free(&m->alloc_, t);
+        cj_allocator_free(&m->alloc_, pid);
         m->triangles = nt_;
         m->triangle_patch = np;
         m->tcap_ = cap;

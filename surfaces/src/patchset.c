@@ -1,5 +1,6 @@
 /* .bpt patch sets: parsing with line-numbered messages, loading, bounding box. */
 #include "casteljau/patchset.h"
+#include "alloc_internal.h"
 #include "error_internal.h"
 
 #include <assert.h>
@@ -8,15 +9,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static void *std_alloc(void *user, size_t bytes) {
-    (void)user;
-    return malloc(bytes);
-}
-static void std_free(void *user, void *ptr) {
-    (void)user;
-    free(ptr);
-}
 
 typedef struct lexer {
     const char *s;
@@ -92,17 +84,10 @@ static cj_status read_double(lexer *lx, const char *what, long patch, long point
     return CJ_OK;
 }
 
-cj_status cj_patchset_parse_bpt(const char *text, const char *name, const cj_mesh_allocator *alloc,
+cj_status cj_patchset_parse_bpt(const char *text, const char *name, const cj_allocator *alloc,
                                 cj_patchset **out) {
     assert(text != NULL && out != NULL);
-    cj_mesh_allocator a;
-    if (alloc) {
-        a = *alloc;
-    } else {
-        a.alloc = std_alloc;
-        a.free = std_free;
-        a.user = NULL;
-    }
+    const cj_allocator a = cj_allocator_resolve(alloc);
     lexer lx = {text, 1, name ? name : "<bpt>", {0}, 1};
     long count;
     cj_status st = read_int(&lx, 1, 1000000, "patch count", &count);
@@ -150,13 +135,13 @@ cj_status cj_patchset_parse_bpt(const char *text, const char *name, const cj_mes
         free(pts);
         return st;
     }
-    cj_patchset *set = a.alloc(a.user, sizeof *set);
-    double *own = a.alloc(a.user, sizeof(double) * (used ? used : 1));
-    cj_patch *patches = a.alloc(a.user, sizeof(cj_patch) * (size_t)count);
+    cj_patchset *set = cj_allocator_alloc(&a, sizeof *set);
+    double *own = cj_allocator_alloc(&a, sizeof(double) * used);
+    cj_patch *patches = cj_allocator_alloc(&a, sizeof(cj_patch) * (size_t)count);
     if (!set || !own || !patches) {
-        a.free(a.user, set);
-        a.free(a.user, own);
-        a.free(a.user, patches);
+        cj_allocator_free(&a, set);
+        cj_allocator_free(&a, own);
+        cj_allocator_free(&a, patches);
         free(degs);
         free(pts);
         return cj_fail(CJ_ERR_NOMEM, "out of memory reading %s", lx.name);
@@ -177,8 +162,7 @@ cj_status cj_patchset_parse_bpt(const char *text, const char *name, const cj_mes
     return CJ_OK;
 }
 
-cj_status cj_patchset_load_bpt(const char *path, const cj_mesh_allocator *alloc,
-                               cj_patchset **out) {
+cj_status cj_patchset_load_bpt(const char *path, const cj_allocator *alloc, cj_patchset **out) {
     assert(path != NULL && out != NULL);
     FILE *f = fopen(path, "rb");
     if (!f) return cj_fail(CJ_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
@@ -221,10 +205,10 @@ cj_status cj_patchset_load_bpt(const char *path, const cj_mesh_allocator *alloc,
 
 void cj_patchset_destroy(cj_patchset *set) {
     if (!set) return;
-    cj_mesh_allocator a = set->alloc_;
-    a.free(a.user, set->patches);
-    a.free(a.user, set->points);
-    a.free(a.user, set);
+    const cj_allocator a = set->alloc_;
+    cj_allocator_free(&a, set->patches);
+    cj_allocator_free(&a, set->points);
+    cj_allocator_free(&a, set);
 }
 
 cj_status cj_patchset_bbox(const cj_patchset *set, double lo[3], double hi[3], double *diagonal) {

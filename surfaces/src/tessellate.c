@@ -1,6 +1,7 @@
 /* Tessellation of Bézier patches (uniform / adaptive with a proven bound, watertight) and of
  * parametric surfaces. See tessellate.h for the rules and the proof of the bound. */
 #include "casteljau/tessellate.h"
+#include "alloc_internal.h"
 #include "error_internal.h"
 #include "patch_internal.h"
 
@@ -91,10 +92,10 @@ int cj_tess_edge_segments(const double *pts, int degree, double tol, int cap) {
 
 /* Temporaries go through the mesh's allocator (a mesh always has one). */
 static void *t_alloc(const cj_mesh *mesh, size_t bytes) {
-    return mesh->alloc_.alloc(mesh->alloc_.user, bytes ? bytes : 1);
+    return cj_allocator_alloc(&mesh->alloc_, bytes);
 }
 static void t_free(const cj_mesh *mesh, void *ptr) {
-    if (ptr) mesh->alloc_.free(mesh->alloc_.user, ptr);
+    cj_allocator_free(&mesh->alloc_, ptr);
 }
 
 /* ---- per-patch state ----------------------------------------------------------------- */

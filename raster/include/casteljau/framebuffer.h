@@ -21,6 +21,7 @@
 #ifndef CASTELJAU_FRAMEBUFFER_H
 #define CASTELJAU_FRAMEBUFFER_H
 
+#include "casteljau/alloc.h"
 #include "casteljau/status.h"
 #include <stddef.h>
 #include <stdint.h>
@@ -32,13 +33,7 @@ extern "C" {
 /* Largest width or height of a framebuffer. */
 #define CJ_FRAMEBUFFER_MAX_SIDE 32768
 
-/* Optional allocator for objects of raster/ that own memory. alloc(user, bytes) returns memory
- * aligned for any type or NULL; free(user, ptr) releases it (ptr may be NULL). */
-typedef struct cj_raster_allocator {
-    void *(*alloc)(void *user, size_t bytes);
-    void (*free)(void *user, void *ptr);
-    void *user;
-} cj_raster_allocator;
+/* Objects of raster/ that own memory take an optional cj_allocator (casteljau/alloc.h). */
 
 /* One pixel, straight (non-premultiplied) alpha; 255 = opaque. */
 typedef struct cj_rgba {
@@ -71,7 +66,7 @@ typedef struct cj_framebuffer {
     cj_rgba *pixels;  /* stride*height pixels, row 0 = bottom row */
     float *depth;     /* depths laid out like pixels (same stride), or NULL without CJ_FB_DEPTH */
     /* private: allocator and the scratch planes of the anti-aliased stroker */
-    cj_raster_allocator alloc_;
+    cj_allocator alloc_;
     float *cover_;
     int *span_lo_, *span_hi_;
 } cj_framebuffer;
@@ -83,8 +78,8 @@ typedef struct cj_framebuffer {
  * Returns CJ_ERR_RANGE if width or height is outside [1, CJ_FRAMEBUFFER_MAX_SIDE],
  * CJ_ERR_ARGUMENT for unknown flags, CJ_ERR_NOMEM if an allocation fails; *out is set only on
  * success. */
-cj_status cj_framebuffer_create(int width, int height, unsigned flags,
-                                const cj_raster_allocator *alloc, cj_framebuffer **out);
+cj_status cj_framebuffer_create(int width, int height, unsigned flags, const cj_allocator *alloc,
+                                cj_framebuffer **out);
 
 /* Releases everything; fb may be NULL. */
 void cj_framebuffer_destroy(cj_framebuffer *fb);

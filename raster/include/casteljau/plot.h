@@ -64,7 +64,7 @@ cj_plot_bezier_opts cj_plot_bezier_defaults(void);
 
 /* Creates an empty plot: white background, axes on, no title, margin 12 px. The allocator
  * (NULL = malloc/free) is used for the plot's own storage. CJ_ERR_NOMEM on failure. */
-cj_status cj_plot_create(const cj_raster_allocator *alloc, cj_plot **out);
+cj_status cj_plot_create(const cj_allocator *alloc, cj_plot **out);
 void cj_plot_destroy(cj_plot *plot); /* NULL allowed */
 
 void cj_plot_set_background(cj_plot *plot, cj_rgba color);

@@ -19,6 +19,7 @@
 #ifndef CASTELJAU_MESH_H
 #define CASTELJAU_MESH_H
 
+#include "casteljau/alloc.h"
 #include "casteljau/status.h"
 #include <stddef.h>
 #include <stdint.h>
@@ -27,13 +28,7 @@
 extern "C" {
 #endif
 
-/* Optional allocator for objects of surfaces/ that own memory: alloc(user, bytes) returns
- * memory aligned for any type or NULL; free(user, ptr) releases it (ptr may be NULL). */
-typedef struct cj_mesh_allocator {
-    void *(*alloc)(void *user, size_t bytes);
-    void (*free)(void *user, void *ptr);
-    void *user;
-} cj_mesh_allocator;
+/* Objects of surfaces/ that own memory take an optional cj_allocator (casteljau/alloc.h). */
 
 #define CJ_MESH_MAX_VERTICES 0x7fffffffu
 
@@ -47,11 +42,11 @@ typedef struct cj_mesh {
     int32_t *triangle_patch; /* 1 per triangle */
     /* private */
     size_t vcap_, tcap_;
-    cj_mesh_allocator alloc_;
+    cj_allocator alloc_;
 } cj_mesh;
 
 /* Creates an empty mesh (*out receives it). alloc may be NULL. */
-cj_status cj_mesh_create(const cj_mesh_allocator *alloc, cj_mesh **out);
+cj_status cj_mesh_create(const cj_allocator *alloc, cj_mesh **out);
 /* Releases the mesh and its arrays; NULL is a no-op. */
 void cj_mesh_destroy(cj_mesh *mesh);
 /* Empties the mesh, keeping its capacity. */

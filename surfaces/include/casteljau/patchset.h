@@ -28,17 +28,17 @@ typedef struct cj_patchset {
     cj_patch *patches; /* views into `points`, owned by the set */
     double *points;    /* all control points */
     /* private */
-    cj_mesh_allocator alloc_;
+    cj_allocator alloc_;
 } cj_patchset;
 
 /* Parses .bpt text (NUL-terminated). `name` is used in messages (e.g. the file name).
  * alloc may be NULL. Status: CJ_ERR_PARSE (with line number), CJ_ERR_DEGREE, CJ_ERR_NOMEM. */
-cj_status cj_patchset_parse_bpt(const char *text, const char *name, const cj_mesh_allocator *alloc,
+cj_status cj_patchset_parse_bpt(const char *text, const char *name, const cj_allocator *alloc,
                                 cj_patchset **out);
 
 /* Reads and parses a .bpt file. CJ_ERR_IO if it cannot be read (the message names the path
  * and the system's reason). */
-cj_status cj_patchset_load_bpt(const char *path, const cj_mesh_allocator *alloc, cj_patchset **out);
+cj_status cj_patchset_load_bpt(const char *path, const cj_allocator *alloc, cj_patchset **out);
 
 /* Frees the set; NULL is a no-op. */
 void cj_patchset_destroy(cj_patchset *set);
