@@ -3,6 +3,7 @@
 // (Surface patches as VTK_BEZIER_QUADRILATERAL cells belong in a sibling file.)
 #include "casteljau/vtk_export.h"
 #include "error_internal.h"
+#include "vtk_write.h"
 
 #include <vtkBezierCurve.h>
 #include <vtkCell.h>
@@ -18,7 +19,6 @@
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
-#include <vtkXMLUnstructuredGridWriter.h>
 
 #include <cassert>
 #include <cmath>
@@ -131,27 +131,7 @@ extern "C" cj_status cj_vtk_write_curves(const char *path, const cj_bezier *curv
         if ((st = check_curve(in.back(), ncurves + i))) return st;
     }
     vtkSmartPointer<vtkUnstructuredGrid> grid = build_grid(in);
-    const std::string tmp = std::string(path) + ".tmp";
-    // Probe the location first so that an unwritable path fails with our message alone.
-    if (std::FILE *probe = std::fopen(tmp.c_str(), "wb"))
-        std::fclose(probe);
-    else
-        return cj_fail(CJ_ERR_IO, "cannot create %s", tmp.c_str());
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    writer->SetFileName(tmp.c_str());
-    writer->SetInputData(grid);
-    writer->SetDataModeToAppended();
-    writer->EncodeAppendedDataOff();
-    writer->SetCompressorTypeToNone();
-    if (writer->Write() != 1) {
-        std::remove(tmp.c_str());
-        return cj_fail(CJ_ERR_IO, "VTK could not write %s", tmp.c_str());
-    }
-    if (std::rename(tmp.c_str(), path) != 0) {
-        std::remove(tmp.c_str());
-        return cj_fail(CJ_ERR_IO, "could not rename %s to %s", tmp.c_str(), path);
-    }
-    return CJ_OK;
+    return cj_vtk_write_grid(grid, path);
 }
 
 extern "C" cj_status cj_vtk_read_curves(const char *path, int *degrees, size_t cap_cells,

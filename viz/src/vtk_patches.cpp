@@ -1,6 +1,7 @@
 // VTK adapter for Bézier patches: VTK_BEZIER_QUADRILATERAL cells, .vtu export, VTK's evaluation.
 #include "casteljau/vtk_patches.h"
 #include "error_internal.h"
+#include "vtk_write.h"
 
 #include <vtkBezierQuadrilateral.h>
 #include <vtkCell.h>
@@ -16,7 +17,6 @@
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
-#include <vtkXMLUnstructuredGridWriter.h>
 
 #include <cassert>
 #include <cmath>
@@ -114,26 +114,7 @@ extern "C" cj_status cj_vtk_write_patches(const char *path, const cj_patch *patc
         if (st) return st;
     }
     vtkSmartPointer<vtkUnstructuredGrid> grid = build_grid(patches, count);
-    const std::string tmp = std::string(path) + ".tmp";
-    if (std::FILE *f = std::fopen(tmp.c_str(), "wb"))
-        std::fclose(f);
-    else
-        return cj_fail(CJ_ERR_IO, "cannot create %s", tmp.c_str());
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    writer->SetFileName(tmp.c_str());
-    writer->SetInputData(grid);
-    writer->SetDataModeToAppended();
-    writer->EncodeAppendedDataOff();
-    writer->SetCompressorTypeToNone();
-    if (writer->Write() != 1) {
-        std::remove(tmp.c_str());
-        return cj_fail(CJ_ERR_IO, "VTK could not write %s", tmp.c_str());
-    }
-    if (std::rename(tmp.c_str(), path) != 0) {
-        std::remove(tmp.c_str());
-        return cj_fail(CJ_ERR_IO, "could not rename %s to %s", tmp.c_str(), path);
-    }
-    return CJ_OK;
+    return cj_vtk_write_grid(grid, path);
 }
 
 extern "C" cj_status cj_vtk_read_patch_count(const char *path, size_t *ncells, int degrees[2]) {
