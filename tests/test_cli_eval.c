@@ -10,17 +10,14 @@
 #include <cmocka.h>
 
 #include "casteljau/bezier.h"
+#include "cli_run.h"
 #include "oracle_mpfr.h"
 
 #include <math.h>
-#include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
-
-extern char **environ;
 
 static const char *exe;
 static int runs;
@@ -31,19 +28,14 @@ typedef struct result {
     char err[4096];
 } result;
 
-static void slurp(const char *path, char *buf, size_t size) {
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    size_t n = fread(buf, 1, size - 1, f);
-    buf[n] = '\0';
-    fclose(f);
+/* Copies a captured stream into a fixed test buffer; output that does not fit fails the test. */
+static void keep(char *dst, size_t size, const char *src, size_t len) {
+    assert_true(len < size);
+    memcpy(dst, src, len + 1);
 }
 
 /* Runs `casteljau eval <args...>` (args NULL-terminated) and captures both streams. */
 static void run_eval(result *r, const char *const *args) {
-    char out_path[] = "/tmp/cj_cli_outXXXXXX", err_path[] = "/tmp/cj_cli_errXXXXXX";
-    int fo = mkstemp(out_path), fe = mkstemp(err_path);
-    assert_true(fo >= 0 && fe >= 0);
     char *argv[64];
     int argc = 0;
     argv[argc++] = (char *)exe;
@@ -53,22 +45,12 @@ static void run_eval(result *r, const char *const *args) {
         argv[argc++] = (char *)*a;
     }
     argv[argc] = NULL;
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_adddup2(&fa, fo, 1);
-    posix_spawn_file_actions_adddup2(&fa, fe, 2);
-    pid_t pid;
-    assert_int_equal(posix_spawn(&pid, exe, &fa, NULL, argv, environ), 0);
-    posix_spawn_file_actions_destroy(&fa);
-    int ws = 0;
-    assert_true(waitpid(pid, &ws, 0) == pid);
-    r->status = WIFEXITED(ws) ? WEXITSTATUS(ws) : -1;
-    close(fo);
-    close(fe);
-    slurp(out_path, r->out, sizeof r->out);
-    slurp(err_path, r->err, sizeof r->err);
-    unlink(out_path);
-    unlink(err_path);
+    cj_cli_result cr;
+    assert_int_equal(cj_cli_spawn(argv, &cr), 0);
+    r->status = cr.status;
+    keep(r->out, sizeof r->out, cr.out, cr.out_len);
+    keep(r->err, sizeof r->err, cr.err, cr.err_len);
+    cj_cli_result_free(&cr);
     ++runs;
 }
 

@@ -7,6 +7,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "cli_run.h"
+
 #include "casteljau/bezier.h"
 #include "casteljau/catmull_rom.h"
 
@@ -14,7 +16,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 
 #ifndef CJ_CLI
 #error "CJ_CLI (path of the casteljau executable) must be defined by the build"
@@ -26,19 +27,15 @@ static char out[OUTMAX], err[4096];
 /* Runs `casteljau <args>`; stdout into out, stderr into err; returns the exit status. */
 static int run(const char *args) {
     char cmd[8192];
-    snprintf(cmd, sizeof cmd, "'%s' %s 2>test_cli_interp_stderr.txt", CJ_CLI, args);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t n = fread(out, 1, OUTMAX - 1, p);
-    out[n] = '\0';
-    int st = pclose(p);
-    FILE *e = fopen("test_cli_interp_stderr.txt", "r");
-    assert_non_null(e);
-    size_t m = fread(err, 1, sizeof err - 1, e);
-    err[m] = '\0';
-    fclose(e);
-    remove("test_cli_interp_stderr.txt");
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    snprintf(cmd, sizeof cmd, "'%s' %s", CJ_CLI, args);
+    cj_cli_result r;
+    assert_int_equal(cj_cli_shell(cmd, &r), 0);
+    assert_true(r.out_len < OUTMAX && r.err_len < sizeof err);
+    memcpy(out, r.out, r.out_len + 1);
+    memcpy(err, r.err, r.err_len + 1);
+    const int status = r.status;
+    cj_cli_result_free(&r);
+    return status;
 }
 
 /* Parses "x,y;x,y;..." (one line) into pts; returns the number of points. */

@@ -8,19 +8,16 @@
 #include <stddef.h>
 #include <cmocka.h>
 
-#include <fcntl.h>
-#include <spawn.h>
+#include "cli_run.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #ifndef CJ_CLI
 #define CJ_CLI "casteljau"
 #endif
-
-extern char **environ;
 
 typedef struct result {
     int status;
@@ -30,36 +27,28 @@ typedef struct result {
 
 static char dir[64];
 
-static void slurp(const char *path, char *buf, size_t size) {
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    size_t n = fread(buf, 1, size - 1, f);
-    buf[n] = '\0';
-    fclose(f);
+/* Copies a captured stream into a fixed test buffer; output that does not fit fails the test. */
+static void keep(char *dst, size_t size, const char *src, size_t len) {
+    assert_true(len < size);
+    memcpy(dst, src, len + 1);
 }
 
 static void run(result *r, const char *const *args) {
-    char op[128], ep[128];
-    snprintf(op, sizeof op, "%s/stdout", dir);
-    snprintf(ep, sizeof ep, "%s/stderr", dir);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, op, O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    posix_spawn_file_actions_addopen(&fa, 2, ep, O_WRONLY | O_CREAT | O_TRUNC, 0600);
     char *argv[32];
     int argc = 0;
     argv[argc++] = (char *)CJ_CLI;
     argv[argc++] = (char *)"tessellate";
-    for (const char *const *a = args; *a; ++a) argv[argc++] = (char *)*a;
+    for (const char *const *a = args; *a; ++a) {
+        assert_true(argc < 31);
+        argv[argc++] = (char *)*a;
+    }
     argv[argc] = NULL;
-    pid_t pid;
-    assert_int_equal(posix_spawn(&pid, CJ_CLI, &fa, NULL, argv, environ), 0);
-    posix_spawn_file_actions_destroy(&fa);
-    int ws = 0;
-    assert_true(waitpid(pid, &ws, 0) == pid);
-    r->status = WIFEXITED(ws) ? WEXITSTATUS(ws) : -1;
-    slurp(op, r->out, sizeof r->out);
-    slurp(ep, r->err, sizeof r->err);
+    cj_cli_result cr;
+    assert_int_equal(cj_cli_spawn(argv, &cr), 0);
+    r->status = cr.status;
+    keep(r->out, sizeof r->out, cr.out, cr.out_len);
+    keep(r->err, sizeof r->err, cr.err, cr.err_len);
+    cj_cli_result_free(&cr);
 }
 
 static double field(const char *out, const char *key) {

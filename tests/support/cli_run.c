@@ -1,0 +1,78 @@
+#define _POSIX_C_SOURCE 200809L
+#include "cli_run.h"
+
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char **environ;
+
+/* Reads the whole of an open temporary file from its start into a malloc'd string. */
+static char *slurp(int fd, size_t *len) {
+    if (lseek(fd, 0, SEEK_SET) < 0) return NULL;
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    if (!buf) return NULL;
+    for (;;) {
+        if (n + 1 == cap) {
+            char *grown = realloc(buf, cap *= 2);
+            if (!grown) {
+                free(buf);
+                return NULL;
+            }
+            buf = grown;
+        }
+        ssize_t got = read(fd, buf + n, cap - 1 - n);
+        if (got < 0) {
+            free(buf);
+            return NULL;
+        }
+        if (got == 0) break;
+        n += (size_t)got;
+    }
+    buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
+int cj_cli_spawn(char *const argv[], cj_cli_result *r) {
+    memset(r, 0, sizeof *r);
+    char out_path[] = "/tmp/cj_cli_outXXXXXX", err_path[] = "/tmp/cj_cli_errXXXXXX";
+    int fo = mkstemp(out_path), fe = mkstemp(err_path);
+    int rc = -1;
+    if (fo < 0 || fe < 0) goto done;
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_adddup2(&fa, fo, 1);
+    posix_spawn_file_actions_adddup2(&fa, fe, 2);
+    pid_t pid;
+    int spawned = posix_spawn(&pid, argv[0], &fa, NULL, argv, environ);
+    posix_spawn_file_actions_destroy(&fa);
+    if (spawned != 0) goto done;
+    int ws = 0;
+    if (waitpid(pid, &ws, 0) != pid) goto done;
+    r->status = WIFEXITED(ws) ? WEXITSTATUS(ws) : -1;
+    r->out = slurp(fo, &r->out_len);
+    r->err = slurp(fe, &r->err_len);
+    if (r->out && r->err) rc = 0;
+done:
+    if (fo >= 0) close(fo), unlink(out_path);
+    if (fe >= 0) close(fe), unlink(err_path);
+    if (rc) cj_cli_result_free(r);
+    return rc;
+}
+
+int cj_cli_shell(const char *cmd, cj_cli_result *r) {
+    char *const argv[] = {(char *)"/bin/sh", (char *)"-c", (char *)cmd, NULL};
+    return cj_cli_spawn(argv, r);
+}
+
+void cj_cli_result_free(cj_cli_result *r) {
+    free(r->out);
+    free(r->err);
+    r->out = r->err = NULL;
+    r->out_len = r->err_len = 0;
+}

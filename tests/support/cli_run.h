@@ -1,0 +1,25 @@
+/* Runs the casteljau executable (or a shell pipeline) for the command-line contract tests and
+ * captures its exit status, stdout and stderr. */
+#ifndef CJ_TEST_CLI_RUN_H
+#define CJ_TEST_CLI_RUN_H
+
+#include <stddef.h>
+
+typedef struct cj_cli_result {
+    int status; /* exit status, or -1 if the child did not exit normally */
+    char *out;  /* stdout, NUL-terminated (malloc'd) */
+    size_t out_len;
+    char *err; /* stderr, NUL-terminated (malloc'd) */
+    size_t err_len;
+} cj_cli_result;
+
+/* Runs argv[0] (a path) with argv, NULL-terminated, in the environment of the test. Returns 0,
+ * or -1 if the process could not be started or its output not captured. */
+int cj_cli_spawn(char *const argv[], cj_cli_result *r);
+
+/* Runs `/bin/sh -c cmd` (for pipelines and quoting); same capture. */
+int cj_cli_shell(const char *cmd, cj_cli_result *r);
+
+void cj_cli_result_free(cj_cli_result *r);
+
+#endif
