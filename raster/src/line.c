@@ -161,7 +161,7 @@ cj_status cj_raster_line_visit(long long x0, long long y0, long long x1, long lo
 
 cj_status cj_raster_line_visit_d(double x0, double y0, double x1, double y1, cj_raster_rect clip,
                                  cj_raster_pixel_fn fn, void *user, long long *visited) {
-    long long p[4];
+    long long p[4] = {0, 0, 0, 0}; /* set by to_pixels on success; zeroed for -O3 flow analysis */
     cj_status st = to_pixels(x0, y0, x1, y1, p);
     if (st) return st;
     return cj_raster_line_visit(p[0], p[1], p[2], p[3], clip, fn, user, visited);
@@ -215,7 +215,7 @@ cj_status cj_raster_line(cj_framebuffer *fb, long long x0, long long y0, long lo
 cj_status cj_raster_line_d(cj_framebuffer *fb, double x0, double y0, double x1, double y1,
                            cj_rgba c) {
     assert(fb);
-    long long p[4];
+    long long p[4] = {0, 0, 0, 0}; /* set by to_pixels on success; zeroed for -O3 flow analysis */
     cj_status st = to_pixels(x0, y0, x1, y1, p);
     if (st) return st;
     return cj_raster_line(fb, p[0], p[1], p[2], p[3], c);
