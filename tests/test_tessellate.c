@@ -3,7 +3,10 @@
  * and the teapot at 1e-2, 3e-3, 1e-3 of its size); the teapot mesh has zero cracks (every
  * shared patch edge carries bit-identical vertices on both sides; boundary edges only on the
  * true open boundary); closed meshes (torus, ellipsoid) are manifold with Euler characteristic
- * 0 and 2; the teapot data's shared edges; OBJ/PLY export; the .bpt loader's messages. */
+ * 0 and 2; patches with straight edges across which they twist (the twisted bilinear patch,
+ * random ones) need no more triangles adaptively than the smallest uniform grid meeting tol,
+ * and a straight edge shared with a flat patch carries the same vertices on both sides; the
+ * teapot data's shared edges; OBJ/PLY export; the .bpt loader's messages. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -323,6 +326,167 @@ static void teapot_at(const cj_patchset *set, const edge_ref *e, double tol, int
     cj_mesh_destroy(mesh);
 }
 
+/* ---- straight edges on twisted patches --------------------------------------------------- */
+
+/* The smallest K whose uniform K x K tessellation has a proven bound <= tol, and its triangle
+ * count. */
+static int smallest_uniform(const cj_patch *p, size_t np, double tol, size_t *tris) {
+    cj_mesh *mesh;
+    assert_int_equal(cj_mesh_create(NULL, &mesh), CJ_OK);
+    int K = 1;
+    for (;; ++K) {
+        assert_true(K <= 400);
+        cj_mesh_clear(mesh);
+        cj_tess_options opt = {0.0, K, 0, 0};
+        cj_tess_report rep;
+        assert_int_equal(cj_tessellate_patches(p, np, &opt, mesh, &rep), CJ_OK);
+        if (rep.bound <= tol) {
+            *tris = rep.triangles;
+            break;
+        }
+    }
+    cj_mesh_destroy(mesh);
+    return K;
+}
+
+/* Adaptive at tol: bound <= tol, sampled deviation <= bound, no more triangles than the
+ * smallest uniform K meeting tol. Returns the adaptive triangle count; the mesh is kept. */
+static size_t adaptive_vs_uniform(const cj_patch *p, size_t np, double tol, const char *what, int c,
+                                  cj_mesh *mesh, int *K_out, size_t *uni_out) {
+    cj_mesh_clear(mesh);
+    cj_tess_options opt = {tol, 0, 0, 0};
+    cj_tess_report rep;
+    if (cj_tessellate_patches(p, np, &opt, mesh, &rep) != CJ_OK)
+        fail_msg("seed %llu %s case %d: %s", (unsigned long long)seed, what, c, cj_last_error());
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < mesh->vertex_count; ++i)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = fmin(lo[k], mesh->positions[3 * i + k]);
+            hi[k] = fmax(hi[k], mesh->positions[3 * i + k]);
+        }
+    const double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    const double dev = sample_deviation(mesh, p, 6, size);
+    if (rep.bound > tol)
+        fail_msg("seed %llu %s case %d: bound %.6g > tol %.6g", (unsigned long long)seed, what, c,
+                 rep.bound, tol);
+    if (dev > rep.bound)
+        fail_msg("seed %llu %s case %d: sampled deviation %.6g > bound %.6g",
+                 (unsigned long long)seed, what, c, dev, rep.bound);
+    size_t uni;
+    const int K = smallest_uniform(p, np, tol, &uni);
+    if (rep.triangles > uni)
+        fail_msg("seed %llu %s case %d: adaptive %zu triangles > uniform K=%d %zu triangles",
+                 (unsigned long long)seed, what, c, rep.triangles, K, uni);
+    *K_out = K;
+    *uni_out = uni;
+    return rep.triangles;
+}
+
+/* A patch of degree (m,n) whose four edges are straight, evenly parametrized segments between
+ * random corners (so each edge alone needs one segment), with random interior control
+ * points: the patch bends and twists across its straight edges. */
+static void straight_edged_patch(cj_rng *r, int m, int n, double *pts) {
+    double c[4][3];
+    for (int a = 0; a < 4; ++a)
+        for (int k = 0; k < 3; ++k)
+            c[a][k] =
+                (k < 2 ? (double)((k == 0 ? a : a >> 1) & 1) : 0.0) + cj_rng_range(r, -0.3, 0.3);
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= m; ++i) {
+            const double s = (double)i / m, t = (double)j / n;
+            double *x = pts + 3 * (j * (m + 1) + i);
+            const int interior = i > 0 && i < m && j > 0 && j < n;
+            for (int k = 0; k < 3; ++k) {
+                const double bil = (1 - t) * ((1 - s) * c[0][k] + s * c[1][k]) +
+                                   t * ((1 - s) * c[2][k] + s * c[3][k]);
+                x[k] = interior ? bil + cj_rng_range(r, -0.6, 0.6) : bil;
+            }
+        }
+}
+
+static void test_straight_edges_twisted(void **state) {
+    (void)state;
+    cj_mesh *mesh;
+    assert_int_equal(cj_mesh_create(NULL, &mesh), CJ_OK);
+    /* the twisted bilinear patch: straight edges, twist S_uv = (0,0,1) */
+    const double tw[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 1};
+    const cj_patch twisted = cj_patch_view(1, 1, tw, NULL);
+    int K;
+    size_t uni;
+    const size_t ntw =
+        adaptive_vs_uniform(&twisted, 1, 0.01, "twisted bilinear", 0, mesh, &K, &uni);
+    /* independent: the bound of a K x K grid is S_uv/(4 K^2) = 1/(4 K^2) <= 0.01 first at K = 6
+     * (K = 5 hits 0.01 exactly and the rounding allowance puts it over) */
+    assert_int_equal(K, 6);
+    printf("twisted bilinear patch, tol 0.01: adaptive %zu triangles, uniform K=%d %zu\n", ntw, K,
+           uni);
+    /* random straight-edged patches */
+    cj_rng r;
+    cj_rng_init(&r, seed ^ 0x5ea1);
+    size_t sum_a = 0, sum_u = 0;
+    for (int c = 0; c < 8; ++c) {
+        const int m = cj_rng_int(&r, 1, 4), n = cj_rng_int(&r, 1, 4);
+        double pts[25 * 3];
+        straight_edged_patch(&r, m, n, pts);
+        const cj_patch p = cj_patch_view(m, n, pts, NULL);
+        double size;
+        cj_patch_size(&p, &size);
+        sum_a += adaptive_vs_uniform(&p, 1, (c % 2 ? 1e-2 : 3e-3) * size, "straight-edged", c, mesh,
+                                     &K, &uni);
+        sum_u += uni;
+    }
+    /* two patches sharing a straight edge: the twisted one and a flat one (alone 2 triangles);
+     * the shared edge must carry the twisted side's count on both sides, bit-identically */
+    const double flat[12] = {1, 0, 0, 2, 0, 0, 1, 1, 1, 2, 1, 1};
+    const cj_patch pair[2] = {twisted, cj_patch_view(1, 1, flat, NULL)};
+    const size_t npair = adaptive_vs_uniform(pair, 2, 0.01, "shared edge", 0, mesh, &K, &uni);
+    double a[64 * 3], b[64 * 3];
+    size_t na = 0, nb = 0, flat_tris = 0;
+    for (size_t i = 0; i < mesh->vertex_count; ++i) {
+        const double *uv = mesh->uvs + 2 * i, *x = mesh->positions + 3 * i;
+        if (x[0] != 1.0) continue; /* the shared edge is x = 1: u = 1 on patch 0, u = 0 on 1 */
+        if (uv[0] == 1.0 && na < 64) memcpy(a + 3 * na++, x, 3 * sizeof(double));
+        if (uv[0] == 0.0 && nb < 64) memcpy(b + 3 * nb++, x, 3 * sizeof(double));
+    }
+    qsort(a, na, 3 * sizeof(double), cmp3);
+    qsort(b, nb, 3 * sizeof(double), cmp3);
+    for (size_t t = 0; t < mesh->triangle_count; ++t) flat_tris += mesh->triangle_patch[t] == 1;
+    assert_true(na >= 3 && na < 64); /* more than the flat patch alone needs */
+    if (na != nb || memcmp(a, b, na * 3 * sizeof(double)))
+        fail_msg("shared straight edge: %zu vs %zu vertices, or positions differ", na, nb);
+    size_t dropped;
+    assert_int_equal(cj_mesh_weld(mesh, &dropped), CJ_OK);
+    cj_mesh_topology topo;
+    assert_int_equal(cj_mesh_topology_compute(mesh, &topo), CJ_OK);
+    assert_int_equal((int)topo.nonmanifold_edges, 0);
+    assert_int_equal((int)topo.misoriented_edges, 0);
+    /* no crack: every mesh edge on x = 1 is interior (shared by both patches' triangles) */
+    size_t open_on_shared = 0;
+    for (size_t t = 0; t < mesh->triangle_count; ++t)
+        for (int e = 0; e < 3; ++e) {
+            const uint32_t v0 = mesh->triangles[3 * t + e],
+                           v1 = mesh->triangles[3 * t + (e + 1) % 3];
+            if (mesh->positions[3 * (size_t)v0] != 1.0 || mesh->positions[3 * (size_t)v1] != 1.0)
+                continue;
+            int uses = 0;
+            for (size_t s = 0; s < mesh->triangle_count; ++s)
+                for (int f = 0; f < 3; ++f) {
+                    const uint32_t w0 = mesh->triangles[3 * s + f],
+                                   w1 = mesh->triangles[3 * s + (f + 1) % 3];
+                    uses += (w0 == v0 && w1 == v1) || (w0 == v1 && w1 == v0);
+                }
+            open_on_shared += uses != 2;
+        }
+    assert_int_equal((int)open_on_shared, 0);
+    cj_mesh_destroy(mesh);
+    printf("straight-edged random patches (8, deg 1..4): adaptive %zu triangles vs smallest "
+           "uniform meeting tol %zu; twisted + flat patch sharing a straight edge: %zu triangles "
+           "(flat one %zu), %zu bit-identical vertices on the shared edge, no crack after weld; "
+           "all bound <= tol, sampled deviation <= bound\n",
+           sum_a, sum_u, npair, flat_tris, na);
+}
+
 static void test_teapot_tolerances_and_cracks(void **state) {
     (void)state;
     cj_patchset *set;
@@ -585,6 +749,7 @@ int main(void) {
         cmocka_unit_test(test_random_patches_within_tol),
         cmocka_unit_test(test_teapot_data),
         cmocka_unit_test(test_teapot_tolerances_and_cracks),
+        cmocka_unit_test(test_straight_edges_twisted),
         cmocka_unit_test(test_closed_meshes),
         cmocka_unit_test(test_rational_and_options),
         cmocka_unit_test(test_export),

@@ -116,6 +116,7 @@ typedef struct ptess {
     edge_info e[4];
     cj_mesh *mesh;
     int measure;
+    int planning; /* builds only for their bound and size: no normals */
     /* results of one build */
     double bound, measured;
     double worst_terms[3]; /* uu, uv, vv contributions of the worst triangle */
@@ -194,7 +195,7 @@ static void eval_point(const ptess *P, double u, double v, double out[3]) {
 static cj_status add_vertex(ptess *P, const double pos[3], double u, double v, uint32_t *idx) {
     double nrm[3] = {0.0, 0.0, 0.0};
     const double uv[2] = {u, v};
-    if (cj_patch_normal_unchecked(P->p, P->h, P->hd, u, v, nrm, NULL) != CJ_OK)
+    if (!P->planning && cj_patch_normal_unchecked(P->p, P->h, P->hd, u, v, nrm, NULL) != CJ_OK)
         nrm[0] = nrm[1] = nrm[2] = 0.0; /* a patch collapsed to a curve: no normal */
     return cj_mesh_add_vertex(P->mesh, pos, nrm, uv, idx);
 }
@@ -473,12 +474,64 @@ static void equidistribute(const double *rho, int S, int cnt, double *b) {
 
 #define SLABS 16
 
-/* Adaptive choice for one patch: edge counts from the edges alone; an interior grid of
- * nu x nv = ceil(s sqrt(Muu/(4 tol))) x ceil(s sqrt(Mvv/(4 tol))) uniform cells (global
- * second-derivative bounds set the aspect), with the scale s the smallest (found by doubling
- * then bisection) for which the per-triangle bound with cell-local derivative bounds is <= tol.
- * The mesh keeps the passing build with the fewest triangles. */
-static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu_out, int *nv_out) {
+/* Side counts of one build: a collapsed side follows the grid of its direction; otherwise the
+ * fixed count kfix[e] or, when planning (kfix NULL), the larger of the edge-flatness count
+ * ke[e] and the grid count along that side, so that the zipper triangles next to the side are
+ * no wider than the grid cells there (a straight edge across which the patch twists needs as
+ * many segments as the interior, or its slivers force the whole interior finer). */
+static void side_counts(const ptess *P, const int ke[4], const int *kfix, int nu, int nv,
+                        int k[4]) {
+    for (int e = 0; e < 4; ++e) {
+        const int ng = (e & 1) ? nv : nu;
+        if (P->e[e].collapsed)
+            k[e] = ng;
+        else if (kfix)
+            k[e] = kfix[e];
+        else
+            k[e] = ke[e] > ng ? ke[e] : ng;
+    }
+}
+
+/* A candidate grid: nu x nv cells, lines equidistributing the slab densities or (uni)
+ * uniform. */
+typedef struct grid {
+    int nu, nv, uni;
+} grid;
+
+/* Builds grid g with side counts k; *pass receives whether the proven bound is <= tol. The
+ * build stays in the mesh (replacing whatever was there after vs, ts). */
+static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, grid g,
+                          const int k[4], double tol, size_t q, size_t vs, size_t ts, int *pass) {
+    static const double flat[SLABS]; /* zero density: uniform lines */
+    const int nu = g.nu, nv = g.nv;
+    double *ub = t_alloc(P->mesh, sizeof(double) * (size_t)(nu + 1));
+    double *vb = t_alloc(P->mesh, sizeof(double) * (size_t)(nv + 1));
+    cj_status st = CJ_OK;
+    if (!ub || !vb) {
+        st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %zu", q);
+    } else {
+        equidistribute(g.uni ? flat : rho_u, SLABS, nu, ub);
+        equidistribute(g.uni ? flat : rho_v, SLABS, nv, vb);
+        cj_mesh_truncate(P->mesh, vs, ts);
+        st = build_patch(P, nu, ub, nv, vb, k);
+        *pass = !st && P->bound <= tol;
+    }
+    t_free(P->mesh, ub);
+    t_free(P->mesh, vb);
+    return st;
+}
+
+/* Adaptive choice for one patch. Interior: a grid of nu x nv cells whose lines equidistribute
+ * the slab densities, nu = ceil(s base_u), nv = ceil(s base_v), with the scale s the smallest
+ * (found by growing, then bisection) for which the per-triangle bound is <= tol; then uniform
+ * K x K grids with fewer triangles than that build are tried (smallest passing K by
+ * bisection), so a patch never gets more triangles than the uniform grid its sides allow.
+ * Sides: when planning (kfix NULL) each build uses side_counts() and kout receives the counts
+ * of the kept build; otherwise the counts kfix are imposed and the grid *hint (nu >= 2) is
+ * tried first. The mesh then holds the passing build with the fewest triangles (when planning:
+ * some build, to be truncated); *out is that grid. */
+static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, const int *kfix,
+                                const grid *hint, int kout[4], grid *out) {
     int ke[4];
     for (int s = 0; s < 4; ++s) {
         ke[s] = P->e[s].collapsed
@@ -509,51 +562,47 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu
         base_v = sv / sqrt(4.0 * tol);
     }
     const size_t vs = P->mesh->vertex_count, ts = P->mesh->triangle_count;
-    double lo = 0.0, hi = 0.0, s = 1.0;
-    int best_nu = 0, best_nv = 0;
-    size_t best_tris = (size_t)-1;
-    double *ub = NULL, *vb = NULL;
     cj_status st = CJ_OK;
-    int last_nu = -1, last_nv = -1, last_pass = 0;
+    int k[4];
+    if (kfix && hint && hint->nu >= 2 && hint->nv >= 2) {
+        int pass = 0;
+        side_counts(P, ke, kfix, hint->nu, hint->nv, k);
+        if ((st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, &pass))) return st;
+        if (pass) {
+            *out = *hint;
+            memcpy(kout, k, sizeof k);
+            return CJ_OK;
+        }
+    }
+    double lo = 0.0, hi = 0.0, s = 1.0;
+    grid best = {0, 0, 0}, last = {-1, -1, 0};
+    size_t best_tris = (size_t)-1;
+    int last_pass = 0;
     for (int iter = 0; iter < 60; ++iter) {
         int nu = (int)fmin(ceil(s * base_u), (double)cap + 1.0);
         int nv = (int)fmin(ceil(s * base_v), (double)cap + 1.0);
         if (nu < 2) nu = 2;
         if (nv < 2) nv = 2;
         if (nu > cap || nv > cap) {
-            if (best_nu) break; /* a finer passing build exists */
+            if (best.nu) break; /* a finer passing build exists */
             st = cj_fail(CJ_ERR_CAP,
                          "patch %zu needs more than %d segments per direction for tolerance %.3g",
                          q, cap, tol);
             break;
         }
         int pass;
-        if (nu == last_nu && nv == last_nv) {
+        if (nu == last.nu && nv == last.nv) {
             pass = last_pass;
         } else {
-            t_free(P->mesh, ub);
-            t_free(P->mesh, vb);
-            ub = t_alloc(P->mesh, sizeof(double) * (size_t)(nu + 1));
-            vb = t_alloc(P->mesh, sizeof(double) * (size_t)(nv + 1));
-            if (!ub || !vb) {
-                st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %zu", q);
-                break;
-            }
-            equidistribute(rho_u, SLABS, nu, ub);
-            equidistribute(rho_v, SLABS, nv, vb);
-            int k[4];
-            for (int e = 0; e < 4; ++e) k[e] = P->e[e].collapsed ? ((e & 1) ? nv : nu) : ke[e];
-            cj_mesh_truncate(P->mesh, vs, ts);
-            if ((st = build_patch(P, nu, ub, nv, vb, k))) break;
-            pass = P->bound <= tol;
+            const grid g = {nu, nv, 0};
+            side_counts(P, ke, kfix, nu, nv, k);
+            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, &pass))) break;
             const size_t tris = P->mesh->triangle_count - ts;
             if (pass && tris < best_tris) {
                 best_tris = tris;
-                best_nu = nu;
-                best_nv = nv;
+                best = g;
             }
-            last_nu = nu;
-            last_nv = nv;
+            last = g;
             last_pass = pass;
         }
         if (pass)
@@ -570,30 +619,146 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, int *nu
             break;
         if (lo == 0.0 && iter >= 8) lo = s; /* stop shrinking */
     }
-    if (!st && best_nu == 0)
+    if (!st && best.nu == 0)
         st = cj_fail(CJ_ERR_CAP, "patch %zu: no grid met tolerance %.3g", q, tol);
-    if (!st && (best_nu != last_nu || best_nv != last_nv)) {
-        /* rebuild the best passing grid */
-        t_free(P->mesh, ub);
-        t_free(P->mesh, vb);
-        ub = t_alloc(P->mesh, sizeof(double) * (size_t)(best_nu + 1));
-        vb = t_alloc(P->mesh, sizeof(double) * (size_t)(best_nv + 1));
-        if (!ub || !vb) {
-            st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %zu", q);
-        } else {
-            equidistribute(rho_u, SLABS, best_nu, ub);
-            equidistribute(rho_v, SLABS, best_nv, vb);
-            int k[4];
-            for (int e = 0; e < 4; ++e)
-                k[e] = P->e[e].collapsed ? ((e & 1) ? best_nv : best_nu) : ke[e];
-            cj_mesh_truncate(P->mesh, vs, ts);
-            st = build_patch(P, best_nu, ub, best_nv, vb, k);
+    if (!st) {
+        /* uniform K x K grids with fewer than best_tris triangles: the largest such K first;
+         * if it passes, bisect for the smallest passing K (the bound decreases with K) */
+        int khi = (int)floor(sqrt((double)(best_tris - 1) / 2.0));
+        if (khi > cap) khi = cap;
+        int klo = 1; /* klo fails (or is below the minimum 2), khi passes */
+        int probe = khi;
+        while (probe >= 2 && probe > klo) {
+            const grid g = {probe, probe, 1};
+            int pass;
+            side_counts(P, ke, kfix, probe, probe, k);
+            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, &pass))) break;
+            const size_t tris = P->mesh->triangle_count - ts;
+            last = g;
+            if (pass && tris < best_tris) {
+                best_tris = tris;
+                best = g;
+            }
+            if (!pass) {
+                if (probe == khi) break; /* no uniform grid that small passes */
+                klo = probe;
+            } else {
+                khi = probe;
+            }
+            probe = (klo + khi) / 2;
+            if (probe == klo) break;
         }
     }
-    *nu_out = best_nu;
-    *nv_out = best_nv;
-    t_free(P->mesh, ub);
-    t_free(P->mesh, vb);
+    side_counts(P, ke, kfix, best.nu, best.nv, k);
+    /* rebuild the best grid unless it is the last build or only planning (kfix NULL) */
+    if (!st && kfix && (best.nu != last.nu || best.nv != last.nv || best.uni != last.uni)) {
+        int pass; /* deterministic: it passes again */
+        st = try_grid(P, rho_u, rho_v, best, k, tol, q, vs, ts, &pass);
+    }
+    *out = best;
+    memcpy(kout, k, sizeof k);
+    return st;
+}
+
+/* A patch side for finding shared edges: its control points in canonical order. */
+typedef struct side_ref {
+    const cj_patch *p;
+    int first, step, count, reversed;
+    size_t slot; /* 4 * patch + side */
+} side_ref;
+
+static const double *side_point(const side_ref *r, int a, double *w) {
+    const int i = r->first + r->step * (r->reversed ? r->count - 1 - a : a);
+    *w = r->p->weights ? r->p->weights[i] : 1.0;
+    return r->p->pts + 3 * i;
+}
+
+/* Same comparison as edge_setup's canonical order: equal iff the two sides would evaluate
+ * their points from identical control sequences. */
+static int cmp_side_points(const side_ref *a, const side_ref *b) {
+    if (a->count != b->count) return a->count < b->count ? -1 : 1;
+    for (int i = 0; i < a->count; ++i) {
+        double wa, wb;
+        const double *pa = side_point(a, i, &wa), *pb = side_point(b, i, &wb);
+        const int c = cmp_point(pa, wa, pb, wb);
+        if (c) return c;
+    }
+    return 0;
+}
+
+static int cmp_side_ref(const void *x, const void *y) {
+    const side_ref *a = x, *b = y;
+    const int c = cmp_side_points(a, b);
+    if (c) return c;
+    return a->slot < b->slot ? -1 : (a->slot > b->slot ? 1 : 0);
+}
+
+/* Per-patch state for one patch (everything but the results of a build). */
+static void ptess_setup(ptess *P, const cj_patch *p, size_t q, cj_mesh *mesh, int measure) {
+    memset(P, 0, sizeof *P);
+    P->p = p;
+    P->id = (int32_t)q;
+    P->m = p->deg_u;
+    P->n = p->deg_v;
+    P->hd = cj_patch_load_h(p, P->h);
+    P->rational = p->weights != NULL;
+    P->mesh = mesh;
+    P->measure = measure;
+    double mx = 0.0;
+    for (size_t i = 0; i < 3 * cj_patch_point_count(p); ++i) mx = fmax(mx, fabs(p->pts[i]));
+    /* vertex rounding (de Casteljau) plus the sample's own rounding, in 3D norm */
+    P->evalerr = 2.0 * cj_gamma(3 * (P->m + P->n) + 4) * mx * sqrt(3.0);
+    for (int s = 0; s < 4; ++s) edge_setup(p, s, &P->e[s]);
+}
+
+typedef struct patch_plan {
+    int k[4];
+    grid g;
+} patch_plan;
+
+/* Adaptive planning pass over patches [0, count): each patch's side counts (side_counts of
+ * its best build) and grid; then every side shared by several patches (identical canonical
+ * control points) gets the largest count any of them asked for. Returns the number of
+ * patches planned (< count when patch *planned failed with the returned status). The mesh is
+ * left as it was. */
+static cj_status plan_patches(const cj_patch *patches, size_t count, double tol, int cap, ptess *P,
+                              cj_mesh *mesh, patch_plan *plan, side_ref *refs, size_t *planned) {
+    const size_t vs = mesh->vertex_count, ts = mesh->triangle_count;
+    cj_status st = CJ_OK;
+    size_t q = 0;
+    for (; q < count; ++q) {
+        ptess_setup(P, &patches[q], q, mesh, 0);
+        P->planning = 1;
+        st = adaptive_patch(P, tol, cap, q, NULL, NULL, plan[q].k, &plan[q].g);
+        cj_mesh_truncate(mesh, vs, ts);
+        if (st) break;
+    }
+    *planned = q;
+    size_t nr = 0;
+    for (size_t i = 0; i < q; ++i)
+        for (int s = 0; s < 4; ++s) {
+            edge_info e;
+            edge_setup(&patches[i], s, &e);
+            if (e.collapsed) continue;
+            side_ref *r = &refs[nr++];
+            r->p = &patches[i];
+            cj_patch_edge_indices(patches[i].deg_u, patches[i].deg_v, s, &r->first, &r->step,
+                                  &r->count);
+            r->reversed = e.reversed;
+            r->slot = 4 * i + (size_t)s;
+        }
+    qsort(refs, nr, sizeof *refs, cmp_side_ref);
+    for (size_t a = 0; a < nr;) {
+        size_t b = a + 1;
+        int kmax = plan[refs[a].slot / 4].k[refs[a].slot % 4];
+        while (b < nr && cmp_side_points(&refs[a], &refs[b]) == 0) {
+            const int kb = plan[refs[b].slot / 4].k[refs[b].slot % 4];
+            if (kb > kmax) kmax = kb;
+            ++b;
+        }
+        for (size_t c = a; c < b; ++c) plan[refs[c].slot / 4].k[refs[c].slot % 4] = kmax;
+        a = b;
+    }
     return st;
 }
 
@@ -628,51 +793,57 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
                            "rational patches (use uniform mode)",
                            q);
     }
+    const int adaptive = opt->uniform == 0;
     ptess *P = t_alloc(mesh, sizeof *P);
-    double *br =
-        opt->uniform > 0 ? t_alloc(mesh, sizeof(double) * (size_t)(opt->uniform + 1)) : NULL;
-    if (!P || (opt->uniform > 0 && !br)) {
+    double *br = adaptive ? NULL : t_alloc(mesh, sizeof(double) * (size_t)(opt->uniform + 1));
+    const int fits = count <= SIZE_MAX / (4 * sizeof(side_ref)); /* sizes below cannot wrap */
+    patch_plan *plan = adaptive && count && fits ? t_alloc(mesh, sizeof *plan * count) : NULL;
+    side_ref *refs = adaptive && count && fits ? t_alloc(mesh, sizeof *refs * 4 * count) : NULL;
+    if (!P || (!adaptive && !br) || (adaptive && count && (!plan || !refs))) {
         t_free(mesh, P);
         t_free(mesh, br);
+        t_free(mesh, plan);
+        t_free(mesh, refs);
         return cj_fail(CJ_ERR_NOMEM, "out of memory");
     }
     if (br)
         for (int i = 0; i <= opt->uniform; ++i) br[i] = (double)i / (double)opt->uniform;
     const size_t v_start = mesh->vertex_count, t_start = mesh->triangle_count;
-    cj_status st = CJ_OK;
-    for (size_t q = 0; q < count && !st; ++q) {
-        const cj_patch *p = &patches[q];
-        memset(P, 0, sizeof *P);
-        P->p = p;
-        P->id = (int32_t)q;
-        P->m = p->deg_u;
-        P->n = p->deg_v;
-        P->hd = cj_patch_load_h(p, P->h);
-        P->rational = p->weights != NULL;
-        P->mesh = mesh;
-        P->measure = opt->measure;
-        double mx = 0.0;
-        for (size_t i = 0; i < 3 * cj_patch_point_count(p); ++i) mx = fmax(mx, fabs(p->pts[i]));
-        /* vertex rounding (de Casteljau) plus the sample's own rounding, in 3D norm */
-        P->evalerr = 2.0 * cj_gamma(3 * (P->m + P->n) + 4) * mx * sqrt(3.0);
-        for (int s = 0; s < 4; ++s) edge_setup(p, s, &P->e[s]);
+    cj_status st = CJ_OK, plan_st = CJ_OK;
+    size_t todo = count;
+    if (adaptive) /* patches after a planning failure are not built */
+        plan_st = plan_patches(patches, count, opt->tol, cap, P, mesh, plan, refs, &todo);
+    if (plan_st == CJ_ERR_NOMEM) todo = 0;
+    for (size_t q = 0; q < todo && !st; ++q) {
+        ptess_setup(P, &patches[q], q, mesh, opt->measure);
+        const size_t vq = mesh->vertex_count, tq = mesh->triangle_count;
         int nu = 0, nv = 0;
-        if (opt->uniform > 0) {
+        if (!adaptive) {
             const int k[4] = {opt->uniform, opt->uniform, opt->uniform, opt->uniform};
             nu = nv = opt->uniform;
             st = build_patch(P, nu, br, nv, br, k);
         } else {
-            st = adaptive_patch(P, opt->tol, cap, q, &nu, &nv);
+            int kused[4];
+            grid g = {0, 0, 0};
+            st = adaptive_patch(P, opt->tol, cap, q, plan[q].k, &plan[q].g, kused, &g);
+            nu = g.nu;
+            nv = g.nv;
         }
-        if (st) break;
+        if (st) { /* no partial or failing build of this patch stays */
+            cj_mesh_truncate(mesh, vq, tq);
+            break;
+        }
         rep.bound = fmax(rep.bound, P->bound);
         if (opt->measure > 0 && P->measured > rep.measured) rep.measured = P->measured;
         rep.dropped += P->dropped;
         if (nu > rep.max_nu) rep.max_nu = nu;
         if (nv > rep.max_nv) rep.max_nv = nv;
     }
+    if (!st) st = plan_st;
     t_free(mesh, P);
     t_free(mesh, br);
+    t_free(mesh, plan);
+    t_free(mesh, refs);
     rep.vertices = mesh->vertex_count - v_start;
     rep.triangles = mesh->triangle_count - t_start;
     if (report) *report = rep;

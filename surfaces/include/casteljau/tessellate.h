@@ -4,10 +4,11 @@
  * PATCHES. Each patch becomes a triangulation of its parameter square whose vertices lie on
  * the surface; triangle orientation is counter-clockwise in (u,v), hence counter-clockwise
  * seen from the side S_u x S_v points to. Per patch:
- *  - every boundary edge gets k_e segments chosen FROM THAT EDGE'S CURVE ALONE
- *    (cj_tess_edge_segments, or K in uniform mode), and its points are evaluated from the
+ *  - every boundary edge gets k_e segments (K in uniform mode; adaptive: see below), the
+ *    SAME count on every patch sharing that edge, and its points are evaluated from the
  *    edge's own control points in one canonical direction (the lexicographically smaller of
- *    the control sequence and its reverse; corners are the control points themselves). Two
+ *    the control sequence and its reverse; corners are the control points themselves): the
+ *    j-th point is the edge curve at j/k_e, a function of the edge curve and k_e only. Two
  *    patches sharing an edge (same control points, either direction) therefore produce
  *    bit-identical vertices along it: no cracks. A collapsed edge (all control points
  *    identical) maps every one of its vertices to that point exactly; its count follows the
@@ -32,12 +33,24 @@
  * Rational patches have no such bound here: adaptive mode rejects them (CJ_ERR_UNSUPPORTED)
  * and uniform mode reports bound = +INFINITY.
  *
- * ADAPTIVE CHOICE. Edge counts: smallest k with d(d-1) max|Δ²b| / (8 k²) <= tol/4 (the chord
- * error bound of the edge curve). Interior: a tensor grid of nu x nv cells whose lines
- * equidistribute the density sqrt(max(Muu, Muv)) along u (sqrt(max(Mvv, Muv)) along v), the
- * bounds taken on 16 slabs per direction (1D-optimal spacing for a second-order error); nu and
- * nv scale together, and the scale is the smallest (doubling, then bisection to 3%) for which
- * the per-triangle bound above is <= tol; the mesh keeps that build.
+ * ADAPTIVE CHOICE. Interior: a tensor grid of nu x nv cells whose lines equidistribute the
+ * density sqrt(max(Muu, Muv)) along u (sqrt(max(Mvv, Muv)) along v), the bounds taken on 16
+ * slabs per direction (1D-optimal spacing for a second-order error); nu and nv scale together,
+ * and the scale is the smallest (growing, then bisection to 3%) for which the per-triangle
+ * bound above is <= tol. Uniform K x K grids with fewer triangles are then tried (smallest
+ * passing K by bisection) and the build with the fewest triangles wins.
+ * Edge counts, in two passes over all patches. (1) Planning: each patch runs the search above
+ * with every non-collapsed side at k = max(k_flat, grid count along that side), where k_flat
+ * is the smallest k with d(d-1) max|Δ²b| / (8 k²) <= tol/4 (the chord error bound of the edge
+ * curve); so a side has at least as many segments as the grid has cells along it (a straight
+ * edge across which the patch twists would otherwise get 1 segment and long zipper slivers
+ * whose twist term forces the whole interior finer). Each patch requests the counts of its
+ * winning build. (2) Every edge shared by several patches (bit-identical control points,
+ * either direction) gets the largest count requested for it; each patch is then built with
+ * those counts, trying its planned grid first (it passes unless a neighbour raised a count
+ * and the new zipper misses tol, in which case the search reruns with the counts fixed, which
+ * succeeds on a fine enough grid since k >= k_flat). The bound is always that of the build
+ * kept.
  * UNIFORM MODE: K x K cells and K segments on every edge (seed 5.9), same bound.
  * MEMORY: the mesh grows through its allocator; temporaries (index grids, one per patch build)
  * also come from the mesh's allocator.
@@ -82,11 +95,14 @@ typedef struct cj_tess_report {
  * Status: errors of cj_patch_check (naming the patch), CJ_ERR_ARGUMENT (bad options: tol <= 0
  * in adaptive mode, negative counts), CJ_ERR_NONFINITE (tol), CJ_ERR_UNSUPPORTED (rational
  * patch in adaptive mode), CJ_ERR_CAP (a patch needs more than max_segments per direction:
- * the mesh holds the patches done so far and report describes them), CJ_ERR_NOMEM. */
+ * the mesh holds the patches before the first one that failed and report describes them),
+ * CJ_ERR_NOMEM. Adaptive mode plans every patch before building any (see ADAPTIVE CHOICE), so
+ * it costs about one more build per patch than the search alone. */
 cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_tess_options *opt,
                                 cj_mesh *mesh, cj_tess_report *report);
 
-/* The edge rule: the number of segments (>= 1) for a polynomial edge curve of the given degree
+/* The edge-flatness rule (k_flat above, called with tol/4; adaptive edge counts are at least
+ * this): the number of segments (>= 1) for a polynomial edge curve of the given degree
  * (3D control points, degree+1 of them) so that the chord error bound
  * d(d-1) max|Δ²b| / (8 k²) is <= tol. Capped at `cap` (returns cap+1 if more are needed). */
 int cj_tess_edge_segments(const double *pts, int degree, double tol, int cap);
