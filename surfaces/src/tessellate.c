@@ -116,7 +116,9 @@ typedef struct ptess {
     edge_info e[4];
     cj_mesh *mesh;
     int measure;
-    int planning; /* builds only for their bound and size: no normals */
+    int planning;      /* builds only for their bound and size: no normals */
+    double abort_over; /* > 0: stop a build as soon as its bound exceeds this (it fails) */
+    int aborted;       /* the last build stopped early */
     /* results of one build */
     double bound, measured;
     double worst_terms[3]; /* uu, uv, vv contributions of the worst triangle */
@@ -239,6 +241,7 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
             P->worst_terms[1] = t1;
             P->worst_terms[2] = t2;
         }
+        if (P->abort_over > 0.0 && P->bound > P->abort_over) P->aborted = 1;
     }
     const double *pa = M->positions + 3 * (size_t)a, *pb = M->positions + 3 * (size_t)b,
                  *pc = M->positions + 3 * (size_t)c;
@@ -304,7 +307,7 @@ static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, 
             st = add_tri(P, o[a], in[b + 1], in[b], db);
             ++b;
         }
-        if (st) return st;
+        if (st || P->aborted) return st;
     }
     return CJ_OK;
 }
@@ -319,6 +322,7 @@ static cj_status build_patch(ptess *P, int nu, const double *ub, int nv, const d
     P->bound = 0.0;
     P->measured = 0.0;
     P->dropped = 0;
+    P->aborted = 0;
     P->worst_terms[0] = P->worst_terms[1] = P->worst_terms[2] = 0.0;
     const size_t nouter = (size_t)(k[0] + k[1] + k[2] + k[3] + 4);
     const size_t ngrid = (size_t)(nu + 1) * (size_t)(nv + 1);
@@ -410,20 +414,24 @@ static cj_status build_patch(ptess *P, int nu, const double *ub, int nv, const d
             inner[i - 1] = g[1 * (nu + 1) + i];
             tin[i - 1] = ub[i];
         }
-        if ((st = zipper(P, o[0], tout[0], k[0], inner, tin, L, P->rational ? &zero : NULL)))
+        if ((st = zipper(P, o[0], tout[0], k[0], inner, tin, L, P->rational ? &zero : NULL)) ||
+            P->aborted)
             goto done;
         for (int i = 1; i < nu; ++i) inner[i - 1] = g[(nv - 1) * (nu + 1) + i];
-        if ((st = zipper(P, o[2], tout[2], k[2], inner, tin, L, P->rational ? &zero : NULL)))
+        if ((st = zipper(P, o[2], tout[2], k[2], inner, tin, L, P->rational ? &zero : NULL)) ||
+            P->aborted)
             goto done;
         L = nv - 2;
         for (int j = 1; j < nv; ++j) {
             inner[j - 1] = g[j * (nu + 1) + 1];
             tin[j - 1] = vb[j];
         }
-        if ((st = zipper(P, o[3], tout[3], k[3], inner, tin, L, P->rational ? &zero : NULL)))
+        if ((st = zipper(P, o[3], tout[3], k[3], inner, tin, L, P->rational ? &zero : NULL)) ||
+            P->aborted)
             goto done;
         for (int j = 1; j < nv; ++j) inner[j - 1] = g[j * (nu + 1) + nu - 1];
-        if ((st = zipper(P, o[1], tout[1], k[1], inner, tin, L, P->rational ? &zero : NULL)))
+        if ((st = zipper(P, o[1], tout[1], k[1], inner, tin, L, P->rational ? &zero : NULL)) ||
+            P->aborted)
             goto done;
         j0 = i0 = 1;
         j1 = nv - 1;
@@ -436,7 +444,7 @@ static cj_status build_patch(ptess *P, int nu, const double *ub, int nv, const d
             const uint32_t A = g[j * (nu + 1) + i], B = g[j * (nu + 1) + i + 1],
                            C = g[(j + 1) * (nu + 1) + i + 1], D = g[(j + 1) * (nu + 1) + i];
             if ((st = add_tri(P, A, B, C, &cb))) goto done;
-            if ((st = add_tri(P, A, C, D, &cb))) goto done;
+            if ((st = add_tri(P, A, C, D, &cb)) || P->aborted) goto done;
         }
     if (P->rational) P->bound = INFINITY;
 done:
@@ -513,8 +521,10 @@ static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, gr
         equidistribute(g.uni ? flat : rho_u, SLABS, nu, ub);
         equidistribute(g.uni ? flat : rho_v, SLABS, nv, vb);
         cj_mesh_truncate(P->mesh, vs, ts);
+        P->abort_over = tol; /* a failing build is never kept: stop it early */
         st = build_patch(P, nu, ub, nv, vb, k);
-        *pass = !st && P->bound <= tol;
+        P->abort_over = 0.0;
+        *pass = !st && !P->aborted && P->bound <= tol;
     }
     t_free(P->mesh, ub);
     t_free(P->mesh, vb);

@@ -96,8 +96,8 @@ typedef struct cj_tess_report {
  * in adaptive mode, negative counts), CJ_ERR_NONFINITE (tol), CJ_ERR_UNSUPPORTED (rational
  * patch in adaptive mode), CJ_ERR_CAP (a patch needs more than max_segments per direction:
  * the mesh holds the patches before the first one that failed and report describes them),
- * CJ_ERR_NOMEM. Adaptive mode plans every patch before building any (see ADAPTIVE CHOICE), so
- * it costs about one more build per patch than the search alone. */
+ * CJ_ERR_NOMEM. Adaptive mode plans every patch before building any (see ADAPTIVE CHOICE);
+ * each trial build stops at its first triangle whose bound exceeds tol. */
 cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_tess_options *opt,
                                 cj_mesh *mesh, cj_tess_report *report);
 
