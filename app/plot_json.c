@@ -126,7 +126,7 @@ static int parse_number(ctx *c, const cJSON *v, const char *path, double lo, dou
 }
 
 static int parse_int(ctx *c, const cJSON *v, const char *path, int lo, int hi, int *out) {
-    double d;
+    double d = 0.0; /* set by parse_number on success */
     if (parse_number(c, v, path, lo, hi, &d)) return -1;
     if (d != floor(d)) return fail(c, "%s = %g is not an integer", path, d);
     *out = (int)d;

@@ -52,8 +52,9 @@ static void spit(const char *path, const char *text) {
 /* Runs `casteljau <args>`; stdout/stderr go to files in dir. Returns the exit status. */
 static int run(const char *args) {
     char cmd[2048];
-    snprintf(cmd, sizeof cmd, "'%s' %s >'%s/out.txt' 2>'%s/err.txt'", CJ_CASTELJAU_EXE, args, dir,
-             dir);
+    int len = snprintf(cmd, sizeof cmd, "'%s' %s >'%s/out.txt' 2>'%s/err.txt'", CJ_CASTELJAU_EXE,
+                       args, dir, dir);
+    assert_true(len > 0 && (size_t)len < sizeof cmd); /* a truncated command would test nothing */
     int st = system(cmd);
     assert_true(WIFEXITED(st));
     return WEXITSTATUS(st);
