@@ -163,7 +163,7 @@ int cmd_contour(int argc, char **argv) {
         return cli_fail("contour", "%s: %s", shape_opt, cj_last_error());
     }
     buffer out = {NULL, 0, 0, 0};
-    cj_contour_options o = {nx, ny, tol};
+    cj_contour_options o = {nx, ny, tol, NULL};
     cj_contour_stats stats;
     st = cj_implicit_contour(&f, box, &o, collect, &out, &stats);
     int rc = 0;

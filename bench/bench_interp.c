@@ -176,7 +176,7 @@ static void contour_table(void) {
     printf("  tol       vertices   max distance (vertices+chords)   ms\n");
     for (int e = 2; e <= 10; e += 2) {
         const double tol = pow(10, -e);
-        cj_contour_options o = {64, 64, tol};
+        cj_contour_options o = {64, 64, tol, NULL};
         dist_acc acc = {0, 0};
         cj_implicit_contour(&f, box, &o, measure, &acc, NULL);
         double t[RUNS];

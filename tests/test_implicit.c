@@ -10,6 +10,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define MAXPTS 200000
@@ -87,7 +88,7 @@ static void test_circle_and_ellipse(void **state) {
         cj_implicit f;
         assert_int_equal(cj_implicit_circle(cx, cy, r, &sh, &f), CJ_OK);
         const double box[4] = {cx - r - 0.37, cy - r - 0.21, cx + r + 0.13, cy + r + 0.29};
-        cj_contour_options o = {nx, ny, tol};
+        cj_contour_options o = {nx, ny, tol, NULL};
         cj_contour_stats st;
         reset();
         assert_int_equal(cj_implicit_contour(&f, box, &o, collect_fn, &col, &st), CJ_OK);
@@ -111,7 +112,7 @@ static void test_circle_and_ellipse(void **state) {
     const double ex = 0.2, ey = -0.1, rx = 2, ry = 0.5, rot = 0.7, tol = 1e-6;
     assert_int_equal(cj_implicit_ellipse(ex, ey, rx, ry, rot, &sh, &f), CJ_OK);
     const double box[4] = {-3, -3, 3, 3};
-    cj_contour_options o = {20, 20, tol};
+    cj_contour_options o = {20, 20, tol, NULL};
     reset();
     assert_int_equal(cj_implicit_contour(&f, box, &o, collect_fn, &col, NULL), CJ_OK);
     assert_int_equal(col.n, 1);
@@ -164,7 +165,7 @@ static void test_polynomial_two_loops(void **state) {
     assert_true(fabs(g[0] - (2 * (x - 1) * B + 2 * (x + 1) * A)) < 1e-13);
     assert_true(fabs(g[1] - (2 * y * B + 2 * y * A)) < 1e-13);
     const double box[4] = {-2, -1, 2, 1}, tol = 1e-7;
-    cj_contour_options o = {32, 16, tol};
+    cj_contour_options o = {32, 16, tol, NULL};
     reset();
     assert_int_equal(cj_implicit_contour(&f, box, &o, collect_fn, &col, NULL), CJ_OK);
     assert_int_equal(col.n, 2);
@@ -197,7 +198,7 @@ static void test_saddle_resolution(void **state) {
         cj_implicit f = {hyper, NULL, &s};
         const double box[4] = {-1, -1, 1, 1};
         for (int g = 1; g <= 3; g += 2) {
-            cj_contour_options o = {g, g, 1e-6};
+            cj_contour_options o = {g, g, 1e-6, NULL};
             reset();
             assert_int_equal(cj_implicit_contour(&f, box, &o, collect_fn, &col, NULL), CJ_OK);
             assert_int_equal(col.n, 2);
@@ -229,7 +230,7 @@ static void test_user_function_and_normals(void **state) {
     (void)state;
     cj_implicit f = {circle_cb, NULL, NULL}; /* gradient by central differences */
     const double box[4] = {-1.5, -1.5, 1.5, 1.5}, tol = 1e-8;
-    cj_contour_options o = {10, 10, tol};
+    cj_contour_options o = {10, 10, tol, NULL};
     reset();
     assert_int_equal(cj_implicit_contour(&f, box, &o, collect_fn, &col, NULL), CJ_OK);
     assert_int_equal(col.n, 1);
@@ -271,7 +272,7 @@ static void test_errors(void **state) {
     assert_int_equal(cj_implicit_poly(40, NULL, &sh, &f), CJ_ERR_DEGREE);
     assert_int_equal(cj_implicit_line(1, 2, -0.3, &sh, &f), CJ_OK);
     const double box[4] = {-1, -1, 1, 1}, empty[4] = {1, 0, 1, 1};
-    cj_contour_options o = {8, 8, 1e-6};
+    cj_contour_options o = {8, 8, 1e-6, NULL};
     reset();
     assert_int_equal(cj_implicit_contour(&f, box, &o, collect_fn, &col, NULL), CJ_OK);
     assert_int_equal(col.n, 1); /* a line crossing the box: one open polyline */
@@ -301,6 +302,51 @@ static void test_errors(void **state) {
            "stop\n");
 }
 
+/* A caller's allocator receives every work array (grid and polyline buffer) and gets all of it
+ * back; the polylines are the same as with malloc. */
+typedef struct counting_alloc {
+    size_t allocs, frees, live_bytes_peak;
+} counting_alloc;
+
+static void *count_alloc(void *user, size_t bytes) {
+    counting_alloc *a = user;
+    a->allocs++;
+    if (bytes > a->live_bytes_peak) a->live_bytes_peak = bytes;
+    return malloc(bytes);
+}
+
+static void count_free(void *user, void *ptr) {
+    counting_alloc *a = user;
+    if (ptr) a->frees++;
+    free(ptr);
+}
+
+static void test_caller_allocator(void **state) {
+    (void)state;
+    cj_implicit_shape sh;
+    cj_implicit f;
+    assert_int_equal(cj_implicit_ellipse(0.1, -0.2, 1.5, 0.7, 0.3, &sh, &f), CJ_OK);
+    const double box[4] = {-2, -2, 2, 2};
+    cj_contour_options plain = {40, 30, 1e-9, NULL};
+    reset();
+    assert_int_equal(cj_implicit_contour(&f, box, &plain, collect_fn, &col, NULL), CJ_OK);
+    const size_t n_plain = col.used;
+    static double first[MAXPTS * 2];
+    memcpy(first, col.xy, sizeof(double) * 2 * n_plain);
+
+    counting_alloc counts = {0, 0, 0};
+    const cj_allocator mine = {count_alloc, count_free, &counts};
+    cj_contour_options custom = {40, 30, 1e-9, &mine};
+    reset();
+    assert_int_equal(cj_implicit_contour(&f, box, &custom, collect_fn, &col, NULL), CJ_OK);
+    assert_int_equal(col.used, n_plain);
+    assert_memory_equal(col.xy, first, sizeof(double) * 2 * n_plain);
+    assert_true(counts.allocs >= 6); /* 5 grid arrays and at least one polyline buffer */
+    assert_int_equal(counts.frees, counts.allocs);
+    printf("caller allocator: %zu allocations, all freed; %zu points identical to malloc's\n",
+           counts.allocs, n_plain);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_circle_and_ellipse),
@@ -308,6 +354,7 @@ int main(void) {
         cmocka_unit_test(test_saddle_resolution),
         cmocka_unit_test(test_user_function_and_normals),
         cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_caller_allocator),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,6 +1,7 @@
 /* Implicit plane curves: built-ins, gradients, projection, and marching-squares contouring with
  * crossing and chord refinement. See casteljau/implicit.h. */
 #include "casteljau/implicit.h"
+#include "alloc_internal.h"
 #include "error_internal.h"
 
 #include <assert.h>
@@ -264,12 +265,13 @@ typedef struct contour_ctx {
     double tol;
     int nx, ny;
     double x0, y0, x1, y1;
-    double *val;   /* (nx+1)(ny+1) corner values */
-    double *exy;   /* 2 per edge: crossing point */
-    double *eres;  /* residual per edge */
-    int *link;     /* 2 per edge: linked edges, -1 none */
-    char *visited; /* per edge */
-    size_t nh, ne; /* horizontal edges, all edges */
+    double *val;        /* (nx+1)(ny+1) corner values */
+    double *exy;        /* 2 per edge: crossing point */
+    double *eres;       /* residual per edge */
+    int *link;          /* 2 per edge: linked edges, -1 none */
+    char *visited;      /* per edge */
+    cj_allocator alloc; /* every work array comes from here */
+    size_t nh, ne;      /* horizontal edges, all edges */
     /* polyline buffer */
     double *buf;
     size_t len, cap;
@@ -340,11 +342,13 @@ static cj_status refine_edge(contour_ctx *c, const double a[2], const double b[2
 static int push_point(contour_ctx *c, const double p[2], double res) {
     if (c->len + 1 > c->cap) {
         size_t nc = c->cap ? 2 * c->cap : 256;
-        double *nb = realloc(c->buf, nc * 2 * sizeof(double));
+        double *nb = cj_allocator_alloc(&c->alloc, nc * 2 * sizeof(double));
         if (!nb) {
             c->err = cj_fail(CJ_ERR_NOMEM, "out of memory while contouring");
             return -1;
         }
+        if (c->len) memcpy(nb, c->buf, c->len * 2 * sizeof(double));
+        cj_allocator_free(&c->alloc, c->buf);
         c->buf = nb;
         c->cap = nc;
     }
@@ -472,17 +476,19 @@ cj_status cj_implicit_contour(const cj_implicit *f, const double box[4],
     const size_t ncorner = (size_t)(nx + 1) * (size_t)(ny + 1);
     c.nh = (size_t)nx * (size_t)(ny + 1);
     c.ne = c.nh + (size_t)(nx + 1) * (size_t)ny;
-    c.val = malloc(ncorner * sizeof(double));
-    c.exy = malloc(c.ne * 2 * sizeof(double));
-    c.eres = malloc(c.ne * sizeof(double));
-    c.link = malloc(c.ne * 2 * sizeof(int));
-    c.visited = calloc(c.ne, 1);
+    c.alloc = cj_allocator_resolve(opts->alloc);
+    c.val = cj_allocator_alloc(&c.alloc, ncorner * sizeof(double));
+    c.exy = cj_allocator_alloc(&c.alloc, c.ne * 2 * sizeof(double));
+    c.eres = cj_allocator_alloc(&c.alloc, c.ne * sizeof(double));
+    c.link = cj_allocator_alloc(&c.alloc, c.ne * 2 * sizeof(int));
+    c.visited = cj_allocator_alloc(&c.alloc, c.ne);
     cj_contour_stats local = {0, 0, 0, 0.0};
     if (!c.val || !c.exy || !c.eres || !c.link || !c.visited) {
         st = cj_fail(CJ_ERR_NOMEM, "out of memory for a %d x %d contour grid", nx, ny);
         goto done;
     }
     for (size_t e = 0; e < 2 * c.ne; ++e) c.link[e] = -1;
+    memset(c.visited, 0, c.ne);
 
     /* 1. grid values */
     for (int j = 0; j <= ny; ++j)
@@ -558,11 +564,11 @@ cj_status cj_implicit_contour(const cj_implicit *f, const double box[4],
                      c.tol, local.max_residual);
 done:
     if (stats && (st == CJ_OK || st == CJ_ERR_CAP)) *stats = local;
-    free(c.val);
-    free(c.exy);
-    free(c.eres);
-    free(c.link);
-    free(c.visited);
-    free(c.buf);
+    cj_allocator_free(&c.alloc, c.val);
+    cj_allocator_free(&c.alloc, c.exy);
+    cj_allocator_free(&c.alloc, c.eres);
+    cj_allocator_free(&c.alloc, c.link);
+    cj_allocator_free(&c.alloc, c.visited);
+    cj_allocator_free(&c.alloc, c.buf);
     return st;
 }

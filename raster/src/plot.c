@@ -327,6 +327,7 @@ cj_status cj_plot_add_implicit(cj_plot *plot, const cj_implicit *f, const double
     cj_contour_options co;
     co.nx = co.ny = grid > 0 ? grid : 64;
     co.tol = 1e-5 * hypot(box[2] - box[0], box[3] - box[1]);
+    co.alloc = &plot->alloc; /* the contour's work space comes from the plot's allocator */
     st = cj_implicit_contour(f, box, &co, take_contour, &acc, NULL);
     if (st && st != CJ_ERR_CAP) {
         item_free(plot, &it);

@@ -36,6 +36,7 @@
 #ifndef CASTELJAU_IMPLICIT_H
 #define CASTELJAU_IMPLICIT_H
 
+#include "casteljau/alloc.h"
 #include "casteljau/status.h"
 #include <stddef.h>
 
@@ -105,8 +106,9 @@ typedef cj_status (*cj_polyline_fn)(void *user, const double *xy, size_t npts, i
                                     double max_residual);
 
 typedef struct cj_contour_options {
-    int nx, ny; /* grid cells in x and y, 1..4096 each (0: 64) */
-    double tol; /* > 0: target |f|/|∇f| of vertices and chord-to-curve distance */
+    int nx, ny;                /* grid cells in x and y, 1..4096 each (0: 64) */
+    double tol;                /* > 0: target |f|/|∇f| of vertices and chord-to-curve distance */
+    const cj_allocator *alloc; /* work space (grid, polyline buffer); NULL: malloc/free */
 } cj_contour_options;
 
 typedef struct cj_contour_stats {
