@@ -12,53 +12,57 @@
 
 #define U_ROUND CJ_UNIT_ROUNDOFF
 
-/* Bounds on |S_uu|, |S_uv|, |S_vv| over a region, in the patch's own parameters. */
+/* Bounds on |S_uu|, |S_uv|, |S_vv| over a region, in the patch's own parameters, and a
+ * constant `add` to the per-triangle bound (rounding terms of the rational bound; 0 for
+ * polynomial patches). */
 typedef struct dbounds {
     double uu, uv, vv;
+    double add;
 } dbounds;
 
-/* Norm of a difference vector inflated by 8u times the magnitude of its terms (covers the
- * rounding of the difference and of the norm). */
-static double diff_norm(const double d[3], const double mag[3]) {
+/* Norm of a difference vector (dimension d) inflated by 8u times the magnitude of its terms
+ * (covers the rounding of the difference and of the norm). */
+static double diff_norm(const double *d, const double *mag, int dim) {
     double e2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < dim; ++k) {
         const double e = fabs(d[k]) + 8.0 * U_ROUND * mag[k];
         e2 += e * e;
     }
     return sqrt(e2) * (1.0 + 4.0 * U_ROUND);
 }
 
-/* Second-derivative bounds of a polynomial net (dimension 3) of degree (m,n) over [0,1]^2. */
-static dbounds net_bounds(const double *h, int m, int n) {
-    dbounds b = {0.0, 0.0, 0.0};
+/* Second-derivative bounds of a polynomial net of dimension dim (1..3) and degree (m,n) over
+ * [0,1]^2. */
+static dbounds net_bounds(const double *h, int dim, int m, int n) {
+    dbounds b = {0.0, 0.0, 0.0, 0.0};
     const int m1 = m + 1;
-#define P(i, j) (h + 3 * ((j)*m1 + (i)))
+#define P(i, j) (h + dim * ((j)*m1 + (i)))
     for (int j = 0; j <= n; ++j)
         for (int i = 0; i <= m; ++i) {
             double d[3], mag[3];
             if (i + 2 <= m) {
-                for (int k = 0; k < 3; ++k) {
+                for (int k = 0; k < dim; ++k) {
                     d[k] = (P(i + 2, j)[k] - 2.0 * P(i + 1, j)[k]) + P(i, j)[k];
                     mag[k] = fabs(P(i + 2, j)[k]) + 2.0 * fabs(P(i + 1, j)[k]) + fabs(P(i, j)[k]);
                 }
-                const double x = diff_norm(d, mag);
+                const double x = diff_norm(d, mag, dim);
                 if (x > b.uu) b.uu = x;
             }
             if (j + 2 <= n) {
-                for (int k = 0; k < 3; ++k) {
+                for (int k = 0; k < dim; ++k) {
                     d[k] = (P(i, j + 2)[k] - 2.0 * P(i, j + 1)[k]) + P(i, j)[k];
                     mag[k] = fabs(P(i, j + 2)[k]) + 2.0 * fabs(P(i, j + 1)[k]) + fabs(P(i, j)[k]);
                 }
-                const double x = diff_norm(d, mag);
+                const double x = diff_norm(d, mag, dim);
                 if (x > b.vv) b.vv = x;
             }
             if (i + 1 <= m && j + 1 <= n) {
-                for (int k = 0; k < 3; ++k) {
+                for (int k = 0; k < dim; ++k) {
                     d[k] = (P(i + 1, j + 1)[k] - P(i + 1, j)[k]) - (P(i, j + 1)[k] - P(i, j)[k]);
                     mag[k] = fabs(P(i + 1, j + 1)[k]) + fabs(P(i + 1, j)[k]) +
                              fabs(P(i, j + 1)[k]) + fabs(P(i, j)[k]);
                 }
-                const double x = diff_norm(d, mag);
+                const double x = diff_norm(d, mag, dim);
                 if (x > b.uv) b.uv = x;
             }
         }
@@ -80,7 +84,7 @@ int cj_tess_edge_segments(const double *pts, int degree, double tol, int cap) {
             mag[k] = fabs(pts[3 * (a + 2) + k]) + 2.0 * fabs(pts[3 * (a + 1) + k]) +
                      fabs(pts[3 * a + k]);
         }
-        const double x = diff_norm(d, mag);
+        const double x = diff_norm(d, mag, 3);
         if (x > mx) mx = x;
     }
     const double m2 = mx * (double)degree * (double)(degree - 1);
@@ -113,6 +117,8 @@ typedef struct ptess {
     int hd, m, n;
     int rational;
     double evalerr;
+    double suberr_x,
+        suberr_w; /* rational: rounding of a sub-net coefficient (see rational_bounds) */
     edge_info e[4];
     cj_mesh *mesh;
     int measure;
@@ -223,7 +229,7 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         ub = uc;
         uc = tu;
     }
-    if (!P->rational) {
+    {
         const double u0 = fmin(fmin(ua[0], ub[0]), uc[0]), u1 = fmax(fmax(ua[0], ub[0]), uc[0]);
         const double v0 = fmin(fmin(ua[1], ub[1]), uc[1]), v1 = fmax(fmax(ua[1], ub[1]), uc[1]);
         const double du = u1 - u0, dv = v1 - v0;
@@ -234,7 +240,8 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
             db = &local;
         }
         const double t0 = db->uu * du * du, t1 = 2.0 * db->uv * du * dv, t2 = db->vv * dv * dv;
-        const double bnd = (t0 + t1 + t2) * 0.125 * (1.0 + 8.0 * U_ROUND) + P->evalerr;
+        double bnd = (t0 + t1 + t2) * 0.125 * (1.0 + 8.0 * U_ROUND) + P->evalerr + db->add;
+        if (isnan(bnd)) bnd = INFINITY; /* infinite rational bounds times a zero extent */
         if (bnd > P->bound) {
             P->bound = bnd;
             P->worst_terms[0] = t0;
@@ -247,6 +254,18 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
                  *pc = M->positions + 3 * (size_t)c;
     if (P->measure > 0) {
         const int L = P->measure;
+        /* rational: the mesh point of x is Q(x), barycentric weights proportional to λ_i w_i
+         * (see rational_bounds); polynomial: L(x) */
+        double wa = 1.0, wb = 1.0, wc = 1.0;
+        if (P->rational) {
+            double r[4];
+            cj_patch_eval_h(P->h, 4, P->m, P->n, ua[0], ua[1], r);
+            wa = r[3];
+            cj_patch_eval_h(P->h, 4, P->m, P->n, ub[0], ub[1], r);
+            wb = r[3];
+            cj_patch_eval_h(P->h, 4, P->m, P->n, uc[0], uc[1], r);
+            wc = r[3];
+        }
         for (int i = 0; i <= L; ++i)
             for (int j = 0; i + j <= L; ++j) {
                 const double la = (double)i / L, lb = (double)j / L, lc = 1.0 - la - lb;
@@ -254,8 +273,15 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
                 const double v = la * ua[1] + lb * ub[1] + lc * uc[1];
                 double s[3], d2 = 0.0;
                 eval_point(P, u, v, s);
+                double ma = la, mb = lb, mc = lc;
+                if (P->rational) {
+                    const double sw = la * wa + lb * wb + lc * wc;
+                    ma = la * wa / sw;
+                    mb = lb * wb / sw;
+                    mc = lc * wc / sw;
+                }
                 for (int k = 0; k < 3; ++k) {
-                    const double x = s[k] - (la * pa[k] + lb * pb[k] + lc * pc[k]);
+                    const double x = s[k] - (ma * pa[k] + mb * pb[k] + mc * pc[k]);
                     d2 += x * x;
                 }
                 const double dev = sqrt(d2);
@@ -269,11 +295,15 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
     return cj_mesh_add_triangle(M, a, b, c, P->id);
 }
 
-/* Sub-net bounds over [u0,u1]x[v0,v1], rescaled to the patch's parameters. */
+static dbounds rational_bounds(const ptess *P, double u0, double u1, double v0, double v1);
+
+/* Sub-net bounds over [u0,u1]x[v0,v1], rescaled to the patch's parameters (rational patches:
+ * rational_bounds). */
 static dbounds strip_bounds(const ptess *P, double u0, double u1, double v0, double v1) {
+    if (P->rational) return rational_bounds(P, u0, u1, v0, v1);
     double sub[CJ_PATCH_NET_MAX];
     cj_patch_sub_h(P->h, P->hd, P->m, P->n, u0, u1, v0, v1, sub);
-    dbounds b = net_bounds(sub, P->m, P->n);
+    dbounds b = net_bounds(sub, 3, P->m, P->n);
     const double wu = u1 - u0, wv = v1 - v0;
     b.uu /= wu * wu;
     b.uv /= wu * wv;
@@ -282,6 +312,100 @@ static dbounds strip_bounds(const ptess *P, double u0, double u1, double v0, dou
     b.uu *= 1.0 + 4.0 * U_ROUND;
     b.uv *= 1.0 + 4.0 * U_ROUND;
     b.vv *= 1.0 + 4.0 * U_ROUND;
+    return b;
+}
+
+/* RATIONAL BOUND. The patch is S = X / w with X (3D) and w > 0 the numerator and the
+ * denominator, polynomial patches whose nets are the homogeneous net (w_ij b_ij, w_ij). Take a
+ * triangle T with parameter vertices p_i inside a box B (its grid cell, or its own (u,v) box),
+ * barycentric coordinates λ_i(x), and mesh vertices V_i = S(p_i); write X_i = X(p_i),
+ * w_i = w(p_i) and, for x in T,
+ *     Xl = Σ λ_i X_i,  wl = Σ λ_i w_i,  Q(x) = Xl / wl = Σ μ_i V_i,  μ_i = λ_i w_i / wl.
+ * The μ_i are >= 0 and sum to 1, so Q(x) is a point of the mesh triangle (V_0, V_1, V_2): the
+ * linear interpolant taken in homogeneous space, projected. For any fixed point c, with
+ * Y = X - c w (the net w_ij (b_ij - c)) and Yl = Σ λ_i Y(p_i) = Xl - c wl:
+ *     S - Q = Y/w - Yl/wl = (Y - Yl)/w + (Yl/wl)(wl - w)/w = [(Y - Yl) - (Q - c)(w - wl)] / w,
+ * hence
+ *     |S(x) - Q(x)| <= ( |Y(x) - Yl(x)| + |Q(x) - c| |w(x) - wl(x)| ) / min_B w.
+ * |Y - Yl| and |w - wl| are interpolation errors of POLYNOMIAL patches over T: the bound of
+ * the polynomial case applies to each, with second-derivative bounds from the second
+ * differences of B's sub-nets of Y (3D) and of w (scalar). min_B w >= the smallest weight of
+ * B's sub-net (w is a polynomial patch with those Bernstein coefficients, all > 0), and
+ * |Q - c| <= R = max |b'_ij - c| over B's Euclidean sub-net points b'_ij, since the exact V_i
+ * lie on the patch over B, inside the convex hull of those points, and Q is in their triangle.
+ * Collecting the terms, with (Yuu, Yuv, Yvv) and (Wuu, Wuv, Wvv) the second-derivative bounds
+ * of Y and w, du, dv the extents of T:
+ *     |S - Q| <= [ (Yuu + R Wuu) du^2 + 2 (Yuv + R Wuv) du dv + (Yvv + R Wvv) dv^2 ] / (8 wmin),
+ * i.e. the polynomial formula with M = (M_Y + R M_w) / wmin: this function returns those
+ * effective M's. c is the centre of the box of the b'_ij, so that Y = w (b - c) is small on
+ * B: its second differences shrink like the cell's size squared (the same order as the
+ * polynomial case), and R M_w is of third order. Every surface point S(x) (x in some triangle)
+ * is within that bound of the mesh point Q(x), so it bounds the distance surface -> mesh (and
+ * mesh -> surface, as x -> Q(x) maps T onto the mesh triangle).
+ * Rounding: the sub-net (de Casteljau subdivisions of the homogeneous net, at most 2(m+n)
+ * levels of s a + t b with s, t in [0,1]) is exact up to suberr_x (numerator coordinates) and
+ * suberr_w (weights) per coefficient; forming Y adds gamma(3)(|X| + |c| w). A polynomial patch
+ * whose coefficients move by e moves by <= e everywhere (Bernstein partition of unity), so its
+ * interpolation error moves by <= 2e: the constant `add` = 2 (sqrt(3) eY + R ew) / wmin. The
+ * weights' lower bound and R are corrected by the same errors. (As in the polynomial case, the
+ * rounding of the split parameters, which moves the sub-net's box by a few ulps, is ignored.)
+ * A box whose weights cannot be bounded away from 0 gets infinite bounds. */
+static dbounds rational_bounds(const ptess *P, double u0, double u1, double v0, double v1) {
+    const int m = P->m, n = P->n;
+    const int count = (m + 1) * (n + 1);
+    double sub[CJ_PATCH_NET_MAX];
+    cj_patch_sub_h(P->h, 4, m, n, u0, u1, v0, v1, sub);
+    double wmin = INFINITY, lo[3] = {INFINITY, INFINITY, INFINITY},
+           hi[3] = {-INFINITY, -INFINITY, -INFINITY}, pmax = 0.0;
+    for (int q = 0; q < count; ++q) {
+        const double w = sub[4 * q + 3];
+        wmin = fmin(wmin, w);
+        for (int k = 0; k < 3; ++k) {
+            const double x = sub[4 * q + k] / w;
+            lo[k] = fmin(lo[k], x);
+            hi[k] = fmax(hi[k], x);
+            pmax = fmax(pmax, fabs(x));
+        }
+    }
+    const double ew = P->suberr_w;
+    const double wlow = (wmin - ew) * (1.0 - 4.0 * U_ROUND);
+    if (!(wlow > 0.0)) {
+        const dbounds inf = {INFINITY, INFINITY, INFINITY, INFINITY};
+        return inf;
+    }
+    double c[3], cmax = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        c[k] = 0.5 * (lo[k] + hi[k]);
+        cmax = fmax(cmax, fabs(c[k]));
+    }
+    double Y[(CJ_PATCH_MAX_DEGREE + 1) * (CJ_PATCH_MAX_DEGREE + 1) * 3],
+        W[(CJ_PATCH_MAX_DEGREE + 1) * (CJ_PATCH_MAX_DEGREE + 1)];
+    double r2 = 0.0, ymag = 0.0;
+    for (int q = 0; q < count; ++q) {
+        const double w = sub[4 * q + 3];
+        double d2 = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            Y[3 * q + k] = sub[4 * q + k] - c[k] * w;
+            ymag = fmax(ymag, fabs(sub[4 * q + k]) + fabs(c[k]) * w);
+            const double x = sub[4 * q + k] / w - c[k];
+            d2 += x * x;
+        }
+        r2 = fmax(r2, d2);
+        W[q] = w;
+    }
+    /* R: the computed distances round (a few ulps), the computed points b'_ij are off the
+     * exact ones by <= (suberr_x + |b'| suberr_w) / w per coordinate */
+    const double R = (sqrt(r2) * (1.0 + 8.0 * U_ROUND) +
+                      sqrt(3.0) * (P->suberr_x + pmax * ew) / wlow + 4.0 * U_ROUND * pmax) *
+                     (1.0 + 4.0 * U_ROUND);
+    const double eY = P->suberr_x + cmax * ew + cj_gamma(3) * ymag;
+    const dbounds by = net_bounds(Y, 3, m, n), bw = net_bounds(W, 1, m, n);
+    const double wu = u1 - u0, wv = v1 - v0, inf = 1.0 + 16.0 * U_ROUND;
+    dbounds b;
+    b.uu = (by.uu + R * bw.uu) / wlow / (wu * wu) * inf;
+    b.uv = (by.uv + R * bw.uv) / wlow / (wu * wv) * inf;
+    b.vv = (by.vv + R * bw.vv) / wlow / (wv * wv) * inf;
+    b.add = 2.0 * (sqrt(3.0) * eY + R * ew) / wlow * inf;
     return b;
 }
 
@@ -396,7 +520,6 @@ static cj_status build_patch(ptess *P, int nu, const double *ub, int nv, const d
             eval_point(P, ub[i], vb[j], pos);
             if ((st = add_vertex(P, pos, ub[i], vb[j], &g[j * (nu + 1) + i]))) goto done;
         }
-    static const dbounds zero = {0.0, 0.0, 0.0};
     int j0 = 0, j1 = nv, i0 = 0, i1 = nu; /* the block of regular cells */
     if (regular) {
         for (int i = 0; i <= nu; ++i) {
@@ -414,39 +537,29 @@ static cj_status build_patch(ptess *P, int nu, const double *ub, int nv, const d
             inner[i - 1] = g[1 * (nu + 1) + i];
             tin[i - 1] = ub[i];
         }
-        if ((st = zipper(P, o[0], tout[0], k[0], inner, tin, L, P->rational ? &zero : NULL)) ||
-            P->aborted)
-            goto done;
+        if ((st = zipper(P, o[0], tout[0], k[0], inner, tin, L, NULL)) || P->aborted) goto done;
         for (int i = 1; i < nu; ++i) inner[i - 1] = g[(nv - 1) * (nu + 1) + i];
-        if ((st = zipper(P, o[2], tout[2], k[2], inner, tin, L, P->rational ? &zero : NULL)) ||
-            P->aborted)
-            goto done;
+        if ((st = zipper(P, o[2], tout[2], k[2], inner, tin, L, NULL)) || P->aborted) goto done;
         L = nv - 2;
         for (int j = 1; j < nv; ++j) {
             inner[j - 1] = g[j * (nu + 1) + 1];
             tin[j - 1] = vb[j];
         }
-        if ((st = zipper(P, o[3], tout[3], k[3], inner, tin, L, P->rational ? &zero : NULL)) ||
-            P->aborted)
-            goto done;
+        if ((st = zipper(P, o[3], tout[3], k[3], inner, tin, L, NULL)) || P->aborted) goto done;
         for (int j = 1; j < nv; ++j) inner[j - 1] = g[j * (nu + 1) + nu - 1];
-        if ((st = zipper(P, o[1], tout[1], k[1], inner, tin, L, P->rational ? &zero : NULL)) ||
-            P->aborted)
-            goto done;
+        if ((st = zipper(P, o[1], tout[1], k[1], inner, tin, L, NULL)) || P->aborted) goto done;
         j0 = i0 = 1;
         j1 = nv - 1;
         i1 = nu - 1;
     }
     for (int j = j0; j < j1; ++j)
         for (int i = i0; i < i1; ++i) {
-            const dbounds cb =
-                P->rational ? zero : strip_bounds(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
+            const dbounds cb = strip_bounds(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
             const uint32_t A = g[j * (nu + 1) + i], B = g[j * (nu + 1) + i + 1],
                            C = g[(j + 1) * (nu + 1) + i + 1], D = g[(j + 1) * (nu + 1) + i];
             if ((st = add_tri(P, A, B, C, &cb))) goto done;
             if ((st = add_tri(P, A, C, D, &cb)) || P->aborted) goto done;
         }
-    if (P->rational) P->bound = INFINITY;
 done:
     t_free(P->mesh, buf);
     t_free(P->mesh, tbuf);
@@ -558,13 +671,28 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, const i
     double rho_u[SLABS], rho_v[SLABS];
     {
         double su = 0.0, sv = 0.0;
+        if (P->rational) {
+            /* the rational bound of a whole slab is poor (its centring point c is far from
+             * most of the slab): take the largest bound of its SLABS cells instead */
+            for (int a = 0; a < SLABS; ++a) rho_u[a] = rho_v[a] = 0.0;
+            for (int a = 0; a < SLABS; ++a)
+                for (int b = 0; b < SLABS; ++b) {
+                    const dbounds cb = strip_bounds(P, (double)a / SLABS, (double)(a + 1) / SLABS,
+                                                    (double)b / SLABS, (double)(b + 1) / SLABS);
+                    rho_u[a] = fmax(rho_u[a], sqrt(fmax(cb.uu, cb.uv)));
+                    rho_v[b] = fmax(rho_v[b], sqrt(fmax(cb.vv, cb.uv)));
+                }
+        } else {
+            for (int a = 0; a < SLABS; ++a) {
+                const dbounds bu =
+                    strip_bounds(P, (double)a / SLABS, (double)(a + 1) / SLABS, 0.0, 1.0);
+                const dbounds bv =
+                    strip_bounds(P, 0.0, 1.0, (double)a / SLABS, (double)(a + 1) / SLABS);
+                rho_u[a] = sqrt(fmax(bu.uu, bu.uv));
+                rho_v[a] = sqrt(fmax(bv.vv, bv.uv));
+            }
+        }
         for (int a = 0; a < SLABS; ++a) {
-            const dbounds bu =
-                strip_bounds(P, (double)a / SLABS, (double)(a + 1) / SLABS, 0.0, 1.0);
-            const dbounds bv =
-                strip_bounds(P, 0.0, 1.0, (double)a / SLABS, (double)(a + 1) / SLABS);
-            rho_u[a] = sqrt(fmax(bu.uu, bu.uv));
-            rho_v[a] = sqrt(fmax(bv.vv, bv.uv));
             su += rho_u[a] / SLABS;
             sv += rho_v[a] / SLABS;
         }
@@ -718,6 +846,22 @@ static void ptess_setup(ptess *P, const cj_patch *p, size_t q, cj_mesh *mesh, in
     for (size_t i = 0; i < 3 * cj_patch_point_count(p); ++i) mx = fmax(mx, fabs(p->pts[i]));
     /* vertex rounding (de Casteljau) plus the sample's own rounding, in 3D norm */
     P->evalerr = 2.0 * cj_gamma(3 * (P->m + P->n) + 4) * mx * sqrt(3.0);
+    if (P->rational) {
+        /* homogeneous de Casteljau: numerator off by <= g w max|b|, weight by <= g w (weights
+         * > 0), g = gamma(3(m+n)+4); the quotient by <= (2g + u) max|b| / (1 - g) per
+         * coordinate: twice the polynomial term covers it */
+        P->evalerr *= 2.0;
+        /* sub-net coefficients (rational_bounds): <= 2(m+n) levels of s a + t b (and the
+         * rounding of s = 1 - t), relative to the largest coefficient */
+        double hx = 0.0, hw = 0.0;
+        for (size_t i = 0; i < cj_patch_point_count(p); ++i) {
+            for (int k = 0; k < 3; ++k) hx = fmax(hx, fabs(P->h[4 * i + (size_t)k]));
+            hw = fmax(hw, P->h[4 * i + 3]);
+        }
+        const double g = cj_gamma(6 * (P->m + P->n) + 8);
+        P->suberr_x = g * hx;
+        P->suberr_w = g * hw;
+    }
     for (int s = 0; s < 4; ++s) edge_setup(p, s, &P->e[s]);
 }
 
@@ -797,11 +941,6 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
     for (size_t q = 0; q < count; ++q) {
         cj_status st = cj_patch_check(&patches[q]);
         if (st) return cj_fail(st, "patch %zu: %s", q, cj_last_error());
-        if (patches[q].weights && opt->uniform == 0)
-            return cj_fail(CJ_ERR_UNSUPPORTED,
-                           "patch %zu is rational: adaptive tessellation has no proven bound for "
-                           "rational patches (use uniform mode)",
-                           q);
     }
     const int adaptive = opt->uniform == 0;
     ptess *P = t_alloc(mesh, sizeof *P);
