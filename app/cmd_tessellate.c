@@ -10,9 +10,13 @@
 #include <string.h>
 
 static const char tess_usage[] =
-    "usage: casteljau tessellate (--teapot | --patch \"x,y,z;...\" --degree M,N)\n"
+    "usage: casteljau tessellate (--teapot | --patch \"x,y,z;...\" --degree M,N [--weights "
+    "\"w;...\"])\n"
     "                            [--tol T | --uniform K] -o OUT.obj|OUT.ply\n"
     "  --patch   (M+1)(N+1) control points, row by row with u fastest (index j*(M+1)+i)\n"
+    "  --weights one weight > 0 per control point, same order: a rational patch (the bound is\n"
+    "            then proven for it too; the measured deviation uses the mesh point whose\n"
+    "            barycentric coordinates are proportional to lambda_i w(p_i))\n"
     "  --tol     bound on the distance from surface to mesh (model units; default 1e-3 of the\n"
     "            model's bounding-box diagonal); --uniform K: K x K segments per patch\n"
     "  prints: patches, triangles, the proven bound and the measured deviation\n";
@@ -46,7 +50,7 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 int cmd_tessellate(int argc, char **argv) {
     const char *cmd = "tessellate";
     int teapot = 0, have_tol = 0, uniform = 0;
-    const char *patch_text = NULL, *degree_text = NULL, *out = NULL;
+    const char *patch_text = NULL, *degree_text = NULL, *weights_text = NULL, *out = NULL;
     double tol = 0.0;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
@@ -64,6 +68,8 @@ int cmd_tessellate(int argc, char **argv) {
             patch_text = v;
         else if (!strcmp(a, "--degree"))
             degree_text = v;
+        else if (!strcmp(a, "--weights"))
+            weights_text = v;
         else if (!strcmp(a, "-o"))
             out = v;
         else if (!strcmp(a, "--tol")) {
@@ -81,6 +87,7 @@ int cmd_tessellate(int argc, char **argv) {
     if (!teapot && !patch_text) return cli_fail(cmd, "no model: give --teapot or --patch");
     if (patch_text && !degree_text) return cli_fail(cmd, "--patch needs --degree M,N");
     if (!patch_text && degree_text) return cli_fail(cmd, "--degree is only for --patch");
+    if (!patch_text && weights_text) return cli_fail(cmd, "--weights is only for --patch");
     if (have_tol && uniform) return cli_fail(cmd, "give either --tol or --uniform, not both");
     if (!out) return cli_fail(cmd, "no output file: give -o OUT.obj or -o OUT.ply");
     if (!has_ext(out, ".obj") && !has_ext(out, ".ply"))
@@ -88,7 +95,7 @@ int cmd_tessellate(int argc, char **argv) {
 
     cj_patchset *set = NULL;
     cj_patch single;
-    double *pts = NULL;
+    double *pts = NULL, *weights = NULL;
     const cj_patch *patches;
     size_t count;
     double size = 0.0;
@@ -127,10 +134,32 @@ int cmd_tessellate(int argc, char **argv) {
             return cli_fail(cmd, "--patch has %zu points but degree %d,%d needs (M+1)(N+1) = %zu",
                             npts, m, n, need);
         }
-        single = cj_patch_view(m, n, pts, NULL);
+        if (weights_text) {
+            size_t nw;
+            if (cli_parse_list(weights_text, &weights, &nw, why, sizeof why) != 0) {
+                free(pts);
+                return cli_fail(cmd, "--weights: %s", why);
+            }
+            if (nw != need) {
+                free(pts);
+                free(weights);
+                return cli_fail(cmd, "--weights has %zu values but --patch has %zu points", nw,
+                                need);
+            }
+            for (size_t q = 0; q < nw; ++q)
+                if (!(weights[q] > 0.0)) {
+                    const double bad = weights[q];
+                    free(pts);
+                    free(weights);
+                    return cli_fail(cmd, "--weights: weight %zu is %g, weights must be > 0", q,
+                                    bad);
+                }
+        }
+        single = cj_patch_view(m, n, pts, weights);
         cj_status st = cj_patch_size(&single, &size);
         if (st) {
             free(pts);
+            free(weights);
             return cli_fail(cmd, "--patch: %s", cj_last_error());
         }
         patches = &single;
@@ -162,5 +191,6 @@ int cmd_tessellate(int argc, char **argv) {
     cj_mesh_destroy(mesh);
     cj_patchset_destroy(set);
     free(pts);
+    free(weights);
     return rc;
 }

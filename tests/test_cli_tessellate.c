@@ -1,7 +1,8 @@
 /* Contract test of `casteljau tessellate`, run as a child process: the teapot and a single
  * patch to OBJ and PLY, the printed triangle count matching the file, the printed bound within
- * --tol and the measured deviation within the bound, --uniform; bad input gives one line on
- * stderr, nothing on stdout, exit status 2 and no output file. */
+ * --tol and the measured deviation within the bound, --uniform; a rational patch (--weights)
+ * on the exact cylinder; bad input gives one line on stderr, nothing on stdout, exit status 2
+ * and no output file. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -10,6 +11,7 @@
 
 #include "cli_run.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -117,6 +119,59 @@ static void test_single_patch(void **state) {
     printf("single bilinear patch: 32 triangles, bound 1/64 (tight: measured %.6g)\n", meas);
 }
 
+static void test_rational_patch(void **state) {
+    (void)state;
+    char obj[128];
+    snprintf(obj, sizeof obj, "%s/r.obj", dir);
+    result r;
+    /* a quarter of the unit cylinder: rational quadratic in u (weights 1, 1/sqrt2, 1),
+     * straight in v; every OBJ vertex must lie on the cylinder, the bound within --tol and the
+     * measured deviation within the bound, and the bound at least the sagitta of the longest
+     * chord between consecutive vertices of the bottom edge */
+    const char *args[] = {"--patch",   "1,0,0;1,1,0;0,1,0;1,0,1;1,1,1;0,1,1",
+                          "--degree",  "2,1",
+                          "--weights", "1;0.70710678118654752;1;1;0.70710678118654752;1",
+                          "--tol",     "1e-3",
+                          "-o",        obj,
+                          NULL};
+    run(&r, args);
+    assert_int_equal(r.status, 0);
+    assert_string_equal(r.err, "");
+    const double bound = field(r.out, "bound "), meas = field(r.out, "measured ");
+    assert_true(bound <= 1e-3 && bound > 0);
+    assert_true(meas <= bound && meas > 0);
+    FILE *f = fopen(obj, "r");
+    assert_non_null(f);
+    char line[512];
+    size_t nv = 0;
+    double angles[4096];
+    size_t na = 0;
+    while (fgets(line, sizeof line, f)) {
+        double x, y, z;
+        if (sscanf(line, "v %lf %lf %lf", &x, &y, &z) != 3) continue;
+        ++nv;
+        assert_true(fabs(hypot(x, y) - 1.0) < 1e-14);
+        if (z == 0.0 && na < 4096) angles[na++] = atan2(y, x);
+    }
+    fclose(f);
+    assert_true(nv > 0 && na >= 2);
+    /* longest gap between consecutive bottom-edge angles (sorted) */
+    for (size_t i = 1; i < na; ++i)
+        for (size_t j = i; j > 0 && angles[j] < angles[j - 1]; --j) {
+            const double t = angles[j];
+            angles[j] = angles[j - 1];
+            angles[j - 1] = t;
+        }
+    double gap = 0.0;
+    for (size_t i = 1; i < na; ++i) gap = fmax(gap, angles[i] - angles[i - 1]);
+    const double sagitta = 1.0 - cos(gap / 2.0);
+    assert_true(sagitta <= bound);
+    unlink(obj);
+    printf("rational quarter cylinder (--weights): %zu vertices on the cylinder, bound %.4g <= "
+           "tol, measured %.4g <= bound, longest edge chord's sagitta %.4g <= bound\n",
+           nv, bound, meas, sagitta);
+}
+
 static void expect_usage_error(const char *const *args, const char *out_path, const char *needle) {
     result r;
     run(&r, args);
@@ -155,9 +210,26 @@ static void test_bad_input(void **state) {
         "--patch", "0,0,0;1,0,0;0,1,0;1,1,1", "--degree", "1,1", "--tol", "1e-300", "-o", obj,
         NULL};
     expect_usage_error(a10, obj, "segments");
+    const char *a11[] = {
+        "--patch", "0,0,0;1,0,0;0,1,0;1,1,1", "--degree", "1,1", "--weights", "1;2;3", "-o", obj,
+        NULL};
+    expect_usage_error(a11, obj, "--weights has 3 values");
+    const char *a12[] = {
+        "--patch", "0,0,0;1,0,0;0,1,0;1,1,1", "--degree", "1,1", "--weights", "1;2;0;4", "-o", obj,
+        NULL};
+    expect_usage_error(a12, obj, "weight 2");
+    const char *a13[] = {"--patch",   "0,0,0;1,0,0;0,1,0;1,1,1",
+                         "--degree",  "1,1",
+                         "--weights", "1;2;nan;4",
+                         "-o",        obj,
+                         NULL};
+    expect_usage_error(a13, obj, "--weights");
+    const char *a14[] = {"--teapot", "--weights", "1", "-o", obj, NULL};
+    expect_usage_error(a14, obj, "only for --patch");
     printf("bad input (wrong point count, NaN, bad --tol, --tol with --uniform, extension, no -o, "
-           "2D points, bad --degree, unknown option, unreachable tolerance): one stderr line, "
-           "empty stdout, exit 2, no file\n");
+           "2D points, bad --degree, unknown option, unreachable tolerance, wrong weight count, "
+           "a zero or NaN weight, --weights without --patch): one stderr line, empty stdout, "
+           "exit 2, no file\n");
 }
 
 int main(void) {
@@ -166,6 +238,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_teapot_obj),
         cmocka_unit_test(test_single_patch),
+        cmocka_unit_test(test_rational_patch),
         cmocka_unit_test(test_bad_input),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
