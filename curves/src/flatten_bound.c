@@ -52,9 +52,10 @@ cj_status cj_fl_init(cj_fl_curve *fc, const cj_bezier *c, const double *weights)
         }
         if (weights) fc->hom[i * fc->D + d] = wi;
     }
-    /* Rounding allowance: the subcurve (two de Casteljau splits), the division by the weight
-     * and the point-to-chord arithmetic each lose O(n u) relative to the coordinates'
-     * magnitude; 32 (n+2) u max|coordinate| covers all of them with a wide margin. */
+    /* Rounding allowance: the subcurve (two de Casteljau splits, <= ~8 n u), the refinement's
+     * two halvings (<= 2 n u), the division by the weight and the point-to-chord arithmetic
+     * (O(d) u) each lose that much relative to the coordinates' magnitude; 32 (n+2) u
+     * max|coordinate| covers all of them with a wide margin. */
     fc->slack = 32.0 * (double)(n + 2) * CJ_UNIT_ROUNDOFF * maxabs;
     if (weights) {
         double wmin = weights[0], wmax = weights[0];
@@ -141,8 +142,12 @@ static double norm2(const double *v, int d) {
     return s;
 }
 
-double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
+/* The bounds (a)-(c); *mid receives the distance of c(1/2) from the chord's line in the scaled
+ * coordinates (a lower estimate of the true deviation, used only to decide whether refining
+ * can pay). */
+static double cheap_bound(const cj_fl_curve *fc, const double *sub, double *mid) {
     const int n = fc->n, d = fc->d, D = fc->D;
+    *mid = 0.0;
     if (n <= 1) return 0.0; /* a segment (rational or not) is its own chord */
     /* Squared magnitudes throughout; one square root per bound at the end. */
     double pbuf[CJ_FL_WORK];
@@ -175,6 +180,7 @@ double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
     double mq2 = 0.0;      /* the same for the parametric error (polynomials) */
     int inside = 1;
     const double nn1 = (double)n * (double)(n - 1);
+    double emid[CJ_MAX_DIM] = {0.0}, wmid = 0.0, binom = 1.0; /* Σ C(n,i) w_i e_i, Σ C(n,i) w_i */
     for (int i = 1; i < n; ++i) {
         double r[CJ_MAX_DIM], e[CJ_MAX_DIM];
         double s = 0.0;
@@ -198,6 +204,10 @@ double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
             dist2 = e2;
         }
         if (dist2 > maxdist2) maxdist2 = dist2;
+        binom = binom * (double)(n - i + 1) / (double)i;
+        const double bw = fc->rational ? binom * sub[i * D + d] : binom;
+        for (int k = 0; k < d; ++k) emid[k] += bw * e[k];
+        wmid += bw;
         /* q_{i-1} = w_i e_i n(n-1) / (i (n-i)) */
         const double coef = nn1 / ((double)i * (double)(n - i));
         const double wi = fc->rational ? w[i] : 1.0;
@@ -220,6 +230,10 @@ double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
             if (w[i] < wmin) wmin = w[i];
             if (i > 0 && i < n && w[i] > wI) wI = w[i];
         }
+    }
+    {
+        const double wends = fc->rational ? sub[d] + sub[n * D + d] : 2.0;
+        *mid = sqrt(norm2(emid, d)) / (wmid + wends); /* scaled coordinates */
     }
     /* (a) convexity: dist(c(t), S) <= g max_i dist(b_i, S). */
     const double s2 = fc->s2;
@@ -246,6 +260,132 @@ double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
         if (bc < best) best = bc;
     }
     return ldexp(best, fc->escale);
+}
+
+double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub) {
+    double mid;
+    return cheap_bound(fc, sub, &mid);
+}
+
+/* Fixed data of one refinement: the chord S = a + [0,1] v in scaled coordinates. */
+typedef struct refine_ctx {
+    const cj_fl_curve *fc;
+    double a[CJ_MAX_DIM], v[CJ_MAX_DIM];
+    double invL2;
+    double stop2; /* squared distance above which the piece is rejected anyway */
+    double best;  /* largest part bound so far */
+    double end2;  /* squared distance of the previous part's last point (this part's first) */
+} refine_ctx;
+
+/* Bound of one part (control points h, homogeneous) on its distance to S; see below. */
+static void refine_part(refine_ctx *cx, const double *h) {
+    const cj_fl_curve *fc = cx->fc;
+    const int n = fc->n, d = fc->d, D = fc->D;
+    double dE2 = 0.0, dI2 = 0.0, wE = 0.0, wI = 0.0, p[CJ_MAX_DIM];
+    for (int i = 0; i <= n; ++i, h += D) {
+        const int end = i == 0 || i == n;
+        if (i == 0 && !fc->rational) { /* parts are visited left to right and share ends */
+            dE2 = cx->end2;
+            continue;
+        }
+        double sp = 0.0;
+        if (fc->rational) {
+            const double wi = h[d];
+            for (int k = 0; k < d; ++k) p[k] = h[k] / wi;
+            if (end)
+                wE = (i == 0 || wi < wE) ? wi : wE;
+            else if (wi > wI)
+                wI = wi;
+        } else {
+            for (int k = 0; k < d; ++k) p[k] = h[k];
+        }
+        for (int k = 0; k < d; ++k) {
+            p[k] -= cx->a[k];
+            sp += p[k] * cx->v[k];
+        }
+        sp *= cx->invL2;
+        if (sp < 0.0) sp = 0.0;
+        if (sp > 1.0) sp = 1.0;
+        double e2 = 0.0;
+        for (int k = 0; k < d; ++k) {
+            const double e = p[k] - sp * cx->v[k];
+            e2 += e * e;
+        }
+        if (end) {
+            if (e2 > dE2) dE2 = e2;
+            if (i == n) cx->end2 = e2;
+        } else if (e2 > dI2) {
+            dI2 = e2;
+        }
+    }
+    if (dE2 <= cx->best * cx->best && dI2 <= cx->best * cx->best) return; /* bj <= best */
+    const double dE = sqrt(dE2), dI = sqrt(dI2);
+    const double sigma = fc->rational ? wE * fc->s2 / (wE * fc->s2 + wI * (1.0 - fc->s2)) : fc->s2;
+    const double bj = dI > dE ? dE + (1.0 - sigma) * (dI - dE) : dE;
+    if (bj > cx->best) cx->best = bj;
+}
+
+/* Splits the part h at 1/2 (each level 0.5 (x + y), one rounding, so a halving loses at most
+ * n u max|coordinate|) and refines both halves, depth more levels. */
+static void refine_rec(refine_ctx *cx, const double *h, int depth) {
+    if (depth == 0) {
+        refine_part(cx, h);
+        return;
+    }
+    const int n = cx->fc->n, D = cx->fc->D;
+    double L[(CJ_FL_REFINE_MAX_DEGREE + 1) * (CJ_MAX_DIM + 1)];
+    double R[(CJ_FL_REFINE_MAX_DEGREE + 1) * (CJ_MAX_DIM + 1)];
+    for (int i = 0; i < (n + 1) * D; ++i) R[i] = h[i];
+    for (int r = n; r > 0; --r) {
+        for (int k = 0; k < D; ++k) L[(n - r) * D + k] = R[k];
+        for (int i = 0; i < r * D; ++i) R[i] = 0.5 * (R[i] + R[i + D]);
+    }
+    for (int k = 0; k < D; ++k) L[n * D + k] = R[k];
+    refine_rec(cx, L, depth - 1);
+    if (cx->best * cx->best > cx->stop2) return;
+    refine_rec(cx, R, depth - 1);
+}
+
+/* Refinement (d): the piece halved (de Casteljau) CJ_FL_REFINE_LEVELS times into 2^k parts;
+ * each part lies in the convex hull of its own control points and dist(., S) is convex, so on
+ * part j
+ *     dist(c(t), S) <= dE_j + (1 - σ_j) max(0, dI_j - dE_j),
+ * dE_j the larger distance of the part's end points (points of the curve), dI_j the largest
+ * of its inner control points, σ_j the smallest weight share of the end points (2^(1-n) for
+ * polynomials, wE s / (wE s + wI (1-s)) with the part's own weights for rational ones). This
+ * converges to max dist(c(t), S) as the parts shrink (their hulls close in on the curve).
+ * Rounding: k more halvings lose k n u max|coordinate|, inside the allowance fc->slack.
+ * Stops early (returning a value > stop) once a part exceeds stop. */
+static double refined_bound(const cj_fl_curve *fc, const double *sub, double stop) {
+    const int n = fc->n, d = fc->d;
+    refine_ctx cx;
+    cx.fc = fc;
+    point_scaled(fc, sub, 0, cx.a);
+    point_scaled(fc, sub, n, cx.v);
+    double L2 = 0.0;
+    for (int k = 0; k < d; ++k) {
+        cx.v[k] -= cx.a[k];
+        L2 += cx.v[k] * cx.v[k];
+    }
+    cx.invL2 = L2 > 0.0 ? 1.0 / L2 : 0.0;
+    const double st = ldexp(stop, -fc->escale);
+    cx.stop2 = st * st;
+    cx.best = 0.0;
+    cx.end2 = 0.0; /* the first part starts at the chord's own end point */
+    refine_rec(&cx, sub, CJ_FL_REFINE_LEVELS);
+    return ldexp(cx.best, fc->escale);
+}
+
+double cj_fl_piece_bound_refined(const cj_fl_curve *fc, const double *sub, double refine_above,
+                                 double refine_below, double stop) {
+    double mid;
+    const double cheap = cheap_bound(fc, sub, &mid);
+    /* Refining cannot go below the distance of c(1/2), so it cannot pay when that is close. */
+    if (!(cheap > refine_above) || !(cheap <= refine_below) || fc->n <= 1 ||
+        fc->n > CJ_FL_REFINE_MAX_DEGREE || !(cheap > CJ_FL_REFINE_GAIN * ldexp(mid, fc->escale)))
+        return cheap;
+    const double r = refined_bound(fc, sub, stop < cheap ? stop : cheap);
+    return r < cheap ? r : cheap;
 }
 
 double cj_fl_wang_coefficient(const cj_fl_curve *fc) {
