@@ -9,7 +9,8 @@
  * teapot data's shared edges; OBJ/PLY export; the .bpt loader's messages. Rational patches
  * (random, degrees 1..4, weights in [0.2,5]; exact sphere octants and torus pieces closing into
  * a sphere and a torus; a quarter cylinder), adaptive and uniform: the distance from the
- * surface (independent homogeneous Bernstein sums) to its mesh point Q(x) and to its triangle,
+ * surface (independent homogeneous Bernstein sums) to its mesh points L(x) (linear) and Q(x)
+ * (homogeneous linear) and to its triangle,
  * and the exact distance of the mesh to the sphere/torus/cylinder, stay within the proven
  * bound (<= tol in adaptive mode); the closed ones are crack-free manifolds. */
 #define _POSIX_C_SOURCE 200809L
@@ -592,6 +593,11 @@ static void test_rational_and_options(void **state) {
     cj_mesh_clear(mesh);
     assert_int_equal(cj_tessellate_patches(&p, 1, &opt, mesh, &rep), CJ_OK);
     assert_true(rep.bound <= 1e-3);
+    /* not far from the fewest triangles possible: one strip of chords whose sagitta
+     * 1 - cos(theta/2) is <= tol, two triangles each (the straight direction needs no
+     * subdivision) */
+    const double chords = ceil((PI / 2) / (2.0 * acos(1.0 - 1e-3)));
+    assert_true((double)rep.triangles <= 4.0 * 2.0 * chords);
     for (size_t t = 0; t < mesh->triangle_count; ++t) { /* triangle centroids: inside by <= bound */
         double c[3] = {0, 0, 0};
         for (int k = 0; k < 3; ++k)
@@ -621,9 +627,10 @@ static void test_rational_and_options(void **state) {
     assert_int_equal(cj_tessellate_patches(&hpp, 1, &capped, mesh, &rep), CJ_ERR_CAP);
     cj_mesh_destroy(mesh);
     printf("rational patch (exact quarter cylinder): uniform 8x8 bound %.4g >= sagitta %.4g; "
-           "adaptive tol 1e-3: %zu triangles, bound %.4g, centroids within it of the cylinder; "
+           "adaptive tol 1e-3: %zu triangles (<= 4 x the %.0f of one strip of chords), bound %.4g, "
+           "centroids within it of the cylinder; "
            "bad tolerances; segment cap reported as CJ_ERR_CAP\n",
-           uniform_bound, sagitta, adaptive_tris, adaptive_bound);
+           uniform_bound, sagitta, adaptive_tris, 2.0 * chords, adaptive_bound);
 }
 
 /* ---- rational patches -------------------------------------------------------------------- */
@@ -703,16 +710,17 @@ static double point_triangle_distance(const double *x, const double *a, const do
 typedef double (*exact_dist_fn)(const double *x); /* distance to an exact surface */
 
 typedef struct rat_stats {
-    double dev;        /* max |S(x) - Q(x)|, Q the homogeneous-barycentric mesh point */
+    double dev;        /* max of min(|S(x) - L(x)|, |S(x) - Q(x)|) */
     double tri_dist;   /* max distance from S(x) to its triangle */
-    double mesh_exact; /* max distance of the mesh points Q(x) to the exact surface */
+    double mesh_exact; /* max distance of the mesh points L(x) to the exact surface */
     double surf_exact; /* max distance of the oracle's S(x) to the exact surface */
 } rat_stats;
 
 /* Samples every triangle on the barycentric lattice of step 1/L with the independent oracle:
- * S(x) at the interpolated (u,v); the mesh point Q(x) = Σ λ_i w_i V_i / Σ λ_i w_i (w_i the
- * oracle's weight at vertex i); the distance from S(x) to the triangle, which must not exceed
- * |S - Q| (Q is a point of the triangle); with `exact`, the distances of S(x) and Q(x) to the
+ * S(x) at the interpolated (u,v); the mesh points L(x) = Σ λ_i V_i and Q(x) = Σ λ_i w_i V_i /
+ * Σ λ_i w_i (w_i the oracle's weight at vertex i), the deviation being the smaller of
+ * |S - L| and |S - Q| (the quantity the rational bound bounds); the distance from S(x) to the
+ * triangle, which must not exceed it; with `exact`, the distances of S(x) and L(x) to the
  * exact surface. Also checks every vertex lies on its patch (within 1e-12 of the size). */
 static rat_stats rational_deviation(const cj_mesh *mesh, const cj_patch *patches, int L,
                                     double size, exact_dist_fn exact) {
@@ -740,10 +748,14 @@ static rat_stats rational_deviation(const cj_mesh *mesh, const cj_patch *patches
                 bern_eval_h(p, l[0] * uv[0][0] + l[1] * uv[1][0] + l[2] * uv[2][0],
                             l[0] * uv[0][1] + l[1] * uv[1][1] + l[2] * uv[2][1], num, &den);
                 for (int c = 0; c < 3; ++c) s[c] = num[c] / den;
+                double qh[3] = {0, 0, 0};
                 const double sw = l[0] * w[0] + l[1] * w[1] + l[2] * w[2];
                 for (int k = 0; k < 3; ++k)
-                    for (int c = 0; c < 3; ++c) q[c] += l[k] * w[k] / sw * V[k][c];
-                const double dev = dist3(s, q);
+                    for (int c = 0; c < 3; ++c) {
+                        q[c] += l[k] * V[k][c];
+                        qh[c] += l[k] * w[k] / sw * V[k][c];
+                    }
+                const double dev = fmin(dist3(s, q), dist3(s, qh));
                 const double td = point_triangle_distance(s, V[0], V[1], V[2]);
                 if (td > dev + 1e-13 * size)
                     fail_msg("seed %llu: triangle %zu: distance to the triangle %.6g exceeds the "
@@ -767,7 +779,7 @@ static void test_rational_random(void **state) {
     int cases = 0;
     double worst_ratio = 0.0, best_ratio = 1.0;
     size_t tris[2] = {0, 0}, uni_tris = 0, ada6 = 0;
-    for (int c = 0; c < 16; ++c) {
+    for (int c = 0; c < 12; ++c) {
         const int m = cj_rng_int(&r, 1, 4), n = cj_rng_int(&r, 1, 4);
         double pts[25 * 3], w[25], w3[25];
         for (int q = 0; q < (m + 1) * (n + 1); ++q) {
@@ -798,7 +810,7 @@ static void test_rational_random(void **state) {
             if (mode == 0 && rep.bound > tol)
                 fail_msg("seed %llu rational case %d: bound %.6g > tol %.6g",
                          (unsigned long long)seed, c, rep.bound, tol);
-            if (mode == 0 && c < 6) { /* (a linear search: the first cases only) */
+            if (mode == 0 && c < 4) { /* (a linear search: the first cases only) */
                 size_t uni;
                 const int K = smallest_uniform(&p, 1, tol, &uni);
                 if (rep.triangles > uni)
@@ -828,8 +840,9 @@ static void test_rational_random(void **state) {
         }
     }
     printf("random rational patches (deg 1..4, weights in [0.2,5]): %d tessellations, sampled "
-           "deviation |S-Q| <= proven bound (<= tol adaptive, finite uniform), deviation/bound in "
-           "[%.3f, %.3f]; adaptive %zu triangles (first 6 cases %zu <= %zu of the smallest "
+           "deviation min(|S-L|,|S-Q|) <= proven bound (<= tol adaptive, finite uniform), "
+           "deviation/bound in "
+           "[%.3f, %.3f]; adaptive %zu triangles (first 4 cases %zu <= %zu of the smallest "
            "uniform grids meeting tol), uniform 9x9 %zu; bound invariant under weight scaling\n",
            cases, best_ratio, worst_ratio, tris[0], ada6, uni_tris, tris[1]);
 }
@@ -919,7 +932,7 @@ static void exact_model(const char *name, const cj_patch *pp, size_t np, exact_d
         snprintf(what, sizeof what, "uniform K %d", uniform);
     else
         snprintf(what, sizeof what, "tol %g", tol);
-    printf("  %-6s %-12s %7zu triangles, bound %.4g, deviation |S-Q| %.4g, surface to "
+    printf("  %-6s %-12s %7zu triangles, bound %.4g, deviation min(|S-L|,|S-Q|) %.4g, surface to "
            "triangle %.4g, mesh to exact surface %.4g (ratio %.2f)\n",
            name, what, rep.triangles, rep.bound, rs.dev, rs.tri_dist, rs.mesh_exact,
            rs.dev / rep.bound);
@@ -941,7 +954,7 @@ static void test_rational_exact(void **state) {
     /* the nets are exact: the oracle's points lie on the quadric / torus */
     printf("exact rational patches (sphere: 8 biquadratic octants, torus R=2 r=0.5: 16 "
            "biquadratic pieces), closed manifold meshes, every distance <= proven bound:\n");
-    const double tols[3] = {1e-2, 1e-3, 1e-4};
+    const double tols[3] = {1e-2, 1e-3, 3e-4};
     for (int i = 0; i < 3; ++i) {
         exact_model("sphere", sphere, 8, sphere_dist, 2, tols[i], 0, i == 2 ? 2 : 4);
         if (i < 2) exact_model("torus", torus, 16, torus_dist, 0, tols[i], 0, 4);

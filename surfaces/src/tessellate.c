@@ -12,12 +12,9 @@
 
 #define U_ROUND CJ_UNIT_ROUNDOFF
 
-/* Bounds on |S_uu|, |S_uv|, |S_vv| over a region, in the patch's own parameters, and a
- * constant `add` to the per-triangle bound (rounding terms of the rational bound; 0 for
- * polynomial patches). */
+/* Bounds on |S_uu|, |S_uv|, |S_vv| over a region, in the patch's own parameters. */
 typedef struct dbounds {
     double uu, uv, vv;
-    double add;
 } dbounds;
 
 /* Norm of a difference vector (dimension d) inflated by 8u times the magnitude of its terms
@@ -34,7 +31,7 @@ static double diff_norm(const double *d, const double *mag, int dim) {
 /* Second-derivative bounds of a polynomial net of dimension dim (1..3) and degree (m,n) over
  * [0,1]^2. */
 static dbounds net_bounds(const double *h, int dim, int m, int n) {
-    dbounds b = {0.0, 0.0, 0.0, 0.0};
+    dbounds b = {0.0, 0.0, 0.0};
     const int m1 = m + 1;
 #define P(i, j) (h + dim * ((j)*m1 + (i)))
     for (int j = 0; j <= n; ++j)
@@ -117,8 +114,13 @@ typedef struct ptess {
     int hd, m, n;
     int rational;
     double evalerr;
-    double suberr_x,
-        suberr_w; /* rational: rounding of a sub-net coefficient (see rational_bounds) */
+    /* rational patches (see rational_tri_bound) */
+    double suberr_x, suberr_w; /* rounding of a sub-net coefficient */
+    double verterr;            /* rounding of a vertex (3D norm) */
+    double cellbox[4];         /* the grid cell whose sub-net is in cellnet */
+    double cellq[4];           /* homog_bounds of that cell */
+    double cellnet[CJ_PATCH_NET_MAX], trinet[CJ_PATCH_NET_MAX];
+    double fnet[(CJ_PATCH_MAX_DEGREE + 2) * (CJ_PATCH_MAX_DEGREE + 2) * 3]; /* F's net */
     edge_info e[4];
     cj_mesh *mesh;
     int measure;
@@ -213,6 +215,9 @@ static int same_pos(const double *a, const double *b) {
 }
 
 static dbounds strip_bounds(const ptess *P, double u0, double u1, double v0, double v1);
+static double rational_tri_bound(ptess *P, const double *ua, const double *ub, const double *uc,
+                                 const double *pa, const double *pb, const double *pc, int in_cell,
+                                 double floor);
 
 /* Adds triangle (a,b,c) (reordered CCW in (u,v)), accounting its bound with strip bounds
  * `db` and its measured deviation; degenerate triangles are counted and not added. */
@@ -229,7 +234,14 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         ub = uc;
         uc = tu;
     }
-    {
+    if (P->rational) {
+        double bnd = rational_tri_bound(P, ua, ub, uc, M->positions + 3 * (size_t)a,
+                                        M->positions + 3 * (size_t)b, M->positions + 3 * (size_t)c,
+                                        db != NULL, P->bound);
+        if (!(bnd >= 0.0)) bnd = INFINITY;
+        if (bnd > P->bound) P->bound = bnd;
+        if (P->abort_over > 0.0 && P->bound > P->abort_over) P->aborted = 1;
+    } else {
         const double u0 = fmin(fmin(ua[0], ub[0]), uc[0]), u1 = fmax(fmax(ua[0], ub[0]), uc[0]);
         const double v0 = fmin(fmin(ua[1], ub[1]), uc[1]), v1 = fmax(fmax(ua[1], ub[1]), uc[1]);
         const double du = u1 - u0, dv = v1 - v0;
@@ -240,8 +252,7 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
             db = &local;
         }
         const double t0 = db->uu * du * du, t1 = 2.0 * db->uv * du * dv, t2 = db->vv * dv * dv;
-        double bnd = (t0 + t1 + t2) * 0.125 * (1.0 + 8.0 * U_ROUND) + P->evalerr + db->add;
-        if (isnan(bnd)) bnd = INFINITY; /* infinite rational bounds times a zero extent */
+        const double bnd = (t0 + t1 + t2) * 0.125 * (1.0 + 8.0 * U_ROUND) + P->evalerr;
         if (bnd > P->bound) {
             P->bound = bnd;
             P->worst_terms[0] = t0;
@@ -254,8 +265,8 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
                  *pc = M->positions + 3 * (size_t)c;
     if (P->measure > 0) {
         const int L = P->measure;
-        /* rational: the mesh point of x is Q(x), barycentric weights proportional to λ_i w_i
-         * (see rational_bounds); polynomial: L(x) */
+        /* rational: min(|S - L|, |S - Q|), Q(x) = Σ λ_i w_i V_i / Σ λ_i w_i (both points of
+         * the triangle; the bound is the smaller of one for each: rational_tri_bound) */
         double wa = 1.0, wb = 1.0, wc = 1.0;
         if (P->rational) {
             double r[4];
@@ -273,18 +284,21 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
                 const double v = la * ua[1] + lb * ub[1] + lc * uc[1];
                 double s[3], d2 = 0.0;
                 eval_point(P, u, v, s);
-                double ma = la, mb = lb, mc = lc;
-                if (P->rational) {
-                    const double sw = la * wa + lb * wb + lc * wc;
-                    ma = la * wa / sw;
-                    mb = lb * wb / sw;
-                    mc = lc * wc / sw;
-                }
                 for (int k = 0; k < 3; ++k) {
-                    const double x = s[k] - (ma * pa[k] + mb * pb[k] + mc * pc[k]);
+                    const double x = s[k] - (la * pa[k] + lb * pb[k] + lc * pc[k]);
                     d2 += x * x;
                 }
-                const double dev = sqrt(d2);
+                double dev = sqrt(d2);
+                if (P->rational) {
+                    const double sw = la * wa + lb * wb + lc * wc;
+                    double q2 = 0.0;
+                    for (int k = 0; k < 3; ++k) {
+                        const double x =
+                            s[k] - (la * wa * pa[k] + lb * wb * pb[k] + lc * wc * pc[k]) / sw;
+                        q2 += x * x;
+                    }
+                    dev = fmin(dev, sqrt(q2));
+                }
                 if (dev > P->measured) P->measured = dev;
             }
     }
@@ -295,12 +309,10 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
     return cj_mesh_add_triangle(M, a, b, c, P->id);
 }
 
-static dbounds rational_bounds(const ptess *P, double u0, double u1, double v0, double v1);
-
-/* Sub-net bounds over [u0,u1]x[v0,v1], rescaled to the patch's parameters (rational patches:
- * rational_bounds). */
+/* Sub-net bounds over [u0,u1]x[v0,v1], rescaled to the patch's parameters (polynomial
+ * patches; rational ones: rational_tri_bound). */
 static dbounds strip_bounds(const ptess *P, double u0, double u1, double v0, double v1) {
-    if (P->rational) return rational_bounds(P, u0, u1, v0, v1);
+    assert(!P->rational);
     double sub[CJ_PATCH_NET_MAX];
     cj_patch_sub_h(P->h, P->hd, P->m, P->n, u0, u1, v0, v1, sub);
     dbounds b = net_bounds(sub, 3, P->m, P->n);
@@ -315,46 +327,12 @@ static dbounds strip_bounds(const ptess *P, double u0, double u1, double v0, dou
     return b;
 }
 
-/* RATIONAL BOUND. The patch is S = X / w with X (3D) and w > 0 the numerator and the
- * denominator, polynomial patches whose nets are the homogeneous net (w_ij b_ij, w_ij). Take a
- * triangle T with parameter vertices p_i inside a box B (its grid cell, or its own (u,v) box),
- * barycentric coordinates λ_i(x), and mesh vertices V_i = S(p_i); write X_i = X(p_i),
- * w_i = w(p_i) and, for x in T,
- *     Xl = Σ λ_i X_i,  wl = Σ λ_i w_i,  Q(x) = Xl / wl = Σ μ_i V_i,  μ_i = λ_i w_i / wl.
- * The μ_i are >= 0 and sum to 1, so Q(x) is a point of the mesh triangle (V_0, V_1, V_2): the
- * linear interpolant taken in homogeneous space, projected. For any fixed point c, with
- * Y = X - c w (the net w_ij (b_ij - c)) and Yl = Σ λ_i Y(p_i) = Xl - c wl:
- *     S - Q = Y/w - Yl/wl = (Y - Yl)/w + (Yl/wl)(wl - w)/w = [(Y - Yl) - (Q - c)(w - wl)] / w,
- * hence
- *     |S(x) - Q(x)| <= ( |Y(x) - Yl(x)| + |Q(x) - c| |w(x) - wl(x)| ) / min_B w.
- * |Y - Yl| and |w - wl| are interpolation errors of POLYNOMIAL patches over T: the bound of
- * the polynomial case applies to each, with second-derivative bounds from the second
- * differences of B's sub-nets of Y (3D) and of w (scalar). min_B w >= the smallest weight of
- * B's sub-net (w is a polynomial patch with those Bernstein coefficients, all > 0), and
- * |Q - c| <= R = max |b'_ij - c| over B's Euclidean sub-net points b'_ij, since the exact V_i
- * lie on the patch over B, inside the convex hull of those points, and Q is in their triangle.
- * Collecting the terms, with (Yuu, Yuv, Yvv) and (Wuu, Wuv, Wvv) the second-derivative bounds
- * of Y and w, du, dv the extents of T:
- *     |S - Q| <= [ (Yuu + R Wuu) du^2 + 2 (Yuv + R Wuv) du dv + (Yvv + R Wvv) dv^2 ] / (8 wmin),
- * i.e. the polynomial formula with M = (M_Y + R M_w) / wmin: this function returns those
- * effective M's. c is the centre of the box of the b'_ij, so that Y = w (b - c) is small on
- * B: its second differences shrink like the cell's size squared (the same order as the
- * polynomial case), and R M_w is of third order. Every surface point S(x) (x in some triangle)
- * is within that bound of the mesh point Q(x), so it bounds the distance surface -> mesh (and
- * mesh -> surface, as x -> Q(x) maps T onto the mesh triangle).
- * Rounding: the sub-net (de Casteljau subdivisions of the homogeneous net, at most 2(m+n)
- * levels of s a + t b with s, t in [0,1]) is exact up to suberr_x (numerator coordinates) and
- * suberr_w (weights) per coefficient; forming Y adds gamma(3)(|X| + |c| w). A polynomial patch
- * whose coefficients move by e moves by <= e everywhere (Bernstein partition of unity), so its
- * interpolation error moves by <= 2e: the constant `add` = 2 (sqrt(3) eY + R ew) / wmin. The
- * weights' lower bound and R are corrected by the same errors. (As in the polynomial case, the
- * rounding of the split parameters, which moves the sub-net's box by a few ulps, is ignored.)
- * A box whose weights cannot be bounded away from 0 gets infinite bounds. */
-static dbounds rational_bounds(const ptess *P, double u0, double u1, double v0, double v1) {
+/* Homogeneous rational bound (see RATIONAL BOUND, (Q)) of a box from its homogeneous sub-net:
+ * out[0..2] = effective second-derivative bounds (M_Y + R M_w) / wlo in the box's local
+ * coordinates, out[3] = the constant rounding term 2 (sqrt(3) eY + R ew) / wlo. */
+static void homog_bounds(const ptess *P, const double *sub, double out[4]) {
     const int m = P->m, n = P->n;
     const int count = (m + 1) * (n + 1);
-    double sub[CJ_PATCH_NET_MAX];
-    cj_patch_sub_h(P->h, 4, m, n, u0, u1, v0, v1, sub);
     double wmin = INFINITY, lo[3] = {INFINITY, INFINITY, INFINITY},
            hi[3] = {-INFINITY, -INFINITY, -INFINITY}, pmax = 0.0;
     for (int q = 0; q < count; ++q) {
@@ -370,8 +348,8 @@ static dbounds rational_bounds(const ptess *P, double u0, double u1, double v0, 
     const double ew = P->suberr_w;
     const double wlow = (wmin - ew) * (1.0 - 4.0 * U_ROUND);
     if (!(wlow > 0.0)) {
-        const dbounds inf = {INFINITY, INFINITY, INFINITY, INFINITY};
-        return inf;
+        out[0] = out[1] = out[2] = out[3] = INFINITY;
+        return;
     }
     double c[3], cmax = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -400,13 +378,190 @@ static dbounds rational_bounds(const ptess *P, double u0, double u1, double v0, 
                      (1.0 + 4.0 * U_ROUND);
     const double eY = P->suberr_x + cmax * ew + cj_gamma(3) * ymag;
     const dbounds by = net_bounds(Y, 3, m, n), bw = net_bounds(W, 1, m, n);
-    const double wu = u1 - u0, wv = v1 - v0, inf = 1.0 + 16.0 * U_ROUND;
-    dbounds b;
-    b.uu = (by.uu + R * bw.uu) / wlow / (wu * wu) * inf;
-    b.uv = (by.uv + R * bw.uv) / wlow / (wu * wv) * inf;
-    b.vv = (by.vv + R * bw.vv) / wlow / (wv * wv) * inf;
-    b.add = 2.0 * (sqrt(3.0) * eY + R * ew) / wlow * inf;
-    return b;
+    const double inf = 1.0 + 16.0 * U_ROUND;
+    out[0] = (by.uu + R * bw.uu) / wlow * inf;
+    out[1] = (by.uv + R * bw.uv) / wlow * inf;
+    out[2] = (by.vv + R * bw.vv) / wlow * inf;
+    out[3] = 2.0 * (sqrt(3.0) * eY + R * ew) / wlow * inf;
+}
+
+/* RATIONAL BOUND. The patch is S = X / w with X (3D) and w > 0 polynomial patches: the
+ * numerator and denominator of the homogeneous net (w_ij b_ij, w_ij). Take a triangle T with
+ * parameter vertices p_i inside a box B (its grid cell, or its own (u,v) box), local
+ * coordinates (s,t) in [0,1]^2 on B, barycentric coordinates λ_i(x), mesh vertices V_i, and
+ * wlo <= w <= whi on B (the smallest and largest coefficient of B's weight sub-net: Bernstein
+ * coefficients, all > 0). Two bounds, each on the distance from S(x) to a point of the mesh
+ * triangle; the smaller is kept (bF when it is needed at all: see floor below).
+ *
+ * (L) bF, on |S(x) - Lm(x)|, Lm the mesh's linear interpolant of the V_i. Take the affine map
+ * L(s,t) = A + Bs + Ct (3D coefficients) computed from the V_i. Then
+ *     S - L = (X - w L) / w = F / w,    F = X - w L,
+ * and F is a POLYNOMIAL patch of degree (m+1, n+1): writing L in bilinear Bernstein form
+ * (its corner values L_ab, a, b in {0,1}) and using B_i^m B_a^1 = c(i,a) B_{i+a}^{m+1} with
+ * c(i,0) = (m+1-i)/(m+1), c(i,1) = (i+1)/(m+1), its Bernstein coefficients are
+ *     F_kl = Σ_{a,b} cu(k,a) cv(l,b) (X_{k-a,l-b} - w_{k-a,l-b} L_ab),
+ * cu(k,0) = (m+1-k)/(m+1), cu(k,1) = k/(m+1) (terms with k-a or l-b out of range absent), X, w
+ * the coefficients of B's homogeneous sub-net. For x in T,
+ *     |F(x)| <= |F(x) - Σ λ_i F(p_i)| + max_i |F(p_i)|,
+ * the first term bounded by the polynomial case's interpolation bound IB(F) = (Fuu ds^2 +
+ * 2 Fuv ds dt + Fvv dt^2) / 8 with the second differences of F's net (degree m+1, n+1) and the
+ * triangle's extents ds, dt in local coordinates; and F(p_i) = w(p_i) (S(p_i) - L(p_i)), where
+ * |S(p_i) - L(p_i)| <= |S(p_i) - V_i| + |V_i - L(p_i)| <= verterr + e, verterr the rounding of
+ * a vertex and e >= max_i |V_i - L(p_i)| (computed, plus its rounding). Since L and Lm are both
+ * affine, |L - Lm| <= e on T (its max is at a vertex). So
+ *     |S(x) - Lm(x)| <= [ IB(F) + whi (verterr + e) ] / wlo + e.
+ * F's second derivatives are w S_uu + 2 w_u (S_u - L_u) + w_uu (S - L) etc., so the weight's
+ * variation enters only through S_u - L_u and S - L, which vanish as the triangle shrinks: as
+ * tight as the polynomial bound (and 0 along a cylinder's straight direction).
+ *
+ * (Q) bQ, on |S(x) - Q(x)|, Q(x) = Xl / wl = Σ μ_i V_i with Xl = Σ λ_i X(p_i), wl = Σ λ_i w(p_i),
+ * μ_i = λ_i w(p_i) / wl >= 0 summing to 1: a point of the triangle (the homogeneous linear
+ * interpolant, projected). For any point c, with Y = X - c w (net w_ij (b_ij - c)) and
+ * Yl = Xl - c wl its interpolant:
+ *     S - Q = Y/w - Yl/wl = (Y - Yl)/w + (Yl/wl)(wl - w)/w = [(Y - Yl) - (Q - c)(w - wl)] / w,
+ * so |S - Q| <= (|Y - Yl| + R |w - wl|) / wlo with R >= |Q - c|: both are interpolation errors
+ * of polynomial patches, bounded from the second differences of B's sub-nets of Y (3D) and w
+ * (scalar): the polynomial formula with M = (M_Y + R M_w) / wlo (homog_bounds). c is the
+ * centre of the box of B's Euclidean sub-net points b'_ij and R = max |b'_ij - c| (the exact
+ * vertices lie on the patch over B, in the hull of the b'_ij, and Q is in their triangle), so
+ * Y = w (b - c) is small on B and R M_w is of third order. The mesh's vertices are off the
+ * exact ones by <= verterr, which moves Q by as much. Exact for a rational-linear
+ * parametrisation (a segment with unequal end weights), where (L) pays for the uneven speed;
+ * (L) is better where the weight varies across a straight direction.
+ *
+ * Both are distances from S(x) to a point of the mesh triangle, so min(bF, bQ) bounds the
+ * distance surface -> mesh; as x -> Lm(x) and x -> Q(x) both map T onto the mesh triangle, it
+ * also bounds mesh -> surface. Rounding: the sub-net is exact up to suberr_x (numerator
+ * coordinates) and suberr_w (weights) per coefficient (at most 2(m+n) levels of s a + t b);
+ * forming F_kl (Y) adds gamma(8) (gamma(3)) of its terms' magnitudes; a polynomial whose
+ * coefficients move by eps per coordinate moves by <= eps everywhere (partition of unity), so
+ * its interpolation error by <= 2 sqrt(3) eps (3D norm) (2 eps for w), which is added. The
+ * rounding of the split parameters (moving B by a few ulps) is ignored, as in the polynomial
+ * case. A triangle degenerate in (u,v) gets bQ only; wlo <= 0 gives +INF.
+ * in_cell: B is the grid cell loaded in P->cellnet (load_cell); otherwise the triangle's own
+ * (u,v) box (the whole square for a triangle without area in u or v). Returns min(bF, bQ), or
+ * just bQ when bQ <= floor (the largest bound so far: the triangle cannot raise it). */
+static double rational_tri_bound(ptess *P, const double *ua, const double *ub, const double *uc,
+                                 const double *pa, const double *pb, const double *pc, int in_cell,
+                                 double floor) {
+    const int m = P->m, n = P->n, m1 = m + 1, n1 = n + 1;
+    const double *uv[3] = {ua, ub, uc}, *V[3] = {pa, pb, pc};
+    double box[4];
+    const double *net;
+    double qb[4];
+    if (in_cell) {
+        memcpy(box, P->cellbox, sizeof box);
+        memcpy(qb, P->cellq, sizeof qb);
+        net = P->cellnet;
+    } else {
+        box[0] = fmin(fmin(ua[0], ub[0]), uc[0]);
+        box[1] = fmax(fmax(ua[0], ub[0]), uc[0]);
+        box[2] = fmin(fmin(ua[1], ub[1]), uc[1]);
+        box[3] = fmax(fmax(ua[1], ub[1]), uc[1]);
+        if (!(box[1] > box[0] && box[3] > box[2])) {
+            box[0] = box[2] = 0.0;
+            box[1] = box[3] = 1.0;
+        }
+        cj_patch_sub_h(P->h, 4, m, n, box[0], box[1], box[2], box[3], P->trinet);
+        net = P->trinet;
+        homog_bounds(P, net, qb);
+    }
+    const double wu = box[1] - box[0], wv = box[3] - box[2];
+    double st[3][2];
+    for (int i = 0; i < 3; ++i) {
+        st[i][0] = (uv[i][0] - box[0]) / wu;
+        st[i][1] = (uv[i][1] - box[2]) / wv;
+    }
+    const double ds = (fmax(fmax(ua[0], ub[0]), uc[0]) - fmin(fmin(ua[0], ub[0]), uc[0])) / wu *
+                      (1.0 + 4.0 * U_ROUND);
+    const double dt = (fmax(fmax(ua[1], ub[1]), uc[1]) - fmin(fmin(ua[1], ub[1]), uc[1])) / wv *
+                      (1.0 + 4.0 * U_ROUND);
+    const double bq = ((qb[0] * ds * ds + 2.0 * qb[1] * ds * dt + qb[2] * dt * dt) * 0.125 *
+                           (1.0 + 8.0 * U_ROUND) +
+                       qb[3] + P->verterr) *
+                      (1.0 + 8.0 * U_ROUND);
+    if (!(bq > floor)) return bq; /* cannot raise the patch's bound: bF is not needed */
+    /* L through the three vertices in local coordinates */
+    const double d1s = st[1][0] - st[0][0], d1t = st[1][1] - st[0][1];
+    const double d2s = st[2][0] - st[0][0], d2t = st[2][1] - st[0][1];
+    const double det = d1s * d2t - d1t * d2s;
+    if (!(det != 0.0) || !isfinite(det)) return bq; /* no triangle in (u,v): no L */
+    double A[3], Bc[3], C[3];
+    for (int k = 0; k < 3; ++k) {
+        const double e1 = V[1][k] - V[0][k], e2 = V[2][k] - V[0][k];
+        Bc[k] = (e1 * d2t - e2 * d1t) / det;
+        C[k] = (e2 * d1s - e1 * d2s) / det;
+        A[k] = V[0][k] - Bc[k] * st[0][0] - C[k] * st[0][1];
+    }
+    /* e >= max_i |V_i - L(p_i)|: the computed residual plus its rounding (and that of s_i,
+     * t_i, a few ulps of the coordinates in [0,1]) */
+    double e = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        double e2 = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            const double r = (A[k] + Bc[k] * st[i][0] + C[k] * st[i][1]) - V[i][k];
+            const double mag = fabs(A[k]) + 2.0 * (fabs(Bc[k]) + fabs(C[k])) + fabs(V[i][k]);
+            const double x = fabs(r) + 8.0 * U_ROUND * mag;
+            e2 += x * x;
+        }
+        e = fmax(e, sqrt(e2) * (1.0 + 4.0 * U_ROUND));
+    }
+    double Lc[2][2][3], lmax = 0.0; /* corner values L_ab */
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+            for (int k = 0; k < 3; ++k) {
+                Lc[a][b][k] = A[k] + Bc[k] * a + C[k] * b;
+                lmax = fmax(lmax, fabs(Lc[a][b][k]));
+            }
+    /* F's net, degree (m+1, n+1), stride 3 */
+    double wlo = INFINITY, whi = 0.0, fmag = 0.0;
+    for (int q = 0; q < m1 * n1; ++q) {
+        wlo = fmin(wlo, net[4 * q + 3]);
+        whi = fmax(whi, net[4 * q + 3]);
+    }
+    double *F = P->fnet;
+    for (int l = 0; l <= n1; ++l)
+        for (int k = 0; k <= m1; ++k) {
+            double f[3] = {0.0, 0.0, 0.0}, mag = 0.0;
+            for (int a = 0; a < 2; ++a) {
+                const int i = k - a;
+                if (i < 0 || i > m) continue;
+                const double cu = a ? (double)k / m1 : (double)(m1 - k) / m1;
+                for (int b = 0; b < 2; ++b) {
+                    const int j = l - b;
+                    if (j < 0 || j > n) continue;
+                    const double cv = b ? (double)l / n1 : (double)(n1 - l) / n1;
+                    const double *h = net + 4 * (j * m1 + i);
+                    const double c = cu * cv;
+                    for (int d = 0; d < 3; ++d) {
+                        f[d] += c * (h[d] - h[3] * Lc[a][b][d]);
+                        mag = fmax(mag, fabs(h[d]) + h[3] * lmax);
+                    }
+                }
+            }
+            memcpy(F + 3 * (l * (m1 + 1) + k), f, sizeof f);
+            fmag = fmax(fmag, mag);
+        }
+    wlo = (wlo - P->suberr_w) * (1.0 - 4.0 * U_ROUND);
+    whi = (whi + P->suberr_w) * (1.0 + 4.0 * U_ROUND);
+    if (!(wlo > 0.0)) return INFINITY;
+    const double eF = P->suberr_x + P->suberr_w * lmax + cj_gamma(8) * fmag;
+    const dbounds fb = net_bounds(F, 3, m1, n1);
+    const double ib = (fb.uu * ds * ds + 2.0 * fb.uv * ds * dt + fb.vv * dt * dt) * 0.125 *
+                          (1.0 + 8.0 * U_ROUND) +
+                      2.0 * sqrt(3.0) * eF;
+    const double bf = ((ib + whi * (P->verterr + e)) / wlo + e) * (1.0 + 8.0 * U_ROUND);
+    return fmin(bf, bq);
+}
+
+/* Loads the homogeneous sub-net of the grid cell [u0,u1]x[v0,v1] for rational_tri_bound. */
+static void load_cell(ptess *P, double u0, double u1, double v0, double v1) {
+    cj_patch_sub_h(P->h, 4, P->m, P->n, u0, u1, v0, v1, P->cellnet);
+    P->cellbox[0] = u0;
+    P->cellbox[1] = u1;
+    P->cellbox[2] = v0;
+    P->cellbox[3] = v1;
+    homog_bounds(P, P->cellnet, P->cellq);
 }
 
 /* Zipper between outer points o[0..k] with side parameters tout[0..k] and inner points
@@ -554,7 +709,11 @@ static cj_status build_patch(ptess *P, int nu, const double *ub, int nv, const d
     }
     for (int j = j0; j < j1; ++j)
         for (int i = i0; i < i1; ++i) {
-            const dbounds cb = strip_bounds(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
+            dbounds cb = {0.0, 0.0, 0.0};
+            if (P->rational)
+                load_cell(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
+            else
+                cb = strip_bounds(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
             const uint32_t A = g[j * (nu + 1) + i], B = g[j * (nu + 1) + i + 1],
                            C = g[(j + 1) * (nu + 1) + i + 1], D = g[(j + 1) * (nu + 1) + i];
             if ((st = add_tri(P, A, B, C, &cb))) goto done;
@@ -672,15 +831,30 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, const i
     {
         double su = 0.0, sv = 0.0;
         if (P->rational) {
-            /* the rational bound of a whole slab is poor (its centring point c is far from
-             * most of the slab): take the largest bound of its SLABS cells instead */
+            /* densities only shape the grid (the bound is checked per triangle): per cell of
+             * SLABS x SLABS, the smaller of the largest |S_uu|, |S_uv|, |S_vv| sampled at its
+             * corners and centre and of the homogeneous bound's M's */
             for (int a = 0; a < SLABS; ++a) rho_u[a] = rho_v[a] = 0.0;
             for (int a = 0; a < SLABS; ++a)
                 for (int b = 0; b < SLABS; ++b) {
-                    const dbounds cb = strip_bounds(P, (double)a / SLABS, (double)(a + 1) / SLABS,
-                                                    (double)b / SLABS, (double)(b + 1) / SLABS);
-                    rho_u[a] = fmax(rho_u[a], sqrt(fmax(cb.uu, cb.uv)));
-                    rho_v[b] = fmax(rho_v[b], sqrt(fmax(cb.vv, cb.uv)));
+                    static const double off[5][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0.5, 0.5}};
+                    double fu = 0.0, fv = 0.0, qb[4];
+                    cj_patch_sub_h(P->h, 4, P->m, P->n, (double)a / SLABS, (double)(a + 1) / SLABS,
+                                   (double)b / SLABS, (double)(b + 1) / SLABS, P->trinet);
+                    homog_bounds(P, P->trinet, qb);
+                    for (int o = 0; o < 5; ++o) {
+                        double d[27];
+                        cj_patch_derivs_unchecked(P->p, P->h, 4, (a + off[o][0]) / SLABS,
+                                                  (b + off[o][1]) / SLABS, 2, 2, d);
+                        const double suu = sqrt(d[18] * d[18] + d[19] * d[19] + d[20] * d[20]);
+                        const double suv = sqrt(d[12] * d[12] + d[13] * d[13] + d[14] * d[14]);
+                        const double svv = sqrt(d[6] * d[6] + d[7] * d[7] + d[8] * d[8]);
+                        fu = fmax(fu, sqrt(fmax(suu, suv)));
+                        fv = fmax(fv, sqrt(fmax(svv, suv)));
+                    }
+                    /* the bound kept is the smaller of the two (rational_tri_bound) */
+                    rho_u[a] = fmax(rho_u[a], fmin(fu, SLABS * sqrt(fmax(qb[0], qb[1]))));
+                    rho_v[b] = fmax(rho_v[b], fmin(fv, SLABS * sqrt(fmax(qb[2], qb[1]))));
                 }
         } else {
             for (int a = 0; a < SLABS; ++a) {
@@ -849,9 +1023,10 @@ static void ptess_setup(ptess *P, const cj_patch *p, size_t q, cj_mesh *mesh, in
     if (P->rational) {
         /* homogeneous de Casteljau: numerator off by <= g w max|b|, weight by <= g w (weights
          * > 0), g = gamma(3(m+n)+4); the quotient by <= (2g + u) max|b| / (1 - g) per
-         * coordinate: twice the polynomial term covers it */
-        P->evalerr *= 2.0;
-        /* sub-net coefficients (rational_bounds): <= 2(m+n) levels of s a + t b (and the
+         * coordinate */
+        const double g0 = cj_gamma(3 * (P->m + P->n) + 4);
+        P->verterr = (2.0 * g0 + U_ROUND) / (1.0 - g0) * mx * sqrt(3.0) * (1.0 + 8.0 * U_ROUND);
+        /* sub-net coefficients (rational_tri_bound): <= 2(m+n) levels of s a + t b (and the
          * rounding of s = 1 - t), relative to the largest coefficient */
         double hx = 0.0, hw = 0.0;
         for (size_t i = 0; i < cj_patch_point_count(p); ++i) {

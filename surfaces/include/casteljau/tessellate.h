@@ -30,29 +30,33 @@
  * rescaled to the patch's parameters, inflated for the rounding of the differences, plus the
  * rounding error of evaluating the vertices (gamma(3(m+n)+4) max|b|, twice). Since S(x) lies
  * within that distance of the point L(x) of the mesh, it bounds the distance surface -> mesh.
- * RATIONAL PATCHES (S = X / w, X and w the polynomial patches of the homogeneous net
- * (w_ij b_ij, w_ij), all w_ij > 0). With w_i = w(p_i), the mesh point of x is
- *     Q(x) = Σ λ_i w_i V_i / Σ λ_i w_i   (a point of the triangle: the homogeneous linear
- * interpolant, projected). For any point c, writing Y = X - c w (net w_ij (b_ij - c)) and
- * Yl, wl for the linear interpolants of Y and w over T,
- *     S - Q = [(Y - Yl) - (Q - c)(w - wl)] / w,
- * so |S - Q| <= (|Y - Yl| + R |w - wl|) / wmin, where |Y - Yl| and |w - wl| are bounded as
- * above (second differences of the sub-nets of Y and w over the cell or the triangle's box),
- * wmin is the smallest weight of the cell's sub-net (w >= it on the cell: Bernstein
- * coefficients), c is the centre of the box of the cell's Euclidean sub-net points b'_ij and
- * R = max |b'_ij - c| >= |Q - c| (the triangle's vertices lie on the patch over the cell, in
- * the convex hull of the b'_ij). That is the polynomial formula with
- *     M = (M_Y + R M_w) / wmin,
- * plus rounding terms for the subdivision (a few ulps of the largest homogeneous coordinate,
- * divided by wmin) and twice the vertex rounding term. Since Y = w (b - c) is small on a small
- * cell, M_Y shrinks like a polynomial patch's bound and R M_w is of higher order: the bound is
- * as tight as in the polynomial case (measured/bound 0.6-0.75 on exact sphere and torus
- * patches). It bounds the distance from S(x) to the mesh point Q(x), hence surface -> mesh,
- * and also mesh -> surface (x -> Q(x) maps each triangle of parameters onto its mesh
- * triangle). Adaptive and uniform modes both use it; the adaptive grid densities of a
- * rational patch come from the bounds of its 16 x 16 cells (a whole slab centres c badly).
- * Scaling every weight by a constant changes neither the surface nor the bound.
- *
+ * RATIONAL PATCHES. S = X / w with X (3D) and w > 0 the polynomial patches of the homogeneous
+ * net (w_ij b_ij, w_ij). Each triangle's bound is the smaller of two proven bounds, each on the
+ * distance from S(x) to a point of the mesh triangle (hence, like the polynomial bound, on the
+ * distance surface -> mesh, and mesh -> surface since x -> that point maps the parameter
+ * triangle onto the mesh triangle). B is the triangle's grid cell or (u,v) box; wlo, whi the
+ * smallest and largest weight of B's sub-net (w lies between them on B: Bernstein
+ * coefficients); the M's come from second differences of sub-nets over B as above.
+ *  (L) |S - L| with L the mesh's linear interpolant: S - L = F / w with F = X - w L, a
+ *      polynomial patch of degree (m+1, n+1) (L in bilinear Bernstein form, multiplied into w's
+ *      net) that vanishes at the triangle's vertices up to rounding, so
+ *          |S - L| <= [ (Fuu du^2 + 2 Fuv du dv + Fvv dv^2)/8 + whi (vertex error + e) ] / wlo + e,
+ *      e bounding the residual of the computed affine L at the vertices. F's second
+ *      derivatives are w S_uu + 2 w_u (S_u - L_u) + w_uu (S - L) (etc.): as tight as the
+ *      polynomial bound (exact for a cylinder's straight direction).
+ *  (Q) |S - Q| with Q(x) = Σ λ_i w_i V_i / Σ λ_i w_i (the homogeneous linear interpolant,
+ *      projected; a point of the triangle): for any point c, with Y = X - c w (net
+ *      w_ij (b_ij - c)), S - Q = [(Y - Yl) - (Q - c)(w - wl)] / w (Yl, wl the linear
+ *      interpolants), so |S - Q| <= [(Y and w interpolation bounds) with M = (M_Y + R M_w)] / wlo,
+ *      c the centre of the box of B's Euclidean sub-net points b'_ij, R = max |b'_ij - c|
+ *      >= |Q - c|. Exact for a rational-linear parametrisation (e.g. a segment with unequal
+ *      weights), where (L) pays for the uneven speed.
+ * Both add the rounding of the sub-nets, of F or Y, and of the vertices (derivation and
+ * rounding terms in tessellate.c, rational_tri_bound). On exact sphere and torus patches the
+ * measured deviation is 0.6-0.75 of the bound. Adaptive and uniform modes both use it; the
+ * adaptive grid densities of a rational patch come from |S_uu|, |S_uv|, |S_vv| sampled on
+ * 16 x 16 cells (and the (Q) M's of those cells, whichever is smaller). Scaling every weight by
+ * a constant changes neither the surface nor the bound (up to rounding).
  * ADAPTIVE CHOICE. Interior: a tensor grid of nu x nv cells whose lines equidistribute the
  * density sqrt(max(Muu, Muv)) along u (sqrt(max(Mvv, Muv)) along v), the bounds taken on 16
  * slabs per direction (1D-optimal spacing for a second-order error); nu and nv scale together,
@@ -76,8 +80,8 @@
  * also come from the mesh's allocator.
  * MEASURED DEVIATION (opt->measure = L > 0): for every triangle, max |S(x) - L(x)| over the
  * barycentric lattice of step 1/L (including dropped triangles), i.e. a sampled value of the
- * quantity the bound bounds; for a rational patch |S(x) - Q(x)| with Q as above (L(x) is not
- * what the rational bound bounds; both are points of the mesh triangle).
+ * quantity the bound bounds; for a rational patch min(|S(x) - L(x)|, |S(x) - Q(x)|) with Q
+ * as above (both are points of the mesh triangle; the bound is the smaller of (L) and (Q)).
  */
 #ifndef CASTELJAU_TESSELLATE_H
 #define CASTELJAU_TESSELLATE_H
