@@ -14,9 +14,9 @@ static const char tess_usage[] =
     "\"w;...\"])\n"
     "                            [--tol T | --uniform K] -o OUT.obj|OUT.ply\n"
     "  --patch   (M+1)(N+1) control points, row by row with u fastest (index j*(M+1)+i)\n"
-    "  --weights one weight > 0 per control point, same order: a rational patch (the bound is\n"
-    "            then proven for it too; the measured deviation uses the mesh point whose\n"
-    "            barycentric coordinates are proportional to lambda_i w(p_i))\n"
+    "  --weights one weight > 0 per control point, same order: a rational patch (proven bound\n"
+    "            too; its measured deviation is the smaller of |S - L| and |S - Q|, L the linear\n"
+    "            and Q the homogeneous linear interpolant of the triangle)\n"
     "  --tol     bound on the distance from surface to mesh (model units; default 1e-3 of the\n"
     "            model's bounding-box diagonal); --uniform K: K x K segments per patch\n"
     "  prints: patches, triangles, the proven bound and the measured deviation\n";
