@@ -53,23 +53,24 @@
  *      weights), where (L) pays for the uneven speed.
  * Both add the rounding of the sub-nets, of F or Y, and of the vertices (derivation and
  * rounding terms in tessellate.c, rational_tri_bound). On exact sphere and torus patches the
- * measured deviation is 0.6-0.76 of the bound, on a quarter cylinder 0.9-0.99. Adaptive and uniform
- * modes both use it; the adaptive grid densities of a rational patch come from |S_uu|, |S_uv|,
- * |S_vv| sampled on 16 x 16 cells (and the (Q) M's of those cells, whichever is smaller). Scaling
- * every weight by a constant changes neither the surface nor the bound (up to rounding). ADAPTIVE
- * CHOICE. Interior: a tensor grid of nu x nv cells whose lines equidistribute the density
- * sqrt(max(Muu, Muv)) along u (sqrt(max(Mvv, Muv)) along v), the bounds taken on 16 slabs per
- * direction (1D-optimal spacing for a second-order error); nu and nv scale together, and the scale
- * is the smallest (growing, then bisection to 3%) for which the per-triangle bound above is <= tol.
- * Uniform K x K grids with fewer triangles are then tried (smallest passing K by bisection) and the
- * build with the fewest triangles wins. Edge counts, in two passes over all patches. (1) Planning:
- * each patch runs the search above with every non-collapsed side at k = max(k_flat, grid count
- * along that side), where k_flat is the smallest k with d(d-1) max|Δ²b| / (8 k²) <= tol/4 (the
- * chord error bound of the edge curve); so a side has at least as many segments as the grid has
- * cells along it (a straight edge across which the patch twists would otherwise get 1 segment and
- * long zipper slivers whose twist term forces the whole interior finer). Each patch requests the
- * counts of its winning build. (2) Every edge shared by several patches (bit-identical control
- * points, either direction) gets the largest count requested for it; each patch is then built with
+ * measured deviation is 0.6-0.76 of the bound, on a quarter cylinder 0.9-0.99. Adaptive and
+ * uniform modes both use it; the adaptive grid densities of a rational patch come from |S_uu|,
+ * |S_uv|, |S_vv| sampled on 16 x 16 cells (and the (Q) M's of those cells, whichever is smaller).
+ * Scaling every weight by a constant changes neither the surface nor the bound (up to rounding).
+ * ADAPTIVE CHOICE. Interior: a tensor grid of nu x nv cells whose lines equidistribute the
+ * density sqrt(max(Muu, Muv)) along u (sqrt(max(Mvv, Muv)) along v), the bounds taken on 16
+ * slabs per direction (1D-optimal spacing for a second-order error); nu and nv scale together,
+ * and the scale is the smallest (growing, then bisection to 3%) for which the per-triangle
+ * bound above is <= tol. Uniform K x K grids with fewer triangles are then tried (smallest
+ * passing K by bisection) and the build with the fewest triangles wins.
+ * Edge counts, in two passes over all patches. (1) Planning: each patch runs the search above
+ * with every non-collapsed side at k = max(k_flat, grid count along that side), where k_flat
+ * is the smallest k with d(d-1) max|Δ²b| / (8 k²) <= tol/4 (the chord error bound of the edge
+ * curve); so a side has at least as many segments as the grid has cells along it (a straight
+ * edge across which the patch twists would otherwise get 1 segment and long zipper slivers
+ * whose twist term forces the whole interior finer). Each patch requests the counts of its
+ * winning build. (2) Every edge shared by several patches (bit-identical control points,
+ * either direction) gets the largest count requested for it; each patch is then built with
  * those counts, trying its planned grid first (it passes unless a neighbour raised a count
  * and the new zipper misses tol, in which case the search reruns with the counts fixed, which
  * succeeds on a fine enough grid since k >= k_flat). The bound is always that of the build
