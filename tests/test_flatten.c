@@ -503,7 +503,7 @@ static void test_refined_bound(void **state) {
         cj_fl_curve fc;
         assert_int_equal(cj_fl_init(&fc, &cb, wp), CJ_OK);
         const double cheap = cj_fl_piece_bound(&fc, fc.hom);
-        const double refined = cj_fl_piece_bound_refined(&fc, fc.hom, 0.0, INFINITY, INFINITY);
+        const double refined = cj_fl_piece_bound_refined(&fc, fc.hom, 0.0, INFINITY, 0.0, INFINITY);
         const double dev = sampled_chord_deviation(n, d, pts, wp);
         double pub = 0;
         assert_int_equal(cj_flatten_piece_bound(&cb, wp, &pub), CJ_OK);
@@ -517,7 +517,7 @@ static void test_refined_bound(void **state) {
             ratio_sum += dev / refined;
             cheap_ratio_sum += dev / cheap;
         }
-        if (kind == 3 && refined < cheap) { /* refined (else cheap is within 2% of c(1/2)) */
+        if (kind == 3 && refined < cheap) { /* (else cheap is exact already) */
             ++sym;
             if (dev / refined < sym_worst) sym_worst = dev / refined;
             if (!(dev >= refined * (1 - 1e-9)))

@@ -275,41 +275,73 @@ typedef struct refine_ctx {
     double stop2; /* squared distance above which the piece is rejected anyway */
     double best;  /* largest part bound so far */
     double end2;  /* squared distance of the previous part's last point (this part's first) */
+    int frame;    /* planar: points are (x, y[, w]) in the chord's frame (see refined_bound) */
+    double L2;    /* |v|^2 */
 } refine_ctx;
+
+/* Squared distance from S of the point with chord coordinates (x, y): a + x v + y v⊥/|v|. */
+static double frame_dist2(const refine_ctx *cx, double x, double y) {
+    const double ex = x < 0.0 ? x : (x > 1.0 ? x - 1.0 : 0.0);
+    return y * y + ex * ex * cx->L2;
+}
+
+/* Squared distance from S of point i (homogeneous h) in the caller's coordinates; tracks the
+ * end and inner weights of rational parts. */
+static double general_dist2(const refine_ctx *cx, const double *h, int i, int end, double *wE,
+                            double *wI) {
+    const cj_fl_curve *fc = cx->fc;
+    const int d = fc->d;
+    double p[CJ_MAX_DIM], sp = 0.0;
+    if (fc->rational) {
+        const double wi = h[d];
+        for (int k = 0; k < d; ++k) p[k] = h[k] / wi;
+        if (end)
+            *wE = (i == 0 || wi < *wE) ? wi : *wE;
+        else if (wi > *wI)
+            *wI = wi;
+    } else {
+        for (int k = 0; k < d; ++k) p[k] = h[k];
+    }
+    for (int k = 0; k < d; ++k) {
+        p[k] -= cx->a[k];
+        sp += p[k] * cx->v[k];
+    }
+    sp *= cx->invL2;
+    if (sp < 0.0) sp = 0.0;
+    if (sp > 1.0) sp = 1.0;
+    double e2 = 0.0;
+    for (int k = 0; k < d; ++k) {
+        const double e = p[k] - sp * cx->v[k];
+        e2 += e * e;
+    }
+    return e2;
+}
 
 /* Bound of one part (control points h, homogeneous) on its distance to S; see below. */
 static void refine_part(refine_ctx *cx, const double *h) {
     const cj_fl_curve *fc = cx->fc;
-    const int n = fc->n, d = fc->d, D = fc->D;
-    double dE2 = 0.0, dI2 = 0.0, wE = 0.0, wI = 0.0, p[CJ_MAX_DIM];
+    const int n = fc->n, D = fc->D;
+    double dE2 = 0.0, dI2 = 0.0, wE = 0.0, wI = 0.0;
     for (int i = 0; i <= n; ++i, h += D) {
         const int end = i == 0 || i == n;
         if (i == 0 && !fc->rational) { /* parts are visited left to right and share ends */
             dE2 = cx->end2;
             continue;
         }
-        double sp = 0.0;
-        if (fc->rational) {
-            const double wi = h[d];
-            for (int k = 0; k < d; ++k) p[k] = h[k] / wi;
-            if (end)
-                wE = (i == 0 || wi < wE) ? wi : wE;
-            else if (wi > wI)
-                wI = wi;
+        double e2;
+        if (cx->frame) {
+            if (fc->rational) {
+                const double wi = h[2];
+                e2 = frame_dist2(cx, h[0] / wi, h[1] / wi);
+                if (end)
+                    wE = (i == 0 || wi < wE) ? wi : wE;
+                else if (wi > wI)
+                    wI = wi;
+            } else {
+                e2 = frame_dist2(cx, h[0], h[1]);
+            }
         } else {
-            for (int k = 0; k < d; ++k) p[k] = h[k];
-        }
-        for (int k = 0; k < d; ++k) {
-            p[k] -= cx->a[k];
-            sp += p[k] * cx->v[k];
-        }
-        sp *= cx->invL2;
-        if (sp < 0.0) sp = 0.0;
-        if (sp > 1.0) sp = 1.0;
-        double e2 = 0.0;
-        for (int k = 0; k < d; ++k) {
-            const double e = p[k] - sp * cx->v[k];
-            e2 += e * e;
+            e2 = general_dist2(cx, h, i, end, &wE, &wI);
         }
         if (end) {
             if (e2 > dE2) dE2 = e2;
@@ -324,7 +356,6 @@ static void refine_part(refine_ctx *cx, const double *h) {
     const double bj = dI > dE ? dE + (1.0 - sigma) * (dI - dE) : dE;
     if (bj > cx->best) cx->best = bj;
 }
-
 /* Splits the part h at 1/2 (each level 0.5 (x + y), one rounding, so a halving loses at most
  * n u max|coordinate|) and refines both halves, depth more levels. */
 static void refine_rec(refine_ctx *cx, const double *h, int depth) {
@@ -372,17 +403,38 @@ static double refined_bound(const cj_fl_curve *fc, const double *sub, double sto
     cx.stop2 = st * st;
     cx.best = 0.0;
     cx.end2 = 0.0; /* the first part starts at the chord's own end point */
-    refine_rec(&cx, sub, CJ_FL_REFINE_LEVELS);
+    cx.L2 = L2;
+    cx.frame = d == 2 && L2 > 0.0;
+    if (cx.frame) {
+        /* Planar: the (homogeneous) control points in the chord's frame, x along v (0 and 1 at
+         * the ends of S), y the signed distance from its line; the map is linear, so it commutes
+         * with the halvings, and each part point's distance from S costs a few flops. Rounding:
+         * O(u) relative to max|coordinate| more, inside the allowance. */
+        const int D = fc->D;
+        const double invL = 1.0 / sqrt(L2);
+        double T[(CJ_FL_REFINE_MAX_DEGREE + 1) * 3];
+        for (int i = 0; i <= n; ++i) {
+            const double *h = sub + i * D;
+            const double w = fc->rational ? h[2] : 1.0;
+            const double rx = h[0] - w * cx.a[0], ry = h[1] - w * cx.a[1];
+            T[i * D] = (rx * cx.v[0] + ry * cx.v[1]) * cx.invL2;
+            T[i * D + 1] = (cx.v[0] * ry - cx.v[1] * rx) * invL;
+            if (fc->rational) T[i * D + 2] = w;
+        }
+        refine_rec(&cx, T, CJ_FL_REFINE_LEVELS);
+    } else {
+        refine_rec(&cx, sub, CJ_FL_REFINE_LEVELS);
+    }
     return ldexp(cx.best, fc->escale);
 }
 
 double cj_fl_piece_bound_refined(const cj_fl_curve *fc, const double *sub, double refine_above,
-                                 double refine_below, double stop) {
+                                 double refine_below, double min_gain, double stop) {
     double mid;
     const double cheap = cheap_bound(fc, sub, &mid);
     /* Refining cannot go below the distance of c(1/2), so it cannot pay when that is close. */
     if (!(cheap > refine_above) || !(cheap <= refine_below) || fc->n <= 1 ||
-        fc->n > CJ_FL_REFINE_MAX_DEGREE || !(cheap > CJ_FL_REFINE_GAIN * ldexp(mid, fc->escale)))
+        fc->n > CJ_FL_REFINE_MAX_DEGREE || !(cheap > min_gain * ldexp(mid, fc->escale)))
         return cheap;
     const double r = refined_bound(fc, sub, stop < cheap ? stop : cheap);
     return r < cheap ? r : cheap;

@@ -38,17 +38,20 @@ double cj_fl_piece_bound(const cj_fl_curve *fc, const double *sub);
  * cost grows as n^2, its stack as levels * degree). */
 #define CJ_FL_REFINE_LEVELS     2
 #define CJ_FL_REFINE_MAX_DEGREE 16
-/* Refine only when the cheap bound exceeds the distance of c(1/2) by more than this factor. */
+/* The flatteners refine only where the cheap bound exceeds the distance of c(1/2) by more than
+ * this factor (min_gain below). */
 #define CJ_FL_REFINE_GAIN 1.02
 
 /* cj_fl_piece_bound, and where it lies in (refine_above, refine_below] (it does not certify the
- * piece or lies near the target, but not so far above that refining is pointless) the smaller
- * of it and the refinement (d): the piece halved CJ_FL_REFINE_LEVELS times, whose parts'
- * control points' distances to the chord segment bound the curve's. The refinement stops as
- * soon as it exceeds stop (the result is then > stop but may be below the full value). Same
- * units and guarantee as cj_fl_piece_bound. */
+ * piece or lies near the target, but not so far above that refining is pointless) and exceeds
+ * min_gain times the distance of c(1/2) from the chord (below that, refining cannot gain much:
+ * the true deviation is at least that distance), the smaller of it and the refinement (d): the
+ * piece halved CJ_FL_REFINE_LEVELS times, whose parts' control points' distances to the chord
+ * segment bound the curve's. The refinement stops as soon as it exceeds stop (the result is
+ * then > stop but may be below the full value). Same units and guarantee as
+ * cj_fl_piece_bound. */
 double cj_fl_piece_bound_refined(const cj_fl_curve *fc, const double *sub, double refine_above,
-                                 double refine_below, double stop);
+                                 double refine_below, double min_gain, double stop);
 
 /* End point (i = 0 or n) of the curve, exactly the caller's control point, into out[d]. */
 void cj_fl_end(const cj_fl_curve *fc, int i, double *out);

@@ -94,8 +94,8 @@ static cj_status run_subdivide_stack(const cj_fl_curve *fc, double tol_eff, emit
     pa[0] = 0.0, pb[0] = 1.0, lev[0] = 0;
     while (top > 0) {
         double *cur = stk + (size_t)(top - 1) * S;
-        const double D =
-            cj_fl_piece_bound_refined(fc, cur, tol_eff, SUBDIV_REFINE * tol_eff, tol_eff);
+        const double D = cj_fl_piece_bound_refined(fc, cur, tol_eff, SUBDIV_REFINE * tol_eff,
+                                                   CJ_FL_REFINE_GAIN, tol_eff);
         if (!isfinite(D))
             return cj_fail(CJ_ERR_RANGE, "flatness bound overflows: coordinates too large");
         if (D <= tol_eff) {
@@ -138,8 +138,8 @@ static cj_status run_subdivide(const cj_fl_curve *fc, double tol_eff, emitter *e
     for (;;) {
         const double a = ldexp((double)k, -L), b = ldexp((double)(k + 1), -L);
         cj_fl_subcurve(fc, a, b, sub);
-        const double D =
-            cj_fl_piece_bound_refined(fc, sub, tol_eff, SUBDIV_REFINE * tol_eff, tol_eff);
+        const double D = cj_fl_piece_bound_refined(fc, sub, tol_eff, SUBDIV_REFINE * tol_eff,
+                                                   CJ_FL_REFINE_GAIN, tol_eff);
         if (!isfinite(D))
             return cj_fail(CJ_ERR_RANGE, "flatness bound overflows: coordinates too large");
         if (D <= tol_eff) {
@@ -198,7 +198,8 @@ static cj_status run_near_optimal(const cj_fl_curve *fc, double tol_eff, emitter
                                "t = %.17g",
                                tol_eff, a);
             cj_fl_subcurve(fc, a, b, sub);
-            const double D = cj_fl_piece_bound_refined(fc, sub, accept_lo, INFINITY, tol_eff);
+            const double D =
+                cj_fl_piece_bound_refined(fc, sub, accept_lo, INFINITY, CJ_FL_REFINE_GAIN, tol_eff);
             if (!isfinite(D))
                 return cj_fail(CJ_ERR_RANGE, "flatness bound overflows: coordinates too large");
             if (D <= tol_eff) {
@@ -434,7 +435,7 @@ cj_status cj_flatten_piece_bound(const cj_bezier *c, const double *weights, doub
     cj_fl_curve fc;
     cj_status st = cj_fl_init(&fc, c, weights);
     if (st) return st;
-    const double D = cj_fl_piece_bound_refined(&fc, fc.hom, 0.0, INFINITY, INFINITY);
+    const double D = cj_fl_piece_bound_refined(&fc, fc.hom, 0.0, INFINITY, 0.0, INFINITY);
     if (!isfinite(D))
         return cj_fail(CJ_ERR_RANGE, "flatness bound overflows: coordinates too large");
     *bound = D + fc.slack;

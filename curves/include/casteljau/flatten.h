@@ -30,10 +30,11 @@
  *          needs no projection condition, and n(n-1)/8 max|Δ² b_i|.
  *    Rational pieces are first put in standard form w_0 = w_n (Möbius reparametrisation,
  *    same curve) so that wE, wI and min w are as favourable as possible.
- *      (d) refinement, used when (a)-(c) do not certify a piece or lie near the target (and
- *          exceed the distance of c(1/2) from S by more than 2%, else it cannot pay), for
- *          degrees 2-16: the piece is halved twice (de Casteljau) into 4 parts; each part lies
- *          in the convex hull of its control points and dist(., S) is convex, so on part j
+ *      (d) refinement, for degrees 2-16, used by the flatteners when (a)-(c) do not certify
+ *          a piece or lie near the target and exceed the distance of c(1/2) from S by more
+ *          than 2% (else it cannot gain more), always by cj_flatten_piece_bound: the piece is
+ *          halved twice (de Casteljau) into 4 parts; each part lies in the convex hull of its
+ *          control points and dist(., S) is convex, so on part j
  *              dist(c(t), S) <= dE_j + (1 - σ_j) max(0, dI_j - dE_j),
  *          dE_j the larger distance from S of the part's end points (points of the curve),
  *          dI_j the largest of its inner control points, σ_j the smallest weight share of the
