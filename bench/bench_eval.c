@@ -18,22 +18,12 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "bench_clock.h"
 
 #define NT   256
 #define RUNS 41
 
 static volatile double sink;
-
-static double now_ns(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 typedef enum { MODE_BATCH, MODE_SINGLE, MODE_BOUND } mode;
 
@@ -41,7 +31,7 @@ typedef enum { MODE_BATCH, MODE_SINGLE, MODE_BOUND } mode;
 static double run_once(const cj_bezier *c, cj_eval_method m, mode md, const double *ts, double *out,
                        long reps) {
     double bnd[CJ_MAX_DIM] = {0};
-    const double t0 = now_ns();
+    const double t0 = (1e9 * cj_bench_wall());
     for (long r = 0; r < reps; ++r) {
         if (md == MODE_BATCH) {
             if (cj_bezier_eval_batch(c, m, ts, NT, out)) abort();
@@ -55,7 +45,7 @@ static double run_once(const cj_bezier *c, cj_eval_method m, mode md, const doub
         }
         sink += out[(size_t)(r % NT) * (size_t)c->dim] + bnd[0] * 0.0;
     }
-    const double t1 = now_ns();
+    const double t1 = (1e9 * cj_bench_wall());
     return (t1 - t0) / ((double)reps * NT);
 }
 
@@ -68,11 +58,6 @@ static long calibrate(const cj_bezier *c, cj_eval_method m, mode md, const doubl
     while (run_once(c, m, md, ts, out, reps) * (double)reps * NT < 2.5e5 && reps < (1L << 24))
         reps *= 2;
     return reps;
-}
-
-static double median(double *v, int count) {
-    qsort(v, (size_t)count, sizeof v[0], cmp_double);
-    return v[count / 2];
 }
 
 #define NCOL 9 /* 4 methods x (batch, single) + compensated with bound */
@@ -120,7 +105,7 @@ static void cost_table(void) {
                 v[col][r] = run_once(&c, methods[col == 8 ? 3 : col / 2].m, md, ts, out, reps[col]);
             }
         double med[NCOL];
-        for (int col = 0; col < NCOL; ++col) med[col] = median(v[col], RUNS);
+        for (int col = 0; col < NCOL; ++col) med[col] = cj_bench_median(v[col], (size_t)(RUNS));
         for (int mi = 0; mi < 4; ++mi)
             printf("%-6d %-18s %10.1f %10.1f %10.2fx %10.2fx\n", n, methods[mi].name, med[2 * mi],
                    med[2 * mi + 1], med[2 * mi] / med[0], med[2 * mi + 1] / med[1]);

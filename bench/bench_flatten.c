@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "bench_clock.h"
 
 #define NRANDOM 10000
 
@@ -167,12 +168,6 @@ static double measured_deviation(const curve *c, const coll *cl) {
     return (double)worst;
 }
 
-static double now_ns(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return ts.tv_sec * 1e9 + ts.tv_nsec;
-}
-
 static cj_status flatten(const curve *c, const cj_flatten_opts *o, double *buf, size_t cap,
                          size_t *np, cj_flatten_stats *st) {
     if (c->rational) {
@@ -258,7 +253,7 @@ int main(void) {
                 }
                 if (dev > tol) all_ok = 0;
                 /* timing: repeat until >= 50 ms */
-                double t0 = now_ns(), t1;
+                double t0 = (1e9 * cj_bench_process_cpu()), t1;
                 long reps = 0;
                 do {
                     for (int i = first; i < first + count; ++i) {
@@ -266,7 +261,7 @@ int main(void) {
                         flatten(&set[i], &o, buf, bufcap, &np, NULL);
                     }
                     ++reps;
-                    t1 = now_ns();
+                    t1 = (1e9 * cj_bench_process_cpu());
                 } while (t1 - t0 < 5e7);
                 const double per_curve = (t1 - t0) / ((double)reps * count);
                 printf("| %s | %g | %s | %zu | %.1f | %.3f | %.3f | %.4g | %.4g | %.0f | %.1f |\n",

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
+#include "bench_clock.h"
 
 #define BATCH 64
 #define REPS  5
@@ -20,17 +21,6 @@ static double urand(void) {
     rng_state ^= rng_state >> 7;
     rng_state ^= rng_state << 17;
     return (double)(rng_state >> 11) * 0x1p-53 * 2.0 - 1.0;
-}
-
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp(const void *a, const void *b) {
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 static double pts[BATCH][(CJ_BEZIER_MAX_DEGREE + 1) * 2];
@@ -46,7 +36,7 @@ static double run(enum op o, int n, double *extra) {
     double esum = 0;
     const int batch = n >= 100 ? BATCH / 8 : BATCH; /* keep the whole run to a minute or so */
     for (int r = 0; r < REPS; ++r) {
-        const double t0 = now();
+        const double t0 = cj_bench_wall();
         for (int b = 0; b < batch; ++b) {
             cj_bezier c = cj_bezier_view(n, 2, pts[b]);
             double lo[2], hi[2], len, err, v[2], k;
@@ -85,9 +75,9 @@ static double run(enum op o, int n, double *extra) {
                 break;
             }
         }
-        times[r] = (now() - t0) / batch * 1e6;
+        times[r] = (cj_bench_wall() - t0) / batch * 1e6;
     }
-    qsort(times, REPS, sizeof times[0], cmp);
+    qsort(times, REPS, sizeof times[0], cj_bench_cmp_double);
     if (extra) *extra = esum / (REPS * batch);
     return times[REPS / 2];
 }
@@ -131,11 +121,11 @@ int main(void) {
     m = cj_xform3_compose(&t, &m);
     double times[REPS];
     for (int r = 0; r < REPS; ++r) {
-        const double t0 = now();
+        const double t0 = cj_bench_wall();
         cj_xform3_apply_points(&m, cloud, NP, cloud);
-        times[r] = now() - t0;
+        times[r] = cj_bench_wall() - t0;
     }
-    qsort(times, REPS, sizeof times[0], cmp);
+    qsort(times, REPS, sizeof times[0], cj_bench_cmp_double);
     printf("cj_xform3_apply_points: %.1f million points/s (in place, %d points, validated)\n",
            NP / times[REPS / 2] * 1e-6, NP);
     return 0;

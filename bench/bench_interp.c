@@ -19,25 +19,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "bench_clock.h"
 
 #define RUNS 15
 static volatile double sink;
-
-static double now_ns(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-    qsort(v, (size_t)n, sizeof(double), cmp_double);
-    return v[n / 2];
-}
 
 static void runge_table(void) {
     printf("Runge: 1/(1+25x^2) on [-1,1], max |p - f| on 4001 samples (condition estimate)\n");
@@ -85,13 +70,13 @@ static void costs(void) {
         o.kind = kinds[k];
         double t[RUNS];
         for (int r = 0; r < RUNS; ++r) {
-            const double t0 = now_ns();
+            const double t0 = (1e9 * cj_bench_wall());
             cj_catmull_rom(pts, N, 2, &o, segs, N, NULL, NULL);
-            t[r] = (now_ns() - t0) / (N - 1);
+            t[r] = ((1e9 * cj_bench_wall()) - t0) / (N - 1);
             sink = segs[5];
         }
         printf("Catmull-Rom %-12s %7.1f ns per segment (10^4 planar points)\n", names[k],
-               median(t, RUNS));
+               cj_bench_median(t, (size_t)(RUNS)));
     }
     printf("polynomial interpolation (Chebyshev parameters, planar values), us per solve:\n");
     const int degs[] = {3, 5, 10, 20, 40, 64};
@@ -105,13 +90,13 @@ static void costs(void) {
         }
         for (int r = 0; r < RUNS; ++r) {
             const int reps = 20;
-            const double t0 = now_ns();
+            const double t0 = (1e9 * cj_bench_wall());
             for (int q = 0; q < reps; ++q)
                 cj_interp_points(xs, vals, (size_t)n + 1, 2, 0, 1, bez, NULL, NULL);
-            t[r] = (now_ns() - t0) / reps / 1e3;
+            t[r] = ((1e9 * cj_bench_wall()) - t0) / reps / 1e3;
             sink = bez[1];
         }
-        printf("  degree %2d: %8.2f us\n", n, median(t, RUNS));
+        printf("  degree %2d: %8.2f us\n", n, cj_bench_median(t, (size_t)(RUNS)));
     }
     const int rdeg[] = {2, 5, 10};
     for (size_t d = 0; d < 3; ++d) {
@@ -125,14 +110,15 @@ static void costs(void) {
         cj_rbezier c = cj_rbezier_view(n, 2, p, w);
         for (int r = 0; r < RUNS; ++r) {
             const int reps = 20000;
-            const double t0 = now_ns();
+            const double t0 = (1e9 * cj_bench_wall());
             for (int q = 0; q < reps; ++q) {
                 cj_rbezier_eval(&c, (q + 0.5) / reps, out);
                 sink = out[0];
             }
-            t[r] = (now_ns() - t0) / reps;
+            t[r] = ((1e9 * cj_bench_wall()) - t0) / reps;
         }
-        printf("rational de Casteljau, degree %2d: %6.1f ns per point\n", n, median(t, RUNS));
+        printf("rational de Casteljau, degree %2d: %6.1f ns per point\n", n,
+               cj_bench_median(t, (size_t)(RUNS)));
     }
 }
 
@@ -182,12 +168,12 @@ static void contour_table(void) {
         double t[RUNS];
         for (int r = 0; r < RUNS; ++r) {
             size_t cnt = 0;
-            const double t0 = now_ns();
+            const double t0 = (1e9 * cj_bench_wall());
             cj_implicit_contour(&f, box, &o, count_only, &cnt, NULL);
-            t[r] = (now_ns() - t0) / 1e6;
+            t[r] = ((1e9 * cj_bench_wall()) - t0) / 1e6;
         }
         printf("  %-8.0e %9zu   %.3g (%.2f tol)   %27.3f\n", tol, acc.points, acc.worst,
-               acc.worst / tol, median(t, RUNS));
+               acc.worst / tol, cj_bench_median(t, (size_t)(RUNS)));
     }
 }
 

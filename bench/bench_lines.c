@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "bench_clock.h"
 
 #define POOL    4096
 #define SIDE    1024
@@ -26,12 +27,6 @@ typedef struct seg {
 
 static seg pool[POOL];
 static volatile long long sink_count;
-
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static unsigned long long rng_state = 0x9e3779b97f4a7c15ull;
 static unsigned long long rnd(void) {
@@ -59,11 +54,6 @@ static void make_pool(int L) {
         pool[i].x1 = x0 + dx;
         pool[i].y1 = y0 + dy;
     }
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
 }
 
 static void count_pixel(void *user, int x, int y) {
@@ -99,7 +89,7 @@ static double run(cj_framebuffer *fb, int m, long long n) {
     st.join = CJ_JOIN_MITER;
     st.cap = CJ_CAP_BUTT;
     long long cnt = 0;
-    double t0 = now();
+    double t0 = cj_bench_thread_cpu();
     for (long long i = 0; i < n; ++i) {
         const seg *s = &pool[i % POOL];
         switch (m) {
@@ -125,7 +115,7 @@ static double run(cj_framebuffer *fb, int m, long long n) {
         }
         }
     }
-    double t = now() - t0;
+    double t = cj_bench_thread_cpu() - t0;
     sink_count += cnt;
     return t;
 }
@@ -166,7 +156,7 @@ int main(int argc, char **argv) {
             double times[REPEATS];
             cj_framebuffer *target = m == M_BRES_PAD || m == M_WU_PAD ? fbp : fb;
             for (int r = 0; r < REPEATS; ++r) times[r] = run(target, m, n);
-            qsort(times, REPEATS, sizeof times[0], cmp_double);
+            qsort(times, REPEATS, sizeof times[0], cj_bench_cmp_double);
             double t = times[REPEATS / 2];
             table[m][k][0] = (double)n * (L + 1) / t * 1e-6;
             table[m][k][1] = t / (double)n * 1e9;
@@ -181,11 +171,11 @@ int main(int argc, char **argv) {
     /* Clipping: a line from (-1e9,-1e9) to (1e9,1e9) costs its 1024 visible pixels. */
     {
         long long n = 200000, visited = 0;
-        double t0 = now();
+        double t0 = cj_bench_thread_cpu();
         for (long long i = 0; i < n; ++i)
             cj_raster_line(fb, -1000000000LL, -1000000000LL + (i & 7), 1000000000LL, 1000000000LL,
                            cj_rgba_make(0, 0, 0, 255));
-        double t = now() - t0;
+        double t = cj_bench_thread_cpu() - t0;
         cj_raster_line_visit(-1000000000LL, -1000000000LL, 1000000000LL, 1000000000LL,
                              cj_raster_rect_of(fb), count_pixel, &visited, NULL);
         printf("\nclipped (-1e9,-1e9)-(1e9,1e9): %lld visible pixels, %.0f ns per line "
@@ -195,10 +185,10 @@ int main(int argc, char **argv) {
         cj_vec2 p[2] = {{-1e9, -1e9}, {1e9, 1e9}};
         cj_raster_stroke st = cj_raster_stroke_default(3);
         n = 2000;
-        t0 = now();
+        t0 = cj_bench_thread_cpu();
         for (long long i = 0; i < n; ++i)
             cj_raster_stroke_polyline(fb, p, 2, 0, &st, cj_rgba_make(0, 0, 0, 255));
-        t = now() - t0;
+        t = cj_bench_thread_cpu() - t0;
         (void)count_cover;
         printf("clipped stroke w=3 (-1e9,-1e9)-(1e9,1e9): %.1f us per stroke\n",
                t / (double)n * 1e6);

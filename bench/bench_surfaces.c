@@ -11,19 +11,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
-
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "bench_clock.h"
 
 static volatile double sink;
 
 enum { N = 200000 };
 
 static void bench(const char *name, const cj_param_surface *s, const cj_implicit_surface *is) {
-    double acc = 0.0, t0 = now();
+    double acc = 0.0, t0 = cj_bench_wall();
     for (int i = 0; i < N; ++i) {
         double u = s->u0 + (s->u1 - s->u0) * (((long long)i * 7919) % N) / (double)N;
         double v = s->v0 + (s->v1 - s->v0) * (((long long)i * 104729) % N) / (double)N;
@@ -31,7 +26,7 @@ static void bench(const char *name, const cj_param_surface *s, const cj_implicit
         if (cj_surface_eval(s, u, v, &p, &su, &sv) != CJ_OK) abort();
         acc += p.x + su.y + sv.z;
     }
-    double t1 = now();
+    double t1 = cj_bench_wall();
     for (int i = 0; i < N; ++i) {
         double u = s->u0 + (s->u1 - s->u0) * (((long long)i * 7919) % N) / (double)N;
         double v = s->v0 + (s->v1 - s->v0) * (((long long)i * 104729) % N) / (double)N;
@@ -39,7 +34,7 @@ static void bench(const char *name, const cj_param_surface *s, const cj_implicit
         if (cj_surface_normal(s, u, v, &n) != CJ_OK) abort();
         acc += n.x;
     }
-    double t2 = now(), t3 = t2;
+    double t2 = cj_bench_wall(), t3 = t2;
     if (is) {
         for (int i = 0; i < N; ++i) {
             double f;
@@ -47,7 +42,7 @@ static void bench(const char *name, const cj_param_surface *s, const cj_implicit
             if (cj_implicit_eval(is, x, &f, &g) != CJ_OK) abort();
             acc += f + g.x;
         }
-        t3 = now();
+        t3 = cj_bench_wall();
     }
     sink = acc;
     if (is)
@@ -131,9 +126,9 @@ int main(void) {
             pos[3 * i] = 0.001 * (i % 1000), pos[3 * i + 1] = 0.5, pos[3 * i + 2] = 1e-5 * i;
             nrm[3 * i] = 0, nrm[3 * i + 1] = 0.6, nrm[3 * i + 2] = 0.8;
         }
-        double t0 = now();
+        double t0 = cj_bench_wall();
         if (cj_deform_vertices(&d, pos, nrm, V) != CJ_OK) abort();
-        double t1 = now();
+        double t1 = cj_bench_wall();
         printf("| %-28s | %12.1f |\n",
                kind ? "taper (positions+normals)" : "twist (positions+normals)",
                1e9 * (t1 - t0) / V);

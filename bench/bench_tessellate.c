@@ -11,16 +11,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
+#include "bench_clock.h"
 
 #ifndef CJ_TEAPOT_PATH
 #define CJ_TEAPOT_PATH "data/teapot.bpt"
 #endif
-
-static double now_us(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
-}
 
 typedef struct run {
     cj_tess_report rep;
@@ -34,9 +29,9 @@ static int tessellate(const cj_patchset *set, cj_mesh *mesh, double tol, int uni
     for (int r = 0; r < reps; ++r) {
         cj_mesh_clear(mesh);
         cj_tess_options opt = {tol, uniform, 0, 0};
-        const double t0 = now_us();
+        const double t0 = (1e6 * cj_bench_wall());
         cj_status st = cj_tessellate_patches(set->patches, set->count, &opt, mesh, &out->rep);
-        const double t1 = now_us();
+        const double t1 = (1e6 * cj_bench_wall());
         if (st) {
             fprintf(stderr, "bench_tessellate: %s\n", cj_last_error());
             return -1;
