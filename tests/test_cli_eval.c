@@ -28,29 +28,11 @@ typedef struct result {
     char err[4096];
 } result;
 
-/* Copies a captured stream into a fixed test buffer; output that does not fit fails the test. */
-static void keep(char *dst, size_t size, const char *src, size_t len) {
-    assert_true(len < size);
-    memcpy(dst, src, len + 1);
-}
-
 /* Runs `casteljau eval <args...>` (args NULL-terminated) and captures both streams. */
 static void run_eval(result *r, const char *const *args) {
-    char *argv[64];
-    int argc = 0;
-    argv[argc++] = (char *)exe;
-    argv[argc++] = (char *)"eval";
-    for (const char *const *a = args; *a; ++a) {
-        assert_true(argc < 63);
-        argv[argc++] = (char *)*a;
-    }
-    argv[argc] = NULL;
-    cj_cli_result cr;
-    assert_int_equal(cj_cli_spawn(argv, &cr), 0);
-    r->status = cr.status;
-    keep(r->out, sizeof r->out, cr.out, cr.out_len);
-    keep(r->err, sizeof r->err, cr.err, cr.err_len);
-    cj_cli_result_free(&cr);
+    assert_int_equal(cj_cli_run_into(exe, "eval", args, &r->status, r->out, sizeof r->out, r->err,
+                                     sizeof r->err),
+                     0);
     ++runs;
 }
 

@@ -76,3 +76,27 @@ void cj_cli_result_free(cj_cli_result *r) {
     r->out = r->err = NULL;
     r->out_len = r->err_len = 0;
 }
+
+int cj_cli_run_into(const char *exe, const char *sub, const char *const *args, int *status,
+                    char *out, size_t out_size, char *err, size_t err_size) {
+    char *argv[64];
+    int argc = 0;
+    argv[argc++] = (char *)exe;
+    argv[argc++] = (char *)sub;
+    for (const char *const *a = args; *a; ++a) {
+        if (argc == 63) return -1;
+        argv[argc++] = (char *)*a;
+    }
+    argv[argc] = NULL;
+    cj_cli_result r;
+    if (cj_cli_spawn(argv, &r)) return -1;
+    int rc = -1;
+    if (r.out_len < out_size && r.err_len < err_size) {
+        memcpy(out, r.out, r.out_len + 1);
+        memcpy(err, r.err, r.err_len + 1);
+        *status = r.status;
+        rc = 0;
+    }
+    cj_cli_result_free(&r);
+    return rc;
+}

@@ -22,4 +22,10 @@ int cj_cli_shell(const char *cmd, cj_cli_result *r);
 
 void cj_cli_result_free(cj_cli_result *r);
 
+/* Runs `exe sub args...` (args NULL-terminated, at most 60) and copies the exit status and both
+ * streams into the caller's buffers. Returns -1 if it could not run or an output does not fit
+ * (a test must not judge truncated output). */
+int cj_cli_run_into(const char *exe, const char *sub, const char *const *args, int *status,
+                    char *out, size_t out_size, char *err, size_t err_size);
+
 #endif
