@@ -179,6 +179,45 @@ static void test_rect_equal_aspect_and_clip(void **state) {
     cj_plot_destroy(p);
 }
 
+/* Rows padded for cache reasons (CJ_FB_PADDED) must not change a single pixel: the panel is
+ * drawn on its own canvas and composited into the target by the target's stride. */
+static void test_padded_rows_render_identically(void **state) {
+    (void)state;
+    cj_plot *p = NULL;
+    assert_int_equal(cj_plot_create(NULL, &p), CJ_OK);
+    const double pts[] = {0, 0, 1, 2.4, 3.2, 2.6, 4, 0.2};
+    cj_bezier c = cj_bezier_view(3, 2, pts);
+    cj_plot_bezier_opts o = cj_plot_bezier_defaults();
+    o.construction = 1;
+    o.construction_t = 0.25;
+    assert_int_equal(cj_plot_add_bezier(p, &c, &o), CJ_OK);
+    assert_int_equal(cj_plot_set_title(p, "padded"), CJ_OK);
+    cj_framebuffer *plain = NULL, *padded = NULL;
+    assert_int_equal(cj_framebuffer_create(256, 160, 0, NULL, &plain), CJ_OK);
+    assert_int_equal(cj_framebuffer_create(256, 160, CJ_FB_PADDED, NULL, &padded), CJ_OK);
+    assert_true(padded->stride != padded->width); /* the case under test */
+    const cj_rgba bg = cj_rgba_make(10, 20, 30, 255);
+    cj_framebuffer_clear(plain, bg);
+    cj_framebuffer_clear(padded, bg);
+    assert_int_equal(cj_plot_render(p, plain, 8, 6, 240, 150, NULL), CJ_OK);
+    assert_int_equal(cj_plot_render(p, padded, 8, 6, 240, 150, NULL), CJ_OK);
+    long differing = 0, drawn = 0;
+    for (int y = 0; y < 160; ++y)
+        for (int x = 0; x < 256; ++x) {
+            cj_rgba a = px_at(plain, x, y), b = px_at(padded, x, y);
+            differing += memcmp(&a, &b, sizeof a) != 0;
+            drawn += memcmp(&a, &bg, sizeof a) != 0;
+        }
+    assert_true(drawn > 1000);
+    assert_int_equal(differing, 0);
+    printf("test_plot: a plot renders identically into padded rows (stride %td for width 256), "
+           "%ld pixels drawn\n",
+           padded->stride, drawn);
+    cj_framebuffer_destroy(plain);
+    cj_framebuffer_destroy(padded);
+    cj_plot_destroy(p);
+}
+
 static void test_hull_and_construction(void **state) {
     (void)state;
     const int W = 200, H = 200;
@@ -302,6 +341,7 @@ int main(void) {
         cmocka_unit_test(test_hull_and_construction),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_fonts),
+        cmocka_unit_test(test_padded_rows_render_identically),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -132,5 +132,6 @@ void cj_plot_blank_outside(cj_plot_canvas *cv, double x0, double y0, double x1, 
     const int i0 = (int)floor(x0), i1 = (int)ceil(x1), j0 = (int)floor(y0), j1 = (int)ceil(y1);
     for (int j = 0; j < h; ++j)
         for (int i = 0; i < w; ++i)
-            if (i < i0 || i > i1 || j < j0 || j > j1) cv->fb->pixels[(size_t)j * w + i] = c;
+            if (i < i0 || i > i1 || j < j0 || j > j1)
+                cv->fb->pixels[(ptrdiff_t)j * cv->fb->stride + i] = c;
 }
