@@ -17,6 +17,7 @@ static const command commands[] = {
     {"plot", cmd_plot, "render curves described in JSON (or --demo) to a PNG image"},
     {"tessellate", cmd_tessellate,
      "Bezier patches (or the Utah teapot) to an OBJ/PLY mesh within a tolerance"},
+    {"render", cmd_render, "render a 3D scene (JSON, or --demo) to PNG/EXR with our rasterizer"},
 };
 
 static void usage(FILE *f) {

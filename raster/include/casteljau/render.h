@@ -1,0 +1,82 @@
+/* casteljau: rendering a scene (casteljau/scene.h) into an image: the z-buffered triangle
+ * rasterizer (seed 6-10). The ray tracer (casteljau/trace.h) writes the same image type.
+ *
+ * OUTPUT: a cj_render_image holds LINEAR float RGBA radiance (straight alpha; alpha 1 where an
+ * object covers the pixel fully, 0 on the background), rows BOTTOM-UP as the framebuffer
+ * (origin at the lower-left pixel). Optional planes: per pixel the id of the object seen at the
+ * pixel centre (cj_node.id, 0 = background) and its pseudodepth in [−1, 1] (+1 = background).
+ * Conversion to 8-bit sRGB happens once, at output (cj_render_image_to_srgb8).
+ *
+ * PIPELINE: the renderer assembles its stages from what the scene uses (no lights: no normals
+ * and no shading; no textures: no (u, v) and no sampling; no transparent material: no
+ * sorting; flat shading: no per-pixel normals; 1 sample per pixel: no resolve; no overlays: no
+ * line pass) and records every stage, run or left out, in a cj_stage_report
+ * (casteljau/stage_report.h).
+ *
+ * DETERMINISM: the image is bit-identical for any thread count and tile size.
+ */
+#ifndef CASTELJAU_RENDER_H
+#define CASTELJAU_RENDER_H
+
+#include "casteljau/alloc.h"
+#include "casteljau/scene.h"
+#include "casteljau/stage_report.h"
+#include "casteljau/status.h"
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Planes of a cj_render_image beyond the colour. */
+enum { CJ_IMAGE_IDS = 1u, CJ_IMAGE_DEPTH = 2u };
+
+typedef struct cj_render_image {
+    int width, height;
+    float *rgba;   /* 4 floats per pixel, linear, bottom row first */
+    uint32_t *ids; /* object id at the pixel centre (0 = background), or NULL */
+    float *depth;  /* pseudodepth at the pixel centre (+1 = background), or NULL */
+    /* private */
+    cj_allocator alloc_;
+} cj_render_image;
+
+/* Creates a width × height image (1..CJ_FRAMEBUFFER_MAX_SIDE each) cleared to 0, ids 0,
+ * depth +1, with the planes `flags` asks for. alloc may be NULL. */
+cj_status cj_render_image_create(int width, int height, unsigned flags, const cj_allocator *alloc,
+                                 cj_render_image **out);
+void cj_render_image_destroy(cj_render_image *img);
+
+/* Converts to 8-bit sRGB (IEC 61966-2-1 transfer curve, each channel clamped to [0, 1] and
+ * rounded to nearest; alpha linear), rows bottom-up, `stride` bytes between rows (0 = 4·width).
+ * NaN is never produced by the renderer; a NaN here is CJ_ERR_NONFINITE naming the pixel. */
+cj_status cj_render_image_to_srgb8(const cj_render_image *img, uint8_t *rgba8, size_t stride);
+
+typedef struct cj_render_options {
+    int width, height; /* 0: the scene's settings */
+    int spp;           /* 0: the scene's; the rasterizer takes 1, 4 or 16 */
+    double tol_px;     /* 0: the scene's screen-space tessellation tolerance (pixels) */
+    int threads;       /* 0: one per core */
+    int tile_size;     /* 0: 64 pixels; any >= 8 gives the same image */
+    int max_depth;     /* ray tracer: 0 = the scene's */
+    int use_seed;      /* ray tracer: 1 = use `seed` instead of the scene's */
+    uint64_t seed;
+} cj_render_options;
+
+/* All zero: the scene decides. */
+cj_render_options cj_render_options_default(void);
+
+/* Renders the scene with the rasterizer into *out, created here with the planes `planes`
+ * (CJ_IMAGE_*) at the size the scene/options ask for (free with cj_render_image_destroy).
+ * report may be NULL. Status: whatever cj_scene_check reports; CJ_ERR_RANGE (spp not 1, 4 or
+ * 16, a size out of range), CJ_ERR_ARGUMENT (an image texture without pixels), CJ_ERR_NOMEM,
+ * CJ_ERR_CAP (tessellation asked for more than the triangle cap). *out is set only on
+ * success. */
+cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, unsigned planes,
+                           const cj_allocator *alloc, cj_render_image **out,
+                           cj_stage_report *report);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,369 @@
+/* casteljau: the scene model shared by the rasterizer, the ray tracer, the animation and the
+ * viewer (DESIGN.md, "Rendering, scenes and animation").
+ *
+ * A scene holds a camera, lights, materials, textures, geometries and a hierarchy of nodes.
+ * A scene built from code needs no file: create one, add what it holds, render it. A JSON file
+ * (casteljau/scene_json.h) is only one way to build it.
+ *
+ * OWNERSHIP: cj_scene_create() makes an empty scene that owns everything added to it (every
+ * add function COPIES its input, including the arrays a geometry points to); destroy releases
+ * it all through the allocator it was created with. Indices returned by the add functions are
+ * stable for the life of the scene. Pointers returned by cj_scene_geometry() etc. stay valid
+ * until the next add of the same kind.
+ *
+ * UNITS AND CONVENTIONS (seed notation):
+ *   - geometry in double, right-handed world space;
+ *   - colours are LINEAR RGB (not sRGB), radiance and reflectance alike; conversion to 8-bit
+ *     sRGB happens once, when an image is written;
+ *   - the camera: eye ē, gaze g⃗, up t⃗, near f and far F both negative with F < f < 0 (the
+ *     camera looks down its −w axis), pseudodepth in [−1, 1], −1 at the near plane and +1 at
+ *     the far plane (the framebuffer clears depth to +1);
+ *   - triangles are counter-clockwise seen from outside; a back face is culled when
+ *     (p̄ − ē)·n⃗ > 0 unless its material is two-sided.
+ *
+ * Status codes of the add/set functions: CJ_ERR_NONFINITE (a NaN/Inf field, named),
+ * CJ_ERR_RANGE (a value out of its documented range, named), CJ_ERR_ARGUMENT (an index that
+ * names nothing, a parent that is not a group or comes later), CJ_ERR_DEGENERATE (a zero gaze,
+ * up parallel to gaze, a zero-size primitive), CJ_ERR_NOMEM. Nothing is added on failure.
+ */
+#ifndef CASTELJAU_SCENE_H
+#define CASTELJAU_SCENE_H
+
+#include "casteljau/alloc.h"
+#include "casteljau/analytic.h"
+#include "casteljau/catmull_rom.h"
+#include "casteljau/mesh.h"
+#include "casteljau/patch.h"
+#include "casteljau/quadric.h"
+#include "casteljau/status.h"
+#include "casteljau/transform.h"
+#include "casteljau/vec.h"
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Linear RGB. */
+typedef struct cj_rgb {
+    double r, g, b;
+} cj_rgb;
+
+static inline cj_rgb cj_rgb_make(double r, double g, double b) {
+    cj_rgb c;
+    c.r = r;
+    c.g = g;
+    c.b = b;
+    return c;
+}
+
+/* ---- camera (seed 6) ------------------------------------------------------------------- */
+
+typedef enum cj_projection { CJ_PROJ_PERSPECTIVE = 0, CJ_PROJ_ORTHOGRAPHIC } cj_projection;
+
+typedef struct cj_camera {
+    cj_vec3 eye;  /* ē */
+    cj_vec3 gaze; /* g⃗, any non-zero length */
+    cj_vec3 up;   /* t⃗, not parallel to g⃗ */
+    double near;  /* f < 0: the near plane z = f in camera coordinates */
+    double far;   /* F < f: the far plane */
+    cj_projection projection;
+    double fov_y;        /* perspective: full vertical field of view, radians, in (0, pi) */
+    double ortho_height; /* orthographic: height of the view volume in world units, > 0 */
+} cj_camera;
+
+/* A camera at (0, 0, 5) looking at the origin, up +y, 45° vertical field of view,
+ * f = −0.1, F = −100, perspective. */
+cj_camera cj_camera_default(void);
+
+/* Validates a camera (finite fields, F < f < 0, non-degenerate basis, fov in (0, pi)). */
+cj_status cj_camera_check(const cj_camera *cam);
+
+/* The camera frame (seed 6.1): w = −g⃗/|g⃗|, u = t⃗×w/|t⃗×w|, v = w×u. */
+cj_status cj_camera_basis(const cj_camera *cam, cj_vec3 *u, cj_vec3 *v, cj_vec3 *w);
+
+/* World -> camera coordinates (M_cam): the eye to the origin, u, v, w to x, y, z. */
+cj_status cj_camera_view(const cj_camera *cam, cj_xform3 *out);
+
+/* Camera -> clip coordinates for an image of aspect = width/height: perspective
+ *   x_c = x cot(fov/2)/aspect,  y_c = y cot(fov/2),  z_c = A z + B,  w_c = −z
+ * with z_ndc = z_c/w_c = −1 at z = f and +1 at z = F (pseudodepth, seed 6.3 with the sign
+ * chosen so that smaller is nearer); orthographic maps the box [−h·aspect/2, h·aspect/2] ×
+ * [−h/2, h/2] × [F, f] to [−1, 1]³ with w_c = 1. */
+cj_status cj_camera_projection(const cj_camera *cam, double aspect, cj_xform3 *out);
+
+/* Projection × view: world -> clip. */
+cj_status cj_camera_world_to_clip(const cj_camera *cam, double aspect, cj_xform3 *out);
+
+/* The primary ray through the image point (px, py) in pixel units of a width × height image
+ * (origin at the lower-left corner, pixel centres at half-integers): origin and UNIT direction
+ * in world space. Perspective rays start at the eye, orthographic ones on the plane of the
+ * eye. The ray through a pixel centre hits exactly the points the rasterizer projects to that
+ * centre (same camera model). */
+cj_status cj_camera_ray(const cj_camera *cam, int width, int height, double px, double py,
+                        cj_vec3 *origin, cj_vec3 *dir);
+
+/* ---- lights (seed 8) -------------------------------------------------------------------- */
+
+typedef enum cj_light_kind {
+    CJ_LIGHT_AMBIENT = 0, /* I_a: only colour × intensity is used */
+    CJ_LIGHT_POINT,       /* at `position` */
+    CJ_LIGHT_DIRECTIONAL, /* light travelling along `direction` (from the light) */
+    CJ_LIGHT_SPOT,        /* at `position`, along `direction`, cone `spot_angle`, falloff */
+    CJ_LIGHT_AREA         /* parallelogram position + s·edge_u + t·edge_v, s,t in [0,1] */
+} cj_light_kind;
+
+typedef struct cj_light {
+    cj_light_kind kind;
+    cj_rgb color;     /* linear */
+    double intensity; /* >= 0; colour × intensity is the light's I */
+    cj_vec3 position;
+    cj_vec3 direction;
+    double spot_angle;    /* half-angle of the cone, radians, (0, pi/2] */
+    double spot_exponent; /* >= 0 */
+    cj_vec3 edge_u, edge_v;
+    int casts_shadows; /* ray tracer: 1 = shadow rays are cast for this light (default 1) */
+} cj_light;
+
+/* A white point light of intensity 1 at (5, 5, 5), casting shadows. */
+cj_light cj_light_default(cj_light_kind kind);
+
+/* ---- textures (seed 10) ------------------------------------------------------------------ */
+
+typedef enum cj_texture_kind { CJ_TEX_IMAGE = 0, CJ_TEX_CHECKER } cj_texture_kind;
+typedef enum cj_tex_filter {
+    CJ_TEX_NEAREST = 0,
+    CJ_TEX_BILINEAR,
+    CJ_TEX_TRILINEAR /* mip-mapped */
+} cj_tex_filter;
+typedef enum cj_tex_wrap { CJ_TEX_REPEAT = 0, CJ_TEX_CLAMP } cj_tex_wrap;
+
+typedef struct cj_texture {
+    cj_texture_kind kind;
+    cj_tex_filter filter;
+    cj_tex_wrap wrap;
+    double scale_u, scale_v; /* (u, v) -> (u·scale_u + offset_u, v·scale_v + offset_v) */
+    double offset_u, offset_v;
+    /* CJ_TEX_IMAGE: the file (as given; resolved against the scene file's folder when read)
+     * and, once loaded (cj_scene_set_texture_pixels), width × height LINEAR RGBA float texels,
+     * bottom row first. A scene whose image textures have no pixels cannot be rendered
+     * (CJ_ERR_ARGUMENT naming the texture). */
+    const char *path;
+    int width, height;
+    const float *texels;
+    /* CJ_TEX_CHECKER: squares of 1/checks_u × 1/checks_v in (u, v), colours a and b. */
+    int checks_u, checks_v;
+    cj_rgb checker_a, checker_b;
+} cj_texture;
+
+cj_texture cj_texture_default(cj_texture_kind kind);
+
+/* ---- materials (seed 8-13) -------------------------------------------------------------- */
+
+typedef enum cj_shading { CJ_SHADE_FLAT = 0, CJ_SHADE_GOURAUD, CJ_SHADE_PHONG } cj_shading;
+
+typedef struct cj_material {
+    /* Phong (seed 8): L = c_r (r_a I_a + r_d Σ I max(0, n·l)) + c_p r_s Σ I max(0, n·h)^α
+     * where c_r is the diffuse colour (times the texture when there is one), c_p the specular
+     * colour; the ray tracer reads the same fields. */
+    cj_rgb color;    /* c_r, linear, each in [0, 1] */
+    cj_rgb specular; /* c_p, linear, each in [0, 1] */
+    double ka;       /* r_a >= 0 */
+    double kd;       /* r_d >= 0 */
+    double ks;       /* r_s >= 0 */
+    double alpha;    /* α >= 0, the Phong exponent */
+    cj_shading shading;
+    int two_sided;  /* 1: no backface culling, the normal is flipped to face the viewer */
+    int texture;    /* index of a scene texture modulating c_r, or −1 */
+    double opacity; /* in [0, 1]; < 1 makes the material transparent (drawn back to front) */
+    /* Ray tracer (seed 11-13): read by the tracer only, kept in the format from the start. */
+    double mirror;        /* r_m in [0, 1]: weight of the mirror reflection ray */
+    double transmission;  /* r_t in [0, 1]: weight of the refracted ray */
+    double ior;           /* index of refraction >= 1 (inside the object) */
+    double glossiness;    /* Phong-lobe exponent of glossy reflection; 0 = perfect mirror */
+    cj_rgb emission;      /* emitted radiance (area lights drawn as objects), linear */
+    int receives_shadows; /* 1 (default): shadow rays are cast from this material's hits */
+} cj_material;
+
+/* Grey plastic: colour 0.8, specular 1, r_a 0.1, r_d 0.7, r_s 0.3, α 32, Phong shading,
+ * one-sided, no texture, opaque, no mirror/transmission, ior 1.5, receives shadows. */
+cj_material cj_material_default(void);
+
+/* ---- geometry ---------------------------------------------------------------------------- */
+
+typedef enum cj_geometry_kind {
+    CJ_GEOM_PATCHES = 0, /* Bézier patches (polynomial or rational), e.g. the teapot */
+    CJ_GEOM_QUADRIC,     /* any of the six quadrics of casteljau/quadric.h */
+    CJ_GEOM_SPHERE,      /* centre + radius (an ellipsoid a = b = c the ray tracer knows) */
+    CJ_GEOM_TORUS,
+    CJ_GEOM_CYLINDER,
+    CJ_GEOM_PLANAR,       /* planar patch p + s eu + t ev, s,t in [0,1] (floors, walls) */
+    CJ_GEOM_BILINEAR,     /* bilinear patch */
+    CJ_GEOM_REVOLUTION,   /* profile (r(t), z(t)) as a Bézier curve, revolved about an axis */
+    CJ_GEOM_GEN_CYLINDER, /* planar Bézier profile swept along a direction */
+    CJ_GEOM_MESH,         /* triangle mesh (OBJ, PLY, or from code) */
+    CJ_GEOM_CURVE,        /* 3D curve drawn as a line: Bézier, rational Bézier, Catmull-Rom */
+    CJ_GEOM_KIND_COUNT_
+} cj_geometry_kind;
+
+typedef enum cj_curve_kind {
+    CJ_CURVE_BEZIER = 0,
+    CJ_CURVE_RATIONAL,
+    CJ_CURVE_SPLINE /* interpolating spline through the points (casteljau/catmull_rom.h) */
+} cj_curve_kind;
+
+typedef struct cj_geometry {
+    cj_geometry_kind kind;
+    union {
+        struct {
+            size_t count;      /* patches */
+            cj_patch *patches; /* owned views into owned point/weight arrays */
+        } patches;
+        cj_quadric quadric;
+        struct {
+            cj_vec3 center;
+            double radius;
+        } sphere;
+        cj_torus torus;
+        cj_cylinder cylinder;
+        cj_planar_patch planar;
+        cj_bilinear bilinear;
+        struct {
+            int degree;            /* profile degree >= 1 */
+            const double *pts;     /* (degree+1) × 2: (r, z) per control point, owned */
+            const double *weights; /* NULL or degree+1 weights > 0, owned */
+            cj_vec3 origin, axis;
+        } revolution;
+        struct {
+            int degree;
+            const double *pts; /* (degree+1) × 2 in the (e1, e2) plane, owned */
+            const double *weights;
+            cj_vec3 origin, e1, e2, dir;
+            double v0, v1;
+        } gen_cylinder;
+        cj_mesh *mesh; /* owned */
+        struct {
+            cj_curve_kind kind;
+            int degree;            /* BEZIER/RATIONAL: degree; SPLINE: unused */
+            size_t count;          /* control points (spline: points interpolated) */
+            const double *pts;     /* count × 3, owned */
+            const double *weights; /* RATIONAL: count weights > 0, owned; else NULL */
+            cj_spline_kind spline;
+            double tension, continuity, bias; /* spline parameters (κ or T, C, B) */
+            int closed;
+            double width_px; /* line width in pixels (>= 1; 1 draws exact Bresenham lines) */
+            cj_rgb color;
+        } curve;
+    } u;
+} cj_geometry;
+
+/* ---- nodes: objects and groups in a hierarchy (seed 3, 5) --------------------------------- */
+
+/* Overlays drawn over a node's surface as depth-tested lines. */
+enum {
+    CJ_OVERLAY_CONTROL_NET = 1u, /* patches: the control net; curves: the control polygon */
+    CJ_OVERLAY_WIREFRAME = 2u,   /* the triangles the renderer drew */
+    CJ_OVERLAY_ISO_LINES = 4u,   /* iso-parameter lines, iso_count per direction */
+    CJ_OVERLAY_NORMALS = 8u      /* vertex normals, normal_length long (world units) */
+};
+
+typedef struct cj_overlay_style {
+    unsigned flags;       /* CJ_OVERLAY_* */
+    cj_rgb color;         /* line colour, linear */
+    int iso_count;        /* >= 1 */
+    double normal_length; /* > 0 */
+} cj_overlay_style;
+
+/* The local transform of a node, applied to column vectors as
+ *   M = T(translate) · R(rotation) · S(scale) · matrix
+ * (matrix first). Keeping T, R, S apart lets animation channels act on each (rotation as a
+ * unit quaternion w + xi + yj + zk). The world transform of a node is its parent's world
+ * transform times its local one. */
+typedef struct cj_transform {
+    cj_vec3 translate;
+    double rotation[4]; /* unit quaternion (w, x, y, z) */
+    cj_vec3 scale;      /* non-zero components */
+    cj_xform3 matrix;   /* any invertible affine matrix (shear, mirror, ...) */
+} cj_transform;
+
+cj_transform cj_transform_identity(void);
+/* M as a 4×4 matrix. */
+cj_xform3 cj_transform_matrix(const cj_transform *t);
+
+typedef struct cj_node {
+    const char *name;   /* owned copy, may be NULL */
+    int parent;         /* index of a group node added earlier, or −1 for the root */
+    cj_transform local; /* relative to the parent */
+    int geometry;       /* index of a geometry, or −1 for a group */
+    int material;       /* index of a material (objects); groups: −1 */
+    cj_overlay_style overlay;
+    int visible; /* 0: skipped by every renderer */
+    uint32_t id; /* object id (signature image, id buffer): 1 + index among objects */
+} cj_node;
+
+/* ---- render settings stored with the scene (CLI flags override them) ---------------------- */
+
+typedef struct cj_scene_settings {
+    int width, height; /* image size, 1..CJ_FRAMEBUFFER_MAX_SIDE (default 640 × 480) */
+    int spp;           /* samples per pixel: rasterizer 1, 4 or 16; ray tracer any >= 1 */
+    double tol_px;     /* screen-space tessellation tolerance in pixels (default 0.25) */
+    cj_rgb background; /* linear (default black) */
+    int max_depth;     /* ray tracer recursion depth (default 5) */
+    uint64_t seed;     /* random sampling seed (default 1) */
+} cj_scene_settings;
+
+cj_scene_settings cj_scene_settings_default(void);
+
+/* ---- the scene ------------------------------------------------------------------------------ */
+
+typedef struct cj_scene cj_scene;
+
+cj_status cj_scene_create(const cj_allocator *alloc, cj_scene **out);
+void cj_scene_destroy(cj_scene *scene);
+
+cj_status cj_scene_set_camera(cj_scene *scene, const cj_camera *cam);
+const cj_camera *cj_scene_camera(const cj_scene *scene);
+cj_status cj_scene_set_settings(cj_scene *scene, const cj_scene_settings *s);
+const cj_scene_settings *cj_scene_settings_get(const cj_scene *scene);
+
+cj_status cj_scene_add_light(cj_scene *scene, const cj_light *light, int *index);
+cj_status cj_scene_add_texture(cj_scene *scene, const cj_texture *tex, int *index);
+/* Copies width × height × 4 linear float texels into texture `index` (image textures). */
+cj_status cj_scene_set_texture_pixels(cj_scene *scene, int index, int width, int height,
+                                      const float *rgba);
+cj_status cj_scene_add_material(cj_scene *scene, const cj_material *mat, int *index);
+/* Deep-copies the geometry (the arrays it points to, the mesh). */
+cj_status cj_scene_add_geometry(cj_scene *scene, const cj_geometry *geom, int *index);
+/* Adds a node; `node->id` is assigned by the scene (ignored on input). */
+cj_status cj_scene_add_node(cj_scene *scene, const cj_node *node, int *index);
+
+size_t cj_scene_light_count(const cj_scene *scene);
+size_t cj_scene_texture_count(const cj_scene *scene);
+size_t cj_scene_material_count(const cj_scene *scene);
+size_t cj_scene_geometry_count(const cj_scene *scene);
+size_t cj_scene_node_count(const cj_scene *scene);
+const cj_light *cj_scene_light(const cj_scene *scene, int index);
+const cj_texture *cj_scene_texture(const cj_scene *scene, int index);
+const cj_material *cj_scene_material(const cj_scene *scene, int index);
+const cj_geometry *cj_scene_geometry(const cj_scene *scene, int index);
+const cj_node *cj_scene_node(const cj_scene *scene, int index);
+
+/* Mutable access for editors and animation (the viewer, keyframe channels). The caller keeps
+ * the values valid; cj_scene_check() re-validates. */
+cj_light *cj_scene_light_mut(cj_scene *scene, int index);
+cj_material *cj_scene_material_mut(cj_scene *scene, int index);
+cj_node *cj_scene_node_mut(cj_scene *scene, int index);
+cj_geometry *cj_scene_geometry_mut(cj_scene *scene, int index);
+
+/* World transform of node `index` (parents composed). */
+cj_status cj_scene_node_world(const cj_scene *scene, int index, cj_xform3 *out);
+
+/* Validates the whole scene (every field of every part); the message names the part
+ * ("materials[2].alpha must be >= 0"). Renderers call it first. */
+cj_status cj_scene_check(const cj_scene *scene);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
