@@ -18,6 +18,7 @@ static const command commands[] = {
     {"tessellate", cmd_tessellate,
      "Bezier patches (or the Utah teapot) to an OBJ/PLY mesh within a tolerance"},
     {"render", cmd_render, "render a 3D scene (JSON, or --demo) to PNG/EXR with our rasterizer"},
+    {"trace", cmd_trace, "ray-trace a 3D scene (JSON, or --demo): shadows, mirrors, glass"},
 };
 
 static void usage(FILE *f) {
