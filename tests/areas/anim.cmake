@@ -1,0 +1,5 @@
+# Animation (issue 10): keyframe channels, motion along paths, springs, kinematics, particles.
+# Sources live in tests/anim/; every program links the scene library (where animation lives).
+if(TARGET cj::scene)
+  cj_add_test(test_anim_channels SOURCES anim/test_anim_channels.c LIBS cj::scene)
+endif()
