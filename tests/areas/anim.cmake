@@ -2,4 +2,5 @@
 # Sources live in tests/anim/; every program links the scene library (where animation lives).
 if(TARGET cj::scene)
   cj_add_test(test_anim_channels SOURCES anim/test_anim_channels.c LIBS cj::scene)
+  cj_add_test(test_anim_path SOURCES anim/test_anim_path.c LIBS cj::scene)
 endif()
