@@ -1,0 +1,360 @@
+/* Bounding volume hierarchy: binned SAH build, closest/any-hit traversal (see bvh.h). */
+#include "casteljau/bvh.h"
+#include "alloc_internal.h"
+#include "error_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define NBINS      16
+#define MAX_LEAF   8
+#define DEEP_SPLIT 48 /* below this depth always split at the median: depth stays bounded */
+#define STACK      128
+
+typedef struct work {
+    uint32_t node, start, end;
+    int depth;
+} work;
+
+static cj_vec3 centroid(const cj_aabb *b) {
+    return cj_v3(0.5 * (b->lo[0] + b->hi[0]), 0.5 * (b->lo[1] + b->hi[1]),
+                 0.5 * (b->lo[2] + b->hi[2]));
+}
+
+static double ccomp(const double *c3, uint32_t i, int k) {
+    return c3[3 * (size_t)i + k];
+}
+
+/* Median split of prims[start, end) along axis k by centroid: quickselect (Lomuto partition
+ * around the middle element) until position `mid` holds its sorted value. */
+static void median_split(uint32_t *prims, const double *cen, uint32_t start, uint32_t end, int k,
+                         uint32_t mid) {
+    size_t lo = start, hi = end - 1;
+    while (lo < hi) {
+        size_t pi = lo + (hi - lo) / 2;
+        uint32_t s = prims[pi];
+        prims[pi] = prims[hi];
+        prims[hi] = s;
+        double pivot = ccomp(cen, prims[hi], k);
+        size_t store = lo;
+        for (size_t i = lo; i < hi; i++)
+            if (ccomp(cen, prims[i], k) < pivot) {
+                s = prims[i];
+                prims[i] = prims[store];
+                prims[store] = s;
+                store++;
+            }
+        s = prims[store];
+        prims[store] = prims[hi];
+        prims[hi] = s;
+        if (store == mid) return;
+        if (mid < store)
+            hi = store - 1;
+        else
+            lo = store + 1;
+    }
+}
+
+cj_status cj_bvh_build(const cj_aabb *boxes, size_t count, const cj_allocator *alloc,
+                       cj_bvh **out) {
+    if (count == 0) return cj_fail(CJ_ERR_EMPTY, "BVH over no primitives");
+    if (count > 0x7fffffffu)
+        return cj_fail(CJ_ERR_CAP, "BVH over %zu primitives (cap 2^31)", count);
+    for (size_t i = 0; i < count; i++)
+        for (int k = 0; k < 3; k++)
+            if (isnan(boxes[i].lo[k]) || isnan(boxes[i].hi[k]))
+                return cj_fail(CJ_ERR_NONFINITE, "BVH: box of primitive %zu is NaN", i);
+    cj_allocator a = cj_allocator_resolve(alloc);
+    cj_bvh *b = cj_allocator_alloc(&a, sizeof *b);
+    if (!b) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory");
+    memset(b, 0, sizeof *b);
+    b->alloc_ = a;
+    b->prim_count = count;
+    b->nodes = cj_allocator_alloc(&a, (2 * count) * sizeof *b->nodes);
+    b->prims = cj_allocator_alloc(&a, count * sizeof *b->prims);
+    double *cen = cj_allocator_alloc(&a, 3 * count * sizeof *cen);
+    work *stack = cj_allocator_alloc(&a, (2 * count + 1) * sizeof *stack);
+    if (!b->nodes || !b->prims || !cen || !stack) {
+        cj_allocator_free(&a, cen);
+        cj_allocator_free(&a, stack);
+        cj_bvh_destroy(b);
+        return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu primitives", count);
+    }
+    for (size_t i = 0; i < count; i++) {
+        b->prims[i] = (uint32_t)i;
+        cj_vec3 c = boxes[i].lo[0] <= boxes[i].hi[0] ? centroid(&boxes[i]) : cj_v3(0, 0, 0);
+        cen[3 * i] = c.x;
+        cen[3 * i + 1] = c.y;
+        cen[3 * i + 2] = c.z;
+    }
+    size_t nn = 1;
+    int sp = 0;
+    stack[sp++] = (work){0, 0, (uint32_t)count, 1};
+    double cost_sum = 0.0, root_area = 0.0;
+    while (sp > 0) {
+        work w = stack[--sp];
+        cj_bvh_node *node = &b->nodes[w.node];
+        cj_aabb box = cj_aabb_empty(), cbox = cj_aabb_empty();
+        for (uint32_t i = w.start; i < w.end; i++) {
+            cj_aabb_merge(&box, &boxes[b->prims[i]]);
+            cj_aabb_grow(&cbox,
+                         cj_v3(cen[3 * (size_t)b->prims[i]], cen[3 * (size_t)b->prims[i] + 1],
+                               cen[3 * (size_t)b->prims[i] + 2]));
+        }
+        node->box = box;
+        if (w.depth > b->depth) b->depth = w.depth;
+        uint32_t n = w.end - w.start;
+        double area = cj_aabb_area(&box);
+        if (w.node == 0) root_area = area > 0.0 ? area : 1.0;
+        int axis = 0;
+        double ext = -1.0;
+        for (int k = 0; k < 3; k++)
+            if (cbox.hi[k] - cbox.lo[k] > ext) {
+                ext = cbox.hi[k] - cbox.lo[k];
+                axis = k;
+            }
+        uint32_t mid = 0;
+        if (n <= 1 || (ext <= 0.0 && n <= MAX_LEAF)) {
+            node->first = w.start;
+            node->count = n;
+            cost_sum += n * area;
+            continue;
+        }
+        if (ext > 0.0 && w.depth < DEEP_SPLIT) {
+            /* Binned SAH over the three axes. */
+            double best = INFINITY;
+            int bk = -1, bsplit = 0;
+            for (int k = 0; k < 3; k++) {
+                double lo = cbox.lo[k], span = cbox.hi[k] - lo;
+                if (!(span > 0.0)) continue;
+                cj_aabb bb[NBINS];
+                uint32_t bc[NBINS] = {0};
+                for (int j = 0; j < NBINS; j++) bb[j] = cj_aabb_empty();
+                double scale = NBINS / span;
+                for (uint32_t i = w.start; i < w.end; i++) {
+                    int j = (int)((ccomp(cen, b->prims[i], k) - lo) * scale);
+                    if (j >= NBINS) j = NBINS - 1;
+                    if (j < 0) j = 0;
+                    bc[j]++;
+                    cj_aabb_merge(&bb[j], &boxes[b->prims[i]]);
+                }
+                double ra[NBINS];
+                uint32_t rc[NBINS];
+                cj_aabb acc = cj_aabb_empty();
+                uint32_t cnt = 0;
+                for (int j = NBINS - 1; j > 0; j--) {
+                    cj_aabb_merge(&acc, &bb[j]);
+                    cnt += bc[j];
+                    ra[j] = cj_aabb_area(&acc);
+                    rc[j] = cnt;
+                }
+                acc = cj_aabb_empty();
+                cnt = 0;
+                for (int j = 0; j < NBINS - 1; j++) {
+                    cj_aabb_merge(&acc, &bb[j]);
+                    cnt += bc[j];
+                    if (cnt == 0 || rc[j + 1] == 0) continue;
+                    double c = cj_aabb_area(&acc) * cnt + ra[j + 1] * rc[j + 1];
+                    if (c < best) {
+                        best = c;
+                        bk = k;
+                        bsplit = j;
+                    }
+                }
+            }
+            double split_cost = area > 0.0 ? 1.0 + best / area : INFINITY;
+            if (bk >= 0 && (split_cost < (double)n || n > MAX_LEAF)) {
+                double lo = cbox.lo[bk], scale = NBINS / (cbox.hi[bk] - lo);
+                uint32_t i = w.start, j = w.end;
+                while (i < j) {
+                    int bin = (int)((ccomp(cen, b->prims[i], bk) - lo) * scale);
+                    if (bin >= NBINS) bin = NBINS - 1;
+                    if (bin <= bsplit)
+                        i++;
+                    else {
+                        j--;
+                        uint32_t s = b->prims[i];
+                        b->prims[i] = b->prims[j];
+                        b->prims[j] = s;
+                    }
+                }
+                mid = i;
+            } else if (n <= MAX_LEAF) {
+                node->first = w.start;
+                node->count = n;
+                cost_sum += n * area;
+                continue;
+            }
+        }
+        if (mid <= w.start || mid >= w.end) {
+            mid = w.start + n / 2;
+            median_split(b->prims, cen, w.start, w.end, axis, mid);
+        }
+        node->first = (uint32_t)nn;
+        node->count = 0;
+        cost_sum += area;
+        uint32_t left = (uint32_t)nn;
+        nn += 2;
+        stack[sp++] = (work){left + 1, mid, w.end, w.depth + 1};
+        stack[sp++] = (work){left, w.start, mid, w.depth + 1};
+    }
+    b->node_count = nn;
+    b->sah_cost = cost_sum / root_area;
+    cj_allocator_free(&a, cen);
+    cj_allocator_free(&a, stack);
+    *out = b;
+    return CJ_OK;
+}
+
+void cj_bvh_destroy(cj_bvh *bvh) {
+    if (!bvh) return;
+    cj_allocator a = bvh->alloc_;
+    cj_allocator_free(&a, bvh->nodes);
+    cj_allocator_free(&a, bvh->prims);
+    cj_allocator_free(&a, bvh->tri);
+    cj_allocator_free(&a, bvh);
+}
+
+/* ---- traversal ------------------------------------------------------------------------- */
+
+typedef struct entry {
+    uint32_t node;
+    double t0;
+} entry;
+
+static cj_vec3 inverse_dir(cj_vec3 d) {
+    return cj_v3(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
+}
+
+/* Shared traversal; `any` stops at the first hit. tri != NULL: built-in triangles. */
+static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, void *user,
+                    cj_hit *hit, int any, cj_bvh_trav_stats *stats) {
+    cj_ray ray = *ray0;
+    cj_vec3 inv = inverse_dir(ray.dir);
+    cj_ray_tri_pre pre;
+    if (bvh->tri) cj_ray_triangle_prepare(&ray, &pre);
+    entry st[STACK];
+    int sp = 0, found = 0;
+    double t0, t1;
+    uint64_t nodes = 1, prims = 0;
+    if (!cj_aabb_ray(&bvh->nodes[0].box, ray.org, inv, ray.tmin, ray.tmax, &t0, &t1)) {
+        if (stats) stats->nodes += nodes;
+        return 0;
+    }
+    st[sp++] = (entry){0, t0};
+    cj_hit h;
+    while (sp > 0) {
+        entry e = st[--sp];
+        if (e.t0 > ray.tmax) continue;
+        const cj_bvh_node *nd = &bvh->nodes[e.node];
+        if (nd->count) {
+            for (uint32_t i = nd->first; i < nd->first + nd->count; i++) {
+                uint32_t prim = bvh->prims[i];
+                int got;
+                prims++;
+                if (bvh->tri) {
+                    const double *v = bvh->tri + 9 * (size_t)i;
+                    got = cj_ray_triangle_pre(&ray, &pre, cj_v3(v[0], v[1], v[2]),
+                                              cj_v3(v[3], v[4], v[5]), cj_v3(v[6], v[7], v[8]), &h);
+                } else {
+                    got = fn(user, prim, &ray, &h);
+                }
+                if (got && h.t >= ray.tmin && h.t <= ray.tmax) {
+                    found = 1;
+                    if (any) {
+                        if (stats) {
+                            stats->nodes += nodes;
+                            stats->prims += prims;
+                        }
+                        return 1;
+                    }
+                    h.prim = prim;
+                    *hit = h;
+                    ray.tmax = h.t;
+                }
+            }
+            continue;
+        }
+        const cj_bvh_node *l = &bvh->nodes[nd->first], *r = &bvh->nodes[nd->first + 1];
+        double l0, l1, r0, r1;
+        int hl = cj_aabb_ray(&l->box, ray.org, inv, ray.tmin, ray.tmax, &l0, &l1);
+        int hr = cj_aabb_ray(&r->box, ray.org, inv, ray.tmin, ray.tmax, &r0, &r1);
+        nodes += 2;
+        if (sp + 2 > STACK) continue; /* cannot happen: depth is bounded by the build */
+        if (hl && hr) {
+            if (l0 <= r0) {
+                st[sp++] = (entry){nd->first + 1, r0};
+                st[sp++] = (entry){nd->first, l0};
+            } else {
+                st[sp++] = (entry){nd->first, l0};
+                st[sp++] = (entry){nd->first + 1, r0};
+            }
+        } else if (hl) {
+            st[sp++] = (entry){nd->first, l0};
+        } else if (hr) {
+            st[sp++] = (entry){nd->first + 1, r0};
+        }
+    }
+    if (stats) {
+        stats->nodes += nodes;
+        stats->prims += prims;
+    }
+    return found;
+}
+
+int cj_bvh_closest(const cj_bvh *bvh, const cj_ray *ray, cj_bvh_prim_fn fn, void *user, cj_hit *hit,
+                   cj_bvh_trav_stats *stats) {
+    return traverse(bvh, ray, fn, user, hit, 0, stats);
+}
+
+int cj_bvh_any(const cj_bvh *bvh, const cj_ray *ray, cj_bvh_prim_fn fn, void *user,
+               cj_bvh_trav_stats *stats) {
+    cj_hit h;
+    return traverse(bvh, ray, fn, user, &h, 1, stats);
+}
+
+cj_status cj_bvh_mesh_build(const double *positions, size_t vertex_count, const uint32_t *tris,
+                            size_t tri_count, const cj_allocator *alloc, cj_bvh **out) {
+    if (tri_count == 0) return cj_fail(CJ_ERR_EMPTY, "BVH over a mesh without triangles");
+    for (size_t t = 0; t < 3 * tri_count; t++)
+        if (tris[t] >= vertex_count)
+            return cj_fail(CJ_ERR_RANGE, "triangle %zu: vertex index %u >= %zu", t / 3, tris[t],
+                           vertex_count);
+    cj_allocator a = cj_allocator_resolve(alloc);
+    cj_aabb *boxes = cj_allocator_alloc(&a, tri_count * sizeof *boxes);
+    if (!boxes) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory");
+    for (size_t t = 0; t < tri_count; t++) {
+        const double *p0 = positions + 3 * (size_t)tris[3 * t];
+        const double *p1 = positions + 3 * (size_t)tris[3 * t + 1];
+        const double *p2 = positions + 3 * (size_t)tris[3 * t + 2];
+        boxes[t] = cj_aabb_triangle(cj_v3(p0[0], p0[1], p0[2]), cj_v3(p1[0], p1[1], p1[2]),
+                                    cj_v3(p2[0], p2[1], p2[2]));
+    }
+    cj_bvh *b;
+    cj_status st = cj_bvh_build(boxes, tri_count, &a, &b);
+    cj_allocator_free(&a, boxes);
+    if (st != CJ_OK) return st;
+    b->tri = cj_allocator_alloc(&a, 9 * tri_count * sizeof *b->tri);
+    if (!b->tri) {
+        cj_bvh_destroy(b);
+        return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu triangles", tri_count);
+    }
+    for (size_t i = 0; i < tri_count; i++) {
+        uint32_t t = b->prims[i];
+        for (int c = 0; c < 3; c++)
+            memcpy(b->tri + 9 * i + 3 * c, positions + 3 * (size_t)tris[3 * (size_t)t + c],
+                   3 * sizeof(double));
+    }
+    *out = b;
+    return CJ_OK;
+}
+
+int cj_bvh_mesh_closest(const cj_bvh *bvh, const cj_ray *ray, cj_hit *hit,
+                        cj_bvh_trav_stats *stats) {
+    return traverse(bvh, ray, NULL, NULL, hit, 0, stats);
+}
+
+int cj_bvh_mesh_any(const cj_bvh *bvh, const cj_ray *ray, cj_bvh_trav_stats *stats) {
+    cj_hit h;
+    return traverse(bvh, ray, NULL, NULL, &h, 1, stats);
+}

@@ -1,0 +1,3 @@
+# Ray intersection and BVH (surfaces/: ray.h, bvh.h), issue 9.
+cj_add_test(test_ray_watertight SOURCES test_ray_watertight.c LIBS cj::surfaces)
+target_compile_definitions(test_ray_watertight PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
