@@ -3,4 +3,5 @@
 if(TARGET cj::scene)
   cj_add_test(test_anim_channels SOURCES anim/test_anim_channels.c LIBS cj::scene)
   cj_add_test(test_anim_path SOURCES anim/test_anim_path.c LIBS cj::scene)
+  cj_add_test(test_springs SOURCES anim/test_springs.c LIBS cj::scene)
 endif()
