@@ -104,6 +104,10 @@ typedef void (*cj_frag_fn)(void *user, int x, int y, int s, uint32_t tri, float 
 void cj_raster_tile_forward(const cj_raster_prep *prep, const cj_tile *tile, cj_frag_fn frag,
                             void *user);
 
+/* The number of workers cj_raster_run(prep, threads, ...) will use (0 = one per core, never
+ * more than the tiles): tile->thread is below it, so per-thread scratch can be sized ahead. */
+int cj_raster_thread_count(const cj_raster_prep *prep, int threads);
+
 /* The tile size and image size a prep was built for. */
 void cj_raster_prep_layout(const cj_raster_prep *prep, int *width, int *height, int *spp,
                            int *tile_size);

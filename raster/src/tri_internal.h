@@ -1,0 +1,94 @@
+/* Private to the triangle rasterizer (tri_*.c): the clipped vertex, the set-up triangle and
+ * the prepared scene shared by clipping/set-up (tri_clip.c, tri_setup.c), per-tile
+ * rasterization (tri_raster.c) and the tile scheduler (tri_run.c). The contract with the
+ * pipeline is raster3d_internal.h.
+ *
+ * FIXED POINT. A screen position (sx, sy) in pixels becomes the integer pair
+ *     X = rint(256 · fl(fl(fl(x_c / w_c) + 1) · (width / 2))),   Y likewise with y_c, height,
+ * (round to nearest, ties to even; every product by a power of two is exact), i.e. 1/256 pixel
+ * units. Sample s of pixel (x, y) sits at (256 x + ox[s], 256 y + oy[s]). The guard band keeps
+ * |X|, |Y| <= 2^28 + 2^23, so edge-function coefficients stay below 2^30 and values below 2^61:
+ * 64-bit arithmetic is exact.
+ *
+ * EDGE FUNCTIONS. After orienting the snapped triangle counter-clockwise (y up), edge k from
+ * v_k to v_{k+1} has E_k(X, Y) = dx (Y − Y_k) − dy (X − X_k), positive inside. A sample on an
+ * edge (E_k = 0) belongs to the triangle iff the edge is a top or left edge of it:
+ * dy < 0 (left) or dy = 0 and dx < 0 (top) — equivalently, the sample is moved by
+ * (+ε, −ε²) before an open inside test, which makes every partition of the plane into
+ * triangles cover every sample exactly once, vertices included. The rule is folded into
+ * the constant: inside iff E_k − (owned ? 0 : 1) >= 0 for k = 0, 1, 2.
+ */
+#ifndef CASTELJAU_TRI_INTERNAL_H
+#define CASTELJAU_TRI_INTERNAL_H
+
+#include "raster3d_internal.h"
+
+#include <stdint.h>
+
+/* Guard band: clip space |x_c| <= gx·w_c with gx = 2^20/width keeps sx within 2^19 pixels of
+ * the image centre (y likewise). */
+#define CJ_TRI_GUARD_PX 524288.0
+
+/* A vertex during clipping: clip coordinates and the barycentrics (b1, b2) of the point in
+ * its SOURCE triangle (linear in clip space, hence perspective-correct after division). */
+typedef struct cj_tri_vert {
+    double x, y, z, w;
+    double b1, b2;
+} cj_tri_vert;
+
+/* Clipping against 2 (near, far) + 4 (guard band) planes adds at most 6 vertices. */
+#define CJ_TRI_CLIP_MAX 9
+
+/* Clips the triangle in[0..2] against z + w >= 0 (near), w − z >= 0 (far) and the guard band
+ * gx·w ± x >= 0, gy·w ± y >= 0. Returns the number of vertices of the convex polygon written
+ * to out (0 when nothing is left). *cut is set to 1 when a plane actually cut the triangle.
+ * An intersection on an edge is computed from its inside end towards its outside end, so two
+ * triangles sharing an edge get bit-identical cut points. */
+int cj_tri_clip(const cj_tri_vert in[3], double gx, double gy, cj_tri_vert *out, int *cut);
+
+/* A plane v(X, Y) = v0 + va (X − X_ref) + vb (Y − Y_ref) over the fixed-point screen, with
+ * (X_ref, Y_ref) the triangle's snapped vertex 0. Evaluated in double in that order at any
+ * sample: the value depends only on the sample, never on the tile. */
+typedef struct cj_tri_plane {
+    double v0, va, vb;
+} cj_tri_plane;
+
+/* One set-up screen triangle (a source triangle, or one piece of a clipped one). */
+typedef struct cj_tri_setup {
+    int64_t ea[3], eb[3], ec[3]; /* E_k = ea X + eb Y + ec, fill rule folded in ec */
+    int64_t xr, yr;              /* reference point: snapped vertex 0 */
+    int minx, miny, maxx, maxy;  /* inclusive pixel bounds, clamped to the image */
+    cj_tri_plane z;              /* pseudodepth */
+    cj_tri_plane r, q1, q2;      /* 1/w, b1/w, b2/w of the source triangle */
+    uint32_t src;                /* source triangle index */
+} cj_tri_setup;
+
+struct cj_raster_prep {
+    cj_allocator alloc;
+    int width, height, spp, tile_size;
+    int tiles_x, tiles_y;
+    int ox[16], oy[16]; /* sample offsets in 1/256 pixel */
+    int oxmin, oxmax, oymin, oymax;
+    size_t setup_count;
+    cj_tri_setup *setups;
+    size_t *bin_start; /* tiles_x·tiles_y + 1 offsets into bin_items */
+    uint32_t *bin_items;
+};
+
+/* Per-thread scratch of one run: the tile's depth and set-up index planes (structure of
+ * arrays, in the sample order of cj_tile). */
+typedef struct cj_tri_scratch {
+    float *depth;
+    uint32_t *id;
+    uint64_t tested, written;
+} cj_tri_scratch;
+
+/* Rasterizes every binned triangle of tile `t` into scratch (cleared first), then writes the
+ * visibility samples (source index, depth, perspective-correct barycentrics) to t->samples. */
+void cj_tri_render_tile(const cj_raster_prep *prep, const cj_tile *t, cj_tri_scratch *scratch);
+
+/* The depth and barycentrics of set-up triangle `s` at sample position (X, Y). */
+float cj_tri_depth_at(const cj_tri_setup *s, int64_t X, int64_t Y);
+void cj_tri_bary_at(const cj_tri_setup *s, int64_t X, int64_t Y, float *b1, float *b2);
+
+#endif

@@ -1,0 +1,393 @@
+/* Preparation of a frame's triangles: validation, clipping, snapping to the 1/256 pixel grid,
+ * 64-bit edge functions with the top-left rule, attribute planes, and binning into tiles
+ * (count, then fill, so the bins are one array in input order). */
+#include "tri_internal.h"
+
+#include "casteljau/framebuffer.h"
+#include "error_internal.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* ---- sample patterns --------------------------------------------------------------------- */
+
+/* spp 4: rotated grid; spp 16: 4 × 4 cells, one sample per cell, every x and every y distinct
+ * (multi-jittered: x = (4i + p[j] + 1/2)/16, y = (4j + q[i] + 1/2)/16 for cell (i, j)). */
+static const int k_pat4[4][2] = {{96, 32}, {224, 96}, {32, 160}, {160, 224}};
+static const int k_p16[4] = {2, 0, 3, 1};
+static const int k_q16[4] = {1, 3, 0, 2};
+
+static const double k_dpat1[1][2] = {{0.5, 0.5}};
+static const double k_dpat4[4][2] = {{96 / 256.0, 32 / 256.0},
+                                     {224 / 256.0, 96 / 256.0},
+                                     {32 / 256.0, 160 / 256.0},
+                                     {160 / 256.0, 224 / 256.0}};
+static double g_dpat16[16][2];
+static int g_dpat16_ready;
+
+static void pattern_fixed(int spp, int *ox, int *oy) {
+    if (spp == 1) {
+        ox[0] = oy[0] = 128;
+    } else if (spp == 4) {
+        for (int s = 0; s < 4; ++s) {
+            ox[s] = k_pat4[s][0];
+            oy[s] = k_pat4[s][1];
+        }
+    } else {
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) {
+                ox[4 * j + i] = 16 * (4 * i + k_p16[j]) + 8;
+                oy[4 * j + i] = 16 * (4 * j + k_q16[i]) + 8;
+            }
+    }
+}
+
+const double (*cj_raster_sample_pattern(int spp))[2] {
+    if (spp == 1) return k_dpat1;
+    if (spp == 4) return k_dpat4;
+    if (spp != 16) return NULL;
+    if (!g_dpat16_ready) {
+        /* Idempotent: concurrent first calls write the same values. */
+        int ox[16], oy[16];
+        pattern_fixed(16, ox, oy);
+        for (int s = 0; s < 16; ++s) {
+            g_dpat16[s][0] = ox[s] / 256.0;
+            g_dpat16[s][1] = oy[s] / 256.0;
+        }
+        g_dpat16_ready = 1;
+    }
+    return (const double(*)[2])g_dpat16;
+}
+
+/* ---- memory ------------------------------------------------------------------------------- */
+
+static void *std_alloc(void *u, size_t n) {
+    (void)u;
+    return malloc(n);
+}
+static void std_free(void *u, void *p) {
+    (void)u;
+    free(p);
+}
+
+static void *xalloc(const cj_allocator *a, size_t n) {
+    return a->alloc(a->user, n ? n : 1);
+}
+
+void cj_raster_prep_destroy(cj_raster_prep *p) {
+    if (!p) return;
+    cj_allocator a = p->alloc;
+    a.free(a.user, p->setups);
+    a.free(a.user, p->bin_start);
+    a.free(a.user, p->bin_items);
+    a.free(a.user, p);
+}
+
+void cj_raster_prep_layout(const cj_raster_prep *p, int *width, int *height, int *spp,
+                           int *tile_size) {
+    assert(p);
+    if (width) *width = p->width;
+    if (height) *height = p->height;
+    if (spp) *spp = p->spp;
+    if (tile_size) *tile_size = p->tile_size;
+}
+
+/* ---- set-up ------------------------------------------------------------------------------ */
+
+/* A polygon vertex after projection: exact screen position (pixels, double), snapped
+ * position (1/256 pixel), pseudodepth and the interpolants. */
+typedef struct pvert {
+    double sx, sy;
+    int64_t X, Y;
+    double z, r, q1, q2;
+} pvert;
+
+static int64_t snap(double ndc, double half) {
+    return (int64_t)llrint(256.0 * ((ndc + 1.0) * half));
+}
+
+static cj_tri_plane plane_of(const pvert *v[3], const double px[3], const double py[3], double val0,
+                             double val1, double val2) {
+    const double d1x = px[1] - px[0], d1y = py[1] - py[0];
+    const double d2x = px[2] - px[0], d2y = py[2] - py[0];
+    const double det = d1x * d2y - d1y * d2x;
+    const double e1 = val1 - val0, e2 = val2 - val0;
+    cj_tri_plane p;
+    p.va = (e1 * d2y - e2 * d1y) / det;
+    p.vb = (e2 * d1x - e1 * d2x) / det;
+    /* Re-anchor at the snapped vertex 0, the reference point of every plane. */
+    p.v0 = val0 + p.va * ((double)v[0]->X - px[0]) + p.vb * ((double)v[0]->Y - py[0]);
+    return p;
+}
+
+/* Sets up the screen triangle (a, b, c) of source triangle `src`. Returns 0 when it has zero
+ * area after snapping, or its orientation disagrees with `want` (+1/−1, 0 = any: a piece of
+ * a clipped polygon that snapping folded over is dropped rather than drawn twice). */
+static int setup_tri(const cj_raster_prep *p, const pvert *a, const pvert *b, const pvert *c,
+                     uint32_t src, int want, cj_tri_setup *s) {
+    const int64_t area = (b->X - a->X) * (c->Y - a->Y) - (b->Y - a->Y) * (c->X - a->X);
+    if (area == 0) return 0;
+    if (want != 0 && (area > 0 ? 1 : -1) != want) return 0;
+    const pvert *v[3] = {a, b, c};
+    if (area < 0) { /* orient counter-clockwise; the attributes travel with their vertex */
+        v[1] = c;
+        v[2] = b;
+    }
+    int64_t minX = v[0]->X, maxX = v[0]->X, minY = v[0]->Y, maxY = v[0]->Y;
+    for (int k = 0; k < 3; ++k) {
+        const pvert *p0 = v[k], *p1 = v[k == 2 ? 0 : k + 1];
+        const int64_t dx = p1->X - p0->X, dy = p1->Y - p0->Y;
+        const int owned = dy < 0 || (dy == 0 && dx < 0);
+        s->ea[k] = -dy;
+        s->eb[k] = dx;
+        s->ec[k] = dy * p0->X - dx * p0->Y - (owned ? 0 : 1);
+        if (p1->X < minX) minX = p1->X;
+        if (p1->X > maxX) maxX = p1->X;
+        if (p1->Y < minY) minY = p1->Y;
+        if (p1->Y > maxY) maxY = p1->Y;
+    }
+    /* Pixels whose samples can lie in the bounding box (floor division by 256). */
+    int64_t x0 = minX >> 8, x1 = maxX >> 8, y0 = minY >> 8, y1 = maxY >> 8;
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > p->width - 1) x1 = p->width - 1;
+    if (y1 > p->height - 1) y1 = p->height - 1;
+    if (x0 > x1 || y0 > y1) return 0;
+    s->minx = (int)x0;
+    s->maxx = (int)x1;
+    s->miny = (int)y0;
+    s->maxy = (int)y1;
+    s->xr = v[0]->X;
+    s->yr = v[0]->Y;
+    s->src = src;
+    /* Attribute planes through the exact (unsnapped) positions, in 1/256 pixel units; when
+     * snapping made a sliver out of a (nearly) degenerate triangle, through the snapped ones. */
+    double px[3], py[3];
+    for (int k = 0; k < 3; ++k) {
+        px[k] = 256.0 * v[k]->sx;
+        py[k] = 256.0 * v[k]->sy;
+    }
+    const double det = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
+    if (!(fabs(det) >= 0.25 * fabs((double)area))) {
+        for (int k = 0; k < 3; ++k) {
+            px[k] = (double)v[k]->X;
+            py[k] = (double)v[k]->Y;
+        }
+    }
+    s->z = plane_of(v, px, py, v[0]->z, v[1]->z, v[2]->z);
+    s->r = plane_of(v, px, py, v[0]->r, v[1]->r, v[2]->r);
+    s->q1 = plane_of(v, px, py, v[0]->q1, v[1]->q1, v[2]->q1);
+    s->q2 = plane_of(v, px, py, v[0]->q2, v[1]->q2, v[2]->q2);
+    return 1;
+}
+
+typedef struct setup_list {
+    const cj_allocator *alloc;
+    cj_tri_setup *v;
+    size_t n, cap;
+} setup_list;
+
+static cj_tri_setup *list_push(setup_list *l) {
+    if (l->n == l->cap) {
+        const size_t cap = l->cap ? 2 * l->cap : 1024;
+        cj_tri_setup *nv = xalloc(l->alloc, cap * sizeof *nv);
+        if (!nv) return NULL;
+        if (l->n) memcpy(nv, l->v, l->n * sizeof *nv);
+        l->alloc->free(l->alloc->user, l->v);
+        l->v = nv;
+        l->cap = cap;
+    }
+    return &l->v[l->n];
+}
+
+static double now_seconds(void) {
+    struct timespec ts;
+    timespec_get(&ts, TIME_UTC);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Tile t of the prep intersects triangle s: its bounding box does, and no edge function is
+ * negative over the whole tile (tested at the tile corner where it is largest). */
+static int tile_hit(const cj_raster_prep *p, const cj_tri_setup *s, int tx, int ty) {
+    const int64_t X0 = (int64_t)tx * p->tile_size * 256, Y0 = (int64_t)ty * p->tile_size * 256;
+    int64_t X1 = ((int64_t)tx + 1) * p->tile_size * 256 - 1;
+    int64_t Y1 = ((int64_t)ty + 1) * p->tile_size * 256 - 1;
+    for (int k = 0; k < 3; ++k) {
+        const int64_t X = s->ea[k] > 0 ? X1 : X0, Y = s->eb[k] > 0 ? Y1 : Y0;
+        if (s->ea[k] * X + s->eb[k] * Y + s->ec[k] < 0) return 0;
+    }
+    return 1;
+}
+
+static cj_status bin(cj_raster_prep *p) {
+    const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
+    p->bin_start = xalloc(&p->alloc, (tiles + 1) * sizeof *p->bin_start);
+    if (!p->bin_start) return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu tile bins", tiles);
+    memset(p->bin_start, 0, (tiles + 1) * sizeof *p->bin_start);
+    for (int pass = 0; pass < 2; ++pass) {
+        for (size_t i = 0; i < p->setup_count; ++i) {
+            const cj_tri_setup *s = &p->setups[i];
+            const int tx0 = s->minx / p->tile_size, tx1 = s->maxx / p->tile_size;
+            const int ty0 = s->miny / p->tile_size, ty1 = s->maxy / p->tile_size;
+            const int one = tx0 == tx1 && ty0 == ty1;
+            for (int ty = ty0; ty <= ty1; ++ty)
+                for (int tx = tx0; tx <= tx1; ++tx) {
+                    if (!one && !tile_hit(p, s, tx, ty)) continue;
+                    const size_t t = (size_t)ty * p->tiles_x + tx;
+                    if (pass == 0)
+                        p->bin_start[t + 1]++;
+                    else
+                        p->bin_items[p->bin_start[t]++] = (uint32_t)i;
+                }
+        }
+        if (pass == 0) {
+            for (size_t t = 0; t < tiles; ++t) p->bin_start[t + 1] += p->bin_start[t];
+            p->bin_items = xalloc(&p->alloc, p->bin_start[tiles] * sizeof *p->bin_items);
+            if (!p->bin_items)
+                return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu binned triangles",
+                               p->bin_start[tiles]);
+        } else {
+            /* The fill pass advanced each start to the next bin's start: shift back. */
+            for (size_t t = tiles; t > 0; --t) p->bin_start[t] = p->bin_start[t - 1];
+            p->bin_start[0] = 0;
+        }
+    }
+    return CJ_OK;
+}
+
+cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_allocator *alloc,
+                            cj_raster_prep **out, cj_raster_stats *stats) {
+    assert(in && out);
+    assert(in->vertex_count == 0 || in->clip);
+    assert(in->tri_count == 0 || in->tris);
+    const double t_start = now_seconds();
+    if (in->width < 1 || in->height < 1 || in->width > CJ_FRAMEBUFFER_MAX_SIDE ||
+        in->height > CJ_FRAMEBUFFER_MAX_SIDE)
+        return cj_fail(CJ_ERR_RANGE, "raster: image size %d x %d outside 1..%d", in->width,
+                       in->height, CJ_FRAMEBUFFER_MAX_SIDE);
+    if (in->spp != 1 && in->spp != 4 && in->spp != 16)
+        return cj_fail(CJ_ERR_RANGE, "raster: spp = %d must be 1, 4 or 16", in->spp);
+    if (tile_size < 1 || tile_size > CJ_FRAMEBUFFER_MAX_SIDE)
+        return cj_fail(CJ_ERR_RANGE, "raster: tile size %d outside 1..%d", tile_size,
+                       CJ_FRAMEBUFFER_MAX_SIDE);
+    if (in->tri_count > (size_t)1 << 28)
+        return cj_fail(CJ_ERR_RANGE, "raster: %zu triangles exceed the limit 2^28", in->tri_count);
+    for (size_t i = 0; i < 4 * in->vertex_count; ++i)
+        if (!isfinite(in->clip[i]))
+            return cj_fail(CJ_ERR_NONFINITE, "raster: clip coordinate %zu of vertex %zu is %g",
+                           i % 4, i / 4, in->clip[i]);
+    for (size_t i = 0; i < 3 * in->tri_count; ++i)
+        if (in->tris[i] >= in->vertex_count)
+            return cj_fail(CJ_ERR_ARGUMENT, "raster: triangle %zu names vertex %u of %zu", i / 3,
+                           (unsigned)in->tris[i], in->vertex_count);
+
+    cj_allocator a;
+    if (alloc)
+        a = *alloc;
+    else {
+        a.alloc = std_alloc;
+        a.free = std_free;
+        a.user = NULL;
+    }
+    cj_raster_prep *p = xalloc(&a, sizeof *p);
+    if (!p) return cj_fail(CJ_ERR_NOMEM, "raster: no memory for the prepared frame");
+    memset(p, 0, sizeof *p);
+    p->alloc = a;
+    p->width = in->width;
+    p->height = in->height;
+    p->spp = in->spp;
+    p->tile_size = tile_size;
+    p->tiles_x = (in->width + tile_size - 1) / tile_size;
+    p->tiles_y = (in->height + tile_size - 1) / tile_size;
+    pattern_fixed(in->spp, p->ox, p->oy);
+    p->oxmin = p->oymin = 256;
+    p->oxmax = p->oymax = -1;
+    for (int s = 0; s < in->spp; ++s) {
+        if (p->ox[s] < p->oxmin) p->oxmin = p->ox[s];
+        if (p->ox[s] > p->oxmax) p->oxmax = p->ox[s];
+        if (p->oy[s] < p->oymin) p->oymin = p->oy[s];
+        if (p->oy[s] > p->oymax) p->oymax = p->oy[s];
+    }
+
+    cj_raster_stats st;
+    memset(&st, 0, sizeof st);
+    st.tris_in = in->tri_count;
+    const double hw = 0.5 * in->width, hh = 0.5 * in->height;
+    const double gx = 2.0 * CJ_TRI_GUARD_PX / in->width, gy = 2.0 * CJ_TRI_GUARD_PX / in->height;
+    setup_list list = {&p->alloc, NULL, 0, 0};
+    cj_status status = CJ_OK;
+    for (size_t t = 0; t < in->tri_count && status == CJ_OK; ++t) {
+        cj_tri_vert tv[3];
+        static const double bary[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+        for (int k = 0; k < 3; ++k) {
+            const double *c = in->clip + 4 * (size_t)in->tris[3 * t + k];
+            tv[k].x = c[0];
+            tv[k].y = c[1];
+            tv[k].z = c[2];
+            tv[k].w = c[3];
+            tv[k].b1 = bary[k][0];
+            tv[k].b2 = bary[k][1];
+        }
+        cj_tri_vert poly[CJ_TRI_CLIP_MAX];
+        int cut = 0;
+        const int n = cj_tri_clip(tv, gx, gy, poly, &cut);
+        st.tris_clipped += cut;
+        pvert pv[CJ_TRI_CLIP_MAX];
+        int ok = n >= 3;
+        for (int k = 0; k < n && ok; ++k) {
+            const cj_tri_vert *c = &poly[k];
+            if (!(c->w > 0.0)) { /* only a degenerate input reaches w = 0 inside the volume */
+                ok = 0;
+                break;
+            }
+            const double xn = c->x / c->w, yn = c->y / c->w;
+            pv[k].sx = (xn + 1.0) * hw;
+            pv[k].sy = (yn + 1.0) * hh;
+            pv[k].X = snap(xn, hw);
+            pv[k].Y = snap(yn, hh);
+            pv[k].z = c->z / c->w;
+            pv[k].r = 1.0 / c->w;
+            pv[k].q1 = c->b1 / c->w;
+            pv[k].q2 = c->b2 / c->w;
+        }
+        size_t made = 0;
+        if (ok) {
+            int want = 0;
+            if (n > 3) { /* orientation of the whole snapped polygon (shoelace, exact) */
+                int64_t a2 = 0;
+                for (int k = 0; k < n; ++k) {
+                    const pvert *u = &pv[k], *w = &pv[k + 1 == n ? 0 : k + 1];
+                    a2 += u->X * w->Y - u->Y * w->X;
+                }
+                want = a2 > 0 ? 1 : a2 < 0 ? -1 : 2;
+            }
+            for (int k = 1; k + 1 < n && want != 2; ++k) {
+                cj_tri_setup *s = list_push(&list);
+                if (!s) {
+                    status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for set-up triangles");
+                    break;
+                }
+                if (setup_tri(p, &pv[0], &pv[k], &pv[k + 1], (uint32_t)t, want, s)) {
+                    list.n++;
+                    made++;
+                }
+            }
+        }
+        if (made == 0) st.tris_rejected++;
+        st.tris_setup += made;
+    }
+    p->setups = list.v;
+    p->setup_count = list.n;
+    if (status == CJ_OK) status = bin(p);
+    if (status != CJ_OK) {
+        cj_raster_prep_destroy(p);
+        return status;
+    }
+    st.seconds_setup = now_seconds() - t_start;
+    if (stats) *stats = st;
+    *out = p;
+    return CJ_OK;
+}
