@@ -44,13 +44,19 @@ cj_status cj_fl_init(cj_fl_curve *fc, const cj_bezier *c, const double *weights)
     fc->escale = 0;
     if (maxabs > 0.0) (void)frexp(maxabs, &fc->escale);
     (void)frexp(wmaxs, &ew);
-    for (int i = 0; i <= n; ++i) {
-        const double wi = weights ? ldexp(weights[i], -ew) : 1.0;
-        for (int k = 0; k < d; ++k) {
-            const double x = ldexp(c->pts[i * d + k], -fc->escale);
-            fc->hom[i * fc->D + k] = weights ? wi * x : x;
+    if (!weights && fc->escale > -1000 && fc->escale < 1000) {
+        /* 2^-escale is a normal double here, so the product is exactly ldexp's result. */
+        const double f = ldexp(1.0, -fc->escale);
+        for (int i = 0; i < (n + 1) * d; ++i) fc->hom[i] = c->pts[i] * f;
+    } else {
+        for (int i = 0; i <= n; ++i) {
+            const double wi = weights ? ldexp(weights[i], -ew) : 1.0;
+            for (int k = 0; k < d; ++k) {
+                const double x = ldexp(c->pts[i * d + k], -fc->escale);
+                fc->hom[i * fc->D + k] = weights ? wi * x : x;
+            }
+            if (weights) fc->hom[i * fc->D + d] = wi;
         }
-        if (weights) fc->hom[i * fc->D + d] = wi;
     }
     /* Rounding allowance: the subcurve (two de Casteljau splits, <= ~8 n u), the refinement's
      * two halvings (<= 2 n u), the division by the weight and the point-to-chord arithmetic

@@ -5,6 +5,8 @@
 #include "casteljau/flatten.h"
 #include "error_internal.h"
 
+#include <string.h>
+
 /* Homogeneous work space: (n+1) points of up to CJ_MAX_DIM (+1 weight) coordinates. */
 #define CJ_FL_WORK ((CJ_BEZIER_MAX_DEGREE + 1) * (CJ_MAX_DIM + 1))
 
@@ -64,5 +66,45 @@ void cj_fl_eval(const cj_fl_curve *fc, double t, double *out);
 
 /* Wang's bound coefficient K: m equal steps give a bound of K / m^2 (plus slack). */
 double cj_fl_wang_coefficient(const cj_fl_curve *fc);
+
+/* Where points go: a caller buffer (out may be NULL to count) or a sink. */
+typedef struct cj_fl_emitter {
+    int d;
+    double *out;
+    size_t cap_points;
+    cj_flatten_sink sink;
+    void *user;
+    size_t count;      /* points emitted so far in this call */
+    size_t max_points; /* max_segments + 1 */
+    size_t piece;
+    int skip_equal; /* the next point is the start of a sequence piece */
+    double last[CJ_MAX_DIM];
+} cj_fl_emitter;
+
+/* Returns 1 when the cap forbids this point. */
+static inline int cj_fl_emit(cj_fl_emitter *e, const double *pt, double t) {
+    if (e->skip_equal) {
+        e->skip_equal = 0;
+        if (e->count > 0 && memcmp(e->last, pt, sizeof(double) * (size_t)e->d) == 0) return 0;
+    }
+    if (e->count >= e->max_points) return 1;
+    if (e->out && e->count < e->cap_points)
+        memcpy(e->out + e->count * (size_t)e->d, pt, sizeof(double) * (size_t)e->d);
+    if (e->sink) e->sink(e->user, pt, e->d, e->piece, t);
+    memcpy(e->last, pt, sizeof(double) * (size_t)e->d);
+    e->count++;
+    return 0;
+}
+
+static inline cj_status cj_fl_cap_fail(const cj_fl_emitter *e, const char *method) {
+    return cj_fail(CJ_ERR_CAP, "flattening (%s) needs more than max_segments = %zu segments",
+                   method, e->max_points - 1);
+}
+
+/* The near-optimal method for planar polynomial quadratics and cubics (flatten_fast.c): the
+ * same contract as the general one, at a fraction of its cost. cj_fl_fast_applies says whether
+ * it takes the curve. */
+int cj_fl_fast_applies(const cj_fl_curve *fc);
+cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *em, double *bound);
 
 #endif

@@ -1,63 +1,30 @@
-/* Flattening: the three methods, the emitter (buffer or callback) and the public entry points. */
+/* Flattening: the three methods, the drivers and the public entry points. */
 #include "flatten_internal.h"
 
 #include <assert.h>
 #include <math.h>
 #include <string.h>
 
-/* Where points go: a caller buffer (out may be NULL to count) or a sink. */
-typedef struct emitter {
-    int d;
-    double *out;
-    size_t cap_points;
-    cj_flatten_sink sink;
-    void *user;
-    size_t count;      /* points emitted so far in this call */
-    size_t max_points; /* max_segments + 1 */
-    size_t piece;
-    int skip_equal; /* the next point is the start of a sequence piece */
-    double last[CJ_MAX_DIM];
-} emitter;
-
-/* Returns 1 when the cap forbids this point. */
-static int emit(emitter *e, const double *pt, double t) {
-    if (e->skip_equal) {
-        e->skip_equal = 0;
-        if (e->count > 0 && memcmp(e->last, pt, sizeof(double) * (size_t)e->d) == 0) return 0;
-    }
-    if (e->count >= e->max_points) return 1;
-    if (e->out && e->count < e->cap_points)
-        memcpy(e->out + e->count * (size_t)e->d, pt, sizeof(double) * (size_t)e->d);
-    if (e->sink) e->sink(e->user, pt, e->d, e->piece, t);
-    memcpy(e->last, pt, sizeof(double) * (size_t)e->d);
-    e->count++;
-    return 0;
-}
-
-static cj_status cap_fail(const emitter *e, const char *method) {
-    return cj_fail(CJ_ERR_CAP, "flattening (%s) needs more than max_segments = %zu segments",
-                   method, e->max_points - 1);
-}
-
 /* ---- uniform (Wang) ----------------------------------------------------------------------- */
 
-static cj_status run_uniform(const cj_fl_curve *fc, double tol_eff, emitter *em, double *bound) {
+static cj_status run_uniform(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *em,
+                             double *bound) {
     const double K = cj_fl_wang_coefficient(fc);
     double pt[CJ_MAX_DIM];
     const double mf = K > 0.0 ? ceil(sqrt(K / tol_eff)) : 1.0;
     const size_t room = em->max_points - (em->count > 0 ? em->count - 1 : 0);
     /* room - 1 more segments fit (the first point of this curve may be shared). */
-    if (!(mf <= (double)(room - 1))) return cap_fail(em, "uniform");
+    if (!(mf <= (double)(room - 1))) return cj_fl_cap_fail(em, "uniform");
     const size_t m = (size_t)mf;
     cj_fl_end(fc, 0, pt);
-    if (emit(em, pt, 0.0)) return cap_fail(em, "uniform");
+    if (cj_fl_emit(em, pt, 0.0)) return cj_fl_cap_fail(em, "uniform");
     for (size_t j = 1; j < m; ++j) {
         const double t = (double)j / (double)m;
         cj_fl_eval(fc, t, pt);
-        if (emit(em, pt, t)) return cap_fail(em, "uniform");
+        if (cj_fl_emit(em, pt, t)) return cj_fl_cap_fail(em, "uniform");
     }
     cj_fl_end(fc, fc->n, pt);
-    if (emit(em, pt, 1.0)) return cap_fail(em, "uniform");
+    if (cj_fl_emit(em, pt, 1.0)) return cj_fl_cap_fail(em, "uniform");
     *bound = K / (mf * mf) + fc->slack;
     return CJ_OK;
 }
@@ -80,7 +47,7 @@ static cj_status subdiv_too_deep(double tol_eff, double a) {
 
 /* Pieces of small curves live on an explicit stack: halving a piece costs one de Casteljau
  * triangle. Curves too large for the stack take the stack-free walk below. */
-static cj_status run_subdivide_stack(const cj_fl_curve *fc, double tol_eff, emitter *em,
+static cj_status run_subdivide_stack(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *em,
                                      double *bound) {
     const size_t S = (size_t)(fc->n + 1) * (size_t)fc->D;
     double stk[SUBDIV_STACK_DOUBLES], pa[SUBDIV_MAX_DEPTH + 2], pb[SUBDIV_MAX_DEPTH + 2];
@@ -88,7 +55,7 @@ static cj_status run_subdivide_stack(const cj_fl_curve *fc, double tol_eff, emit
     double pt[CJ_MAX_DIM], tmp[CJ_FL_WORK];
     double worst = 0.0;
     cj_fl_end(fc, 0, pt);
-    if (emit(em, pt, 0.0)) return cap_fail(em, "subdivide");
+    if (cj_fl_emit(em, pt, 0.0)) return cj_fl_cap_fail(em, "subdivide");
     int top = 1;
     memcpy(stk, fc->hom, sizeof(double) * S);
     pa[0] = 0.0, pb[0] = 1.0, lev[0] = 0;
@@ -105,7 +72,7 @@ static cj_status run_subdivide_stack(const cj_fl_curve *fc, double tol_eff, emit
                 cj_fl_end(fc, fc->n, pt);
             else
                 cj_fl_point(fc, cur, fc->n, pt);
-            if (emit(em, pt, b)) return cap_fail(em, "subdivide");
+            if (cj_fl_emit(em, pt, b)) return cj_fl_cap_fail(em, "subdivide");
             --top;
             continue;
         }
@@ -126,13 +93,14 @@ static cj_status run_subdivide_stack(const cj_fl_curve *fc, double tol_eff, emit
 
 /* Stack-free walk over the dyadic pieces [k 2^-L, (k+1) 2^-L], each computed from the whole
  * curve; accepted pieces advance k, climbing while k is even. */
-static cj_status run_subdivide(const cj_fl_curve *fc, double tol_eff, emitter *em, double *bound) {
+static cj_status run_subdivide(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *em,
+                               double *bound) {
     if ((size_t)(fc->n + 1) * (size_t)fc->D * (SUBDIV_MAX_DEPTH + 2) <= SUBDIV_STACK_DOUBLES)
         return run_subdivide_stack(fc, tol_eff, em, bound);
     double sub[CJ_FL_WORK], pt[CJ_MAX_DIM];
     double worst = 0.0;
     cj_fl_end(fc, 0, pt);
-    if (emit(em, pt, 0.0)) return cap_fail(em, "subdivide");
+    if (cj_fl_emit(em, pt, 0.0)) return cj_fl_cap_fail(em, "subdivide");
     int L = 0;
     unsigned long long k = 0;
     for (;;) {
@@ -148,7 +116,7 @@ static cj_status run_subdivide(const cj_fl_curve *fc, double tol_eff, emitter *e
                 cj_fl_end(fc, fc->n, pt);
             else
                 cj_fl_point(fc, sub, fc->n, pt);
-            if (emit(em, pt, b)) return cap_fail(em, "subdivide");
+            if (cj_fl_emit(em, pt, b)) return cj_fl_cap_fail(em, "subdivide");
             if (b == 1.0) break;
             ++k;
             while (L > 0 && (k & 1u) == 0) {
@@ -167,14 +135,14 @@ static cj_status run_subdivide(const cj_fl_curve *fc, double tol_eff, emitter *e
 
 /* ---- near-optimal (curvature-spaced, verified) -------------------------------------------- */
 
-static cj_status run_near_optimal(const cj_fl_curve *fc, double tol_eff, emitter *em,
+static cj_status run_near_optimal(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *em,
                                   double *bound) {
     double sub[CJ_FL_WORK], sublo[CJ_FL_WORK], pt[CJ_MAX_DIM];
     const size_t nsub = (size_t)(fc->n + 1) * (size_t)fc->D;
     const double target = 0.975 * tol_eff, accept_lo = 0.95 * tol_eff;
     double worst = 0.0;
     cj_fl_end(fc, 0, pt);
-    if (emit(em, pt, 0.0)) return cap_fail(em, "near-optimal");
+    if (cj_fl_emit(em, pt, 0.0)) return cj_fl_cap_fail(em, "near-optimal");
     /* First step from Wang's count (its steps are safe everywhere, so a bit more is a good
      * first guess); afterwards the previous step predicts the next one. */
     const double K = cj_fl_wang_coefficient(fc);
@@ -245,7 +213,7 @@ static cj_status run_near_optimal(const cj_fl_curve *fc, double tol_eff, emitter
             cj_fl_end(fc, fc->n, pt);
         else
             cj_fl_point(fc, acc, fc->n, pt);
-        if (emit(em, pt, bacc)) return cap_fail(em, "near-optimal");
+        if (cj_fl_emit(em, pt, bacc)) return cj_fl_cap_fail(em, "near-optimal");
         a = bacc;
         /* Next guess: this step, corrected for the error it left unused and extrapolated by
          * the trend of the last two steps (curvature varies smoothly along most curves). */
@@ -271,7 +239,7 @@ static cj_status check_opts(const cj_flatten_opts *opts) {
     return CJ_OK;
 }
 
-static cj_status flatten_one(const cj_fl_curve *fc, const cj_flatten_opts *opts, emitter *em,
+static cj_status flatten_one(const cj_fl_curve *fc, const cj_flatten_opts *opts, cj_fl_emitter *em,
                              double *bound) {
     if (opts->tol < 4.0 * fc->slack)
         return cj_fail(CJ_ERR_RANGE,
@@ -282,7 +250,7 @@ static cj_status flatten_one(const cj_fl_curve *fc, const cj_flatten_opts *opts,
     if (fc->n == 0) { /* a single point: one zero-length segment */
         double pt[CJ_MAX_DIM];
         cj_fl_end(fc, 0, pt);
-        if (emit(em, pt, 0.0) || emit(em, pt, 1.0)) return cap_fail(em, "any");
+        if (cj_fl_emit(em, pt, 0.0) || cj_fl_emit(em, pt, 1.0)) return cj_fl_cap_fail(em, "any");
         *bound = 0.0;
         return CJ_OK;
     }
@@ -296,11 +264,12 @@ static cj_status flatten_one(const cj_fl_curve *fc, const cj_flatten_opts *opts,
     case CJ_FLATTEN_SUBDIVIDE:
         return run_subdivide(fc, tol_eff, em, bound);
     default:
+        if (cj_fl_fast_applies(fc)) return cj_fl_run_fast(fc, tol_eff, em, bound);
         return run_near_optimal(fc, tol_eff, em, bound);
     }
 }
 
-static void emitter_init(emitter *em, int d, const cj_flatten_opts *opts, double *out,
+static void emitter_init(cj_fl_emitter *em, int d, const cj_flatten_opts *opts, double *out,
                          size_t cap_points, cj_flatten_sink sink, void *user) {
     memset(em, 0, sizeof *em);
     em->d = d;
@@ -312,7 +281,7 @@ static void emitter_init(emitter *em, int d, const cj_flatten_opts *opts, double
     em->max_points = cap + 1;
 }
 
-static cj_status finish(const emitter *em, cj_status st, double bound, size_t *npoints,
+static cj_status finish(const cj_fl_emitter *em, cj_status st, double bound, size_t *npoints,
                         cj_flatten_stats *stats) {
     if (npoints) *npoints = em->count;
     if (st) return st;
@@ -334,7 +303,7 @@ static cj_status flatten_single(const cj_bezier *c, const double *weights,
     if (st) return st;
     cj_fl_curve fc;
     if ((st = cj_fl_init(&fc, c, weights))) return st;
-    emitter em;
+    cj_fl_emitter em;
     emitter_init(&em, c->dim, opts, out, cap_points, sink, user);
     double bound = 0.0;
     st = flatten_one(&fc, opts, &em, &bound);
@@ -395,7 +364,7 @@ static cj_status flatten_seq(const cj_flatten_piece *pieces, size_t count,
             return cj_fail(st, "piece %zu: %s", i, msg);
         }
     }
-    emitter em;
+    cj_fl_emitter em;
     emitter_init(&em, d, opts, out, cap_points, sink, user);
     double worst = 0.0;
     for (size_t i = 0; i < count; ++i) {
