@@ -356,6 +356,18 @@ cj_material *cj_scene_material_mut(cj_scene *scene, int index);
 cj_node *cj_scene_node_mut(cj_scene *scene, int index);
 cj_geometry *cj_scene_geometry_mut(cj_scene *scene, int index);
 
+/* Optional names of materials and textures (the JSON format refers to them by name; an editor
+ * shows them), copied; NULL = unnamed. CJ_ERR_ARGUMENT for an index that names nothing. */
+cj_status cj_scene_set_material_name(cj_scene *scene, int index, const char *name);
+const char *cj_scene_material_name(const cj_scene *scene, int index);
+cj_status cj_scene_set_texture_name(cj_scene *scene, int index, const char *name);
+const char *cj_scene_texture_name(const cj_scene *scene, int index);
+/* Where texture `index` was defined, for the messages of later stages (the texture loader of
+ * casteljau/scene_textures.h), e.g. "scenes/teapot.json:12: textures[0]"; copied; NULL when
+ * unknown (a scene built from code). */
+cj_status cj_scene_set_texture_source(cj_scene *scene, int index, const char *where);
+const char *cj_scene_texture_source(const cj_scene *scene, int index);
+
 /* World transform of node `index` (parents composed). */
 cj_status cj_scene_node_world(const cj_scene *scene, int index, cj_xform3 *out);
 

@@ -1,0 +1,610 @@
+/* The scene model: defaults, transforms, and the scene object that owns deep copies of
+ * everything added to it. Validation lives in scene_check.c. */
+#include "scene_internal.h"
+
+#include "error_internal.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- defaults ------------------------------------------------------------------------------ */
+
+cj_light cj_light_default(cj_light_kind kind) {
+    cj_light l;
+    memset(&l, 0, sizeof l);
+    l.kind = kind;
+    l.color = cj_rgb_make(1, 1, 1);
+    l.intensity = 1.0;
+    l.position = cj_v3(5, 5, 5);
+    l.direction = cj_v3(-1, -1, -1);
+    l.spot_angle = 0.5235987755982988; /* 30 degrees */
+    l.spot_exponent = 0.0;
+    l.edge_u = cj_v3(1, 0, 0);
+    l.edge_v = cj_v3(0, 0, 1);
+    l.casts_shadows = 1;
+    return l;
+}
+
+cj_texture cj_texture_default(cj_texture_kind kind) {
+    cj_texture t;
+    memset(&t, 0, sizeof t);
+    t.kind = kind;
+    t.filter = CJ_TEX_BILINEAR;
+    t.wrap = CJ_TEX_REPEAT;
+    t.scale_u = t.scale_v = 1.0;
+    t.checks_u = t.checks_v = 8;
+    t.checker_a = cj_rgb_make(0.9, 0.9, 0.9);
+    t.checker_b = cj_rgb_make(0.1, 0.1, 0.1);
+    return t;
+}
+
+cj_material cj_material_default(void) {
+    cj_material m;
+    memset(&m, 0, sizeof m);
+    m.color = cj_rgb_make(0.8, 0.8, 0.8);
+    m.specular = cj_rgb_make(1, 1, 1);
+    m.ka = 0.1;
+    m.kd = 0.7;
+    m.ks = 0.3;
+    m.alpha = 32.0;
+    m.shading = CJ_SHADE_PHONG;
+    m.two_sided = 0;
+    m.texture = -1;
+    m.opacity = 1.0;
+    m.ior = 1.5;
+    m.receives_shadows = 1;
+    return m;
+}
+
+cj_scene_settings cj_scene_settings_default(void) {
+    cj_scene_settings s;
+    memset(&s, 0, sizeof s);
+    s.width = 640;
+    s.height = 480;
+    s.spp = 1;
+    s.tol_px = 0.25;
+    s.background = cj_rgb_make(0, 0, 0);
+    s.max_depth = 5;
+    s.seed = 1;
+    return s;
+}
+
+/* ---- transforms ---------------------------------------------------------------------------- */
+
+cj_transform cj_transform_identity(void) {
+    cj_transform t;
+    t.translate = cj_v3(0, 0, 0);
+    t.rotation[0] = 1.0;
+    t.rotation[1] = t.rotation[2] = t.rotation[3] = 0.0;
+    t.scale = cj_v3(1, 1, 1);
+    t.matrix = cj_xform3_identity();
+    return t;
+}
+
+void cj_quat_to_matrix_(const double q[4], double r[3][3]) {
+    const double w = q[0], x = q[1], y = q[2], z = q[3];
+    r[0][0] = 1 - 2 * (y * y + z * z);
+    r[0][1] = 2 * (x * y - w * z);
+    r[0][2] = 2 * (x * z + w * y);
+    r[1][0] = 2 * (x * y + w * z);
+    r[1][1] = 1 - 2 * (x * x + z * z);
+    r[1][2] = 2 * (y * z - w * x);
+    r[2][0] = 2 * (x * z - w * y);
+    r[2][1] = 2 * (y * z + w * x);
+    r[2][2] = 1 - 2 * (x * x + y * y);
+}
+
+cj_xform3 cj_transform_matrix(const cj_transform *t) {
+    assert(t != NULL);
+    double r[3][3];
+    cj_quat_to_matrix_(t->rotation, r);
+    /* T·R·S as one affine matrix: columns of R scaled by S, translation in the last column. */
+    cj_xform3 trs = cj_xform3_identity();
+    const double s[3] = {t->scale.x, t->scale.y, t->scale.z};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) trs.m[i][j] = r[i][j] * s[j];
+    trs.m[0][3] = t->translate.x;
+    trs.m[1][3] = t->translate.y;
+    trs.m[2][3] = t->translate.z;
+    return cj_xform3_compose(&trs, &t->matrix);
+}
+
+/* ---- memory -------------------------------------------------------------------------------- */
+
+void *cj_scene_alloc_(const cj_scene *s, size_t bytes) {
+    if (bytes == 0) bytes = 1;
+    return s->alloc.alloc ? s->alloc.alloc(s->alloc.user, bytes) : malloc(bytes);
+}
+
+void cj_scene_free_(const cj_scene *s, void *p) {
+    if (!p) return;
+    if (s->alloc.free)
+        s->alloc.free(s->alloc.user, p);
+    else
+        free(p);
+}
+
+char *cj_scene_strdup_(const cj_scene *s, const char *str, int *ok) {
+    *ok = 1;
+    if (!str) return NULL;
+    size_t n = strlen(str) + 1;
+    char *d = cj_scene_alloc_(s, n);
+    if (!d) {
+        *ok = 0;
+        return NULL;
+    }
+    memcpy(d, str, n);
+    return d;
+}
+
+static void *dup_block(const cj_scene *s, const void *src, size_t bytes, int *ok) {
+    if (!src) return NULL;
+    void *d = cj_scene_alloc_(s, bytes);
+    if (!d) {
+        *ok = 0;
+        return NULL;
+    }
+    memcpy(d, src, bytes);
+    return d;
+}
+
+/* Grows an array of `elem`-byte items to hold one more; the new tail is zeroed. */
+static int grow(const cj_scene *s, void **arr, size_t *cap, size_t n, size_t elem) {
+    if (n < *cap) return 1;
+    size_t nc = *cap ? 2 * *cap : 8;
+    char *d = cj_scene_alloc_(s, nc * elem);
+    if (!d) return 0;
+    if (*arr) memcpy(d, *arr, n * elem);
+    memset(d + n * elem, 0, (nc - n) * elem);
+    cj_scene_free_(s, *arr);
+    *arr = d;
+    *cap = nc;
+    return 1;
+}
+
+/* ---- create / destroy ---------------------------------------------------------------------- */
+
+cj_status cj_scene_create(const cj_allocator *alloc, cj_scene **out) {
+    assert(out != NULL);
+    assert(!alloc || (alloc->alloc && alloc->free));
+    cj_scene *s = alloc ? alloc->alloc(alloc->user, sizeof *s) : malloc(sizeof *s);
+    if (!s) return cj_fail(CJ_ERR_NOMEM, "out of memory creating a scene");
+    memset(s, 0, sizeof *s);
+    if (alloc) s->alloc = *alloc;
+    s->camera = cj_camera_default();
+    s->settings = cj_scene_settings_default();
+    *out = s;
+    return CJ_OK;
+}
+
+static void free_geometry(cj_scene *s, size_t i) {
+    cj_geometry *g = &s->geoms[i];
+    if (g->kind == CJ_GEOM_MESH) cj_mesh_destroy(g->u.mesh);
+    for (int k = 0; k < 3; ++k) cj_scene_free_(s, s->gstore[i].block[k]);
+}
+
+void cj_scene_destroy(cj_scene *s) {
+    if (!s) return;
+    for (size_t i = 0; i < s->ntextures; ++i) {
+        cj_scene_free_(s, (void *)s->textures[i].path);
+        cj_scene_free_(s, (void *)s->textures[i].texels);
+        cj_scene_free_(s, s->texture_sources[i]);
+        cj_scene_free_(s, s->texture_names[i]);
+    }
+    for (size_t i = 0; i < s->nmaterials; ++i) cj_scene_free_(s, s->material_names[i]);
+    for (size_t i = 0; i < s->ngeoms; ++i) free_geometry(s, i);
+    for (size_t i = 0; i < s->nnodes; ++i) cj_scene_free_(s, (void *)s->nodes[i].name);
+    cj_scene_free_(s, s->lights);
+    cj_scene_free_(s, s->textures);
+    cj_scene_free_(s, s->texture_sources);
+    cj_scene_free_(s, s->texture_names);
+    cj_scene_free_(s, s->materials);
+    cj_scene_free_(s, s->material_names);
+    cj_scene_free_(s, s->geoms);
+    cj_scene_free_(s, s->gstore);
+    cj_scene_free_(s, s->nodes);
+    cj_allocator a = s->alloc;
+    if (a.free)
+        a.free(a.user, s);
+    else
+        free(s);
+}
+
+/* ---- camera and settings ------------------------------------------------------------------- */
+
+cj_status cj_scene_set_camera(cj_scene *s, const cj_camera *cam) {
+    assert(s && cam);
+    cj_status st = cj_scene_check_camera_(cam, "camera");
+    if (st) return st;
+    s->camera = *cam;
+    return CJ_OK;
+}
+
+const cj_camera *cj_scene_camera(const cj_scene *s) {
+    assert(s);
+    return &s->camera;
+}
+
+cj_status cj_scene_set_settings(cj_scene *s, const cj_scene_settings *set) {
+    assert(s && set);
+    cj_status st = cj_scene_check_settings_(set, "settings");
+    if (st) return st;
+    s->settings = *set;
+    return CJ_OK;
+}
+
+const cj_scene_settings *cj_scene_settings_get(const cj_scene *s) {
+    assert(s);
+    return &s->settings;
+}
+
+/* ---- lights, textures, materials ----------------------------------------------------------- */
+
+#define PATH_CAP 64
+
+cj_status cj_scene_add_light(cj_scene *s, const cj_light *l, int *index) {
+    assert(s && l);
+    char path[PATH_CAP];
+    snprintf(path, sizeof path, "lights[%zu]", s->nlights);
+    cj_status st = cj_scene_check_light_(l, path);
+    if (st) return st;
+    if (s->nlights >= INT32_MAX ||
+        !grow(s, (void **)&s->lights, &s->caplights, s->nlights, sizeof *s->lights))
+        return cj_fail(CJ_ERR_NOMEM, "out of memory adding %s", path);
+    s->lights[s->nlights] = *l;
+    if (index) *index = (int)s->nlights;
+    s->nlights++;
+    return CJ_OK;
+}
+
+cj_status cj_scene_add_texture(cj_scene *s, const cj_texture *t, int *index) {
+    assert(s && t);
+    char path[PATH_CAP];
+    snprintf(path, sizeof path, "textures[%zu]", s->ntextures);
+    cj_status st = cj_scene_check_texture_(t, path);
+    if (st) return st;
+    size_t cap = s->captextures, cap2 = s->captextures, cap3 = s->captextures;
+    if (s->ntextures >= INT32_MAX ||
+        !grow(s, (void **)&s->texture_sources, &cap2, s->ntextures, sizeof(char *)) ||
+        !grow(s, (void **)&s->texture_names, &cap3, s->ntextures, sizeof(char *)) ||
+        !grow(s, (void **)&s->textures, &cap, s->ntextures, sizeof *s->textures))
+        return cj_fail(CJ_ERR_NOMEM, "out of memory adding %s", path);
+    s->captextures = cap;
+    cj_texture c = *t;
+    int ok = 1;
+    c.path = cj_scene_strdup_(s, t->path, &ok);
+    c.texels = NULL;
+    if (ok && t->texels && t->kind == CJ_TEX_IMAGE)
+        c.texels =
+            dup_block(s, t->texels, (size_t)t->width * (size_t)t->height * 4 * sizeof(float), &ok);
+    if (!ok) {
+        cj_scene_free_(s, (void *)c.path);
+        return cj_fail(CJ_ERR_NOMEM, "out of memory adding %s", path);
+    }
+    if (!c.texels) c.width = c.height = 0;
+    s->textures[s->ntextures] = c;
+    s->texture_sources[s->ntextures] = NULL;
+    s->texture_names[s->ntextures] = NULL;
+    if (index) *index = (int)s->ntextures;
+    s->ntextures++;
+    return CJ_OK;
+}
+
+cj_status cj_scene_set_texture_pixels(cj_scene *s, int index, int width, int height,
+                                      const float *rgba) {
+    assert(s && rgba);
+    if (index < 0 || (size_t)index >= s->ntextures)
+        return cj_fail(CJ_ERR_ARGUMENT, "texture index %d names no texture (%zu textures)", index,
+                       s->ntextures);
+    cj_texture *t = &s->textures[index];
+    if (t->kind != CJ_TEX_IMAGE)
+        return cj_fail(CJ_ERR_ARGUMENT, "textures[%d] is not an image texture", index);
+    if (width < 1 || height < 1 || width > 65535 || height > 65535)
+        return cj_fail(CJ_ERR_RANGE, "textures[%d]: size %d x %d out of range 1..65535", index,
+                       width, height);
+    size_t n = (size_t)width * (size_t)height * 4;
+    for (size_t i = 0; i < n; ++i)
+        if (!isfinite(rgba[i]))
+            return cj_fail(CJ_ERR_NONFINITE, "textures[%d]: texel %zu, channel %zu is not finite",
+                           index, i / 4, i % 4);
+    int ok = 1;
+    float *d = dup_block(s, rgba, n * sizeof(float), &ok);
+    if (!ok)
+        return cj_fail(CJ_ERR_NOMEM, "out of memory storing the texels of textures[%d]", index);
+    cj_scene_free_(s, (void *)t->texels);
+    t->texels = d;
+    t->width = width;
+    t->height = height;
+    return CJ_OK;
+}
+
+cj_status cj_scene_add_material(cj_scene *s, const cj_material *m, int *index) {
+    assert(s && m);
+    char path[PATH_CAP];
+    snprintf(path, sizeof path, "materials[%zu]", s->nmaterials);
+    cj_status st = cj_scene_check_material_(m, s->ntextures, path);
+    if (st) return st;
+    size_t cap = s->capmaterials, cap2 = s->capmaterials;
+    if (s->nmaterials >= INT32_MAX ||
+        !grow(s, (void **)&s->material_names, &cap2, s->nmaterials, sizeof(char *)) ||
+        !grow(s, (void **)&s->materials, &cap, s->nmaterials, sizeof *s->materials))
+        return cj_fail(CJ_ERR_NOMEM, "out of memory adding %s", path);
+    s->capmaterials = cap;
+    s->materials[s->nmaterials] = *m;
+    s->material_names[s->nmaterials] = NULL;
+    if (index) *index = (int)s->nmaterials;
+    s->nmaterials++;
+    return CJ_OK;
+}
+
+static cj_status set_name(cj_scene *s, char **slot, const char *name, const char *what) {
+    int ok = 1;
+    char *d = cj_scene_strdup_(s, name, &ok);
+    if (!ok) return cj_fail(CJ_ERR_NOMEM, "out of memory naming %s", what);
+    cj_scene_free_(s, *slot);
+    *slot = d;
+    return CJ_OK;
+}
+
+cj_status cj_scene_set_material_name(cj_scene *s, int index, const char *name) {
+    assert(s);
+    if (index < 0 || (size_t)index >= s->nmaterials)
+        return cj_fail(CJ_ERR_ARGUMENT, "material index %d names no material", index);
+    return set_name(s, &s->material_names[index], name, "a material");
+}
+
+const char *cj_scene_material_name(const cj_scene *s, int index) {
+    assert(s && index >= 0 && (size_t)index < s->nmaterials);
+    return s->material_names[index];
+}
+
+cj_status cj_scene_set_texture_name(cj_scene *s, int index, const char *name) {
+    assert(s);
+    if (index < 0 || (size_t)index >= s->ntextures)
+        return cj_fail(CJ_ERR_ARGUMENT, "texture index %d names no texture", index);
+    return set_name(s, &s->texture_names[index], name, "a texture");
+}
+
+const char *cj_scene_texture_name(const cj_scene *s, int index) {
+    assert(s && index >= 0 && (size_t)index < s->ntextures);
+    return s->texture_names[index];
+}
+
+cj_status cj_scene_set_texture_source(cj_scene *s, int index, const char *where) {
+    assert(s);
+    if (index < 0 || (size_t)index >= s->ntextures)
+        return cj_fail(CJ_ERR_ARGUMENT, "texture index %d names no texture", index);
+    return set_name(s, &s->texture_sources[index], where, "a texture's source");
+}
+
+const char *cj_scene_texture_source(const cj_scene *s, int index) {
+    assert(s && index >= 0 && (size_t)index < s->ntextures);
+    return s->texture_sources[index];
+}
+
+/* ---- geometry ------------------------------------------------------------------------------ */
+
+static cj_status copy_mesh(const cj_scene *s, const cj_mesh *src, cj_mesh **out) {
+    const cj_allocator *a = s->alloc.alloc ? &s->alloc : NULL;
+    cj_mesh *m;
+    cj_status st = cj_mesh_create(a, &m);
+    if (st) return st;
+    st = cj_mesh_reserve(m, src->vertex_count, src->triangle_count);
+    if (st) {
+        cj_mesh_destroy(m);
+        return st;
+    }
+    size_t nv = src->vertex_count, nt = src->triangle_count;
+    if (nv) {
+        memcpy(m->positions, src->positions, 3 * nv * sizeof(double));
+        memcpy(m->normals, src->normals, 3 * nv * sizeof(double));
+        memcpy(m->uvs, src->uvs, 2 * nv * sizeof(double));
+    }
+    if (nt) {
+        memcpy(m->triangles, src->triangles, 3 * nt * sizeof(uint32_t));
+        memcpy(m->triangle_patch, src->triangle_patch, nt * sizeof(int32_t));
+    }
+    m->vertex_count = nv;
+    m->triangle_count = nt;
+    *out = m;
+    return CJ_OK;
+}
+
+/* Copies the arrays `g` points to into `store`, rewiring `c` (a copy of g) to them. */
+static cj_status deep_copy(const cj_scene *s, const cj_geometry *g, cj_geometry *c,
+                           cj_geom_store *store) {
+    int ok = 1;
+    memset(store, 0, sizeof *store);
+    switch (g->kind) {
+    case CJ_GEOM_PATCHES: {
+        size_t n = g->u.patches.count, npts = 0, nw = 0;
+        for (size_t i = 0; i < n; ++i) {
+            size_t k = cj_patch_point_count(&g->u.patches.patches[i]);
+            npts += 3 * k;
+            if (g->u.patches.patches[i].weights) nw += k;
+        }
+        cj_patch *pa = cj_scene_alloc_(s, n * sizeof *pa);
+        double *pts = cj_scene_alloc_(s, npts * sizeof(double));
+        double *w = nw ? cj_scene_alloc_(s, nw * sizeof(double)) : NULL;
+        store->block[0] = pa;
+        store->block[1] = pts;
+        store->block[2] = w;
+        if (!pa || !pts || (nw && !w)) {
+            ok = 0;
+            break;
+        }
+        size_t op = 0, ow = 0;
+        for (size_t i = 0; i < n; ++i) {
+            const cj_patch *p = &g->u.patches.patches[i];
+            size_t k = cj_patch_point_count(p);
+            memcpy(pts + op, p->pts, 3 * k * sizeof(double));
+            pa[i] = cj_patch_view(p->deg_u, p->deg_v, pts + op, NULL);
+            op += 3 * k;
+            if (p->weights) {
+                memcpy(w + ow, p->weights, k * sizeof(double));
+                pa[i].weights = w + ow;
+                ow += k;
+            }
+        }
+        c->u.patches.patches = pa;
+        break;
+    }
+    case CJ_GEOM_REVOLUTION: {
+        size_t k = (size_t)g->u.revolution.degree + 1;
+        store->block[0] = dup_block(s, g->u.revolution.pts, 2 * k * sizeof(double), &ok);
+        store->block[1] = dup_block(s, g->u.revolution.weights, k * sizeof(double), &ok);
+        c->u.revolution.pts = store->block[0];
+        c->u.revolution.weights = store->block[1];
+        break;
+    }
+    case CJ_GEOM_GEN_CYLINDER: {
+        size_t k = (size_t)g->u.gen_cylinder.degree + 1;
+        store->block[0] = dup_block(s, g->u.gen_cylinder.pts, 2 * k * sizeof(double), &ok);
+        store->block[1] = dup_block(s, g->u.gen_cylinder.weights, k * sizeof(double), &ok);
+        c->u.gen_cylinder.pts = store->block[0];
+        c->u.gen_cylinder.weights = store->block[1];
+        break;
+    }
+    case CJ_GEOM_CURVE: {
+        size_t k = g->u.curve.count;
+        store->block[0] = dup_block(s, g->u.curve.pts, 3 * k * sizeof(double), &ok);
+        store->block[1] = g->u.curve.kind == CJ_CURVE_RATIONAL
+                              ? dup_block(s, g->u.curve.weights, k * sizeof(double), &ok)
+                              : NULL;
+        c->u.curve.pts = store->block[0];
+        c->u.curve.weights = store->block[1];
+        break;
+    }
+    case CJ_GEOM_MESH: {
+        cj_status st = copy_mesh(s, g->u.mesh, &c->u.mesh);
+        if (st) return st;
+        break;
+    }
+    default:
+        break;
+    }
+    if (!ok) {
+        for (int k = 0; k < 3; ++k) cj_scene_free_(s, store->block[k]);
+        return cj_fail(CJ_ERR_NOMEM, "out of memory copying a geometry");
+    }
+    return CJ_OK;
+}
+
+cj_status cj_scene_add_geometry(cj_scene *s, const cj_geometry *g, int *index) {
+    assert(s && g);
+    char path[PATH_CAP];
+    snprintf(path, sizeof path, "geometries[%zu]", s->ngeoms);
+    cj_status st = cj_scene_check_geometry_(g, path);
+    if (st) return st;
+    size_t cap = s->capgeoms, cap2 = s->capgeoms;
+    if (s->ngeoms >= INT32_MAX ||
+        !grow(s, (void **)&s->gstore, &cap2, s->ngeoms, sizeof *s->gstore) ||
+        !grow(s, (void **)&s->geoms, &cap, s->ngeoms, sizeof *s->geoms))
+        return cj_fail(CJ_ERR_NOMEM, "out of memory adding %s", path);
+    s->capgeoms = cap;
+    cj_geometry c = *g;
+    st = deep_copy(s, g, &c, &s->gstore[s->ngeoms]);
+    if (st) return st;
+    s->geoms[s->ngeoms] = c;
+    if (index) *index = (int)s->ngeoms;
+    s->ngeoms++;
+    return CJ_OK;
+}
+
+/* ---- nodes --------------------------------------------------------------------------------- */
+
+cj_status cj_scene_add_node(cj_scene *s, const cj_node *n, int *index) {
+    assert(s && n);
+    char path[PATH_CAP];
+    snprintf(path, sizeof path, "nodes[%zu]", s->nnodes);
+    cj_status st = cj_scene_check_node_(s, n, s->nnodes, path);
+    if (st) return st;
+    if (s->nnodes >= INT32_MAX ||
+        !grow(s, (void **)&s->nodes, &s->capnodes, s->nnodes, sizeof *s->nodes))
+        return cj_fail(CJ_ERR_NOMEM, "out of memory adding %s", path);
+    cj_node c = *n;
+    int ok = 1;
+    c.name = cj_scene_strdup_(s, n->name, &ok);
+    if (!ok) return cj_fail(CJ_ERR_NOMEM, "out of memory adding %s", path);
+    c.id = n->geometry >= 0 ? ++s->objects : 0;
+    s->nodes[s->nnodes] = c;
+    if (index) *index = (int)s->nnodes;
+    s->nnodes++;
+    return CJ_OK;
+}
+
+/* ---- access -------------------------------------------------------------------------------- */
+
+size_t cj_scene_light_count(const cj_scene *s) {
+    return s->nlights;
+}
+size_t cj_scene_texture_count(const cj_scene *s) {
+    return s->ntextures;
+}
+size_t cj_scene_material_count(const cj_scene *s) {
+    return s->nmaterials;
+}
+size_t cj_scene_geometry_count(const cj_scene *s) {
+    return s->ngeoms;
+}
+size_t cj_scene_node_count(const cj_scene *s) {
+    return s->nnodes;
+}
+
+#define GET(arr, n)                                                                                \
+    do {                                                                                           \
+        assert(s != NULL);                                                                         \
+        return (index >= 0 && (size_t)index < s->n) ? &s->arr[index] : NULL;                       \
+    } while (0)
+
+const cj_light *cj_scene_light(const cj_scene *s, int index) {
+    GET(lights, nlights);
+}
+const cj_texture *cj_scene_texture(const cj_scene *s, int index) {
+    GET(textures, ntextures);
+}
+const cj_material *cj_scene_material(const cj_scene *s, int index) {
+    GET(materials, nmaterials);
+}
+const cj_geometry *cj_scene_geometry(const cj_scene *s, int index) {
+    GET(geoms, ngeoms);
+}
+const cj_node *cj_scene_node(const cj_scene *s, int index) {
+    GET(nodes, nnodes);
+}
+cj_light *cj_scene_light_mut(cj_scene *s, int index) {
+    GET(lights, nlights);
+}
+cj_material *cj_scene_material_mut(cj_scene *s, int index) {
+    GET(materials, nmaterials);
+}
+cj_node *cj_scene_node_mut(cj_scene *s, int index) {
+    GET(nodes, nnodes);
+}
+cj_geometry *cj_scene_geometry_mut(cj_scene *s, int index) {
+    GET(geoms, ngeoms);
+}
+
+cj_status cj_scene_node_world(const cj_scene *s, int index, cj_xform3 *out) {
+    assert(s && out);
+    if (index < 0 || (size_t)index >= s->nnodes)
+        return cj_fail(CJ_ERR_ARGUMENT, "node index %d names no node (%zu nodes)", index,
+                       s->nnodes);
+    cj_xform3 m = cj_transform_matrix(&s->nodes[index].local);
+    /* Parents come earlier, so the walk ends; the guard only protects a mutated hierarchy. */
+    int p = s->nodes[index].parent;
+    for (size_t steps = 0; p >= 0; ++steps) {
+        if ((size_t)p >= s->nnodes || p >= index || steps > s->nnodes)
+            return cj_fail(CJ_ERR_ARGUMENT, "nodes[%d].parent %d names no group added before it",
+                           index, p);
+        cj_xform3 pm = cj_transform_matrix(&s->nodes[p].local);
+        m = cj_xform3_compose(&pm, &m);
+        index = p;
+        p = s->nodes[p].parent;
+    }
+    *out = m;
+    return CJ_OK;
+}

@@ -1,0 +1,650 @@
+/* The JSON scene reader: camera, settings, lights, textures, materials, transforms, objects. */
+#include "scene_json_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TRY(x)                                                                                     \
+    do {                                                                                           \
+        cj_status st_ = (x);                                                                       \
+        if (st_) return st_;                                                                       \
+    } while (0)
+
+static const double PI = 3.14159265358979323846;
+static const double DEG = 3.14159265358979323846 / 180.0;
+
+/* An angle given as key_deg or key_rad (not both), converted to radians. */
+static cj_status angle(const jctx *c, const cJSON *obj, const char *path, const char *key, jrange r,
+                       double lo_rad, double hi_rad, double *out) {
+    char kd[64], kr[64];
+    snprintf(kd, sizeof kd, "%s_deg", key);
+    snprintf(kr, sizeof kr, "%s_rad", key);
+    const cJSON *nd = cJSON_GetObjectItemCaseSensitive(obj, kd);
+    const cJSON *nr = cJSON_GetObjectItemCaseSensitive(obj, kr);
+    if (nd && nr)
+        return cj_json_fail_(c, nr, 1, CJ_ERR_PARSE, "%s: give either \"%s\" or \"%s\", not both",
+                             path, kd, kr);
+    if (nd) {
+        double v = *out / DEG;
+        TRY(cj_json_num_(c, obj, path, kd, r, lo_rad / DEG, hi_rad / DEG, &v));
+        *out = v * DEG;
+    } else if (nr) {
+        TRY(cj_json_num_(c, obj, path, kr, r, lo_rad, hi_rad, out));
+    }
+    return CJ_OK;
+}
+
+/* ---- camera and settings -------------------------------------------------------------------- */
+
+static const char *const CAMERA_KEYS[] = {"eye",
+                                          "gaze",
+                                          "look_at",
+                                          "up",
+                                          "near",
+                                          "far",
+                                          "projection",
+                                          "fov_deg",
+                                          "fov_rad",
+                                          "focal_length_mm",
+                                          "sensor_height_mm",
+                                          "ortho_height",
+                                          NULL};
+
+cj_status cj_json_read_camera_(jctx *c, const cJSON *obj) {
+    const char *p = "camera";
+    TRY(cj_json_object_(c, obj, p, CAMERA_KEYS));
+    cj_camera cam = cj_camera_default();
+    TRY(cj_json_vec3_(c, obj, p, "eye", &cam.eye));
+    const cJSON *g = cJSON_GetObjectItemCaseSensitive(obj, "gaze");
+    const cJSON *la = cJSON_GetObjectItemCaseSensitive(obj, "look_at");
+    if (g && la)
+        return cj_json_fail_(c, la, 1, CJ_ERR_PARSE,
+                             "camera: give either \"gaze\" or \"look_at\", not both");
+    if (la) {
+        cj_vec3 target = cj_v3(0, 0, 0);
+        TRY(cj_json_vec3_(c, obj, p, "look_at", &target));
+        cam.gaze = cj_v3_sub(target, cam.eye);
+        if (!(cj_v3_norm(cam.gaze) > 0.0))
+            return cj_json_fail_(c, la, 0, CJ_ERR_DEGENERATE,
+                                 "camera.look_at must differ from camera.eye");
+    } else if (g) {
+        TRY(cj_json_vec3_(c, obj, p, "gaze", &cam.gaze));
+        if (!(cj_v3_norm(cam.gaze) > 0.0))
+            return cj_json_fail_(c, g, 0, CJ_ERR_DEGENERATE,
+                                 "camera.gaze must not be the zero vector");
+    }
+    TRY(cj_json_vec3_(c, obj, p, "up", &cam.up));
+    TRY(cj_json_num_(c, obj, p, "near", R_LT, 0, 0, &cam.near));
+    TRY(cj_json_num_(c, obj, p, "far", R_LT, 0, cam.near, &cam.far));
+    int proj = (int)cam.projection;
+    static const char *const PROJ[] = {"perspective", "orthographic", NULL};
+    TRY(cj_json_enum_(c, obj, p, "projection", PROJ, &proj));
+    cam.projection = (cj_projection)proj;
+    const cJSON *fl = cJSON_GetObjectItemCaseSensitive(obj, "focal_length_mm");
+    const cJSON *fd = cJSON_GetObjectItemCaseSensitive(obj, "fov_deg");
+    const cJSON *fr = cJSON_GetObjectItemCaseSensitive(obj, "fov_rad");
+    if (fl && (fd || fr))
+        return cj_json_fail_(c, fl, 1, CJ_ERR_PARSE,
+                             "camera: give either a field of view or a focal length, not both");
+    TRY(angle(c, obj, p, "fov", R_OPEN, 0, PI, &cam.fov_y));
+    if (fl) {
+        double f = 50, h = 24;
+        TRY(cj_json_num_(c, obj, p, "focal_length_mm", R_GT, 0, 0, &f));
+        TRY(cj_json_num_(c, obj, p, "sensor_height_mm", R_GT, 0, 0, &h));
+        cam.fov_y = 2.0 * atan(h / (2.0 * f));
+    } else if (cJSON_GetObjectItemCaseSensitive(obj, "sensor_height_mm")) {
+        return cj_json_fail_(c, cJSON_GetObjectItemCaseSensitive(obj, "sensor_height_mm"), 1,
+                             CJ_ERR_PARSE, "camera.sensor_height_mm needs focal_length_mm");
+    }
+    TRY(cj_json_num_(c, obj, p, "ortho_height", R_GT, 0, 0, &cam.ortho_height));
+    cj_status st = cj_scene_check_camera_(&cam, p);
+    if (!st) st = cj_scene_set_camera(c->scene, &cam);
+    if (st) return cj_json_relabel_(c, obj, st);
+    return CJ_OK;
+}
+
+static const char *const SETTINGS_KEYS[] = {"width",      "height",    "spp",  "tol_px",
+                                            "background", "max_depth", "seed", NULL};
+
+cj_status cj_json_read_settings_(jctx *c, const cJSON *obj) {
+    const char *p = "settings";
+    TRY(cj_json_object_(c, obj, p, SETTINGS_KEYS));
+    cj_scene_settings s = *cj_scene_settings_get(c->scene);
+    TRY(cj_json_int_(c, obj, p, "width", 1, 32768, &s.width));
+    TRY(cj_json_int_(c, obj, p, "height", 1, 32768, &s.height));
+    TRY(cj_json_int_(c, obj, p, "spp", 1, 65536, &s.spp));
+    TRY(cj_json_num_(c, obj, p, "tol_px", R_GT, 0, 0, &s.tol_px));
+    TRY(cj_json_rgb_(c, obj, p, "background", -1, &s.background));
+    TRY(cj_json_int_(c, obj, p, "max_depth", 0, 1000, &s.max_depth));
+    double seed = (double)s.seed;
+    TRY(cj_json_num_(c, obj, p, "seed", R_IN, 0, 9007199254740992.0, &seed));
+    if (seed != floor(seed))
+        return cj_json_fail_(c, cJSON_GetObjectItemCaseSensitive(obj, "seed"), 0, CJ_ERR_PARSE,
+                             "settings.seed must be an integer");
+    s.seed = (uint64_t)seed;
+    cj_status st = cj_scene_set_settings(c->scene, &s);
+    return st ? cj_json_relabel_(c, obj, st) : CJ_OK;
+}
+
+/* ---- lights --------------------------------------------------------------------------------- */
+
+static const char *const LIGHT_TYPES[] = {"ambient", "point", "directional", "spot", "area", NULL};
+/* Keys each light type accepts beyond type, color, intensity, casts_shadows. */
+static const char *const LIGHT_KEYS[][10] = {
+    {"type", "color", "intensity", "casts_shadows", NULL},
+    {"type", "color", "intensity", "casts_shadows", "position", NULL},
+    {"type", "color", "intensity", "casts_shadows", "direction", NULL},
+    {"type", "color", "intensity", "casts_shadows", "position", "direction", "angle_deg",
+     "angle_rad", "exponent", NULL},
+    {"type", "color", "intensity", "casts_shadows", "position", "edge_u", "edge_v", NULL}};
+
+static cj_status read_light(jctx *c, const cJSON *obj, const char *p) {
+    if (!cJSON_IsObject(obj))
+        return cj_json_fail_(c, obj, 0, CJ_ERR_PARSE, "%s must be an object", p);
+    const cJSON *tn;
+    TRY(cj_json_require_(c, obj, p, "type", &tn));
+    int type = 0;
+    TRY(cj_json_enum_(c, obj, p, "type", LIGHT_TYPES, &type));
+    TRY(cj_json_object_(c, obj, p, LIGHT_KEYS[type]));
+    cj_light l = cj_light_default((cj_light_kind)type);
+    TRY(cj_json_rgb_(c, obj, p, "color", -1, &l.color));
+    TRY(cj_json_num_(c, obj, p, "intensity", R_GE, 0, 0, &l.intensity));
+    TRY(cj_json_bool_(c, obj, p, "casts_shadows", &l.casts_shadows));
+    TRY(cj_json_vec3_(c, obj, p, "position", &l.position));
+    TRY(cj_json_vec3_(c, obj, p, "direction", &l.direction));
+    TRY(angle(c, obj, p, "angle", R_IN, 0, PI / 2, &l.spot_angle));
+    TRY(cj_json_num_(c, obj, p, "exponent", R_GE, 0, 0, &l.spot_exponent));
+    TRY(cj_json_vec3_(c, obj, p, "edge_u", &l.edge_u));
+    TRY(cj_json_vec3_(c, obj, p, "edge_v", &l.edge_v));
+    cj_status st = cj_scene_check_light_(&l, p);
+    if (!st) st = cj_scene_add_light(c->scene, &l, NULL);
+    return st ? cj_json_relabel_(c, obj, st) : CJ_OK;
+}
+
+static cj_status list(const jctx *c, const cJSON *arr, const char *p) {
+    if (!cJSON_IsArray(arr))
+        return cj_json_fail_(c, arr, 0, CJ_ERR_PARSE, "%s must be an array", p);
+    return CJ_OK;
+}
+
+cj_status cj_json_read_lights_(jctx *c, const cJSON *arr) {
+    TRY(list(c, arr, "lights"));
+    size_t i = 0;
+    for (const cJSON *e = arr->child; e; e = e->next, ++i) {
+        char p[JPATH];
+        cj_json_index_(p, "lights", i);
+        TRY(read_light(c, e, p));
+    }
+    return CJ_OK;
+}
+
+/* ---- textures and materials ----------------------------------------------------------------- */
+
+static const char *const TEX_TYPES[] = {"image", "checker", NULL};
+static const char *const TEX_KEYS[][9] = {
+    {"name", "type", "path", "filter", "wrap", "scale", "offset", NULL},
+    {"name", "type", "checks", "colors", "filter", "wrap", "scale", "offset", NULL}};
+static const char *const FILTERS[] = {"nearest", "bilinear", "trilinear", NULL};
+static const char *const WRAPS[] = {"repeat", "clamp", NULL};
+
+/* A name unique among the first `count` names of `names` (accessor). */
+static cj_status unique_name(const jctx *c, const cJSON *obj, const char *p, const char *what,
+                             const char *(*get)(const cj_scene *, int), size_t count,
+                             const char **out) {
+    const cJSON *n;
+    TRY(cj_json_require_(c, obj, p, "name", &n));
+    const char *name = NULL;
+    TRY(cj_json_string_(c, obj, p, "name", &name));
+    if (!name[0]) return cj_json_fail_(c, n, 0, CJ_ERR_PARSE, "%s.name must not be empty", p);
+    for (size_t k = 0; k < count; ++k) {
+        const char *o = get(c->scene, (int)k);
+        if (o && !strcmp(o, name))
+            return cj_json_fail_(c, n, 0, CJ_ERR_PARSE, "%s.name \"%s\" is already %s[%zu]", p,
+                                 name, what, k);
+    }
+    *out = name;
+    return CJ_OK;
+}
+
+static cj_status read_pair(const jctx *c, const cJSON *obj, const char *p, const char *key,
+                           double v[2]) {
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!n) return CJ_OK;
+    char pk[JPATH];
+    cj_json_join_(pk, p, key);
+    double *vals;
+    size_t cnt;
+    TRY(cj_json_numbers_(c, n, pk, 0, R_ANY, 0, 2, &vals, &cnt));
+    v[0] = vals[0];
+    v[1] = vals[1];
+    free(vals);
+    return CJ_OK;
+}
+
+static cj_status read_texture(jctx *c, const cJSON *obj, const char *p) {
+    if (!cJSON_IsObject(obj))
+        return cj_json_fail_(c, obj, 0, CJ_ERR_PARSE, "%s must be an object", p);
+    const cJSON *tn;
+    TRY(cj_json_require_(c, obj, p, "type", &tn));
+    int type = 0;
+    TRY(cj_json_enum_(c, obj, p, "type", TEX_TYPES, &type));
+    TRY(cj_json_object_(c, obj, p, TEX_KEYS[type]));
+    const char *name = NULL;
+    TRY(unique_name(c, obj, p, "textures", cj_scene_texture_name, cj_scene_texture_count(c->scene),
+                    &name));
+    cj_texture t = cj_texture_default((cj_texture_kind)type);
+    int filter = (int)t.filter, wrap = (int)t.wrap;
+    TRY(cj_json_enum_(c, obj, p, "filter", FILTERS, &filter));
+    TRY(cj_json_enum_(c, obj, p, "wrap", WRAPS, &wrap));
+    t.filter = (cj_tex_filter)filter;
+    t.wrap = (cj_tex_wrap)wrap;
+    double sc[2] = {t.scale_u, t.scale_v}, of[2] = {t.offset_u, t.offset_v};
+    TRY(read_pair(c, obj, p, "scale", sc));
+    TRY(read_pair(c, obj, p, "offset", of));
+    t.scale_u = sc[0], t.scale_v = sc[1], t.offset_u = of[0], t.offset_v = of[1];
+    if (type == CJ_TEX_IMAGE) {
+        const cJSON *pn;
+        TRY(cj_json_require_(c, obj, p, "path", &pn));
+        TRY(cj_json_string_(c, obj, p, "path", &t.path));
+        if (!t.path[0])
+            return cj_json_fail_(c, pn, 0, CJ_ERR_PARSE, "%s.path must not be empty", p);
+    } else {
+        const cJSON *ch = cJSON_GetObjectItemCaseSensitive(obj, "checks");
+        if (ch) {
+            char pk[JPATH];
+            cj_json_join_(pk, p, "checks");
+            double *v;
+            size_t n;
+            TRY(cj_json_numbers_(c, ch, pk, 0, R_GE, 1, 2, &v, &n));
+            int ok = v[0] == floor(v[0]) && v[1] == floor(v[1]) && v[0] <= 1e6 && v[1] <= 1e6;
+            t.checks_u = (int)v[0];
+            t.checks_v = (int)v[1];
+            free(v);
+            if (!ok)
+                return cj_json_fail_(c, ch, 0, CJ_ERR_PARSE,
+                                     "%s must be two integers in [1, 1000000]", pk);
+        }
+        const cJSON *co = cJSON_GetObjectItemCaseSensitive(obj, "colors");
+        if (co) {
+            char pk[JPATH];
+            cj_json_join_(pk, p, "colors");
+            if (!cJSON_IsArray(co) || cJSON_GetArraySize(co) != 2)
+                return cj_json_fail_(c, co, 0, CJ_ERR_PARSE, "%s must be an array of 2 colours",
+                                     pk);
+            cj_rgb *dst[2] = {&t.checker_a, &t.checker_b};
+            int k = 0;
+            for (const cJSON *e = co->child; e; e = e->next, ++k) {
+                double vals[3];
+                if (!cJSON_IsArray(e) || cJSON_GetArraySize(e) != 3)
+                    return cj_json_fail_(c, e, 0, CJ_ERR_PARSE,
+                                         "%s[%d] must be an array of 3 numbers (linear RGB)", pk,
+                                         k);
+                int j = 0;
+                for (const cJSON *x = e->child; x; x = x->next, ++j) {
+                    if (!cJSON_IsNumber(x) || !isfinite(x->valuedouble))
+                        return cj_json_fail_(c, x, 0, CJ_ERR_PARSE, "%s[%d][%d] must be a number",
+                                             pk, k, j);
+                    vals[j] = x->valuedouble;
+                    if (!(vals[j] >= 0 && vals[j] <= 1))
+                        return cj_json_fail_(c, x, 0, CJ_ERR_RANGE, "%s[%d][%d] must be in [0, 1]",
+                                             pk, k, j);
+                }
+                *dst[k] = cj_rgb_make(vals[0], vals[1], vals[2]);
+            }
+        }
+    }
+    int index;
+    cj_status st = cj_scene_check_texture_(&t, p);
+    if (!st) st = cj_scene_add_texture(c->scene, &t, &index);
+    if (st) return cj_json_relabel_(c, obj, st);
+    char where[JPATH + 300];
+    snprintf(where, sizeof where, "%s:%d: %s", c->name, cj_json_line_(c, obj), p);
+    st = cj_scene_set_texture_name(c->scene, index, name);
+    if (!st) st = cj_scene_set_texture_source(c->scene, index, where);
+    return st;
+}
+
+cj_status cj_json_read_textures_(jctx *c, const cJSON *arr) {
+    TRY(list(c, arr, "textures"));
+    size_t i = 0;
+    for (const cJSON *e = arr->child; e; e = e->next, ++i) {
+        char p[JPATH];
+        cj_json_index_(p, "textures", i);
+        TRY(read_texture(c, e, p));
+    }
+    return CJ_OK;
+}
+
+static const char *const MATERIAL_KEYS[] = {
+    "name",       "color",     "specular",         "ka",      "kd",     "ks",           "alpha",
+    "shading",    "two_sided", "texture",          "opacity", "mirror", "transmission", "ior",
+    "glossiness", "emission",  "receives_shadows", NULL};
+static const char *const SHADINGS[] = {"flat", "gouraud", "phong", NULL};
+
+/* A material object (named = 1: an entry of "materials"); *index receives its scene index. */
+static cj_status read_material(jctx *c, const cJSON *obj, const char *p, int named, int *index) {
+    TRY(cj_json_object_(c, obj, p, named ? MATERIAL_KEYS : MATERIAL_KEYS + 1));
+    const char *name = NULL;
+    if (named)
+        TRY(unique_name(c, obj, p, "materials", cj_scene_material_name,
+                        cj_scene_material_count(c->scene), &name));
+    cj_material m = cj_material_default();
+    TRY(cj_json_rgb_(c, obj, p, "color", 1, &m.color));
+    TRY(cj_json_rgb_(c, obj, p, "specular", 1, &m.specular));
+    TRY(cj_json_num_(c, obj, p, "ka", R_GE, 0, 0, &m.ka));
+    TRY(cj_json_num_(c, obj, p, "kd", R_GE, 0, 0, &m.kd));
+    TRY(cj_json_num_(c, obj, p, "ks", R_GE, 0, 0, &m.ks));
+    TRY(cj_json_num_(c, obj, p, "alpha", R_GE, 0, 0, &m.alpha));
+    int sh = (int)m.shading;
+    TRY(cj_json_enum_(c, obj, p, "shading", SHADINGS, &sh));
+    m.shading = (cj_shading)sh;
+    TRY(cj_json_bool_(c, obj, p, "two_sided", &m.two_sided));
+    const char *tex = NULL;
+    TRY(cj_json_string_(c, obj, p, "texture", &tex));
+    if (tex) {
+        size_t n = cj_scene_texture_count(c->scene);
+        for (size_t k = 0; k < n && m.texture < 0; ++k) {
+            const char *o = cj_scene_texture_name(c->scene, (int)k);
+            if (o && !strcmp(o, tex)) m.texture = (int)k;
+        }
+        if (m.texture < 0)
+            return cj_json_fail_(c, cJSON_GetObjectItemCaseSensitive(obj, "texture"), 0,
+                                 CJ_ERR_PARSE, "%s.texture \"%s\" names no texture", p, tex);
+    }
+    TRY(cj_json_num_(c, obj, p, "opacity", R_IN, 0, 1, &m.opacity));
+    TRY(cj_json_num_(c, obj, p, "mirror", R_IN, 0, 1, &m.mirror));
+    TRY(cj_json_num_(c, obj, p, "transmission", R_IN, 0, 1, &m.transmission));
+    TRY(cj_json_num_(c, obj, p, "ior", R_GE, 1, 0, &m.ior));
+    TRY(cj_json_num_(c, obj, p, "glossiness", R_GE, 0, 0, &m.glossiness));
+    TRY(cj_json_rgb_(c, obj, p, "emission", -1, &m.emission));
+    TRY(cj_json_bool_(c, obj, p, "receives_shadows", &m.receives_shadows));
+    cj_status st = cj_scene_check_material_(&m, cj_scene_texture_count(c->scene), p);
+    if (!st) st = cj_scene_add_material(c->scene, &m, index);
+    if (st) return cj_json_relabel_(c, obj, st);
+    return name ? cj_scene_set_material_name(c->scene, *index, name) : CJ_OK;
+}
+
+cj_status cj_json_read_materials_(jctx *c, const cJSON *arr) {
+    TRY(list(c, arr, "materials"));
+    size_t i = 0;
+    for (const cJSON *e = arr->child; e; e = e->next, ++i) {
+        char p[JPATH];
+        cj_json_index_(p, "materials", i);
+        int index;
+        TRY(read_material(c, e, p, 1, &index));
+    }
+    return CJ_OK;
+}
+
+/* ---- transforms ----------------------------------------------------------------------------- */
+
+static const char *const TRANSFORM_KEYS[] = {"translate",   "rotate", "quaternion", "euler_deg",
+                                             "euler_order", "scale",  "matrix",     NULL};
+static const char *const ROTATE_KEYS[] = {"axis", "angle_deg", "angle_rad", NULL};
+
+static void quat_mul(const double a[4], const double b[4], double out[4]) {
+    double r[4] = {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+                   a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+                   a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+                   a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+    memcpy(out, r, sizeof r);
+}
+
+static void axis_angle(cj_vec3 axis, double angle_rad, double q[4]) {
+    cj_vec3 a = cj_v3_normalize(axis);
+    double s = sin(0.5 * angle_rad);
+    q[0] = cos(0.5 * angle_rad);
+    q[1] = a.x * s;
+    q[2] = a.y * s;
+    q[3] = a.z * s;
+}
+
+static cj_status read_transform(const jctx *c, const cJSON *obj, const char *p, cj_transform *t) {
+    TRY(cj_json_object_(c, obj, p, TRANSFORM_KEYS));
+    *t = cj_transform_identity();
+    TRY(cj_json_vec3_(c, obj, p, "translate", &t->translate));
+    const cJSON *rot = cJSON_GetObjectItemCaseSensitive(obj, "rotate");
+    const cJSON *qn = cJSON_GetObjectItemCaseSensitive(obj, "quaternion");
+    const cJSON *eu = cJSON_GetObjectItemCaseSensitive(obj, "euler_deg");
+    const cJSON *eo = cJSON_GetObjectItemCaseSensitive(obj, "euler_order");
+    if ((rot != NULL) + (qn != NULL) + (eu != NULL) > 1)
+        return cj_json_fail_(c, obj, 0, CJ_ERR_PARSE,
+                             "%s: give one rotation (rotate, quaternion or euler_deg)", p);
+    if (eo && !eu)
+        return cj_json_fail_(c, eo, 1, CJ_ERR_PARSE, "%s.euler_order needs euler_deg", p);
+    if (rot) {
+        char pr[JPATH];
+        cj_json_join_(pr, p, "rotate");
+        TRY(cj_json_object_(c, rot, pr, ROTATE_KEYS));
+        const cJSON *ax;
+        TRY(cj_json_require_(c, rot, pr, "axis", &ax));
+        cj_vec3 axis = cj_v3(0, 0, 1);
+        TRY(cj_json_vec3_(c, rot, pr, "axis", &axis));
+        if (!(cj_v3_norm(axis) > 0.0))
+            return cj_json_fail_(c, ax, 0, CJ_ERR_DEGENERATE, "%s.axis must not be the zero vector",
+                                 pr);
+        double a = 0.0;
+        if (!cJSON_GetObjectItemCaseSensitive(rot, "angle_deg") &&
+            !cJSON_GetObjectItemCaseSensitive(rot, "angle_rad"))
+            return cj_json_fail_(c, rot, 0, CJ_ERR_PARSE, "%s: missing key \"angle_deg\"", pr);
+        TRY(angle(c, rot, pr, "angle", R_ANY, 0, 0, &a));
+        axis_angle(axis, a, t->rotation);
+    } else if (qn) {
+        char pq[JPATH];
+        cj_json_join_(pq, p, "quaternion");
+        double *v;
+        size_t n;
+        TRY(cj_json_numbers_(c, qn, pq, 0, R_ANY, 0, 4, &v, &n));
+        double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3]);
+        if (!(len > 0.0) || !isfinite(len)) {
+            free(v);
+            return cj_json_fail_(c, qn, 0, CJ_ERR_DEGENERATE, "%s must not be zero", pq);
+        }
+        /* A unit quaternion is kept bit for bit (files written by cj_scene_save_json). */
+        double n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3];
+        for (int k = 0; k < 4; ++k) t->rotation[k] = fabs(n2 - 1.0) <= 1e-12 ? v[k] : v[k] / len;
+        free(v);
+    } else if (eu) {
+        char pe[JPATH];
+        cj_json_join_(pe, p, "euler_deg");
+        double *v;
+        size_t n;
+        TRY(cj_json_numbers_(c, eu, pe, 0, R_ANY, 0, 3, &v, &n));
+        static const char *const ORDERS[] = {"xyz", "xzy", "yxz", "yzx", "zxy", "zyx", NULL};
+        int order = 0;
+        cj_status st = cj_json_enum_(c, obj, p, "euler_order", ORDERS, &order);
+        if (st) {
+            free(v);
+            return st;
+        }
+        double q[4] = {1, 0, 0, 0};
+        for (int k = 0; k < 3; ++k) {
+            int ax = ORDERS[order][k] - 'x';
+            cj_vec3 axis = cj_v3(ax == 0, ax == 1, ax == 2);
+            double r[4];
+            axis_angle(axis, v[ax] * DEG, r);
+            quat_mul(r, q, q); /* later rotations apply after the earlier ones */
+        }
+        free(v);
+        memcpy(t->rotation, q, sizeof q);
+    }
+    const cJSON *sc = cJSON_GetObjectItemCaseSensitive(obj, "scale");
+    if (sc) {
+        char ps[JPATH];
+        cj_json_join_(ps, p, "scale");
+        if (cJSON_IsNumber(sc)) {
+            double s = 1.0;
+            TRY(cj_json_num_(c, obj, p, "scale", R_ANY, 0, 0, &s));
+            t->scale = cj_v3(s, s, s);
+        } else {
+            if (!cJSON_IsArray(sc))
+                return cj_json_fail_(c, sc, 0, CJ_ERR_PARSE,
+                                     "%s must be a number or an array of 3 numbers", ps);
+            TRY(cj_json_vec3_(c, obj, p, "scale", &t->scale));
+        }
+        if (t->scale.x == 0 || t->scale.y == 0 || t->scale.z == 0)
+            return cj_json_fail_(c, sc, 0, CJ_ERR_RANGE, "%s must not be zero", ps);
+    }
+    const cJSON *mx = cJSON_GetObjectItemCaseSensitive(obj, "matrix");
+    if (mx) {
+        char pm[JPATH];
+        cj_json_join_(pm, p, "matrix");
+        if (!cJSON_IsArray(mx) || cJSON_GetArraySize(mx) != 4)
+            return cj_json_fail_(c, mx, 0, CJ_ERR_PARSE, "%s must be 4 rows of 4 numbers", pm);
+        double *v;
+        size_t n;
+        TRY(cj_json_numbers_(c, mx, pm, 4, R_ANY, 0, 4, &v, &n));
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) t->matrix.m[i][j] = v[4 * i + j];
+        free(v);
+        if (!cj_xform3_is_affine(&t->matrix))
+            return cj_json_fail_(c, mx, 0, CJ_ERR_RANGE, "%s[3] must be [0, 0, 0, 1]", pm);
+    }
+    cj_status st = cj_scene_check_transform_(t, p);
+    return st ? cj_json_relabel_(c, obj, st) : CJ_OK;
+}
+
+/* ---- objects -------------------------------------------------------------------------------- */
+
+static const char *const NODE_KEYS[] = {"name",     "transform", "material", "geometry",
+                                        "children", "overlay",   "visible",  NULL};
+static const char *const OVERLAY_KEYS[] = {"control_net", "wireframe", "iso_lines",
+                                           "normals",     "color",     NULL};
+
+static cj_status read_overlay(const jctx *c, const cJSON *obj, const char *p, cj_overlay_style *o) {
+    TRY(cj_json_object_(c, obj, p, OVERLAY_KEYS));
+    int net = 0, wire = 0;
+    TRY(cj_json_bool_(c, obj, p, "control_net", &net));
+    TRY(cj_json_bool_(c, obj, p, "wireframe", &wire));
+    int iso = 0;
+    TRY(cj_json_int_(c, obj, p, "iso_lines", 0, 10000, &iso));
+    double len = 0.0;
+    TRY(cj_json_num_(c, obj, p, "normals", R_GE, 0, 0, &len));
+    TRY(cj_json_rgb_(c, obj, p, "color", -1, &o->color));
+    o->flags = (net ? CJ_OVERLAY_CONTROL_NET : 0u) | (wire ? CJ_OVERLAY_WIREFRAME : 0u) |
+               (iso > 0 ? CJ_OVERLAY_ISO_LINES : 0u) | (len > 0 ? CJ_OVERLAY_NORMALS : 0u);
+    if (iso > 0) o->iso_count = iso;
+    if (len > 0) o->normal_length = len;
+    return CJ_OK;
+}
+
+static cj_status node_material(jctx *c, const cJSON *obj, const char *p, int inherited, int *out) {
+    const cJSON *mn = cJSON_GetObjectItemCaseSensitive(obj, "material");
+    char pm[JPATH];
+    cj_json_join_(pm, p, "material");
+    if (!mn) {
+        *out = inherited;
+        return CJ_OK;
+    }
+    if (cJSON_IsString(mn)) {
+        size_t n = cj_scene_material_count(c->scene);
+        for (size_t k = 0; k < n; ++k) {
+            const char *o = cj_scene_material_name(c->scene, (int)k);
+            if (o && !strcmp(o, mn->valuestring)) {
+                *out = (int)k;
+                return CJ_OK;
+            }
+        }
+        return cj_json_fail_(c, mn, 0, CJ_ERR_PARSE, "%s \"%s\" names no material", pm,
+                             mn->valuestring);
+    }
+    if (!cJSON_IsObject(mn))
+        return cj_json_fail_(c, mn, 0, CJ_ERR_PARSE,
+                             "%s must be a material's name or a material object", pm);
+    return read_material(c, mn, pm, 0, out);
+}
+
+static cj_status node_geometry(jctx *c, const cJSON *gn, const char *p, int *out) {
+    char pg[JPATH];
+    cj_json_join_(pg, p, "geometry");
+    if (cJSON_IsString(gn)) {
+        size_t i = 0;
+        for (const cJSON *g = c->geometries ? c->geometries->child : NULL; g; g = g->next, ++i) {
+            const cJSON *nm = cJSON_GetObjectItemCaseSensitive(g, "name");
+            if (!strcmp(nm->valuestring, gn->valuestring)) {
+                *out = c->geometry_index[i];
+                return CJ_OK;
+            }
+        }
+        return cj_json_fail_(c, gn, 0, CJ_ERR_PARSE, "%s \"%s\" names no entry of geometries", pg,
+                             gn->valuestring);
+    }
+    return cj_json_read_geometry_(c, gn, pg, out);
+}
+
+static cj_status read_node(jctx *c, const cJSON *obj, const char *p, int parent, int material) {
+    TRY(cj_json_object_(c, obj, p, NODE_KEYS));
+    cj_node n;
+    memset(&n, 0, sizeof n);
+    n.parent = parent;
+    n.geometry = -1;
+    n.material = -1;
+    n.visible = 1;
+    n.local = cj_transform_identity();
+    n.overlay.color = cj_rgb_make(1, 1, 0);
+    n.overlay.iso_count = 8;
+    n.overlay.normal_length = 0.1;
+    TRY(cj_json_string_(c, obj, p, "name", &n.name));
+    TRY(cj_json_bool_(c, obj, p, "visible", &n.visible));
+    const cJSON *tn = cJSON_GetObjectItemCaseSensitive(obj, "transform");
+    if (tn) {
+        char pt[JPATH];
+        cj_json_join_(pt, p, "transform");
+        TRY(read_transform(c, tn, pt, &n.local));
+    }
+    const cJSON *on = cJSON_GetObjectItemCaseSensitive(obj, "overlay");
+    if (on) {
+        char po[JPATH];
+        cj_json_join_(po, p, "overlay");
+        TRY(read_overlay(c, on, po, &n.overlay));
+    }
+    const cJSON *gn = cJSON_GetObjectItemCaseSensitive(obj, "geometry");
+    const cJSON *ch = cJSON_GetObjectItemCaseSensitive(obj, "children");
+    if (gn && ch)
+        return cj_json_fail_(c, ch, 1, CJ_ERR_PARSE,
+                             "%s: an object has either a geometry or children, not both", p);
+    if (!gn && !ch)
+        return cj_json_fail_(c, obj, 0, CJ_ERR_PARSE,
+                             "%s: missing key \"geometry\" (or \"children\" for a group)", p);
+    int mat;
+    TRY(node_material(c, obj, p, material, &mat));
+    int index;
+    if (gn) {
+        TRY(node_geometry(c, gn, p, &n.geometry));
+        if (mat < 0) {
+            if (c->default_material < 0) {
+                cj_material d = cj_material_default();
+                TRY(cj_scene_add_material(c->scene, &d, &c->default_material));
+            }
+            mat = c->default_material;
+        }
+        n.material = mat;
+        cj_status st = cj_scene_add_node(c->scene, &n, &index);
+        return st ? cj_json_relabel_(c, obj, st) : CJ_OK;
+    }
+    cj_status st = cj_scene_add_node(c->scene, &n, &index);
+    if (st) return cj_json_relabel_(c, obj, st);
+    char pc[JPATH];
+    cj_json_join_(pc, p, "children");
+    TRY(list(c, ch, pc));
+    size_t i = 0;
+    for (const cJSON *e = ch->child; e; e = e->next, ++i) {
+        char pe[JPATH];
+        cj_json_index_(pe, pc, i);
+        TRY(read_node(c, e, pe, index, mat));
+    }
+    return CJ_OK;
+}
+
+cj_status cj_json_read_objects_(jctx *c, const cJSON *arr) {
+    TRY(list(c, arr, "objects"));
+    size_t i = 0;
+    for (const cJSON *e = arr->child; e; e = e->next, ++i) {
+        char p[JPATH];
+        cj_json_index_(p, "objects", i);
+        TRY(read_node(c, e, p, -1, -1));
+    }
+    return CJ_OK;
+}
