@@ -76,6 +76,25 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
                            const cj_allocator *alloc, cj_render_image **out,
                            cj_stage_report *report);
 
+/* The world-space triangles the rasterizer draws for this scene and view (what cj_render_raster
+ * rasterizes before clipping: tessellated for the view at the options' screen tolerance, back
+ * faces of one-sided materials removed), as a new mesh: positions and unit normals in world
+ * space, the geometry's (u, v), triangle_patch = the object's id (cj_node.id). For
+ * cross-checks (VTK) and exports. Free with cj_mesh_destroy. Status as cj_render_raster. */
+cj_status cj_render_scene_mesh(const cj_scene *scene, const cj_render_options *opt,
+                               const cj_allocator *alloc, cj_mesh **out);
+
+/* A node with the defaults every builder wants: no parent, identity transform, visible, no
+ * overlay (white lines, 1 iso line, normals 0.1 long when switched on). */
+cj_node cj_render_node(int geometry, int material);
+
+/* The built-in demo scene of `casteljau render --demo`: the Utah teapot read from teapot_bpt
+ * (data/teapot.bpt), lit by an ambient, a point and a directional light, with a procedural
+ * checker and its control net, on a checkered floor; 800 x 600, 4 samples per pixel.
+ * Status: errors of cj_patchset_load_bpt (CJ_ERR_IO naming the file), CJ_ERR_NOMEM. */
+cj_status cj_render_demo_scene(const char *teapot_bpt, const cj_allocator *alloc,
+                               cj_scene **out);
+
 #ifdef __cplusplus
 }
 #endif

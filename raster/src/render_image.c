@@ -1,0 +1,140 @@
+/* The render image (linear float RGBA + optional id and depth planes), its conversion to 8-bit
+ * sRGB, and the small helpers every render_*.c file shares. */
+#define _POSIX_C_SOURCE 200809L
+#include "render_internal.h"
+
+#include "casteljau/framebuffer.h"
+#include "error_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static void *sys_alloc(void *user, size_t bytes) {
+    (void)user;
+    return malloc(bytes);
+}
+static void sys_free(void *user, void *p) {
+    (void)user;
+    free(p);
+}
+
+cj_allocator cj_render_alloc(const cj_allocator *alloc) {
+    if (alloc) return *alloc;
+    cj_allocator a = {sys_alloc, sys_free, NULL};
+    return a;
+}
+
+void *cj_ralloc(const cj_allocator *a, size_t bytes) {
+    return a->alloc(a->user, bytes ? bytes : 1);
+}
+
+void cj_rfree(const cj_allocator *a, void *p) {
+    if (p) a->free(a->user, p);
+}
+
+double cj_render_now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+cj_render_options cj_render_options_default(void) {
+    cj_render_options o;
+    memset(&o, 0, sizeof o);
+    return o;
+}
+
+cj_status cj_render_image_create(int width, int height, unsigned flags, const cj_allocator *alloc,
+                                 cj_render_image **out) {
+    if (width < 1 || height < 1 || width > CJ_FRAMEBUFFER_MAX_SIDE ||
+        height > CJ_FRAMEBUFFER_MAX_SIDE)
+        return cj_fail(CJ_ERR_RANGE, "image size %d x %d outside 1..%d", width, height,
+                       CJ_FRAMEBUFFER_MAX_SIDE);
+    if (flags & ~(unsigned)(CJ_IMAGE_IDS | CJ_IMAGE_DEPTH))
+        return cj_fail(CJ_ERR_ARGUMENT, "unknown image plane flags 0x%x", flags);
+    cj_allocator a = cj_render_alloc(alloc);
+    size_t n = (size_t)width * (size_t)height;
+    cj_render_image *img = cj_ralloc(&a, sizeof *img);
+    if (!img) return cj_fail(CJ_ERR_NOMEM, "render image of %d x %d", width, height);
+    memset(img, 0, sizeof *img);
+    img->width = width;
+    img->height = height;
+    img->alloc_ = a;
+    img->rgba = cj_ralloc(&a, n * 4 * sizeof(float));
+    if (flags & CJ_IMAGE_IDS) img->ids = cj_ralloc(&a, n * sizeof(uint32_t));
+    if (flags & CJ_IMAGE_DEPTH) img->depth = cj_ralloc(&a, n * sizeof(float));
+    if (!img->rgba || ((flags & CJ_IMAGE_IDS) && !img->ids) ||
+        ((flags & CJ_IMAGE_DEPTH) && !img->depth)) {
+        cj_render_image_destroy(img);
+        return cj_fail(CJ_ERR_NOMEM, "render image of %d x %d", width, height);
+    }
+    memset(img->rgba, 0, n * 4 * sizeof(float));
+    if (img->ids) memset(img->ids, 0, n * sizeof(uint32_t));
+    if (img->depth)
+        for (size_t i = 0; i < n; ++i) img->depth[i] = 1.0f;
+    *out = img;
+    return CJ_OK;
+}
+
+void cj_render_image_destroy(cj_render_image *img) {
+    if (!img) return;
+    cj_allocator a = img->alloc_;
+    cj_rfree(&a, img->rgba);
+    cj_rfree(&a, img->ids);
+    cj_rfree(&a, img->depth);
+    cj_rfree(&a, img);
+}
+
+/* The sRGB transfer curve (IEC 61966-2-1), inverse direction. */
+static double srgb_decode(double y) {
+    return y <= 0.04045 ? y / 12.92 : pow((y + 0.055) / 1.055, 2.4);
+}
+
+/* Rounding to the nearest code is a threshold search: code k is chosen when the linear value
+ * lies between the decodes of (k - 1/2)/255 and (k + 1/2)/255, which is exact up to the
+ * rounding of those 255 thresholds (computed once, in double) and avoids a pow per channel. */
+static float srgb_threshold[255];
+static int srgb_ready;
+
+static void srgb_init(void) {
+    if (srgb_ready) return;
+    for (int k = 0; k < 255; ++k) srgb_threshold[k] = (float)srgb_decode((k + 0.5) / 255.0);
+    srgb_ready = 1; /* idempotent: racing initialisers write the same values */
+}
+
+static uint8_t srgb_code(float x) {
+    if (!(x > 0.0f)) return 0;
+    if (x >= 1.0f) return 255;
+    int lo = 0, hi = 255; /* answer in [lo, hi]: number of thresholds <= x */
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (srgb_threshold[mid] <= x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return (uint8_t)lo;
+}
+
+cj_status cj_render_image_to_srgb8(const cj_render_image *img, uint8_t *rgba8, size_t stride) {
+    srgb_init();
+    if (stride == 0) stride = (size_t)img->width * 4;
+    for (int y = 0; y < img->height; ++y) {
+        const float *src = img->rgba + (size_t)y * (size_t)img->width * 4;
+        uint8_t *dst = rgba8 + (size_t)y * stride;
+        for (int x = 0; x < img->width; ++x) {
+            for (int c = 0; c < 4; ++c)
+                if (src[4 * x + c] != src[4 * x + c])
+                    return cj_fail(CJ_ERR_NONFINITE, "pixel (%d, %d) channel %d is NaN", x, y, c);
+            dst[4 * x + 0] = srgb_code(src[4 * x + 0]);
+            dst[4 * x + 1] = srgb_code(src[4 * x + 1]);
+            dst[4 * x + 2] = srgb_code(src[4 * x + 2]);
+            float a = src[4 * x + 3];
+            a = a < 0.0f ? 0.0f : a > 1.0f ? 1.0f : a;
+            dst[4 * x + 3] = (uint8_t)lrintf(a * 255.0f);
+        }
+    }
+    return CJ_OK;
+}

@@ -1,0 +1,138 @@
+/* Private to the rasterizer pipeline (render_main.c, render_shade.c, render_lines.c,
+ * render_bsp.c): the prepared frame every tile reads.
+ *
+ * SHADING KERNELS. Each material maps to one of 8 kernels, (model, textured) with model in
+ * {unlit, flat, Gouraud, Phong}; the tile shader sorts its samples by kernel (a counting sort)
+ * and runs one loop per kernel, each an instantiation of one always-inlined function with the
+ * model and texture flags as compile-time constants: no feature branches per pixel.
+ *   unlit    L = c_r·t·a            a = r_a I_a (ambient lights only) or 1 (no light at all)
+ *   flat     L = c_r·t·A + S        A, S per triangle at its centroid (face normal)
+ *   Gouraud  L = c_r·t·A + S        A, S per vertex, interpolated
+ *   Phong    L = c_r·t·A + S        A, S per sample from the interpolated normal
+ * with A = r_a I_a + r_d Σ I max(0, n·l), S = c_p r_s Σ I max(0, n·h)^α (h = (l+v)/|l+v|),
+ * t the texture's RGB (1 without texture). Two-sided materials flip n to face the viewer. */
+#ifndef CASTELJAU_RENDER_PIPE_H
+#define CASTELJAU_RENDER_PIPE_H
+
+#include "raster3d_internal.h"
+#include "render_internal.h"
+#include "texture_internal.h"
+
+enum { CJ_RM_UNLIT = 0, CJ_RM_FLAT, CJ_RM_GOURAUD, CJ_RM_PHONG, CJ_RM_COUNT };
+#define CJ_RK_COUNT (2 * CJ_RM_COUNT) /* kernel = 2·model + textured */
+
+/* Per-tile stage counters, one set per thread (summed after the run). */
+enum {
+    CJ_RS_SHADE0 = 0, /* + kernel */
+    CJ_RS_BACKGROUND = CJ_RK_COUNT,
+    CJ_RS_LINES,
+    CJ_RS_TRANSPARENT,
+    CJ_RS_RESOLVE,
+    CJ_RS_OUTPUT,
+    CJ_RS_COUNT
+};
+
+typedef struct cj_rcount {
+    double sec[CJ_RS_COUNT];
+    uint64_t n[CJ_RS_COUNT];
+    uint64_t textured;
+    char pad[64];
+} cj_rcount;
+
+typedef struct cj_rlight {
+    int directional; /* 1: l is constant */
+    float I[3];
+    double pos[3]; /* point and spot */
+    float l[3];    /* directional: unit vector towards the light */
+    int spot;
+    float axis[3]; /* spot: unit direction the light travels */
+    float cos_cut, spot_exp;
+} cj_rlight;
+
+typedef struct cj_rmat {
+    float cr[3];   /* c_r */
+    float amb[3];  /* r_a I_a (unlit without any light: 1) */
+    float spec[3]; /* c_p r_s */
+    float kd, alpha, opacity;
+    int model, two_sided, tex; /* tex: sampler index or −1 */
+    int used;
+} cj_rmat;
+
+/* A triangle list handed to the rasterizer. */
+typedef struct cj_rlist {
+    size_t count;
+    uint32_t *tris;  /* 3 global vertex indices per triangle */
+    uint32_t *obj;   /* object per triangle */
+    uint8_t *kernel; /* kernel per triangle */
+    float *flat;     /* 6 per triangle (A, S) where flat-lit, else unused; may be NULL */
+    double *uvplane; /* 9 per triangle where textured with a footprint filter; may be NULL */
+    cj_raster_prep *prep;
+} cj_rlist;
+
+/* A screen-space overlay segment: pixel-space ends and pseudodepths. */
+typedef struct cj_rseg {
+    double x0, y0, x1, y1;
+    float z0, z1;
+    float rgb[3];
+} cj_rseg;
+
+typedef struct cj_rlines {
+    size_t count, cap;
+    cj_rseg *segs;
+    size_t *bin_start; /* tiles + 1 */
+    uint32_t *bin_items;
+    size_t world_segments; /* 3D segments before clipping */
+} cj_rlines;
+
+typedef struct cj_rctx {
+    const cj_rbuild *b;
+    const cj_rview *view;
+    int width, height, spp, tile_size, tiles_x, threads;
+    const double (*pattern)[2];
+    double *clip;   /* 4 per vertex */
+    float *gouraud; /* 6 per vertex (A, S) for Gouraud-lit vertices, or NULL */
+    cj_rmat *mats;  /* per scene material, plus the default material at index nmat */
+    int nmat;
+    int *obj_mat; /* object -> index into mats */
+    cj_rlight *lights;
+    int nlights;
+    cj_tex_sampler *samplers;
+    int nsamplers;
+    float bg[3];
+    cj_rlist opaque, transp;
+    cj_rlines lines;
+    int has_lines, has_transp;
+    cj_render_image *img;
+    float **color;    /* per thread: 4 floats per sample of a tile */
+    uint32_t **order; /* per thread: sample indices sorted by kernel */
+    cj_rcount *count; /* per thread */
+} cj_rctx;
+
+/* render_shade.c */
+void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const float n_in[3],
+                    float A[3], float S[3]);
+/* Shades the samples idx[0..n) of the tile with kernel k into col (4 floats per sample). */
+void cj_rshade_kernel(const cj_rctx *c, int k, const cj_tile *t, const uint32_t *idx, size_t n,
+                      float *col);
+/* Shades one fragment of list L (transparent pass). */
+void cj_rshade_one(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2, double sx,
+                   double sy, float out[4]);
+/* Per-triangle / per-vertex preparation of a list: kernel, flat A/S, (u,v) planes; Gouraud
+ * vertex A/S into c->gouraud. */
+cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a);
+cj_status cj_rshade_prepare_gouraud(cj_rctx *c, const cj_allocator *a, size_t *vertices);
+
+/* render_tile.c: the cj_tile_fn of the opaque run (user = the cj_rctx). */
+void cj_rtile_run(void *user, const cj_tile *t);
+
+/* render_lines.c */
+cj_status cj_rlines_build(cj_rctx *c, const cj_scene *scene, const cj_allocator *a);
+void cj_rlines_free(cj_rlines *l, const cj_allocator *a);
+void cj_rlines_tile(const cj_rctx *c, const cj_tile *t, float *col, uint64_t *pixels);
+
+/* render_bsp.c: orders the transparent triangles back to front (splitting where needed); may
+ * append vertices to the build. tris/obj are replaced by the ordered (split) list. */
+cj_status cj_rbsp_order(cj_rbuild *b, const cj_rview *view, uint32_t **tris, uint32_t **obj,
+                        size_t *count, size_t *splits, int *fallback, const cj_allocator *a);
+
+#endif

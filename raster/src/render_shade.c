@@ -1,0 +1,333 @@
+/* Deferred shading from the visibility buffer (seed 8-10): the Phong reflectance, flat /
+ * Gouraud / Phong interpolation and textures, in one loop per kernel (render_pipe.h). */
+#include "render_pipe.h"
+
+#include "error_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#if defined(__GNUC__)
+#define CJ_INLINE static inline __attribute__((always_inline))
+#else
+#define CJ_INLINE static inline
+#endif
+
+static inline float dot3f(const float a[3], const float b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void normalize3f(float a[3]) {
+    float l = sqrtf(dot3f(a, a));
+    if (l > 0.0f) {
+        float r = 1.0f / l;
+        a[0] *= r;
+        a[1] *= r;
+        a[2] *= r;
+    }
+}
+
+/* A = r_a I_a + r_d Σ I max(0, n·l),  S = c_p r_s Σ I max(0, n·h)^α at world point p. */
+void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const float n_in[3],
+                    float A[3], float S[3]) {
+    float n[3] = {n_in[0], n_in[1], n_in[2]}, v[3];
+    if (c->view->cam.projection == CJ_PROJ_PERSPECTIVE) {
+        v[0] = (float)(c->view->eye.x - p[0]);
+        v[1] = (float)(c->view->eye.y - p[1]);
+        v[2] = (float)(c->view->eye.z - p[2]);
+        normalize3f(v);
+    } else {
+        v[0] = (float)-c->view->gaze_unit.x;
+        v[1] = (float)-c->view->gaze_unit.y;
+        v[2] = (float)-c->view->gaze_unit.z;
+    }
+    if (m->two_sided && dot3f(n, v) < 0.0f) {
+        n[0] = -n[0];
+        n[1] = -n[1];
+        n[2] = -n[2];
+    }
+    float sum_d[3] = {0, 0, 0}, sum_s[3] = {0, 0, 0};
+    for (int i = 0; i < c->nlights; ++i) {
+        const cj_rlight *L = &c->lights[i];
+        float l[3], f = 1.0f;
+        if (L->directional) {
+            l[0] = L->l[0];
+            l[1] = L->l[1];
+            l[2] = L->l[2];
+        } else {
+            l[0] = (float)(L->pos[0] - p[0]);
+            l[1] = (float)(L->pos[1] - p[1]);
+            l[2] = (float)(L->pos[2] - p[2]);
+            normalize3f(l);
+            if (L->spot) {
+                float ct = -dot3f(L->axis, l);
+                f = ct >= L->cos_cut ? powf(ct, L->spot_exp) : 0.0f;
+            }
+        }
+        float nl = dot3f(n, l);
+        if (nl > 0.0f)
+            for (int k = 0; k < 3; ++k) sum_d[k] += f * L->I[k] * nl;
+        float h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
+        normalize3f(h);
+        float nh = dot3f(n, h);
+        float sp = powf(nh > 0.0f ? nh : 0.0f, m->alpha);
+        for (int k = 0; k < 3; ++k) sum_s[k] += f * L->I[k] * sp;
+    }
+    for (int k = 0; k < 3; ++k) {
+        A[k] = m->amb[k] + m->kd * sum_d[k];
+        S[k] = m->spec[k] * sum_s[k];
+    }
+}
+
+/* u, v and their screen derivatives from the triangle's (u,v) plane at pixel point (sx, sy). */
+static inline void uv_derivs(const double *pl, double sx, double sy, double *dudx, double *dvdx,
+                             double *dudy, double *dvdy) {
+    const double *U = pl, *V = pl + 3, *Q = pl + 6;
+    double s = Q[0] * sx + Q[1] * sy + Q[2];
+    if (s == 0.0) {
+        *dudx = *dvdx = *dudy = *dvdy = 0.0;
+        return;
+    }
+    double u = (U[0] * sx + U[1] * sy + U[2]) / s, v = (V[0] * sx + V[1] * sy + V[2]) / s;
+    *dudx = (U[0] - u * Q[0]) / s;
+    *dudy = (U[1] - u * Q[1]) / s;
+    *dvdx = (V[0] - v * Q[0]) / s;
+    *dvdy = (V[1] - v * Q[1]) / s;
+}
+
+/* The shading of one sample; model and tex are compile-time constants in every caller. */
+CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2,
+                     double sx, double sy, const int model, const int tex, float out[4]) {
+    const uint32_t *tv = L->tris + 3 * (size_t)tri;
+    const float b0 = 1.0f - b1 - b2;
+    const cj_rmat *m = &c->mats[c->obj_mat[L->obj[tri]]];
+    float cr[3] = {m->cr[0], m->cr[1], m->cr[2]};
+    if (tex) {
+        const float *t0 = c->b->uv + 2 * (size_t)tv[0], *t1 = c->b->uv + 2 * (size_t)tv[1],
+                    *t2 = c->b->uv + 2 * (size_t)tv[2];
+        double u = (double)(b0 * t0[0] + b1 * t1[0] + b2 * t2[0]);
+        double v = (double)(b0 * t0[1] + b1 * t1[1] + b2 * t2[1]);
+        const cj_tex_sampler *smp = &c->samplers[m->tex];
+        double dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
+        if (smp->needs_deriv && L->uvplane)
+            uv_derivs(L->uvplane + 9 * (size_t)tri, sx, sy, &dudx, &dvdx, &dudy, &dvdy);
+        float t[3];
+        cj_tex_sample(smp, u, v, dudx, dvdx, dudy, dvdy, t);
+        cr[0] *= t[0];
+        cr[1] *= t[1];
+        cr[2] *= t[2];
+    }
+    if (model == CJ_RM_UNLIT) {
+        out[0] = cr[0] * m->amb[0];
+        out[1] = cr[1] * m->amb[1];
+        out[2] = cr[2] * m->amb[2];
+    } else {
+        float A[3], S[3];
+        if (model == CJ_RM_FLAT) {
+            const float *f = L->flat + 6 * (size_t)tri;
+            A[0] = f[0], A[1] = f[1], A[2] = f[2], S[0] = f[3], S[1] = f[4], S[2] = f[5];
+        } else if (model == CJ_RM_GOURAUD) {
+            const float *g0 = c->gouraud + 6 * (size_t)tv[0], *g1 = c->gouraud + 6 * (size_t)tv[1],
+                        *g2 = c->gouraud + 6 * (size_t)tv[2];
+            for (int k = 0; k < 3; ++k) {
+                A[k] = b0 * g0[k] + b1 * g1[k] + b2 * g2[k];
+                S[k] = b0 * g0[3 + k] + b1 * g1[3 + k] + b2 * g2[3 + k];
+            }
+        } else {
+            const float *n0 = c->b->nrm + 3 * (size_t)tv[0], *n1 = c->b->nrm + 3 * (size_t)tv[1],
+                        *n2 = c->b->nrm + 3 * (size_t)tv[2];
+            const double *p0 = c->b->pos + 3 * (size_t)tv[0], *p1 = c->b->pos + 3 * (size_t)tv[1],
+                         *p2 = c->b->pos + 3 * (size_t)tv[2];
+            float n[3];
+            double p[3], db0 = b0, db1 = b1, db2 = b2;
+            for (int k = 0; k < 3; ++k) {
+                n[k] = b0 * n0[k] + b1 * n1[k] + b2 * n2[k];
+                p[k] = db0 * p0[k] + db1 * p1[k] + db2 * p2[k];
+            }
+            normalize3f(n);
+            cj_rlight_eval(c, m, p, n, A, S);
+        }
+        out[0] = cr[0] * A[0] + S[0];
+        out[1] = cr[1] * A[1] + S[1];
+        out[2] = cr[2] * A[2] + S[2];
+    }
+    out[3] = m->opacity;
+}
+
+/* One loop per kernel over the tile's samples of that kernel. */
+#define CJ_KERNEL_LOOP(NAME, MODEL, TEX)                                                           \
+    static void NAME(const cj_rctx *c, const cj_tile *t, const uint32_t *idx, size_t n,            \
+                     float *col) {                                                                 \
+        const int tw = t->x1 - t->x0, spp = t->spp;                                                \
+        for (size_t j = 0; j < n; ++j) {                                                           \
+            uint32_t i = idx[j];                                                                   \
+            const cj_vis_sample *s = &t->samples[i];                                               \
+            double sx = 0.0, sy = 0.0;                                                             \
+            if (TEX) {                                                                             \
+                uint32_t px = i / (uint32_t)spp, si = i % (uint32_t)spp;                           \
+                sx = t->x0 + (int)(px % (uint32_t)tw) + c->pattern[si][0];                         \
+                sy = t->y0 + (int)(px / (uint32_t)tw) + c->pattern[si][1];                         \
+            }                                                                                      \
+            shade(c, &c->opaque, s->tri, s->b1, s->b2, sx, sy, MODEL, TEX, col + 4 * (size_t)i);   \
+        }                                                                                          \
+    }                                                                                              \
+    static void NAME##_one(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2,  \
+                           double sx, double sy, float out[4]) {                                   \
+        shade(c, L, tri, b1, b2, sx, sy, MODEL, TEX, out);                                         \
+    }
+
+CJ_KERNEL_LOOP(k_unlit, CJ_RM_UNLIT, 0)
+CJ_KERNEL_LOOP(k_unlit_tex, CJ_RM_UNLIT, 1)
+CJ_KERNEL_LOOP(k_flat, CJ_RM_FLAT, 0)
+CJ_KERNEL_LOOP(k_flat_tex, CJ_RM_FLAT, 1)
+CJ_KERNEL_LOOP(k_gouraud, CJ_RM_GOURAUD, 0)
+CJ_KERNEL_LOOP(k_gouraud_tex, CJ_RM_GOURAUD, 1)
+CJ_KERNEL_LOOP(k_phong, CJ_RM_PHONG, 0)
+CJ_KERNEL_LOOP(k_phong_tex, CJ_RM_PHONG, 1)
+
+typedef void (*kernel_fn)(const cj_rctx *, const cj_tile *, const uint32_t *, size_t, float *);
+typedef void (*one_fn)(const cj_rctx *, const cj_rlist *, uint32_t, float, float, double, double,
+                       float *);
+static const kernel_fn kernels[CJ_RK_COUNT] = {k_unlit,   k_unlit_tex,   k_flat,  k_flat_tex,
+                                               k_gouraud, k_gouraud_tex, k_phong, k_phong_tex};
+static const one_fn ones[CJ_RK_COUNT] = {k_unlit_one,    k_unlit_tex_one, k_flat_one,
+                                         k_flat_tex_one, k_gouraud_one,   k_gouraud_tex_one,
+                                         k_phong_one,    k_phong_tex_one};
+
+void cj_rshade_kernel(const cj_rctx *c, int k, const cj_tile *t, const uint32_t *idx, size_t n,
+                      float *col) {
+    kernels[k](c, t, idx, n, col);
+}
+
+void cj_rshade_one(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2, double sx,
+                   double sy, float out[4]) {
+    ones[L->kernel[tri]](c, L, tri, b1, b2, sx, sy, out);
+}
+
+/* The (u,v) plane of a triangle in pixel coordinates: with M the 3x3 matrix of the vertices'
+ * clip (x, y, w) as columns, q = M⁻¹ (X_ndc, Y_ndc, 1) are the perspective-correct barycentrics
+ * up to a common factor (2D homogeneous rasterization), so u(x, y) = (U·(x,y,1)) / (Q·(x,y,1))
+ * with U = Σ u_i A_i, Q = Σ A_i, A = M⁻¹ T and T the pixel -> NDC map. Works for vertices
+ * behind the eye too (no division by w). Returns 0 for a singular M (the triangle is seen
+ * edge-on and covers no sample). */
+static int uv_plane(const cj_rctx *c, const uint32_t *tv, double out[9]) {
+    double M[3][3];
+    for (int i = 0; i < 3; ++i) {
+        const double *cl = c->clip + 4 * (size_t)tv[i];
+        M[0][i] = cl[0];
+        M[1][i] = cl[1];
+        M[2][i] = cl[3];
+    }
+    double inv[3][3];
+    inv[0][0] = M[1][1] * M[2][2] - M[1][2] * M[2][1];
+    inv[0][1] = M[0][2] * M[2][1] - M[0][1] * M[2][2];
+    inv[0][2] = M[0][1] * M[1][2] - M[0][2] * M[1][1];
+    inv[1][0] = M[1][2] * M[2][0] - M[1][0] * M[2][2];
+    inv[1][1] = M[0][0] * M[2][2] - M[0][2] * M[2][0];
+    inv[1][2] = M[0][2] * M[1][0] - M[0][0] * M[1][2];
+    inv[2][0] = M[1][0] * M[2][1] - M[1][1] * M[2][0];
+    inv[2][1] = M[0][1] * M[2][0] - M[0][0] * M[2][1];
+    inv[2][2] = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+    double det = M[0][0] * inv[0][0] + M[0][1] * inv[1][0] + M[0][2] * inv[2][0];
+    if (!(fabs(det) > 0.0)) return 0;
+    /* the common factor 1/det cancels in the ratios: keep the adjugate */
+    double sx = 2.0 / c->width, sy = 2.0 / c->height, A[3][3];
+    for (int i = 0; i < 3; ++i) {
+        A[i][0] = inv[i][0] * sx;
+        A[i][1] = inv[i][1] * sy;
+        A[i][2] = inv[i][2] - inv[i][0] - inv[i][1];
+    }
+    memset(out, 0, 9 * sizeof(double));
+    for (int i = 0; i < 3; ++i) {
+        const float *uv = c->b->uv + 2 * (size_t)tv[i];
+        for (int k = 0; k < 3; ++k) {
+            out[k] += uv[0] * A[i][k];
+            out[3 + k] += uv[1] * A[i][k];
+            out[6 + k] += A[i][k];
+        }
+    }
+    return 1;
+}
+
+cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a) {
+    size_t n = L->count;
+    L->kernel = cj_ralloc(a, n ? n : 1);
+    if (!L->kernel) return cj_fail(CJ_ERR_NOMEM, "kernel table of %zu triangles", n);
+    int any_flat = 0, any_plane = 0;
+    for (size_t t = 0; t < n; ++t) {
+        const cj_rmat *m = &c->mats[c->obj_mat[L->obj[t]]];
+        int tex = m->tex >= 0;
+        L->kernel[t] = (uint8_t)(2 * m->model + tex);
+        if (m->model == CJ_RM_FLAT) any_flat = 1;
+        if (tex && c->samplers[m->tex].needs_deriv) any_plane = 1;
+    }
+    if (any_flat) {
+        L->flat = cj_ralloc(a, sizeof(float) * 6 * (n ? n : 1));
+        if (!L->flat) return cj_fail(CJ_ERR_NOMEM, "flat shading of %zu triangles", n);
+    }
+    if (any_plane) {
+        L->uvplane = cj_ralloc(a, sizeof(double) * 9 * (n ? n : 1));
+        if (!L->uvplane) return cj_fail(CJ_ERR_NOMEM, "texture planes of %zu triangles", n);
+    }
+    for (size_t t = 0; t < n; ++t) {
+        const cj_rmat *m = &c->mats[c->obj_mat[L->obj[t]]];
+        const uint32_t *tv = L->tris + 3 * t;
+        if (m->model == CJ_RM_FLAT) {
+            const double *p0 = c->b->pos + 3 * (size_t)tv[0], *p1 = c->b->pos + 3 * (size_t)tv[1],
+                         *p2 = c->b->pos + 3 * (size_t)tv[2];
+            double e1[3], e2[3], p[3];
+            for (int k = 0; k < 3; ++k) {
+                e1[k] = p1[k] - p0[k];
+                e2[k] = p2[k] - p0[k];
+                p[k] = (p0[k] + p1[k] + p2[k]) / 3.0;
+            }
+            double nd[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                            e1[0] * e2[1] - e1[1] * e2[0]};
+            double l = sqrt(nd[0] * nd[0] + nd[1] * nd[1] + nd[2] * nd[2]);
+            float nf[3] = {0, 0, 0};
+            if (l > 0.0)
+                for (int k = 0; k < 3; ++k) nf[k] = (float)(nd[k] / l);
+            cj_rlight_eval(c, m, p, nf, L->flat + 6 * t, L->flat + 6 * t + 3);
+        }
+        if (L->uvplane && m->tex >= 0 && c->samplers[m->tex].needs_deriv)
+            if (!uv_plane(c, tv, L->uvplane + 9 * t)) memset(L->uvplane + 9 * t, 0, 72);
+    }
+    return CJ_OK;
+}
+
+/* Per-vertex A, S of the vertices of Gouraud triangles (both lists: the transparent one may
+ * hold vertices made by BSP splits). */
+cj_status cj_rshade_prepare_gouraud(cj_rctx *c, const cj_allocator *a, size_t *vertices) {
+    *vertices = 0;
+    const cj_rbuild *b = c->b;
+    int any = 0;
+    for (size_t o = 0; o < b->object_count && !any; ++o)
+        if (c->mats[c->obj_mat[o]].model == CJ_RM_GOURAUD) any = 1;
+    if (!any) return CJ_OK;
+    size_t nv = b->vertex_count ? b->vertex_count : 1;
+    c->gouraud = cj_ralloc(a, sizeof(float) * 6 * nv);
+    uint8_t *done = cj_ralloc(a, nv);
+    if (!c->gouraud || !done) {
+        cj_rfree(a, done);
+        return cj_fail(CJ_ERR_NOMEM, "Gouraud vertices");
+    }
+    memset(done, 0, nv);
+    const cj_rlist *lists[2] = {&c->opaque, &c->transp};
+    for (int li = 0; li < 2; ++li) {
+        const cj_rlist *L = lists[li];
+        for (size_t t = 0; t < L->count; ++t) {
+            const cj_rmat *m = &c->mats[c->obj_mat[L->obj[t]]];
+            if (m->model != CJ_RM_GOURAUD) continue;
+            for (int k = 0; k < 3; ++k) {
+                uint32_t v = L->tris[3 * t + k];
+                if (done[v]) continue;
+                done[v] = 1;
+                cj_rlight_eval(c, m, b->pos + 3 * (size_t)v, b->nrm + 3 * (size_t)v,
+                               c->gouraud + 6 * (size_t)v, c->gouraud + 6 * (size_t)v + 3);
+                ++*vertices;
+            }
+        }
+    }
+    cj_rfree(a, done);
+    return CJ_OK;
+}
