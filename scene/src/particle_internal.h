@@ -1,0 +1,23 @@
+/* Private: the particle system's layout, shared by its files. */
+#ifndef CASTELJAU_PARTICLE_INTERNAL_H
+#define CASTELJAU_PARTICLE_INTERNAL_H
+
+#include "casteljau/particles.h"
+
+struct cj_particles {
+    cj_allocator alloc;
+    int has_alloc;
+    cj_particles_desc d; /* pointers below point into this object's own copies */
+    cj_emitter *emitters;
+    cj_sphere_collider *spheres;
+    cj_plane_collider *planes;
+    size_t count;
+    double *x, *v, *acc; /* capacity × 3 */
+    double *age, *life;  /* capacity */
+    double *emit_acc;    /* per emitter: accumulated fractional particles */
+    uint64_t rng[4];
+    double t;
+    uint64_t steps;
+};
+
+#endif
