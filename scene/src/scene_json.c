@@ -196,8 +196,8 @@ static const char *type_name(const cJSON *n) {
 cj_status cj_json_object_(const jctx *c, const cJSON *obj, const char *path,
                           const char *const *allowed) {
     if (!cJSON_IsObject(obj))
-        return cj_json_fail_(c, obj, 0, CJ_ERR_PARSE, "%s must be an object, not %s", path,
-                             type_name(obj));
+        return cj_json_fail_(c, obj, 0, CJ_ERR_PARSE, "%s must be an object, not %s",
+                             path[0] ? path : "document", type_name(obj));
     for (const cJSON *m = obj->child; m; m = m->next) {
         int known = 0;
         for (const char *const *a = allowed; *a && !known; ++a) known = !strcmp(*a, m->string);

@@ -48,7 +48,7 @@ static const char *const GEOM_KEYS[][12] = {
     {"p00", "p10", "p01", "p11", NULL},
     {"points", "weights", "origin", "axis", NULL},
     {"points", "weights", "origin", "e1", "e2", "dir", "v0", "v1", NULL},
-    {"path", "positions", "triangles", "normals", "uvs", NULL},
+    {"path", "positions", "triangles", "normals", "uvs", "patch_ids", NULL},
     {"kind", "points", "weights", "tension", "continuity", "bias", "closed", "width_px", "color",
      NULL}};
 
@@ -70,6 +70,13 @@ static cj_status need(const jctx *c, const cJSON *obj, const char *p, const char
         TRY(cj_json_require_(c, obj, p, *keys, &n));
     }
     return CJ_OK;
+}
+
+/* A constructor of surfaces/ refused the values: its message, prefixed with file, line, path. */
+static cj_status ctor_fail(const jctx *c, const cJSON *obj, const char *p, cj_status st) {
+    char msg[512];
+    snprintf(msg, sizeof msg, "%s", cj_last_error());
+    return cj_json_fail_(c, obj, 0, st, "%s: %s", p, msg);
 }
 
 static cj_status add(jctx *c, const cJSON *obj, const char *p, const cj_geometry *g, int *index) {
@@ -286,7 +293,7 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
         TRY(cj_json_num_(c, obj, p, "minor", R_GT, 0, 0, &minor));
         g.kind = CJ_GEOM_TORUS;
         cj_status st = cj_torus_init(&g.u.torus, center, axis, major, minor);
-        return st ? cj_json_relabel_(c, obj, st) : add(c, obj, p, &g, index);
+        return st ? ctor_fail(c, obj, p, st) : add(c, obj, p, &g, index);
     }
     case G_CYLINDER: {
         TRY(need(c, obj, p, NEED_CYLINDER));
@@ -299,7 +306,7 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
         TRY(cj_json_num_(c, obj, p, "h1", R_ANY, 0, 0, &h1));
         g.kind = CJ_GEOM_CYLINDER;
         cj_status st = cj_cylinder_init(&g.u.cylinder, base, axis, radius, h0, h1);
-        return st ? cj_json_relabel_(c, obj, st) : add(c, obj, p, &g, index);
+        return st ? ctor_fail(c, obj, p, st) : add(c, obj, p, &g, index);
     }
     case G_PLANAR:
     case G_PLANE: {
@@ -310,7 +317,7 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
         TRY(cj_json_vec3_(c, obj, p, "edge_v", &ev));
         g.kind = CJ_GEOM_PLANAR;
         cj_status st = cj_planar_patch_init(&g.u.planar, o, eu, ev);
-        return st ? cj_json_relabel_(c, obj, st) : add(c, obj, p, &g, index);
+        return st ? ctor_fail(c, obj, p, st) : add(c, obj, p, &g, index);
     }
     case G_BILINEAR: {
         TRY(need(c, obj, p, NEED_BILINEAR));
@@ -318,7 +325,7 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
         for (int k = 0; k < 4; ++k) TRY(cj_json_vec3_(c, obj, p, NEED_BILINEAR[k], &q[k]));
         g.kind = CJ_GEOM_BILINEAR;
         cj_status st = cj_bilinear_init(&g.u.bilinear, q[0], q[1], q[2], q[3]);
-        return st ? cj_json_relabel_(c, obj, st) : add(c, obj, p, &g, index);
+        return st ? ctor_fail(c, obj, p, st) : add(c, obj, p, &g, index);
     }
     case G_REVOLUTION: {
         TRY(need(c, obj, p, NEED_POINTS));
@@ -369,7 +376,7 @@ static cj_status inline_mesh(const jctx *c, const cJSON *obj, const char *p, cj_
     const char *const need_keys[] = {"positions", "triangles", NULL};
     TRY(need(c, obj, p, need_keys));
     char pk[JPATH];
-    double *pos = NULL, *tri = NULL, *nrm = NULL, *uv = NULL;
+    double *pos = NULL, *tri = NULL, *nrm = NULL, *uv = NULL, *pid = NULL;
     size_t nv = 0, nt = 0, k;
     cj_status st;
     cj_json_join_(pk, p, "positions");
@@ -389,6 +396,15 @@ static cj_status inline_mesh(const jctx *c, const cJSON *obj, const char *p, cj_
     if (!st && un) {
         cj_json_join_(pk, p, "uvs");
         st = cj_json_numbers_(c, un, pk, 2, R_ANY, 0, nv, &uv, &k);
+    }
+    const cJSON *pn = cJSON_GetObjectItemCaseSensitive(obj, "patch_ids");
+    if (!st && pn) {
+        cj_json_join_(pk, p, "patch_ids");
+        st = cj_json_numbers_(c, pn, pk, 0, R_ANY, 0, nt, &pid, &k);
+        for (size_t t = 0; !st && t < nt; ++t)
+            if (pid[t] != floor(pid[t]) || fabs(pid[t]) > 2147483647.0)
+                st = cj_json_fail_(c, pn, 0, CJ_ERR_RANGE, "%s[%zu] must be a 32-bit integer", pk,
+                                   t);
     }
     if (!st && nv > CJ_MESH_MAX_VERTICES)
         st = cj_json_fail_(c, obj, 0, CJ_ERR_RANGE, "%s: too many vertices", p);
@@ -412,13 +428,14 @@ static cj_status inline_mesh(const jctx *c, const cJSON *obj, const char *p, cj_
             }
             v[j] = (uint32_t)d;
         }
-        if (!st) st = cj_mesh_add_triangle(m, v[0], v[1], v[2], 0);
+        if (!st) st = cj_mesh_add_triangle(m, v[0], v[1], v[2], pid ? (int32_t)pid[t] : 0);
     }
     if (!st && !nrm) cj_mesh_compute_normals(m);
     free(pos);
     free(tri);
     free(nrm);
     free(uv);
+    free(pid);
     return st;
 }
 
@@ -430,7 +447,8 @@ static cj_status read_mesh(jctx *c, const cJSON *obj, const char *p, int *index)
         if (cJSON_GetObjectItemCaseSensitive(obj, "positions") ||
             cJSON_GetObjectItemCaseSensitive(obj, "triangles") ||
             cJSON_GetObjectItemCaseSensitive(obj, "normals") ||
-            cJSON_GetObjectItemCaseSensitive(obj, "uvs"))
+            cJSON_GetObjectItemCaseSensitive(obj, "uvs") ||
+            cJSON_GetObjectItemCaseSensitive(obj, "patch_ids"))
             return cj_json_fail_(c, pn, 1, CJ_ERR_PARSE,
                                  "%s: give either \"path\" or inline mesh data, not both", p);
         const char *rel = NULL;

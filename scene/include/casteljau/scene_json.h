@@ -96,8 +96,8 @@
  *   gen_cylinder  "points": [[x, y], ...] in the (e1, e2) plane, "weights", "origin", "e1",
  *                 "e2", "dir", "v0", "v1"
  *   mesh          "path": an OBJ or PLY file (casteljau/mesh_read.h), or inline "positions"
- *                 [[x, y, z], ...], "triangles" [[a, b, c], ...] (0-based), "normals" and
- *                 "uvs" (optional; missing normals are computed)
+ *                 [[x, y, z], ...], "triangles" [[a, b, c], ...] (0-based), "normals",
+ *                 "uvs", "patch_ids" (one per triangle) optional; missing normals are computed
  *   curve         "kind": bezier | rational | catmull-rom | centripetal | chordal |
  *                 kochanek-bartels; "points" [[x, y, z], ...]; "weights" (rational);
  *                 "tension" (0.5; T for kochanek-bartels: 0), "continuity", "bias",

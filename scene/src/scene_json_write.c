@@ -1,0 +1,533 @@
+/* The JSON scene writer: every part of a checked scene in the format scene_json.h documents,
+ * numbers in the shortest form that reads back to the same double, written atomically. */
+#define _POSIX_C_SOURCE 200809L
+#include "scene_internal.h"
+
+#include "casteljau/scene_json.h"
+#include "error_internal.h"
+
+#include <assert.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+typedef struct emitter {
+    FILE *f;
+    int depth;
+    int first[64]; /* per depth: nothing written in this object/array yet */
+} emitter;
+
+static const double DEG = 3.14159265358979323846 / 180.0;
+
+static void put_num(FILE *f, double v) {
+    char buf[40];
+    snprintf(buf, sizeof buf, "%.15g", v);
+    if (strtod(buf, NULL) != v) snprintf(buf, sizeof buf, "%.17g", v);
+    fputs(buf, f);
+}
+
+static void put_str(FILE *f, const char *s) {
+    fputc('"', f);
+    for (; *s; ++s) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+static void indent(emitter *e) {
+    fputc('\n', e->f);
+    for (int i = 0; i < e->depth; ++i) fputs("  ", e->f);
+}
+
+/* Starts the next member (key != NULL) or element of the current container. */
+static void next(emitter *e, const char *key) {
+    if (!e->first[e->depth]) fputc(',', e->f);
+    e->first[e->depth] = 0;
+    indent(e);
+    if (key) {
+        put_str(e->f, key);
+        fputs(": ", e->f);
+    }
+}
+
+static void open_c(emitter *e, const char *key, char c) {
+    if (e->depth > 0 || key) next(e, key);
+    fputc(c, e->f);
+    e->depth++;
+    e->first[e->depth] = 1;
+}
+
+static void close_c(emitter *e, char c) {
+    int empty = e->first[e->depth];
+    e->depth--;
+    if (!empty) indent(e);
+    fputc(c, e->f);
+}
+
+static void num(emitter *e, const char *key, double v) {
+    next(e, key);
+    put_num(e->f, v);
+}
+
+static void integer(emitter *e, const char *key, long long v) {
+    next(e, key);
+    fprintf(e->f, "%lld", v);
+}
+
+static void boolean(emitter *e, const char *key, int v) {
+    next(e, key);
+    fputs(v ? "true" : "false", e->f);
+}
+
+static void string(emitter *e, const char *key, const char *s) {
+    next(e, key);
+    put_str(e->f, s);
+}
+
+static void numbers(FILE *f, const double *v, size_t n) {
+    fputc('[', f);
+    for (size_t i = 0; i < n; ++i) {
+        if (i) fputs(", ", f);
+        put_num(f, v[i]);
+    }
+    fputc(']', f);
+}
+
+static void vec3(emitter *e, const char *key, cj_vec3 v) {
+    const double a[3] = {v.x, v.y, v.z};
+    next(e, key);
+    numbers(e->f, a, 3);
+}
+
+static void rgb(emitter *e, const char *key, cj_rgb c) {
+    const double a[3] = {c.r, c.g, c.b};
+    next(e, key);
+    numbers(e->f, a, 3);
+}
+
+/* count points of dim coordinates as [[...], [...]]. */
+static void points(emitter *e, const char *key, const double *p, size_t count, int dim) {
+    next(e, key);
+    fputc('[', e->f);
+    for (size_t i = 0; i < count; ++i) {
+        if (i) fputs(", ", e->f);
+        numbers(e->f, p + i * (size_t)dim, (size_t)dim);
+    }
+    fputc(']', e->f);
+}
+
+static void weights(emitter *e, const double *w, size_t n) {
+    if (!w) return;
+    next(e, "weights");
+    numbers(e->f, w, n);
+}
+
+/* An angle in degrees when that reads back to the same radians, else in radians. */
+static void angle(emitter *e, const char *key, double rad) {
+    char k[64];
+    double deg = rad / DEG;
+    char buf[40];
+    snprintf(buf, sizeof buf, "%.17g", deg);
+    if (strtod(buf, NULL) * DEG == rad) {
+        snprintf(k, sizeof k, "%s_deg", key);
+        num(e, k, deg);
+    } else {
+        snprintf(k, sizeof k, "%s_rad", key);
+        num(e, k, rad);
+    }
+}
+
+/* ---- parts ---------------------------------------------------------------------------------- */
+
+static void write_camera(emitter *e, const cj_camera *c) {
+    open_c(e, "camera", '{');
+    vec3(e, "eye", c->eye);
+    vec3(e, "gaze", c->gaze);
+    vec3(e, "up", c->up);
+    num(e, "near", c->near);
+    num(e, "far", c->far);
+    string(e, "projection", c->projection == CJ_PROJ_PERSPECTIVE ? "perspective" : "orthographic");
+    angle(e, "fov", c->fov_y);
+    if (c->ortho_height > 0) num(e, "ortho_height", c->ortho_height);
+    close_c(e, '}');
+}
+
+static void write_settings(emitter *e, const cj_scene_settings *s) {
+    open_c(e, "settings", '{');
+    integer(e, "width", s->width);
+    integer(e, "height", s->height);
+    integer(e, "spp", s->spp);
+    num(e, "tol_px", s->tol_px);
+    rgb(e, "background", s->background);
+    integer(e, "max_depth", s->max_depth);
+    integer(e, "seed", (long long)s->seed);
+    close_c(e, '}');
+}
+
+static void write_light(emitter *e, const cj_light *l) {
+    static const char *const TYPES[] = {"ambient", "point", "directional", "spot", "area"};
+    open_c(e, NULL, '{');
+    string(e, "type", TYPES[l->kind]);
+    rgb(e, "color", l->color);
+    num(e, "intensity", l->intensity);
+    boolean(e, "casts_shadows", l->casts_shadows);
+    if (l->kind == CJ_LIGHT_POINT || l->kind == CJ_LIGHT_SPOT || l->kind == CJ_LIGHT_AREA)
+        vec3(e, "position", l->position);
+    if (l->kind == CJ_LIGHT_DIRECTIONAL || l->kind == CJ_LIGHT_SPOT)
+        vec3(e, "direction", l->direction);
+    if (l->kind == CJ_LIGHT_SPOT) {
+        angle(e, "angle", l->spot_angle);
+        num(e, "exponent", l->spot_exponent);
+    }
+    if (l->kind == CJ_LIGHT_AREA) {
+        vec3(e, "edge_u", l->edge_u);
+        vec3(e, "edge_v", l->edge_v);
+    }
+    close_c(e, '}');
+}
+
+/* The name a texture/material is written under. */
+static void part_name(char *dst, size_t cap, const char *name, const char *prefix, int i) {
+    if (name)
+        snprintf(dst, cap, "%s", name);
+    else
+        snprintf(dst, cap, "%s%d", prefix, i);
+}
+
+static void write_texture(emitter *e, const cj_scene *s, int i) {
+    static const char *const FILTERS[] = {"nearest", "bilinear", "trilinear"};
+    const cj_texture *t = &s->textures[i];
+    char name[256];
+    part_name(name, sizeof name, s->texture_names[i], "texture", i);
+    open_c(e, NULL, '{');
+    string(e, "name", name);
+    string(e, "type", t->kind == CJ_TEX_IMAGE ? "image" : "checker");
+    if (t->kind == CJ_TEX_IMAGE) string(e, "path", t->path);
+    string(e, "filter", FILTERS[t->filter]);
+    string(e, "wrap", t->wrap == CJ_TEX_REPEAT ? "repeat" : "clamp");
+    const double sc[2] = {t->scale_u, t->scale_v}, of[2] = {t->offset_u, t->offset_v};
+    next(e, "scale");
+    numbers(e->f, sc, 2);
+    next(e, "offset");
+    numbers(e->f, of, 2);
+    if (t->kind == CJ_TEX_CHECKER) {
+        next(e, "checks");
+        fprintf(e->f, "[%d, %d]", t->checks_u, t->checks_v);
+        const double a[3] = {t->checker_a.r, t->checker_a.g, t->checker_a.b};
+        const double b[3] = {t->checker_b.r, t->checker_b.g, t->checker_b.b};
+        next(e, "colors");
+        fputc('[', e->f);
+        numbers(e->f, a, 3);
+        fputs(", ", e->f);
+        numbers(e->f, b, 3);
+        fputc(']', e->f);
+    }
+    close_c(e, '}');
+}
+
+static void write_material(emitter *e, const cj_scene *s, int i) {
+    static const char *const SHADINGS[] = {"flat", "gouraud", "phong"};
+    const cj_material *m = &s->materials[i];
+    char name[256];
+    part_name(name, sizeof name, s->material_names[i], "material", i);
+    open_c(e, NULL, '{');
+    string(e, "name", name);
+    rgb(e, "color", m->color);
+    rgb(e, "specular", m->specular);
+    num(e, "ka", m->ka);
+    num(e, "kd", m->kd);
+    num(e, "ks", m->ks);
+    num(e, "alpha", m->alpha);
+    string(e, "shading", SHADINGS[m->shading]);
+    boolean(e, "two_sided", m->two_sided);
+    if (m->texture >= 0) {
+        char tn[256];
+        part_name(tn, sizeof tn, s->texture_names[m->texture], "texture", m->texture);
+        string(e, "texture", tn);
+    }
+    num(e, "opacity", m->opacity);
+    num(e, "mirror", m->mirror);
+    num(e, "transmission", m->transmission);
+    num(e, "ior", m->ior);
+    num(e, "glossiness", m->glossiness);
+    rgb(e, "emission", m->emission);
+    boolean(e, "receives_shadows", m->receives_shadows);
+    close_c(e, '}');
+}
+
+static void write_quadric(emitter *e, const cj_quadric *q) {
+    static const char *const KINDS[] = {"ellipsoid", "hyperboloid1", "hyperboloid2",
+                                        "cone",      "paraboloid",   "hyperbolic_paraboloid"};
+    string(e, "type", "quadric");
+    string(e, "kind", KINDS[q->kind]);
+    num(e, "a", q->a);
+    num(e, "b", q->b);
+    if (q->kind <= CJ_QUADRIC_CONE) num(e, "c", q->c);
+    if (q->kind == CJ_QUADRIC_HYPERBOLIC_PARABOLOID) {
+        num(e, "u0", q->u0);
+        num(e, "u1", q->u1);
+    }
+    if (q->kind == CJ_QUADRIC_HYPERBOLOID1 || q->kind == CJ_QUADRIC_CONE ||
+        q->kind == CJ_QUADRIC_HYPERBOLIC_PARABOLOID)
+        num(e, "v0", q->v0);
+    if (q->kind != CJ_QUADRIC_ELLIPSOID) num(e, "v1", q->v1);
+    if (q->kind == CJ_QUADRIC_HYPERBOLOID2) boolean(e, "lower", q->lower);
+}
+
+static void write_mesh(emitter *e, const cj_mesh *m) {
+    string(e, "type", "mesh");
+    points(e, "positions", m->positions, m->vertex_count, 3);
+    points(e, "normals", m->normals, m->vertex_count, 3);
+    points(e, "uvs", m->uvs, m->vertex_count, 2);
+    next(e, "triangles");
+    fputc('[', e->f);
+    for (size_t t = 0; t < m->triangle_count; ++t) {
+        const uint32_t *v = m->triangles + 3 * t;
+        fprintf(e->f, "%s[%u, %u, %u]", t ? ", " : "", v[0], v[1], v[2]);
+    }
+    fputc(']', e->f);
+    next(e, "patch_ids");
+    fputc('[', e->f);
+    for (size_t t = 0; t < m->triangle_count; ++t)
+        fprintf(e->f, "%s%d", t ? ", " : "", (int)m->triangle_patch[t]);
+    fputc(']', e->f);
+}
+
+static void write_curve(emitter *e, const cj_geometry *g) {
+    static const char *const SPLINES[] = {"catmull-rom", "centripetal", "chordal",
+                                          "kochanek-bartels"};
+    string(e, "type", "curve");
+    const cj_curve_kind k = g->u.curve.kind;
+    string(e, "kind",
+           k == CJ_CURVE_BEZIER     ? "bezier"
+           : k == CJ_CURVE_RATIONAL ? "rational"
+                                    : SPLINES[g->u.curve.spline]);
+    points(e, "points", g->u.curve.pts, g->u.curve.count, 3);
+    if (k == CJ_CURVE_RATIONAL) weights(e, g->u.curve.weights, g->u.curve.count);
+    if (k == CJ_CURVE_SPLINE) {
+        num(e, "tension", g->u.curve.tension);
+        boolean(e, "closed", g->u.curve.closed);
+        if (g->u.curve.spline == CJ_SPLINE_KOCHANEK_BARTELS) {
+            num(e, "continuity", g->u.curve.continuity);
+            num(e, "bias", g->u.curve.bias);
+        }
+    }
+    num(e, "width_px", g->u.curve.width_px);
+    rgb(e, "color", g->u.curve.color);
+}
+
+static void write_geometry(emitter *e, const cj_geometry *g, int i) {
+    char name[32];
+    snprintf(name, sizeof name, "geometry%d", i);
+    open_c(e, NULL, '{');
+    string(e, "name", name);
+    switch (g->kind) {
+    case CJ_GEOM_PATCHES:
+        string(e, "type", "patches");
+        open_c(e, "patches", '[');
+        for (size_t k = 0; k < g->u.patches.count; ++k) {
+            const cj_patch *p = &g->u.patches.patches[k];
+            open_c(e, NULL, '{');
+            next(e, "degree");
+            fprintf(e->f, "[%d, %d]", p->deg_u, p->deg_v);
+            points(e, "points", p->pts, cj_patch_point_count(p), 3);
+            weights(e, p->weights, cj_patch_point_count(p));
+            close_c(e, '}');
+        }
+        close_c(e, ']');
+        break;
+    case CJ_GEOM_QUADRIC:
+        write_quadric(e, &g->u.quadric);
+        break;
+    case CJ_GEOM_SPHERE:
+        string(e, "type", "sphere");
+        vec3(e, "center", g->u.sphere.center);
+        num(e, "radius", g->u.sphere.radius);
+        break;
+    case CJ_GEOM_TORUS:
+        string(e, "type", "torus");
+        vec3(e, "center", g->u.torus.center);
+        vec3(e, "axis", g->u.torus.a);
+        num(e, "major", g->u.torus.major);
+        num(e, "minor", g->u.torus.minor);
+        break;
+    case CJ_GEOM_CYLINDER:
+        string(e, "type", "cylinder");
+        vec3(e, "base", g->u.cylinder.base);
+        vec3(e, "axis", g->u.cylinder.a);
+        num(e, "radius", g->u.cylinder.radius);
+        num(e, "h0", g->u.cylinder.h0);
+        num(e, "h1", g->u.cylinder.h1);
+        break;
+    case CJ_GEOM_PLANAR:
+        string(e, "type", "planar");
+        vec3(e, "origin", g->u.planar.p);
+        vec3(e, "edge_u", g->u.planar.eu);
+        vec3(e, "edge_v", g->u.planar.ev);
+        break;
+    case CJ_GEOM_BILINEAR:
+        string(e, "type", "bilinear");
+        vec3(e, "p00", g->u.bilinear.p00);
+        vec3(e, "p10", g->u.bilinear.p10);
+        vec3(e, "p01", g->u.bilinear.p01);
+        vec3(e, "p11", g->u.bilinear.p11);
+        break;
+    case CJ_GEOM_REVOLUTION:
+        string(e, "type", "revolution");
+        points(e, "points", g->u.revolution.pts, (size_t)g->u.revolution.degree + 1, 2);
+        weights(e, g->u.revolution.weights, (size_t)g->u.revolution.degree + 1);
+        vec3(e, "origin", g->u.revolution.origin);
+        vec3(e, "axis", g->u.revolution.axis);
+        break;
+    case CJ_GEOM_GEN_CYLINDER:
+        string(e, "type", "gen_cylinder");
+        points(e, "points", g->u.gen_cylinder.pts, (size_t)g->u.gen_cylinder.degree + 1, 2);
+        weights(e, g->u.gen_cylinder.weights, (size_t)g->u.gen_cylinder.degree + 1);
+        vec3(e, "origin", g->u.gen_cylinder.origin);
+        vec3(e, "e1", g->u.gen_cylinder.e1);
+        vec3(e, "e2", g->u.gen_cylinder.e2);
+        vec3(e, "dir", g->u.gen_cylinder.dir);
+        num(e, "v0", g->u.gen_cylinder.v0);
+        num(e, "v1", g->u.gen_cylinder.v1);
+        break;
+    case CJ_GEOM_MESH:
+        write_mesh(e, g->u.mesh);
+        break;
+    default:
+        write_curve(e, g);
+        break;
+    }
+    close_c(e, '}');
+}
+
+static int is_identity(const cj_xform3 *m) {
+    cj_xform3 id = cj_xform3_identity();
+    return !memcmp(m->m, id.m, sizeof id.m);
+}
+
+static void write_node(emitter *e, const cj_scene *s, size_t i) {
+    const cj_node *n = &s->nodes[i];
+    open_c(e, NULL, '{');
+    if (n->name) string(e, "name", n->name);
+    open_c(e, "transform", '{');
+    vec3(e, "translate", n->local.translate);
+    next(e, "quaternion");
+    numbers(e->f, n->local.rotation, 4);
+    vec3(e, "scale", n->local.scale);
+    if (!is_identity(&n->local.matrix)) {
+        open_c(e, "matrix", '[');
+        for (int r = 0; r < 4; ++r) {
+            next(e, NULL);
+            numbers(e->f, n->local.matrix.m[r], 4);
+        }
+        close_c(e, ']');
+    }
+    close_c(e, '}');
+    if (!n->visible) boolean(e, "visible", 0);
+    const cj_overlay_style *o = &n->overlay;
+    if (o->flags) {
+        open_c(e, "overlay", '{');
+        boolean(e, "control_net", (o->flags & CJ_OVERLAY_CONTROL_NET) != 0);
+        boolean(e, "wireframe", (o->flags & CJ_OVERLAY_WIREFRAME) != 0);
+        integer(e, "iso_lines", (o->flags & CJ_OVERLAY_ISO_LINES) ? o->iso_count : 0);
+        num(e, "normals", (o->flags & CJ_OVERLAY_NORMALS) ? o->normal_length : 0.0);
+        rgb(e, "color", o->color);
+        close_c(e, '}');
+    }
+    if (n->geometry >= 0) {
+        char name[256];
+        part_name(name, sizeof name, s->material_names[n->material], "material", n->material);
+        string(e, "material", name);
+        snprintf(name, sizeof name, "geometry%d", n->geometry);
+        string(e, "geometry", name);
+    } else {
+        open_c(e, "children", '[');
+        for (size_t k = i + 1; k < s->nnodes; ++k)
+            if (s->nodes[k].parent == (int)i) write_node(e, s, k);
+        close_c(e, ']');
+    }
+    close_c(e, '}');
+}
+
+static void write_scene(emitter *e, const cj_scene *s) {
+    fputc('{', e->f);
+    e->depth = 1;
+    e->first[1] = 1;
+    write_camera(e, &s->camera);
+    write_settings(e, &s->settings);
+    open_c(e, "lights", '[');
+    for (size_t i = 0; i < s->nlights; ++i) write_light(e, &s->lights[i]);
+    close_c(e, ']');
+    open_c(e, "textures", '[');
+    for (size_t i = 0; i < s->ntextures; ++i) write_texture(e, s, (int)i);
+    close_c(e, ']');
+    open_c(e, "materials", '[');
+    for (size_t i = 0; i < s->nmaterials; ++i) write_material(e, s, (int)i);
+    close_c(e, ']');
+    open_c(e, "geometries", '[');
+    for (size_t i = 0; i < s->ngeoms; ++i) write_geometry(e, &s->geoms[i], (int)i);
+    close_c(e, ']');
+    open_c(e, "objects", '[');
+    for (size_t i = 0; i < s->nnodes; ++i)
+        if (s->nodes[i].parent < 0) write_node(e, s, i);
+    close_c(e, ']');
+    fputs("\n}\n", e->f);
+}
+
+/* ---- the file ------------------------------------------------------------------------------- */
+
+cj_status cj_scene_save_json(const cj_scene *s, const char *path) {
+    assert(s && path);
+    cj_status st = cj_scene_check(s);
+    if (st) return st;
+    if (s->settings.seed > (1ull << 53))
+        return cj_fail(CJ_ERR_RANGE, "settings.seed %llu is above 2^53 (not exact in JSON)",
+                       (unsigned long long)s->settings.seed);
+    size_t n = strlen(path);
+    char *tmp = malloc(n + 16);
+    if (!tmp) return cj_fail(CJ_ERR_NOMEM, "out of memory saving '%s'", path);
+    snprintf(tmp, n + 16, "%s.tmp-XXXXXX", path);
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        st = cj_fail(CJ_ERR_IO, "cannot create a temporary file next to '%s': %s", path,
+                     strerror(errno));
+        free(tmp);
+        return st;
+    }
+    FILE *f = fdopen(fd, "w");
+    if (!f) {
+        st = cj_fail(CJ_ERR_IO, "cannot open '%s': %s", tmp, strerror(errno));
+        close(fd);
+        remove(tmp);
+        free(tmp);
+        return st;
+    }
+    emitter e;
+    memset(&e, 0, sizeof e);
+    e.f = f;
+    write_scene(&e, s);
+    int bad = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
+    int err = errno;
+    if (fclose(f) != 0 && !bad) {
+        bad = 1;
+        err = errno;
+    }
+    if (bad || rename(tmp, path) != 0) {
+        if (!bad) err = errno;
+        st = cj_fail(CJ_ERR_IO, "writing '%s' failed: %s", path, strerror(err));
+        remove(tmp);
+        free(tmp);
+        return st;
+    }
+    free(tmp);
+    return CJ_OK;
+}
