@@ -457,12 +457,13 @@ static cj_status ply_value(ply_reader *r, int t, const char *elem, size_t index,
         }
         }
     } else {
+        const int last_line = r->line; /* where the last value was */
         while (r->s < r->end && (*r->s == ' ' || *r->s == '\t' || *r->s == '\r' || *r->s == '\n')) {
             if (*r->s == '\n') r->line++;
             r->s++;
         }
         if (r->s >= r->end)
-            return cj_fail(CJ_ERR_PARSE, "%s:%d: %s %zu: the file ends early", r->path, r->line,
+            return cj_fail(CJ_ERR_PARSE, "%s:%d: %s %zu: the file ends early", r->path, last_line,
                            elem, index);
         char *e;
         *out = strtod(r->s, &e);

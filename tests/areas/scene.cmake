@@ -4,3 +4,4 @@ cj_add_test(test_scene_json SOURCES scene/test_scene_json.c LIBS cj::scene)
 target_compile_definitions(test_scene_json PRIVATE
   CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt"
   CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
+cj_add_test(test_mesh_read SOURCES scene/test_mesh_read.c LIBS cj::surfaces)
