@@ -2,3 +2,10 @@
 # the scene calls for") and `casteljau render`. Scenes are built in code (tests/render_scenes.h).
 cj_add_test(test_render_stages SOURCES test_render_stages.c LIBS cj::raster cj::scene)
 target_include_directories(test_render_stages PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+# CLI contract of `casteljau render` (needs the tool's image output, i.e. OpenImageIO).
+if(CJ_WITH_OIIO AND TARGET cj::viz)
+  cj_add_test(test_cli_render SOURCES test_cli_render.c)
+  target_compile_definitions(test_cli_render PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+    CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
+  add_dependencies(test_cli_render casteljau)
+endif()
