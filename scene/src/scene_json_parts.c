@@ -300,7 +300,9 @@ static cj_status read_texture(jctx *c, const cJSON *obj, const char *p) {
     if (!st) st = cj_scene_add_texture(c->scene, &t, &index);
     if (st) return cj_json_relabel_(c, obj, st);
     char where[JPATH + 300];
-    snprintf(where, sizeof where, "%s:%d: %s", c->name, cj_json_line_(c, obj), p);
+    /* Image textures point at their "path" value, the line a missing file is fixed on. */
+    const cJSON *at = cJSON_GetObjectItemCaseSensitive(obj, "path");
+    snprintf(where, sizeof where, "%s:%d: %s", c->name, cj_json_line_(c, at ? at : obj), p);
     st = cj_scene_set_texture_name(c->scene, index, name);
     if (!st) st = cj_scene_set_texture_source(c->scene, index, where);
     return st;

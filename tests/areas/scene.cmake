@@ -5,3 +5,10 @@ target_compile_definitions(test_scene_json PRIVATE
   CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt"
   CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
 cj_add_test(test_mesh_read SOURCES scene/test_mesh_read.c LIBS cj::surfaces)
+# Image textures of a scene are read in viz/ (through the OpenImageIO adapter).
+if(CJ_WITH_OIIO AND TARGET cj::viz)
+  cj_add_test(test_scene_textures SOURCES scene/test_scene_textures.c LIBS cj::viz cj::scene)
+  target_compile_definitions(test_scene_textures PRIVATE
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt"
+    CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
+endif()
