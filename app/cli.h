@@ -7,12 +7,69 @@
 /* Exit status for bad arguments or bad input (the documented contract of every command). */
 #define CLI_EXIT_USAGE 2
 
-/* Prints "casteljau <cmd>: <message>" on stderr and returns CLI_EXIT_USAGE. */
-int cli_fail(const char *cmd, const char *fmt, ...)
+/* Exit status when the input was fine but the run failed (no memory, a write that failed). */
+#define CLI_EXIT_FAILURE 1
+
 #if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
+#define CLI_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define CLI_PRINTF(a, b)
 #endif
-    ;
+
+/* Prints "casteljau <cmd>: <message>" on stderr as ONE line and returns CLI_EXIT_USAGE. Control
+ * characters in the formatted message (from input echoed into it) are escaped as \n, \t, \r or
+ * \xNN, so that a message is always a single line. */
+int cli_fail(const char *cmd, const char *fmt, ...) CLI_PRINTF(2, 3);
+
+/* The same, returning CLI_EXIT_FAILURE (for failures that are not the user's input). */
+int cli_error(const char *cmd, const char *fmt, ...) CLI_PRINTF(2, 3);
+
+/* The same, prefixed "warning: ", returning nothing. */
+void cli_warn(const char *cmd, const char *fmt, ...) CLI_PRINTF(2, 3);
+
+/* Copies `s` into out[out_size] with control characters escaped (as cli_fail does) and cut
+ * to fit (marked "..."): for echoing user input into a message. Returns out. */
+const char *cli_quote(const char *s, char *out, size_t out_size);
+
+/* ---- option parsing shared by the commands ----
+ * Options may come in any order and between positional arguments; "--opt value" and
+ * "--opt=value" are the same; "--" ends the options (everything after it is positional); an
+ * argument that reads as a number ("-0.5", "-1e3") is positional, so negative parameters
+ * need no "--". "--help"/"-h" prints the command's usage and "--version" the version (the
+ * command then exits 0). An option not in the table is reported as unknown, by name. */
+typedef struct cli_opt {
+    const char *name;  /* "--points" */
+    const char *alias; /* "-o", or NULL */
+    int has_value;
+} cli_opt;
+
+typedef struct cli_parser {
+    const char *cmd, *usage;
+    int argc, i, only_positionals;
+    char **argv;
+    const cli_opt *opts;
+    size_t nopts;
+} cli_parser;
+
+enum {
+    CLI_POSITIONAL = -1, /* *value is the argument */
+    CLI_END = -2,        /* no more arguments */
+    CLI_EXIT_OK = -3,    /* --help or --version was printed: return 0 */
+    CLI_BAD = -4         /* a message was printed: return CLI_EXIT_USAGE */
+};
+
+void cli_parser_init(cli_parser *p, const char *cmd, const char *usage, int argc, char **argv,
+                     const cli_opt *opts, size_t nopts);
+
+/* The next argument: the index in opts of an option (its value in *value when it takes one,
+ * else *value = NULL), or one of the CLI_* codes above. */
+int cli_next(cli_parser *p, const char **value);
+
+/* The version line "casteljau X.Y.Z". */
+const char *cli_version(void);
+
+/* Parses a whole number in [lo, hi] (decimal); 0 on success, -1 otherwise. */
+int cli_parse_int(const char *s, long lo, long hi, long *out);
 
 /* Parses one number with strtod (decimal or C99 hex float); the whole string must be consumed
  * and the value finite. Returns 0 on success, -1 otherwise. */

@@ -7,14 +7,168 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Escapes control characters (and DEL) so that echoed input cannot break a message's line. */
+static void put_escaped(FILE *f, const char *s) {
+    for (const unsigned char *c = (const unsigned char *)s; *c; ++c) {
+        if (*c == '\n')
+            fputs("\\n", f);
+        else if (*c == '\t')
+            fputs("\\t", f);
+        else if (*c == '\r')
+            fputs("\\r", f);
+        else if (*c < 0x20 || *c == 0x7f)
+            fprintf(f, "\\x%02x", *c);
+        else
+            fputc(*c, f);
+    }
+}
+
+static void vreport(const char *cmd, const char *prefix, const char *fmt, va_list ap) {
+    char msg[2048];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    fflush(stdout);
+    fprintf(stderr, "casteljau %s: %s", cmd, prefix);
+    put_escaped(stderr, msg);
+    fputc('\n', stderr);
+}
+
 int cli_fail(const char *cmd, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "casteljau %s: ", cmd);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    vreport(cmd, "", fmt, ap);
     va_end(ap);
     return CLI_EXIT_USAGE;
+}
+
+int cli_error(const char *cmd, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vreport(cmd, "", fmt, ap);
+    va_end(ap);
+    return CLI_EXIT_FAILURE;
+}
+
+void cli_warn(const char *cmd, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vreport(cmd, "warning: ", fmt, ap);
+    va_end(ap);
+}
+
+const char *cli_quote(const char *s, char *out, size_t out_size) {
+    size_t n = 0;
+    for (const unsigned char *c = (const unsigned char *)s; *c; ++c) {
+        char esc[8];
+        if (*c == '\n')
+            snprintf(esc, sizeof esc, "\\n");
+        else if (*c == '\t')
+            snprintf(esc, sizeof esc, "\\t");
+        else if (*c < 0x20 || *c == 0x7f)
+            snprintf(esc, sizeof esc, "\\x%02x", *c);
+        else
+            esc[0] = (char)*c, esc[1] = '\0';
+        size_t k = strlen(esc);
+        if (n + k + 4 > out_size) {
+            if (out_size >= 4) {
+                memcpy(out + (n < out_size - 4 ? n : out_size - 4), "...", 4);
+                return out;
+            }
+            break;
+        }
+        memcpy(out + n, esc, k);
+        n += k;
+    }
+    if (out_size) out[n < out_size ? n : out_size - 1] = '\0';
+    return out;
+}
+
+#ifndef CJ_VERSION
+#define CJ_VERSION "0.1.0"
+#endif
+
+const char *cli_version(void) {
+    return "casteljau " CJ_VERSION;
+}
+
+void cli_parser_init(cli_parser *p, const char *cmd, const char *usage, int argc, char **argv,
+                     const cli_opt *opts, size_t nopts) {
+    p->cmd = cmd;
+    p->usage = usage;
+    p->argc = argc;
+    p->argv = argv;
+    p->i = 1;
+    p->only_positionals = 0;
+    p->opts = opts;
+    p->nopts = nopts;
+}
+
+/* "-0.5", "-1e3", "-.5", "-0x1p-3": a negative number, not an option. */
+static int is_number(const char *s) {
+    double v;
+    return cli_parse_double(s, &v) == 0;
+}
+
+int cli_next(cli_parser *p, const char **value) {
+    *value = NULL;
+    if (p->i >= p->argc) return CLI_END;
+    const char *a = p->argv[p->i++];
+    if (p->only_positionals || a[0] != '-' || a[1] == '\0' || is_number(a)) {
+        *value = a;
+        return CLI_POSITIONAL;
+    }
+    if (!strcmp(a, "--")) {
+        p->only_positionals = 1;
+        return cli_next(p, value);
+    }
+    const char *eq = a[1] == '-' ? strchr(a, '=') : NULL;
+    const size_t len = eq ? (size_t)(eq - a) : strlen(a);
+    char q[160];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+        fputs(p->usage, stdout);
+        return CLI_EXIT_OK;
+    }
+    if (!strcmp(a, "--version")) {
+        printf("%s\n", cli_version());
+        return CLI_EXIT_OK;
+    }
+    for (size_t k = 0; k < p->nopts; ++k) {
+        const cli_opt *o = &p->opts[k];
+        const int match = (strlen(o->name) == len && !strncmp(a, o->name, len)) ||
+                          (o->alias && !eq && !strcmp(a, o->alias));
+        if (!match) continue;
+        if (!o->has_value) {
+            if (eq) {
+                cli_fail(p->cmd, "option %s takes no value (got '%s')", o->name,
+                         cli_quote(eq + 1, q, sizeof q));
+                return CLI_BAD;
+            }
+            return (int)k;
+        }
+        if (eq) {
+            *value = eq + 1;
+            return (int)k;
+        }
+        if (p->i >= p->argc) {
+            cli_fail(p->cmd, "option %s needs a value", a);
+            return CLI_BAD;
+        }
+        *value = p->argv[p->i++];
+        return (int)k;
+    }
+    char name[96];
+    snprintf(name, sizeof name, "%.*s", (int)(len < 80 ? len : 80), a);
+    cli_fail(p->cmd, "unknown option '%s' (try 'casteljau %s --help')",
+             cli_quote(name, q, sizeof q), p->cmd);
+    return CLI_BAD;
+}
+
+int cli_parse_int(const char *s, long lo, long hi, long *out) {
+    char *end = NULL;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno == ERANGE || v < lo || v > hi) return -1;
+    *out = v;
+    return 0;
 }
 
 int cli_parse_double(const char *s, double *out) {

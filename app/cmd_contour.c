@@ -12,18 +12,31 @@
 static const char contour_usage[] =
     "usage: casteljau contour (--circle cx,cy,r | --ellipse cx,cy,rx,ry[,rot] | --line a,b,c |\n"
     "                          --poly \"c0,c1,...\") --box x0,y0,x1,y1 [--tol T] [--grid NX[,NY]]\n"
-    "                          [--stats]\n"
-    "Contours f(x,y) = 0 inside the box and prints one polyline per line as \"x,y;x,y;...\"\n"
-    "(%.17g); a closed loop repeats its first point at the end. --poly takes the coefficients\n"
-    "of 1, x, y, x^2, xy, y^2, x^3, ... (graded order; the count fixes the degree).\n"
-    "Default tol: 1e-6 times the larger box side; default grid 64x64. --stats prints\n"
-    "'polylines N closed M points P max_residual R' on stderr. Exit status 1 (with output) if\n"
-    "some vertex could not be refined to tol.\n";
+    "                          [--max-points N] [--stats]\n"
+    "Contours f(x,y) = 0 inside the box. --poly takes the coefficients of 1, x, y, x^2, xy,\n"
+    "y^2, x^3, ... (graded order; the count fixes the degree, at most 32).\n"
+    "  --tol         distance from polyline to curve (default 1e-6 times the larger box side;\n"
+    "                at least 2^-40 times the box's largest coordinate or side)\n"
+    "  --grid        marching-squares cells (default 64x64, at most 4096 per side)\n"
+    "  --max-points  refuse (exit 2, no output) above this many vertices in all (default\n"
+    "                1048576, at most 8388608)\n"
+    "  --stats       print 'polylines N closed M points P max_residual R' on stderr\n"
+    "Options may come in any order, as --opt value or --opt=value; '--' ends the options.\n"
+    "Output: one polyline per line as \"x,y;x,y;...\" (%.17g); a closed loop repeats its first\n"
+    "point at the end. Exit status 0; 1 (with the output) if some vertex could not be refined\n"
+    "to tol; 2 for a bad argument, a tolerance too fine for the box, or too many points (one\n"
+    "line on stderr, nothing on stdout).\n";
+
+#define CONTOUR_DEFAULT_MAX_POINTS ((size_t)1 << 20)
+/* Half the library's own cap, so that ours is always the one that stops a run. */
+#define CONTOUR_MAX_MAX_POINTS (CJ_CONTOUR_MAX_POINTS / 2)
 
 typedef struct buffer {
     char *text;
     size_t len, cap;
     int failed;
+    size_t points, max_points;
+    int over; /* more than max_points */
 } buffer;
 
 static void append(buffer *b, const char *s) {
@@ -49,6 +62,11 @@ static cj_status collect(void *user, const double *xy, size_t npts, int closed, 
     (void)res;
     buffer *b = user;
     char num[64];
+    if (npts > b->max_points - b->points) {
+        b->over = 1;
+        return CJ_ERR_CAP;
+    }
+    b->points += npts;
     for (size_t i = 0; i < npts; ++i) {
         snprintf(num, sizeof num, "%s%.17g,%.17g", i ? ";" : "", xy[2 * i], xy[2 * i + 1]);
         append(b, num);
@@ -80,45 +98,58 @@ int cmd_contour(int argc, char **argv) {
     const char *shape_opt = NULL, *shape_text = NULL;
     double box[4] = {0, 0, 0, 0}, tol = 0.0;
     int have_box = 0, have_tol = 0, stats_wanted = 0, nx = 64, ny = 64;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(contour_usage, stdout);
-            return 0;
-        } else if (!strcmp(a, "--circle") || !strcmp(a, "--ellipse") || !strcmp(a, "--line") ||
-                   !strcmp(a, "--poly")) {
+    size_t max_points = CONTOUR_DEFAULT_MAX_POINTS;
+    enum { O_CIRCLE, O_ELLIPSE, O_LINE, O_POLY, O_BOX, O_TOL, O_GRID, O_STATS, O_MAXPTS };
+    static const cli_opt opts[] = {
+        {"--circle", NULL, 1}, {"--ellipse", NULL, 1}, {"--line", NULL, 1},
+        {"--poly", NULL, 1},   {"--box", NULL, 1},     {"--tol", NULL, 1},
+        {"--grid", NULL, 1},   {"--stats", NULL, 0},   {"--max-points", NULL, 1}};
+    cli_parser ps;
+    cli_parser_init(&ps, "contour", contour_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
+    for (;;) {
+        const char *v;
+        char q[160];
+        const int k = cli_next(&ps, &v);
+        if (k == CLI_END) break;
+        if (k == CLI_EXIT_OK) return 0;
+        if (k == CLI_BAD) return CLI_EXIT_USAGE;
+        if (k == CLI_POSITIONAL)
+            return cli_fail("contour", "unexpected argument '%s' (try 'casteljau contour --help')",
+                            cli_quote(v, q, sizeof q));
+        const char *a = opts[k].name;
+        if (k <= O_POLY) {
             if (shape_opt)
                 return cli_fail("contour", "%s and %s: give exactly one curve", shape_opt, a);
-            if (++i >= argc) return cli_fail("contour", "%s needs a value", a);
             shape_opt = a;
-            shape_text = argv[i];
-        } else if (!strcmp(a, "--box")) {
-            if (++i >= argc) return cli_fail("contour", "--box needs a value");
-            if (parse_fixed("--box", argv[i], box, 4, 4)) return CLI_EXIT_USAGE;
+            shape_text = v;
+        } else if (k == O_BOX) {
+            if (parse_fixed("--box", v, box, 4, 4)) return CLI_EXIT_USAGE;
             have_box = 1;
-        } else if (!strcmp(a, "--tol")) {
-            if (++i >= argc) return cli_fail("contour", "--tol needs a value");
-            if (cli_parse_double(argv[i], &tol) || !(tol > 0))
-                return cli_fail("contour", "--tol '%s' is not a positive number", argv[i]);
+        } else if (k == O_TOL) {
+            if (cli_parse_double(v, &tol) || !(tol > 0))
+                return cli_fail("contour", "--tol '%s' is not a positive number",
+                                cli_quote(v, q, sizeof q));
             have_tol = 1;
-        } else if (!strcmp(a, "--grid")) {
-            if (++i >= argc) return cli_fail("contour", "--grid needs a value");
+        } else if (k == O_GRID) {
             double g[2];
-            if (parse_fixed("--grid", argv[i], g, 1, 2)) return CLI_EXIT_USAGE;
-            const int two = strchr(argv[i], ',') != NULL || strchr(argv[i], ';') != NULL;
+            if (parse_fixed("--grid", v, g, 1, 2)) return CLI_EXIT_USAGE;
+            const int two = strchr(v, ',') != NULL || strchr(v, ';') != NULL;
             if (!two) g[1] = g[0];
-            for (int k = 0; k < 2; ++k)
-                if (g[k] != floor(g[k]) || g[k] < 1 || g[k] > 4096)
+            for (int j = 0; j < 2; ++j)
+                if (g[j] != floor(g[j]) || g[j] < 1 || g[j] > 4096)
                     return cli_fail("contour",
-                                    "--grid '%s': cell counts must be integers in "
-                                    "1..4096",
-                                    argv[i]);
+                                    "--grid '%s': cell counts must be integers in 1..4096",
+                                    cli_quote(v, q, sizeof q));
             nx = (int)g[0];
             ny = (int)g[1];
-        } else if (!strcmp(a, "--stats")) {
+        } else if (k == O_STATS) {
             stats_wanted = 1;
         } else {
-            return cli_fail("contour", "unknown argument '%s' (try --help)", a);
+            long m;
+            if (cli_parse_int(v, 1, (long)CONTOUR_MAX_MAX_POINTS, &m))
+                return cli_fail("contour", "--max-points '%s' is not an integer in 1..%zu",
+                                cli_quote(v, q, sizeof q), CONTOUR_MAX_MAX_POINTS);
+            max_points = (size_t)m;
         }
     }
     if (!shape_opt)
@@ -126,7 +157,23 @@ int cmd_contour(int argc, char **argv) {
     if (!have_box) return cli_fail("contour", "missing --box x0,y0,x1,y1");
     if (!(box[0] < box[2]) || !(box[1] < box[3]))
         return cli_fail("contour", "--box: need x0 < x1 and y0 < y1");
+    if (!isfinite(box[2] - box[0]) || !isfinite(box[3] - box[1]))
+        return cli_fail("contour",
+                        "--box %.17g,%.17g,%.17g,%.17g: its sides overflow the double "
+                        "range",
+                        box[0], box[1], box[2], box[3]);
     if (!have_tol) tol = 1e-6 * fmax(box[2] - box[0], box[3] - box[1]);
+    {
+        double scale = fmax(fmax(fabs(box[0]), fabs(box[1])), fmax(fabs(box[2]), fabs(box[3])));
+        scale = fmax(scale, fmax(box[2] - box[0], box[3] - box[1]));
+        const double min_tol = CJ_CONTOUR_MIN_REL_TOL * scale;
+        if (tol < min_tol)
+            return cli_fail("contour",
+                            "%s %g is finer than doubles resolve in this --box (scale %g): give "
+                            "--tol %.3g or more",
+                            have_tol ? "--tol" : "the default tolerance (1e-6 of the box side)",
+                            tol, scale, min_tol);
+    }
 
     cj_implicit_shape shape;
     cj_implicit f;
@@ -162,12 +209,19 @@ int cmd_contour(int argc, char **argv) {
         free(coef);
         return cli_fail("contour", "%s: %s", shape_opt, cj_last_error());
     }
-    buffer out = {NULL, 0, 0, 0};
+    buffer out = {NULL, 0, 0, 0, 0, max_points, 0};
     cj_contour_options o = {nx, ny, tol, NULL};
     cj_contour_stats stats;
     st = cj_implicit_contour(&f, box, &o, collect, &out, &stats);
     int rc = 0;
-    if (st != CJ_OK && st != CJ_ERR_CAP) {
+    if (out.over) {
+        rc = cli_fail("contour",
+                      "more than %zu points (--max-points): --tol %g is too fine for this curve "
+                      "and box",
+                      max_points, tol);
+    } else if (out.failed) {
+        rc = cli_error("contour", "out of memory for the output");
+    } else if (st != CJ_OK && st != CJ_ERR_CAP) {
         rc = cli_fail("contour", "%s", cj_last_error());
     } else {
         if (out.text) fputs(out.text, stdout);
@@ -175,9 +229,11 @@ int cmd_contour(int argc, char **argv) {
             fprintf(stderr, "polylines %zu closed %zu points %zu max_residual %.3g\n",
                     stats.polylines, stats.closed, stats.points, stats.max_residual);
         if (st == CJ_ERR_CAP) {
-            fprintf(stderr, "casteljau contour: warning: %s\n", cj_last_error());
+            cli_warn("contour", "%s", cj_last_error());
             rc = 1;
         }
+        if (fflush(stdout) != 0 || ferror(stdout))
+            rc = cli_error("contour", "cannot write the output");
     }
     free(out.text);
     free(coef);

@@ -6,6 +6,7 @@
 #include "casteljau/catmull_rom.h"
 #include "casteljau/interp.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,9 +15,18 @@ static const char interp_usage[] =
     "usage: casteljau interp [--kind catmull-rom|centripetal|chordal|kochanek-bartels|polynomial]\n"
     "                        [--tension K] [--continuity C] [--bias B] [--closed]\n"
     "                        [--params \"t0;t1;...\"] --points \"x0,y0;x1,y1;...\"\n"
-    "Prints one Bezier segment per line as \"x,y;x,y;...\" (%.17g), the syntax of\n"
+    "Curves through the given points (any dimension 1..8, the same for every point).\n"
+    "  --kind        catmull-rom (default; uniform), centripetal, chordal, kochanek-bartels\n"
+    "                (cubic spline segments), or polynomial (one interpolating polynomial)\n"
+    "  --tension     Catmull-Rom tension kappa (default 0.5; kochanek-bartels: 0)\n"
+    "  --continuity, --bias   Kochanek-Bartels parameters (default 0)\n"
+    "  --closed      a closed spline (the last point joins the first)\n"
+    "  --params      polynomial only: one parameter per point (default equispaced on [0,1])\n"
+    "Options may come in any order, as --opt value or --opt=value.\n"
+    "Output: one Bezier segment per line as \"x,y;x,y;...\" (%.17g), the syntax of\n"
     "'casteljau eval --points'. Splines print cubic segments; polynomial prints one segment of\n"
-    "degree N-1 over [min t, max t] (default parameters: equispaced on [0,1]).\n";
+    "degree N-1 over [min t, max t]. Exit status 0; 2 for a bad argument or input, or control\n"
+    "points that overflow the double range (one line on stderr); 1 when out of memory.\n";
 
 enum { KIND_POLY = -1 };
 
@@ -37,6 +47,12 @@ static int parse_kind(const char *s, int *kind) {
     return -1;
 }
 
+static int all_finite(const double *v, size_t n) {
+    for (size_t i = 0; i < n; ++i)
+        if (!isfinite(v[i])) return 0;
+    return 1;
+}
+
 static void print_segment(const double *pts, int npts, int dim) {
     for (int i = 0; i < npts; ++i) {
         if (i) putchar(';');
@@ -53,46 +69,53 @@ int cmd_interp(int argc, char **argv) {
     double tension = 0.5, continuity = 0.0, bias = 0.0;
     int have_tension = 0, have_cb = 0;
     const char *points_text = NULL, *params_text = NULL;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(interp_usage, stdout);
-            return 0;
-        } else if (!strcmp(a, "--kind")) {
-            if (++i >= argc) return cli_fail("interp", "--kind needs a value");
-            if (parse_kind(argv[i], &kind))
+    enum { O_KIND, O_TENSION, O_CONT, O_BIAS, O_CLOSED, O_POINTS, O_PARAMS };
+    static const cli_opt opts[] = {{"--kind", NULL, 1},       {"--tension", NULL, 1},
+                                   {"--continuity", NULL, 1}, {"--bias", NULL, 1},
+                                   {"--closed", NULL, 0},     {"--points", NULL, 1},
+                                   {"--params", NULL, 1}};
+    cli_parser ps;
+    cli_parser_init(&ps, "interp", interp_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
+    for (;;) {
+        const char *v;
+        char q[160];
+        const int k = cli_next(&ps, &v);
+        if (k == CLI_END) break;
+        if (k == CLI_EXIT_OK) return 0;
+        if (k == CLI_BAD) return CLI_EXIT_USAGE;
+        if (k == CLI_POSITIONAL)
+            return cli_fail("interp", "unexpected argument '%s' (the points go in --points)",
+                            cli_quote(v, q, sizeof q));
+        if (k == O_KIND) {
+            if (parse_kind(v, &kind))
                 return cli_fail("interp",
                                 "unknown kind '%s' (catmull-rom, centripetal, chordal, "
                                 "kochanek-bartels, polynomial)",
-                                argv[i]);
-        } else if (!strcmp(a, "--tension") || !strcmp(a, "--continuity") || !strcmp(a, "--bias")) {
-            if (++i >= argc) return cli_fail("interp", "%s needs a value", a);
-            double v;
-            if (cli_parse_double(argv[i], &v))
-                return cli_fail("interp", "%s '%s' is not a finite number", a, argv[i]);
-            if (a[2] == 't') {
-                tension = v;
+                                cli_quote(v, q, sizeof q));
+        } else if (k == O_TENSION || k == O_CONT || k == O_BIAS) {
+            double x;
+            if (cli_parse_double(v, &x))
+                return cli_fail("interp", "%s '%s' is not a finite number", opts[k].name,
+                                cli_quote(v, q, sizeof q));
+            if (k == O_TENSION) {
+                tension = x;
                 have_tension = 1;
             } else {
-                if (a[2] == 'c')
-                    continuity = v;
+                if (k == O_CONT)
+                    continuity = x;
                 else
-                    bias = v;
+                    bias = x;
                 have_cb = 1;
             }
-        } else if (!strcmp(a, "--closed")) {
+        } else if (k == O_CLOSED) {
             closed = 1;
-        } else if (!strcmp(a, "--points")) {
-            if (++i >= argc) return cli_fail("interp", "--points needs a value");
-            points_text = argv[i];
-        } else if (!strcmp(a, "--params")) {
-            if (++i >= argc) return cli_fail("interp", "--params needs a value");
-            params_text = argv[i];
+        } else if (k == O_POINTS) {
+            points_text = v;
         } else {
-            return cli_fail("interp", "unknown argument '%s' (try --help)", a);
+            params_text = v;
         }
     }
-    if (!points_text) return cli_fail("interp", "missing --points");
+    if (!points_text) return cli_fail("interp", "missing --points (try 'casteljau interp --help')");
     if (kind == KIND_POLY && (have_tension || have_cb || closed))
         return cli_fail("interp", "--tension, --continuity, --bias and --closed apply to the "
                                   "spline kinds, not to --kind polynomial");
@@ -128,7 +151,7 @@ int cmd_interp(int argc, char **argv) {
             nts = npts;
             ts = malloc(sizeof(double) * (npts ? npts : 1));
             if (!ts) {
-                rc = cli_fail("interp", "out of memory");
+                rc = cli_error("interp", "out of memory");
                 goto done;
             }
             if (npts == 1)
@@ -150,11 +173,16 @@ int cmd_interp(int argc, char **argv) {
         }
         out = malloc(sizeof(double) * npts * (size_t)dim);
         if (!out) {
-            rc = cli_fail("interp", "out of memory");
+            rc = cli_error("interp", "out of memory");
             goto done;
         }
         if (cj_interp_points(ts, pts, npts, dim, a, b, out, NULL, NULL)) {
             rc = cli_fail("interp", "%s", cj_last_error());
+            goto done;
+        }
+        if (!all_finite(out, npts * (size_t)dim)) {
+            rc = cli_fail("interp", "the interpolating polynomial's control points overflow the "
+                                    "double range (--points and --params span too much)");
             goto done;
         }
         print_segment(out, (int)npts, dim);
@@ -168,15 +196,22 @@ int cmd_interp(int argc, char **argv) {
         const size_t nseg = cj_spline_segment_count(npts, closed);
         out = malloc(sizeof(double) * 4 * (size_t)dim * (nseg ? nseg : 1));
         if (!out) {
-            rc = cli_fail("interp", "out of memory");
+            rc = cli_error("interp", "out of memory");
             goto done;
         }
         if (cj_catmull_rom(pts, npts, dim, &o, out, nseg, NULL, NULL)) {
             rc = cli_fail("interp", "%s", cj_last_error());
             goto done;
         }
+        if (!all_finite(out, nseg * 4 * (size_t)dim)) {
+            rc = cli_fail("interp", "the spline's control points overflow the double range "
+                                    "(--points, --tension, --continuity or --bias too large)");
+            goto done;
+        }
         for (size_t s = 0; s < nseg; ++s) print_segment(out + s * 4 * (size_t)dim, 4, dim);
     }
+    if (!rc && (fflush(stdout) != 0 || ferror(stdout)))
+        rc = cli_error("interp", "cannot write the output");
 done:
     free(pts);
     free(ts);

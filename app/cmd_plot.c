@@ -1,13 +1,14 @@
-/* casteljau plot: render a JSON plot description (or the built-in gallery) to a PNG image.
+/* casteljau plot: render a JSON plot description (or the built-in gallery) to an image.
  *
  *   casteljau plot FILE.json -o OUT.png [--width W] [--height H]
  *   casteljau plot --demo -o OUT.png [--width W] [--height H]
  *
  * Contract: bad arguments or a bad document print one line on stderr naming what is wrong
- * (for the document: the JSON path of the field), nothing on stdout, exit status 2, and no
- * output file (the image is written to a temporary file renamed into place only at the end).
- * A missing font or an unwritable destination exits with status 1. Success prints one line
- * "wrote OUT.png (W x H)" on stdout. Builds without OpenImageIO report that plot is
+ * (for the document: the file and the JSON path of the field), nothing on stdout, exit status
+ * 2, and no output file (the destination is checked before any work, and the image is written
+ * to a temporary file renamed into place only when complete). A missing font or a failed write
+ * (a full disk) exits with status 1, leaving an existing file untouched. Success prints one
+ * line "wrote OUT.png (W x H)" on stdout. Builds without OpenImageIO report that plot is
  * unavailable (status 2). */
 #include "cli.h"
 
@@ -18,7 +19,19 @@
 static const char plot_usage[] =
     "usage: casteljau plot FILE.json -o OUT.png [--width W] [--height H]\n"
     "       casteljau plot --demo -o OUT.png [--width W] [--height H]\n"
-    "Renders a plot described in JSON (see the README) or the built-in gallery to PNG.\n";
+    "Renders a plot described in JSON (see the README; '-' reads standard input) or the\n"
+    "built-in gallery (--demo).\n"
+    "  -o, --output  the image; its extension chooses the format, through OpenImageIO:\n"
+    "                .png, .jpg/.jpeg (no alpha: composited over black), .tif, .exr, .bmp, ...\n"
+    "  --width, --height  image size in pixels, 64..8192 (default: the document's, else\n"
+    "                800 x 600; the demo is 1500 x 900)\n"
+    "Options may come in any order, as --opt value or --opt=value.\n"
+    "Limits per document: 64 MiB of JSON, 64 panels, 10000 items, 1000000 points, titles of\n"
+    "1024 bytes, implicit curves of 2e9 (grid+1)^2 x terms in all.\n"
+    "Output: the image file, written atomically (complete or not at all), and one line\n"
+    "'wrote OUT (W x H)' on stdout. Exit status 0; 2 for a bad argument, document or\n"
+    "destination (one line on stderr naming the file and JSON path); 1 when the font is\n"
+    "missing, memory runs out or the write fails (an existing file is kept).\n";
 
 #ifndef CJ_HAVE_PLOT
 
@@ -101,13 +114,14 @@ static char *read_file(const char *path, char *why, size_t why_size) {
             buf = NULL;
             break;
         }
-        if (feof(f)) break;
-        if (cap > ((size_t)64 << 20)) {
-            snprintf(why, why_size, "'%s' is larger than 64 MiB", path);
+        if (n > PLOT_JSON_MAX_BYTES) {
+            snprintf(why, why_size, "'%s' is larger than %zu MiB", path, PLOT_JSON_MAX_BYTES >> 20);
             free(buf);
             buf = NULL;
             break;
         }
+        if (feof(f)) break;
+        if (n + 1 < cap) continue;
         char *nb = realloc(buf, cap * 2);
         if (!nb) free(buf);
         buf = nb;
@@ -140,29 +154,39 @@ static int parse_side(const char *opt, const char *s, int *out) {
 int cmd_plot(int argc, char **argv) {
     const char *input = NULL, *output = NULL;
     int demo = 0, width = 0, height = 0;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(plot_usage, stdout);
-            return 0;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (++i >= argc) return cli_fail("plot", "%s needs a file name", a);
-            output = argv[i];
-        } else if (!strcmp(a, "--width") || !strcmp(a, "--height")) {
-            if (++i >= argc) return cli_fail("plot", "%s needs a value", a);
-            if (parse_side(a, argv[i], a[2] == 'w' ? &width : &height)) return CLI_EXIT_USAGE;
-        } else if (!strcmp(a, "--demo")) {
-            demo = 1;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return cli_fail("plot", "unknown option '%s' (try --help)", a);
+    enum { O_OUT, O_WIDTH, O_HEIGHT, O_DEMO };
+    static const cli_opt opts[] = {
+        {"--output", "-o", 1}, {"--width", NULL, 1}, {"--height", NULL, 1}, {"--demo", NULL, 0}};
+    cli_parser ps;
+    cli_parser_init(&ps, "plot", plot_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
+    for (;;) {
+        const char *v;
+        char q[160];
+        const int k = cli_next(&ps, &v);
+        if (k == CLI_END) break;
+        if (k == CLI_EXIT_OK) return 0;
+        if (k == CLI_BAD) return CLI_EXIT_USAGE;
+        if (k == CLI_POSITIONAL) {
+            if (input)
+                return cli_fail("plot", "more than one input file ('%s', '%s')", input,
+                                cli_quote(v, q, sizeof q));
+            input = v;
+        } else if (k == O_OUT) {
+            output = v;
+        } else if (k == O_WIDTH || k == O_HEIGHT) {
+            if (parse_side(opts[k].name, v, k == O_WIDTH ? &width : &height)) return CLI_EXIT_USAGE;
         } else {
-            if (input) return cli_fail("plot", "more than one input file ('%s', '%s')", input, a);
-            input = a;
+            demo = 1;
         }
     }
     if (demo && input) return cli_fail("plot", "give either FILE.json or --demo, not both");
     if (!demo && !input) return cli_fail("plot", "no input: give FILE.json or --demo");
     if (!output) return cli_fail("plot", "no output: give -o OUT.png");
+    /* Before any work: a name, a format and a directory that can take the image. */
+    cj_status st = cj_image_check_destination(output, 0);
+    if (st)
+        return st == CJ_ERR_ARGUMENT ? cli_fail("plot", "-o: %s", cj_last_error())
+                                     : cli_error("plot", "-o: %s", cj_last_error());
 
     char why[512] = "";
     char *text = NULL;
@@ -177,26 +201,21 @@ int cmd_plot(int argc, char **argv) {
     cj_font *font = NULL;
     cj_framebuffer *fb = NULL;
     int status = 0;
-    cj_status st = cj_font_open(NULL, &font);
-    if (st) {
-        fprintf(stderr, "casteljau plot: %s\n", cj_last_error());
-        status = 1;
-    }
-    if (!status && (st = cj_framebuffer_create(doc.width, doc.height, 0, NULL, &fb))) {
-        fprintf(stderr, "casteljau plot: %s\n", cj_last_error());
-        status = 1;
-    }
+    st = cj_font_open(NULL, &font);
+    if (st) status = cli_error("plot", "%s", cj_last_error());
+    if (!status && (st = cj_framebuffer_create(doc.width, doc.height, 0, NULL, &fb)))
+        status = cli_error("plot", "%s", cj_last_error());
     if (!status && (st = plot_doc_render(&doc, fb, font))) {
         /* Rendering fails only on data it cannot draw (e.g. a panel too small for its text). */
-        fprintf(stderr, "casteljau plot: cannot render: %s\n", cj_last_error());
-        status = st == CJ_ERR_NOMEM || st == CJ_ERR_IO ? 1 : CLI_EXIT_USAGE;
+        const int usage = st != CJ_ERR_NOMEM && st != CJ_ERR_IO;
+        status = (usage ? cli_fail : cli_error)("plot", "%s: cannot render %s: %s",
+                                                demo ? "demo" : input, plot_doc_where(&doc),
+                                                cj_last_error());
     }
-    if (!status &&
-        (st = cj_image_write_png(output, fb->width, fb->height, (const uint8_t *)fb->pixels,
-                                 (size_t)fb->stride * sizeof *fb->pixels))) {
-        fprintf(stderr, "casteljau plot: %s\n", cj_last_error());
-        status = 1;
-    }
+    if (!status && (st = cj_image_write(output, fb->width, fb->height, (const uint8_t *)fb->pixels,
+                                        (size_t)fb->stride * sizeof *fb->pixels)))
+        status = st == CJ_ERR_ARGUMENT ? cli_fail("plot", "%s", cj_last_error())
+                                       : cli_error("plot", "%s", cj_last_error());
     if (!status) printf("wrote %s (%d x %d)\n", output, fb->width, fb->height);
     cj_framebuffer_destroy(fb);
     cj_font_close(font);

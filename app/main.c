@@ -25,7 +25,9 @@ static void usage(FILE *f) {
     fprintf(f, "usage: casteljau <command> [options]\n\ncommands:\n");
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
         fprintf(f, "  %-11s %s\n", commands[i].name, commands[i].summary);
-    fprintf(f, "\n'casteljau <command> --help' describes a command.\n");
+    fprintf(f, "\n'casteljau <command> --help' describes a command (its options, defaults and\n"
+               "output); 'casteljau --version' prints the version. Exit status: 0 success, 2 a\n"
+               "bad argument or input (one line on stderr), 1 a failure to write or allocate.\n");
 }
 
 int main(int argc, char **argv) {
@@ -37,8 +39,14 @@ int main(int argc, char **argv) {
         usage(stdout);
         return 0;
     }
+    if (!strcmp(argv[1], "--version")) {
+        printf("%s\n", cli_version());
+        return 0;
+    }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
         if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
-    fprintf(stderr, "casteljau: unknown command '%s' (try 'casteljau --help')\n", argv[1]);
+    char q[160];
+    fprintf(stderr, "casteljau: unknown command '%s' (try 'casteljau --help')\n",
+            cli_quote(argv[1], q, sizeof q));
     return CLI_EXIT_USAGE;
 }

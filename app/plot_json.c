@@ -8,7 +8,7 @@
  *   panels           [panel, ...]: several plots in a grid of `columns` (default
  *                    ceil(sqrt(count))) columns, filled left to right, top to bottom
  * Panel:
- *   title            string drawn above the plot
+ *   title            string drawn above the plot (at most CJ_PLOT_MAX_TITLE = 1024 bytes)
  *   axes             true/false: frame, grid, ticks and numeric labels (default true)
  *   margin           pixels of blank border (default 12)
  *   view             [x0, y0, x1, y1] data box to show (default: fitted to the items)
@@ -28,6 +28,10 @@
  *                  grid (cells per side, default 64)
  *   "polyline"     points (>= 2), closed (false), markers (false)
  *   "points"       points (>= 1), radius (4 px)
+ * Limits per document (so that any file is rendered in seconds): PLOT_JSON_MAX_ITEMS items,
+ * PLOT_JSON_MAX_POINTS points, and PLOT_JSON_MAX_WORK for the implicit curves, counted as
+ * (grid + 1)^2 times the number of terms (3 for circle, ellipse, line; (n+1)(n+2)/2 for a
+ * degree-n poly); above them the document is refused naming the item that crossed them.
  */
 #include "plot_json.h"
 
@@ -42,6 +46,9 @@
 typedef struct ctx {
     char *why;
     size_t why_size;
+    /* work counted against the document's limits (plot_json.h) */
+    size_t items, points;
+    double work;
 } ctx;
 
 #if defined(__GNUC__)
@@ -160,6 +167,10 @@ static int parse_points(ctx *c, const cJSON *v, const char *path, size_t min_cou
     if (n < min_count)
         return fail(c, "%s has %zu point%s, at least %zu needed", path, n, n == 1 ? "" : "s",
                     min_count);
+    if (n > PLOT_JSON_MAX_POINTS - c->points)
+        return fail(c, "%s: the document has more than %d points in all", path,
+                    PLOT_JSON_MAX_POINTS);
+    c->points += n;
     double *pts = malloc((n ? n : 1) * 2 * sizeof *pts);
     if (!pts) return fail(c, "%s: out of memory", path);
     size_t i = 0;
@@ -401,6 +412,17 @@ static int parse_implicit(ctx *c, const cJSON *it, const char *path, cj_plot *pl
         break;
     }
     }
+    /* Contouring samples the grid's corners (and refines the crossings): the cost is the
+     * grid area times the cost of one evaluation, about the number of terms. */
+    const double terms = which == 3 && !st ? (double)cj_implicit_poly_ncoef(shape.degree) : 3.0;
+    c->work += (double)(grid + 1) * (double)(grid + 1) * terms;
+    if (!st && c->work > PLOT_JSON_MAX_WORK) {
+        free(coef);
+        return fail(c,
+                    "%s: the document's implicit curves need more than %.0e evaluations of "
+                    "terms in all (grid^2 x terms; lower \"grid\" or the degree)",
+                    path, PLOT_JSON_MAX_WORK);
+    }
     if (!st) st = cj_plot_add_implicit(plot, &f, box, grid, color, width);
     free(coef);
     return st ? lib_fail(c, path) : 0;
@@ -508,6 +530,10 @@ static int parse_panel(ctx *c, const cJSON *obj, const char *prefix, cj_rgba bac
                  ip);
             PFAIL;
         }
+        if (++c->items > PLOT_JSON_MAX_ITEMS) {
+            fail(c, "%s: the document has more than %d items in all", ip, PLOT_JSON_MAX_ITEMS);
+            PFAIL;
+        }
         cj_rgba color = palette[i % (sizeof palette / sizeof palette[0])];
         int r;
         if (!strcmp(t->valuestring, "bezier"))
@@ -547,7 +573,7 @@ static void syntax_error(ctx *c, const char *text, const char *at) {
 }
 
 int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size) {
-    ctx c = {why, why_size};
+    ctx c = {why, why_size, 0, 0, 0.0};
     memset(doc, 0, sizeof *doc);
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
@@ -603,6 +629,7 @@ int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size)
         }
     } else {
         doc->columns = 1;
+        doc->single = 1;
         if (parse_panel(&c, root, "", doc->background, &doc->panels[0])) goto done;
         doc->npanels = 1;
     }
@@ -613,7 +640,15 @@ done:
     return rc;
 }
 
-cj_status plot_doc_render(const plot_doc *doc, cj_framebuffer *fb, cj_font *font) {
+const char *plot_doc_where(plot_doc *doc) {
+    if (doc->single)
+        snprintf(doc->where, sizeof doc->where, "the plot");
+    else
+        snprintf(doc->where, sizeof doc->where, "panels[%zu]", doc->failed);
+    return doc->where;
+}
+
+cj_status plot_doc_render(plot_doc *doc, cj_framebuffer *fb, cj_font *font) {
     cj_framebuffer_clear(fb, doc->background);
     const int cols = doc->columns > 0 ? doc->columns : 1;
     const int rows = (int)((doc->npanels + (size_t)cols - 1) / (size_t)cols);
@@ -624,7 +659,10 @@ cj_status plot_doc_render(const plot_doc *doc, cj_framebuffer *fb, cj_font *font
         const int ytop = fb->height - row * fb->height / rows;
         const int ybot = fb->height - (row + 1) * fb->height / rows;
         cj_status st = cj_plot_render(doc->panels[i], fb, x0, ybot, x1 - x0, ytop - ybot, font);
-        if (st) return st;
+        if (st) {
+            doc->failed = i;
+            return st;
+        }
     }
     return CJ_OK;
 }

@@ -179,7 +179,7 @@ static void test_bad_input(void **state) {
     const char *a4[] = {"--teapot", "--tol", "0.1", "--uniform", "3", "-o", obj, NULL};
     expect_usage_error(a4, obj, "not both");
     const char *a5[] = {"--teapot", "-o", "x.stl", NULL};
-    expect_usage_error(a5, "x.stl", ".obj or .ply");
+    expect_usage_error(a5, "x.stl", ".obj, .ply or .vtu");
     const char *a6[] = {"--teapot", NULL};
     expect_usage_error(a6, NULL, "-o");
     const char *a7[] = {"--patch", "0,0;1,0;0,1;1,1", "--degree", "1,1", "-o", obj, NULL};
@@ -191,7 +191,7 @@ static void test_bad_input(void **state) {
     const char *a10[] = {
         "--patch", "0,0,0;1,0,0;0,1,0;1,1,1", "--degree", "1,1", "--tol", "1e-300", "-o", obj,
         NULL};
-    expect_usage_error(a10, obj, "segments");
+    expect_usage_error(a10, obj, "triangles"); /* predicted before any work */
     const char *a11[] = {
         "--patch", "0,0,0;1,0,0;0,1,0;1,1,1", "--degree", "1,1", "--weights", "1;2;3", "-o", obj,
         NULL};

@@ -280,11 +280,18 @@ static void test_bad_input(void **state) {
     assert_int_equal(cj_plot_set_view(p, 1, 0, 1, 2), CJ_ERR_DEGENERATE);
     assert_int_equal(cj_plot_set_margin(p, -1), CJ_ERR_RANGE);
     assert_int_equal(cj_plot_item_count(p), 0); /* nothing was added by failing calls */
-    /* All data at one point: nothing to scale. */
+    /* All data at one point: shown in a view centred on it (a one-point item is valid). */
     assert_int_equal(cj_plot_add_points(p, twice, 2, o.color, 3), CJ_OK);
-    assert_int_equal(cj_plot_render(p, fb, 0, 0, 100, 100, NULL), CJ_ERR_DEGENERATE);
+    cj_framebuffer_clear(fb, cj_rgba_make(255, 255, 255, 255));
+    assert_int_equal(cj_plot_render(p, fb, 0, 0, 100, 100, NULL), CJ_OK);
+    {
+        const cj_rgba centre = fb->pixels[50 * fb->stride + 50];
+        if (centre.r == 255 && centre.g == 255 && centre.b == 255)
+            fail_msg("the single point is not drawn at the centre of its view");
+    }
     assert_int_equal(cj_plot_add_bezier(p, &c, NULL), CJ_OK);
-    assert_int_equal(cj_plot_render(p, fb, 0, 0, 20, 100, NULL), CJ_ERR_RANGE);  /* too small */
+    assert_int_equal(cj_plot_render(p, fb, 0, 0, 11, 100, NULL), CJ_ERR_RANGE);  /* too small */
+    assert_int_equal(cj_plot_render(p, fb, 0, 0, 12, 12, NULL), CJ_OK);          /* tiny: bare */
     assert_int_equal(cj_plot_render(p, fb, 50, 50, 60, 60, NULL), CJ_ERR_RANGE); /* sticks out */
     assert_int_equal(cj_plot_render(p, fb, 0, 0, 100, 100, NULL), CJ_OK);
     cj_framebuffer_destroy(fb);

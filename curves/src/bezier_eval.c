@@ -287,5 +287,13 @@ cj_status cj_bezier_error_bound(const cj_bezier *c, cj_eval_method method, doubl
             bound[k] = g * mag[k] * slack + uf * wsum * (1.0 + 0x1p-40);
         }
     }
+    /* Control points near the top of the double range overflow M_k (or the binomial sum): a
+     * bound of inf says nothing, so say that instead. */
+    for (int k = 0; k < d; ++k)
+        if (!isfinite(bound[k]))
+            return cj_fail(CJ_ERR_RANGE,
+                           "error bound at t = %.17g, coordinate %d, overflows the double range "
+                           "(control points too large)",
+                           t, k);
     return CJ_OK;
 }

@@ -60,6 +60,11 @@ static cj_status spacing(const double *pts, size_t npts, int d, const cj_spline_
     }
     size_t j1 = (j + 1) % npts;
     double len = dist(pts + j * (size_t)d, pts + j1 * (size_t)d, d);
+    if (isnan(len) || isinf(len))
+        return cj_fail(CJ_ERR_RANGE,
+                       "spline points %zu and %zu are too far apart: their distance overflows "
+                       "the double range",
+                       j, j1);
     if (!(len > 0.0))
         return cj_fail(CJ_ERR_DEGENERATE,
                        "spline points %zu and %zu coincide: a %s spline needs distinct "
@@ -171,6 +176,13 @@ cj_status cj_catmull_rom(const double *pts, size_t npts, int dim, const cj_splin
             s[2 * d + k] = p1[k] - dj * in1[k] / 3.0;
             s[3 * d + k] = p1[k];
         }
+        for (size_t k = 0; k < 4 * d; ++k)
+            if (!isfinite(s[k]))
+                return cj_fail(CJ_ERR_RANGE,
+                               "spline segment %zu (points %zu to %zu): control point %zu "
+                               "overflows the double range (points, tension, continuity or bias "
+                               "too large)",
+                               j, j, j1, k / d);
     }
     if (knots) {
         knots[0] = 0.0;

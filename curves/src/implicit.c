@@ -275,6 +275,7 @@ typedef struct contour_ctx {
     /* polyline buffer */
     double *buf;
     size_t len, cap;
+    size_t emitted; /* vertices in polylines already emitted */
     double poly_res;
     int capped;
     cj_status err;
@@ -340,6 +341,13 @@ static cj_status refine_edge(contour_ctx *c, const double a[2], const double b[2
 }
 
 static int push_point(contour_ctx *c, const double p[2], double res) {
+    if (c->emitted + c->len >= CJ_CONTOUR_MAX_POINTS) {
+        c->err = cj_fail(CJ_ERR_CAP,
+                         "contour: stopped at %zu vertices (the cap): tolerance %g is too fine "
+                         "for this curve and box",
+                         CJ_CONTOUR_MAX_POINTS, c->tol);
+        return -1;
+    }
     if (c->len + 1 > c->cap) {
         size_t nc = c->cap ? 2 * c->cap : 256;
         double *nb = cj_allocator_alloc(&c->alloc, nc * 2 * sizeof(double));
@@ -430,6 +438,7 @@ static cj_status emit_chain(contour_ctx *c, size_t start, cj_polyline_fn emit, v
     stats->polylines++;
     stats->closed += (size_t)closed;
     stats->points += c->len;
+    c->emitted += c->len;
     if (c->poly_res > stats->max_residual) stats->max_residual = c->poly_res;
     return emit(user, c->buf, c->len, closed, c->poly_res);
 }
@@ -462,6 +471,21 @@ cj_status cj_implicit_contour(const cj_implicit *f, const double box[4],
     const int nx = opts->nx ? opts->nx : 64, ny = opts->ny ? opts->ny : 64;
     if (nx < 1 || nx > 4096 || ny < 1 || ny > 4096)
         return cj_fail(CJ_ERR_ARGUMENT, "contour grid %d x %d is outside 1..4096 cells", nx, ny);
+    if (!isfinite(box[2] - box[0]) || !isfinite(box[3] - box[1]))
+        return cj_fail(CJ_ERR_RANGE,
+                       "box [%g, %g] x [%g, %g] is wider than the double range (its sides "
+                       "overflow)",
+                       box[0], box[2], box[1], box[3]);
+    /* Below this, vertices cannot be placed within tol in doubles, and chord refinement would
+     * only multiply points: refuse before any work (tessellation does the same). */
+    double scale = fmax(fmax(fabs(box[0]), fabs(box[1])), fmax(fabs(box[2]), fabs(box[3])));
+    scale = fmax(scale, fmax(box[2] - box[0], box[3] - box[1]));
+    const double min_tol = CJ_CONTOUR_MIN_REL_TOL * scale;
+    if (opts->tol < min_tol)
+        return cj_fail(CJ_ERR_RANGE,
+                       "contour tolerance %g is finer than doubles resolve in a box of scale %g "
+                       "(the smallest accepted is %.3g)",
+                       opts->tol, scale, min_tol);
 
     contour_ctx c;
     memset(&c, 0, sizeof c);

@@ -127,6 +127,9 @@ cj_status cj_interp_solve(const cj_interp_constraint *cons, size_t m, int dim, d
 
     const int n = (int)m - 1, M = (int)m;
     const double h = b - a;
+    if (!isfinite(h))
+        return cj_fail(CJ_ERR_RANGE,
+                       "parameter interval [%.17g, %.17g] is wider than the double range", a, b);
     double *work = malloc(sizeof(double) * (size_t)(3 * M * M + 2 * M * dim + 6 * M));
     lapack_int *ipiv = malloc(sizeof(lapack_int) * (size_t)M);
     if (!work || !ipiv) {

@@ -122,6 +122,9 @@ cj_status cj_plot_set_title(cj_plot *plot, const char *title) {
     char *copy = NULL;
     if (title && *title) {
         size_t n = strlen(title) + 1;
+        if (n - 1 > CJ_PLOT_MAX_TITLE)
+            return cj_fail(CJ_ERR_RANGE, "title of %zu bytes is longer than %d", n - 1,
+                           CJ_PLOT_MAX_TITLE);
         copy = palloc(plot, n);
         if (!copy) return cj_fail(CJ_ERR_NOMEM, "no memory for the plot title");
         memcpy(copy, title, n);
@@ -607,12 +610,15 @@ typedef struct ticks {
 } ticks;
 
 static ticks make_ticks(double lo, double hi, double target) {
-    ticks t;
+    ticks t = {0.0, 0.0, 0};
+    /* A span beyond the double range (or none) has no sensible ticks; the count is converted
+     * to int only when it is a number in range (a NaN or huge count is undefined). */
+    if (!(hi - lo > 0.0) || !isfinite(hi - lo)) return t;
     t.step = nice_step(hi - lo, target);
+    if (!(t.step > 0.0) || !isfinite(t.step)) return t;
     t.first = ceil(lo / t.step - 1e-9) * t.step;
-    t.count = (int)floor((hi - t.first) / t.step + 1e-9) + 1;
-    if (t.count < 0) t.count = 0;
-    if (t.count > 100) t.count = 100;
+    const double count = floor((hi - t.first) / t.step + 1e-9) + 1.0;
+    t.count = count >= 0.0 ? (count <= 100.0 ? (int)count : 100) : 0;
     return t;
 }
 
@@ -634,9 +640,9 @@ static cj_status widest_label(cj_font *font, double size, ticks t, double *w) {
 cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0, int w, int h,
                          cj_font *font_in) {
     assert(plot && fb);
-    if (x0 < 0 || y0 < 0 || w < 32 || h < 32 || w > fb->width - x0 || h > fb->height - y0)
+    if (x0 < 0 || y0 < 0 || w < 12 || h < 12 || w > fb->width - x0 || h > fb->height - y0)
         return cj_fail(CJ_ERR_RANGE,
-                       "plot rectangle %dx%d at (%d, %d) is not a rectangle of at least 32x32 "
+                       "plot rectangle %dx%d at (%d, %d) is not a rectangle of at least 12x12 "
                        "pixels inside the %dx%d framebuffer",
                        w, h, x0, y0, fb->width, fb->height);
     double box[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
@@ -650,9 +656,12 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
             if (it->type == ITEM_SPLINE) grow_box(box, it->segs, 4 * it->nsegs);
         }
         double dx = box[2] - box[0], dy = box[3] - box[1];
-        if (!(dx > 0.0) && !(dy > 0.0))
-            return cj_fail(CJ_ERR_DEGENERATE, "all plotted data lie at the single point (%g, %g)",
-                           box[0], box[1]);
+        if (!(dx > 0.0) && !(dy > 0.0)) {
+            /* A single point (a one-point item): a view centred on it. */
+            const double half = fmax(1.0, 0.05 * fmax(fabs(box[0]), fabs(box[1])));
+            box[0] -= half, box[1] -= half, box[2] += half, box[3] += half;
+            dx = dy = 2.0 * half;
+        }
         /* A flat box (all data on a horizontal or vertical line) gets the other side's span. */
         if (!(dx > 0.0)) box[0] -= dy / 2, box[2] += dy / 2;
         if (!(dy > 0.0)) box[1] -= dx / 2, box[3] += dx / 2;
@@ -703,6 +712,12 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
         pad = plot->has_view ? 0.0 : widest + 4.0;
         ax0 = left, ay0 = bottom, ax1 = w - right, ay1 = h - top;
         if (ax1 - ax0 >= 2 * pad + 8 && ay1 - ay0 >= 2 * pad + 8) break;
+        if ((attempt == 1 || (!axes && !font && margin <= 2.0)) && ax1 - ax0 >= 8 &&
+            ay1 - ay0 >= 8) {
+            /* Tiny: a plot whose strokes may touch its edge rather than no plot at all. */
+            pad = fmax(0.0, 0.5 * (fmin(ax1 - ax0, ay1 - ay0) - 8.0));
+            break;
+        }
         if (attempt == 1 || (!axes && !font && margin <= 2.0))
             return cj_fail(CJ_ERR_RANGE, "plot rectangle %dx%d is too small for its contents", w,
                            h);

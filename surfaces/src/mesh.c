@@ -1,4 +1,5 @@
 /* Indexed triangle mesh: growth, welding, topology, OBJ/PLY export. */
+#define _POSIX_C_SOURCE 200809L /* fileno, fsync */
 #include "casteljau/mesh.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
@@ -9,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 cj_status cj_mesh_create(const cj_allocator *alloc, cj_mesh **out) {
     assert(out != NULL);
@@ -314,6 +316,9 @@ static cj_status open_tmp(const char *path, char **tmp, FILE **f, const char *mo
 
 static cj_status close_tmp(const char *path, char *tmp, FILE *f, int write_failed) {
     int bad = write_failed || ferror(f);
+    /* A full disk may only show at the flush, or (delayed allocation) at fsync: check both
+     * before the rename replaces anything. */
+    if (!bad && (fflush(f) != 0 || fsync(fileno(f)) != 0)) bad = 1;
     if (fclose(f) != 0) bad = 1;
     if (bad) {
         remove(tmp);

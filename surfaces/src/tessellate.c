@@ -812,22 +812,11 @@ static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, gr
  * of the kept build; otherwise the counts kfix are imposed and the grid *hint (nu >= 2) is
  * tried first. The mesh then holds the passing build with the fewest triangles (when planning:
  * some build, to be truncated); *out is that grid. */
-static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, const int *kfix,
-                                const grid *hint, int kout[4], grid *out) {
-    int ke[4];
-    for (int s = 0; s < 4; ++s) {
-        ke[s] = P->e[s].collapsed
-                    ? 0
-                    : cj_tess_edge_segments(P->e[s].pts, P->e[s].degree, 0.25 * tol, cap);
-        if (ke[s] > cap)
-            return cj_fail(CJ_ERR_CAP,
-                           "patch %zu, edge %d needs more than %d segments for tolerance %.3g", q,
-                           s, cap, tol);
-    }
-    /* grid densities: sqrt of the second-derivative bound on SLABS slabs per direction (the
-     * mixed term counts in both, so a straight direction is still refined where it twists) */
-    double base_u, base_v;
-    double rho_u[SLABS], rho_v[SLABS];
+/* Grid densities of the set-up patch: sqrt of the second-derivative bound on SLABS slabs per
+ * direction (the mixed term counts in both, so a straight direction is still refined where it
+ * twists), and the cell counts of the search's starting grid for tol (base_u, base_v). */
+static void patch_densities(ptess *P, double tol, double *rho_u, double *rho_v, double *base_u,
+                            double *base_v) {
     {
         double su = 0.0, sv = 0.0;
         if (P->rational) {
@@ -870,9 +859,27 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, const i
             su += rho_u[a] / SLABS;
             sv += rho_v[a] / SLABS;
         }
-        base_u = su / sqrt(4.0 * tol);
-        base_v = sv / sqrt(4.0 * tol);
+        *base_u = su / sqrt(4.0 * tol);
+        *base_v = sv / sqrt(4.0 * tol);
     }
+}
+
+static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, const int *kfix,
+                                const grid *hint, int kout[4], grid *out) {
+    int ke[4];
+    for (int s = 0; s < 4; ++s) {
+        ke[s] = P->e[s].collapsed
+                    ? 0
+                    : cj_tess_edge_segments(P->e[s].pts, P->e[s].degree, 0.25 * tol, cap);
+        if (ke[s] > cap)
+            return cj_fail(CJ_ERR_CAP,
+                           "patch %zu, edge %d needs more than %d segments for tolerance %.3g", q,
+                           s, cap, tol);
+    }
+    /* grid densities: see patch_densities */
+    double base_u, base_v;
+    double rho_u[SLABS], rho_v[SLABS];
+    patch_densities(P, tol, rho_u, rho_v, &base_u, &base_v);
     const size_t vs = P->mesh->vertex_count, ts = P->mesh->triangle_count;
     cj_status st = CJ_OK;
     int k[4];
@@ -933,6 +940,11 @@ static cj_status adaptive_patch(ptess *P, double tol, int cap, size_t q, const i
     }
     if (!st && best.nu == 0)
         st = cj_fail(CJ_ERR_CAP, "patch %zu: no grid met tolerance %.3g", q, tol);
+    if (!st && best_tris == 0) /* every triangle collapsed: nothing to search for */
+        st = cj_fail(CJ_ERR_DEGENERATE,
+                     "patch %zu is degenerate: its surface has no area (every triangle "
+                     "collapses to a point or a curve)",
+                     q);
     if (!st) {
         /* uniform K x K grids with fewer than best_tris triangles: the largest such K first;
          * if it passes, bisect for the smallest passing K (the bound decreases with K) */
@@ -1153,6 +1165,11 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
             nu = g.nu;
             nv = g.nv;
         }
+        if (!st && mesh->triangle_count == tq)
+            st = cj_fail(CJ_ERR_DEGENERATE,
+                         "patch %zu is degenerate: its surface has no area (every triangle "
+                         "collapses to a point or a curve)",
+                         q);
         if (st) { /* no partial or failing build of this patch stays */
             cj_mesh_truncate(mesh, vq, tq);
             break;
@@ -1172,6 +1189,43 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
     rep.triangles = mesh->triangle_count - t_start;
     if (report) *report = rep;
     return st;
+}
+
+cj_status cj_tessellate_predict(const cj_patch *patches, size_t count, const cj_tess_options *opt,
+                                double *triangles) {
+    assert(opt != NULL && triangles != NULL);
+    assert(patches != NULL || count == 0);
+    if (opt->uniform < 0)
+        return cj_fail(CJ_ERR_ARGUMENT, "uniform segment count %d is negative", opt->uniform);
+    for (size_t q = 0; q < count; ++q) {
+        cj_status st = cj_patch_check(&patches[q]);
+        if (st) return cj_fail(st, "patch %zu: %s", q, cj_last_error());
+    }
+    if (opt->uniform > 0) {
+        *triangles = 2.0 * (double)opt->uniform * (double)opt->uniform * (double)count;
+        return CJ_OK;
+    }
+    if (!isfinite(opt->tol)) return cj_fail(CJ_ERR_NONFINITE, "tolerance is not finite");
+    if (!(opt->tol > 0.0)) return cj_fail(CJ_ERR_ARGUMENT, "tolerance %.17g must be > 0", opt->tol);
+    cj_mesh *scratch = NULL;
+    cj_status st = cj_mesh_create(NULL, &scratch);
+    ptess *P = st ? NULL : malloc(sizeof *P);
+    if (!P) {
+        cj_mesh_destroy(scratch);
+        return cj_fail(CJ_ERR_NOMEM, "out of memory");
+    }
+    double total = 0.0;
+    for (size_t q = 0; q < count; ++q) {
+        double rho_u[SLABS], rho_v[SLABS], bu, bv;
+        ptess_setup(P, &patches[q], q, scratch, 0);
+        patch_densities(P, opt->tol, rho_u, rho_v, &bu, &bv);
+        /* the search starts here; its minimum is 2 x 2 cells */
+        total += 2.0 * fmax(2.0, ceil(bu)) * fmax(2.0, ceil(bv));
+    }
+    free(P);
+    cj_mesh_destroy(scratch);
+    *triangles = total;
+    return CJ_OK;
 }
 
 /* ---- parametric surfaces ------------------------------------------------------------- */

@@ -1,6 +1,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "cli_run.h"
 
+#include <fcntl.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -46,6 +47,8 @@ int cj_cli_spawn(char *const argv[], cj_cli_result *r) {
     if (fo < 0 || fe < 0) goto done;
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
+    /* The tool reads standard input when given no data (eval without T): give it none. */
+    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
     posix_spawn_file_actions_adddup2(&fa, fo, 1);
     posix_spawn_file_actions_adddup2(&fa, fe, 2);
     pid_t pid;

@@ -93,7 +93,8 @@ cj_status cj_bezier_eval_compensated(const cj_bezier *c, double t, double *out, 
  * they vanish for n = 0 and are negligible unless the values themselves are tiny. |c_k(t)| is
  * taken at the compensated value, M_k is computed and inflated by 1 + gamma(3n+8) so the
  * computed bound is an upper bound of the exact one. Checked against an MPFR oracle in
- * tests/test_bezier_stability.c. */
+ * tests/test_bezier_stability.c. A bound that overflows the double range (control points near
+ * it) is CJ_ERR_RANGE naming t and the coordinate; bound is then partly written. */
 cj_status cj_bezier_error_bound(const cj_bezier *c, cj_eval_method method, double t, double *bound);
 
 /* Condition number of each coordinate at t: cond_k = Σ|b_i,k| B_i^n(t) / |c_k(t)|.

@@ -39,6 +39,9 @@
  * consecutive points give a defined curve for the uniform kinds (the tangent formulas need no
  * division) but CJ_ERR_DEGENERATE for centripetal and chordal, whose knot spacing would be zero;
  * the message names the two points. Non-finite coordinates or options are CJ_ERR_NONFINITE.
+ * Results that overflow the double range (points whose distance, or tangents scaled by a huge
+ * tension, continuity or bias, exceed it) are CJ_ERR_RANGE naming the segment; segments before
+ * it may have been written.
  * No function here allocates.
  */
 #ifndef CASTELJAU_CATMULL_ROM_H

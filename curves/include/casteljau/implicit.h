@@ -30,8 +30,13 @@
  * entirely inside one cell, two crossings on one edge) can be missed: choose nx, ny to resolve
  * them. Singular points (∇f = 0 on the curve) are reported through a large residual.
  *
- * Contouring allocates its work space (O(nx·ny) doubles) with malloc and frees it before it
- * returns; all other functions here allocate nothing.
+ * Bounded work: the tolerance must be one that doubles can resolve at the box's scale,
+ * tol >= CJ_CONTOUR_MIN_REL_TOL · max(|x0|, |y0|, |x1|, |y1|, x1 − x0, y1 − y0) (a finer one is
+ * CJ_ERR_RANGE before any work), and one call emits at most CJ_CONTOUR_MAX_POINTS vertices in
+ * all (more is CJ_ERR_CAP: contouring stops, what was emitted stays emitted).
+ *
+ * Contouring allocates its work space (O(nx·ny) doubles, plus the longest polyline) with
+ * malloc and frees it before it returns; all other functions here allocate nothing.
  */
 #ifndef CASTELJAU_IMPLICIT_H
 #define CASTELJAU_IMPLICIT_H
@@ -105,6 +110,11 @@ cj_status cj_implicit_curve_project(const cj_implicit *f, double xy[2], double t
 typedef cj_status (*cj_polyline_fn)(void *user, const double *xy, size_t npts, int closed,
                                     double max_residual);
 
+/* 2^-40 ≈ 9.1e-13: 4096 units in the last place of the box's largest coordinate. */
+#define CJ_CONTOUR_MIN_REL_TOL 0x1p-40
+/* 2^24 vertices per call (16.8 million; 256 MiB as points). */
+#define CJ_CONTOUR_MAX_POINTS ((size_t)1 << 24)
+
 typedef struct cj_contour_options {
     int nx, ny;                /* grid cells in x and y, 1..4096 each (0: 64) */
     double tol;                /* > 0: target |f|/|∇f| of vertices and chord-to-curve distance */
@@ -121,9 +131,12 @@ typedef struct cj_contour_stats {
 /* Contours f = 0 inside box = {x0, y0, x1, y1} (x0 < x1, y0 < y1, else CJ_ERR_DEGENERATE),
  * emitting polylines through emit(user, ...) (algorithm above). stats may be NULL.
  * Status: CJ_ERR_NONFINITE (box, tol, or f not finite somewhere: the message names the point),
- * CJ_ERR_ARGUMENT (tol <= 0, grid size out of range), CJ_ERR_NOMEM, CJ_ERR_CAP when some vertex
- * could not be brought within tol (everything is still emitted, the residuals tell where), or
- * whatever emit returned. */
+ * CJ_ERR_ARGUMENT (tol <= 0, grid size out of range), CJ_ERR_RANGE (a box whose sides overflow
+ * the double range, or tol below CJ_CONTOUR_MIN_REL_TOL times the box's scale: the message
+ * gives the smallest tolerance accepted), CJ_ERR_NOMEM, CJ_ERR_CAP when some vertex could not
+ * be brought within tol (everything is still emitted, the residuals tell where) or more than
+ * CJ_CONTOUR_MAX_POINTS vertices were needed (contouring stopped there), or whatever emit
+ * returned. */
 cj_status cj_implicit_contour(const cj_implicit *f, const double box[4],
                               const cj_contour_options *opts, cj_polyline_fn emit, void *user,
                               cj_contour_stats *stats);

@@ -50,7 +50,8 @@ typedef struct cj_interp_constraint {
  *   cond:  NULL, or the condition estimate (>= 1).
  * Status: CJ_ERR_EMPTY (m = 0), CJ_ERR_DEGREE (m > CJ_INTERP_MAX_DEGREE + 1), CJ_ERR_DIMENSION,
  * CJ_ERR_NONFINITE (a parameter or value, named), CJ_ERR_ARGUMENT (negative order, a >= b),
- * CJ_ERR_SINGULAR (clash, named), CJ_ERR_NOMEM. Outputs are untouched on failure. */
+ * CJ_ERR_RANGE (b - a overflows the double range), CJ_ERR_SINGULAR (clash, named),
+ * CJ_ERR_NOMEM. Outputs are untouched on failure. */
 cj_status cj_interp_solve(const cj_interp_constraint *cons, size_t m, int dim, double a, double b,
                           double *bez, double *power, double *cond);
 

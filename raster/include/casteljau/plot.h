@@ -69,7 +69,12 @@ void cj_plot_destroy(cj_plot *plot); /* NULL allowed */
 
 void cj_plot_set_background(cj_plot *plot, cj_rgba color);
 void cj_plot_set_axes(cj_plot *plot, int on);
-/* Title drawn centred above the plot area (copied; NULL or "" = none). CJ_ERR_NOMEM. */
+/* Longest title accepted, in bytes (UTF-8): one line of text above a plot. Longer titles would
+ * only cost layout time (a 1 MB title took seconds per panel) for text that cannot fit. */
+#define CJ_PLOT_MAX_TITLE 1024
+
+/* Title drawn centred above the plot area (copied; NULL or "" = none). CJ_ERR_RANGE for a
+ * title longer than CJ_PLOT_MAX_TITLE bytes, CJ_ERR_NOMEM. */
 cj_status cj_plot_set_title(cj_plot *plot, const char *title);
 /* Blank border in pixels around everything (0..1000, else CJ_ERR_RANGE). */
 cj_status cj_plot_set_margin(cj_plot *plot, double px);
@@ -119,10 +124,12 @@ size_t cj_plot_item_count(const cj_plot *plot);
 
 /* Renders into the rectangle [x0, x0+w) x [y0, y0+h) of fb (pixels outside it are not touched;
  * the rectangle is filled with the background first). font may be NULL (no text). A rectangle
- * too small for the axes and text gets a bare plot (no axes, no text, 2 px margin).
- * Statuses: CJ_ERR_RANGE if the rectangle is not inside fb, is smaller than 32 x 32 px or
- * cannot hold even the bare plot (nothing drawn), CJ_ERR_EMPTY if the plot has no items and no
- * view, CJ_ERR_DEGENERATE if the data occupy a single point and no view is set, errors of the font.
+ * too small for the axes and text gets a bare plot (no axes, no text, 2 px margin), and a tiny
+ * one (down to 12 x 12 px) a bare plot whose strokes may touch its edge. Data spanning more
+ * than the double range (hi - lo overflows) gets no ticks.
+ * Data at a single point (and no view) are shown in a view centred on it.
+ * Statuses: CJ_ERR_RANGE if the rectangle is not inside fb or is smaller than 12 x 12 px
+ * (nothing drawn), CJ_ERR_EMPTY if the plot has no items and no view, errors of the font.
  */
 cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0, int w, int h,
                          cj_font *font);
