@@ -195,19 +195,42 @@ static void write_light(emitter *e, const cj_light *l) {
     close_c(e, '}');
 }
 
-/* The name a texture/material is written under. */
-static void part_name(char *dst, size_t cap, const char *name, const char *prefix, int i) {
-    if (name)
-        snprintf(dst, cap, "%s", name);
-    else
-        snprintf(dst, cap, "%s%d", prefix, i);
+#define NAME_CAP 1024
+
+/* The name part i of `names` (count entries) is written under: its own, else prefix + i with
+ * "_" appended until it differs from every other name. */
+static void part_name(char *dst, char *const *names, size_t count, const char *prefix, int i) {
+    if (names[i]) {
+        snprintf(dst, NAME_CAP, "%s", names[i]);
+        return;
+    }
+    snprintf(dst, NAME_CAP, "%s%d", prefix, i);
+    for (int clash = 1; clash;) {
+        clash = 0;
+        for (size_t k = 0; k < count && !clash; ++k) clash = names[k] && !strcmp(names[k], dst);
+        if (clash && strlen(dst) + 2 < NAME_CAP) strcat(dst, "_");
+    }
+}
+
+/* Names the reader would refuse: repeated, empty or too long. */
+static cj_status check_names(char *const *names, size_t count, const char *what) {
+    for (size_t i = 0; i < count; ++i) {
+        if (!names[i]) continue;
+        if (!names[i][0] || strlen(names[i]) >= NAME_CAP - 8)
+            return cj_fail(CJ_ERR_ARGUMENT, "%s[%zu]: the name is empty or too long", what, i);
+        for (size_t k = 0; k < i; ++k)
+            if (names[k] && !strcmp(names[k], names[i]))
+                return cj_fail(CJ_ERR_ARGUMENT, "%s[%zu].name \"%s\" is already %s[%zu]", what, i,
+                               names[i], what, k);
+    }
+    return CJ_OK;
 }
 
 static void write_texture(emitter *e, const cj_scene *s, int i) {
     static const char *const FILTERS[] = {"nearest", "bilinear", "trilinear"};
     const cj_texture *t = &s->textures[i];
-    char name[256];
-    part_name(name, sizeof name, s->texture_names[i], "texture", i);
+    char name[NAME_CAP];
+    part_name(name, s->texture_names, s->ntextures, "texture", i);
     open_c(e, NULL, '{');
     string(e, "name", name);
     string(e, "type", t->kind == CJ_TEX_IMAGE ? "image" : "checker");
@@ -237,8 +260,8 @@ static void write_texture(emitter *e, const cj_scene *s, int i) {
 static void write_material(emitter *e, const cj_scene *s, int i) {
     static const char *const SHADINGS[] = {"flat", "gouraud", "phong"};
     const cj_material *m = &s->materials[i];
-    char name[256];
-    part_name(name, sizeof name, s->material_names[i], "material", i);
+    char name[NAME_CAP];
+    part_name(name, s->material_names, s->nmaterials, "material", i);
     open_c(e, NULL, '{');
     string(e, "name", name);
     rgb(e, "color", m->color);
@@ -250,8 +273,8 @@ static void write_material(emitter *e, const cj_scene *s, int i) {
     string(e, "shading", SHADINGS[m->shading]);
     boolean(e, "two_sided", m->two_sided);
     if (m->texture >= 0) {
-        char tn[256];
-        part_name(tn, sizeof tn, s->texture_names[m->texture], "texture", m->texture);
+        char tn[NAME_CAP];
+        part_name(tn, s->texture_names, s->ntextures, "texture", m->texture);
         string(e, "texture", tn);
     }
     num(e, "opacity", m->opacity);
@@ -444,8 +467,8 @@ static void write_node(emitter *e, const cj_scene *s, size_t i) {
         close_c(e, '}');
     }
     if (n->geometry >= 0) {
-        char name[256];
-        part_name(name, sizeof name, s->material_names[n->material], "material", n->material);
+        char name[NAME_CAP];
+        part_name(name, s->material_names, s->nmaterials, "material", n->material);
         string(e, "material", name);
         snprintf(name, sizeof name, "geometry%d", n->geometry);
         string(e, "geometry", name);
@@ -488,6 +511,8 @@ static void write_scene(emitter *e, const cj_scene *s) {
 cj_status cj_scene_save_json(const cj_scene *s, const char *path) {
     assert(s && path);
     cj_status st = cj_scene_check(s);
+    if (!st) st = check_names(s->material_names, s->nmaterials, "materials");
+    if (!st) st = check_names(s->texture_names, s->ntextures, "textures");
     if (st) return st;
     if (s->settings.seed > (1ull << 53))
         return cj_fail(CJ_ERR_RANGE, "settings.seed %llu is above 2^53 (not exact in JSON)",

@@ -98,6 +98,18 @@ static const bad_case BAD[] = {
      "scene.json:3:19: JSON syntax error (line 3, column 19)"},
     {"{\"objects\": []}\n\n]", CJ_ERR_PARSE,
      "scene.json:3:1: JSON syntax error (line 3, column 1)"},
+    /* lines survive strings with brackets, quotes and escapes, empty containers and a BOM */
+    {"{\"objects\": [{\"name\": \"a}\\\"],:{[\", \"geometry\": {\"type\": \"sphere\",\n"
+     " \"radius\": -1}}]}",
+     CJ_ERR_RANGE, "scene.json:2: objects[0].geometry.radius must be > 0"},
+    {"{\"settings\": {}, \"lights\": [],\n\"textures\": [ ], \"materials\": [{\"name\": "
+     "\"x\\n\\u00e9\"}],\n\"objects\": [{\"children\": [\n{\"name\": \"[\", \"geometry\": "
+     "\"nope\"}]}]}",
+     CJ_ERR_PARSE,
+     "scene.json:4: objects[0].children[0].geometry \"nope\" names no entry of geometries"},
+    {"\xEF\xBB\xBF{\"objects\": [],\n\"x\": 1}", CJ_ERR_PARSE,
+     "scene.json:2: x is not a known key (expected one of: camera, settings, lights, textures, "
+     "materials, geometries, objects)"},
     /* document */
     {"{}", CJ_ERR_PARSE, "scene.json:1: document: missing key \"objects\""},
     {"[]", CJ_ERR_PARSE, "scene.json:1: document must be an object, not an array"},
@@ -651,7 +663,8 @@ static cj_scene *everything(void) {
     int t0, t1;
     assert_int_equal(cj_scene_add_texture(s, &ti, &t0), CJ_OK);
     assert_int_equal(cj_scene_add_texture(s, &tc, &t1), CJ_OK);
-    assert_int_equal(cj_scene_set_texture_name(s, t1, "checks"), CJ_OK);
+    /* Texture 0 stays unnamed: the writer's "texture0" for it must not clash with this. */
+    assert_int_equal(cj_scene_set_texture_name(s, t1, "texture0"), CJ_OK);
     cj_material m = cj_material_default();
     int m0, m1;
     assert_int_equal(cj_scene_add_material(s, &m, &m0), CJ_OK);
@@ -776,6 +789,11 @@ static void test_round_trip_everything(void **state) {
     free(before);
     free(after);
     cj_scene_material_mut(s, 1)->alpha = 5;
+    assert_int_equal(cj_scene_set_material_name(s, 0, "glass \u00e9"), CJ_OK);
+    assert_int_equal(cj_scene_save_json(s, p1), CJ_ERR_ARGUMENT);
+    assert_string_equal(cj_last_error(),
+                        "materials[1].name \"glass \u00e9\" is already materials[0]");
+    assert_int_equal(cj_scene_set_material_name(s, 0, NULL), CJ_OK);
     char p2[600];
     snprintf(p2, sizeof p2, "%s/no/such/folder/x.json", tmpdir);
     assert_int_equal(cj_scene_save_json(s, p2), CJ_ERR_IO);
