@@ -146,14 +146,17 @@ cj_status cj_scene_load_json_ex(const char *path, const cj_scene_json_options *o
 cj_status cj_scene_load_json(const char *path, const cj_allocator *alloc, cj_scene **out);
 
 /* Writes the scene as JSON that cj_scene_load_json reads back to an equal scene: every
- * material and texture (unnamed ones are named "material<i>" / "texture<i>") and every geometry
+ * material and texture (unnamed ones are named "material<i>" / "texture<i>", with "_" appended
+ * while that clashes with another name) and every geometry
  * (inline data, in "geometries", named "geometry<i>") in index order, objects nested under their
  * groups in pre-order (a scene whose nodes are in pre-order, as every loaded scene is, comes
  * back with the same indices). Image texture paths are written as stored; texels are not
  * written. Atomic: a temporary file in the destination's folder is written, flushed, synced
  * and renamed onto `path`; on any failure it is removed and an old file at `path` is kept.
- * Status: CJ_ERR_IO (naming the path and the reason), CJ_ERR_NOMEM, or what cj_scene_check
- * reports (a scene that does not check is not written). */
+ * Status: CJ_ERR_IO (naming the path and the reason), CJ_ERR_NOMEM, CJ_ERR_ARGUMENT (two
+ * materials or two textures with the same name, an empty name), CJ_ERR_RANGE (settings.seed
+ * above 2^53, not exact in JSON), or what cj_scene_check reports (a scene that does not check is
+ * not written). Shared geometries stay shared (objects refer to "geometries" by name). */
 cj_status cj_scene_save_json(const cj_scene *scene, const char *path);
 
 #ifdef __cplusplus
