@@ -6,6 +6,9 @@
  * inside a 1024x1024 framebuffer (no clipping). Each figure is the median of 7 repeats.
  * "Mpx/s" counts pixels along the line: max(|dx|,|dy|)+1 per line (for every method, so the
  * columns compare cost per unit of length; AA and strokes touch more pixels than that).
+ * Peer: when built with cairo (bench/areas/flatten.cmake), the same lines stroked by cairo 1.16
+ * (ARGB32 image surface of the same size, same widths, butt caps, miter joins, default
+ * antialiasing, opaque colour) in the same run, interleaved with ours repeat by repeat.
  * Usage: bench_lines [scale]   (scale multiplies the work per repeat, default 1). */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "casteljau/framebuffer.h"
@@ -13,6 +16,9 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#ifdef CJ_HAVE_CAIRO
+#include <cairo.h>
+#endif
 #include <string.h>
 #include <time.h>
 #include "bench_clock.h"
@@ -75,17 +81,43 @@ enum {
     M_STROKE1,
     M_STROKE3,
     M_STROKE10,
+#ifdef CJ_HAVE_CAIRO
+    M_CAIRO1,
+    M_CAIRO3,
+    M_CAIRO10,
+#endif
     M_COUNT
 };
 static const char *const names[M_COUNT] = {
     "bresenham",    "bresenham padded", "bresenham a=128", "visit callback", "wu aa",
-    "wu aa padded", "stroke w=1",       "stroke w=3",      "stroke w=10"};
+    "wu aa padded", "stroke w=1",       "stroke w=3",      "stroke w=10",
+#ifdef CJ_HAVE_CAIRO
+    "cairo w=1",    "cairo w=3",        "cairo w=10",
+#endif
+};
+
+#ifdef CJ_HAVE_CAIRO
+static cairo_t *g_cairo;
+#endif
 
 /* Draws lines [0, n) of the pool with method m; returns seconds. */
 static double run(cj_framebuffer *fb, int m, long long n) {
     cj_rgba opaque = cj_rgba_make(20, 40, 200, 255), half = cj_rgba_make(200, 40, 20, 128);
     cj_raster_rect clip = cj_raster_rect_of(fb);
     cj_raster_stroke st = cj_raster_stroke_default(m == M_STROKE1 ? 1 : m == M_STROKE3 ? 3 : 10);
+#ifdef CJ_HAVE_CAIRO
+    if (m >= M_CAIRO1) {
+        cairo_set_line_width(g_cairo, m == M_CAIRO1 ? 1 : m == M_CAIRO3 ? 3 : 10);
+        double t0 = cj_bench_thread_cpu();
+        for (long long i = 0; i < n; ++i) {
+            const seg *s = &pool[i % POOL];
+            cairo_move_to(g_cairo, (double)s->x0 + 0.5, (double)s->y0 + 0.5);
+            cairo_line_to(g_cairo, (double)s->x1 + 0.5, (double)s->y1 + 0.5);
+            cairo_stroke(g_cairo);
+        }
+        return cj_bench_thread_cpu() - t0;
+    }
+#endif
     st.join = CJ_JOIN_MITER;
     st.cap = CJ_CAP_BUTT;
     long long cnt = 0;
@@ -128,6 +160,15 @@ int main(int argc, char **argv) {
     if (cj_framebuffer_create(SIDE, SIDE, CJ_FB_PADDED, NULL, &fbp) != CJ_OK) return 1;
     cj_framebuffer_clear(fb, cj_rgba_make(255, 255, 255, 255));
     cj_framebuffer_clear(fbp, cj_rgba_make(255, 255, 255, 255));
+#ifdef CJ_HAVE_CAIRO
+    cairo_surface_t *csurf = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, SIDE, SIDE);
+    g_cairo = cairo_create(csurf);
+    cairo_set_source_rgb(g_cairo, 1, 1, 1);
+    cairo_paint(g_cairo);
+    cairo_set_source_rgba(g_cairo, 200 / 255.0, 40 / 255.0, 20 / 255.0, 1.0);
+    cairo_set_line_cap(g_cairo, CAIRO_LINE_CAP_BUTT);
+    cairo_set_line_join(g_cairo, CAIRO_LINE_JOIN_MITER);
+#endif
     /* Warm the stroke scratch (allocated on first use). */
     cj_vec2 w[2] = {{1, 1}, {2, 2}};
     cj_raster_stroke ws = cj_raster_stroke_default(1);
@@ -148,16 +189,23 @@ int main(int argc, char **argv) {
     for (size_t k = 0; k < sizeof lengths / sizeof lengths[0]; ++k) {
         int L = lengths[k];
         make_pool(L);
+        long long nn[M_COUNT];
+        static double times[M_COUNT][REPEATS];
         for (int m = 0; m < M_COUNT; ++m) {
             /* Work per repeat: ~20M length pixels for Bresenham, less for the costlier ones. */
             double budget = (m <= M_VISIT ? 1e7 : m <= M_WU_PAD ? 3e6 : 1e6) * scale;
-            long long n = (long long)(budget / (L + 1));
-            if (n < POOL) n = POOL;
-            double times[REPEATS];
-            cj_framebuffer *target = m == M_BRES_PAD || m == M_WU_PAD ? fbp : fb;
-            for (int r = 0; r < REPEATS; ++r) times[r] = run(target, m, n);
-            qsort(times, REPEATS, sizeof times[0], cj_bench_cmp_double);
-            double t = times[REPEATS / 2];
+            nn[m] = (long long)(budget / (L + 1));
+            if (nn[m] < POOL) nn[m] = POOL;
+        }
+        /* Repeats interleaved over the methods, so that a busy machine slows them alike. */
+        for (int r = 0; r < REPEATS; ++r)
+            for (int m = 0; m < M_COUNT; ++m) {
+                cj_framebuffer *target = m == M_BRES_PAD || m == M_WU_PAD ? fbp : fb;
+                times[m][r] = run(target, m, nn[m]);
+            }
+        for (int m = 0; m < M_COUNT; ++m) {
+            const long long n = nn[m];
+            double t = cj_bench_median(times[m], REPEATS);
             table[m][k][0] = (double)n * (L + 1) / t * 1e-6;
             table[m][k][1] = t / (double)n * 1e9;
         }
@@ -194,6 +242,17 @@ int main(int argc, char **argv) {
                t / (double)n * 1e6);
         sink_count += c;
     }
+#ifdef CJ_HAVE_CAIRO
+    printf("\nours / cairo speed (Mpx/s ratio, > 1 = ours faster):\n");
+    for (int wi = 0; wi < 3; ++wi) {
+        printf("%-16s", wi == 0 ? "w=1" : wi == 1 ? "w=3" : "w=10");
+        for (size_t k = 0; k < 5; ++k)
+            printf(" | %21.2fx", table[M_STROKE1 + wi][k][0] / table[M_CAIRO1 + wi][k][0]);
+        printf("\n");
+    }
+    cairo_destroy(g_cairo);
+    cairo_surface_destroy(csurf);
+#endif
     cj_framebuffer_destroy(fb);
     cj_framebuffer_destroy(fbp);
     return 0;

@@ -66,191 +66,132 @@ typedef struct stroker {
     poly first_rect, prev_rect; /* clipped rectangles (n == 0: not visible) */
 } stroker;
 
-/* ---- exact coverage of one convex piece ------------------------------------------------- */
+/* ---- exact coverage by signed-area accumulation ---------------------------------------- */
 
-/* Keeps the part of p with s*(coord k) <= lim (k = 0: x, 1: y). */
-static void clip_half(const poly *in, poly *out, int k, double s, double lim) {
-    out->n = 0;
-    if (in->n == 0) return;
-    cj_vec2 a = in->v[in->n - 1];
-    double fa = s * (k ? a.y : a.x) - lim;
-    for (int i = 0; i < in->n; ++i) {
-        cj_vec2 b = in->v[i];
-        double fb = s * (k ? b.y : b.x) - lim;
-        if ((fa <= 0) != (fb <= 0)) {
-            double t = fa / (fa - fb);
-            cj_vec2 m = {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
-            if (k)
-                m.y = s * lim;
-            else
-                m.x = s * lim;
-            out->v[out->n++] = m;
+/* Coverage is accumulated per row as differences: pixel x of row y is covered by
+ * cov(x) = Σ_{x' <= x} cell[x'], so that one pass over the touched span (compose) turns the cells
+ * into coverage. A polygon's coverage of a pixel is the integral of its winding number over the
+ * pixel, which is the sum over its edges of each edge's signed share: an edge piece crossing row
+ * y from height ya to yb adds, to every pixel x of that row, (ya - yb) times the mean over the
+ * piece of the part of [x, x+1] right of the edge, clamp(x + 1 - X(y), 0, 1). With the piece
+ * running from x_lo to x_hi (W = x_hi - x_lo) that mean is
+ *     F(x) = (R(x + 1 - x_lo) - R(x + 1 - x_hi)) / W,   R(z) = 0, z^2/2, z - 1/2 (z <= 0, <= 1, >
+ * 1) (the integral of the ramp over the piece), and x + 1 - X when the piece stays in one column.
+ * F rises from 0 left of the piece to 1 right of it, so the piece touches cells floor(x_lo) ..
+ * ceil(x_hi) only. Counter-clockwise polygons thus get +area, clockwise ones -area; each piece
+ * is added with its sign times its orientation, so pieces add and subtract exactly as areas do.
+ * Clipping: edge parts left of the target count as if on its left border (every pixel right of
+ * them sees the same ramp value 1), parts right of it touch no pixel of it (but extend the
+ * row's span to the border, where the polygon's inside continues). */
+
+static inline double ramp_int(double z) {
+    return z <= 0.0 ? 0.0 : (z <= 1.0 ? 0.5 * z * z : z - 0.5);
+}
+
+static inline void touch_row(cover_target *t, int ry, int x0, int x1) {
+    if (x0 < t->lo[ry]) t->lo[ry] = x0;
+    if (x1 > t->hi[ry]) t->hi[ry] = x1;
+    if (ry < t->ymin) t->ymin = ry;
+    if (ry > t->ymax) t->ymax = ry;
+}
+
+/* One edge piece (x0, y0) -> (x1, y1) with 0 <= x <= w (relative coordinates), weight wt. */
+static void add_edge_inside(cover_target *t, double x0, double y0, double x1, double y1,
+                            double wt) {
+    if (y0 == y1) return;
+    if (y0 > y1) { /* walk upwards; the sign follows the original direction */
+        double tx = x0, ty = y0;
+        x0 = x1, y0 = y1, x1 = tx, y1 = ty;
+        wt = -wt;
+    }
+    const double k = (x1 - x0) / (y1 - y0);
+    int r0 = (int)floor(y0), r1 = (int)ceil(y1) - 1;
+    if (r0 < 0) r0 = 0;
+    if (r1 > t->h - 1) r1 = t->h - 1;
+    const int w = t->w;
+    for (int ry = r0; ry <= r1; ++ry) {
+        const double ya = y0 > ry ? y0 : ry, yb = y1 < ry + 1.0 ? y1 : ry + 1.0;
+        if (!(yb > ya)) continue;
+        double xa = x0 + (ya - y0) * k, xb = x0 + (yb - y0) * k;
+        /* rounding must not carry x past the clip lines */
+        xa = xa < 0.0 ? 0.0 : (xa > w ? w : xa);
+        xb = xb < 0.0 ? 0.0 : (xb > w ? w : xb);
+        const double d = (ya - yb) * wt; /* upward pieces: -height */
+        const double xl = xa < xb ? xa : xb, xh = xa < xb ? xb : xa;
+        float *row = t->cover + (ptrdiff_t)ry * t->cs;
+        int i0 = (int)floor(xl);
+        if (i0 >= w) i0 = w - 1; /* an edge on the right border: its cell is the last one */
+        const double fi0 = (double)i0;
+        if (xh <= fi0 + 1.0) { /* one column: F(i0) = i0 + 1 - mean X */
+            const double f = fi0 + 1.0 - 0.5 * (xl + xh);
+            row[i0] += (float)(d * f);
+            if (i0 + 1 < w) row[i0 + 1] += (float)(d * (1.0 - f));
+            touch_row(t, ry, i0, i0 + 1 < w ? i0 + 1 : i0);
+            continue;
         }
-        if (fb <= 0) out->v[out->n++] = b;
-        a = b, fa = fb;
-    }
-}
-
-static double poly_area(const poly *p) {
-    double a = 0;
-    for (int i = 0, j = p->n - 1; i < p->n; j = i++)
-        a += p->v[j].x * p->v[i].y - p->v[i].x * p->v[j].y;
-    return 0.5 * fabs(a);
-}
-
-/* Area of piece ∩ [x, x+1] x [y, y+1]. */
-static double pixel_area(const poly *pc, int x, int y) {
-    poly a, b;
-    a.n = pc->n;
-    for (int i = 0; i < pc->n; ++i) a.v[i] = cj_v2(pc->v[i].x - x, pc->v[i].y - y);
-    clip_half(&a, &b, 0, -1.0, 0.0); /* x >= 0 */
-    clip_half(&b, &a, 0, 1.0, 1.0);  /* x <= 1 */
-    clip_half(&a, &b, 1, -1.0, 0.0); /* y >= 0 */
-    clip_half(&b, &a, 1, 1.0, 1.0);  /* y <= 1 */
-    return a.n >= 3 ? poly_area(&a) : 0.0;
-}
-
-/* Area of {q in the unit square centred at distance d inside the line n.q <= c}, |n| = 1: the
- * integral of the square's width profile along n, a trapezoid of half-extents
- * s = (a+b)/2, r = (a-b)/2 with a = max(|nx|,|ny|), b = min(|nx|,|ny|). */
-static double halfplane_area(double d, double nx, double ny) {
-    double a = fabs(nx), b = fabs(ny);
-    if (b > a) {
-        double t = a;
-        a = b, b = t;
-    }
-    double s = 0.5 * (a + b), r = 0.5 * (a - b);
-    if (d <= -s) return 0.0;
-    if (d >= s) return 1.0;
-    if (d > -r && d < r) return 0.5 + d / a;
-    if (b < 1e-12) return d > 0 ? 1.0 : 0.0; /* |d| == r == s up to rounding */
-    if (d <= -r) return (d + s) * (d + s) / (2.0 * a * b);
-    return 1.0 - (s - d) * (s - d) / (2.0 * a * b);
-}
-
-/* A piece with its edge lines: inside <=> n_k . q <= c_k for every edge k (|n_k| = 1). */
-typedef struct prepared {
-    const poly *p;
-    double nx[POLY_MAX], ny[POLY_MAX], c[POLY_MAX];
-    int m;
-} prepared;
-
-static void prepare(const poly *p, prepared *q) {
-    double area2 = 0;
-    for (int i = 0, j = p->n - 1; i < p->n; j = i++)
-        area2 += p->v[j].x * p->v[i].y - p->v[i].x * p->v[j].y;
-    double o = area2 >= 0 ? 1.0 : -1.0; /* outward normal of edge e is o * (ey, -ex) */
-    q->p = p;
-    q->m = 0;
-    for (int i = 0, j = p->n - 1; i < p->n; j = i++) {
-        double ex = p->v[i].x - p->v[j].x, ey = p->v[i].y - p->v[j].y, len = hypot(ex, ey);
-        if (!(len > 0)) continue;
-        double nx = o * ey / len, ny = -o * ex / len;
-        q->nx[q->m] = nx;
-        q->ny[q->m] = ny;
-        q->c[q->m] = nx * p->v[j].x + ny * p->v[j].y;
-        q->m++;
-    }
-}
-
-/* Area of piece ∩ pixel (x, y): 0 or 1 when no edge line crosses the pixel, closed form when
- * exactly one does, polygon clipping otherwise. */
-static double pixel_coverage(const prepared *q, int x, int y) {
-    double cx = x + 0.5, cy = y + 0.5, dc[2] = {0, 0};
-    int kc[2] = {0, 0}, cuts = 0;
-    for (int k = 0; k < q->m; ++k) {
-        double d = q->c[k] - (q->nx[k] * cx + q->ny[k] * cy);
-        double s = 0.5 * (fabs(q->nx[k]) + fabs(q->ny[k]));
-        if (d <= -s) return 0.0;
-        if (d < s) {
-            if (cuts < 2) dc[cuts] = d, kc[cuts] = k;
-            ++cuts;
+        const int i1 = (int)ceil(xh); /* F(i1) = 1 */
+        const double inv = 1.0 / (xh - xl);
+        /* F(i) = (i + 1/2 - xl) / W on the columns whose ramp lies wholly inside the piece
+         * (xl <= i <= xh - 1, i.e. m0 .. M), so the cells m0 + 1 .. M all get d / W. */
+        const int m0 = (int)ceil(xl), M = (int)floor(xh) - 1;
+        double fprev = 0.0;
+        for (int i = i0; i <= i1 && i < w; ++i) {
+            const double u = (double)i + 1.0;
+            const double f = i == i1 ? 1.0 : (ramp_int(u - xl) - ramp_int(u - xh)) * inv;
+            row[i] += (float)(d * (f - fprev));
+            fprev = f;
+            if (i == m0 && M > m0) {
+                const float step = (float)(d * inv);
+                const int e = M < w - 1 ? M : w - 1;
+                for (int j = m0 + 1; j <= e; ++j) row[j] += step;
+                i = M;
+                fprev = ((double)M + 0.5 - xl) * inv;
+            }
         }
-    }
-    if (cuts == 0) return 1.0;
-    if (cuts == 1) return halfplane_area(dc[0], q->nx[kc[0]], q->ny[kc[0]]);
-    /* Two opposite edges (the long sides of a thin rectangle): the slab H1 ∩ H2 with
-     * H1 ∪ H2 = plane, so its area is A1 + A2 - 1. */
-    if (cuts == 2 && q->nx[kc[0]] * q->nx[kc[1]] + q->ny[kc[0]] * q->ny[kc[1]] < -1.0 + 1e-12) {
-        double a = halfplane_area(dc[0], q->nx[kc[0]], q->ny[kc[0]]) +
-                   halfplane_area(dc[1], q->nx[kc[1]], q->ny[kc[1]]) - 1.0;
-        return a > 0.0 ? a : 0.0;
-    }
-    return pixel_area(q->p, x, y);
-}
-
-/* Edges of a piece prepared for scanning: y range and dx/dy. */
-typedef struct scan_edges {
-    double ax[POLY_MAX], ay[POLY_MAX], bx[POLY_MAX], ylo[POLY_MAX], yhi[POLY_MAX], k[POLY_MAX];
-    int horiz[POLY_MAX];
-    int n;
-} scan_edges;
-
-static void scan_prepare(const poly *p, scan_edges *e) {
-    e->n = p->n;
-    for (int i = 0, j = p->n - 1; i < p->n; j = i++) {
-        cj_vec2 a = p->v[j], b = p->v[i];
-        e->ax[i] = a.x, e->ay[i] = a.y, e->bx[i] = b.x;
-        e->ylo[i] = dmin(a.y, b.y), e->yhi[i] = dmax(a.y, b.y);
-        e->horiz[i] = a.y == b.y;
-        e->k[i] = e->horiz[i] ? 0.0 : (b.x - a.x) / (b.y - a.y);
+        touch_row(t, ry, i0, i1 < w ? i1 : w - 1);
     }
 }
 
-/* x extent of the piece inside the band [y0, y1] (y0 == y1: on that line); 0 if it misses. */
-static int x_in_band(const scan_edges *e, double y0, double y1, double *lo, double *hi) {
-    double l = DBL_MAX, h = -DBL_MAX;
-    for (int i = 0; i < e->n; ++i) {
-        if (e->yhi[i] < y0 || e->ylo[i] > y1) continue;
-        double xa, xb;
-        if (e->horiz[i]) {
-            xa = e->ax[i], xb = e->bx[i];
-        } else {
-            double ya = dmax(y0, e->ylo[i]), yb = dmin(y1, e->yhi[i]);
-            xa = e->ax[i] + (ya - e->ay[i]) * e->k[i];
-            xb = e->ax[i] + (yb - e->ay[i]) * e->k[i];
-        }
-        l = dmin(l, dmin(xa, xb));
-        h = dmax(h, dmax(xa, xb));
+/* An edge in relative coordinates: split at the target's left and right borders. */
+static void add_edge(cover_target *t, double x0, double y0, double x1, double y1, double wt) {
+    const double w = t->w;
+    if ((y0 < 0.0 && y1 < 0.0) || (y0 > t->h && y1 > t->h) || y0 == y1) return;
+    if (x0 > x1) { /* order by x; the direction (and sign) is kept by swapping both */
+        double tx = x0, ty = y0;
+        x0 = x1, y0 = y1, x1 = tx, y1 = ty;
+        wt = -wt;
     }
-    *lo = l, *hi = h;
-    return l <= h;
+    if (x1 > w) { /* the part right of the target: no pixel, but the span reaches the border */
+        double yc = x0 >= w ? y0 : y0 + (y1 - y0) * ((w - x0) / (x1 - x0));
+        double ylo = yc < y1 ? yc : y1, yhi = yc < y1 ? y1 : yc;
+        int r0 = (int)floor(ylo), r1 = (int)ceil(yhi) - 1;
+        if (r0 < 0) r0 = 0;
+        if (r1 > t->h - 1) r1 = t->h - 1;
+        for (int ry = r0; ry <= r1; ++ry) touch_row(t, ry, t->w - 1, t->w - 1);
+        if (x0 >= w) return;
+        x1 = w, y1 = yc;
+    }
+    if (x0 < 0.0) { /* the part left of the target counts on its left border */
+        double yc = x1 <= 0.0 ? y1 : y0 + (y1 - y0) * ((0.0 - x0) / (x1 - x0));
+        add_edge_inside(t, 0.0, y0, 0.0, yc, wt);
+        if (x1 <= 0.0) return;
+        x0 = 0.0, y0 = yc;
+    }
+    add_edge_inside(t, x0, y0, x1, y1, wt);
 }
 
 /* Accumulates sign * area(pixel ∩ p) over the pixels of the target. */
 static void add_poly(stroker *s, const poly *p, float sign) {
     if (p->n < 3) return;
     cover_target *t = s->t;
-    prepared q;
-    prepare(p, &q);
-    scan_edges e;
-    scan_prepare(p, &e);
-    double ylo = DBL_MAX, yhi = -DBL_MAX;
-    for (int k = 0; k < p->n; ++k) ylo = dmin(ylo, p->v[k].y), yhi = dmax(yhi, p->v[k].y);
-    double r0 = dmax(floor(ylo), t->oy), r1 = dmin(ceil(yhi) - 1.0, t->oy + t->h - 1.0);
-    for (int y = (int)r0; y <= (int)r1 && r0 <= r1; ++y) {
-        double xlo, xhi;
-        if (!x_in_band(&e, y, y + 1.0, &xlo, &xhi)) continue;
-        double c0 = dmax(floor(xlo), t->ox), c1 = dmin(ceil(xhi) - 1.0, t->ox + t->w - 1.0);
-        if (xhi == xlo || c0 > c1) continue;
-        /* Pixels whose four corners are inside are full: x >= fa, x + 1 <= fb. */
-        double a0, b0, a1, b1, fa = 1.0, fb = 0.0;
-        if (x_in_band(&e, y, y, &a0, &b0) && x_in_band(&e, y + 1.0, y + 1.0, &a1, &b1)) {
-            fa = ceil(dmax(a0, a1));
-            fb = floor(dmin(b0, b1)) - 1.0;
-        }
-        int ry = y - t->oy, x0 = (int)c0 - t->ox, x1 = (int)c1 - t->ox;
-        float *row = t->cover + (ptrdiff_t)ry * t->cs;
-        for (int x = x0; x <= x1; ++x) {
-            double ax = x + t->ox;
-            double area = ax >= fa && ax <= fb ? 1.0 : pixel_coverage(&q, x + t->ox, y);
-            row[x] += sign * (float)area;
-        }
-        if (x0 < t->lo[ry]) t->lo[ry] = x0;
-        if (x1 > t->hi[ry]) t->hi[ry] = x1;
-        if (ry < t->ymin) t->ymin = ry;
-        if (ry > t->ymax) t->ymax = ry;
-    }
+    double area2 = 0;
+    for (int i = 0, j = p->n - 1; i < p->n; j = i++)
+        area2 += p->v[j].x * p->v[i].y - p->v[i].x * p->v[j].y;
+    if (area2 == 0.0) return;
+    const double wt = area2 > 0.0 ? (double)sign : -(double)sign;
+    const double ox = t->ox, oy = t->oy;
+    for (int i = 0, j = p->n - 1; i < p->n; j = i++)
+        add_edge(t, p->v[j].x - ox, p->v[j].y - oy, p->v[i].x - ox, p->v[i].y - oy, wt);
 }
 
 /* Circular sector centred at c, radius r, from unit direction u0 turning by phi in [0, pi]
@@ -516,31 +457,52 @@ static void stroker_init(stroker *s, cover_target *t, const cj_raster_stroke *st
     t->ymax = -1;
 }
 
-/* Hands every covered pixel to fn (or blends it into fb) and clears the plane behind. */
+#define CJ_STROKE_PREFETCH_ROWS 4
+
+/* Hands every covered pixel to fn (or blends it into fb) and clears the plane behind: the
+ * running sum of a row's cells is its coverage. */
 static void compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_raster_cover_fn fn,
                     void *user) {
     for (int ry = t->ymin; ry <= t->ymax; ++ry) {
         float *row = t->cover + (ptrdiff_t)ry * t->cs;
-        for (int x = t->lo[ry]; x <= t->hi[ry]; ++x) {
-            float cov = row[x];
-            row[x] = 0.0f;
-            if (cov > 1e-6f) { /* below: rounding residue of subtracted overlaps */
-                if (cov > 1.0f) cov = 1.0f;
-                if (fn) {
-                    fn(user, x + t->ox, ry + t->oy, cov);
-                } else if (fb) {
-                    cj_rgba s = c;
-                    s.a = cj_raster_scale_alpha_(c.a, cov);
-                    cj_rgba *p = fb->pixels + (ptrdiff_t)(ry + t->oy) * fb->stride + x + t->ox;
-                    if (s.a == 255)
-                        *p = s;
-                    else if (s.a != 0)
-                        *p = cj_rgba_over_inl_(s, *p);
-                }
-            }
-        }
+        const int lo = t->lo[ry], hi = t->hi[ry];
         t->lo[ry] = INT_MAX;
         t->hi[ry] = -1;
+        if (lo > hi) continue;
+        double acc = 0.0;
+        if (fn || !fb) {
+            for (int x = lo; x <= hi; ++x) {
+                acc += row[x];
+                row[x] = 0.0f;
+                float cov = (float)acc;
+                if (cov > 1e-6f) { /* below: rounding residue of subtracted overlaps */
+                    if (cov > 1.0f) cov = 1.0f;
+                    if (fn) fn(user, x + t->ox, ry + t->oy, cov);
+                }
+            }
+            continue;
+        }
+        cj_rgba *px = fb->pixels + (ptrdiff_t)(ry + t->oy) * fb->stride + t->ox;
+        /* Steep strokes touch a new framebuffer line per row: start fetching the lines a few
+         * rows ahead (their spans are known), so the misses overlap instead of queueing. */
+        for (int k = 1; k <= CJ_STROKE_PREFETCH_ROWS; ++k)
+            if (ry + k <= t->ymax && t->lo[ry + k] <= t->hi[ry + k]) {
+                __builtin_prefetch(px + (ptrdiff_t)k * fb->stride + t->lo[ry + k], 1);
+                __builtin_prefetch(px + (ptrdiff_t)k * fb->stride + t->hi[ry + k], 1);
+            }
+        for (int x = lo; x <= hi; ++x) {
+            acc += row[x];
+            row[x] = 0.0f;
+            const float cov = (float)acc;
+            if (cov > 1e-6f) {
+                cj_rgba sc = c;
+                sc.a = cj_raster_scale_alpha_(c.a, cov > 1.0f ? 1.0f : cov);
+                if (sc.a == 255)
+                    px[x] = sc;
+                else if (sc.a != 0)
+                    px[x] = cj_rgba_over_inl_(sc, px[x]);
+            }
+        }
     }
     t->ymin = INT_MAX;
     t->ymax = -1;

@@ -1,0 +1,15 @@
+# Peers measured in the same run as ours (issue 13): cairo's flattening (cairo_copy_path_flat)
+# next to bench_flatten's, cairo's anti-aliased strokes next to bench_lines'. cairo is linked
+# into these bench programs only, never into the library.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(CJ_BENCH_CAIRO IMPORTED_TARGET cairo)
+if(CJ_BENCH_CAIRO_FOUND)
+  target_link_libraries(bench_flatten PRIVATE PkgConfig::CJ_BENCH_CAIRO)
+  target_compile_definitions(bench_flatten PRIVATE CJ_HAVE_CAIRO=1)
+  if(TARGET bench_lines)
+    target_link_libraries(bench_lines PRIVATE PkgConfig::CJ_BENCH_CAIRO)
+    target_compile_definitions(bench_lines PRIVATE CJ_HAVE_CAIRO=1)
+  endif()
+else()
+  message(STATUS "cairo not found: bench_flatten and bench_lines run without the cairo columns")
+endif()
