@@ -277,19 +277,22 @@ cj_status cj_scene_add_texture(cj_scene *s, const cj_texture *t, int *index) {
     int ok = 1;
     c.path = cj_scene_strdup_(s, t->path, &ok);
     c.texels = NULL;
-    if (ok && t->texels && t->kind == CJ_TEX_IMAGE)
-        c.texels =
-            dup_block(s, t->texels, (size_t)t->width * (size_t)t->height * 4 * sizeof(float), &ok);
-    if (!ok) {
-        cj_scene_free_(s, (void *)c.path);
-        return cj_fail(CJ_ERR_NOMEM, "out of memory adding %s", path);
-    }
-    if (!c.texels) c.width = c.height = 0;
+    c.width = c.height = 0;
+    if (!ok) return cj_fail(CJ_ERR_NOMEM, "out of memory adding %s", path);
     s->textures[s->ntextures] = c;
     s->texture_sources[s->ntextures] = NULL;
     s->texture_names[s->ntextures] = NULL;
-    if (index) *index = (int)s->ntextures;
     s->ntextures++;
+    /* Texels given with the texture go through the same checks as later ones. */
+    if (t->texels && t->kind == CJ_TEX_IMAGE) {
+        st = cj_scene_set_texture_pixels(s, (int)s->ntextures - 1, t->width, t->height, t->texels);
+        if (st) {
+            s->ntextures--;
+            cj_scene_free_(s, (void *)c.path);
+            return st;
+        }
+    }
+    if (index) *index = (int)s->ntextures - 1;
     return CJ_OK;
 }
 

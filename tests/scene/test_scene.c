@@ -141,6 +141,17 @@ static void test_builder_and_copies(void **state) {
     assert_int_equal(cj_scene_set_texture_pixels(s, ti, 2, 1, px), CJ_ERR_NONFINITE);
     assert_string_equal(cj_last_error(), "textures[0]: texel 0, channel 1 is not finite");
     assert_true(cj_scene_texture(s, ti)->texels[1] == 0.2f); /* unchanged on failure */
+    cj_texture tn = cj_texture_default(CJ_TEX_IMAGE);
+    tn.path = "b.png";
+    tn.width = 2;
+    tn.height = 1;
+    tn.texels = px; /* texels given with the texture are checked the same way */
+    assert_int_equal(cj_scene_add_texture(s, &tn, NULL), CJ_ERR_NONFINITE);
+    assert_string_equal(cj_last_error(), "textures[1]: texel 0, channel 1 is not finite");
+    assert_int_equal(cj_scene_texture_count(s), 1);
+    px[1] = 0.25f;
+    assert_int_equal(cj_scene_add_texture(s, &tn, NULL), CJ_OK);
+    assert_true(cj_scene_texture(s, 1)->texels[1] == 0.25f && cj_scene_texture(s, 1)->width == 2);
 
     /* Nodes: names copied, ids 1 + index among objects (groups get 0). */
     int mat;
