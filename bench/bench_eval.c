@@ -1,8 +1,9 @@
 /* bench_eval: cost and accuracy of the four Bézier evaluation methods.
  *
  * Part 1, cost: ns per evaluation for degrees 3, 8, 20 (planar curves, 256 parameters spread
- * over [0,1]), batch (cj_bezier_eval_batch) and single (cj_bezier_eval per parameter, which
- * validates the curve each time), median of 41 runs of at least 0.25 ms each, the methods
+ * over [0,1]), batch (cj_bezier_eval_batch), single (cj_bezier_eval per parameter, which
+ * validates the curve each time) and unchecked (cj_bezier_eval_unchecked per parameter, the
+ * curve validated once), median of 41 runs of at least 0.25 ms each, the methods
  * interleaved run by run so that a busy machine slows them alike; ratios to de Casteljau.
  * Part 2, accuracy: the hard case p(s) = (s-1)(s-3/4)^7 in Bernstein form near s = 3/4: the
  * condition number and relative errors measured against an exact MPFR oracle, next to the
@@ -25,7 +26,7 @@
 
 static volatile double sink;
 
-typedef enum { MODE_BATCH, MODE_SINGLE, MODE_BOUND } mode;
+typedef enum { MODE_BATCH, MODE_SINGLE, MODE_BOUND, MODE_UNCHECKED } mode;
 
 /* One run: reps passes over the NT parameters; returns ns per evaluation. */
 static double run_once(const cj_bezier *c, cj_eval_method m, mode md, const double *ts, double *out,
@@ -35,6 +36,9 @@ static double run_once(const cj_bezier *c, cj_eval_method m, mode md, const doub
     for (long r = 0; r < reps; ++r) {
         if (md == MODE_BATCH) {
             if (cj_bezier_eval_batch(c, m, ts, NT, out)) abort();
+        } else if (md == MODE_UNCHECKED) {
+            for (int j = 0; j < NT; ++j)
+                cj_bezier_eval_unchecked(c, m, ts[j], out + (size_t)j * (size_t)c->dim);
         } else if (md == MODE_SINGLE) {
             for (int j = 0; j < NT; ++j)
                 if (cj_bezier_eval(c, m, ts[j], out + (size_t)j * (size_t)c->dim)) abort();
@@ -60,7 +64,7 @@ static long calibrate(const cj_bezier *c, cj_eval_method m, mode md, const doubl
     return reps;
 }
 
-#define NCOL 9 /* 4 methods x (batch, single) + compensated with bound */
+#define NCOL 13 /* 4 methods x (batch, single) + compensated with bound + 4 unchecked */
 
 static void cost_table(void) {
     static const struct {
@@ -83,8 +87,8 @@ static void cost_table(void) {
            "in software"
 #endif
     );
-    printf("%-6s %-18s %10s %10s %11s %11s\n", "degree", "method", "batch ns", "single ns",
-           "batch/dc", "single/dc");
+    printf("%-6s %-18s %10s %10s %10s %11s %11s %11s\n", "degree", "method", "batch ns",
+           "single ns", "unchkd ns", "batch/dc", "single/dc", "unchkd/dc");
     for (size_t di = 0; di < sizeof degrees / sizeof degrees[0]; ++di) {
         const int n = degrees[di];
         double pts[(20 + 1) * 2];
@@ -95,22 +99,26 @@ static void cost_table(void) {
         const cj_bezier c = cj_bezier_view(n, 2, pts);
         long reps[NCOL];
         static double v[NCOL][RUNS];
-        for (int col = 0; col < NCOL; ++col) {
-            const mode md = col == 8 ? MODE_BOUND : (col % 2 ? MODE_SINGLE : MODE_BATCH);
-            reps[col] = calibrate(&c, methods[col == 8 ? 3 : col / 2].m, md, ts, out);
-        }
+        /* columns 0-7: (batch, single) per method; 8: compensated+bound; 9-12: unchecked */
+#define COL_MODE(col)                                                                              \
+    ((col) == 8 ? MODE_BOUND : (col) > 8 ? MODE_UNCHECKED : ((col) % 2 ? MODE_SINGLE : MODE_BATCH))
+#define COL_METHOD(col) methods[(col) == 8 ? 3 : (col) > 8 ? (col)-9 : (col) / 2].m
+        for (int col = 0; col < NCOL; ++col)
+            reps[col] = calibrate(&c, COL_METHOD(col), COL_MODE(col), ts, out);
         for (int r = 0; r < RUNS; ++r)
-            for (int col = 0; col < NCOL; ++col) {
-                const mode md = col == 8 ? MODE_BOUND : (col % 2 ? MODE_SINGLE : MODE_BATCH);
-                v[col][r] = run_once(&c, methods[col == 8 ? 3 : col / 2].m, md, ts, out, reps[col]);
-            }
+            for (int col = 0; col < NCOL; ++col)
+                v[col][r] = run_once(&c, COL_METHOD(col), COL_MODE(col), ts, out, reps[col]);
         double med[NCOL];
         for (int col = 0; col < NCOL; ++col) med[col] = cj_bench_median(v[col], (size_t)(RUNS));
         for (int mi = 0; mi < 4; ++mi)
-            printf("%-6d %-18s %10.1f %10.1f %10.2fx %10.2fx\n", n, methods[mi].name, med[2 * mi],
-                   med[2 * mi + 1], med[2 * mi] / med[0], med[2 * mi + 1] / med[1]);
-        printf("%-6d %-18s %10s %10.1f %11s %10.2fx\n", n, "compensated+bound", "-", med[8], "-",
-               med[8] / med[1]);
+            printf("%-6d %-18s %10.1f %10.1f %10.1f %10.2fx %10.2fx %10.2fx\n", n, methods[mi].name,
+                   med[2 * mi], med[2 * mi + 1], med[9 + mi], med[2 * mi] / med[0],
+                   med[2 * mi + 1] / med[1], med[9 + mi] / med[9]);
+        printf("%-6d %-18s %10s %10.1f %10s %11s %10.2fx %11s\n", n, "compensated+bound", "-",
+               med[8], "-", "-", med[8] / med[1], "-");
+        printf("%-6d horner per call vs de Casteljau per call: %.2fx faster (single), %.2fx faster "
+               "(unchecked)\n",
+               n, med[1] / med[5], med[9] / med[11]);
     }
 }
 

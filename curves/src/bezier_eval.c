@@ -100,7 +100,36 @@ static void bernstein_kernel(const cj_bezier *c, double t, double *out) {
     CJ_DISPATCH_DIM(bernstein_run, c, t, out);
 }
 
+/* Degree 3 (the cubics of paths and drawing), division-free: Horner in t with coefficients
+ * carrying the powers of s = 1 - t,
+ *     c(t) = ((b_3 t + 3 s b_2) t + 3 s^2 b_1) t + s^3 b_0,
+ * three fma in a chain per coordinate, the coefficients formed beside it. Rounding count for the
+ * term i: fl(1-t) enters s^(3-i) 3-i times, forming the power 2-i times, the factor 3 and the
+ * product with b_i once each, and the chain i+1 times: at most 2n+2 = 8 <= 4n+2, so the
+ * Horner bound gamma(4n+2) M of cj_bezier_error_bound holds (also off [0,1], with |t|, |1-t|). */
+CJ_ALWAYS_INLINE void horner3_run(const double *restrict p, int d, double t, double *restrict out) {
+    const double s = 1.0 - t, s2 = s * s, s3 = s2 * s, s1x3 = 3.0 * s, s2x3 = 3.0 * s2;
+    for (int k = 0; k < d; ++k) {
+        double r = fma(p[3 * d + k], t, s1x3 * p[2 * d + k]);
+        r = fma(r, t, s2x3 * p[d + k]);
+        out[k] = fma(r, t, s3 * p[k]);
+    }
+}
+
 static void horner_kernel(const cj_bezier *c, double t, double *out) {
+    if (c->degree == 3) {
+        switch (c->dim) {
+        case 2:
+            horner3_run(c->pts, 2, t, out);
+            return;
+        case 3:
+            horner3_run(c->pts, 3, t, out);
+            return;
+        default:
+            horner3_run(c->pts, c->dim, t, out);
+            return;
+        }
+    }
     CJ_DISPATCH_DIM(horner_run, c, t, out);
 }
 
@@ -174,14 +203,32 @@ static inline int eval_inputs_ok(const cj_bezier *c, cj_eval_method m, double t)
 }
 
 cj_status cj_bezier_eval(const cj_bezier *c, cj_eval_method method, double t, double *out) {
-    assert(out != NULL);
+    assert(out != NULL && c != NULL && c->pts != NULL);
     cj_status st;
+    if (method == CJ_EVAL_HORNER && c->degree == 3 && c->dim == 2 && t - t == 0.0 &&
+        cj_all_finite(c->pts, 8)) { /* planar cubics, validated inline */
+        double v[2];
+        horner3_run(c->pts, 2, t, v);
+        if (!cj_all_finite(v, 2) && (st = cj_check_value(v, 2, t))) return st;
+        out[0] = v[0], out[1] = v[1];
+        return CJ_OK;
+    }
     if (!eval_inputs_ok(c, method, t) && (st = check_eval(c, method, t))) return st;
     double v[CJ_MAX_DIM];
     eval_kernel(c, method, t, v);
     if (!cj_all_finite(v, (size_t)c->dim) && (st = cj_check_value(v, c->dim, t))) return st;
     cj_copy_point(out, v, c->dim);
     return CJ_OK;
+}
+
+void cj_bezier_eval_unchecked(const cj_bezier *c, cj_eval_method method, double t, double *out) {
+    /* The contract (bezier.h) is the caller's; debug builds check it. */
+    assert(out != NULL && eval_inputs_ok(c, method, t));
+    if (method == CJ_EVAL_HORNER && c->degree == 3 && c->dim == 2) { /* planar cubics */
+        horner3_run(c->pts, 2, t, out);
+        return;
+    }
+    eval_kernel(c, method, t, out);
 }
 
 cj_status cj_bezier_eval_bernstein(const cj_bezier *c, double t, double *out) {

@@ -44,7 +44,8 @@ typedef struct cj_bezier {
 typedef enum cj_eval_method {
     CJ_EVAL_DECASTELJAU = 0, /* the triangle of convex combinations: stable, O(n^2 d) */
     CJ_EVAL_BERNSTEIN,       /* direct sum Σ b_i B_i^n(t), basis by powers and binomials */
-    CJ_EVAL_HORNER,          /* Volk–Schumaker: Horner in t/(1-t) (or (1-t)/t), O(n d) */
+    CJ_EVAL_HORNER,          /* Volk–Schumaker: Horner in t/(1-t) (or (1-t)/t), O(n d); at
+                              * degree 3, Horner in t with s-power coefficients (no division) */
     CJ_EVAL_COMPENSATED      /* de Casteljau with error-free transformations (Graillat et al.) */
 } cj_eval_method;
 
@@ -72,6 +73,25 @@ double cj_gamma(int k);
  * A value that overflows (far extrapolation of a high degree) is CJ_ERR_RANGE naming t, with
  * out untouched: a NaN or infinity is never returned. */
 cj_status cj_bezier_eval(const cj_bezier *c, cj_eval_method method, double t, double *out);
+
+/* Unchecked evaluation, for callers that validate a curve once and evaluate it many times
+ * (a validated curve costs nothing more to evaluate: cj_bezier_eval spends 5-10 ns per call on
+ * validation, as much as Horner's work at degree 8).
+ * CONTRACT, the caller's to keep (nothing is checked in release builds; debug builds assert it):
+ *   - cj_bezier_check(c, limit) returned CJ_OK for this curve, with limit the method's degree
+ *     limit (CJ_BEZIER_MAX_DEGREE, or CJ_BEZIER_BINOMIAL_MAX_DEGREE for Bernstein and Horner),
+ *     and neither the view nor its control points have changed since;
+ *   - method is one of the four cj_eval_method values and t is finite;
+ *   - out has room for c->dim doubles and does not overlap the control points.
+ * Then out receives exactly what cj_bezier_eval would write (same kernels, bit-identical, the
+ * same error bounds), with no status and no error state touched. The one difference: a value
+ * that overflows (far extrapolation, t well outside [0,1]) is written as it comes out, possibly
+ * infinite or NaN, where cj_bezier_eval returns CJ_ERR_RANGE; for t in [0,1] and coordinates
+ * below 2^(1000-n) in magnitude this cannot happen. Breaking the contract is undefined behaviour.
+ * CJ_EVAL_HORNER at degree 3 is a division-free unrolled kernel, ((b_3 t + 3 s b_2) t +
+ * 3 s^2 b_1) t + s^3 b_0 with s = 1 - t, within the same gamma(4n+2) bound (bench_eval: per-call
+ * cost against de Casteljau). */
+void cj_bezier_eval_unchecked(const cj_bezier *c, cj_eval_method method, double t, double *out);
 
 /* Individual methods, same contract as cj_bezier_eval. */
 cj_status cj_bezier_eval_decasteljau(const cj_bezier *c, double t, double *out);
