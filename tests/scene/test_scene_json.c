@@ -77,7 +77,7 @@ static void test_shipped_scenes(void **state) {
         n++;
     }
     closedir(d);
-    assert_true(n >= 5);
+    assert_true(n >= 6);
     printf("test_scene_json: %d shipped scenes load and check\n", n);
 }
 
@@ -622,8 +622,9 @@ static void round_trip(const char *ctx, const cj_scene *s) {
 
 static void test_round_trip_shipped(void **state) {
     (void)state;
-    const char *names[] = {"teapot", "quadrics", "revolution", "transparent", "raytrace"};
-    for (int i = 0; i < 5; ++i) {
+    const char *names[] = {"teapot",      "quadrics", "revolution",
+                           "transparent", "raytrace", "gallery"};
+    for (int i = 0; i < 6; ++i) {
         char path[512];
         snprintf(path, sizeof path, "%s/%s.json", CJ_SCENES_DIR, names[i]);
         cj_scene *s = NULL;
@@ -631,7 +632,7 @@ static void test_round_trip_shipped(void **state) {
         round_trip(names[i], s);
         cj_scene_destroy(s);
     }
-    printf("test_scene_json: the 5 shipped scenes survive save -> load -> equal, and a second "
+    printf("test_scene_json: the 6 shipped scenes survive save -> load -> equal, and a second "
            "save writes the same bytes\n");
 }
 
