@@ -108,6 +108,12 @@ void cj_raster_tile_forward(const cj_raster_prep *prep, const cj_tile *tile, cj_
  * more than the tiles): tile->thread is below it, so per-thread scratch can be sized ahead. */
 int cj_raster_thread_count(const cj_raster_prep *prep, int threads);
 
+/* Whether cj_raster_run resolves the barycentrics of the visible triangle into the tile
+ * samples (on by default). Off, b1 = b2 = 0 there: a depth/id-only pass (flat shading without
+ * attributes, the depth bench) skips two divisions per sample. The forward mode always
+ * computes them. */
+void cj_raster_prep_set_barycentrics(cj_raster_prep *prep, int on);
+
 /* The tile size and image size a prep was built for. */
 void cj_raster_prep_layout(const cj_raster_prep *prep, int *width, int *height, int *spp,
                            int *tile_size);

@@ -69,6 +69,7 @@ struct cj_raster_prep {
     int tiles_x, tiles_y;
     int ox[16], oy[16]; /* sample offsets in 1/256 pixel */
     int oxmin, oxmax, oymin, oymax;
+    int barycentrics; /* resolve b1, b2 into the tile samples (cj_raster_prep_set_barycentrics) */
     size_t setup_count;
     cj_tri_setup *setups;
     size_t *bin_start; /* tiles_x·tiles_y + 1 offsets into bin_items */

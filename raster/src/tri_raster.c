@@ -5,17 +5,25 @@
  * Every value computed at a sample — edge functions, depth, barycentrics — is a fixed function
  * of the set-up triangle and the sample's absolute position (integers, or doubles evaluated in
  * one order from exact integer offsets), never of the tile's origin: the same frame comes out
- * for any tile size and thread count. */
+ * for any tile size and thread count. The AVX2 kernels compute the same IEEE operations as
+ * the scalar ones, lane by lane.
+ *
+ * Scratch planes are sample-major (plane q holds sample q of every pixel, row by row), so a
+ * row of one sample is contiguous for the span kernels. Wide spans are cut exactly by integer
+ * division of the edge functions (no per-sample edge test); narrow ones test the three edge
+ * functions per sample. */
 #include "tri_internal.h"
 
 #include <math.h>
 #include <string.h>
 
-#if defined(__GNUC__)
-#define CJ_INLINE static inline __attribute__((always_inline))
-#else
-#define CJ_INLINE static inline
+#if defined(__AVX2__)
+#include <immintrin.h>
 #endif
+
+/* Below this many pixels a row is scanned with per-sample edge tests; above, its exact span
+ * is found by three integer divisions per sample row. */
+#define NARROW_SPAN 24
 
 static inline double plane_at(const cj_tri_plane *p, double dx, double dy) {
     return (p->v0 + p->vb * dy) + p->va * dx;
@@ -38,136 +46,190 @@ void cj_tri_bary_at(const cj_tri_setup *s, int64_t X, int64_t Y, float *b1, floa
     *b2 = (float)(plane_at(&s->q2, dx, dy) / r);
 }
 
-/* The pixel columns [*lo, *hi) of row y that may hold covered samples: each edge bounds the
- * span from one side, computed in double and widened by two pixels (the exact test inside the
- * span decides). Returns 0 when an edge excludes the whole row. */
-static int row_span(const cj_raster_prep *p, const cj_tri_setup *s, int y, int *lo, int *hi) {
-    const int64_t Ypix = (int64_t)y * 256;
-    double l = *lo, h = *hi;
+/* floor(n / d) and ceil(n / d) for d > 0. */
+static inline int64_t floor_div(int64_t n, int64_t d) {
+    int64_t q = n / d;
+    return (n % d != 0 && n < 0) ? q - 1 : q;
+}
+static inline int64_t ceil_div(int64_t n, int64_t d) {
+    int64_t q = n / d;
+    return (n % d != 0 && n > 0) ? q + 1 : q;
+}
+
+/* The exact columns [*lo, *hi) of the sample row at Yq (sample x offset ox) inside all three
+ * edges: E_k = 256 a_k x + g_k >= 0 with g_k = a_k ox + b_k Yq + c_k. Returns 0 if empty. */
+static inline int exact_span(const cj_tri_setup *s, int64_t ox, int64_t Yq, int *lo, int *hi) {
+    int64_t l = *lo, h = *hi;
     for (int k = 0; k < 3; ++k) {
-        const int64_t a = s->ea[k], b = s->eb[k];
-        const int64_t Yb = Ypix + (b > 0 ? p->oymax : p->oymin);
-        const int64_t cy = b * Yb + s->ec[k];
-        if (a > 0) { /* a X + cy >= 0  <=>  X >= −cy/a, X = 256 x + oxmax at best */
-            const double x = ((double)(-cy) / (double)a - p->oxmax) / 256.0 - 2.0;
+        const int64_t a = s->ea[k], g = a * ox + s->eb[k] * Yq + s->ec[k];
+        if (a > 0) {
+            const int64_t x = ceil_div(-g, 256 * a);
             if (x > l) l = x;
         } else if (a < 0) {
-            const double x = ((double)cy / (double)(-a) - p->oxmin) / 256.0 + 2.0;
+            const int64_t x = floor_div(g, -256 * a) + 1;
             if (x < h) h = x;
-        } else if (cy < 0) {
+        } else if (g < 0) {
             return 0;
         }
     }
-    if (!(l < h)) return 0;
-    const int il = (int)ceil(l), ih = (int)floor(h) + 1;
-    if (il > *lo) *lo = il;
-    if (ih < *hi) *hi = ih;
-    return *lo < *hi;
+    if (l >= h) return 0;
+    *lo = (int)l;
+    *hi = (int)h;
+    return 1;
 }
 
-/* The visibility pass of one triangle over the tile, specialised on the sample count. */
-CJ_INLINE void raster_one(const cj_raster_prep *p, const cj_tri_setup *s, uint32_t id,
-                          const cj_tile *t, float *depth, uint32_t *ids, const int SPP,
-                          uint64_t *tested, uint64_t *written) {
+#if defined(__AVX2__)
+/* Lane masks for the 4-bit "all edges inside" patterns. */
+static const int32_t k_lane_mask[16][4] = {
+    {0, 0, 0, 0},   {-1, 0, 0, 0},   {0, -1, 0, 0},   {-1, -1, 0, 0},
+    {0, 0, -1, 0},  {-1, 0, -1, 0},  {0, -1, -1, 0},  {-1, -1, -1, 0},
+    {0, 0, 0, -1},  {-1, 0, 0, -1},  {0, -1, 0, -1},  {-1, -1, 0, -1},
+    {0, 0, -1, -1}, {-1, 0, -1, -1}, {0, -1, -1, -1}, {-1, -1, -1, -1}};
+#endif
+
+/* Depth test of n consecutive samples of one sample row: z = (rowz + za·dx) with dx = dx0 +
+ * 256 i, clamped to [−1, 1], written with id where strictly nearer. With edges (e != NULL):
+ * only where e_k + i·st_k >= 0 for k = 0, 1, 2. Returns the samples written. */
+static inline uint64_t span_kernel(float *dp, uint32_t *ip, int n, double rowz, double za,
+                                   double dx0, uint32_t id, const int64_t *e, const int64_t *st) {
+    uint64_t wr = 0;
+    int i = 0;
+    int64_t e0 = 0, e1 = 0, e2 = 0;
+    if (e) {
+        e0 = e[0];
+        e1 = e[1];
+        e2 = e[2];
+    }
+#if defined(__AVX2__)
+    const __m256d vz = _mm256_set1_pd(rowz), va = _mm256_set1_pd(za);
+    const __m256d lo = _mm256_set1_pd(-1.0), hi = _mm256_set1_pd(1.0);
+    const __m256d step = _mm256_set1_pd(1024.0);
+    __m256d dx = _mm256_setr_pd(dx0, dx0 + 256.0, dx0 + 512.0, dx0 + 768.0);
+    const __m128i vid = _mm_set1_epi32((int)id);
+    __m256i ve0 = _mm256_setzero_si256(), ve1 = ve0, ve2 = ve0, vs0 = ve0, vs1 = ve0, vs2 = ve0;
+    if (e) {
+        ve0 = _mm256_setr_epi64x(e0, e0 + st[0], e0 + 2 * st[0], e0 + 3 * st[0]);
+        ve1 = _mm256_setr_epi64x(e1, e1 + st[1], e1 + 2 * st[1], e1 + 3 * st[1]);
+        ve2 = _mm256_setr_epi64x(e2, e2 + st[2], e2 + 2 * st[2], e2 + 3 * st[2]);
+        vs0 = _mm256_set1_epi64x(4 * st[0]);
+        vs1 = _mm256_set1_epi64x(4 * st[1]);
+        vs2 = _mm256_set1_epi64x(4 * st[2]);
+    }
+    for (; i + 4 <= n; i += 4) {
+        __m256d z = _mm256_add_pd(vz, _mm256_mul_pd(va, dx));
+        z = _mm256_min_pd(_mm256_max_pd(z, lo), hi);
+        const __m128 zf = _mm256_cvtpd_ps(z);
+        const __m128 old = _mm_loadu_ps(dp + i);
+        __m128 m = _mm_cmplt_ps(zf, old);
+        if (e) {
+            const __m256i o = _mm256_or_si256(_mm256_or_si256(ve0, ve1), ve2);
+            const int outside = _mm256_movemask_pd(_mm256_castsi256_pd(o));
+            m = _mm_and_ps(m, _mm_loadu_ps((const float *)k_lane_mask[outside ^ 15]));
+            ve0 = _mm256_add_epi64(ve0, vs0);
+            ve1 = _mm256_add_epi64(ve1, vs1);
+            ve2 = _mm256_add_epi64(ve2, vs2);
+        }
+        _mm_storeu_ps(dp + i, _mm_blendv_ps(old, zf, m));
+        const __m128i oid = _mm_loadu_si128((const __m128i *)(ip + i));
+        _mm_storeu_si128((__m128i *)(ip + i), _mm_blendv_epi8(oid, vid, _mm_castps_si128(m)));
+        wr += (uint64_t)__builtin_popcount((unsigned)_mm_movemask_ps(m));
+        dx = _mm256_add_pd(dx, step);
+    }
+    if (e && i) {
+        e0 += i * st[0];
+        e1 += i * st[1];
+        e2 += i * st[2];
+    }
+#endif
+    for (; i < n; ++i) {
+        const float z = clamp_depth(rowz + za * (dx0 + 256.0 * i));
+        const float old = dp[i];
+        int pass = z < old;
+        if (e) {
+            pass &= (e0 | e1 | e2) >= 0;
+            e0 += st[0];
+            e1 += st[1];
+            e2 += st[2];
+        }
+        dp[i] = pass ? z : old;
+        ip[i] = pass ? id : ip[i];
+        wr += (uint64_t)pass;
+    }
+    return wr;
+}
+
+/* The visibility pass of one triangle over the tile. */
+static void raster_one(const cj_raster_prep *p, const cj_tri_setup *s, uint32_t id,
+                       const cj_tile *t, cj_tri_scratch *sc) {
     const int xa = s->minx > t->x0 ? s->minx : t->x0;
     const int xb = s->maxx + 1 < t->x1 ? s->maxx + 1 : t->x1;
     const int ya = s->miny > t->y0 ? s->miny : t->y0;
     const int yb = s->maxy + 1 < t->y1 ? s->maxy + 1 : t->y1;
     if (xa >= xb || ya >= yb) return;
-    const int tw = t->x1 - t->x0;
-    int64_t eoff[3][16];
-    for (int k = 0; k < 3; ++k)
-        for (int q = 0; q < SPP; ++q) eoff[k][q] = s->ea[k] * p->ox[q] + s->eb[k] * p->oy[q];
-    const int64_t st0 = s->ea[0] * 256, st1 = s->ea[1] * 256, st2 = s->ea[2] * 256;
+    const int tw = t->x1 - t->x0, spp = p->spp;
+    const size_t plane = (size_t)tw * (size_t)(t->y1 - t->y0);
+    const int narrow = xb - xa <= NARROW_SPAN;
+    const int64_t st[3] = {s->ea[0] * 256, s->ea[1] * 256, s->ea[2] * 256};
     const double za = s->z.va;
-    uint64_t tst = 0, wr = 0;
+    uint64_t tested = 0, written = 0;
     for (int y = ya; y < yb; ++y) {
-        int lo = xa, hi = xb;
-        if (!row_span(p, s, y, &lo, &hi)) continue;
-        const int64_t X = (int64_t)lo * 256, Y = (int64_t)y * 256;
-        int64_t e0 = s->ea[0] * X + s->eb[0] * Y + s->ec[0];
-        int64_t e1 = s->ea[1] * X + s->eb[1] * Y + s->ec[1];
-        int64_t e2 = s->ea[2] * X + s->eb[2] * Y + s->ec[2];
-        double rowz[16], dxs[16];
-        for (int q = 0; q < SPP; ++q) {
-            rowz[q] = s->z.v0 + s->z.vb * (double)(Y + p->oy[q] - s->yr);
-            dxs[q] = (double)p->ox[q];
-        }
-        double dxp = (double)(X - s->xr);
-        const size_t base = ((size_t)(y - t->y0) * tw + (size_t)(lo - t->x0)) * SPP;
-        float *dp = depth + base;
-        uint32_t *ip = ids + base;
-        const int n = hi - lo;
-        tst += (uint64_t)n * SPP;
-        for (int i = 0; i < n; ++i) {
-            for (int q = 0; q < SPP; ++q) {
-                const int64_t f0 = e0 + eoff[0][q], f1 = e1 + eoff[1][q], f2 = e2 + eoff[2][q];
-                const int inside = (f0 | f1 | f2) >= 0;
-                const float z = clamp_depth(rowz[q] + za * (dxp + dxs[q]));
-                const float old = dp[q];
-                const int pass = inside & (z < old);
-                dp[q] = pass ? z : old;
-                ip[q] = pass ? id : ip[q];
-                wr += (uint64_t)pass;
+        const size_t row = (size_t)(y - t->y0) * tw;
+        for (int q = 0; q < spp; ++q) {
+            const int64_t ox = p->ox[q], Yq = (int64_t)y * 256 + p->oy[q];
+            int lo = xa, hi = xb;
+            int64_t e[3];
+            if (narrow) {
+                const int64_t X = (int64_t)xa * 256 + ox;
+                for (int k = 0; k < 3; ++k) e[k] = s->ea[k] * X + s->eb[k] * Yq + s->ec[k];
+            } else if (!exact_span(s, ox, Yq, &lo, &hi)) {
+                continue;
             }
-            e0 += st0;
-            e1 += st1;
-            e2 += st2;
-            dxp += 256.0;
-            dp += SPP;
-            ip += SPP;
+            const double rowz = s->z.v0 + s->z.vb * (double)(Yq - s->yr);
+            const double dx0 = (double)((int64_t)lo * 256 + ox - s->xr);
+            const size_t at = (size_t)q * plane + row + (size_t)(lo - t->x0);
+            tested += (uint64_t)(hi - lo);
+            written += span_kernel(sc->depth + at, sc->id + at, hi - lo, rowz, za, dx0, id,
+                                   narrow ? e : NULL, st);
         }
     }
-    *tested += tst;
-    *written += wr;
-}
-
-static void raster_bin(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratch *sc,
-                       const int SPP) {
-    const size_t tile_index = (size_t)t->index;
-    const size_t b0 = p->bin_start[tile_index], b1 = p->bin_start[tile_index + 1];
-    for (size_t b = b0; b < b1; ++b) {
-        const uint32_t id = p->bin_items[b];
-        if (SPP == 1)
-            raster_one(p, &p->setups[id], id, t, sc->depth, sc->id, 1, &sc->tested, &sc->written);
-        else if (SPP == 4)
-            raster_one(p, &p->setups[id], id, t, sc->depth, sc->id, 4, &sc->tested, &sc->written);
-        else
-            raster_one(p, &p->setups[id], id, t, sc->depth, sc->id, 16, &sc->tested, &sc->written);
-    }
+    sc->tested += tested;
+    sc->written += written;
 }
 
 void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratch *sc) {
-    const int spp = p->spp;
-    const size_t n = (size_t)(t->x1 - t->x0) * (size_t)(t->y1 - t->y0) * (size_t)spp;
-    for (size_t i = 0; i < n; ++i) {
-        sc->depth[i] = 1.0f;
-        sc->id[i] = CJ_RASTER_NO_TRI;
+    const int spp = p->spp, tw = t->x1 - t->x0;
+    const size_t plane = (size_t)tw * (size_t)(t->y1 - t->y0), n = plane * (size_t)spp;
+    for (size_t i = 0; i < n; ++i) sc->depth[i] = 1.0f;
+    memset(sc->id, 0xff, n * sizeof *sc->id); /* CJ_RASTER_NO_TRI */
+    const size_t b0 = p->bin_start[t->index], b1 = p->bin_start[t->index + 1];
+    for (size_t b = b0; b < b1; ++b) {
+        const uint32_t id = p->bin_items[b];
+        raster_one(p, &p->setups[id], id, t, sc);
     }
-    if (spp == 1)
-        raster_bin(p, t, sc, 1);
-    else if (spp == 4)
-        raster_bin(p, t, sc, 4);
-    else
-        raster_bin(p, t, sc, 16);
-    /* Resolve the winners: source index and barycentrics, once per visible sample. */
+    /* Resolve the winners into the tile's samples (pixel-major): source index and, unless
+     * switched off, barycentrics, once per visible sample. */
+    const int bary = p->barycentrics;
     size_t i = 0;
-    for (int y = t->y0; y < t->y1; ++y)
+    for (int y = t->y0; y < t->y1; ++y) {
+        const size_t row = (size_t)(y - t->y0) * tw;
         for (int x = t->x0; x < t->x1; ++x)
             for (int q = 0; q < spp; ++q, ++i) {
+                const size_t k = (size_t)q * plane + row + (size_t)(x - t->x0);
                 cj_vis_sample *o = &t->samples[i];
-                o->depth = sc->depth[i];
-                const uint32_t id = sc->id[i];
+                const uint32_t id = sc->id[k];
+                o->depth = sc->depth[k];
+                o->b1 = o->b2 = 0.0f;
                 if (id == CJ_RASTER_NO_TRI) {
                     o->tri = CJ_RASTER_NO_TRI;
-                    o->b1 = o->b2 = 0.0f;
                     continue;
                 }
                 const cj_tri_setup *s = &p->setups[id];
                 o->tri = s->src;
-                cj_tri_bary_at(s, (int64_t)x * 256 + p->ox[q], (int64_t)y * 256 + p->oy[q], &o->b1,
-                               &o->b2);
+                if (bary)
+                    cj_tri_bary_at(s, (int64_t)x * 256 + p->ox[q], (int64_t)y * 256 + p->oy[q],
+                                   &o->b1, &o->b2);
             }
+    }
 }
 
 void cj_raster_tile_forward(const cj_raster_prep *p, const cj_tile *t, cj_frag_fn frag,
@@ -181,16 +243,13 @@ void cj_raster_tile_forward(const cj_raster_prep *p, const cj_tile *t, cj_frag_f
         const int xb = s->maxx + 1 < t->x1 ? s->maxx + 1 : t->x1;
         const int ya = s->miny > t->y0 ? s->miny : t->y0;
         const int yb = s->maxy + 1 < t->y1 ? s->maxy + 1 : t->y1;
-        for (int y = ya; y < yb; ++y) {
-            int lo = xa, hi = xb;
-            if (!row_span(p, s, y, &lo, &hi)) continue;
-            for (int x = lo; x < hi; ++x)
-                for (int q = 0; q < spp; ++q) {
-                    const int64_t X = (int64_t)x * 256 + p->ox[q], Y = (int64_t)y * 256 + p->oy[q];
-                    const int64_t f0 = s->ea[0] * X + s->eb[0] * Y + s->ec[0];
-                    const int64_t f1 = s->ea[1] * X + s->eb[1] * Y + s->ec[1];
-                    const int64_t f2 = s->ea[2] * X + s->eb[2] * Y + s->ec[2];
-                    if ((f0 | f1 | f2) < 0) continue;
+        for (int y = ya; y < yb; ++y)
+            for (int q = 0; q < spp; ++q) {
+                const int64_t Y = (int64_t)y * 256 + p->oy[q];
+                int lo = xa, hi = xb;
+                if (!exact_span(s, p->ox[q], Y, &lo, &hi)) continue;
+                for (int x = lo; x < hi; ++x) {
+                    const int64_t X = (int64_t)x * 256 + p->ox[q];
                     const float z = cj_tri_depth_at(s, X, Y);
                     const size_t idx = ((size_t)(y - t->y0) * tw + (size_t)(x - t->x0)) * spp + q;
                     if (!(z < t->samples[idx].depth)) continue;
@@ -198,6 +257,6 @@ void cj_raster_tile_forward(const cj_raster_prep *p, const cj_tile *t, cj_frag_f
                     cj_tri_bary_at(s, X, Y, &bb1, &bb2);
                     frag(user, x, y, q, s->src, z, bb1, bb2);
                 }
-        }
+            }
     }
 }

@@ -86,6 +86,11 @@ void cj_raster_prep_destroy(cj_raster_prep *p) {
     a.free(a.user, p);
 }
 
+void cj_raster_prep_set_barycentrics(cj_raster_prep *p, int on) {
+    assert(p);
+    p->barycentrics = on != 0;
+}
+
 void cj_raster_prep_layout(const cj_raster_prep *p, int *width, int *height, int *spp,
                            int *tile_size) {
     assert(p);
@@ -300,6 +305,7 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     p->height = in->height;
     p->spp = in->spp;
     p->tile_size = tile_size;
+    p->barycentrics = 1;
     p->tiles_x = (in->width + tile_size - 1) / tile_size;
     p->tiles_y = (in->height + tile_size - 1) / tile_size;
     pattern_fixed(in->spp, p->ox, p->oy);
