@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 int cli_file_open(cli_file *f, const char *path, char *why, size_t why_size) {
@@ -27,6 +28,10 @@ int cli_file_open(cli_file *f, const char *path, char *why, size_t why_size) {
         f->tmp = NULL;
         return -1;
     }
+    /* mkstemp makes the file 0600; give it the mode fopen would (0666 minus the umask). */
+    const mode_t mask = umask(0);
+    umask(mask);
+    (void)fchmod(fd, 0666 & ~mask);
     f->fp = fdopen(fd, "wb");
     if (!f->fp) {
         snprintf(why, why_size, "cannot write beside '%s': %s", path, strerror(errno));

@@ -3,6 +3,7 @@
  * defaults, parameters from standard input, one-line messages with control characters escaped,
  * no inf or nan ever printed (CJ_ERR_RANGE, exit 2), bounded work (contour tolerances and
  * output caps), messages that speak of what the user gave, and start-up without OpenImageIO. */
+#define _DEFAULT_SOURCE /* mkdtemp */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -10,6 +11,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <dirent.h>
+#include <sys/mount.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -210,6 +216,93 @@ static void test_startup_without_oiio(void **state) {
     printf("test_cli_harden: eval maps no OpenImageIO (LD_DEBUG=libs); plot loads it on use\n");
 }
 
+static int dir_entries(const char *d) {
+    DIR *h = opendir(d);
+    assert_non_null(h);
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(h)))
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) ++n;
+    closedir(h);
+    return n;
+}
+
+static char *slurp(const char *path, size_t *len) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *b = malloc((size_t)n + 1);
+    assert_non_null(b);
+    assert_int_equal(fread(b, 1, (size_t)n, f), (size_t)n);
+    fclose(f);
+    *len = (size_t)n;
+    return b;
+}
+
+/* Each writer: a small good file first, then a large one over it into a folder that holds
+ * about 40 KB. The large write must exit 1 with one line on stderr, keep the small file
+ * byte for byte, and leave nothing else behind. `limit` is the shell prefix that makes the
+ * folder "full" ("" on a small tmpfs; a file-size limit otherwise). */
+static void full_disk_writers(const char *d, const char *limit, const char *how) {
+    static const struct {
+        const char *name, *small, *big;
+    } cases[] = {
+        /* the large ones are 57-204 KB */
+        {"g.png", "plot --demo --width 64 --height 64", "plot --demo --width 600 --height 400"},
+        {"g.jpg", "plot --demo --width 64 --height 64", "plot --demo --width 600 --height 400"},
+        {"g.tif", "plot --demo --width 64 --height 64", "plot --demo --width 600 --height 400"},
+        {"t.obj", "tessellate --teapot --uniform 1", "tessellate --teapot --tol 0.1"},
+        {"t.ply", "tessellate --teapot --uniform 1", "tessellate --teapot --tol 0.1"},
+        {"t.vtu", "tessellate --teapot --uniform 1", "tessellate --teapot --tol 0.1"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        char path[600];
+        snprintf(path, sizeof path, "%s/%s", d, cases[i].name);
+        cj_cli_result r = shell("'%s' %s -o '%s'", exe, cases[i].small, path);
+        if (r.status != 0) fail_msg("%s: small write failed: %s", cases[i].name, r.err);
+        cj_cli_result_free(&r);
+        size_t n0 = 0, n1 = 0;
+        char *before = slurp(path, &n0);
+        assert_non_null(before);
+        r = shell("%s '%s' %s -o '%s'", limit, exe, cases[i].big, path);
+        if (r.status != 1)
+            fail_msg("%s (%s): exit %d, expected 1; stderr %s", cases[i].name, how, r.status,
+                     r.err);
+        const char *nl = strchr(r.err, '\n');
+        if (!nl || nl[1]) fail_msg("%s: stderr is not one line: %s", cases[i].name, r.err);
+        cj_cli_result_free(&r);
+        char *after = slurp(path, &n1);
+        assert_non_null(after);
+        if (n0 != n1 || memcmp(before, after, n0))
+            fail_msg("%s (%s): the previous file was changed", cases[i].name, how);
+        free(before);
+        free(after);
+        if (dir_entries(d) != 1) fail_msg("%s (%s): files left behind", cases[i].name, how);
+        unlink(path);
+    }
+}
+
+static void test_full_disk(void **state) {
+    (void)state;
+    char d[] = "/tmp/cj_test_cli_full_XXXXXX";
+    assert_non_null(mkdtemp(d));
+    if (mount("tmpfs", d, "tmpfs", 0, "size=40k") == 0) {
+        full_disk_writers(d, "", "40 KB tmpfs");
+        assert_int_equal(umount(d), 0);
+        printf("test_cli_harden: on a full 40 KB tmpfs, PNG, JPEG, TIFF, OBJ, PLY and .vtu writes "
+               "exit 1 and keep the previous file, nothing left behind\n");
+    } else {
+        /* Not root: a file-size limit fails write(2) as a full disk does (EFBIG for ENOSPC;
+         * dash counts 512-byte blocks). */
+        full_disk_writers(d, "trap '' XFSZ; ulimit -f 80;", "40 KB file-size limit");
+        printf("test_cli_harden: no tmpfs here (not root): under a 40 KB file-size limit, PNG, "
+               "JPEG, TIFF, OBJ, PLY and .vtu writes exit 1 and keep the previous file\n");
+    }
+    rmdir(d);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_option_syntax),
@@ -219,6 +312,7 @@ int main(void) {
         cmocka_unit_test(test_never_inf),
         cmocka_unit_test(test_contour_bounded),
         cmocka_unit_test(test_startup_without_oiio),
+        cmocka_unit_test(test_full_disk),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
