@@ -1,17 +1,23 @@
-/* Back-to-front order of the transparent triangles by a BSP tree (seed 7.5).
+/* Back-to-front order of the transparent triangles: a BSP tree (seed 7.5) whose leaves are
+ * lists for which the painter's algorithm (seed 7.4) is PROVEN exact.
  *
- * Each node takes the plane of its first triangle; the other triangles go to the front or back
- * list by the signed distances of their vertices (within a relative epsilon of the plane counts
- * as on it), triangles in the plane stay at the node, and a triangle crossing the plane is cut
- * into pieces (a triangle and a quad, the quad as two triangles) whose new vertices interpolate
- * position, normal and (u, v) linearly along the cut edges (exact for attributes that are
- * affine over the triangle). Traversal emits, at every node, the subtree on the far side from
- * the eye first, then the node's triangles, then the near side: painter's order that is exact
- * for any set of non-intersecting pieces, which the cuts guarantee (interpenetrating
- * surfaces included). Build and traversal use explicit stacks (a convex object's tree is a
- * chain as deep as its triangle count). If cutting would more than quadruple the triangles, the
- * remaining lists are drawn in painter's order by centroid depth instead (counted as a
- * fallback in the stage report; never reached by the shipped scenes). */
+ * At every node the list is first sorted far to near by centroid depth and checked: every pair
+ * of triangles whose screen boxes overlap must pass one of Newell's plane tests (the earlier one
+ * lies wholly beyond the later one's plane seen from the eye, or the later one wholly on the
+ * eye's side of the earlier one's plane). If all pass, no ray meets the triangles out of order
+ * and the list is a leaf drawn in that order (a convex object seen from outside, separated
+ * objects: no cut at all). Otherwise the plane of a triangle of a failing pair splits the list:
+ * triangles in the plane stay at the node, the others go to the front or back list by the signed
+ * distances of their vertices (within a relative epsilon of the plane counts as on it), and a
+ * triangle crossing the plane is cut into pieces (a triangle and a quad, the quad as two
+ * triangles) whose new vertices interpolate position, normal and (u, v) linearly along the cut
+ * edges (exact for attributes affine over the triangle). Traversal emits, at every node, the
+ * subtree on the far side from the eye first, then the node's triangles, then the near side.
+ * Interpenetrating surfaces are cut along their intersection, so the order is exact for any
+ * input (tests/test_render_stages.c: two crossing quads, a lone sphere with 0 cuts). Build and
+ * traversal use explicit stacks. If cutting would more than quadruple the triangles, the
+ * remaining lists are drawn in painter's order without the proof (reported as
+ * painter_fallback; never reached by the shipped scenes). */
 #include "render_pipe.h"
 
 #include "error_internal.h"
@@ -41,7 +47,7 @@ typedef struct bsp {
     size_t nnodes, ncap;
     uint32_t *store; /* node triangles */
     size_t nstore, scap;
-    size_t splits, limit;
+    size_t splits, limit, leaves;
     int fallback;
     double eps;
 } bsp;
@@ -171,6 +177,157 @@ static cj_status painter(const bsp *s, const cj_rview *view, uint32_t *ids, size
     return CJ_OK;
 }
 
+/* Screen box of triangle id in pixels; 0 when a vertex is not in front of the eye (the box is
+ * then the whole image: it may overlap anything). */
+static int screen_box(const bsp *s, const cj_rview *v, uint32_t id, double box[4]) {
+    box[0] = box[1] = INFINITY;
+    box[2] = box[3] = -INFINITY;
+    for (int k = 0; k < 3; ++k) {
+        const double *p = s->b->pos + 3 * (size_t)s->tris[3 * id + k];
+        const double(*M)[4] = (const double(*)[4])v->world_to_clip.m;
+        double c[4];
+        for (int r = 0; r < 4; ++r)
+            c[r] = M[r][0] * p[0] + M[r][1] * p[1] + M[r][2] * p[2] + M[r][3];
+        if (!(c[3] > 0.0)) return 0;
+        double x = (c[0] / c[3] + 1.0) * 0.5 * v->width, y = (c[1] / c[3] + 1.0) * 0.5 * v->height;
+        box[0] = fmin(box[0], x);
+        box[1] = fmin(box[1], y);
+        box[2] = fmax(box[2], x);
+        box[3] = fmax(box[3], y);
+    }
+    return 1;
+}
+
+/* Side of the eye w.r.t. the plane of triangle id: +1 or -1 (0: the eye lies in it). */
+static int eye_side(const bsp *s, const cj_rview *v, uint32_t id, double n[3], double *d) {
+    const double *p0 = s->b->pos + 3 * (size_t)s->tris[3 * id],
+                 *p1 = s->b->pos + 3 * (size_t)s->tris[3 * id + 1],
+                 *p2 = s->b->pos + 3 * (size_t)s->tris[3 * id + 2];
+    double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+    double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len > 0.0)
+        for (int k = 0; k < 3; ++k) n[k] /= len;
+    *d = n[0] * p0[0] + n[1] * p0[1] + n[2] * p0[2];
+    double e = v->cam.projection == CJ_PROJ_PERSPECTIVE
+                   ? n[0] * v->eye.x + n[1] * v->eye.y + n[2] * v->eye.z - *d
+                   : -(n[0] * v->gaze_unit.x + n[1] * v->gaze_unit.y + n[2] * v->gaze_unit.z);
+    return e > 0.0 ? 1 : e < 0.0 ? -1 : 0;
+}
+
+/* Whether all of triangle id lies on side `side` of plane (n, d), points within eps counting
+ * as on it. */
+static int all_on_side(const bsp *s, uint32_t id, const double n[3], double d, int side) {
+    for (int k = 0; k < 3; ++k) {
+        const double *p = s->b->pos + 3 * (size_t)s->tris[3 * id + k];
+        double v = n[0] * p[0] + n[1] * p[1] + n[2] * p[2] - d;
+        if (side * v < -s->eps) return 0;
+    }
+    return 1;
+}
+
+/* Drawing a before b is right when no ray meets a before b: a lies wholly beyond b's plane
+ * (seen from the eye), or b wholly on the eye's side of a's plane (Newell's tests). pa, pb:
+ * the planes (n, d, eye side) of a and b. */
+static int order_ok(const bsp *s, uint32_t a, uint32_t b, const double *pa, const double *pb) {
+    int sa = (int)pa[4], sb = (int)pb[4];
+    if (sb != 0 && all_on_side(s, a, pb, pb[3], -sb)) return 1;
+    if (sa != 0 && all_on_side(s, b, pa, pa[3], sa)) return 1;
+    return 0;
+}
+
+#define PGRID 64
+
+/* THE PAINTER'S TEST (seed 7.4): sorts ids far to near by centroid depth, then checks every
+ * pair whose screen boxes overlap (found through a PGRID x PGRID grid of the image) with
+ * order_ok. *exact = 1 when every pair passes: the painter's order is then exact and the list
+ * needs no BSP node; else *conflict is the position of a triangle of a failing pair (its plane
+ * is the next BSP splitter, which cuts where the order is ambiguous). */
+static cj_status painter_test(const bsp *s, const cj_rview *v, uint32_t *ids, size_t n, int *exact,
+                              size_t *conflict) {
+    *exact = 0;
+    *conflict = 0;
+    cj_status st = painter(s, v, ids, n);
+    if (st) return st;
+    double *box = cj_ralloc(s->a, sizeof(double) * 4 * n);
+    double *pl = cj_ralloc(s->a, sizeof(double) * 5 * n);
+    int *head = cj_ralloc(s->a, sizeof(int) * PGRID * PGRID);
+    size_t *stamp = cj_ralloc(s->a, sizeof(size_t) * n), ecap = 4 * n + 64, ne = 0;
+    int *enext = cj_ralloc(s->a, sizeof(int) * ecap), *eitem = cj_ralloc(s->a, sizeof(int) * ecap);
+    if (!box || !pl || !head || !stamp || !enext || !eitem) {
+        st = cj_fail(CJ_ERR_NOMEM, "painter's test of %zu triangles", n);
+        goto done;
+    }
+    for (int c = 0; c < PGRID * PGRID; ++c) head[c] = -1;
+    double cw = (double)v->width / PGRID, ch = (double)v->height / PGRID;
+    int ok = 1;
+    for (size_t i = 0; i < n && ok; ++i) {
+        double *b = box + 4 * i;
+        pl[5 * i + 4] = eye_side(s, v, ids[i], pl + 5 * i, pl + 5 * i + 3);
+        int x0 = 0, y0 = 0, x1 = PGRID - 1, y1 = PGRID - 1;
+        if (screen_box(s, v, ids[i], b)) {
+            if (b[2] < 0 || b[3] < 0 || b[0] >= v->width || b[1] >= v->height) continue;
+            x0 = b[0] <= 0 ? 0 : (int)(b[0] / cw), y0 = b[1] <= 0 ? 0 : (int)(b[1] / ch);
+            x1 = b[2] >= v->width ? PGRID - 1 : (int)(b[2] / cw);
+            y1 = b[3] >= v->height ? PGRID - 1 : (int)(b[3] / ch);
+            x1 = x1 > PGRID - 1 ? PGRID - 1 : x1;
+            y1 = y1 > PGRID - 1 ? PGRID - 1 : y1;
+        } else {
+            b[0] = b[1] = -INFINITY;
+            b[2] = b[3] = INFINITY;
+        }
+        stamp[i] = (size_t)-1;
+        for (int y = y0; y <= y1 && ok; ++y)
+            for (int x = x0; x <= x1 && ok; ++x) {
+                int c = y * PGRID + x;
+                for (int e = head[c]; e >= 0 && ok; e = enext[e]) {
+                    size_t j = (size_t)eitem[e];
+                    if (stamp[j] == i) continue;
+                    stamp[j] = i;
+                    const double *bj = box + 4 * j;
+                    if (bj[0] > b[2] || b[0] > bj[2] || bj[1] > b[3] || b[1] > bj[3]) continue;
+                    if (!order_ok(s, ids[j], ids[i], pl + 5 * j, pl + 5 * i)) {
+                        ok = 0;
+                        *conflict = i;
+                    }
+                }
+                if (ne == ecap) {
+                    size_t nc = 2 * ecap;
+                    int *a1 = cj_ralloc(s->a, sizeof(int) * nc),
+                        *a2 = cj_ralloc(s->a, sizeof(int) * nc);
+                    if (!a1 || !a2) {
+                        cj_rfree(s->a, a1);
+                        cj_rfree(s->a, a2);
+                        st = cj_fail(CJ_ERR_NOMEM, "painter's test grid");
+                        goto done;
+                    }
+                    memcpy(a1, enext, sizeof(int) * ecap);
+                    memcpy(a2, eitem, sizeof(int) * ecap);
+                    cj_rfree(s->a, enext);
+                    cj_rfree(s->a, eitem);
+                    enext = a1;
+                    eitem = a2;
+                    ecap = nc;
+                }
+                enext[ne] = head[c];
+                eitem[ne] = (int)i;
+                head[c] = (int)ne++;
+            }
+    }
+    *exact = ok;
+done:
+    cj_rfree(s->a, box);
+    cj_rfree(s->a, pl);
+    cj_rfree(s->a, head);
+    cj_rfree(s->a, stamp);
+    cj_rfree(s->a, enext);
+    cj_rfree(s->a, eitem);
+    return st;
+}
+
 static cj_status build(bsp *s, const cj_rview *view, size_t n) {
     bjob *stack = NULL;
     size_t sn = 0, scap = 0;
@@ -188,6 +345,8 @@ static cj_status build(bsp *s, const cj_rview *view, size_t n) {
     stack[sn++] = (bjob){0, n, ids};
     while (sn && !st) {
         bjob j = stack[--sn];
+        int exact = 0;
+        size_t conflict = 0;
         bnode nd;
         memset(&nd, 0, sizeof nd);
         nd.front = nd.back = -1;
@@ -196,10 +355,16 @@ static cj_status build(bsp *s, const cj_rview *view, size_t n) {
         size_t nf = 0, nb = 0;
         if (!front || !back) {
             st = cj_fail(CJ_ERR_NOMEM, "BSP lists");
-        } else if (s->count > s->limit) {
-            /* too many cuts: painter's order for what is left */
-            s->fallback = 1;
-            st = painter(s, view, j.ids, j.count);
+        } else if (s->count > s->limit || j.count == 1 ||
+                   (!(st = painter_test(s, view, j.ids, j.count, &exact, &conflict)) && exact)) {
+            /* the painter's order is exact here (or too many cuts: painter's order for what
+             * is left, reported as a fallback) */
+            if (s->count > s->limit) {
+                s->fallback = 1;
+                st = painter(s, view, j.ids, j.count);
+            } else {
+                ++s->leaves;
+            }
             if (!st)
                 st =
                     push(s->a, (void **)&s->store, &s->scap, s->nstore + j.count, sizeof(uint32_t));
@@ -209,8 +374,10 @@ static cj_status build(bsp *s, const cj_rview *view, size_t n) {
                 s->nstore += j.count;
                 nd.t1 = s->nstore;
             }
-        } else {
-            uint32_t t0 = j.ids[0];
+        } else if (!st) {
+            uint32_t t0 = j.ids[conflict];
+            j.ids[conflict] = j.ids[0];
+            j.ids[0] = t0;
             const double *p0 = s->b->pos + 3 * (size_t)s->tris[3 * t0],
                          *p1 = s->b->pos + 3 * (size_t)s->tris[3 * t0 + 1],
                          *p2 = s->b->pos + 3 * (size_t)s->tris[3 * t0 + 2];

@@ -438,8 +438,12 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
           (uint64_t)c.nsamplers, "textures", (uint64_t)c.nsamplers, sec_mip);
     stage(R, "raster_setup", 1, "always", "triangles", rs_o.tris_in + rs_t.tris_in, "triangles",
           rs_o.tris_setup + rs_t.tris_setup, sec_setup);
+    /* the workers' time outside the pipeline's tile callback: the visibility pass */
+    double cb = 0.0;
+    for (int k = 0; k < CJ_RS_COUNT; ++k) cb += sum.sec[k];
+    double vis = run.seconds_raster * c.threads - cb;
     s = stage(R, "rasterize", 1, "always", "samples", run.samples_tested, "samples",
-              run.samples_written, run.seconds_raster);
+              run.samples_written, vis > 0.0 ? vis : 0.0);
     cj_stage_add_value(s, "tris_clipped", (double)(rs_o.tris_clipped + rs_t.tris_clipped));
     cj_stage_add_value(s, "tris_rejected", (double)(rs_o.tris_rejected + rs_t.tris_rejected));
     cj_stage_add_value(s, "run_wall_seconds", sec_run);
