@@ -33,8 +33,8 @@ cj_status cj_render_demo_scene(const char *teapot_bpt, const cj_allocator *alloc
         return st;
     }
     cj_camera cam = cj_camera_default();
-    cam.eye = cj_v3(4.6, 4.4, 7.8);
-    cam.gaze = cj_v3_sub(cj_v3(0.1, 0.55, 0), cam.eye);
+    cam.eye = cj_v3(5.2, 3.4, 8.4);
+    cam.gaze = cj_v3_sub(cj_v3(0.15, 1.05, 0), cam.eye);
     cam.up = cj_v3(0, 1, 0);
     cam.fov_y = 36.0 * 3.14159265358979323846 / 180.0;
     cam.near = -0.5;
