@@ -73,6 +73,12 @@ cj_status cj_json_enum_(const jctx *c, const cJSON *obj, const char *path, const
 cj_status cj_json_numbers_(const jctx *c, const cJSON *arr, const char *path, int dim, jrange r,
                            double lo, size_t want, double **out, size_t *count);
 
+/* An angle given as key_deg or key_rad (not both), range in radians, into *out (radians). */
+cj_status cj_json_angle_(const jctx *c, const cJSON *obj, const char *path, const char *key,
+                         jrange r, double lo_rad, double hi_rad, double *out);
+/* arr must be an array. */
+cj_status cj_json_list_(const jctx *c, const cJSON *arr, const char *p);
+
 /* Resolves a path of the document against its folder into dst (cap bytes). */
 cj_status cj_json_resolve_(const jctx *c, const cJSON *node, const char *path, const char *rel,
                            char *dst, size_t cap);
@@ -84,6 +90,8 @@ cj_status cj_json_read_lights_(jctx *c, const cJSON *arr);
 cj_status cj_json_read_textures_(jctx *c, const cJSON *arr);
 cj_status cj_json_read_materials_(jctx *c, const cJSON *arr);
 cj_status cj_json_read_objects_(jctx *c, const cJSON *arr);
+/* A material object (named: an entry of "materials", with its "name"); *index receives it. */
+cj_status cj_json_read_material_(jctx *c, const cJSON *obj, const char *p, int named, int *index);
 /* Builds the geometry described by obj and adds it to the scene; *index receives it. */
 cj_status cj_json_read_geometry_(jctx *c, const cJSON *obj, const char *path, int *index);
 

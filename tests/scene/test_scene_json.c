@@ -68,6 +68,18 @@ static void test_shipped_scenes(void **state) {
         snprintf(path, sizeof path, "%s/%s", CJ_SCENES_DIR, e->d_name);
         cj_scene *s = NULL;
         cj_status st = cj_scene_load_json_ex(path, &OPTS, NULL, &s);
+        /* Animation documents (casteljau/anim_scene.h) name their scene with a top-level
+         * "scene" key and live here too; they are not scene documents. */
+        const char *msg = cj_last_error(), *at = msg + strlen(path) + 1;
+        int anim_doc = st && !strncmp(msg, path, strlen(path)) && msg[strlen(path)] == ':';
+        if (anim_doc) {
+            while (*at >= '0' && *at <= '9') at++;
+            anim_doc = !strncmp(at, ": scene is not a known key", 26);
+        }
+        if (anim_doc) {
+            printf("  %-20s an animation document (top-level \"scene\"), skipped\n", e->d_name);
+            continue;
+        }
         if (st) fail_msg("%s: %s", e->d_name, cj_last_error());
         assert_int_equal(cj_scene_check(s), CJ_OK);
         printf("  %-20s %zu lights, %zu textures, %zu materials, %zu geometries, %zu nodes\n",
