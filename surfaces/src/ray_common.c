@@ -22,23 +22,20 @@ cj_status cj_ray_check(const cj_ray *ray) {
 cj_vec3 cj_ray_offset_origin(const cj_hit *hit, cj_vec3 w) {
     cj_vec3 n = hit->ng;
     double d = fabs(n.x) * hit->p_err.x + fabs(n.y) * hit->p_err.y + fabs(n.z) * hit->p_err.z;
-    /* Round the offset itself up a little so its own rounding cannot shrink it. */
+    /* At least a few ulps of the point's largest coordinate, so a point computed exactly on a
+     * surface through a zero coordinate does not leave it by a subnormal only; rounded up a
+     * little so the offset's own rounding cannot shrink it. */
+    double pm = fmax(fabs(hit->p.x), fmax(fabs(hit->p.y), fabs(hit->p.z)));
+    if (d < 4.0 * cj_gamma(1) * pm) d = 4.0 * cj_gamma(1) * pm;
     d *= 1.0 + 4.0 * cj_gamma(1);
-    if (cj_v3_dot(w, n) < 0.0) d = -d;
-    cj_vec3 off = cj_v3_scale(n, d);
-    cj_vec3 po = cj_v3_add(hit->p, off);
-    if (off.x > 0.0)
-        po.x = nextafter(po.x, INFINITY);
-    else if (off.x < 0.0)
-        po.x = nextafter(po.x, -INFINITY);
-    if (off.y > 0.0)
-        po.y = nextafter(po.y, INFINITY);
-    else if (off.y < 0.0)
-        po.y = nextafter(po.y, -INFINITY);
-    if (off.z > 0.0)
-        po.z = nextafter(po.z, INFINITY);
-    else if (off.z < 0.0)
-        po.z = nextafter(po.z, -INFINITY);
+    double sg = cj_v3_dot(w, n) < 0.0 ? -1.0 : 1.0;
+    cj_vec3 po = cj_v3_add(hit->p, cj_v3_scale(n, sg * d));
+    /* One more ulp along each normal component (also when d == 0: a point computed exactly on
+     * the surface must still leave it). */
+    double sx = sg * n.x, sy = sg * n.y, sz = sg * n.z;
+    if (sx != 0.0) po.x = nextafter(po.x, sx > 0.0 ? INFINITY : -INFINITY);
+    if (sy != 0.0) po.y = nextafter(po.y, sy > 0.0 ? INFINITY : -INFINITY);
+    if (sz != 0.0) po.z = nextafter(po.z, sz > 0.0 ? INFINITY : -INFINITY);
     return po;
 }
 

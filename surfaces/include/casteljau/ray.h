@@ -59,13 +59,13 @@ cj_status cj_ray_check(const cj_ray *ray);
 /* ---- secondary rays without a fixed epsilon (Wächter and Binder 2019 style) ------------- */
 
 /* The origin for a ray leaving the hit point p towards direction w: p moved along the normal
- * ng by d = |ng_x| p_err_x + |ng_y| p_err_y + |ng_z| p_err_z to the side w points to, each
- * coordinate then rounded one ulp further away from p. The true surface lies within p_err of
- * p, so the new origin is strictly on w's side of the surface (up to the surface's curvature
- * over the distance d, which is of the order of the rounding error) and a ray started there
- * with tmin = 0 cannot hit the surface it leaves at t ≈ 0. The offset scales with the
- * magnitude of the coordinates and the accuracy of the intersection: it is neither too small
- * at 1e6 scale (acne) nor too large at 1e-6 scale (light leaking). */
+ * ng by d = max(|ng_x| p_err_x + |ng_y| p_err_y + |ng_z| p_err_z, 4u max_k |p_k|) to the side w
+ * points to, each coordinate then rounded one ulp further (in the direction of ng's component). The
+ * true surface lies within p_err of p, so the new origin is strictly on w's side of the surface (up
+ * to the surface's curvature over the distance d, which is of the order of the rounding error) and
+ * a ray started there with tmin = 0 cannot hit the surface it leaves at t ≈ 0. The offset scales
+ * with the magnitude of the coordinates and the accuracy of the intersection: it is neither too
+ * small at 1e6 scale (acne) nor too large at 1e-6 scale (light leaking). */
 cj_vec3 cj_ray_offset_origin(const cj_hit *hit, cj_vec3 w);
 
 /* ---- triangles (watertight) -------------------------------------------------------------- */

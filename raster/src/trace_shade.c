@@ -1,0 +1,199 @@
+/* Whitted shading with distribution extensions (trace.h): local Phong with shadow rays,
+ * mirror reflection, refraction with the medium's ior tracked, straight-through transparency,
+ * area-light and glossy samples from a counter-based generator. */
+#define _POSIX_C_SOURCE 200809L
+#include "trace_shade.h"
+
+#include <math.h>
+#include <string.h>
+#include <time.h>
+
+static const double PI = 3.14159265358979323846;
+
+static double now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+uint64_t tr_mix(uint64_t z) {
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+double tr_rand(tr_rng *r) {
+    uint64_t v = tr_mix(r->key ^ tr_mix(r->n++));
+    return (double)(v >> 11) * 0x1p-53;
+}
+
+int cj_trace_refract(cj_vec3 d, cj_vec3 n, double n1, double n2, cj_vec3 *t) {
+    double eta = n1 / n2, ci = -cj_v3_dot(d, n);
+    double k = 1.0 - eta * eta * (1.0 - ci * ci);
+    if (k < 0.0) return 0;
+    *t = cj_v3_normalize(cj_v3_add(cj_v3_scale(d, eta), cj_v3_scale(n, eta * ci - sqrt(k))));
+    return 1;
+}
+
+int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit) {
+    double t0 = now();
+    int got = tr_closest(sh->s, ray, hit, sh->c);
+    sh->c->seconds[kind] += now() - t0;
+    sh->c->cast[kind]++;
+    if (got) sh->c->hit[kind]++;
+    return got;
+}
+
+static int occluded(tr_shade *sh, const cj_ray *ray) {
+    double t0 = now();
+    int got = tr_any(sh->s, ray, sh->c);
+    sh->c->seconds[TR_SHADOW] += now() - t0;
+    sh->c->cast[TR_SHADOW]++;
+    if (got) sh->c->hit[TR_SHADOW]++;
+    return got;
+}
+
+/* A direction about the unit vector r drawn from the Phong lobe cos^e (importance sampled). */
+static cj_vec3 phong_lobe(cj_vec3 r, double e, double u1, double u2) {
+    double ct = pow(u1, 1.0 / (e + 1.0)), st = sqrt(fmax(0.0, 1.0 - ct * ct)), ph = 2.0 * PI * u2;
+    cj_vec3 a, b;
+    cj_frame_from_axis(r, &a, &b);
+    return cj_v3_normalize(cj_v3_add(
+        cj_v3_scale(r, ct), cj_v3_add(cj_v3_scale(a, st * cos(ph)), cj_v3_scale(b, st * sin(ph)))));
+}
+
+static cj_vec3 reflect(cj_vec3 d, cj_vec3 n) {
+    return cj_v3_sub(d, cj_v3_scale(n, 2.0 * cj_v3_dot(d, n)));
+}
+
+/* Local Phong at the hit with shadow rays; n faces the viewer (against d). */
+static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, cj_vec3 n, cj_vec3 d,
+                          cj_rgb cr, int depth) {
+    const tr_lights *L = sh->lights;
+    if (L->unlit) return cr;
+    cj_rgb out =
+        cj_rgb_make(cr.r * m->ka * L->ia.r, cr.g * m->ka * L->ia.g, cr.b * m->ka * L->ia.b);
+    cj_vec3 v = cj_v3_scale(d, -1.0);
+    for (int i = 0; i < L->count; i++) {
+        const cj_light *lt = L->light[i];
+        cj_vec3 lp = lt->position;
+        if (lt->kind == CJ_LIGHT_AREA) {
+            double s = 0.5, t = 0.5;
+            if (sh->spp > 1) {
+                /* stratified over the samples of the pixel at the first hit, random deeper */
+                if (depth == 0) {
+                    int k = sh->strata, si = (int)((sh->sample + sh->perm) % (uint32_t)sh->spp);
+                    s = ((si % k) + tr_rand(&sh->rng)) / k;
+                    t = ((si / k % k) + tr_rand(&sh->rng)) / k;
+                } else {
+                    s = tr_rand(&sh->rng);
+                    t = tr_rand(&sh->rng);
+                }
+            }
+            lp = cj_v3_add(lp, cj_v3_add(cj_v3_scale(lt->edge_u, s), cj_v3_scale(lt->edge_v, t)));
+        }
+        cj_vec3 l;
+        double f = 1.0;
+        if (lt->kind == CJ_LIGHT_DIRECTIONAL) {
+            l = cj_v3_normalize(cj_v3_scale(lt->direction, -1.0));
+        } else {
+            l = cj_v3_normalize(cj_v3_sub(lp, h->p));
+            if (lt->kind == CJ_LIGHT_SPOT) {
+                double ct = -cj_v3_dot(cj_v3_normalize(lt->direction), l);
+                f = ct >= cos(lt->spot_angle) ? pow(ct, lt->spot_exponent) : 0.0;
+            }
+        }
+        double nl = cj_v3_dot(n, l);
+        if (!(nl > 0.0) || f == 0.0) continue; /* behind the surface: its own shadow */
+        if (lt->casts_shadows && m->receives_shadows) {
+            cj_ray sr;
+            sr.org = cj_ray_offset_origin(h, l);
+            if (lt->kind == CJ_LIGHT_DIRECTIONAL) {
+                sr.dir = l;
+                sr.tmax = INFINITY;
+            } else {
+                sr.dir = cj_v3_sub(lp, sr.org);
+                sr.tmax = 1.0;
+            }
+            sr.tmin = 0.0;
+            if (occluded(sh, &sr)) continue;
+        }
+        double I[3] = {lt->color.r * lt->intensity * f, lt->color.g * lt->intensity * f,
+                       lt->color.b * lt->intensity * f};
+        cj_vec3 hv = cj_v3_normalize(cj_v3_add(l, v));
+        double nh = cj_v3_dot(n, hv);
+        double sp = pow(nh > 0.0 ? nh : 0.0, m->alpha);
+        out.r += cr.r * m->kd * I[0] * nl + m->specular.r * m->ks * I[0] * sp;
+        out.g += cr.g * m->kd * I[1] * nl + m->specular.g * m->ks * I[1] * sp;
+        out.b += cr.b * m->kd * I[2] * nl + m->specular.b * m->ks * I[2] * sp;
+    }
+    return out;
+}
+
+static cj_rgb add_scaled(cj_rgb a, cj_rgb b, double s) {
+    return cj_rgb_make(a.r + s * b.r, a.g + s * b.g, a.b + s * b.b);
+}
+
+cj_rgb tr_trace(tr_shade *sh, const cj_ray *ray, int kind, int depth, tr_medium med, int *hit_any) {
+    cj_hit h;
+    if (!tr_cast(sh, kind, ray, &h)) return sh->background;
+    if (hit_any) *hit_any = 1;
+    const tr_object *o = &sh->s->objs[h.obj];
+    const cj_material *m = cj_scene_material(sh->s->scene, o->material);
+    cj_vec3 d = cj_v3_normalize(ray->dir);
+    int front = cj_v3_dot(h.ng, d) < 0.0;
+    cj_vec3 n = h.n, nf = front ? h.ng : cj_v3_scale(h.ng, -1.0);
+    if (cj_v3_dot(n, nf) < 0.0) n = cj_v3_scale(n, -1.0); /* shading normal on the ray's side */
+    cj_rgb cr = m->color;
+    if (m->texture >= 0 && m->texture < sh->s->ntex) {
+        float tc[3];
+        cj_tex_sample(&sh->s->tex[m->texture], h.u, h.v, 0.0, 0.0, 0.0, 0.0, tc);
+        cr = cj_rgb_make(cr.r * tc[0], cr.g * tc[1], cr.b * tc[2]);
+    }
+    double rt = m->transmission, rm = m->mirror, op = m->opacity;
+    cj_rgb out = cj_rgb_make(0, 0, 0);
+    if (rt < 1.0) {
+        cj_rgb loc = local_light(sh, m, &h, n, d, cr, depth);
+        loc = add_scaled(loc, m->emission, 1.0);
+        out = add_scaled(out, loc, (1.0 - rt) * op);
+        if (op < 1.0 && depth < sh->max_depth) {
+            cj_ray tr = {cj_ray_offset_origin(&h, d), d, 0.0, INFINITY};
+            out = add_scaled(out, tr_trace(sh, &tr, TR_THROUGH, depth + 1, med, NULL),
+                             (1.0 - rt) * (1.0 - op));
+        }
+    }
+    if (depth >= sh->max_depth) return out;
+    double reflect_w = rm;
+    if (rt > 0.0) {
+        /* entering: from the current medium into the material; leaving: back to the outer one */
+        double n1, n2;
+        tr_medium inner = med;
+        if (front) {
+            n1 = med.ior[med.top];
+            n2 = m->ior;
+            if (inner.top + 1 < TR_MAX_MEDIA) inner.ior[++inner.top] = m->ior;
+        } else {
+            n1 = med.ior[med.top];
+            if (inner.top > 0) inner.top--;
+            n2 = inner.ior[inner.top];
+        }
+        cj_vec3 t;
+        if (cj_trace_refract(d, nf, n1, n2, &t)) {
+            cj_ray rr = {cj_ray_offset_origin(&h, t), t, 0.0, INFINITY};
+            out = add_scaled(out, tr_trace(sh, &rr, TR_REFRACT, depth + 1, inner, NULL), rt);
+        } else {
+            reflect_w += rt; /* total internal reflection */
+        }
+    }
+    if (reflect_w > 0.0) {
+        cj_vec3 r = cj_v3_normalize(reflect(d, nf));
+        if (m->glossiness > 0.0 && sh->spp > 1) {
+            cj_vec3 g = phong_lobe(r, m->glossiness, tr_rand(&sh->rng), tr_rand(&sh->rng));
+            if (cj_v3_dot(g, nf) > 0.0) r = g;
+        }
+        cj_ray rr = {cj_ray_offset_origin(&h, r), r, 0.0, INFINITY};
+        out = add_scaled(out, tr_trace(sh, &rr, TR_REFLECT, depth + 1, med, NULL), reflect_w);
+    }
+    return out;
+}

@@ -1,0 +1,43 @@
+/* Private to the ray tracer: per-thread shading state and the recursive trace. */
+#ifndef CASTELJAU_TRACE_SHADE_H
+#define CASTELJAU_TRACE_SHADE_H
+
+#include "trace_internal.h"
+
+#define TR_MAX_MEDIA 16
+
+typedef struct tr_rng {
+    uint64_t key;
+    uint64_t n;
+} tr_rng;
+
+uint64_t tr_mix(uint64_t z);
+double tr_rand(tr_rng *r);
+
+typedef struct tr_lights {
+    int unlit; /* the scene has no light at all: colour shown flat, as the rasterizer does */
+    cj_rgb ia; /* Σ ambient colour × intensity */
+    int count;
+    const cj_light *light[64];
+} tr_lights;
+
+/* The stack of indices of refraction of the media the ray is inside (ior[0] = 1, air). */
+typedef struct tr_medium {
+    double ior[TR_MAX_MEDIA];
+    int top;
+} tr_medium;
+
+typedef struct tr_shade {
+    const tr_scene *s;
+    const tr_lights *lights;
+    tr_counts *c;
+    cj_rgb background;
+    int max_depth, spp, strata;
+    uint32_t sample, perm;
+    tr_rng rng;
+} tr_shade;
+
+int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit);
+cj_rgb tr_trace(tr_shade *sh, const cj_ray *ray, int kind, int depth, tr_medium med, int *hit_any);
+
+#endif
