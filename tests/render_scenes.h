@@ -132,8 +132,9 @@ static inline cj_scene *rs_feature_scene(void) {
     int gi;
     rs_check(cj_scene_add_geometry(sc.s, &g, &gi));
     cj_node n = cj_render_node(gi, mflat);
-    n.overlay.flags = CJ_OVERLAY_NORMALS;
+    n.overlay.flags = CJ_OVERLAY_NORMALS | CJ_OVERLAY_ISO_LINES;
     n.overlay.normal_length = 0.15;
+    n.overlay.iso_count = 6;
     rs_check(cj_scene_add_node(sc.s, &n, NULL));
     memset(&g, 0, sizeof g);
     g.kind = CJ_GEOM_CYLINDER;
@@ -144,7 +145,8 @@ static inline cj_scene *rs_feature_scene(void) {
     n.overlay.flags = CJ_OVERLAY_WIREFRAME;
     rs_check(cj_scene_add_node(sc.s, &n, NULL));
     rs_add_patch_quad(sc.s, mt, 1.2, CJ_OVERLAY_CONTROL_NET | CJ_OVERLAY_ISO_LINES);
-    rs_add_curve(sc.s, sc.mat, 0.5);
+    int cn = rs_add_curve(sc.s, sc.mat, 0.5);
+    cj_scene_geometry_mut(sc.s, cj_scene_node(sc.s, cn)->geometry)->u.curve.width_px = 3.0;
     cj_scene_settings set = cj_scene_settings_default();
     set.background = cj_rgb_make(0.05, 0.05, 0.1);
     rs_check(cj_scene_set_settings(sc.s, &set));

@@ -163,14 +163,7 @@ cj_status cj_render_geometry_patches(const cj_geometry *g, const cj_allocator *a
 
 /* ---- analytic surfaces: proven second-derivative bounds and bounding boxes ------------------- */
 
-typedef struct surf_info {
-    cj_param_surface s;
-    cj_quadric q; /* storage for the sphere's ellipsoid */
-    double muu, muv, mvv;
-    double lo[3], hi[3];
-} surf_info;
-
-static void box_points(surf_info *si, const cj_vec3 *p, int n) {
+static void box_points(cj_rsurf *si, const cj_vec3 *p, int n) {
     for (int k = 0; k < 3; ++k) {
         si->lo[k] = INFINITY;
         si->hi[k] = -INFINITY;
@@ -184,7 +177,7 @@ static void box_points(surf_info *si, const cj_vec3 *p, int n) {
     }
 }
 
-static void box_sym(surf_info *si, double rx, double ry, double z0, double z1) {
+static void box_sym(cj_rsurf *si, double rx, double ry, double z0, double z1) {
     si->lo[0] = -rx;
     si->hi[0] = rx;
     si->lo[1] = -ry;
@@ -194,7 +187,7 @@ static void box_sym(surf_info *si, double rx, double ry, double z0, double z1) {
 }
 
 /* |S_uu|, |S_uv|, |S_vv| bounds from the parametrisations of quadric.h / analytic.h. */
-static cj_status quadric_info(const cj_quadric *q, surf_info *si) {
+static cj_status quadric_info(const cj_quadric *q, cj_rsurf *si) {
     double ab = q->a > q->b ? q->a : q->b, c = q->c;
     double vm = fabs(q->v0) > fabs(q->v1) ? fabs(q->v0) : fabs(q->v1);
     cj_quadric_surface(q, &si->s);
@@ -251,7 +244,7 @@ static cj_status quadric_info(const cj_quadric *q, surf_info *si) {
     return CJ_OK;
 }
 
-static cj_status surface_info(const cj_geometry *g, surf_info *si) {
+cj_status cj_rsurf_init(const cj_geometry *g, cj_rsurf *si) {
     memset(si, 0, sizeof *si);
     switch (g->kind) {
     case CJ_GEOM_QUADRIC:
@@ -261,6 +254,7 @@ static cj_status surface_info(const cj_geometry *g, surf_info *si) {
         cj_status st = cj_quadric_ellipsoid(&si->q, r, r, r);
         if (st) return st;
         st = quadric_info(&si->q, si);
+        si->offset = g->u.sphere.center;
         for (int k = 0; k < 3; ++k) {
             double c = k == 0   ? g->u.sphere.center.x
                        : k == 1 ? g->u.sphere.center.y
@@ -325,7 +319,7 @@ static cj_status surface_info(const cj_geometry *g, surf_info *si) {
 /* The smallest uniform grid (nu, nv) whose cells meet (Muu hu² + 2 Muv hu hv + Mvv hv²)/8 <= tol:
  * with hu <= sqrt(4 tol / (Muu + Muv)) and hv <= sqrt(4 tol / (Mvv + Muv)), the AM-GM step
  * 2 hu hv <= hu² + hv² gives bound <= tol; the exact bound of the grid taken is returned. */
-static cj_status choose_grid(const surf_info *si, double tol, int *nu, int *nv, double *bound) {
+static cj_status choose_grid(const cj_rsurf *si, double tol, int *nu, int *nv, double *bound) {
     double lu = si->s.u1 - si->s.u0, lv = si->s.v1 - si->s.v0;
     double cu = si->muu + si->muv, cv = si->mvv + si->muv;
     double nu_d = ceil(lu * sqrt(cu / (4.0 * tol))), nv_d = ceil(lv * sqrt(cv / (4.0 * tol)));
@@ -414,8 +408,8 @@ cj_status cj_render_geometry_mesh(const cj_geometry *g, const cj_robject *o, con
     case CJ_GEOM_CURVE:
         return CJ_OK; /* handled by the caller */
     default: {
-        surf_info si;
-        cj_status st = surface_info(g, &si);
+        cj_rsurf si;
+        cj_status st = cj_rsurf_init(g, &si);
         if (st) return st;
         double d;
         if (!cj_rview_box_depth(view, &o->world, si.lo, si.hi, &d)) {

@@ -119,6 +119,18 @@ cj_status cj_render_geometry_mesh(const cj_geometry *g, const cj_robject *o, con
 cj_status cj_render_geometry_patches(const cj_geometry *g, const cj_allocator *alloc,
                                      cj_patch **patches, size_t *count, double **pts, double **w);
 
+/* An analytic surface (quadric, sphere, torus, cylinder, planar, bilinear) as the pipeline
+ * tessellates it: its parametric view (points S + offset), proven bounds on |S_uu|, |S_uv|,
+ * |S_vv| over the domain, and an object-space bounding box (render_geom.c). */
+typedef struct cj_rsurf {
+    cj_param_surface s;
+    cj_quadric q;   /* storage for the sphere's ellipsoid */
+    cj_vec3 offset; /* added to S (the sphere's centre), else 0 */
+    double muu, muv, mvv;
+    double lo[3], hi[3];
+} cj_rsurf;
+cj_status cj_rsurf_init(const cj_geometry *g, cj_rsurf *out);
+
 /* Resolved allocator (NULL -> malloc/free). */
 cj_allocator cj_render_alloc(const cj_allocator *alloc);
 void *cj_ralloc(const cj_allocator *a, size_t bytes);

@@ -30,7 +30,7 @@ typedef struct emit_ctx {
     const cj_allocator *a;
     const cj_xform3 *world; /* object -> world of the current object */
     float rgb[3];
-    int offset;
+    int offset, width;
     cj_status st;
     int have_prev;
     double prev[3];
@@ -135,6 +135,7 @@ static void emit_world(emit_ctx *e, const double p[3], const double q[3]) {
     s->z0 = (float)(pa[2] / pa[3]);
     s->z1 = (float)(pb[2] / pb[3]);
     memcpy(s->rgb, e->rgb, sizeof s->rgb);
+    s->width = e->width > 1 ? e->width : 1;
 }
 
 static void emit_object(emit_ctx *e, const double p[3], const double q[3]) {
@@ -187,6 +188,28 @@ static void iso_lines(emit_ctx *e, const cj_patch *p, int count, double tol) {
         }
 }
 
+/* Iso-parameter lines of an analytic surface as polylines through the tessellation grid's
+ * points: each is a chord polygon of the curve within the grid's proven bound. */
+static void surface_iso(emit_ctx *e, const cj_rsurf *rs, int count, int nu, int nv) {
+    const cj_param_surface *ps = &rs->s;
+    for (int dir = 0; dir < 2; ++dir)
+        for (int i = 0; i <= count; ++i) {
+            double a = (double)i / count;
+            int steps = dir == 0 ? nv : nu;
+            double prev[3];
+            for (int j = 0; j <= steps; ++j) {
+                double b = (double)j / steps;
+                double u = ps->u0 + (ps->u1 - ps->u0) * (dir == 0 ? a : b);
+                double v = ps->v0 + (ps->v1 - ps->v0) * (dir == 0 ? b : a);
+                cj_vec3 p;
+                if (cj_surface_eval(ps, u, v, &p, NULL, NULL)) return;
+                double q[3] = {p.x + rs->offset.x, p.y + rs->offset.y, p.z + rs->offset.z};
+                if (j) emit_object(e, prev, q);
+                memcpy(prev, q, sizeof prev);
+            }
+        }
+}
+
 static double curve_tol(const cj_rctx *c, const cj_robject *o, const double *pts, size_t n) {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, d;
     for (size_t i = 0; i < n; ++i)
@@ -202,6 +225,9 @@ static void curve_lines(emit_ctx *e, const cj_robject *o, const cj_geometry *g, 
     const double *pts = g->u.curve.pts;
     size_t n = g->u.curve.count;
     if (n == 0) return;
+    double w = g->u.curve.width_px;
+    e->width = w > 1.0 ? (int)(w + 0.5) : 1;
+    if (e->width > 64) e->width = 64;
     double tol = curve_tol(e->c, o, pts, n);
     if (tol > 0.0) {
         cj_flatten_opts fo = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, tol);
@@ -256,6 +282,7 @@ cj_status cj_rlines_build(cj_rctx *c, const cj_scene *scene, const cj_allocator 
             e.rgb[1] = (float)g->u.curve.color.g;
             e.rgb[2] = (float)g->u.curve.color.b;
             curve_lines(&e, o, g, fl);
+            e.width = 1;
             continue;
         }
         if (!fl) continue;
@@ -283,6 +310,12 @@ cj_status cj_rlines_build(cj_rctx *c, const cj_scene *scene, const cj_allocator 
         cj_rfree(a, conv);
         cj_rfree(a, cp);
         cj_rfree(a, cw);
+        if ((fl & CJ_OVERLAY_ISO_LINES) && !pt && g->kind != CJ_GEOM_MESH && o->grid_nu > 0) {
+            cj_rsurf rs;
+            if (!cj_rsurf_init(g, &rs))
+                surface_iso(&e, &rs, nd->overlay.iso_count > 0 ? nd->overlay.iso_count : 1,
+                            o->grid_nu, o->grid_nv);
+        }
         /* world-space lines from the triangles the pipeline built */
         e.world = NULL;
         if (fl & CJ_OVERLAY_WIREFRAME)
@@ -322,8 +355,9 @@ cj_status cj_rlines_build(cj_rctx *c, const cj_scene *scene, const cj_allocator 
         }
         for (size_t s = 0; s < L->count; ++s) {
             const cj_rseg *g = &L->segs[s];
-            double xl = floor(fmin(g->x0, g->x1)), xh = floor(fmax(g->x0, g->x1));
-            double yl = floor(fmin(g->y0, g->y1)), yh = floor(fmax(g->y0, g->y1));
+            double hw = g->width / 2 + 1;
+            double xl = floor(fmin(g->x0, g->x1)) - hw, xh = floor(fmax(g->x0, g->x1)) + hw;
+            double yl = floor(fmin(g->y0, g->y1)) - hw, yh = floor(fmax(g->y0, g->y1)) + hw;
             if (xh < 0 || yh < 0 || xl >= c->width || yl >= c->height) continue;
             int ax = xl < 0 ? 0 : (int)xl / c->tile_size,
                 bx = xh >= c->width ? tx - 1 : (int)xh / c->tile_size;
@@ -391,7 +425,16 @@ void cj_rlines_tile(const cj_rctx *c, const cj_tile *t, float *col, uint64_t *pi
         const cj_rseg *s = &L->segs[L->bin_items[k]];
         line_px u = {s, t, col, floor(s->x0), floor(s->y0), floor(s->x1), floor(s->y1), 0, 0};
         u.xmajor = fabs(u.X1 - u.X0) >= fabs(u.Y1 - u.Y0);
-        (void)cj_raster_line_visit_d(s->x0, s->y0, s->x1, s->y1, r, line_pixel, &u, NULL);
+        for (int off = -(s->width - 1) / 2; off <= s->width / 2; ++off) {
+            /* a wide line: exact lines shifted by whole pixels along the minor axis */
+            double dx = u.xmajor ? 0.0 : off, dy = u.xmajor ? off : 0.0;
+            u.X0 = floor(s->x0) + dx;
+            u.X1 = floor(s->x1) + dx;
+            u.Y0 = floor(s->y0) + dy;
+            u.Y1 = floor(s->y1) + dy;
+            (void)cj_raster_line_visit_d(s->x0 + dx, s->y0 + dy, s->x1 + dx, s->y1 + dy, r,
+                                         line_pixel, &u, NULL);
+        }
         *pixels += u.pixels;
     }
 }

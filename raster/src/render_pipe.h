@@ -74,6 +74,7 @@ typedef struct cj_rseg {
     double x0, y0, x1, y1;
     float z0, z1;
     float rgb[3];
+    int width; /* pixels across: parallel exact lines offset along the minor axis */
 } cj_rseg;
 
 typedef struct cj_rlines {
