@@ -14,6 +14,17 @@
  * interpolate in float from vertices snapped to 1/256 px; see the measured margins printed. */
 #define CJ_DEPTH_TOL 2e-6
 
+/* Colour agreement per channel, in 8-bit linear units, of diffuse + ambient shading (the same
+ * formula in both renderers, per fragment with interpolated, renormalised normals): each image
+ * is rounded to 8 bits (0.5 each) and both compute in float; 2 leaves one unit for the float
+ * arithmetic and the normals' interpolation in different frames (world vs eye). */
+#define CJ_COLOUR_TOL 2
+/* vtkImageDifference with the same per-channel threshold: its thresholded error is 0 only if
+ * every pixel finds a match within the threshold in the other picture (exact pixel, 3 x 3
+ * shift or 3 x 3 average, VTK's defaults), background and silhouettes included. */
+#define CJ_IMAGEDIFF_THRESHOLD CJ_COLOUR_TOL
+#define CJ_IMAGEDIFF_MAX       0.0
+
 typedef struct cj_check_planes {
     int w, h;
     float *rgba;

@@ -37,7 +37,7 @@ pid_t cj_test_xvfb_start(int width, int height) {
         snprintf(fd, sizeof fd, "%d", fds[1]);
         snprintf(screen, sizeof screen, "%dx%dx24", width, height);
         execlp("Xvfb", "Xvfb", "-displayfd", fd, "-screen", "0", screen, "-nolisten", "tcp",
-               (char *)NULL);
+               "-noreset", (char *)NULL);
         _exit(127);
     }
     close(fds[1]);

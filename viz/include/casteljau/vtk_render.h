@@ -110,11 +110,22 @@ void cj_vtk_renderer_destroy(cj_vtk_renderer *r);
 cj_status cj_vtk_render_mesh(const cj_vtk_view *view, const cj_vtk_object *objects, size_t count,
                              const cj_vtk_frame *frame, cj_vtk_timing *timing);
 
-/* vtkImageDifference between two width × height RGBA8 images (alpha ignored): *error is its
- * summed per-pixel error divided by the pixel count, *thresholded its thresholded error (VTK
- * forgives a pixel whose best match in the other image's 3 × 3 neighbourhood differs by at most
- * `threshold` per channel, in 0..255 units; VTK's default is 105). Both are in 0..255 units per
- * pixel. */
+/* A renderer for what our rasterizer draws of `scene`: `mesh` is the scene's world-space mesh
+ * as cj_render_scene_mesh returns it (triangle_patch = the object id, cj_node.id); each object
+ * id gets the material of its node, the view is the scene's camera, lights and background, at
+ * width × height (0: the scene's settings). Objects without triangles are left out; textures,
+ * overlays and transparency sorting are not reproduced. Status: CJ_ERR_ARGUMENT (a triangle
+ * whose id names no visible object, a mesh without triangles), otherwise as
+ * cj_vtk_renderer_create. */
+cj_status cj_vtk_renderer_create_scene(const cj_scene *scene, const cj_mesh *mesh, int width,
+                                       int height, cj_vtk_renderer **out);
+
+/* vtkImageDifference (VTK 9.1 with its defaults, AllowShift and Averaging on) between two
+ * width × height RGBA8 images (alpha ignored), as VTK reports it: *thresholded is
+ * GetThresholdedError, which accumulates, per pixel, the excess over `threshold` (0..255 units
+ * per channel) of the best match among the other image's pixel, its 3 × 3 shifts and 3 × 3
+ * averages: it is 0 exactly when every pixel finds a match within `threshold`. *error is
+ * GetError, VTK's unthresholded figure, reported for reference only. */
 cj_status cj_vtk_image_difference(const uint8_t *a, const uint8_t *b, int width, int height,
                                   int threshold, double *error, double *thresholded);
 
