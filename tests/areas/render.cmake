@@ -9,3 +9,6 @@ if(CJ_WITH_OIIO AND TARGET cj::viz)
     CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
   add_dependencies(test_cli_render casteljau)
 endif()
+# Texture sampling (private to raster/: raster/src/texture_internal.h).
+cj_add_test(test_render_texture SOURCES test_render_texture.c LIBS cj::raster cj::scene)
+target_include_directories(test_render_texture PRIVATE ${PROJECT_SOURCE_DIR}/raster/src)
