@@ -19,6 +19,8 @@ static const command commands[] = {
      "Bezier patches (or the Utah teapot) to an OBJ/PLY mesh within a tolerance"},
     {"render", cmd_render, "render a 3D scene (JSON, or --demo) to PNG/EXR with our rasterizer"},
     {"trace", cmd_trace, "ray-trace a 3D scene (JSON, or --demo): shadows, mirrors, glass"},
+    {"animate", cmd_animate,
+     "render an animation (keyframes, paths, cloth) as numbered PNG frames"},
 };
 
 static void usage(FILE *f) {

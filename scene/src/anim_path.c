@@ -110,6 +110,9 @@ void cj_path_destroy(cj_path *p) {
 double cj_path_length(const cj_path *p) {
     return p->length;
 }
+int cj_path_dim(const cj_path *p) {
+    return p->dim;
+}
 
 static double speed_at(const cj_bezier *c, double u, double *deriv) {
     double d[2 * CJ_MAX_DIM];

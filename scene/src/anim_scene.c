@@ -28,13 +28,20 @@ typedef struct binding {
     void *ptr;
 } binding;
 
+typedef struct entry {
+    cj_channel *ch;  /* a keyframe channel, or NULL for motion along a path */
+    cj_path *motion; /* owned */
+    double start, dur, param;
+    cj_ease ease;
+    char *path;
+    binding bind;
+} entry;
+
 struct cj_anim {
     cj_allocator alloc;
     int has_alloc;
     size_t count, cap;
-    cj_channel **ch;
-    char **path;
-    binding *bind;
+    entry *e;
     cj_scene *scene; /* bound scene, or NULL */
 };
 
@@ -64,59 +71,75 @@ cj_status cj_anim_create(const cj_allocator *alloc, cj_anim **out) {
 void cj_anim_destroy(cj_anim *a) {
     if (!a) return;
     for (size_t i = 0; i < a->count; ++i) {
-        cj_channel_destroy(a->ch[i]);
-        a_free(a, a->path[i]);
+        cj_channel_destroy(a->e[i].ch);
+        cj_path_destroy(a->e[i].motion);
+        a_free(a, a->e[i].path);
     }
-    a_free(a, a->ch);
-    a_free(a, a->path);
-    a_free(a, a->bind);
+    a_free(a, a->e);
     a_free(a, a);
 }
 
-cj_status cj_anim_add(cj_anim *a, const char *path, const cj_channel_desc *desc) {
-    assert(a && path && desc);
+/* Room for one more entry and a copy of the path; the entry is zeroed. */
+static cj_status new_entry(cj_anim *a, const char *path, entry **out) {
     if (a->count == a->cap) {
         const size_t nc = a->cap ? 2 * a->cap : 8;
-        cj_channel **ch = a_alloc(a, sizeof *ch * nc);
-        char **pa = a_alloc(a, sizeof *pa * nc);
-        binding *bi = a_alloc(a, sizeof *bi * nc);
-        if (!ch || !pa || !bi) {
-            a_free(a, ch);
-            a_free(a, pa);
-            a_free(a, bi);
-            return cj_fail(CJ_ERR_NOMEM, "animation: no memory for %zu channels", nc);
-        }
-        if (a->count) {
-            memcpy(ch, a->ch, sizeof *ch * a->count);
-            memcpy(pa, a->path, sizeof *pa * a->count);
-            memcpy(bi, a->bind, sizeof *bi * a->count);
-        }
-        a_free(a, a->ch);
-        a_free(a, a->path);
-        a_free(a, a->bind);
-        a->ch = ch;
-        a->path = pa;
-        a->bind = bi;
+        entry *e = a_alloc(a, sizeof *e * nc);
+        if (!e) return cj_fail(CJ_ERR_NOMEM, "animation: no memory for %zu channels", nc);
+        if (a->count) memcpy(e, a->e, sizeof *e * a->count);
+        a_free(a, a->e);
+        a->e = e;
         a->cap = nc;
     }
     const size_t len = strlen(path);
     char *p = a_alloc(a, len + 1);
     if (!p) return cj_fail(CJ_ERR_NOMEM, "animation: no memory for a path");
     memcpy(p, path, len + 1);
-    cj_channel *ch = NULL;
-    cj_status st = cj_channel_create(desc, a->has_alloc ? &a->alloc : NULL, &ch);
+    entry *e = &a->e[a->count];
+    memset(e, 0, sizeof *e);
+    e->path = p;
+    *out = e;
+    return CJ_OK;
+}
+
+cj_status cj_anim_add(cj_anim *a, const char *path, const cj_channel_desc *desc) {
+    assert(a && path && desc);
+    entry *e;
+    cj_status st = new_entry(a, path, &e);
+    if (st != CJ_OK) return st;
+    st = cj_channel_create(desc, a->has_alloc ? &a->alloc : NULL, &e->ch);
     if (st != CJ_OK) {
-        a_free(a, p);
+        a_free(a, e->path);
         char msg[256];
         snprintf(msg, sizeof msg, "%s", cj_last_error());
         return cj_fail(st, "channel %zu (%s): %s", a->count, path, msg);
     }
-    a->ch[a->count] = ch;
-    a->path[a->count] = p;
-    a->bind[a->count].kind = B_NONE;
-    a->bind[a->count].ptr = NULL;
     ++a->count;
     a->scene = NULL; /* a new channel needs binding */
+    return CJ_OK;
+}
+
+cj_status cj_anim_add_path(cj_anim *a, const char *path, cj_path *motion, double start,
+                           double duration, cj_ease ease, double ease_param) {
+    assert(a && path && motion);
+    if (!isfinite(start) || !isfinite(duration) || !isfinite(ease_param))
+        return cj_fail(CJ_ERR_NONFINITE, "channel %zu (%s): start, duration or ease parameter",
+                       a->count, path);
+    if (start < 0.0 || !(duration > 0.0))
+        return cj_fail(CJ_ERR_RANGE, "channel %zu (%s): start %g must be >= 0, duration %g > 0",
+                       a->count, path, start, duration);
+    double sigma;
+    cj_status st = cj_ease_eval(ease, ease_param, 0.5, &sigma);
+    if (st != CJ_OK) return st;
+    entry *e;
+    st = new_entry(a, path, &e);
+    if (st != CJ_OK) return st;
+    e->motion = motion;
+    e->start = start;
+    e->dur = duration;
+    e->ease = ease;
+    e->param = ease_param;
+    ++a->count;
+    a->scene = NULL;
     return CJ_OK;
 }
 
@@ -124,17 +147,17 @@ size_t cj_anim_channel_count(const cj_anim *a) {
     return a->count;
 }
 const char *cj_anim_channel_path(const cj_anim *a, size_t i) {
-    return i < a->count ? a->path[i] : NULL;
+    return i < a->count ? a->e[i].path : NULL;
 }
 const cj_channel *cj_anim_channel(const cj_anim *a, size_t i) {
-    return i < a->count ? a->ch[i] : NULL;
+    return i < a->count ? a->e[i].ch : NULL;
 }
 
 void cj_anim_range(const cj_anim *a, double *t0, double *t1) {
     double lo = 0.0, hi = 0.0;
     for (size_t i = 0; i < a->count; ++i) {
-        double c0, c1;
-        cj_channel_range(a->ch[i], &c0, &c1);
+        double c0 = a->e[i].start, c1 = a->e[i].start + a->e[i].dur;
+        if (a->e[i].ch) cj_channel_range(a->e[i].ch, &c0, &c1);
         lo = i ? fmin(lo, c0) : c0;
         hi = i ? fmax(hi, c1) : c1;
     }
@@ -144,7 +167,7 @@ void cj_anim_range(const cj_anim *a, double *t0, double *t1) {
 
 int cj_anim_animates_control_points(const cj_anim *a) {
     for (size_t i = 0; i < a->count; ++i)
-        if (strstr(a->path[i], ".points[")) return 1;
+        if (strstr(a->e[i].path, ".points[")) return 1;
     return 0;
 }
 
@@ -292,24 +315,25 @@ cj_status cj_anim_bind(cj_anim *a, cj_scene *scene) {
     binding *tmp = a_alloc(a, sizeof *tmp * (a->count ? a->count : 1));
     if (!tmp) return cj_fail(CJ_ERR_NOMEM, "animation: no memory to bind");
     for (size_t i = 0; i < a->count; ++i) {
-        cursor c = {a->path[i], i, a->path[i]};
+        const entry *en = &a->e[i];
+        cursor c = {en->path, i, en->path};
         binding b = {B_NONE, NULL};
         cj_status st = resolve(scene, &c, &b);
         if (st == CJ_OK) {
-            const cj_channel_kind k = cj_channel_kind_of(a->ch[i]);
-            const int dim = cj_channel_dim(a->ch[i]);
+            const cj_channel_kind k = en->ch ? cj_channel_kind_of(en->ch) : CJ_CHANNEL_VECTOR;
+            const int dim = en->ch ? cj_channel_dim(en->ch) : cj_path_dim(en->motion);
             const int want = b.kind == B_SCALAR || b.kind == B_CAM_FOV ? 1 : 3;
             if (b.kind == B_QUAT) {
                 if (k == CJ_CHANNEL_VECTOR)
-                    st = cj_fail(CJ_ERR_DIMENSION,
-                                 "channel %zu: %s needs a quaternion or Euler channel", i,
-                                 a->path[i]);
+                    st =
+                        cj_fail(CJ_ERR_DIMENSION,
+                                "channel %zu: %s needs a quaternion or Euler channel", i, en->path);
             } else if (k != CJ_CHANNEL_VECTOR || dim != want) {
-                st = cj_fail(CJ_ERR_DIMENSION,
-                             "channel %zu: %s takes a vector channel of dimension %d (this one: "
-                             "%s, dimension %d)",
-                             i, a->path[i], want, k == CJ_CHANNEL_VECTOR ? "vector" : "rotation",
-                             dim);
+                st =
+                    cj_fail(CJ_ERR_DIMENSION,
+                            "channel %zu: %s takes a vector channel of dimension %d (this one: "
+                            "%s, dimension %d)",
+                            i, en->path, want, k == CJ_CHANNEL_VECTOR ? "vector" : "rotation", dim);
             }
         }
         if (st != CJ_OK) {
@@ -318,7 +342,7 @@ cj_status cj_anim_bind(cj_anim *a, cj_scene *scene) {
         }
         tmp[i] = b;
     }
-    if (a->count) memcpy(a->bind, tmp, sizeof *tmp * a->count);
+    for (size_t i = 0; i < a->count; ++i) a->e[i].bind = tmp[i];
     a_free(a, tmp);
     a->scene = scene;
     return CJ_OK;
@@ -342,10 +366,17 @@ cj_status cj_anim_pose(cj_scene *scene, const cj_anim *a, double t, cj_anim_pose
     int have_look = 0;
     double look[3] = {0, 0, 0};
     for (size_t i = 0; i < a->count; ++i) {
-        const binding *b = &a->bind[i];
-        double v[4];
-        cj_status st = b->kind == B_QUAT ? cj_channel_eval_quat(a->ch[i], t, v)
-                                         : cj_channel_eval(a->ch[i], t, v);
+        const entry *en = &a->e[i];
+        const binding *b = &en->bind;
+        double v[CJ_MAX_DIM];
+        cj_status st;
+        if (en->motion)
+            st =
+                cj_path_motion(en->motion, en->ease, en->param, (t - en->start) / en->dur, v, NULL);
+        else if (b->kind == B_QUAT)
+            st = cj_channel_eval_quat(en->ch, t, v);
+        else
+            st = cj_channel_eval(en->ch, t, v);
         if (st != CJ_OK) return st;
         switch (b->kind) {
         case B_VEC3:

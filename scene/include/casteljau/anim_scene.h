@@ -44,6 +44,7 @@
 
 #include "casteljau/alloc.h"
 #include "casteljau/anim.h"
+#include "casteljau/motion.h"
 #include "casteljau/particles.h"
 #include "casteljau/scene.h"
 #include "casteljau/springs.h"
@@ -64,8 +65,17 @@ void cj_anim_destroy(cj_anim *anim);
  * with the path. */
 cj_status cj_anim_add(cj_anim *anim, const char *path, const cj_channel_desc *desc);
 
+/* Adds MOTION ALONG A PATH at controlled speed (casteljau/motion.h) on a target of dimension 3:
+ * the value at time t is the path point at length fraction σ((t − start)/duration) of the ease
+ * profile (held before start and after start + duration). The animation takes ownership of
+ * `motion` on success (destroyed with the animation); on failure the caller keeps it.
+ * start < 0, duration <= 0, a bad ease parameter: CJ_ERR_RANGE; NaN: CJ_ERR_NONFINITE. */
+cj_status cj_anim_add_path(cj_anim *anim, const char *path, cj_path *motion, double start,
+                           double duration, cj_ease ease, double ease_param);
+
 size_t cj_anim_channel_count(const cj_anim *anim);
 const char *cj_anim_channel_path(const cj_anim *anim, size_t i);
+/* The keyframe channel of entry i (NULL for motion along a path). */
 const cj_channel *cj_anim_channel(const cj_anim *anim, size_t i);
 /* The first and last key time over all channels (0, 0 when there are none). */
 void cj_anim_range(const cj_anim *anim, double *t0, double *t1);

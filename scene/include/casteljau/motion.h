@@ -65,6 +65,8 @@ void cj_path_destroy(cj_path *path);
 
 /* The total length L. */
 double cj_path_length(const cj_path *path);
+/* The dimension of its points. */
+int cj_path_dim(const cj_path *path);
 
 /* The point at arc length s from the start (clamped to [0, L]): point[dim] (may be NULL), unit
  * tangent[dim] (may be NULL; the zero vector where the speed vanishes), and the segment and

@@ -1,0 +1,301 @@
+/* casteljau animate: an animation document (keyframes, paths at controlled speed, a cloth) over
+ * its scene, rendered frame by frame with our rasterizer. Contract: bad input -> one stderr line
+ * (file:line: path ...), no frame written, exit status 2. Frames are a pure function of the frame
+ * number and the simulation state, so any range renders the same pixels anywhere: checkpoints
+ * carry the simulation state between processes. */
+#include "cli.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef CJ_TEAPOT_SOURCE
+#define CJ_TEAPOT_SOURCE "data/teapot.bpt"
+#endif
+#ifndef CJ_TEAPOT_INSTALLED
+#define CJ_TEAPOT_INSTALLED "/usr/local/share/casteljau/teapot.bpt"
+#endif
+
+static const char animate_usage[] =
+    "usage: casteljau animate ANIM.json -o frames/frame_%04d.png [--frames A:B] [--fps F]\n"
+    "                         [--width W --height H] [--spp 1|4|16] [--threads N]\n"
+    "                         [--checkpoint-in FILE] [--checkpoint-out PATTERN]\n"
+    "                         [--checkpoint-every K] [--no-render] [--stage-report] [--quiet]\n"
+    "  ANIM.json           an animation document naming its scene (see\n"
+    "                      scene/include/casteljau/anim_json.h): channels on scene fields,\n"
+    "                      motion along paths at controlled speed, a cloth on colliders\n"
+    "  -o PATTERN          one PNG per frame; PATTERN holds one %d (e.g. %04d) for the frame\n"
+    "  --frames A:B        frames A..B inclusive (default: the document's \"frames\")\n"
+    "  --fps F             frames per second (default: the document's; the cloth takes\n"
+    "                      steps_per_frame steps of 1/(F*steps) s per frame)\n"
+    "  --width/--height/--spp/--threads   as in 'casteljau render'\n"
+    "  --checkpoint-in F   start from the simulation state saved in F (its frame <= A)\n"
+    "  --checkpoint-out P  write the state after frame f to P with %d replaced by f, for every\n"
+    "                      f in A..B that is a multiple of K (--checkpoint-every K) and for B\n"
+    "  --no-render         simulate and write checkpoints only (no images)\n"
+    "  --stage-report      print the last frame's stage reports (animation, renderer) as JSON\n"
+    "  --quiet             no progress bar on stderr\n"
+    "Splitting a long animation over processes: run once with --no-render --checkpoint-every K\n"
+    "--checkpoint-out ckpt_%04d.bin, then render each range A..A+K-1 from ckpt_<A>.bin, e.g.\n"
+    "  seq 0 48 192 | parallel casteljau animate a.json -o f_%04d.png --frames {}:\\$(({}+47))\n"
+    "      --checkpoint-in ckpt_\\$(printf %04d {}).bin\n"
+    "(or one Slurm array task per range). A range rendered from a checkpoint is bit-identical\n"
+    "to the same frames of one long run.\n";
+
+#if defined(CJ_HAVE_PLOT)
+
+#include "casteljau/anim_json.h"
+#include "casteljau/image_io.h"
+#include "casteljau/render.h"
+#include "casteljau/scene_json.h"
+#include "casteljau/scene_textures.h"
+
+#include <unistd.h>
+
+/* A printf pattern with exactly one integer conversion (%d, %0Nd, %Nd) and no other '%'
+ * (except "%%"). */
+static int pattern_ok(const char *p) {
+    int n = 0;
+    for (const char *s = p; *s; ++s) {
+        if (*s != '%') continue;
+        if (s[1] == '%') {
+            ++s;
+            continue;
+        }
+        ++s;
+        while (*s >= '0' && *s <= '9') ++s;
+        if (*s != 'd') return 0;
+        ++n;
+    }
+    return n == 1;
+}
+
+static void frame_name(const char *pattern, long frame, char *out, size_t size) {
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wformat-nonliteral"
+#endif
+    snprintf(out, size, pattern, (int)frame);
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+}
+
+static const char *dir_of(const char *path, char *buf, size_t size) {
+    const char *slash = strrchr(path, '/');
+    if (!slash) return "";
+    size_t n = (size_t)(slash - path);
+    if (n >= size) n = size - 1;
+    memcpy(buf, path, n);
+    buf[n] = '\0';
+    return n ? buf : "/";
+}
+
+static int write_png(const char *cmd, const char *out, const cj_render_image *img) {
+    const size_t n = (size_t)img->width * (size_t)img->height;
+    uint8_t *px = malloc(n * 4);
+    if (!px) return cli_error(cmd, "out of memory for a %d x %d image", img->width, img->height);
+    cj_status st = cj_render_image_to_srgb8(img, px, 0);
+    for (size_t i = 0; i < n; ++i) px[4 * i + 3] = 255;
+    if (!st) st = cj_image_write_png(out, img->width, img->height, px, 0);
+    free(px);
+    if (st) return cli_error(cmd, "%s", cj_last_error());
+    return 0;
+}
+
+static int save_checkpoint(const char *cmd, const cj_anim_doc *doc, const char *pattern,
+                           long frame) {
+    char path[4096];
+    frame_name(pattern, frame, path, sizeof path);
+    FILE *f = fopen(path, "wb");
+    if (!f) return cli_error(cmd, "%s: cannot create the checkpoint", path);
+    cj_status st = cj_anim_doc_save_state(doc, f);
+    if (fclose(f) != 0 && !st) st = CJ_ERR_IO;
+    if (st) return cli_error(cmd, "%s: writing the checkpoint failed", path);
+    return 0;
+}
+
+static void progress(long done, long total, int quiet) {
+    if (quiet || !isatty(2)) return;
+    const int w = 40, k = total ? (int)(w * done / total) : w;
+    fprintf(stderr, "\r[");
+    for (int i = 0; i < w; ++i) fputc(i < k ? '#' : ' ', stderr);
+    fprintf(stderr, "] %ld/%ld frames", done, total);
+    if (done == total) fputc('\n', stderr);
+    fflush(stderr);
+}
+
+int cmd_animate(int argc, char **argv) {
+    const char *cmd = "animate";
+    const char *doc_path = NULL, *out = NULL, *ck_in = NULL, *ck_out = NULL;
+    long fa = -1, fb = -1, every = 0;
+    double fps = 0;
+    int no_render = 0, report = 0, quiet = 0;
+    cj_render_options opt = cj_render_options_default();
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(animate_usage, stdout);
+            return 0;
+        }
+        if (!strcmp(a, "--no-render")) {
+            no_render = 1;
+            continue;
+        }
+        if (!strcmp(a, "--stage-report")) {
+            report = 1;
+            continue;
+        }
+        if (!strcmp(a, "--quiet")) {
+            quiet = 1;
+            continue;
+        }
+        if (a[0] != '-' || a[1] == '\0') {
+            if (doc_path) return cli_fail(cmd, "more than one animation ('%s', '%s')", doc_path, a);
+            doc_path = a;
+            continue;
+        }
+        if (i + 1 >= argc) return cli_fail(cmd, "option '%s' needs a value (or is unknown)", a);
+        const char *v = argv[++i];
+        long lv;
+        if (!strcmp(a, "-o")) {
+            out = v;
+        } else if (!strcmp(a, "--frames")) {
+            const char *colon = strchr(v, ':');
+            char first[32];
+            if (!colon || (size_t)(colon - v) >= sizeof first)
+                return cli_fail(cmd, "--frames '%s' must be A:B", v);
+            memcpy(first, v, (size_t)(colon - v));
+            first[colon - v] = 0;
+            if (cli_parse_int(first, 0, 10000000, &fa) ||
+                cli_parse_int(colon + 1, 0, 10000000, &fb) || fb < fa)
+                return cli_fail(cmd, "--frames '%s' must be A:B with 0 <= A <= B", v);
+        } else if (!strcmp(a, "--fps")) {
+            if (cli_parse_double(v, &fps) || !(fps > 0) || fps > 10000)
+                return cli_fail(cmd, "--fps '%s' must be a number in (0, 10000]", v);
+        } else if (!strcmp(a, "--width") || !strcmp(a, "--height")) {
+            if (cli_parse_int(v, 1, 32768, &lv))
+                return cli_fail(cmd, "%s '%s' is not an integer in 1..32768", a, v);
+            *(a[2] == 'w' ? &opt.width : &opt.height) = (int)lv;
+        } else if (!strcmp(a, "--spp")) {
+            if (cli_parse_int(v, 1, 16, &lv) || (lv != 1 && lv != 4 && lv != 16))
+                return cli_fail(cmd, "--spp '%s' must be 1, 4 or 16", v);
+            opt.spp = (int)lv;
+        } else if (!strcmp(a, "--threads")) {
+            if (cli_parse_int(v, 1, 1024, &lv))
+                return cli_fail(cmd, "--threads '%s' is not an integer in 1..1024", v);
+            opt.threads = (int)lv;
+        } else if (!strcmp(a, "--checkpoint-in")) {
+            ck_in = v;
+        } else if (!strcmp(a, "--checkpoint-out")) {
+            ck_out = v;
+        } else if (!strcmp(a, "--checkpoint-every")) {
+            if (cli_parse_int(v, 1, 10000000, &every))
+                return cli_fail(cmd, "--checkpoint-every '%s' is not a positive integer", v);
+        } else {
+            return cli_fail(cmd, "unknown option '%s' (try --help)", a);
+        }
+    }
+    if (!doc_path) return cli_fail(cmd, "no animation: give ANIM.json (try --help)");
+    if (!no_render && !out) return cli_fail(cmd, "no output: give -o frames/frame_%%04d.png");
+    if (out && !pattern_ok(out))
+        return cli_fail(cmd, "output pattern '%s' must hold exactly one %%d (e.g. %%04d)", out);
+    if (ck_out && !pattern_ok(ck_out))
+        return cli_fail(cmd, "checkpoint pattern '%s' must hold exactly one %%d", ck_out);
+    if (every && !ck_out) return cli_fail(cmd, "--checkpoint-every needs --checkpoint-out");
+
+    cj_anim_doc *doc = NULL;
+    if (cj_anim_doc_load(doc_path, &doc)) return cli_fail(cmd, "%s", cj_last_error());
+    if (fps > 0) doc->fps = fps;
+    if (fa < 0) {
+        fa = doc->frame_first;
+        fb = doc->frame_last;
+    }
+    int rc = 0;
+    cj_scene *scene = NULL;
+    if (!doc->scene_path[0]) {
+        rc = cli_fail(cmd, "%s: the document names no \"scene\"", doc_path);
+        goto done;
+    }
+    cj_scene_json_options jo = {access(CJ_TEAPOT_SOURCE, R_OK) == 0 ? CJ_TEAPOT_SOURCE
+                                                                    : CJ_TEAPOT_INSTALLED};
+    char dir[4096];
+    if (cj_scene_load_json_ex(doc->scene_path, &jo, NULL, &scene) ||
+        cj_scene_load_textures(scene, dir_of(doc->scene_path, dir, sizeof dir))) {
+        rc = cli_fail(cmd, "%s", cj_last_error());
+        goto done;
+    }
+    if (cj_anim_doc_attach(doc, scene)) {
+        rc = cli_fail(cmd, "%s: %s", doc_path, cj_last_error());
+        goto done;
+    }
+    if (ck_in) {
+        FILE *f = fopen(ck_in, "rb");
+        cj_status st = f ? cj_anim_doc_load_state(doc, f) : CJ_ERR_IO;
+        if (f) fclose(f);
+        if (st) {
+            rc = cli_fail(cmd, "%s: %s", ck_in, f ? cj_last_error() : "cannot open");
+            goto done;
+        }
+        if (doc->sim_frame > fa) {
+            rc = cli_fail(cmd, "%s holds frame %ld, after the first frame %ld", ck_in,
+                          doc->sim_frame, fa);
+            goto done;
+        }
+    }
+    /* Validate every frame's pose before writing anything: posing depends on t alone. */
+    for (long f = fa; f <= fb; ++f) {
+        cj_status st = cj_anim_pose(scene, doc->anim, (double)f / doc->fps, NULL);
+        if (!st) st = cj_scene_check(scene);
+        if (st) {
+            rc = cli_fail(cmd, "%s: frame %ld (t = %g s): %s", doc_path, f, (double)f / doc->fps,
+                          cj_last_error());
+            goto done;
+        }
+    }
+    for (long f = fa; f <= fb && !rc; ++f) {
+        cj_stage_report anim_rep, ren_rep;
+        cj_stage_report_init(&anim_rep, "animate");
+        if (cj_anim_doc_frame(doc, scene, f, &anim_rep)) {
+            rc = cli_error(cmd, "%s: frame %ld: %s", doc_path, f, cj_last_error());
+            break;
+        }
+        if (!no_render) {
+            cj_render_image *img = NULL;
+            if (cj_render_raster(scene, &opt, 0, NULL, &img, &ren_rep)) {
+                rc = cli_error(cmd, "%s: frame %ld: %s", doc_path, f, cj_last_error());
+                break;
+            }
+            char name[4096];
+            frame_name(out, f, name, sizeof name);
+            rc = write_png(cmd, name, img);
+            cj_render_image_destroy(img);
+        }
+        if (!rc && ck_out && (f == fb || (every && f % every == 0)))
+            rc = save_checkpoint(cmd, doc, ck_out, f);
+        progress(f - fa + 1, fb - fa + 1, quiet);
+        if (!rc && report && f == fb) {
+            cj_stage_report_json(&anim_rep, stdout);
+            fputc('\n', stdout);
+            if (!no_render) {
+                cj_stage_report_json(&ren_rep, stdout);
+                fputc('\n', stdout);
+            }
+        }
+    }
+done:
+    cj_scene_destroy(scene);
+    cj_anim_doc_destroy(doc);
+    return rc;
+}
+
+#else
+
+int cmd_animate(int argc, char **argv) {
+    (void)argc;
+    (void)argv;
+    (void)animate_usage;
+    return cli_fail("animate", "this build has no image output (configure with OpenImageIO)");
+}
+
+#endif

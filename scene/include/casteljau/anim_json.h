@@ -1,0 +1,97 @@
+/* casteljau: animation documents (JSON) — keyframe channels, motion along paths, and a cloth
+ * simulation for a scene, read by `casteljau animate`.
+ *
+ * The scene file format (casteljau/scene_json.h) checks every key, so an animation lives in its
+ * own document that names its scene:
+ *
+ * {
+ *   "scene": "teapot.json",        the scene file, relative to this document's folder
+ *   "fps": 24,                     frames per second (> 0; default 24)
+ *   "frames": [0, 95],             the default frame range (first <= last, >= 0)
+ *   "channels": [
+ *     {"target": "nodes[\"pot\"].rotation", "type": "quaternion",      vector | quaternion | euler
+ *      "interpolation": "squad",   step | linear | catmull_rom | centripetal | kochanek_bartels |
+ *                                  hermite | bezier_auto | gltf_cubic | squad
+ *      "times": [0, 1, 2],         seconds, strictly increasing, >= 0
+ *      "values": [[1,0,0,0], ...], one array per key (a number per key for dimension 1)
+ *      "tangents": [...],          hermite: one array per key; gltf_cubic: [in, out] per key
+ *      "tension": 0.5, "continuity": 0, "bias": 0,
+ *      "euler_order": "xyz", "degrees": true},      Euler channels: angles in degrees if true
+ *     {"target": "camera.eye",
+ *      "path": {"points": [[6,2,0], [0,2,6], [-6,2,0], [0,2,-6]], "closed": true,
+ *               "spline": "catmull_rom", "tension": 0.5},   or "centripetal"
+ *      "start": 0, "duration": 4, "ease": "linear", "accel": 0.25}
+ *                                  motion at controlled speed (casteljau/motion.h): linear |
+ *                                  smoothstep | sine | trapezoid (accel = its fraction)
+ *   ],
+ *   "gravity": [0, -9.81, 0], "drag": 0.1,
+ *   "colliders": {"spheres": [{"center": [0,0,0], "radius": 1, "friction": 0.3}],
+ *                 "planes": [{"normal": [0,1,0], "offset": 0, "friction": 0.5}]},
+ *   "cloth": {"grid": [24, 24], "corner": [-1.5, 2, -1.5], "edge_u": [3, 0, 0],
+ *             "edge_v": [0, 0, 3], "mass": 1, "stiffness": [2000, 500, 50], "damping": 0.5,
+ *             "pinned": [0, 23], "integrator": "implicit_euler", "steps_per_frame": 4,
+ *             "color": [0.8, 0.2, 0.2], "name": "cloth"}
+ * }
+ *
+ * Errors name the file, the line and the JSON path ("flyby.json:12: channels[1].times[2] ...");
+ * unknown or repeated keys are errors; a channel on a field that does not exist is reported when
+ * the document is attached to its scene (cj_anim_doc_attach), with the channel's path.
+ *
+ * SIMULATION: the cloth (and its colliders, gravity, drag) is a spring system (springs.h)
+ * advanced in fixed steps of 1/(fps · steps_per_frame) seconds from t = 0; the scene shows it as
+ * a triangle mesh whose vertices and normals are rewritten every frame. cj_anim_doc_advance()
+ * steps it up to a frame; checkpoints (cj_anim_doc_save_state / load_state) store the exact
+ * state, so frames A..B rendered after loading the checkpoint of frame A are bit-identical to
+ * those of one long run.
+ */
+#ifndef CASTELJAU_ANIM_JSON_H
+#define CASTELJAU_ANIM_JSON_H
+
+#include "casteljau/anim_scene.h"
+#include "casteljau/springs.h"
+#include "casteljau/status.h"
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct cj_anim_doc {
+    char scene_path[1024]; /* resolved; "" if the document names none */
+    double fps;
+    int frame_first, frame_last;
+    cj_anim *anim;     /* owned */
+    cj_springs *cloth; /* owned, or NULL */
+    int cloth_nu, cloth_nv;
+    cj_integrator cloth_integrator;
+    int steps_per_frame;
+    cj_rgb cloth_color;
+    char cloth_name[64];
+    long sim_frame;     /* the frame the simulation state belongs to */
+    int cloth_node;     /* scene node showing the cloth after attach, or −1 */
+    int cloth_geometry; /* its mesh geometry */
+} cj_anim_doc;
+
+cj_status cj_anim_doc_load(const char *path, cj_anim_doc **out);
+cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base_dir,
+                            cj_anim_doc **out);
+void cj_anim_doc_destroy(cj_anim_doc *doc);
+
+/* Adds the cloth's mesh node (if any) to the scene and binds the channels (errors name the
+ * channel and its path). Call once, before posing. */
+cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene);
+
+/* Advances the simulation to frame `frame` (>= the current one; frames before it need a
+ * checkpoint: CJ_ERR_RANGE) and poses the scene at t = frame / fps: channels, then the cloth
+ * mesh. report (may be NULL) receives the frame's animation stages. */
+cj_status cj_anim_doc_frame(cj_anim_doc *doc, cj_scene *scene, long frame, cj_stage_report *report);
+
+/* The simulation state (frame number, cloth positions and velocities, bit-exact) to/from a
+ * checkpoint file. Loading a state of another document (particle counts differ): CJ_ERR_PARSE. */
+cj_status cj_anim_doc_save_state(const cj_anim_doc *doc, FILE *f);
+cj_status cj_anim_doc_load_state(cj_anim_doc *doc, FILE *f);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

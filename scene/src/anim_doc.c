@@ -1,0 +1,202 @@
+/* Animation documents at run time: the cloth shown as a mesh node, frames advanced in fixed
+ * simulation steps, checkpoints of the exact state. */
+#include "casteljau/anim_json.h"
+
+#include "error_internal.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Area-weighted vertex normals of the cloth grid into n (3 per vertex). */
+static void grid_normals(const double *x, int nu, int nv, double *n) {
+    memset(n, 0, sizeof(double) * 3 * (size_t)nu * (size_t)nv);
+    for (int j = 0; j + 1 < nv; ++j)
+        for (int i = 0; i + 1 < nu; ++i) {
+            const int q[4] = {j * nu + i, j * nu + i + 1, (j + 1) * nu + i + 1, (j + 1) * nu + i};
+            const int tri[2][3] = {{q[0], q[1], q[2]}, {q[0], q[2], q[3]}};
+            for (int t = 0; t < 2; ++t) {
+                const double *a = x + 3 * tri[t][0], *b = x + 3 * tri[t][1], *c = x + 3 * tri[t][2];
+                const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+                const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+                const double cr[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                      u[0] * v[1] - u[1] * v[0]};
+                for (int k = 0; k < 3; ++k)
+                    for (int m = 0; m < 3; ++m) n[3 * tri[t][k] + m] += cr[m];
+            }
+        }
+    for (int i = 0; i < nu * nv; ++i) {
+        double *p = n + 3 * i;
+        const double l = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        if (l > 0.0)
+            for (int m = 0; m < 3; ++m) p[m] /= l;
+        else
+            p[1] = 1.0;
+    }
+}
+
+cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene) {
+    assert(doc && scene);
+    cj_status st = CJ_OK;
+    if (doc->cloth && doc->cloth_node < 0) {
+        const int nu = doc->cloth_nu, nv = doc->cloth_nv;
+        const double *x = cj_springs_positions(doc->cloth);
+        double *nrm = malloc(sizeof(double) * 3 * (size_t)nu * (size_t)nv);
+        cj_mesh *mesh = NULL;
+        if (!nrm) return cj_fail(CJ_ERR_NOMEM, "no memory for the cloth mesh");
+        grid_normals(x, nu, nv, nrm);
+        st = cj_mesh_create(NULL, &mesh);
+        for (int j = 0; !st && j < nv; ++j)
+            for (int i = 0; !st && i < nu; ++i) {
+                const double uv[2] = {(double)i / (nu - 1), (double)j / (nv - 1)};
+                const size_t id = (size_t)j * (size_t)nu + (size_t)i;
+                st = cj_mesh_add_vertex(mesh, x + 3 * id, nrm + 3 * id, uv, NULL);
+            }
+        for (int j = 0; !st && j + 1 < nv; ++j)
+            for (int i = 0; !st && i + 1 < nu; ++i) {
+                const uint32_t a = (uint32_t)(j * nu + i), b = a + 1, c = a + 1 + (uint32_t)nu,
+                               d = a + (uint32_t)nu;
+                st = cj_mesh_add_triangle(mesh, a, b, c, 0);
+                if (!st) st = cj_mesh_add_triangle(mesh, a, c, d, 0);
+            }
+        free(nrm);
+        int mat = -1, geo = -1, node = -1;
+        if (!st) {
+            cj_material m = cj_material_default();
+            m.color = doc->cloth_color;
+            m.two_sided = 1;
+            m.ks = 0.1;
+            st = cj_scene_add_material(scene, &m, &mat);
+        }
+        if (!st) {
+            cj_geometry g;
+            memset(&g, 0, sizeof g);
+            g.kind = CJ_GEOM_MESH;
+            g.u.mesh = mesh;
+            st = cj_scene_add_geometry(scene, &g, &geo);
+        }
+        cj_mesh_destroy(mesh);
+        if (!st) {
+            cj_node n;
+            memset(&n, 0, sizeof n);
+            n.name = doc->cloth_name;
+            n.parent = -1;
+            n.local = cj_transform_identity();
+            n.geometry = geo;
+            n.material = mat;
+            n.visible = 1;
+            st = cj_scene_add_node(scene, &n, &node);
+        }
+        if (st) return st;
+        doc->cloth_node = node;
+        doc->cloth_geometry = geo;
+    }
+    return cj_anim_bind(doc->anim, scene);
+}
+
+cj_status cj_anim_doc_frame(cj_anim_doc *doc, cj_scene *scene, long frame,
+                            cj_stage_report *report) {
+    assert(doc && scene);
+    if (frame < 0) return cj_fail(CJ_ERR_RANGE, "frame %ld is negative", frame);
+    cj_springs_stats sum;
+    memset(&sum, 0, sizeof sum);
+    if (doc->cloth) {
+        if (frame < doc->sim_frame)
+            return cj_fail(CJ_ERR_RANGE,
+                           "frame %ld is before the simulation state (frame %ld): start from a "
+                           "checkpoint at or before it",
+                           frame, doc->sim_frame);
+        const double h = 1.0 / (doc->fps * doc->steps_per_frame);
+        while (doc->sim_frame < frame) {
+            for (int s = 0; s < doc->steps_per_frame; ++s) {
+                cj_springs_stats st1;
+                cj_status st = cj_springs_step(doc->cloth, doc->cloth_integrator, h, &st1);
+                if (st != CJ_OK && st != CJ_ERR_CAP) return st;
+                sum.seconds_forces += st1.seconds_forces;
+                sum.seconds_solve += st1.seconds_solve;
+                sum.seconds_collide += st1.seconds_collide;
+                sum.collisions = st1.collisions;
+                sum.cg_iterations =
+                    st1.cg_iterations > sum.cg_iterations ? st1.cg_iterations : sum.cg_iterations;
+            }
+            ++doc->sim_frame;
+        }
+    }
+    cj_anim_pose_info info;
+    cj_status st = cj_anim_pose(scene, doc->anim, (double)frame / doc->fps, &info);
+    if (st != CJ_OK) return st;
+    if (doc->cloth && doc->cloth_geometry >= 0) {
+        cj_geometry *g = cj_scene_geometry_mut(scene, doc->cloth_geometry);
+        if (!g || g->kind != CJ_GEOM_MESH)
+            return cj_fail(CJ_ERR_ARGUMENT, "the cloth's mesh geometry is gone from the scene");
+        cj_mesh *m = g->u.mesh;
+        const size_t nv = (size_t)doc->cloth_nu * (size_t)doc->cloth_nv;
+        memcpy(m->positions, cj_springs_positions(doc->cloth), sizeof(double) * 3 * nv);
+        grid_normals(m->positions, doc->cloth_nu, doc->cloth_nv, m->normals);
+    }
+    if (report)
+        cj_anim_report_stages(report, doc->anim, &info, doc->cloth, doc->cloth ? &sum : NULL, NULL,
+                              NULL);
+    return CJ_OK;
+}
+
+static const char STATE_MAGIC[8] = {'C', 'J', 'A', 'N', 'I', 'M', '0', '1'};
+
+static int put_u64(FILE *f, uint64_t v) {
+    unsigned char b[8];
+    for (int k = 0; k < 8; ++k) b[k] = (unsigned char)(v >> (8 * k));
+    return fwrite(b, 1, 8, f) == 8;
+}
+static int get_u64(FILE *f, uint64_t *v) {
+    unsigned char b[8];
+    if (fread(b, 1, 8, f) != 8) return 0;
+    *v = 0;
+    for (int k = 0; k < 8; ++k) *v |= (uint64_t)b[k] << (8 * k);
+    return 1;
+}
+
+cj_status cj_anim_doc_save_state(const cj_anim_doc *doc, FILE *f) {
+    const size_t n = doc->cloth ? cj_springs_count(doc->cloth) * 3 : 0;
+    int ok =
+        fwrite(STATE_MAGIC, 1, 8, f) == 8 && put_u64(f, (uint64_t)doc->sim_frame) && put_u64(f, n);
+    for (int pass = 0; pass < 2 && n; ++pass) {
+        const double *a =
+            pass ? cj_springs_velocities(doc->cloth) : cj_springs_positions(doc->cloth);
+        for (size_t i = 0; i < n && ok; ++i) {
+            uint64_t u;
+            memcpy(&u, &a[i], sizeof u);
+            ok = put_u64(f, u);
+        }
+    }
+    if (!ok || fflush(f) != 0) return cj_fail(CJ_ERR_IO, "writing the animation checkpoint failed");
+    return CJ_OK;
+}
+
+cj_status cj_anim_doc_load_state(cj_anim_doc *doc, FILE *f) {
+    char magic[8];
+    uint64_t frame, n;
+    if (fread(magic, 1, 8, f) != 8 || memcmp(magic, STATE_MAGIC, 8) || !get_u64(f, &frame) ||
+        !get_u64(f, &n))
+        return cj_fail(CJ_ERR_PARSE, "not an animation checkpoint (magic CJANIM01)");
+    const size_t want = doc->cloth ? cj_springs_count(doc->cloth) * 3 : 0;
+    if (n != want || frame > 100000000)
+        return cj_fail(CJ_ERR_PARSE,
+                       "checkpoint of another animation (%llu cloth coordinates, "
+                       "this one has %zu)",
+                       (unsigned long long)n, want);
+    double *buf = malloc(sizeof(double) * (2 * want + 1));
+    if (!buf) return cj_fail(CJ_ERR_NOMEM, "no memory for the checkpoint");
+    for (size_t i = 0; i < 2 * want; ++i) {
+        uint64_t u;
+        if (!get_u64(f, &u)) {
+            free(buf);
+            return cj_fail(CJ_ERR_PARSE, "animation checkpoint truncated");
+        }
+        memcpy(&buf[i], &u, sizeof u);
+    }
+    cj_status st = want ? cj_springs_set_state(doc->cloth, buf, buf + want) : CJ_OK;
+    free(buf);
+    if (st == CJ_OK) doc->sim_frame = (long)frame;
+    return st;
+}
