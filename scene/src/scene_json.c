@@ -1,7 +1,7 @@
 /* The JSON scene reader: lines of values, checked accessors, entry points. cJSON keeps no
- * positions, so a scanner walks the raw text once (after cJSON accepted it) and records the
- * line of every value in document order; walking the cJSON tree in the same pre-order pairs
- * each node with its line. */
+ * positions, so when a message needs a line a scanner walks the raw text once (cJSON accepted
+ * it, so it is valid JSON) and records the line of every value in document order; a node's
+ * position in a pre-order walk of the cJSON tree is its index in that list. */
 #include "scene_json_internal.h"
 
 #include <assert.h>
@@ -88,68 +88,51 @@ static void scan_value(scanner *sc, int key_line, int depth) {
     } else if (ch == '"') {
         skip_string(sc);
     } else {
-        while (*sc->s && !strchr(",]} \t\r\n", *sc->s)) sc->s++;
+        while (*sc->s && *sc->s != ',' && *sc->s != ']' && *sc->s != '}' &&
+               (unsigned char)*sc->s > 32)
+            sc->s++;
     }
 }
 
-static int cmp_jline(const void *a, const void *b) {
-    const jline *x = a, *y = b;
-    return (x->node > y->node) - (x->node < y->node);
-}
-
-static void pair_nodes(const cJSON *n, const scanner *sc, jline *out, size_t *k) {
+/* Pre-order index of `target` below (and including) the sibling list starting at n, counting
+ * from *k; 1 when found. */
+static int preorder_index(const cJSON *n, const cJSON *target, size_t *k) {
     for (; n; n = n->next) {
-        size_t i = *k;
-        out[i].node = n;
-        out[i].line = 2 * i + 1 < sc->n ? sc->vals[2 * i] : 0;
-        out[i].key_line = 2 * i + 1 < sc->n ? sc->vals[2 * i + 1] : 0;
+        if (n == target) return 1;
         (*k)++;
-        if (n->child) pair_nodes(n->child, sc, out, k);
+        if (n->child && preorder_index(n->child, target, k)) return 1;
     }
+    return 0;
 }
 
-static size_t count_nodes(const cJSON *n) {
-    size_t k = 0;
-    for (; n; n = n->next) k += 1 + (n->child ? count_nodes(n->child) : 0);
-    return k;
-}
-
-static cj_status build_lines(jctx *c, const char *text, const cJSON *root) {
-    scanner sc = {text, 1, NULL, 0, 0, 1};
-    if ((unsigned char)sc.s[0] == 0xEF && (unsigned char)sc.s[1] == 0xBB &&
-        (unsigned char)sc.s[2] == 0xBF)
-        sc.s += 3;
-    scan_value(&sc, 0, 0);
-    size_t n = count_nodes(root);
-    jline *lines = malloc((n ? n : 1) * sizeof *lines);
-    if (!sc.ok || !lines) {
-        free(sc.vals);
-        free(lines);
-        return cj_fail(CJ_ERR_NOMEM, "%s: out of memory", c->name);
+/* The (line, key line) pair of node, scanning the text on the first request; NULL if unknown. */
+static const int *node_lines(const jctx *c, const cJSON *node) {
+    jlines *l = c->lines;
+    if (!l || !node) return NULL;
+    if (!l->scanned) {
+        scanner sc = {l->text, 1, NULL, 0, 0, 1};
+        if ((unsigned char)sc.s[0] == 0xEF && (unsigned char)sc.s[1] == 0xBB &&
+            (unsigned char)sc.s[2] == 0xBF)
+            sc.s += 3;
+        scan_value(&sc, 0, 0);
+        l->vals = sc.vals;
+        l->n = sc.n / 2;
+        l->scanned = sc.ok ? 1 : -1;
     }
+    if (l->scanned < 0) return NULL;
     size_t k = 0;
-    pair_nodes(root, &sc, lines, &k);
-    free(sc.vals);
-    qsort(lines, n, sizeof *lines, cmp_jline);
-    c->lines = lines;
-    c->nlines = n;
-    return CJ_OK;
-}
-
-static const jline *find_line(const jctx *c, const cJSON *node) {
-    jline key;
-    key.node = node;
-    return c->lines ? bsearch(&key, c->lines, c->nlines, sizeof key, cmp_jline) : NULL;
+    if (!preorder_index(l->root, node, &k) || k >= l->n) return NULL;
+    return l->vals + 2 * k;
 }
 
 int cj_json_line_(const jctx *c, const cJSON *node) {
-    const jline *l = find_line(c, node);
-    return l ? l->line : 0;
+    const int *v = node_lines(c, node);
+    return v ? v[0] : 0;
 }
 
 int cj_json_key_line_(const jctx *c, const cJSON *node) {
-    const jline *l = find_line(c, node);
-    return l ? l->key_line : 0;
+    const int *v = node_lines(c, node);
+    return v ? v[1] : 0;
 }
 
 /* ---- messages ------------------------------------------------------------------------------- */
@@ -418,6 +401,20 @@ cj_status cj_json_numbers_(const jctx *c, const cJSON *arr, const char *path, in
     if (!v) return cj_fail(CJ_ERR_NOMEM, "%s: out of memory reading %s", c->name, path);
     size_t i = 0;
     for (const cJSON *e = arr->child; e; e = e->next, ++i) {
+        /* Fast path for well-formed entries (big inline meshes); messages are only built on
+         * the slow path below, which finds and names the fault. */
+        if (dim > 0 && cJSON_IsArray(e)) {
+            int k = 0;
+            const cJSON *x = e->child;
+            for (; x && k < dim && cJSON_IsNumber(x) && isfinite(x->valuedouble); x = x->next)
+                v[i * per + (size_t)k++] = x->valuedouble;
+            if (k == dim && !x) continue;
+        } else if (dim <= 0 && cJSON_IsNumber(e) && isfinite(e->valuedouble) &&
+                   (r == R_ANY || (r == R_GE && e->valuedouble >= lo) ||
+                    (r == R_GT && e->valuedouble > lo))) {
+            v[i] = e->valuedouble;
+            continue;
+        }
         char pe[JPATH];
         cj_json_index_(pe, path, i);
         cj_status st;
@@ -543,15 +540,16 @@ cj_status cj_scene_parse_json_ex(const char *text, const char *name, const char 
     c.base_dir = base_dir ? base_dir : "";
     c.teapot_path = options ? options->teapot_path : NULL;
     c.default_material = -1;
-    cj_status st = build_lines(&c, text, root);
-    if (!st) st = cj_scene_create(alloc, &c.scene);
+    jlines lines = {text, root, NULL, 0, 0};
+    c.lines = &lines;
+    cj_status st = cj_scene_create(alloc, &c.scene);
     if (!st) st = read_document(&c, root);
     if (st) {
         cj_scene_destroy(c.scene);
     } else {
         *out = c.scene;
     }
-    free(c.lines);
+    free(lines.vals);
     free(c.geometry_index);
     cJSON_Delete(root);
     return st;

@@ -11,18 +11,22 @@
 
 #define JPATH 256
 
-typedef struct jline {
-    const cJSON *node;
-    int line;     /* line of the value's first character */
-    int key_line; /* line of its key (object members), else = line */
-} jline;
+/* Lines of the document's values, found only when a message needs one: the raw text is scanned
+ * once on the first request (pairs (line, key line) per value in document order) and a node's
+ * entry is its index in a pre-order walk of the cJSON tree. The success path pays nothing. */
+typedef struct jlines {
+    const char *text;
+    const cJSON *root;
+    int *vals; /* 2 per value: line of the value, line of its key (= value line in arrays) */
+    size_t n;
+    int scanned; /* 0: not yet, 1: done, -1: out of memory (lines read as 0) */
+} jlines;
 
 typedef struct jctx {
     const char *name;     /* the document's name in messages */
     const char *base_dir; /* "" = current folder */
     const char *teapot_path;
-    jline *lines; /* sorted by node pointer */
-    size_t nlines;
+    jlines *lines;
     cj_scene *scene;
     const cJSON *geometries; /* the document's "geometries" list, or NULL */
     int *geometry_index;     /* scene geometry of each "geometries" entry, or -1 if not yet */
