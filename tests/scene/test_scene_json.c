@@ -9,6 +9,7 @@
 
 #include "casteljau/mesh.h"
 #include "casteljau/scene_json.h"
+#include "rng.h"
 
 #include <dirent.h>
 #include <math.h>
@@ -817,11 +818,182 @@ static void test_round_trip_everything(void **state) {
     cj_scene_destroy(s);
 }
 
+/* ---- mutated documents -------------------------------------------------------------------- */
+
+/* Random edits of the shipped scenes (delete, duplicate or replace a character, replace a number
+ * by a random one, cut the text): every result either loads and checks, or fails with a message
+ * "scene.json:L: ..." or "scene.json:L:C: ..." whose line L exists in the edited text. Under the
+ * sanitizers this is also the crash test of the reader and of the line scanner. */
+static void test_mutations(void **state) {
+    (void)state;
+    const char *names[] = {"teapot", "quadrics", "transparent", "gallery"};
+    cj_rng r;
+    cj_rng_init(&r, cj_test_seed("test_scene_json mutations", 2024));
+    int ok = 0, refused = 0;
+    for (int f = 0; f < 4; ++f) {
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s.json", CJ_SCENES_DIR, names[f]);
+        char *orig = read_all(path);
+        size_t len = strlen(orig);
+        char *buf = malloc(len + 64);
+        assert_non_null(buf);
+        for (int k = 0; k < 500; ++k) {
+            memcpy(buf, orig, len + 1);
+            size_t n = len;
+            int edits = cj_rng_int(&r, 1, 3);
+            for (int e = 0; e < edits; ++e) {
+                size_t at = (size_t)cj_rng_int(&r, 0, (int)n - 1);
+                static const char pool[] = "{}[]:,\"\\0123456789.-eE ntfalsru\n";
+                switch (cj_rng_int(&r, 0, 4)) {
+                case 0: /* delete */
+                    memmove(buf + at, buf + at + 1, n - at);
+                    n--;
+                    break;
+                case 1: /* duplicate */
+                    memmove(buf + at + 1, buf + at, n - at + 1);
+                    n++;
+                    break;
+                case 2: /* replace */
+                    buf[at] = pool[cj_rng_int(&r, 0, (int)sizeof pool - 2)];
+                    break;
+                case 3: { /* a digit becomes a random number */
+                    char *d = strpbrk(buf + at, "0123456789");
+                    if (d) {
+                        char num[32];
+                        int w = snprintf(num, sizeof num, "%.6g", cj_rng_range(&r, -1e4, 1e4));
+                        if (n + (size_t)w + 1 < len + 64) {
+                            memmove(d + w, d + 1, n - (size_t)(d - buf));
+                            memcpy(d, num, (size_t)w);
+                            n += (size_t)w - 1;
+                        }
+                    }
+                    break;
+                }
+                default: /* cut */
+                    n = at;
+                    buf[n] = '\0';
+                }
+                if (n == 0) break;
+            }
+            int lines = 1;
+            for (size_t i = 0; i < n; ++i) lines += buf[i] == '\n';
+            cj_scene *s = NULL;
+            cj_status st =
+                cj_scene_parse_json_ex(buf, "scene.json", CJ_SCENES_DIR, &OPTS, NULL, &s);
+            if (st == CJ_OK) {
+                assert_int_equal(cj_scene_check(s), CJ_OK);
+                cj_scene_destroy(s);
+                ok++;
+                continue;
+            }
+            assert_null(s);
+            const char *m = cj_last_error();
+            int line = 0;
+            if (strncmp(m, "scene.json:", 11) || sscanf(m + 11, "%d", &line) != 1 || line < 1 ||
+                line > lines)
+                fail_msg("%s edit %d: message '%s' names no line of the %d-line text", names[f], k,
+                         m, lines);
+            refused++;
+        }
+        free(buf);
+        free(orig);
+    }
+    printf("test_scene_json: 2000 randomly edited scenes: %d load and check, %d refused with a "
+           "line that exists\n",
+           ok, refused);
+}
+
+/* Documents built from tokens joined by random whitespace (spaces, tabs, newlines, CRLF), with
+ * one fault at a random place: the message names exactly the line of the faulty value (or of
+ * the unknown key). */
+typedef struct tokbuf {
+    char text[16384];
+    size_t n;
+    int line;
+} tokbuf;
+
+static void tok(tokbuf *b, cj_rng *r, const char *t, int *line_of) {
+    static const char *const SEP[] = {"", " ", "\n", "\t ", "\r\n  ", "\n\n"};
+    const char *sep = SEP[cj_rng_int(r, 0, 5)];
+    for (const char *c = sep; *c; ++c) b->line += *c == '\n';
+    int w = snprintf(b->text + b->n, sizeof b->text - b->n, "%s%s", sep, t);
+    assert_true(w > 0 && b->n + (size_t)w < sizeof b->text);
+    b->n += (size_t)w;
+    if (line_of) *line_of = b->line;
+}
+
+static void test_random_layout_lines(void **state) {
+    (void)state;
+    cj_rng r;
+    cj_rng_init(&r, cj_test_seed("test_scene_json layout", 99));
+    for (int k = 0; k < 300; ++k) {
+        tokbuf b = {"", 0, 1};
+        int nm = cj_rng_int(&r, 1, 6), bad_m = cj_rng_int(&r, 0, nm), kind = cj_rng_int(&r, 0, 2);
+        int want = -1;
+        char expect[256] = "";
+        tok(&b, &r, "{", NULL);
+        tok(&b, &r, "\"materials\"", NULL);
+        tok(&b, &r, ":", NULL);
+        tok(&b, &r, "[", NULL);
+        for (int m = 0; m < nm; ++m) {
+            char t[64];
+            tok(&b, &r, m ? ",{" : "{", NULL);
+            snprintf(t, sizeof t, "\"name\": \"m%d\",", m);
+            tok(&b, &r, t, NULL);
+            tok(&b, &r, "\"color\":", NULL);
+            tok(&b, &r, "[0.5,", NULL);
+            tok(&b, &r, "0.5", NULL);
+            tok(&b, &r, ", 0.5]", NULL);
+            if (m == bad_m && kind == 0) {
+                tok(&b, &r, ",\"alpha\"", NULL);
+                tok(&b, &r, ":", NULL);
+                tok(&b, &r, "-2", &want);
+                snprintf(expect, sizeof expect, "materials[%d].alpha must be >= 0", m);
+            } else if (m == bad_m && kind == 1) {
+                tok(&b, &r, ",\"alhpa\"", &want);
+                tok(&b, &r, ":", NULL);
+                tok(&b, &r, "3", NULL);
+                snprintf(expect, sizeof expect, "materials[%d].alhpa is not a known key", m);
+            } else if (m == bad_m) {
+                tok(&b, &r, ",\"specular\":", NULL);
+                tok(&b, &r, "[1,", NULL);
+                tok(&b, &r, "\"x\"", &want);
+                tok(&b, &r, ",1]", NULL);
+                snprintf(expect, sizeof expect,
+                         "materials[%d].specular[1] must be a number, not a string", m);
+            }
+            tok(&b, &r, "}", NULL);
+        }
+        tok(&b, &r, "],", NULL);
+        tok(&b, &r, "\"objects\"", NULL);
+        tok(&b, &r, ":", NULL);
+        tok(&b, &r, "[{\"geometry\":", NULL);
+        if (bad_m == nm) {
+            tok(&b, &r, "{\"type\": \"sphere\", \"radius\":", NULL);
+            tok(&b, &r, "0", &want);
+            snprintf(expect, sizeof expect, "objects[0].geometry.radius must be > 0");
+            tok(&b, &r, "}", NULL);
+        } else {
+            tok(&b, &r, "{\"type\": \"sphere\", \"radius\": 1}", NULL);
+        }
+        tok(&b, &r, "}]", NULL);
+        tok(&b, &r, "}", NULL);
+        cj_scene *s = NULL;
+        assert_int_not_equal(cj_scene_parse_json(b.text, "scene.json", NULL, NULL, &s), CJ_OK);
+        char full[400];
+        snprintf(full, sizeof full, "scene.json:%d: %s", want, expect);
+        if (strncmp(cj_last_error(), full, strlen(full)))
+            fail_msg("document %d: '%s', want '%s...'\n%s", k, cj_last_error(), full, b.text);
+    }
+    printf("test_scene_json: 300 documents in random layouts name the exact line of their fault\n");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shipped_scenes),        cmocka_unit_test(test_bad_documents),
         cmocka_unit_test(test_missing_file),          cmocka_unit_test(test_round_trip_shipped),
-        cmocka_unit_test(test_round_trip_everything),
+        cmocka_unit_test(test_round_trip_everything), cmocka_unit_test(test_mutations),
+        cmocka_unit_test(test_random_layout_lines),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
