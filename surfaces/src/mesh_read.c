@@ -325,16 +325,19 @@ static cj_status obj_statement(obj_reader *r, char *line) {
                                r->line);
             for (int k = 0; k < 3; ++k) x[k] /= x[3];
         }
-        return dpush(&r->v, x, 3) ? CJ_OK : cj_fail(CJ_ERR_NOMEM, "out of memory");
+        return dpush(&r->v, x, 3) ? CJ_OK
+                                  : cj_fail(CJ_ERR_NOMEM, "out of memory reading '%s'", r->path);
     }
     if (!strcmp(word, "vt")) {
         x[1] = 0;
         if ((st = obj_numbers(r, &rest, x, 1, 3, &got))) return st;
-        return dpush(&r->vt, x, 2) ? CJ_OK : cj_fail(CJ_ERR_NOMEM, "out of memory");
+        return dpush(&r->vt, x, 2) ? CJ_OK
+                                   : cj_fail(CJ_ERR_NOMEM, "out of memory reading '%s'", r->path);
     }
     if (!strcmp(word, "vn")) {
         if ((st = obj_numbers(r, &rest, x, 3, 3, &got))) return st;
-        return dpush(&r->vn, x, 3) ? CJ_OK : cj_fail(CJ_ERR_NOMEM, "out of memory");
+        return dpush(&r->vn, x, 3) ? CJ_OK
+                                   : cj_fail(CJ_ERR_NOMEM, "out of memory reading '%s'", r->path);
     }
     if (!strcmp(word, "f")) return obj_face(r, rest);
     if (!strcmp(word, "g")) return obj_group(r, rest);

@@ -322,7 +322,7 @@ cj_status cj_mesh_read_ply(const char *path, const cj_allocator *alloc, cj_mesh 
             else
                 st = ply_faces(&r, e, m);
         } else {
-            for (size_t k = 0; k < e->count && !st; ++k)
+            for (size_t k = 0; e->nprops > 0 && k < e->count && !st; ++k)
                 for (int j = 0; j < e->nprops && !st; ++j) {
                     double cnt = 1, d;
                     if (e->ltype[j] >= 0) st = ply_value(&r, e->ltype[j], e->name, k, &cnt);

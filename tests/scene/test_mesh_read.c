@@ -225,6 +225,16 @@ static void test_bad_input(void **state) {
          "%s: element vertex has no x, y, z properties", CJ_ERR_PARSE},
         {"c6.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n",
          "%s:4: unknown type 'quad'", CJ_ERR_PARSE},
+        /* an element without properties and a huge count holds no data: skipped at once */
+        {"c7.ply",
+         "ply\nformat ascii 1.0\nelement nothing 18446744073709551615\nelement vertex 3\n"
+         "property double x\nproperty double y\nproperty double z\nend_header\n0 0 0\n1 0 0\n"
+         "0 1 0\n",
+         "%s: no faces", CJ_ERR_EMPTY},
+        {"c8.ply",
+         "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty double x\nproperty double "
+         "y\nproperty double z\nend_header\n0 0 0\n",
+         "%s: 4000000000 vertices is more than the file holds", CJ_ERR_RANGE},
     };
     for (size_t i = 0; i < sizeof BAD / sizeof BAD[0]; ++i) {
         write_text(BAD[i].name, BAD[i].text);
@@ -278,11 +288,75 @@ static void test_bad_input(void **state) {
            sizeof BAD / sizeof BAD[0] + 4);
 }
 
+/* Random byte edits of valid OBJ, ASCII PLY and binary PLY files: each read either succeeds
+ * with every index in range and finite data, or fails with a message naming the file; never a
+ * crash (the sanitizer build runs this too). */
+static void test_mutations(void **state) {
+    (void)state;
+    cj_rng r;
+    cj_rng_init(&r, cj_test_seed("test_mesh_read mutations", 5));
+    cj_mesh *m = random_mesh(&r, 12, 16);
+    assert_int_equal(cj_mesh_write_obj(m, file("o.obj")), CJ_OK);
+    assert_int_equal(cj_mesh_write_ply(m, file("o.ply"), 0), CJ_OK);
+    assert_int_equal(cj_mesh_write_ply(m, file("b.ply"), 1), CJ_OK);
+    cj_mesh_destroy(m);
+    const char *src[3] = {"o.obj", "o.ply", "b.ply"}, *dst[3] = {"x.obj", "x.ply", "y.ply"};
+    int ok = 0, refused = 0;
+    for (int f = 0; f < 3; ++f) {
+        FILE *in = fopen(file(src[f]), "rb");
+        assert_non_null(in);
+        static unsigned char orig[1 << 16], buf[(1 << 16) + 64];
+        size_t len = fread(orig, 1, sizeof orig, in);
+        fclose(in);
+        for (int k = 0; k < 400; ++k) {
+            memcpy(buf, orig, len);
+            size_t n = len;
+            for (int e = cj_rng_int(&r, 1, 4); e > 0 && n > 1; --e) {
+                size_t at = (size_t)cj_rng_int(&r, 0, (int)n - 1);
+                static const char pool[] = "0123456789-./ \n#fvtnxyz e";
+                switch (cj_rng_int(&r, 0, 3)) {
+                case 0:
+                    memmove(buf + at, buf + at + 1, n - at - 1);
+                    n--;
+                    break;
+                case 1:
+                    buf[at] = (unsigned char)pool[cj_rng_int(&r, 0, (int)sizeof pool - 2)];
+                    break;
+                case 2:
+                    buf[at] = (unsigned char)cj_rng_int(&r, 0, 255);
+                    break;
+                default:
+                    n = at + 1;
+                }
+            }
+            write_bytes(dst[f], buf, n);
+            cj_mesh *o = NULL;
+            cj_status st = cj_mesh_read(file(dst[f]), NULL, &o);
+            if (st == CJ_OK) {
+                for (size_t t = 0; t < 3 * o->triangle_count; ++t)
+                    assert_true(o->triangles[t] < o->vertex_count);
+                for (size_t i = 0; i < 3 * o->vertex_count; ++i)
+                    assert_true(isfinite(o->positions[i]) && isfinite(o->normals[i]));
+                cj_mesh_destroy(o);
+                ok++;
+            } else {
+                assert_null(o);
+                assert_non_null(strstr(cj_last_error(), file(dst[f])));
+                refused++;
+            }
+        }
+    }
+    printf("test_mesh_read: 1200 randomly edited OBJ/PLY files: %d read with valid indices and "
+           "finite data, %d refused naming the file\n",
+           ok, refused);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_round_trip),
         cmocka_unit_test(test_polygons_and_indices),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_mutations),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
