@@ -351,7 +351,19 @@ static void test_missing_file(void **state) {
     assert_int_equal(g->kind, CJ_GEOM_MESH);
     assert_int_equal(g->u.mesh->triangle_count, 2);
     cj_scene_destroy(s);
-    printf("test_scene_json: a missing scene file and a missing mesh are named with their path\n");
+    /* A .bpt file next to the scene, by a relative path. */
+    char bpt[512];
+    snprintf(bpt, sizeof bpt, "%s/one.bpt", tmpdir);
+    write_file(bpt, "1\n1 1\n0 0 0\n1 0 0\n0 1 0\n1 1 0.5\n");
+    write_file(path, "{\"objects\": [{\"geometry\": {\"type\": \"bpt\", \"path\": \"one.bpt\"}}]}");
+    assert_int_equal(cj_scene_load_json(path, NULL, &s), CJ_OK);
+    g = cj_scene_geometry(s, 0);
+    assert_int_equal(g->kind, CJ_GEOM_PATCHES);
+    assert_int_equal(g->u.patches.count, 1);
+    assert_true(g->u.patches.patches[0].pts[11] == 0.5);
+    cj_scene_destroy(s);
+    printf("test_scene_json: a missing scene file and a missing mesh are named with their path; "
+           "meshes and .bpt files load relative to the scene's folder\n");
 }
 
 /* ---- round trip ----------------------------------------------------------------------------- */
