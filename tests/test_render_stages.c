@@ -290,53 +290,75 @@ static void test_phong_by_hand(void **state) {
     cj_render_options o = cj_render_options_default();
     o.width = o.height = 200;
     o.spp = 1;
-    cj_render_image *img = render(sc.s, &o, 0, NULL);
-    dump(img, "phong");
-    const cj_camera *cam = cj_scene_camera(sc.s);
-    const cj_material *m = cj_scene_material(sc.s, sc.mat);
     double worst = 0.0;
     int checked = 0;
-    for (int y = 2; y < o.height; y += 4)
-        for (int x = 3; x < o.width; x += 4) {
-            cj_vec3 d, p;
-            ray_through(cam, o.width, o.height, x + 0.5, y + 0.5, &d);
-            if (!hit_sphere(cam->eye, d, cj_v3(0, 0, 0), 1.0, &p)) continue;
-            cj_vec3 n = p, v = cj_v3_normalize(cj_v3_sub(cam->eye, p));
-            if (cj_v3_dot(n, v) < 0.3) continue; /* away from the silhouette */
-            double L[3] = {0, 0, 0}, cr[3] = {m->color.r, m->color.g, m->color.b};
-            double cp[3] = {m->specular.r, m->specular.g, m->specular.b};
-            for (size_t i = 0; i < cj_scene_light_count(sc.s); ++i) {
-                const cj_light *l = cj_scene_light(sc.s, (int)i);
-                double I[3] = {l->color.r * l->intensity, l->color.g * l->intensity,
-                               l->color.b * l->intensity};
-                if (l->kind == CJ_LIGHT_AMBIENT) {
-                    for (int k = 0; k < 3; ++k) L[k] += cr[k] * m->ka * I[k];
-                    continue;
-                }
-                cj_vec3 ld = l->kind == CJ_LIGHT_DIRECTIONAL
-                                 ? cj_v3_normalize(cj_v3_scale(l->direction, -1.0))
-                                 : cj_v3_normalize(cj_v3_sub(l->position, p));
-                cj_vec3 h = cj_v3_normalize(cj_v3_add(ld, v));
-                double nl = fmax(0.0, cj_v3_dot(n, ld)), nh = fmax(0.0, cj_v3_dot(n, h));
-                for (int k = 0; k < 3; ++k)
-                    L[k] += cr[k] * m->kd * I[k] * nl + cp[k] * m->ks * I[k] * pow(nh, m->alpha);
-            }
-            const float *px = img->rgba + 4 * ((size_t)y * (size_t)o.width + (size_t)x);
-            for (int k = 0; k < 3; ++k) {
-                double e = fabs(px[k] - L[k]);
-                if (e > worst) worst = e;
-                if (e > 4e-3)
-                    fail_msg("pixel (%d, %d) channel %d: rendered %.6f, Phong formula %.6f", x, y,
-                             k, px[k], L[k]);
-            }
-            assert_float_equal(px[3], 1.0, 0.0);
-            ++checked;
+    for (int pass = 0; pass < 2; ++pass) {
+        if (pass == 1) { /* a spot light too: cone 9 degrees, exponent 4 */
+            cj_light sp = cj_light_default(CJ_LIGHT_SPOT);
+            sp.position = cj_v3(-2, 2, 3);
+            sp.direction = cj_v3(2, -2, -3);
+            sp.spot_angle = 9.0 * 3.14159265358979323846 / 180.0;
+            sp.spot_exponent = 4.0;
+            sp.intensity = 0.7;
+            assert_int_equal(cj_scene_add_light(sc.s, &sp, NULL), CJ_OK);
         }
-    assert_true(checked > 300);
-    cj_render_image_destroy(img);
+        cj_render_image *img = render(sc.s, &o, 0, NULL);
+        dump(img, pass ? "phong_spot" : "phong");
+        const cj_camera *cam = cj_scene_camera(sc.s);
+        const cj_material *m = cj_scene_material(sc.s, sc.mat);
+        for (int y = 2; y < o.height; y += 4)
+            for (int x = 3; x < o.width; x += 4) {
+                cj_vec3 d, p;
+                ray_through(cam, o.width, o.height, x + 0.5, y + 0.5, &d);
+                if (!hit_sphere(cam->eye, d, cj_v3(0, 0, 0), 1.0, &p)) continue;
+                cj_vec3 n = p, v = cj_v3_normalize(cj_v3_sub(cam->eye, p));
+                if (cj_v3_dot(n, v) < 0.3) continue; /* away from the silhouette */
+                double L[3] = {0, 0, 0}, cr[3] = {m->color.r, m->color.g, m->color.b};
+                double cp[3] = {m->specular.r, m->specular.g, m->specular.b};
+                int skip = 0;
+                for (size_t i = 0; i < cj_scene_light_count(sc.s); ++i) {
+                    const cj_light *l = cj_scene_light(sc.s, (int)i);
+                    double I[3] = {l->color.r * l->intensity, l->color.g * l->intensity,
+                                   l->color.b * l->intensity};
+                    if (l->kind == CJ_LIGHT_AMBIENT) {
+                        for (int k = 0; k < 3; ++k) L[k] += cr[k] * m->ka * I[k];
+                        continue;
+                    }
+                    cj_vec3 ld = l->kind == CJ_LIGHT_DIRECTIONAL
+                                     ? cj_v3_normalize(cj_v3_scale(l->direction, -1.0))
+                                     : cj_v3_normalize(cj_v3_sub(l->position, p));
+                    double f = 1.0;
+                    if (l->kind == CJ_LIGHT_SPOT) { /* (cos θ)^e inside the cone, 0 outside */
+                        double ct = -cj_v3_dot(cj_v3_normalize(l->direction), ld);
+                        if (fabs(ct - cos(l->spot_angle)) < 0.01) skip = 1; /* the cone's rim */
+                        f = ct >= cos(l->spot_angle) ? pow(ct, l->spot_exponent) : 0.0;
+                    }
+                    cj_vec3 h = cj_v3_normalize(cj_v3_add(ld, v));
+                    double nl = fmax(0.0, cj_v3_dot(n, ld)), nh = fmax(0.0, cj_v3_dot(n, h));
+                    for (int k = 0; k < 3; ++k)
+                        L[k] += f * (cr[k] * m->kd * I[k] * nl +
+                                     cp[k] * m->ks * I[k] * pow(nh, m->alpha));
+                }
+                if (skip) continue;
+                const float *px = img->rgba + 4 * ((size_t)y * (size_t)o.width + (size_t)x);
+                for (int k = 0; k < 3; ++k) {
+                    double e = fabs(px[k] - L[k]);
+                    if (e > worst) worst = e;
+                    if (e > 4e-3)
+                        fail_msg("pass %d, pixel (%d, %d) channel %d: rendered %.6f, Phong "
+                                 "formula %.6f",
+                                 pass, x, y, k, px[k], L[k]);
+                }
+                assert_float_equal(px[3], 1.0, 0.0);
+                ++checked;
+            }
+        cj_render_image_destroy(img);
+    }
+    assert_true(checked > 600);
     cj_scene_destroy(sc.s);
-    printf("test_phong_by_hand: %d pixels of a lit sphere (ambient, point, directional light, "
-           "alpha 32) vs the Phong formula on the exact sphere: max |error| %.2e (limit 4e-3)\n",
+    printf("test_phong_by_hand: %d pixels of a lit sphere (ambient, point, directional, then also "
+           "a spot light; alpha 32) vs the Phong formula on the exact sphere: max |error| %.2e "
+           "(limit 4e-3)\n",
            checked, worst);
 }
 
@@ -395,9 +417,35 @@ static void test_sphere_silhouette(void **state) {
         cj_render_image_destroy(img);
         cj_scene_destroy(sc.s);
     }
+    /* orthographic: the silhouette is the circle of radius r / (pixel size) */
+    rs_sphere_scene sc;
+    rs_sphere(&sc, 0);
+    cj_camera cam = *cj_scene_camera(sc.s);
+    cam.projection = CJ_PROJ_ORTHOGRAPHIC;
+    cam.ortho_height = 3.0;
+    rs_check(cj_scene_set_camera(sc.s, &cam));
+    cj_render_options o = cj_render_options_default();
+    o.width = 200;
+    o.height = 150;
+    o.spp = 1;
+    cj_render_image *img = render(sc.s, &o, CJ_IMAGE_IDS, NULL);
+    double px = cam.ortho_height / o.height;
+    int mism = 0;
+    for (int y = 0; y < o.height; ++y)
+        for (int x = 0; x < o.width; ++x) {
+            double X = (x + 0.5 - 0.5 * o.width) * px, Y = (y + 0.5 - 0.5 * o.height) * px;
+            int want = hypot(X, Y) < 1.0, got = img->ids[y * o.width + x] != 0;
+            if (want == got) continue;
+            ++mism;
+            if (fabs(hypot(X, Y) - 1.0) >= px)
+                fail_msg("orthographic: pixel (%d, %d) %.3f px from the exact silhouette", x, y,
+                         fabs(hypot(X, Y) - 1.0) / px);
+        }
+    cj_render_image_destroy(img);
+    cj_scene_destroy(sc.s);
     printf("test_sphere_silhouette: %d pixels of a centred and an off-axis sphere, %d differ "
-           "from the exact projected conic, all within 1 px of it\n",
-           pixels, mism_total);
+           "from the exact projected conic, all within 1 px of it; orthographic: %d of %d\n",
+           pixels, mism_total, mism, o.width * o.height);
 }
 
 /* Two transparent quads crossing along the y axis: z = x/2 and z = -x/2. Left of the crossing
