@@ -366,6 +366,71 @@ static void test_missing_file(void **state) {
            "meshes and .bpt files load relative to the scene's folder\n");
 }
 
+/* ---- values --------------------------------------------------------------------------------- */
+
+/* What the keys mean: focal length to field of view, look_at to gaze, rotations (axis-angle,
+ * Euler in a given order, quaternion) against matrices built by hand, uniform scale, matrix
+ * rows, group materials inherited, defaults. */
+static void test_values(void **state) {
+    (void)state;
+    const char *doc =
+        "{\"camera\": {\"eye\": [1, 2, 3], \"look_at\": [1, 2, -7], \"focal_length_mm\": 50,\n"
+        "  \"sensor_height_mm\": 24, \"near\": -0.5, \"far\": -50},\n"
+        " \"materials\": [{\"name\": \"red\", \"color\": [1, 0, 0]}],\n"
+        " \"objects\": [\n"
+        "  {\"transform\": {\"rotate\": {\"axis\": [0, 0, 2], \"angle_deg\": 90}}, " SPHERE "},\n"
+        "  {\"transform\": {\"euler_deg\": [90, 0, 90], \"euler_order\": \"xyz\"}, " SPHERE "},\n"
+        "  {\"transform\": {\"euler_deg\": [90, 0, 90], \"euler_order\": \"zyx\"}, " SPHERE "},\n"
+        "  {\"transform\": {\"quaternion\": [2, 0, 0, 0], \"scale\": 3}, " SPHERE "},\n"
+        "  {\"transform\": {\"matrix\": [[1, 2, 0, 4], [0, 1, 0, 5], [0, 0, 1, 6], [0, 0, 0, 1]]},"
+        " " SPHERE "},\n"
+        "  {\"material\": \"red\", \"children\": [{" SPHERE "}, {\"children\": [{" SPHERE "}]}]}\n"
+        " ]}\n";
+    cj_scene *s = NULL;
+    if (cj_scene_parse_json(doc, "v.json", NULL, NULL, &s)) fail_msg("%s", cj_last_error());
+    const cj_camera *c = cj_scene_camera(s);
+    assert_true(fabs(c->fov_y - 2 * atan(12.0 / 50.0)) < 1e-15);
+    assert_true(c->gaze.x == 0 && c->gaze.y == 0 && c->gaze.z == -10);
+    assert_true(c->near == -0.5 && c->far == -50 && c->projection == CJ_PROJ_PERSPECTIVE);
+    /* p = (1, 0, 0) through each node's local transform. */
+    const double want[5][3] = {{0, 1, 0},  /* 90° about z */
+                               {0, 1, 0},  /* x by 90 (x stays), then z by 90: (0, 1, 0) */
+                               {0, 0, 1},  /* z by 90 first: (0, 1, 0), then x by 90: (0, 0, 1) */
+                               {3, 0, 0},  /* identity rotation (normalised), scale 3 */
+                               {5, 5, 6}}; /* matrix rows */
+    for (int i = 0; i < 5; ++i) {
+        cj_xform3 m = cj_transform_matrix(&cj_scene_node(s, i)->local);
+        cj_vec3 q;
+        assert_int_equal(cj_xform3_apply_point(&m, cj_v3(1, 0, 0), &q), CJ_OK);
+        double w[3] = {want[i][0], want[i][1], want[i][2]};
+        if (!(fabs(q.x - w[0]) < 1e-15 && fabs(q.y - w[1]) < 1e-15 && fabs(q.z - w[2]) < 1e-15))
+            fail_msg("node %d: (1,0,0) -> (%g, %g, %g), want (%g, %g, %g)", i, q.x, q.y, q.z, w[0],
+                     w[1], w[2]);
+    }
+    /* y through the xyz Euler rotation: x by 90 takes y to z, z by 90 keeps z. */
+    cj_xform3 m1 = cj_transform_matrix(&cj_scene_node(s, 1)->local);
+    cj_vec3 q;
+    assert_int_equal(cj_xform3_apply_point(&m1, cj_v3(0, 1, 0), &q), CJ_OK);
+    assert_true(fabs(q.x) < 1e-15 && fabs(q.y) < 1e-15 && fabs(q.z - 1) < 1e-15);
+    assert_true(cj_scene_node(s, 3)->local.rotation[0] == 1);
+    /* The group's material reaches its children and grandchildren; objects without one get a
+     * default material of their own (added once). */
+    int red = 0, def = cj_scene_node(s, 0)->material;
+    assert_string_equal(cj_scene_material_name(s, red), "red");
+    assert_int_not_equal(def, red);
+    assert_null(cj_scene_material_name(s, def));
+    for (int i = 1; i < 5; ++i) assert_int_equal(cj_scene_node(s, i)->material, def);
+    assert_int_equal(cj_scene_node(s, 5)->geometry, -1);
+    assert_int_equal(cj_scene_node(s, 6)->material, red);
+    assert_int_equal(cj_scene_node(s, 6)->parent, 5);
+    assert_int_equal(cj_scene_node(s, 8)->material, red);
+    assert_int_equal(cj_scene_node(s, 8)->parent, 7);
+    assert_int_equal(cj_scene_material_count(s), 2);
+    cj_scene_destroy(s);
+    printf("test_scene_json: focal length, look_at, axis-angle, Euler orders, quaternion, scale, "
+           "matrix and inherited materials mean what scene_json.h says\n");
+}
+
 /* ---- round trip ----------------------------------------------------------------------------- */
 
 #define EQ(p_, q_, w_)                                                                             \
@@ -1005,7 +1070,7 @@ int main(void) {
         cmocka_unit_test(test_shipped_scenes),        cmocka_unit_test(test_bad_documents),
         cmocka_unit_test(test_missing_file),          cmocka_unit_test(test_round_trip_shipped),
         cmocka_unit_test(test_round_trip_everything), cmocka_unit_test(test_mutations),
-        cmocka_unit_test(test_random_layout_lines),
+        cmocka_unit_test(test_random_layout_lines),   cmocka_unit_test(test_values),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
