@@ -28,7 +28,9 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <new>
 #include <vector>
 
@@ -216,6 +218,7 @@ struct cj_vtk_renderer {
     std::vector<float> zbuf;
     cj_rgb background;
     int width, height;
+    bool drawn = false;
 };
 
 namespace {
@@ -363,6 +366,7 @@ cj_status cj_vtk_renderer_draw(cj_vtk_renderer *r, const cj_vtk_frame *frame,
     r->window->Render();
     r->window->WaitForCompletion();
     t.render = now() - t0;
+    r->drawn = true;
 
     t0 = now();
     if (frame->rgba) {
@@ -403,6 +407,28 @@ cj_status cj_vtk_renderer_draw(cj_vtk_renderer *r, const cj_vtk_frame *frame,
         t.ids = now() - t0;
     }
     if (timing) *timing = t;
+    return CJ_OK;
+}
+
+cj_status cj_vtk_renderer_gl_name(cj_vtk_renderer *r, char *buf, size_t cap) {
+    assert(r && buf && cap > 0);
+    auto *gl = vtkOpenGLRenderWindow::SafeDownCast(r->window);
+    if (!gl) return cj_fail(CJ_ERR_IO, "the VTK render window is not an OpenGL window");
+    if (!r->drawn) {
+        r->window->Render();
+        r->drawn = true;
+    }
+    // ReportCapabilities lists "OpenGL renderer string: <name>" among other lines.
+    const std::string caps = gl->ReportCapabilities() ? gl->ReportCapabilities() : "";
+    const std::string key = "OpenGL renderer string: ";
+    const size_t at = caps.find(key);
+    if (at == std::string::npos)
+        return cj_fail(CJ_ERR_IO, "VTK did not report the OpenGL renderer");
+    const size_t end = caps.find('\n', at);
+    const std::string name = caps.substr(
+        at + key.size(), end == std::string::npos ? std::string::npos : end - at - key.size());
+    const size_t first = name.find_first_not_of(' ');
+    std::snprintf(buf, cap, "%s", first == std::string::npos ? "" : name.c_str() + first);
     return CJ_OK;
 }
 

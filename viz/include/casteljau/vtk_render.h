@@ -103,6 +103,11 @@ cj_status cj_vtk_renderer_create(const cj_vtk_view *view, const cj_vtk_object *o
 cj_status cj_vtk_renderer_draw(cj_vtk_renderer *r, const cj_vtk_frame *frame,
                                cj_vtk_timing *timing);
 
+/* The OpenGL renderer string of the window's context (e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"),
+ * truncated to cap − 1 characters; renders a frame first if none was drawn yet. CJ_ERR_IO if
+ * VTK cannot report it. */
+cj_status cj_vtk_renderer_gl_name(cj_vtk_renderer *r, char *buf, size_t cap);
+
 /* Releases the window, its GL context and the VTK data; NULL is a no-op. */
 void cj_vtk_renderer_destroy(cj_vtk_renderer *r);
 
