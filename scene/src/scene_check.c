@@ -109,7 +109,8 @@ cj_status cj_scene_check_camera_(const cj_camera *c, const char *p) {
     } else {
         return cj_fail(CJ_ERR_RANGE, "%s.projection %d is not a projection", p, (int)c->projection);
     }
-    return CJ_OK;
+    /* Whatever else the camera model itself needs (its frame), in its own words. */
+    return relabel(cj_camera_check(c), p);
 }
 
 cj_status cj_scene_check_settings_(const cj_scene_settings *s, const char *p) {
