@@ -28,6 +28,8 @@ static double urand(void) {
     return (double)(g_state >> 11) * 0x1p-53;
 }
 
+static int g_coherent;
+
 typedef struct workload {
     int W, H;
     size_t nv, nt;
@@ -50,6 +52,12 @@ static void make(workload *w, int W, int H, size_t nt, double side) {
             ox = -0.15 * W;
             oy = -0.15 * H;
             side = 1.3 * W;
+        } else if (g_coherent) {
+            /* mesh-like input order: boxes swept row by row over the image */
+            const size_t per_row = (size_t)(W / side) * 2, rows = (size_t)(H / side);
+            const size_t cell = t % (per_row * rows);
+            ox = (double)(cell % per_row) * side / 2;
+            oy = (double)(cell / per_row) * side;
         } else {
             ox = urand() * (W - side);
             oy = urand() * (H - side);
@@ -105,15 +113,19 @@ static uint64_t covered(const workload *w, int spp) {
     return f.c.n;
 }
 
-/* One frame: seconds of prepare and of raster. */
+/* One frame: seconds of prepare and of raster. One thread: CPU time of this thread (the run
+ * happens on it), which other processes on a shared machine do not inflate; two threads:
+ * wall-clock time. */
 static void frame(const workload *w, int spp, int threads, double *t_prep, double *t_run) {
     cj_raster_input in = {w->nv, w->clip, w->nt, w->tris, w->W, w->H, spp};
     cj_raster_prep *p;
-    const double t0 = cj_bench_wall();
+    double (*clock)(void) = threads == 1 ? cj_bench_thread_cpu : cj_bench_wall;
+    const double t0 = clock();
     if (cj_raster_prepare(&in, 64, NULL, &p, NULL) != CJ_OK) exit(1);
-    const double t1 = cj_bench_wall();
+    cj_raster_prep_set_barycentrics(p, 0); /* depth only */
+    const double t1 = clock();
     if (cj_raster_run(p, threads, NULL, NULL, NULL) != CJ_OK) exit(1);
-    const double t2 = cj_bench_wall();
+    const double t2 = clock();
     cj_raster_prep_destroy(p);
     *t_prep = t1 - t0;
     *t_run = t2 - t1;
@@ -121,15 +133,27 @@ static void frame(const workload *w, int spp, int threads, double *t_prep, doubl
 
 #define NCONF 24
 int main(int argc, char **argv) {
-    int reps = 7, cg = 0;
+    int reps = 5, cg = 0, only_w = -1, only_spp = 0, only_thr = 0;
     for (int i = 1; i < argc; ++i) {
-        if (!strcmp(argv[i], "--reps") && i + 1 < argc) reps = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--callgrind")) cg = 1;
+        if (!strcmp(argv[i], "--reps") && i + 1 < argc)
+            reps = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--callgrind"))
+            cg = 1;
+        else if (!strcmp(argv[i], "--coherent"))
+            g_coherent = 1;
+        else if (!strcmp(argv[i], "--workload") && i + 1 < argc)
+            only_w = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--spp") && i + 1 < argc)
+            only_spp = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
+            only_thr = atoi(argv[++i]);
         else {
-            fprintf(stderr, "usage: bench_raster [--reps N] [--callgrind]\n");
+            fprintf(stderr, "usage: bench_raster [--reps N] [--callgrind] [--workload 0-3] "
+                            "[--spp 1|4|16] [--threads 1|2]\n");
             return 2;
         }
     }
+    if (reps < 1) reps = 1;
     if (cg) reps = 1;
     const int S = cg ? 256 : 1024;
     workload large, small[3];
@@ -138,29 +162,38 @@ int main(int argc, char **argv) {
     for (int k = 0; k < 3; ++k) make(&small[k], S, S, cg ? 20000 : 200000, sides[k]);
     static const int spps[3] = {1, 4, 16};
     /* configuration c: workload (0 large, 1..3 small), spp, threads */
+#define SKIP(k, s, th)                                                                             \
+    ((only_w >= 0 && (k) != only_w) || (only_spp && spps[s] != only_spp) ||                        \
+     (only_thr && (th) != only_thr))
     uint64_t cov[4][3];
     for (int k = 0; k < 4; ++k)
-        for (int s = 0; s < 3; ++s) cov[k][s] = covered(k ? &small[k - 1] : &large, spps[s]);
+        for (int s = 0; s < 3; ++s)
+            cov[k][s] =
+                SKIP(k, s, 1) && SKIP(k, s, 2) ? 0 : covered(k ? &small[k - 1] : &large, spps[s]);
     double *tp = calloc((size_t)NCONF * reps, sizeof(double));
     double *tr = calloc((size_t)NCONF * reps, sizeof(double));
     for (int r = 0; r < reps; ++r)
         for (int c = 0; c < NCONF; ++c) {
             const int k = c / 6, s = (c / 2) % 3, th = 1 + c % 2;
+            if (SKIP(k, s, th)) continue;
             frame(k ? &small[k - 1] : &large, spps[s], th, &tp[c * reps + r], &tr[c * reps + r]);
         }
-    printf("bench_raster: depth-only visibility, %d x %d, tiles 64, median of %d interleaved "
-           "runs%s\n",
+    printf("bench_raster: depth-only visibility (no barycentrics), %d x %d, tiles 64, median of "
+           "%d interleaved runs%s; 1 thread: thread CPU time, 2 threads: wall time\n",
            S, S, reps, cg ? " (callgrind workload)" : "");
     printf("%-22s %4s %3s %12s %10s %10s %12s %12s\n", "workload", "spp", "thr", "covered/frame",
            "prep ms", "raster ms", "Msamples/s", "Mtris/s");
     for (int c = 0; c < NCONF; ++c) {
         const int k = c / 6, s = (c / 2) % 3, th = 1 + c % 2;
+        if (SKIP(k, s, th)) continue;
         const double p = cj_bench_median(&tp[c * reps], reps);
         const double q = cj_bench_median(&tr[c * reps], reps);
         const workload *w = k ? &small[k - 1] : &large;
         char name[64];
-        if (k) snprintf(name, sizeof name, "small %dx%d px box", sides[k - 1], sides[k - 1]);
-        else snprintf(name, sizeof name, "large (~half image)");
+        if (k)
+            snprintf(name, sizeof name, "small %dx%d px box", sides[k - 1], sides[k - 1]);
+        else
+            snprintf(name, sizeof name, "large (~half image)");
         printf("%-22s %4d %3d %12llu %10.3f %10.3f %12.1f %12.2f\n", name, spps[s], th,
                (unsigned long long)cov[k][s], 1e3 * p, 1e3 * q, cov[k][s] / q * 1e-6,
                w->nt / (p + q) * 1e-6);

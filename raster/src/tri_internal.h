@@ -53,15 +53,20 @@ typedef struct cj_tri_plane {
     double v0, va, vb;
 } cj_tri_plane;
 
-/* One set-up screen triangle (a source triangle, or one piece of a clipped one). */
+/* One set-up screen triangle (a source triangle, or one piece of a clipped one): what the
+ * visibility pass reads, 128 bytes (two cache lines)... */
 typedef struct cj_tri_setup {
     int64_t ea[3], eb[3], ec[3]; /* E_k = ea X + eb Y + ec, fill rule folded in ec */
     int64_t xr, yr;              /* reference point: snapped vertex 0 */
     int minx, miny, maxx, maxy;  /* inclusive pixel bounds, clamped to the image */
     cj_tri_plane z;              /* pseudodepth */
-    cj_tri_plane r, q1, q2;      /* 1/w, b1/w, b2/w of the source triangle */
-    uint32_t src;                /* source triangle index */
 } cj_tri_setup;
+
+/* ... and what only the resolve and the forward mode read, kept apart (same index). */
+typedef struct cj_tri_attr {
+    cj_tri_plane r, q1, q2; /* 1/w, b1/w, b2/w of the source triangle */
+    uint32_t src;           /* source triangle index */
+} cj_tri_attr;
 
 struct cj_raster_prep {
     cj_allocator alloc;
@@ -72,6 +77,8 @@ struct cj_raster_prep {
     int barycentrics; /* resolve b1, b2 into the tile samples (cj_raster_prep_set_barycentrics) */
     size_t setup_count;
     cj_tri_setup *setups;
+    cj_tri_attr *attrs;
+    uint32_t *src;     /* attrs[i].src again, compact: the resolve reads it for every sample */
     size_t *bin_start; /* tiles_x·tiles_y + 1 offsets into bin_items */
     uint32_t *bin_items;
 };
@@ -90,6 +97,7 @@ void cj_tri_render_tile(const cj_raster_prep *prep, const cj_tile *t, cj_tri_scr
 
 /* The depth and barycentrics of set-up triangle `s` at sample position (X, Y). */
 float cj_tri_depth_at(const cj_tri_setup *s, int64_t X, int64_t Y);
-void cj_tri_bary_at(const cj_tri_setup *s, int64_t X, int64_t Y, float *b1, float *b2);
+void cj_tri_bary_at(const cj_tri_setup *s, const cj_tri_attr *a, int64_t X, int64_t Y, float *b1,
+                    float *b2);
 
 #endif

@@ -39,11 +39,12 @@ float cj_tri_depth_at(const cj_tri_setup *s, int64_t X, int64_t Y) {
     return clamp_depth(plane_at(&s->z, (double)(X - s->xr), (double)(Y - s->yr)));
 }
 
-void cj_tri_bary_at(const cj_tri_setup *s, int64_t X, int64_t Y, float *b1, float *b2) {
+void cj_tri_bary_at(const cj_tri_setup *s, const cj_tri_attr *a, int64_t X, int64_t Y, float *b1,
+                    float *b2) {
     const double dx = (double)(X - s->xr), dy = (double)(Y - s->yr);
-    const double r = plane_at(&s->r, dx, dy);
-    *b1 = (float)(plane_at(&s->q1, dx, dy) / r);
-    *b2 = (float)(plane_at(&s->q2, dx, dy) / r);
+    const double r = plane_at(&a->r, dx, dy);
+    *b1 = (float)(plane_at(&a->q1, dx, dy) / r);
+    *b2 = (float)(plane_at(&a->q2, dx, dy) / r);
 }
 
 /* floor(n / d) and ceil(n / d) for d > 0. */
@@ -203,11 +204,15 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
     memset(sc->id, 0xff, n * sizeof *sc->id); /* CJ_RASTER_NO_TRI */
     const size_t b0 = p->bin_start[t->index], b1 = p->bin_start[t->index + 1];
     for (size_t b = b0; b < b1; ++b) {
+        /* Binned triangles are scattered over the set-up array: fetch ahead. */
+        if (b + 4 < b1) {
+            const char *ahead = (const char *)&p->setups[p->bin_items[b + 4]];
+            __builtin_prefetch(ahead);
+            __builtin_prefetch(ahead + 64);
+        }
         const uint32_t id = p->bin_items[b];
         raster_one(p, &p->setups[id], id, t, sc);
     }
-    /* Resolve the winners into the tile's samples (pixel-major): source index and, unless
-     * switched off, barycentrics, once per visible sample. */
     const int bary = p->barycentrics;
     size_t i = 0;
     for (int y = t->y0; y < t->y1; ++y) {
@@ -223,11 +228,10 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
                     o->tri = CJ_RASTER_NO_TRI;
                     continue;
                 }
-                const cj_tri_setup *s = &p->setups[id];
-                o->tri = s->src;
+                o->tri = p->src[id];
                 if (bary)
-                    cj_tri_bary_at(s, (int64_t)x * 256 + p->ox[q], (int64_t)y * 256 + p->oy[q],
-                                   &o->b1, &o->b2);
+                    cj_tri_bary_at(&p->setups[id], &p->attrs[id], (int64_t)x * 256 + p->ox[q],
+                                   (int64_t)y * 256 + p->oy[q], &o->b1, &o->b2);
             }
     }
 }
@@ -239,6 +243,7 @@ void cj_raster_tile_forward(const cj_raster_prep *p, const cj_tile *t, cj_frag_f
     const size_t b0 = p->bin_start[t->index], b1 = p->bin_start[t->index + 1];
     for (size_t b = b0; b < b1; ++b) {
         const cj_tri_setup *s = &p->setups[p->bin_items[b]];
+        const cj_tri_attr *at = &p->attrs[p->bin_items[b]];
         const int xa = s->minx > t->x0 ? s->minx : t->x0;
         const int xb = s->maxx + 1 < t->x1 ? s->maxx + 1 : t->x1;
         const int ya = s->miny > t->y0 ? s->miny : t->y0;
@@ -254,8 +259,8 @@ void cj_raster_tile_forward(const cj_raster_prep *p, const cj_tile *t, cj_frag_f
                     const size_t idx = ((size_t)(y - t->y0) * tw + (size_t)(x - t->x0)) * spp + q;
                     if (!(z < t->samples[idx].depth)) continue;
                     float bb1, bb2;
-                    cj_tri_bary_at(s, X, Y, &bb1, &bb2);
-                    frag(user, x, y, q, s->src, z, bb1, bb2);
+                    cj_tri_bary_at(s, at, X, Y, &bb1, &bb2);
+                    frag(user, x, y, q, at->src, z, bb1, bb2);
                 }
             }
     }

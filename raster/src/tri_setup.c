@@ -81,6 +81,8 @@ void cj_raster_prep_destroy(cj_raster_prep *p) {
     if (!p) return;
     cj_allocator a = p->alloc;
     a.free(a.user, p->setups);
+    a.free(a.user, p->attrs);
+    a.free(a.user, p->src);
     a.free(a.user, p->bin_start);
     a.free(a.user, p->bin_items);
     a.free(a.user, p);
@@ -110,19 +112,24 @@ typedef struct pvert {
     double z, r, q1, q2;
 } pvert;
 
+/* rint(256·((ndc + 1)·half)): adding and removing 1.5·2^52 rounds to the nearest integer,
+ * ties to even (the default rounding mode), exactly like rint for |v| < 2^51 (the guard band
+ * keeps |v| < 2^30), without a libm call. */
 static int64_t snap(double ndc, double half) {
-    return (int64_t)llrint(256.0 * ((ndc + 1.0) * half));
+    const double v = 256.0 * ((ndc + 1.0) * half);
+    volatile double magic = 0x1.8p52; /* volatile: the sum must not be folded away */
+    return (int64_t)((v + magic) - magic);
 }
 
-static cj_tri_plane plane_of(const pvert *v[3], const double px[3], const double py[3], double val0,
-                             double val1, double val2) {
+/* The plane through (px_k, py_k, val_k); inv_det = 1/((p1 − p0) × (p2 − p0)). */
+static cj_tri_plane plane_of(const pvert *v[3], const double px[3], const double py[3],
+                             double inv_det, double val0, double val1, double val2) {
     const double d1x = px[1] - px[0], d1y = py[1] - py[0];
     const double d2x = px[2] - px[0], d2y = py[2] - py[0];
-    const double det = d1x * d2y - d1y * d2x;
     const double e1 = val1 - val0, e2 = val2 - val0;
     cj_tri_plane p;
-    p.va = (e1 * d2y - e2 * d1y) / det;
-    p.vb = (e2 * d1x - e1 * d2x) / det;
+    p.va = (e1 * d2y - e2 * d1y) * inv_det;
+    p.vb = (e2 * d1x - e1 * d2x) * inv_det;
     /* Re-anchor at the snapped vertex 0, the reference point of every plane. */
     p.v0 = val0 + p.va * ((double)v[0]->X - px[0]) + p.vb * ((double)v[0]->Y - py[0]);
     return p;
@@ -132,7 +139,7 @@ static cj_tri_plane plane_of(const pvert *v[3], const double px[3], const double
  * area after snapping, or its orientation disagrees with `want` (+1/−1, 0 = any: a piece of
  * a clipped polygon that snapping folded over is dropped rather than drawn twice). */
 static int setup_tri(const cj_raster_prep *p, const pvert *a, const pvert *b, const pvert *c,
-                     uint32_t src, int want, cj_tri_setup *s) {
+                     uint32_t src, int want, cj_tri_setup *s, cj_tri_attr *at) {
     const int64_t area = (b->X - a->X) * (c->Y - a->Y) - (b->Y - a->Y) * (c->X - a->X);
     if (area == 0) return 0;
     if (want != 0 && (area > 0 ? 1 : -1) != want) return 0;
@@ -167,7 +174,7 @@ static int setup_tri(const cj_raster_prep *p, const pvert *a, const pvert *b, co
     s->maxy = (int)y1;
     s->xr = v[0]->X;
     s->yr = v[0]->Y;
-    s->src = src;
+    at->src = src;
     /* Attribute planes through the exact (unsnapped) positions, in 1/256 pixel units; when
      * snapping made a sliver out of a (nearly) degenerate triangle, through the snapped ones. */
     double px[3], py[3];
@@ -175,37 +182,52 @@ static int setup_tri(const cj_raster_prep *p, const pvert *a, const pvert *b, co
         px[k] = 256.0 * v[k]->sx;
         py[k] = 256.0 * v[k]->sy;
     }
-    const double det = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
+    double det = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
     if (!(fabs(det) >= 0.25 * fabs((double)area))) {
         for (int k = 0; k < 3; ++k) {
             px[k] = (double)v[k]->X;
             py[k] = (double)v[k]->Y;
         }
+        det = (double)area;
     }
-    s->z = plane_of(v, px, py, v[0]->z, v[1]->z, v[2]->z);
-    s->r = plane_of(v, px, py, v[0]->r, v[1]->r, v[2]->r);
-    s->q1 = plane_of(v, px, py, v[0]->q1, v[1]->q1, v[2]->q1);
-    s->q2 = plane_of(v, px, py, v[0]->q2, v[1]->q2, v[2]->q2);
+    const double inv = 1.0 / det;
+    s->z = plane_of(v, px, py, inv, v[0]->z, v[1]->z, v[2]->z);
+    at->r = plane_of(v, px, py, inv, v[0]->r, v[1]->r, v[2]->r);
+    at->q1 = plane_of(v, px, py, inv, v[0]->q1, v[1]->q1, v[2]->q1);
+    at->q2 = plane_of(v, px, py, inv, v[0]->q2, v[1]->q2, v[2]->q2);
     return 1;
 }
 
+/* The set-up arrays, grown by doubling (most triangles give one set-up, so the first
+ * capacity is the triangle count). */
 typedef struct setup_list {
     const cj_allocator *alloc;
     cj_tri_setup *v;
+    cj_tri_attr *a;
     size_t n, cap;
 } setup_list;
 
-static cj_tri_setup *list_push(setup_list *l) {
-    if (l->n == l->cap) {
-        const size_t cap = l->cap ? 2 * l->cap : 1024;
-        cj_tri_setup *nv = xalloc(l->alloc, cap * sizeof *nv);
-        if (!nv) return NULL;
-        if (l->n) memcpy(nv, l->v, l->n * sizeof *nv);
-        l->alloc->free(l->alloc->user, l->v);
-        l->v = nv;
-        l->cap = cap;
+static int list_reserve(setup_list *l, size_t need) {
+    if (need <= l->cap) return 1;
+    size_t cap = l->cap ? 2 * l->cap : 1024;
+    if (cap < need) cap = need;
+    cj_tri_setup *nv = xalloc(l->alloc, cap * sizeof *nv);
+    cj_tri_attr *na = xalloc(l->alloc, cap * sizeof *na);
+    if (!nv || !na) {
+        l->alloc->free(l->alloc->user, nv);
+        l->alloc->free(l->alloc->user, na);
+        return 0;
     }
-    return &l->v[l->n];
+    if (l->n) {
+        memcpy(nv, l->v, l->n * sizeof *nv);
+        memcpy(na, l->a, l->n * sizeof *na);
+    }
+    l->alloc->free(l->alloc->user, l->v);
+    l->alloc->free(l->alloc->user, l->a);
+    l->v = nv;
+    l->a = na;
+    l->cap = cap;
+    return 1;
 }
 
 static double now_seconds(void) {
@@ -230,36 +252,64 @@ static int tile_hit(const cj_raster_prep *p, const cj_tri_setup *s, int tx, int 
 static cj_status bin(cj_raster_prep *p) {
     const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
     p->bin_start = xalloc(&p->alloc, (tiles + 1) * sizeof *p->bin_start);
-    if (!p->bin_start) return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu tile bins", tiles);
-    memset(p->bin_start, 0, (tiles + 1) * sizeof *p->bin_start);
-    for (int pass = 0; pass < 2; ++pass) {
-        for (size_t i = 0; i < p->setup_count; ++i) {
-            const cj_tri_setup *s = &p->setups[i];
-            const int tx0 = s->minx / p->tile_size, tx1 = s->maxx / p->tile_size;
-            const int ty0 = s->miny / p->tile_size, ty1 = s->maxy / p->tile_size;
-            const int one = tx0 == tx1 && ty0 == ty1;
-            for (int ty = ty0; ty <= ty1; ++ty)
-                for (int tx = tx0; tx <= tx1; ++tx) {
-                    if (!one && !tile_hit(p, s, tx, ty)) continue;
-                    const size_t t = (size_t)ty * p->tiles_x + tx;
-                    if (pass == 0)
-                        p->bin_start[t + 1]++;
-                    else
-                        p->bin_items[p->bin_start[t]++] = (uint32_t)i;
-                }
-        }
-        if (pass == 0) {
-            for (size_t t = 0; t < tiles; ++t) p->bin_start[t + 1] += p->bin_start[t];
-            p->bin_items = xalloc(&p->alloc, p->bin_start[tiles] * sizeof *p->bin_items);
-            if (!p->bin_items)
-                return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu binned triangles",
-                               p->bin_start[tiles]);
-        } else {
-            /* The fill pass advanced each start to the next bin's start: shift back. */
-            for (size_t t = tiles; t > 0; --t) p->bin_start[t] = p->bin_start[t - 1];
-            p->bin_start[0] = 0;
-        }
+    /* Tile range of each set-up (4 × 16 bits): the fill pass need not reread the set-ups. */
+    uint16_t(*range)[4] = xalloc(&p->alloc, (p->setup_count + 1) * sizeof *range);
+    if (!p->bin_start || !range) {
+        p->alloc.free(p->alloc.user, range);
+        return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu tile bins", tiles);
     }
+    memset(p->bin_start, 0, (tiles + 1) * sizeof *p->bin_start);
+    int shift = -1; /* tile sizes that are powers of two divide by a shift */
+    for (int k = 0; k < 16; ++k)
+        if (p->tile_size == 1 << k) shift = k;
+    for (size_t i = 0; i < p->setup_count; ++i) {
+        const cj_tri_setup *s = &p->setups[i];
+        int tx0, tx1, ty0, ty1;
+        if (shift >= 0) {
+            tx0 = s->minx >> shift;
+            tx1 = s->maxx >> shift;
+            ty0 = s->miny >> shift;
+            ty1 = s->maxy >> shift;
+        } else {
+            tx0 = s->minx / p->tile_size;
+            tx1 = s->maxx / p->tile_size;
+            ty0 = s->miny / p->tile_size;
+            ty1 = s->maxy / p->tile_size;
+        }
+        range[i][0] = (uint16_t)tx0;
+        range[i][1] = (uint16_t)tx1;
+        range[i][2] = (uint16_t)ty0;
+        range[i][3] = (uint16_t)ty1;
+        if (tx0 == tx1 && ty0 == ty1) {
+            p->bin_start[(size_t)ty0 * p->tiles_x + tx0 + 1]++;
+            continue;
+        }
+        for (int ty = ty0; ty <= ty1; ++ty)
+            for (int tx = tx0; tx <= tx1; ++tx)
+                if (tile_hit(p, s, tx, ty)) p->bin_start[(size_t)ty * p->tiles_x + tx + 1]++;
+    }
+    for (size_t t = 0; t < tiles; ++t) p->bin_start[t + 1] += p->bin_start[t];
+    p->bin_items = xalloc(&p->alloc, (p->bin_start[tiles] + 1) * sizeof *p->bin_items);
+    if (!p->bin_items) {
+        p->alloc.free(p->alloc.user, range);
+        return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu binned triangles",
+                       p->bin_start[tiles]);
+    }
+    for (size_t i = 0; i < p->setup_count; ++i) {
+        const int tx0 = range[i][0], tx1 = range[i][1], ty0 = range[i][2], ty1 = range[i][3];
+        if (tx0 == tx1 && ty0 == ty1) {
+            p->bin_items[p->bin_start[(size_t)ty0 * p->tiles_x + tx0]++] = (uint32_t)i;
+            continue;
+        }
+        for (int ty = ty0; ty <= ty1; ++ty)
+            for (int tx = tx0; tx <= tx1; ++tx)
+                if (tile_hit(p, &p->setups[i], tx, ty))
+                    p->bin_items[p->bin_start[(size_t)ty * p->tiles_x + tx]++] = (uint32_t)i;
+    }
+    /* The fill advanced each start to the next bin's start: shift back. */
+    for (size_t t = tiles; t > 0; --t) p->bin_start[t] = p->bin_start[t - 1];
+    p->bin_start[0] = 0;
+    p->alloc.free(p->alloc.user, range);
     return CJ_OK;
 }
 
@@ -323,8 +373,10 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     st.tris_in = in->tri_count;
     const double hw = 0.5 * in->width, hh = 0.5 * in->height;
     const double gx = 2.0 * CJ_TRI_GUARD_PX / in->width, gy = 2.0 * CJ_TRI_GUARD_PX / in->height;
-    setup_list list = {&p->alloc, NULL, 0, 0};
+    setup_list list = {&p->alloc, NULL, NULL, 0, 0};
     cj_status status = CJ_OK;
+    if (!list_reserve(&list, in->tri_count + 16))
+        status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu set-up triangles", in->tri_count);
     for (size_t t = 0; t < in->tri_count && status == CJ_OK; ++t) {
         cj_tri_vert tv[3];
         static const double bary[3][2] = {{0, 0}, {1, 0}, {0, 1}};
@@ -338,8 +390,18 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
             tv[k].b2 = bary[k][1];
         }
         cj_tri_vert poly[CJ_TRI_CLIP_MAX];
-        int cut = 0;
-        const int n = cj_tri_clip(tv, gx, gy, poly, &cut);
+        int cut = 0, n = 3;
+        /* Most triangles lie inside every plane: no clipping. */
+        int inside = 1;
+        for (int k = 0; k < 3 && inside; ++k) {
+            const cj_tri_vert *c = &tv[k];
+            inside = c->z + c->w >= 0.0 && c->w - c->z >= 0.0 && gx * c->w - c->x >= 0.0 &&
+                     gx * c->w + c->x >= 0.0 && gy * c->w - c->y >= 0.0 && gy * c->w + c->y >= 0.0;
+        }
+        if (inside)
+            memcpy(poly, tv, sizeof tv);
+        else
+            n = cj_tri_clip(tv, gx, gy, poly, &cut);
         st.tris_clipped += cut;
         pvert pv[CJ_TRI_CLIP_MAX];
         int ok = n >= 3;
@@ -356,8 +418,8 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
             pv[k].Y = snap(yn, hh);
             pv[k].z = c->z / c->w;
             pv[k].r = 1.0 / c->w;
-            pv[k].q1 = c->b1 / c->w;
-            pv[k].q2 = c->b2 / c->w;
+            pv[k].q1 = c->b1 * pv[k].r;
+            pv[k].q2 = c->b2 * pv[k].r;
         }
         size_t made = 0;
         if (ok) {
@@ -371,12 +433,12 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
                 want = a2 > 0 ? 1 : a2 < 0 ? -1 : 2;
             }
             for (int k = 1; k + 1 < n && want != 2; ++k) {
-                cj_tri_setup *s = list_push(&list);
-                if (!s) {
+                if (!list_reserve(&list, list.n + 1)) {
                     status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for set-up triangles");
                     break;
                 }
-                if (setup_tri(p, &pv[0], &pv[k], &pv[k + 1], (uint32_t)t, want, s)) {
+                if (setup_tri(p, &pv[0], &pv[k], &pv[k + 1], (uint32_t)t, want, &list.v[list.n],
+                              &list.a[list.n])) {
                     list.n++;
                     made++;
                 }
@@ -386,7 +448,15 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
         st.tris_setup += made;
     }
     p->setups = list.v;
+    p->attrs = list.a;
     p->setup_count = list.n;
+    if (status == CJ_OK) {
+        p->src = xalloc(&p->alloc, (list.n ? list.n : 1) * sizeof *p->src);
+        if (!p->src)
+            status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu set-ups", list.n);
+        else
+            for (size_t i = 0; i < list.n; ++i) p->src[i] = list.a[i].src;
+    }
     if (status == CJ_OK) status = bin(p);
     if (status != CJ_OK) {
         cj_raster_prep_destroy(p);
