@@ -582,6 +582,68 @@ static void test_view_tessellation(void **state) {
            tn, tf);
 }
 
+static void test_edge_cases(void **state) {
+    (void)state;
+    cj_scene *s;
+    rs_check(cj_scene_create(NULL, &s));
+    cj_scene_settings set = cj_scene_settings_default();
+    set.background = cj_rgb_make(0.25, 0.5, 0.125);
+    set.width = 40;
+    set.height = 30;
+    rs_check(cj_scene_set_settings(s, &set));
+    /* nothing in the scene: the background, alpha 0, every stage but the always ones left out */
+    cj_stage_report rep;
+    cj_render_image *img = render(s, NULL, CJ_IMAGE_IDS | CJ_IMAGE_DEPTH, &rep);
+    for (int i = 0; i < 40 * 30; ++i) {
+        assert_true(img->rgba[4 * i] == 0.25f && img->rgba[4 * i + 1] == 0.5f &&
+                    img->rgba[4 * i + 2] == 0.125f && img->rgba[4 * i + 3] == 0.0f);
+        assert_true(img->ids[i] == 0 && img->depth[i] == 1.0f);
+    }
+    assert_false(ran(&rep, "shade_unlit") || ran(&rep, "overlay_lines"));
+    cj_render_image_destroy(img);
+    /* only a curve: the line pass alone */
+    cj_material m = cj_material_default();
+    int mi;
+    rs_check(cj_scene_add_material(s, &m, &mi));
+    rs_add_curve(s, mi, 0.0);
+    img = render(s, NULL, 0, &rep);
+    assert_true(ran(&rep, "overlay_lines") &&
+                cj_stage_report_find(&rep, "overlay_lines")->out > 20);
+    cj_render_image_destroy(img);
+    /* refused options and data: nothing is returned */
+    cj_render_options o = cj_render_options_default();
+    cj_render_image *none = NULL;
+    o.spp = 3;
+    assert_int_equal(cj_render_raster(s, &o, 0, NULL, &none, NULL), CJ_ERR_RANGE);
+    o.spp = 1;
+    o.tile_size = 4;
+    assert_int_equal(cj_render_raster(s, &o, 0, NULL, &none, NULL), CJ_ERR_RANGE);
+    o.tile_size = 0;
+    o.tol_px = -1.0;
+    assert_int_equal(cj_render_raster(s, &o, 0, NULL, &none, NULL), CJ_ERR_RANGE);
+    o.tol_px = 0.0;
+    cj_texture t = cj_texture_default(CJ_TEX_IMAGE);
+    t.path = "missing.png";
+    int ti;
+    rs_check(cj_scene_add_texture(s, &t, &ti));
+    m.texture = ti;
+    rs_check(cj_scene_add_material(s, &m, &mi));
+    cj_geometry g;
+    memset(&g, 0, sizeof g);
+    g.kind = CJ_GEOM_SPHERE;
+    g.u.sphere.radius = 0.5;
+    int gi;
+    rs_check(cj_scene_add_geometry(s, &g, &gi));
+    cj_node n = cj_render_node(gi, mi);
+    rs_check(cj_scene_add_node(s, &n, NULL));
+    assert_int_equal(cj_render_raster(s, &o, 0, NULL, &none, NULL), CJ_ERR_ARGUMENT);
+    assert_non_null(strstr(cj_last_error(), "textures[0]"));
+    assert_null(none);
+    cj_scene_destroy(s);
+    printf("test_edge_cases: empty scene = background with alpha 0; a curve alone; spp 3, tile 4, "
+           "tol -1 and an image texture without pixels refused\n");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stage_iff_feature),
@@ -591,6 +653,7 @@ int main(void) {
         cmocka_unit_test(test_sphere_silhouette),
         cmocka_unit_test(test_bsp_interpenetrating),
         cmocka_unit_test(test_view_tessellation),
+        cmocka_unit_test(test_edge_cases),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
