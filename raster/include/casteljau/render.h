@@ -14,6 +14,33 @@
  * (casteljau/stage_report.h).
  *
  * DETERMINISM: the image is bit-identical for any thread count and tile size.
+ *
+ * THE RASTERIZER (cj_render_raster) in detail:
+ *   - colour: the picture composited over the scene's background colour (background samples
+ *     hold the background colour with alpha 0; transparent fragments blend over what is
+ *     behind them, alpha += a (1 − alpha)); with supersampling, the box-filtered mean of the
+ *     samples, so alpha is the pixel's coverage. The id and depth planes hold the pixel's
+ *     sample 0 (its centre at 1 spp), before overlay lines.
+ *   - tessellation for the view: patches (and surfaces of revolution / general cylinders,
+ *     converted exactly to rational patches) are tessellated at the object tolerance whose
+ *     projection is at most tol_px pixels at the nearest depth of the visible patches (one
+ *     cj_tessellate_patches call per object: watertight); other analytic surfaces on a grid
+ *     meeting the same second-order bound; the stage report gives the triangles and the
+ *     bound in pixels.
+ *   - shading: Phong reflectance (casteljau/scene.h, cj_material) with point, directional and
+ *     spot lights (area lights as a point at their centre), flat / Gouraud / Phong per
+ *     material; no light at all shows each object's diffuse colour (times its texture); only
+ *     ambient light shows c_r r_a I_a. Lights of zero intensity are left out.
+ *   - transparency: back to front after the opaque surfaces, ordered by a BSP tree whose leaves
+ *     are lists for which the painter's order is proven exact (Newell's plane tests on every
+ *     pair overlapping on screen); interpenetrating surfaces are cut.
+ *   - overlays and curves: depth-tested exact lines, overlays moved two pixel sizes towards
+ *     the eye along their view ray so they sit on their surface.
+ *   - the stage report names every stage: tessellate_patches, tessellate_surfaces, meshes,
+ *     transform, vertex_normals, texture_coords, cull_backfaces, sort_transparent, project,
+ *     shade_setup, mipmaps, raster_setup, rasterize, shade_unlit, shade_flat, shade_gouraud,
+ *     shade_phong, texture, overlay_lines, transparency, resolve, output. Per-tile stages'
+ *     seconds are summed over the worker threads.
  */
 #ifndef CASTELJAU_RENDER_H
 #define CASTELJAU_RENDER_H
