@@ -27,6 +27,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* ---- a tessellated sphere whose deviation is known exactly --------------------------------- */
 
@@ -514,6 +515,82 @@ static void test_ours_vs_vtk_teapot(void **state) {
     cj_scene_destroy(sc);
 }
 
+/* The .vtp export: the scene's triangles with normals, object ids and the camera. */
+static void test_export_vtp(void **state) {
+    (void)state;
+    const cj_vec3 c = cj_v3(0.3, -0.2, 0.1);
+    double delta = 0.0;
+    cj_mesh *m = sphere_mesh(c, 1.0, 24, 12, &delta);
+    cj_material mat = cj_material_default();
+    const cj_camera cam = view_camera(cj_v3(0.8, 1.1, 4.5), cj_v3(0, 0, 0), cj_v3(0, 1, 0), 40);
+    cj_vtk_view view = {cam, NULL, 0, cj_rgb_make(0, 0, 0), 64, 48};
+    cj_vtk_object obj[2] = {{m, &mat, 3}, {m, &mat, 9}};
+    char path[] = "/tmp/cj_vtk_render_XXXXXX";
+    const int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    if (cj_vtk_write_scene_mesh(path, &view, obj, 2) != CJ_OK)
+        fail_msg("export: %s", cj_last_error());
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    static char text[1 << 16];
+    const size_t got = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[got] = '\0'; /* the XML header precedes the raw appended data */
+    char want_pts[64], want_polys[64];
+    snprintf(want_pts, sizeof want_pts, "NumberOfPoints=\"%zu\"", 2 * m->vertex_count);
+    snprintf(want_polys, sizeof want_polys, "NumberOfPolys=\"%zu\"", 2 * m->triangle_count);
+    assert_non_null(strstr(text, "<VTKFile type=\"PolyData\""));
+    assert_non_null(strstr(text, want_pts));
+    assert_non_null(strstr(text, want_polys));
+    assert_non_null(strstr(text, "Name=\"object_id\""));
+    assert_non_null(strstr(text, "Name=\"Normals\""));
+    assert_non_null(strstr(text, "Name=\"camera_eye_gaze_up"));
+    printf("export: %s holds %s, %s, object ids, normals and the camera\n", path, want_pts,
+           want_polys);
+    remove(path);
+    /* a bad destination fails with CJ_ERR_IO and leaves nothing */
+    assert_int_equal(cj_vtk_write_scene_mesh("/nonexistent-dir/x.vtp", &view, obj, 2), CJ_ERR_IO);
+    /* bad input is refused before anything is written */
+    cj_vtk_object bad = {m, &mat, 0};
+    assert_int_equal(cj_vtk_write_scene_mesh(path, &view, &bad, 1), CJ_ERR_ARGUMENT);
+    cj_mesh_destroy(m);
+}
+
+/* Refusals: bad views, objects and lights are errors naming the input, never a crash. */
+static void test_refusals(void **state) {
+    (void)state;
+    double delta = 0.0;
+    cj_mesh *m = sphere_mesh(cj_v3(0, 0, 0), 1.0, 8, 4, &delta);
+    cj_material mat = cj_material_default();
+    cj_light spot = cj_light_default(CJ_LIGHT_SPOT);
+    const cj_camera cam = view_camera(cj_v3(0, 0, 5), cj_v3(0, 0, 0), cj_v3(0, 1, 0), 40);
+    cj_vtk_view view = {cam, NULL, 0, cj_rgb_make(0, 0, 0), 32, 32};
+    cj_vtk_object obj = {m, &mat, 1};
+    float depth[32 * 32];
+    cj_vtk_frame frame = {NULL, NULL, depth};
+    assert_int_equal(cj_vtk_render_mesh(&view, &obj, 0, &frame, NULL), CJ_ERR_ARGUMENT);
+    view.width = 0;
+    assert_int_equal(cj_vtk_render_mesh(&view, &obj, 1, &frame, NULL), CJ_ERR_ARGUMENT);
+    view.width = 32;
+    view.camera.near = 1.0; /* near must be negative */
+    assert_int_not_equal(cj_vtk_render_mesh(&view, &obj, 1, &frame, NULL), CJ_OK);
+    view.camera = cam;
+    view.lights = &spot;
+    view.light_count = 1;
+    assert_int_equal(cj_vtk_render_mesh(&view, &obj, 1, &frame, NULL), CJ_ERR_UNSUPPORTED);
+    view.light_count = 0;
+    mat.kd = -1.0;
+    assert_int_equal(cj_vtk_render_mesh(&view, &obj, 1, &frame, NULL), CJ_ERR_RANGE);
+    mat = cj_material_default();
+    m->positions[4] = NAN;
+    assert_int_equal(cj_vtk_render_mesh(&view, &obj, 1, &frame, NULL), CJ_ERR_NONFINITE);
+    printf("refusals: no objects, zero width, near >= 0, a spot light, kd < 0, a NaN vertex: "
+           "each refused (%s)\n",
+           cj_last_error());
+    cj_mesh_destroy(m);
+}
+
 #if defined(__SANITIZE_ADDRESS__)
 #include <dlfcn.h>
 /* Mesa unloads its DRI driver when the last GL context goes, leaving blocks the driver still
@@ -545,6 +622,8 @@ int main(void) {
         cmocka_unit_test(test_ours_vs_vtk_sphere),
         cmocka_unit_test(test_ours_vs_vtk_quadrics),
         cmocka_unit_test(test_ours_vs_vtk_teapot),
+        cmocka_unit_test(test_export_vtp),
+        cmocka_unit_test(test_refusals),
     };
     const int failed = cmocka_run_group_tests(tests, NULL, NULL);
     cj_test_xvfb_stop(xvfb);
