@@ -357,7 +357,8 @@ cj_node *cj_scene_node_mut(cj_scene *scene, int index);
 cj_geometry *cj_scene_geometry_mut(cj_scene *scene, int index);
 
 /* Optional names of materials and textures (the JSON format refers to them by name; an editor
- * shows them), copied; NULL = unnamed. CJ_ERR_ARGUMENT for an index that names nothing. */
+ * shows them), copied; NULL = unnamed. CJ_ERR_ARGUMENT for an index that names nothing,
+ * CJ_ERR_NOMEM. Names are not checked for uniqueness here (cj_scene_save_json refuses repeats). */
 cj_status cj_scene_set_material_name(cj_scene *scene, int index, const char *name);
 const char *cj_scene_material_name(const cj_scene *scene, int index);
 cj_status cj_scene_set_texture_name(cj_scene *scene, int index, const char *name);
