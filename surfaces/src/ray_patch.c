@@ -27,7 +27,7 @@ typedef struct net {
 } net;
 
 typedef struct ctx {
-    int m, n;
+    int m, n, rational;
     double tol, tmin_s, tbest_s; /* along the ray in world units (|dir| = 1) */
     int found;
     double bu, bv, berr;
@@ -37,10 +37,12 @@ typedef struct ctx {
 static void split_u(const ctx *c, const net *in, net *l, net *r) {
     int m = c->m, n = c->n;
     double mid = 0.5 * (in->u0 + in->u1);
-    *l = *in;
-    *r = *in;
+    l->u0 = in->u0;
     l->u1 = mid;
     r->u0 = mid;
+    r->u1 = in->u1;
+    l->v0 = r->v0 = in->v0;
+    l->v1 = r->v1 = in->v1;
     double tmp[CJ_RAY_PATCH_MAX_DEGREE + 1][4];
     for (int j = 0; j <= n; j++) {
         for (int i = 0; i <= m; i++) memcpy(tmp[i], in->p[j * (m + 1) + i], sizeof tmp[i]);
@@ -60,10 +62,12 @@ static void split_u(const ctx *c, const net *in, net *l, net *r) {
 static void split_v(const ctx *c, const net *in, net *l, net *r) {
     int m = c->m, n = c->n;
     double mid = 0.5 * (in->v0 + in->v1);
-    *l = *in;
-    *r = *in;
+    l->v0 = in->v0;
     l->v1 = mid;
     r->v0 = mid;
+    r->v1 = in->v1;
+    l->u0 = r->u0 = in->u0;
+    l->u1 = r->u1 = in->u1;
     double tmp[CJ_RAY_PATCH_MAX_DEGREE + 1][4];
     for (int i = 0; i <= m; i++) {
         for (int j = 0; j <= n; j++) memcpy(tmp[j], in->p[j * (m + 1) + i], sizeof tmp[j]);
@@ -80,25 +84,39 @@ static void split_v(const ctx *c, const net *in, net *l, net *r) {
     }
 }
 
-/* Box of the Euclidean net; 1 if it can hold a point within tol of the ray in [tmin, tbest]. */
+/* Box of the Euclidean net; 1 if it can hold a point within tol of the ray in [tmin, tbest].
+ * (Locals, not the output arrays, carry the running bounds: the compiler cannot keep aliased
+ * outputs in registers.) */
 static int net_box(const ctx *c, const net *s, double lo[3], double hi[3]) {
     int cnt = (c->m + 1) * (c->n + 1);
-    for (int k = 0; k < 3; k++) {
-        lo[k] = INFINITY;
-        hi[k] = -INFINITY;
-    }
+    double l0 = INFINITY, l1 = INFINITY, l2 = INFINITY, h0 = -INFINITY, h1 = -INFINITY,
+           h2 = -INFINITY;
     for (int i = 0; i < cnt; i++) {
-        double iw = 1.0 / s->p[i][3];
-        for (int k = 0; k < 3; k++) {
-            double x = s->p[i][k] * iw;
-            if (x < lo[k]) lo[k] = x;
-            if (x > hi[k]) hi[k] = x;
+        const double *p = s->p[i];
+        double x = p[0], y = p[1], z = p[2];
+        if (c->rational) {
+            double iw = 1.0 / p[3];
+            x *= iw;
+            y *= iw;
+            z *= iw;
         }
+        l0 = x < l0 ? x : l0;
+        h0 = x > h0 ? x : h0;
+        l1 = y < l1 ? y : l1;
+        h1 = y > h1 ? y : h1;
+        l2 = z < l2 ? z : l2;
+        h2 = z > h2 ? z : h2;
     }
+    lo[0] = l0;
+    lo[1] = l1;
+    lo[2] = l2;
+    hi[0] = h0;
+    hi[1] = h1;
+    hi[2] = h2;
     double slack = c->tol;
     if (c->stats) c->stats->boxes++;
-    return lo[0] <= slack && hi[0] >= -slack && lo[1] <= slack && hi[1] >= -slack &&
-           hi[2] >= c->tmin_s - slack && lo[2] <= c->tbest_s + slack;
+    return l0 <= slack && h0 >= -slack && l1 <= slack && h1 >= -slack && h2 >= c->tmin_s - slack &&
+           l2 <= c->tbest_s + slack;
 }
 
 /* The net deviates from the bilinear patch of its corners by at most `lim`. */
@@ -223,15 +241,17 @@ static double net_x3(const ctx *c, const net *s, double a, double b) {
     return x / w;
 }
 
-static void visit(ctx *c, const net *s, int depth) {
-    double lo[3], hi[3];
-    if (!net_box(c, s, lo, hi)) return;
+/* s's box (lo, hi) was computed and found to meet the ray by the caller. */
+static void visit(ctx *c, const net *s, const double lo[3], const double hi[3], int depth) {
     double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                        (hi[2] - lo[2]) * (hi[2] - lo[2]));
     if (diag <= c->tol || depth >= MAX_DEPTH) {
-        /* Within tol of the ray everywhere: the centre is a hit to tolerance. */
+        /* Within diag of the ray everywhere when the ray passes through the box (no slack):
+         * the centre is a hit to tolerance. A candidate closer to the origin than its own
+         * uncertainty is the surface the ray starts on, not a hit. */
+        if (lo[0] > 0.0 || hi[0] < 0.0 || lo[1] > 0.0 || hi[1] < 0.0) return;
         double t = net_x3(c, s, 0.5, 0.5);
-        if (t >= c->tmin_s && t <= c->tbest_s) {
+        if (t >= c->tmin_s + diag && t <= c->tbest_s) {
             c->found = 1;
             c->tbest_s = t;
             c->bu = 0.5 * (s->u0 + s->u1);
@@ -244,7 +264,7 @@ static void visit(ctx *c, const net *s, int depth) {
         double a, b, r;
         if (newton(c, s, &a, &b, &r)) {
             double t = net_x3(c, s, a, b);
-            if (t >= c->tmin_s && t <= c->tbest_s) {
+            if (t >= c->tmin_s + r && t <= c->tbest_s) {
                 c->found = 1;
                 c->tbest_s = t;
                 c->bu = s->u0 + a * (s->u1 - s->u0);
@@ -271,11 +291,11 @@ static void visit(ctx *c, const net *s, int depth) {
     double lo0[3], hi0[3], lo1[3], hi1[3];
     int h0 = net_box(c, &kids[0], lo0, hi0), h1 = net_box(c, &kids[1], lo1, hi1);
     if (h0 && h1 && lo1[2] < lo0[2]) {
-        visit(c, &kids[1], depth + 1);
-        visit(c, &kids[0], depth + 1);
+        visit(c, &kids[1], lo1, hi1, depth + 1);
+        if (lo0[2] <= c->tbest_s + c->tol) visit(c, &kids[0], lo0, hi0, depth + 1);
     } else {
-        if (h0) visit(c, &kids[0], depth + 1);
-        if (h1) visit(c, &kids[1], depth + 1);
+        if (h0) visit(c, &kids[0], lo0, hi0, depth + 1);
+        if (h1 && lo1[2] <= c->tbest_s + c->tol) visit(c, &kids[1], lo1, hi1, depth + 1);
     }
 }
 
@@ -293,6 +313,7 @@ int cj_ray_patch(const cj_ray *ray, const cj_patch *patch, double tol, cj_hit *h
     ctx c;
     c.m = m;
     c.n = n;
+    c.rational = patch->weights != NULL;
     c.tol = tol;
     c.tmin_s = ray->tmin * len;
     c.tbest_s = ray->tmax * len;
@@ -315,7 +336,8 @@ int cj_ray_patch(const cj_ray *ray, const cj_patch *patch, double tol, cj_hit *h
         root.p[i][2] = wt * cj_v3_dot(dn, w);
         root.p[i][3] = wt;
     }
-    visit(&c, &root, 0);
+    double rlo[3], rhi[3];
+    if (net_box(&c, &root, rlo, rhi)) visit(&c, &root, rlo, rhi, 0);
     if (!c.found) return 0;
     double S[3], nrm[3];
     if (cj_patch_eval(patch, CJ_EVAL_DECASTELJAU, c.bu, c.bv, S) != CJ_OK) return 0;

@@ -160,15 +160,19 @@ typedef struct cj_ray_patch_stats {
  * directly by subdivision plus Newton: the ray is written as the intersection of two planes
  * (n1·x = d1, n2·x = d2 with n1, n2, dir orthonormal up to |dir|), sub-patches whose control
  * net's box misses the ray (in those plane distances and in t) are discarded, the others are
- * halved along their longer side until the net is flat (every control point within 1/8 of its
+ * halved along their longer side until the net is flat (every control point within 1/16 of its
  * box's diagonal of the bilinear patch of its corners) and Newton's method on
  * F(u, v) = (n1·S(u,v) − d1, n2·S(u,v) − d2) is started at the sub-patch centre. A solve is
  * accepted when |F| <= tol (the distance from S(u, v) to the ray line: `tol` is in world
  * units, > 0) and (u, v) lies in the sub-patch (up to 1e-9): otherwise the sub-patch is split
- * further, down to a box diagonal below tol (accepted as a hit at its centre, err = the box
- * diagonal). p = S(u, v), which lies on the patch (p_err = the evaluation bound γ(3(m+n)+8)
- * Σ|b_ij|B_ij), so hit->err = |F| reports the distance to the ray reached. n = cj_patch_normal
- * (pole limits included). stats (may be NULL) accumulates counters. Degree above the cap,
+ * further, down to a box diagonal below tol or 40 splits (a grazing ray at a silhouette or a
+ * degenerate corner, where Newton's Jacobian is singular), and a box the ray passes through is
+ * then accepted as a hit at its centre. A candidate nearer the ray's tmin than its own error
+ * is rejected (it is the surface a secondary ray starts from). p = S(u, v), which lies on the
+ * patch (p_err = the evaluation bound γ(3(m+n)+8) max|b_ij|), and hit->err = the distance from
+ * p to the ray line actually reached: <= tol after Newton, the box size after the split cap
+ * (reported, e.g. as max_err in the tracer's stage report). n = cj_patch_normal (pole limits
+ * included). stats (may be NULL) accumulates counters. Degree above the cap,
  * tol <= 0: no hit (validate with cj_ray_patch_check). */
 int cj_ray_patch(const cj_ray *ray, const cj_patch *patch, double tol, cj_hit *hit,
                  cj_ray_patch_stats *stats);

@@ -1,0 +1,15 @@
+# bench_trace: ray intersection per primitive kind (patches direct vs tessellated), BVH scaling,
+# Embree on the same triangles (when libembree-dev is installed), tracer rays per second.
+if(TARGET cj::raster)
+  add_executable(bench_trace bench_trace.c)
+  target_link_libraries(bench_trace PRIVATE cj::raster m)
+  target_compile_definitions(bench_trace PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+  cj_warnings(bench_trace)
+  find_path(CJ_EMBREE3_INCLUDE embree3/rtcore.h)
+  find_library(CJ_EMBREE3_LIB embree3)
+  if(CJ_EMBREE3_INCLUDE AND CJ_EMBREE3_LIB)
+    target_compile_definitions(bench_trace PRIVATE CJ_HAVE_EMBREE=1)
+    target_include_directories(bench_trace PRIVATE ${CJ_EMBREE3_INCLUDE})
+    target_link_libraries(bench_trace PRIVATE ${CJ_EMBREE3_LIB})
+  endif()
+endif()
