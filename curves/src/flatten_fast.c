@@ -28,7 +28,7 @@
  *    general bounds (a)-(d) on its de Casteljau subcurve do.
  *
  * Segment lengths are chosen as in the general method: grown from the previous step until the
- * deviation lies in [0.9, 1] tol (secant on sqrt(deviation), which is linear in the step
+ * deviation lies in [0.95, 1] tol (secant on sqrt(deviation), which is linear in the step
  * on curved pieces), so the spacing follows ∫ sqrt(|κ|/(8 tol)) ds.
  *
  * Rounding: the break points and derivatives come from one de Casteljau triangle on the scaled
@@ -169,10 +169,10 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
     cx.down = ldexp(1.0, -fc->escale);
     const double up = ldexp(1.0, fc->escale);
     cx.tol_eff = tol_eff;
-    cx.accept_lo = 0.9 * tol_eff;
+    cx.accept_lo = 0.95 * tol_eff;
     cx.tol_s = tol_eff * cx.down;
     cx.lo_s = cx.accept_lo * cx.down;
-    const double target = 0.95 * cx.tol_s, starget = sqrt(target);
+    const double target = 0.975 * cx.tol_s, starget = sqrt(target);
     double pt[2];
     cj_fl_end(fc, 0, pt);
     if (cj_fl_emit(em, pt, 0.0)) return cj_fl_cap_fail(em, "near-optimal");
