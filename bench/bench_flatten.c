@@ -9,7 +9,17 @@
  * long-double evaluation) to their own segment, an upper estimate of the distance to the
  * polyline. Times are process CPU time (robust on a shared machine) of the count-then-fill
  * form into a preallocated buffer.
- * Goals (measured, not asserted): near-optimal <= 1.10x, uniform <= 1.3x, deviation <= tol. */
+ * Goals (measured, not asserted): near-optimal <= 1.10x, uniform <= 1.3x, deviation <= tol.
+ *
+ * Peer table (issue 13; with cairo when built with it, see bench/areas/flatten.cmake): degrees 3
+ * and 2, each 10 000 random curves in a 1000 x 1000 box plus hard ones (loop, cusp, near-cusp,
+ * inflection; a quadratic turning back on itself), tolerances 0.01, 0.25 and 1; ours
+ * (near-optimal and uniform) against cairo_copy_path_flat (cairo_set_tolerance; quadratics as
+ * their exact cubic elevation), measured in the same run with the repetitions interleaved,
+ * thread CPU time, median of 5. Deviation: the largest distance from the curve to the polyline,
+ * sampled at 8 parameters per segment plus 64 (long-double evaluation, distance to the nearest
+ * segment of the whole polyline) and refined around the worst sample by golden-section search.
+ * BENCH_PEERS_ONLY=1 prints the peer table alone. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "casteljau/flatten.h"
 
@@ -20,6 +30,9 @@
 #include <string.h>
 #include <time.h>
 #include "bench_clock.h"
+#ifdef CJ_HAVE_CAIRO
+#include <cairo.h>
+#endif
 
 #define NRANDOM 10000
 
@@ -185,7 +198,222 @@ static uint64_t splitmix(uint64_t *s) {
     return z ^ (z >> 31);
 }
 
+/* ---- peer table ----------------------------------------------------------------------------- */
+
+#define NPEER  10000
+#define NHARD  4
+#define NROUND 5
+
+/* Distance from point q to segment a-b (long double). */
+static long double seg_dist(const long double *q, const double *a, const double *b) {
+    const long double abx = (long double)b[0] - a[0], aby = (long double)b[1] - a[1];
+    const long double ab2 = abx * abx + aby * aby;
+    long double u = ab2 > 0 ? ((q[0] - a[0]) * abx + (q[1] - a[1]) * aby) / ab2 : 0;
+    if (u < 0) u = 0;
+    if (u > 1) u = 1;
+    const long double dx = q[0] - (a[0] + u * abx), dy = q[1] - (a[1] + u * aby);
+    return sqrtl(dx * dx + dy * dy);
+}
+
+/* Distance of c(t) from the polyline pts[0..np-1]: the nearest of the segments around *hint (a
+ * window that moves along with t), and the full polyline only when that is above `need` (so the
+ * exact distance is taken wherever it can matter for the maximum). */
+static long double poly_dist(const curve *c, long double t, const double *pts, size_t np,
+                             size_t *hint, long double need) {
+    long double q[2], best = INFINITY;
+    exact_point(c, t, q);
+    const size_t lo = *hint > 4 ? *hint - 4 : 0, hi = *hint + 8 < np - 1 ? *hint + 8 : np - 1;
+    for (size_t j = lo; j < hi; ++j) {
+        const long double d = seg_dist(q, pts + 2 * j, pts + 2 * j + 2);
+        if (d < best) best = d, *hint = j;
+    }
+    if (best > need)
+        for (size_t j = 0; j + 1 < np; ++j) {
+            const long double d = seg_dist(q, pts + 2 * j, pts + 2 * j + 2);
+            if (d < best) best = d, *hint = j;
+        }
+    return best;
+}
+
+/* Largest distance from the curve to the polyline (see the top), one-sided curve -> polyline. */
+static double peer_deviation(const curve *c, const double *pts, size_t np) {
+    if (np < 2) return INFINITY;
+    const size_t N = 8 * (np - 1) + 64;
+    size_t hint = 0, worst_i = 0;
+    long double worst = 0;
+    for (size_t i = 0; i <= N; ++i) {
+        const long double d = poly_dist(c, (long double)i / N, pts, np, &hint, worst);
+        if (d > worst) worst = d, worst_i = i;
+    }
+    long double lo = worst_i > 0 ? (long double)(worst_i - 1) / N : 0;
+    long double hi = worst_i < N ? (long double)(worst_i + 1) / N : 1;
+    for (int it = 0; it < 50; ++it) {
+        const long double m1 = lo + (hi - lo) * 0.381966L, m2 = hi - (hi - lo) * 0.381966L;
+        size_t h1 = hint, h2 = hint;
+        const long double d1 = poly_dist(c, m1, pts, np, &h1, 0),
+                          d2 = poly_dist(c, m2, pts, np, &h2, 0);
+        if (d1 > worst) worst = d1;
+        if (d2 > worst) worst = d2;
+        if (d1 < d2)
+            lo = m1;
+        else
+            hi = m2;
+    }
+    return (double)worst;
+}
+
+typedef struct peer_out {
+    size_t segs, over;
+    double worst;
+} peer_out;
+
+enum { P_NEAR, P_UNIFORM, P_CAIRO, P_COUNT };
+static const char *const peer_name[P_COUNT] = {"casteljau near-optimal", "casteljau uniform",
+                                               "cairo 1.16 copy_path_flat"};
+
+#ifdef CJ_HAVE_CAIRO
+static cairo_t *g_cr;
+/* cairo's flattening of curve c into pts (room for cap points); returns the point count. */
+static size_t cairo_flat(const curve *c, double *pts, size_t cap) {
+    double q[8];
+    if (c->n == 3) {
+        memcpy(q, c->p, sizeof q);
+    } else { /* exact degree elevation (up to rounding) */
+        q[0] = c->p[0], q[1] = c->p[1], q[6] = c->p[4], q[7] = c->p[5];
+        for (int k = 0; k < 2; ++k) {
+            q[2 + k] = c->p[k] + 2.0 / 3.0 * (c->p[2 + k] - c->p[k]);
+            q[4 + k] = c->p[4 + k] + 2.0 / 3.0 * (c->p[2 + k] - c->p[4 + k]);
+        }
+    }
+    cairo_new_path(g_cr);
+    cairo_move_to(g_cr, q[0], q[1]);
+    cairo_curve_to(g_cr, q[2], q[3], q[4], q[5], q[6], q[7]);
+    cairo_path_t *path = cairo_copy_path_flat(g_cr);
+    size_t np = 0;
+    for (int i = 0; i < path->num_data; i += path->data[i].header.length) {
+        const cairo_path_data_t *d = &path->data[i];
+        if (d->header.type == CAIRO_PATH_MOVE_TO || d->header.type == CAIRO_PATH_LINE_TO) {
+            if (pts && np < cap) pts[2 * np] = d[1].point.x, pts[2 * np + 1] = d[1].point.y;
+            ++np;
+        }
+    }
+    cairo_path_destroy(path);
+    return np;
+}
+#endif
+
+static size_t run_peer(int m, const curve *c, double tol, double *buf, size_t cap) {
+    if (m == P_CAIRO) {
+#ifdef CJ_HAVE_CAIRO
+        return cairo_flat(c, buf, cap);
+#else
+        return 0;
+#endif
+    }
+    cj_flatten_opts o =
+        cj_flatten_defaults(m == P_NEAR ? CJ_FLATTEN_NEAR_OPTIMAL : CJ_FLATTEN_UNIFORM, tol);
+    size_t np = 0;
+    if (flatten(c, &o, buf, cap, &np, NULL)) abort();
+    return np;
+}
+
+static void peer_table(const curve *set, const double *I, int n, double *buf, size_t cap) {
+    const double tols[3] = {0.01, 0.25, 1.0};
+    const int count = NPEER + NHARD;
+    int nm = P_COUNT;
+#ifndef CJ_HAVE_CAIRO
+    nm = P_CAIRO;
+#else
+    cairo_surface_t *sf = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
+    g_cr = cairo_create(sf);
+#endif
+    for (int ti = 0; ti < 3; ++ti) {
+        const double tol = tols[ti];
+#ifdef CJ_HAVE_CAIRO
+        cairo_set_tolerance(g_cr, tol);
+#endif
+        double opt = 0;
+        for (int i = 0; i < count; ++i) opt += I[i] / sqrt(8 * tol);
+        peer_out po[P_COUNT];
+        for (int m = 0; m < nm; ++m) {
+            po[m] = (peer_out){0, 0, 0};
+            for (int i = 0; i < count; ++i) {
+                const size_t np = run_peer(m, &set[i], tol, buf, cap);
+                if (np > cap) abort();
+                const double dev = peer_deviation(&set[i], buf, np);
+                po[m].segs += np - 1;
+                if (dev > tol) po[m].over++;
+                if (dev / tol > po[m].worst) po[m].worst = dev / tol;
+            }
+        }
+        double tm[P_COUNT][NROUND];
+        for (int r = 0; r < NROUND; ++r)
+            for (int m = 0; m < nm; ++m) {
+                const double t0 = cj_bench_thread_cpu();
+                for (int i = 0; i < count; ++i) run_peer(m, &set[i], tol, buf, cap);
+                tm[m][r] = (cj_bench_thread_cpu() - t0) / count * 1e6;
+            }
+        double med[P_COUNT];
+        for (int m = 0; m < nm; ++m) med[m] = cj_bench_median(tm[m], NROUND);
+        for (int m = 0; m < nm; ++m) {
+            printf("| %d | %g | %s | %zu | %.3f | %.3f | %.4f | %zu | %.2f |", n, tol, peer_name[m],
+                   po[m].segs, (double)po[m].segs / (double)po[P_NEAR].segs, po[m].segs / opt,
+                   po[m].worst, po[m].over, med[m]);
+            if (nm == P_COUNT)
+                printf(" %.2f |\n", med[m] / med[P_CAIRO]);
+            else
+                printf(" - |\n");
+        }
+    }
+#ifdef CJ_HAVE_CAIRO
+    cairo_destroy(g_cr);
+    cairo_surface_destroy(sf);
+#endif
+}
+
+static void peers(void) {
+    static curve set[NPEER + NHARD];
+    static double I[NPEER + NHARD];
+    size_t cap = 1 << 16;
+    double *buf = malloc(sizeof(double) * 2 * cap);
+    if (!buf) abort();
+    printf("\n## Peers: %d random curves in a 1000 x 1000 box plus %d hard ones per degree, "
+           "same run, thread CPU, median of %d interleaved rounds\n\n",
+           NPEER, NHARD, NROUND);
+    printf("deviation = largest sampled+refined distance curve -> polyline; optimum = "
+           "Σ ∫sqrt(|κ|/(8 tol)) ds; time/cairo < 1: faster than cairo\n\n");
+    printf("| degree | tol | method | segments | seg ÷ ours | seg/opt | worst dev ÷ tol | curves "
+           "over tol | µs/curve | time ÷ cairo |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int n = 3; n >= 2; --n) {
+        uint64_t s = 20261123 + (uint64_t)n;
+        if (n == 3) {
+            set[0] = (curve){3, {0, 0, 1000, 600, -400, 600, 1000, 0}, {0}, 0}; /* loop */
+            set[1] = (curve){3, {0, 0, 1000, 1000, 0, 1000, 1000, 0}, {0}, 0};  /* cusp */
+            set[2] = (curve){3, {0, 0, 1000, 1000, 0, 1000, 1000.5, 0}, {0}, 0};
+            set[3] = (curve){3, {0, 0, 400, 600, 600, -600, 1000, 0}, {0}, 0}; /* inflection */
+        } else {
+            set[0] = (curve){2, {0, 0, 1000, 1000, 0, 0.5}, {0}, 0}; /* turns back (near-cusp) */
+            set[1] = (curve){2, {0, 0, 2000, 10, 1000, 0}, {0}, 0};  /* control past the chord */
+            set[2] = (curve){2, {0, 0, 500, 1000, 1000, 0}, {0}, 0};
+            set[3] = (curve){2, {0, 0, 1000, 0, 1000, 1000}, {0}, 0};
+        }
+        for (int i = NHARD; i < NPEER + NHARD; ++i) {
+            set[i].n = n;
+            set[i].rational = 0;
+            for (int k = 0; k < 2 * (n + 1); ++k)
+                set[i].p[k] = (double)(splitmix(&s) >> 11) * 0x1p-53 * 1000;
+        }
+        for (int i = 0; i < NPEER + NHARD; ++i) I[i] = sqrt_kappa_integral(&set[i]);
+        peer_table(set, I, n, buf, cap);
+    }
+    free(buf);
+}
+
 int main(void) {
+    if (getenv("BENCH_PEERS_ONLY")) { /* only the peer table */
+        peers();
+        return 0;
+    }
     static curve set[4 + NRANDOM];
     const char *names[5] = {"quarter circle r=100 (rational)", "inflection cubic",
                             "near-cusp cubic", "loop cubic", "10000 random cubics"};
@@ -271,6 +499,7 @@ int main(void) {
         }
     }
     printf("\nevery measured deviation <= tol: %s\n", all_ok ? "yes" : "NO");
+    peers();
     free(cl.pts);
     free(cl.ts);
     free(buf);
