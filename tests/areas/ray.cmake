@@ -9,3 +9,10 @@ if(TARGET cj::raster)
   cj_add_test(test_trace SOURCES test_trace.c LIBS cj::raster)
   target_compile_definitions(test_trace PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
 endif()
+# CLI contract of `casteljau trace` (needs the tool's image output, i.e. OpenImageIO).
+if(CJ_WITH_OIIO AND TARGET cj::viz)
+  cj_add_test(test_cli_trace SOURCES test_cli_trace.c)
+  target_compile_definitions(test_cli_trace PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+    CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
+  add_dependencies(test_cli_trace casteljau)
+endif()
