@@ -644,6 +644,39 @@ static void test_edge_cases(void **state) {
            "tol -1 and an image texture without pixels refused\n");
 }
 
+static void test_srgb(void **state) {
+    (void)state;
+    cj_render_image *img = NULL;
+    const int n = 4096;
+    assert_int_equal(cj_render_image_create(n, 1, 0, NULL, &img), CJ_OK);
+    for (int i = 0; i < n; ++i) {
+        double x = (double)i / (n - 1);
+        img->rgba[4 * i] = (float)x;
+        img->rgba[4 * i + 1] = (float)(x * x);
+        img->rgba[4 * i + 2] = (float)(x - 0.5); /* negative half clamps to 0 */
+        img->rgba[4 * i + 3] = (float)x;
+    }
+    uint8_t *px = malloc(4 * (size_t)n);
+    assert_non_null(px);
+    assert_int_equal(cj_render_image_to_srgb8(img, px, 0), CJ_OK);
+    int checked = 0;
+    for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) {
+            double v = img->rgba[4 * i + c];
+            v = v < 0 ? 0 : v > 1 ? 1 : v;
+            double e = v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
+            double code = 255.0 * e;
+            if (fabs(code - floor(code) - 0.5) < 1e-4) continue; /* a tie to within rounding */
+            assert_int_equal(px[4 * i + c], (int)floor(code + 0.5));
+            ++checked;
+        }
+    img->rgba[5] = NAN;
+    assert_int_equal(cj_render_image_to_srgb8(img, px, 0), CJ_ERR_NONFINITE);
+    free(px);
+    cj_render_image_destroy(img);
+    printf("test_srgb: %d channel values rounded to the nearest sRGB code; NaN refused\n", checked);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stage_iff_feature),
@@ -654,6 +687,7 @@ int main(void) {
         cmocka_unit_test(test_bsp_interpenetrating),
         cmocka_unit_test(test_view_tessellation),
         cmocka_unit_test(test_edge_cases),
+        cmocka_unit_test(test_srgb),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

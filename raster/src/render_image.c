@@ -94,23 +94,15 @@ static double srgb_decode(double y) {
 
 /* Rounding to the nearest code is a threshold search: code k is chosen when the linear value
  * lies between the decodes of (k - 1/2)/255 and (k + 1/2)/255, which is exact up to the
- * rounding of those 255 thresholds (computed once, in double) and avoids a pow per channel. */
-static float srgb_threshold[255];
-static int srgb_ready;
-
-static void srgb_init(void) {
-    if (srgb_ready) return;
-    for (int k = 0; k < 255; ++k) srgb_threshold[k] = (float)srgb_decode((k + 0.5) / 255.0);
-    srgb_ready = 1; /* idempotent: racing initialisers write the same values */
-}
-
-static uint8_t srgb_code(float x) {
+ * rounding of those 255 thresholds (computed per call, in double: no shared state) and avoids a
+ * pow per channel. */
+static uint8_t srgb_code(const float *threshold, float x) {
     if (!(x > 0.0f)) return 0;
     if (x >= 1.0f) return 255;
     int lo = 0, hi = 255; /* answer in [lo, hi]: number of thresholds <= x */
     while (lo < hi) {
         int mid = (lo + hi) / 2;
-        if (srgb_threshold[mid] <= x)
+        if (threshold[mid] <= x)
             lo = mid + 1;
         else
             hi = mid;
@@ -119,7 +111,8 @@ static uint8_t srgb_code(float x) {
 }
 
 cj_status cj_render_image_to_srgb8(const cj_render_image *img, uint8_t *rgba8, size_t stride) {
-    srgb_init();
+    float th[255];
+    for (int k = 0; k < 255; ++k) th[k] = (float)srgb_decode((k + 0.5) / 255.0);
     if (stride == 0) stride = (size_t)img->width * 4;
     for (int y = 0; y < img->height; ++y) {
         const float *src = img->rgba + (size_t)y * (size_t)img->width * 4;
@@ -128,9 +121,9 @@ cj_status cj_render_image_to_srgb8(const cj_render_image *img, uint8_t *rgba8, s
             for (int c = 0; c < 4; ++c)
                 if (src[4 * x + c] != src[4 * x + c])
                     return cj_fail(CJ_ERR_NONFINITE, "pixel (%d, %d) channel %d is NaN", x, y, c);
-            dst[4 * x + 0] = srgb_code(src[4 * x + 0]);
-            dst[4 * x + 1] = srgb_code(src[4 * x + 1]);
-            dst[4 * x + 2] = srgb_code(src[4 * x + 2]);
+            dst[4 * x + 0] = srgb_code(th, src[4 * x + 0]);
+            dst[4 * x + 1] = srgb_code(th, src[4 * x + 1]);
+            dst[4 * x + 2] = srgb_code(th, src[4 * x + 2]);
             float a = src[4 * x + 3];
             a = a < 0.0f ? 0.0f : a > 1.0f ? 1.0f : a;
             dst[4 * x + 3] = (uint8_t)lrintf(a * 255.0f);
