@@ -25,6 +25,8 @@ static const char animate_usage[] =
     "                      scene/include/casteljau/anim_json.h): channels on scene fields,\n"
     "                      motion along paths at controlled speed, a cloth on colliders\n"
     "  -o PATTERN          one PNG per frame; PATTERN holds one %d (e.g. %04d) for the frame\n"
+    "  --gif OUT.gif       also (or instead) one animated GIF of the range, looping, each frame\n"
+    "                      quantised to its own 256 colours (giflib)\n"
     "  --frames A:B        frames A..B inclusive (default: the document's \"frames\")\n"
     "  --fps F             frames per second (default: the document's; the cloth takes\n"
     "                      steps_per_frame steps of 1/(F*steps) s per frame)\n"
@@ -44,6 +46,7 @@ static const char animate_usage[] =
 
 #if defined(CJ_HAVE_PLOT)
 
+#include "anim_gif.h"
 #include "casteljau/anim_json.h"
 #include "casteljau/image_io.h"
 #include "casteljau/render.h"
@@ -91,15 +94,35 @@ static const char *dir_of(const char *path, char *buf, size_t size) {
     return n ? buf : "/";
 }
 
-static int write_png(const char *cmd, const char *out, const cj_render_image *img) {
+/* The frame as opaque 8-bit sRGB, to a PNG (out may be NULL) and to the GIF (may be NULL,
+ * opened at the first frame). */
+static int write_frame(const char *cmd, const char *out, const char *gif_path, anim_gif **gif,
+                       double fps, const cj_render_image *img) {
     const size_t n = (size_t)img->width * (size_t)img->height;
     uint8_t *px = malloc(n * 4);
     if (!px) return cli_error(cmd, "out of memory for a %d x %d image", img->width, img->height);
     cj_status st = cj_render_image_to_srgb8(img, px, 0);
     for (size_t i = 0; i < n; ++i) px[4 * i + 3] = 255;
-    if (!st) st = cj_image_write_png(out, img->width, img->height, px, 0);
+    if (!st && out) st = cj_image_write_png(out, img->width, img->height, px, 0);
+    if (st) {
+        free(px);
+        return cli_error(cmd, "%s", cj_last_error());
+    }
+    char why[256];
+    if (gif_path && !*gif) {
+        const int delay = (int)(100.0 / fps + 0.5);
+        *gif = anim_gif_open(gif_path, img->width, img->height, delay < 2 ? 2 : delay, why,
+                             (int)sizeof why);
+        if (!*gif) {
+            free(px);
+            return cli_error(cmd, "%s: %s", gif_path, why);
+        }
+    }
+    if (gif_path && anim_gif_add(*gif, px, why, (int)sizeof why)) {
+        free(px);
+        return cli_error(cmd, "%s: %s", gif_path, why);
+    }
     free(px);
-    if (st) return cli_error(cmd, "%s", cj_last_error());
     return 0;
 }
 
@@ -127,7 +150,8 @@ static void progress(long done, long total, int quiet) {
 
 int cmd_animate(int argc, char **argv) {
     const char *cmd = "animate";
-    const char *doc_path = NULL, *out = NULL, *ck_in = NULL, *ck_out = NULL;
+    const char *doc_path = NULL, *out = NULL, *ck_in = NULL, *ck_out = NULL, *gif_path = NULL;
+    anim_gif *gif = NULL;
     long fa = -1, fb = -1, every = 0;
     double fps = 0;
     int no_render = 0, report = 0, quiet = 0;
@@ -160,6 +184,8 @@ int cmd_animate(int argc, char **argv) {
         long lv;
         if (!strcmp(a, "-o")) {
             out = v;
+        } else if (!strcmp(a, "--gif")) {
+            gif_path = v;
         } else if (!strcmp(a, "--frames")) {
             const char *colon = strchr(v, ':');
             char first[32];
@@ -197,7 +223,9 @@ int cmd_animate(int argc, char **argv) {
         }
     }
     if (!doc_path) return cli_fail(cmd, "no animation: give ANIM.json (try --help)");
-    if (!no_render && !out) return cli_fail(cmd, "no output: give -o frames/frame_%%04d.png");
+    if (!no_render && !out && !gif_path)
+        return cli_fail(cmd, "no output: give -o frames/frame_%%04d.png or --gif OUT.gif");
+    if (no_render && gif_path) return cli_fail(cmd, "--gif needs rendering (drop --no-render)");
     if (out && !pattern_ok(out))
         return cli_fail(cmd, "output pattern '%s' must hold exactly one %%d (e.g. %%04d)", out);
     if (ck_out && !pattern_ok(ck_out))
@@ -267,8 +295,8 @@ int cmd_animate(int argc, char **argv) {
                 break;
             }
             char name[4096];
-            frame_name(out, f, name, sizeof name);
-            rc = write_png(cmd, name, img);
+            if (out) frame_name(out, f, name, sizeof name);
+            rc = write_frame(cmd, out ? name : NULL, gif_path, &gif, doc->fps, img);
             cj_render_image_destroy(img);
         }
         if (!rc && ck_out && (f == fb || (every && f % every == 0)))
@@ -284,6 +312,11 @@ int cmd_animate(int argc, char **argv) {
         }
     }
 done:
+    if (gif) {
+        char why[256];
+        if (anim_gif_close(gif, why, (int)sizeof why) && !rc)
+            rc = cli_error(cmd, "%s: %s", gif_path, why);
+    }
     cj_scene_destroy(scene);
     cj_anim_doc_destroy(doc);
     return rc;

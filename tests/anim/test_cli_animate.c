@@ -102,6 +102,16 @@ static void test_frames_and_checkpoints(void **state) {
            "process: %d/6 byte-identical PNGs\n",
            same);
     assert_int_equal(same, 6);
+    run("a.json --frames 0:3 --gif a.gif --quiet", 0, &r);
+    cj_cli_result_free(&r);
+    char gp[512], head[7] = {0};
+    snprintf(gp, sizeof gp, "%s/a.gif", dir);
+    FILE *g = fopen(gp, "rb");
+    assert_non_null(g);
+    assert_int_equal(fread(head, 1, 6, g), 6);
+    fclose(g);
+    assert_string_equal(head, "GIF89a");
+    printf("--gif wrote an animated GIF89a\n");
     run("a.json --frames 9:9 --no-render --stage-report --quiet", 0, &r);
     assert_non_null(strstr(r.out, "\"name\": \"spring_forces\", \"ran\": true"));
     assert_non_null(strstr(r.out, "\"name\": \"particle_pass\", \"ran\": false"));

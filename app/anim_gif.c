@@ -1,0 +1,118 @@
+/* Animated GIF through giflib: per-frame median-cut palettes, a NETSCAPE2.0 loop block. */
+#include "anim_gif.h"
+
+#include <fcntl.h>
+#include <gif_lib.h>
+#include <stdio.h>
+#include <unistd.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct anim_gif {
+    GifFileType *f;
+    int w, h, delay;
+    GifByteType *r, *g, *b, *idx;
+};
+
+static void reason(char *why, int size, const char *what, int code) {
+    snprintf(why, (size_t)size, "%s (%s)", what, GifErrorString(code) ? GifErrorString(code) : "?");
+}
+
+anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, char *why,
+                        int why_size) {
+    int err = 0;
+    anim_gif *g = calloc(1, sizeof *g);
+    const size_t n = (size_t)width * (size_t)height;
+    if (!g) {
+        snprintf(why, (size_t)why_size, "out of memory");
+        return NULL;
+    }
+    g->w = width;
+    g->h = height;
+    g->delay = delay_cs;
+    g->r = malloc(n);
+    g->g = malloc(n);
+    g->b = malloc(n);
+    g->idx = malloc(n);
+    /* open() ourselves: giflib would create the file readable by its owner only */
+    const int fd =
+        (g->r && g->g && g->b && g->idx) ? open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666) : -1;
+    g->f = fd >= 0 ? EGifOpenFileHandle(fd, &err) : NULL;
+    if (fd >= 0 && !g->f) close(fd);
+    if (!g->f) {
+        reason(why, why_size, "cannot create the GIF", err);
+        free(g->r), free(g->g), free(g->b), free(g->idx), free(g);
+        return NULL;
+    }
+    EGifSetGifVersion(g->f, true);
+    if (EGifPutScreenDesc(g->f, width, height, 8, 0, NULL) == GIF_ERROR) {
+        reason(why, why_size, "GIF screen descriptor", g->f->Error);
+        EGifCloseFile(g->f, &err);
+        free(g->r), free(g->g), free(g->b), free(g->idx), free(g);
+        return NULL;
+    }
+    /* loop forever: NETSCAPE2.0 application extension, sub-block {1, 0, 0} */
+    static const GifByteType app[11] = {'N', 'E', 'T', 'S', 'C', 'A', 'P', 'E', '2', '.', '0'};
+    static const GifByteType loop[3] = {1, 0, 0};
+    if (EGifPutExtensionLeader(g->f, APPLICATION_EXT_FUNC_CODE) == GIF_ERROR ||
+        EGifPutExtensionBlock(g->f, 11, app) == GIF_ERROR ||
+        EGifPutExtensionBlock(g->f, 3, loop) == GIF_ERROR ||
+        EGifPutExtensionTrailer(g->f) == GIF_ERROR) {
+        reason(why, why_size, "GIF loop block", g->f->Error);
+        EGifCloseFile(g->f, &err);
+        free(g->r), free(g->g), free(g->b), free(g->idx), free(g);
+        return NULL;
+    }
+    return g;
+}
+
+int anim_gif_add(anim_gif *g, const uint8_t *rgba, char *why, int why_size) {
+    const size_t n = (size_t)g->w * (size_t)g->h;
+    for (int y = 0; y < g->h; ++y) { /* GIF rows go top-down */
+        const uint8_t *src = rgba + 4 * (size_t)(g->h - 1 - y) * (size_t)g->w;
+        for (int x = 0; x < g->w; ++x) {
+            const size_t o = (size_t)y * (size_t)g->w + (size_t)x;
+            g->r[o] = src[4 * x];
+            g->g[o] = src[4 * x + 1];
+            g->b[o] = src[4 * x + 2];
+        }
+    }
+    int size = 256;
+    GifColorType colors[256];
+    memset(colors, 0, sizeof colors);
+    if (GifQuantizeBuffer((unsigned)g->w, (unsigned)g->h, &size, g->r, g->g, g->b, g->idx,
+                          colors) == GIF_ERROR) {
+        snprintf(why, (size_t)why_size, "GIF colour quantisation failed");
+        return -1;
+    }
+    ColorMapObject *map = GifMakeMapObject(256, colors);
+    if (!map) {
+        snprintf(why, (size_t)why_size, "out of memory for a GIF palette");
+        return -1;
+    }
+    GraphicsControlBlock gcb = {DISPOSAL_UNSPECIFIED, false, g->delay, NO_TRANSPARENT_COLOR};
+    GifByteType ext[4];
+    const size_t len = EGifGCBToExtension(&gcb, ext);
+    int ok = EGifPutExtension(g->f, GRAPHICS_EXT_FUNC_CODE, (int)len, ext) != GIF_ERROR &&
+             EGifPutImageDesc(g->f, 0, 0, g->w, g->h, false, map) != GIF_ERROR;
+    for (int y = 0; ok && y < g->h; ++y)
+        ok = EGifPutLine(g->f, g->idx + (size_t)y * (size_t)g->w, g->w) != GIF_ERROR;
+    GifFreeMapObject(map);
+    (void)n;
+    if (!ok) {
+        reason(why, why_size, "writing a GIF frame failed", g->f->Error);
+        return -1;
+    }
+    return 0;
+}
+
+int anim_gif_close(anim_gif *g, char *why, int why_size) {
+    int err = 0;
+    const int rc = EGifCloseFile(g->f, &err);
+    free(g->r), free(g->g), free(g->b), free(g->idx), free(g);
+    if (rc == GIF_ERROR) {
+        reason(why, why_size, "closing the GIF failed", err);
+        return -1;
+    }
+    return 0;
+}
