@@ -7,7 +7,8 @@ cj_add_test(test_bvh SOURCES test_bvh.c LIBS cj::surfaces)
 # at 1e6/1e-6 scale, Snell, thread invariance, signature vs the rasterizer's ids.
 if(TARGET cj::raster)
   cj_add_test(test_trace SOURCES test_trace.c LIBS cj::raster)
-  target_compile_definitions(test_trace PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+  target_compile_definitions(test_trace PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt"
+    CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
 endif()
 # CLI contract of `casteljau trace` (needs the tool's image output, i.e. OpenImageIO).
 if(CJ_WITH_OIIO AND TARGET cj::viz)
