@@ -255,13 +255,15 @@ static cj_scene *new_scene(const cj_camera *cam, int w, int h) {
     return sc;
 }
 
+static cj_shading g_shading = CJ_SHADE_PHONG; /* the shading add_material gives */
+
 static int add_material(cj_scene *sc, cj_rgb colour, int two_sided) {
     cj_material m = cj_material_default();
     m.color = colour;
     m.ks = 0.0;
     m.ka = 0.3;
     m.kd = 0.9;
-    m.shading = CJ_SHADE_PHONG;
+    m.shading = g_shading;
     m.two_sided = two_sided;
     int idx = -1;
     assert_int_equal(cj_scene_add_material(sc, &m, &idx), CJ_OK);
@@ -466,11 +468,8 @@ static void test_ours_vs_vtk_sphere(void **state) {
     cj_scene_destroy(sc);
 }
 
-static void test_ours_vs_vtk_quadrics(void **state) {
-    (void)state;
-    const int w = 480, h = 360;
-    const cj_camera cam = view_camera(cj_v3(0.8, 4.0, 6.2), cj_v3(0, -0.3, 0), cj_v3(0, 1, 0), 50);
-    cj_scene *sc = new_scene(&cam, w, h);
+static void quadrics_case(const char *name, const cj_camera *cam, int w, int h) {
+    cj_scene *sc = new_scene(cam, w, h);
     cj_quadric q[6];
     assert_int_equal(cj_quadric_ellipsoid(&q[0], 1.0, 0.7, 0.5), CJ_OK);
     assert_int_equal(cj_quadric_hyperboloid1(&q[1], 0.5, 0.5, 0.6, -1.0, 1.0), CJ_OK);
@@ -490,8 +489,25 @@ static void test_ours_vs_vtk_quadrics(void **state) {
         g.u.quadric = q[k];
         add_object(sc, &g, add_material(sc, col[k], k != 0), at[k], 0.4 + 0.3 * k);
     }
-    compare_with_vtk("quadrics", sc, w, h);
+    compare_with_vtk(name, sc, w, h);
     cj_scene_destroy(sc);
+}
+
+static void test_ours_vs_vtk_quadrics(void **state) {
+    (void)state;
+    const cj_camera cam = view_camera(cj_v3(0.8, 4.0, 6.2), cj_v3(0, -0.3, 0), cj_v3(0, 1, 0), 50);
+    quadrics_case("quadrics", &cam, 480, 360);
+}
+
+/* Orthographic projection and flat shading (one normal per triangle in both renderers). */
+static void test_ours_vs_vtk_quadrics_ortho_flat(void **state) {
+    (void)state;
+    cj_camera cam = view_camera(cj_v3(-1.0, 5.0, 5.0), cj_v3(0, -0.3, 0), cj_v3(0, 1, 0), 50);
+    cam.projection = CJ_PROJ_ORTHOGRAPHIC;
+    cam.ortho_height = 6.0;
+    g_shading = CJ_SHADE_FLAT;
+    quadrics_case("quadrics_ortho_flat", &cam, 400, 320);
+    g_shading = CJ_SHADE_PHONG;
 }
 
 static void test_ours_vs_vtk_teapot(void **state) {
@@ -621,6 +637,7 @@ int main(void) {
         cmocka_unit_test(test_vtk_sphere_orthographic),
         cmocka_unit_test(test_ours_vs_vtk_sphere),
         cmocka_unit_test(test_ours_vs_vtk_quadrics),
+        cmocka_unit_test(test_ours_vs_vtk_quadrics_ortho_flat),
         cmocka_unit_test(test_ours_vs_vtk_teapot),
         cmocka_unit_test(test_export_vtp),
         cmocka_unit_test(test_refusals),
