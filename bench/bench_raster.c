@@ -4,7 +4,11 @@
  *   large: 1024 × 1024, 24 triangles each covering about half the image, random depths;
  *          fill rate = covered samples / raster time (Mpixels/s at 1 spp).
  *   small: 1024 × 1024, 200 000 triangles with bounding boxes of S × S pixels (S = 4, 8, 16),
- *          random positions and depths; triangles per second over prepare + raster.
+ *          random positions (--coherent: swept row by row like a mesh) and depths; triangles
+ *          per second over prepare + raster.
+ * "raster" runs without a tile callback (clear, rasterize, depth test: the visibility pass);
+ * "+vis" runs with an empty callback, so the visibility samples are also written out for it
+ * (depth and source triangle per sample; barycentrics are switched off: depth only).
  * Each on 1 and 2 threads, at 1, 4 and 16 samples per pixel; the configurations are
  * interleaved over the repetitions and the median is printed.
  *
@@ -113,10 +117,16 @@ static uint64_t covered(const workload *w, int spp) {
     return f.c.n;
 }
 
+static void no_tile(void *u, const cj_tile *t) {
+    (void)u;
+    (void)t;
+}
+
 /* One frame: seconds of prepare and of raster. One thread: CPU time of this thread (the run
  * happens on it), which other processes on a shared machine do not inflate; two threads:
  * wall-clock time. */
-static void frame(const workload *w, int spp, int threads, double *t_prep, double *t_run) {
+static void frame(const workload *w, int spp, int threads, double *t_prep, double *t_run,
+                  double *t_resolve) {
     cj_raster_input in = {w->nv, w->clip, w->nt, w->tris, w->W, w->H, spp};
     cj_raster_prep *p;
     double (*clock)(void) = threads == 1 ? cj_bench_thread_cpu : cj_bench_wall;
@@ -126,9 +136,13 @@ static void frame(const workload *w, int spp, int threads, double *t_prep, doubl
     const double t1 = clock();
     if (cj_raster_run(p, threads, NULL, NULL, NULL) != CJ_OK) exit(1);
     const double t2 = clock();
+    /* Again with a (empty) tile callback: the visibility samples are written for it. */
+    if (cj_raster_run(p, threads, no_tile, NULL, NULL) != CJ_OK) exit(1);
+    const double t3 = clock();
     cj_raster_prep_destroy(p);
     *t_prep = t1 - t0;
     *t_run = t2 - t1;
+    *t_resolve = t3 - t2;
 }
 
 #define NCONF 24
@@ -172,34 +186,39 @@ int main(int argc, char **argv) {
                 SKIP(k, s, 1) && SKIP(k, s, 2) ? 0 : covered(k ? &small[k - 1] : &large, spps[s]);
     double *tp = calloc((size_t)NCONF * reps, sizeof(double));
     double *tr = calloc((size_t)NCONF * reps, sizeof(double));
+    double *tv = calloc((size_t)NCONF * reps, sizeof(double));
     for (int r = 0; r < reps; ++r)
         for (int c = 0; c < NCONF; ++c) {
             const int k = c / 6, s = (c / 2) % 3, th = 1 + c % 2;
             if (SKIP(k, s, th)) continue;
-            frame(k ? &small[k - 1] : &large, spps[s], th, &tp[c * reps + r], &tr[c * reps + r]);
+            frame(k ? &small[k - 1] : &large, spps[s], th, &tp[c * reps + r], &tr[c * reps + r],
+                  &tv[c * reps + r]);
         }
     printf("bench_raster: depth-only visibility (no barycentrics), %d x %d, tiles 64, median of "
            "%d interleaved runs%s; 1 thread: thread CPU time, 2 threads: wall time\n",
            S, S, reps, cg ? " (callgrind workload)" : "");
-    printf("%-22s %4s %3s %12s %10s %10s %12s %12s\n", "workload", "spp", "thr", "covered/frame",
-           "prep ms", "raster ms", "Msamples/s", "Mtris/s");
+    printf("%-20s %3s %3s %10s %8s %9s %9s %10s %10s %8s %8s\n", "workload", "spp", "thr",
+           "covered", "prep ms", "raster ms", "+vis ms", "fill Ms/s", "+vis Ms/s", "Mtris/s",
+           "+vis");
     for (int c = 0; c < NCONF; ++c) {
         const int k = c / 6, s = (c / 2) % 3, th = 1 + c % 2;
         if (SKIP(k, s, th)) continue;
         const double p = cj_bench_median(&tp[c * reps], reps);
         const double q = cj_bench_median(&tr[c * reps], reps);
+        const double v = cj_bench_median(&tv[c * reps], reps);
         const workload *w = k ? &small[k - 1] : &large;
         char name[64];
         if (k)
-            snprintf(name, sizeof name, "small %dx%d px box", sides[k - 1], sides[k - 1]);
+            snprintf(name, sizeof name, "small %dx%d box", sides[k - 1], sides[k - 1]);
         else
-            snprintf(name, sizeof name, "large (~half image)");
-        printf("%-22s %4d %3d %12llu %10.3f %10.3f %12.1f %12.2f\n", name, spps[s], th,
-               (unsigned long long)cov[k][s], 1e3 * p, 1e3 * q, cov[k][s] / q * 1e-6,
-               w->nt / (p + q) * 1e-6);
+            snprintf(name, sizeof name, "large (1/2 image)");
+        printf("%-20s %3d %3d %10llu %8.2f %9.2f %9.2f %10.1f %10.1f %8.2f %8.2f\n", name, spps[s],
+               th, (unsigned long long)cov[k][s], 1e3 * p, 1e3 * q, 1e3 * v, cov[k][s] / q * 1e-6,
+               cov[k][s] / v * 1e-6, w->nt / (p + q) * 1e-6, w->nt / (p + v) * 1e-6);
     }
     free(tp);
     free(tr);
+    free(tv);
     release(&large);
     for (int k = 0; k < 3; ++k) release(&small[k]);
     return 0;

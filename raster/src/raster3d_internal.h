@@ -92,7 +92,10 @@ typedef void (*cj_tile_fn)(void *user, const cj_tile *tile);
 
 /* Renders every tile: clears its samples (depth +1, no triangle), rasterizes the prepared
  * triangles into it in input order, then calls fn. `threads` workers (0 = one per core)
- * take tiles in order. The same prep may be run many times. */
+ * take tiles in order. The same prep may be run many times. fn may be NULL (a pass that only
+ * counts, e.g. the fill-rate bench: the tile samples are then not written). stats may be
+ * NULL; otherwise its samples_tested, samples_written and seconds_raster are set (the
+ * preparation's counters are left as they are). */
 cj_status cj_raster_run(const cj_raster_prep *prep, int threads, cj_tile_fn fn, void *user,
                         cj_raster_stats *stats);
 

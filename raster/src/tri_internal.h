@@ -91,9 +91,11 @@ typedef struct cj_tri_scratch {
     uint64_t tested, written;
 } cj_tri_scratch;
 
-/* Rasterizes every binned triangle of tile `t` into scratch (cleared first), then writes the
- * visibility samples (source index, depth, perspective-correct barycentrics) to t->samples. */
-void cj_tri_render_tile(const cj_raster_prep *prep, const cj_tile *t, cj_tri_scratch *scratch);
+/* Rasterizes every binned triangle of tile `t` into scratch (cleared first), then, when
+ * `resolve`, writes the visibility samples (source index, depth, perspective-correct
+ * barycentrics) to t->samples (a run without a tile callback has no reader for them). */
+void cj_tri_render_tile(const cj_raster_prep *prep, const cj_tile *t, cj_tri_scratch *scratch,
+                        int resolve);
 
 /* The depth and barycentrics of set-up triangle `s` at sample position (X, Y). */
 float cj_tri_depth_at(const cj_tri_setup *s, int64_t X, int64_t Y);

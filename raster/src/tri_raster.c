@@ -197,7 +197,8 @@ static void raster_one(const cj_raster_prep *p, const cj_tri_setup *s, uint32_t 
     sc->written += written;
 }
 
-void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratch *sc) {
+void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratch *sc,
+                        int resolve) {
     const int spp = p->spp, tw = t->x1 - t->x0;
     const size_t plane = (size_t)tw * (size_t)(t->y1 - t->y0), n = plane * (size_t)spp;
     for (size_t i = 0; i < n; ++i) sc->depth[i] = 1.0f;
@@ -213,26 +214,36 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
         const uint32_t id = p->bin_items[b];
         raster_one(p, &p->setups[id], id, t, sc);
     }
+    if (!resolve) return;
+    /* Resolve the winners into the tile's samples (pixel-major): source index and, unless
+     * switched off, barycentrics, once per visible sample. Sample row by sample row, so the
+     * planes are read in order. */
     const int bary = p->barycentrics;
-    size_t i = 0;
+    const uint32_t *src = p->src;
+    const float *dpl = sc->depth;
+    const uint32_t *ipl = sc->id;
+    cj_vis_sample *out = t->samples;
     for (int y = t->y0; y < t->y1; ++y) {
         const size_t row = (size_t)(y - t->y0) * tw;
-        for (int x = t->x0; x < t->x1; ++x)
-            for (int q = 0; q < spp; ++q, ++i) {
-                const size_t k = (size_t)q * plane + row + (size_t)(x - t->x0);
-                cj_vis_sample *o = &t->samples[i];
-                const uint32_t id = sc->id[k];
-                o->depth = sc->depth[k];
+        for (int q = 0; q < spp; ++q) {
+            const float *dr = dpl + (size_t)q * plane + row;
+            const uint32_t *ir = ipl + (size_t)q * plane + row;
+            cj_vis_sample *o = out + row * spp + q;
+            for (int i = 0; i < tw; ++i, o += spp) {
+                const uint32_t id = ir[i];
+                o->depth = dr[i];
+                o->tri = id == CJ_RASTER_NO_TRI ? CJ_RASTER_NO_TRI : src[id];
                 o->b1 = o->b2 = 0.0f;
-                if (id == CJ_RASTER_NO_TRI) {
-                    o->tri = CJ_RASTER_NO_TRI;
-                    continue;
-                }
-                o->tri = p->src[id];
-                if (bary)
-                    cj_tri_bary_at(&p->setups[id], &p->attrs[id], (int64_t)x * 256 + p->ox[q],
-                                   (int64_t)y * 256 + p->oy[q], &o->b1, &o->b2);
             }
+            if (!bary) continue;
+            o = out + row * spp + q;
+            for (int i = 0; i < tw; ++i, o += spp) {
+                const uint32_t id = ir[i];
+                if (id == CJ_RASTER_NO_TRI) continue;
+                cj_tri_bary_at(&p->setups[id], &p->attrs[id], (int64_t)(t->x0 + i) * 256 + p->ox[q],
+                               (int64_t)y * 256 + p->oy[q], &o->b1, &o->b2);
+            }
+        }
     }
 }
 

@@ -48,7 +48,7 @@ static void *work(void *arg) {
         tile.index = t;
         tile.thread = w->index;
         tile.samples = w->samples;
-        cj_tri_render_tile(p, &tile, &w->scratch);
+        cj_tri_render_tile(p, &tile, &w->scratch, r->fn != NULL);
         if (r->fn) r->fn(r->user, &tile);
     }
     return NULL;
