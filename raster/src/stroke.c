@@ -39,7 +39,18 @@ typedef struct cover_target {
     int ox, oy, w, h; /* pixel (x, y) is cover[(y-oy)*cs + (x-ox)] */
     ptrdiff_t cs;     /* row pitch of the plane (padded: see CJ_FB_PADDED) */
     int ymin, ymax;   /* touched rows, relative; empty when ymin > ymax */
+    /* Sheared plane (steep single segments, see narrow_plane): row ry holds the cells of
+     * columns base(ry) .. base(ry) + cs - 1, base(ry) = floor(bx0 + bk ry); 0 when !sheared. */
+    int sheared;
+    double bx0, bk;
 } cover_target;
+
+/* Offset of cell (ry, x = 0) in the plane. */
+static inline ptrdiff_t row_offset(const cover_target *t, int ry) {
+    ptrdiff_t o = (ptrdiff_t)ry * t->cs;
+    if (t->sheared) o -= (ptrdiff_t)floor(t->bx0 + t->bk * ry);
+    return o;
+}
 
 #define POLY_MAX 16
 typedef struct poly {
@@ -84,6 +95,10 @@ typedef struct stroker {
  * them sees the same ramp value 1), parts right of it touch no pixel of it (but extend the
  * row's span to the border, where the polygon's inside continues). */
 
+/* Rows ahead whose coverage cells and framebuffer lines are prefetched: long steep strokes touch
+ * a new line of each per row, and the misses should overlap instead of queueing. */
+#define CJ_STROKE_PREFETCH_ROWS 4
+
 static inline double ramp_int(double z) {
     return z <= 0.0 ? 0.0 : (z <= 1.0 ? 0.5 * z * z : z - 0.5);
 }
@@ -110,6 +125,12 @@ static void add_edge_inside(cover_target *t, double x0, double y0, double x1, do
     if (r1 > t->h - 1) r1 = t->h - 1;
     const int w = t->w;
     for (int ry = r0; ry <= r1; ++ry) {
+        if (ry + CJ_STROKE_PREFETCH_ROWS <= r1) { /* the cell this edge reaches a few rows up */
+            double xp = x0 + ((double)(ry + CJ_STROKE_PREFETCH_ROWS) + 0.5 - y0) * k;
+            xp = xp < 0.0 ? 0.0 : (xp > w - 1 ? w - 1 : xp);
+            __builtin_prefetch(
+                t->cover + row_offset(t, ry + CJ_STROKE_PREFETCH_ROWS) + (ptrdiff_t)xp, 1);
+        }
         const double ya = y0 > ry ? y0 : ry, yb = y1 < ry + 1.0 ? y1 : ry + 1.0;
         if (!(yb > ya)) continue;
         double xa = x0 + (ya - y0) * k, xb = x0 + (yb - y0) * k;
@@ -118,7 +139,7 @@ static void add_edge_inside(cover_target *t, double x0, double y0, double x1, do
         xb = xb < 0.0 ? 0.0 : (xb > w ? w : xb);
         const double d = (ya - yb) * wt; /* upward pieces: -height */
         const double xl = xa < xb ? xa : xb, xh = xa < xb ? xb : xa;
-        float *row = t->cover + (ptrdiff_t)ry * t->cs;
+        float *row = t->cover + row_offset(t, ry);
         int i0 = (int)floor(xl);
         if (i0 >= w) i0 = w - 1; /* an edge on the right border: its cell is the last one */
         const double fi0 = (double)i0;
@@ -457,14 +478,12 @@ static void stroker_init(stroker *s, cover_target *t, const cj_raster_stroke *st
     t->ymax = -1;
 }
 
-#define CJ_STROKE_PREFETCH_ROWS 4
-
 /* Hands every covered pixel to fn (or blends it into fb) and clears the plane behind: the
  * running sum of a row's cells is its coverage. */
 static void compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_raster_cover_fn fn,
                     void *user) {
     for (int ry = t->ymin; ry <= t->ymax; ++ry) {
-        float *row = t->cover + (ptrdiff_t)ry * t->cs;
+        float *row = t->cover + row_offset(t, ry);
         const int lo = t->lo[ry], hi = t->hi[ry];
         t->lo[ry] = INT_MAX;
         t->hi[ry] = -1;
@@ -541,8 +560,42 @@ static cj_status fb_target(cj_framebuffer *fb, cover_target *t) {
     t->oy = 0;
     t->w = fb->width;
     t->cs = cover_pitch(fb->width);
+    t->sheared = 0;
+    t->bx0 = t->bk = 0.0;
     t->h = fb->height;
     return CJ_OK;
+}
+
+/* A steep single segment (|dy| >= |dx|) lying wholly inside the target touches a few cells per
+ * row of a long column of rows, one plane line per row, each cold in a plane the size of the
+ * framebuffer. Its cells fit a narrow band that follows the segment: everything of the stroke
+ * (rectangle and caps) lies within R = half width (times sqrt 2 for square caps) of the
+ * segment, hence within R / cos θ horizontally of its line (θ from the vertical), so row ry
+ * needs only the columns around the line's x in that row. The plane is then addressed with a
+ * pitch of that band's width (a few tens of floats) and a per-row base column: the rows of one
+ * stroke are contiguous and stay in cache from stroke to stroke. Other strokes keep the full
+ * plane. Returns 1 if the target was switched to the sheared addressing. */
+static int narrow_plane(cover_target *t, const cj_vec2 *pts, size_t n, int closed,
+                        const cj_raster_stroke *style) {
+    if (n != 2 || closed) return 0;
+    const double x0 = pts[0].x - t->ox, y0 = pts[0].y - t->oy;
+    const double dx = pts[1].x - pts[0].x, dy = pts[1].y - pts[0].y;
+    if (!(fabs(dy) >= fabs(dx)) || !(fabs(dy) > 0.0)) return 0;
+    const double k = dx / dy, len = hypot(dx, dy), hw = 0.5 * style->width;
+    const double R = style->cap == CJ_CAP_SQUARE ? hw * 1.4142135623730951 : hw;
+    const double half = R * len / fabs(dy) + 0.5 * fabs(k) + 2.0;
+    const double W = ceil(2.0 * half) + 2.0;
+    if (!(W < (double)t->cs)) return 0;
+    /* wholly inside: rows and the band's columns for every row the stroke can reach */
+    const double ylo = fmin(y0, y0 + dy) - R - 1.0, yhi = fmax(y0, y0 + dy) + R + 1.0;
+    if (!(ylo >= 0.0 && yhi <= t->h)) return 0;
+    const double xa = x0 + (ylo - y0) * k, xb = x0 + (yhi - y0) * k;
+    if (!(fmin(xa, xb) - half - 1.0 >= 0.0 && fmax(xa, xb) + half + 1.0 <= t->w)) return 0;
+    t->sheared = 1;
+    t->cs = (ptrdiff_t)W;
+    t->bk = k;
+    t->bx0 = x0 + (0.5 - y0) * k - half; /* base(ry) = floor(x at the row's middle - half) */
+    return 1;
 }
 
 cj_status cj_raster_stroke_polyline(cj_framebuffer *fb, const cj_vec2 *pts, size_t n, int closed,
@@ -552,6 +605,7 @@ cj_status cj_raster_stroke_polyline(cj_framebuffer *fb, const cj_vec2 *pts, size
     if ((st = check_style(style)) || (st = check_points(pts, n))) return st;
     cover_target t;
     if ((st = fb_target(fb, &t))) return st;
+    narrow_plane(&t, pts, n, closed, style);
     stroker s;
     stroker_init(&s, &t, style, closed);
     for (size_t i = 0; i < n; ++i) stroker_point(&s, pts[i]);
@@ -585,6 +639,8 @@ cj_status cj_raster_stroke_polyline_visit(const cj_vec2 *pts, size_t n, int clos
     t.oy = clip.y0;
     t.w = clip.x1 - clip.x0 + 1;
     t.cs = t.w;
+    t.sheared = 0;
+    t.bx0 = t.bk = 0.0;
     t.h = clip.y1 - clip.y0 + 1;
     t.cover = work;
     t.lo = (int *)(t.cover + (size_t)t.w * (size_t)t.h);
