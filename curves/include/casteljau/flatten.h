@@ -63,6 +63,14 @@
  *    is the spacing by the curvature integral ∫ sqrt(|κ|/(8 tol)) ds (Levien's criterion);
  *    measured counts are 1.01-1.08x that continuous optimum (near-cusp cubic included;
  *    bench_flatten), its ceiling on a circular arc.
+ *    Planar polynomial quadratics and cubics (the curves of fonts, paths and maps) take a fast
+ *    form of it with the same guarantee: a piece's control points follow from the point and
+ *    derivative at its two ends (computed once per break point), and its deviation is the
+ *    exact maximum of the signed distance from the chord, t(1-t)(A(1-t) + B t)/|v| in closed
+ *    form, whenever every control point projects into the chord segment; otherwise that
+ *    maximum with the overshoot past the chord's ends, sqrt(E^2 + O^2), and where that does not
+ *    certify the piece, (a)-(d). No bound slack, so segments carry nearly the whole tolerance;
+ *    cost per curve is that of cairo's uncertified flattening (bench_flatten, peer table).
  *
  * Degenerate curves (all control points equal, collinear points out of order, cusps, loops,
  * inflections) are handled: an all-equal curve flattens to one segment (two equal points).
