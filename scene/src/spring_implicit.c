@@ -115,7 +115,7 @@ cj_status cj_springs_implicit_step(cj_springs *s, double h, cj_springs_stats *st
     int it = 0;
     double rn = bnorm;
     cj_status st = CJ_OK;
-    while (rn > 1e-12 * bnorm && rn > 0.0) {
+    while (rn > 1e-9 * bnorm && rn > 0.0) {
         if (it >= CJ_SPRING_CG_MAX) {
             st = CJ_ERR_CAP;
             break;

@@ -30,9 +30,10 @@
  *     (M − h ∂f/∂v − h² ∂f/∂x) Δv = h (f + h ∂f/∂x v),   v⁺ = v + Δv,  x⁺ = x + h v⁺,
  * solved matrix-free by Jacobi-preconditioned conjugate gradients (any size, O(springs) per
  * iteration), with the compressive part of ∂f/∂x dropped (the factor 1 − L/l clamped at 0,
- * Choi and Ko) so the matrix stays symmetric positive definite. CG stops at relative residual
- * 1e-12 or after CJ_SPRING_CG_MAX iterations; hitting the cap still advances the state and
- * returns CJ_ERR_CAP.
+ * Choi and Ko) so the matrix stays symmetric positive definite. CG starts from Δv = 0 (no warm
+ * start, so a step depends on (x, v) alone and checkpoints resume bit-identically) and stops at
+ * relative residual 1e-9 (far below the O(h) error of the method) or after CJ_SPRING_CG_MAX
+ * iterations; hitting the cap still advances the state and returns CJ_ERR_CAP.
  * Collisions (after each step): a particle inside a sphere (|x − c| < r) or behind a plane
  * (n·x < offset) is moved to the surface along the normal, its inward normal velocity removed
  * and its tangential velocity scaled by (1 − friction).
