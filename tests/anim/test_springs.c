@@ -242,7 +242,8 @@ static void test_momentum_3d(void **state) {
         for (int k = 0; k < 3; ++k) err = fmax(err, fabs(P[k] - P0[k]));
         printf("3D chain, %s, 2000 steps: momentum conserved to %.2g\n",
                cj_integrator_name((cj_integrator)mth), err);
-        assert_true(err < (mth == CJ_INTEGRATE_IMPLICIT_EULER ? 1e-9 : 1e-12));
+        /* implicit Euler conserves it up to the CG tolerance (relative residual 1e-9 a step) */
+        assert_true(err < (mth == CJ_INTEGRATE_IMPLICIT_EULER ? 2000 * 1e-9 * 5 : 1e-12));
         cj_springs_destroy(s);
     }
 }
