@@ -2,7 +2,11 @@
  * (issue 8): tessellation and raster time, ms per frame for flat, Gouraud, Phong, textured and
  * 4x/16x supersampled on 1 and 2 threads, Gouraud/Phong fill rates, the cost of each effect
  * from the stage report, and the peak memory of a 4096 x 4096 frame at 16 spp.
- * Usage: bench_render [repeats (default 3)] */
+ * Usage: bench_render [repeats (default 3)]
+ *        bench_render frame 0|1   one 256 x 256 Phong frame of the teapot, without (0) or with (1)
+ *                                 features the scene defines but does not use (a texture, a
+ *                                 transparent material, lights of zero intensity), to compare
+ *                                 instruction counts under valgrind --tool=callgrind */
 #define _POSIX_C_SOURCE 200809L
 #include "casteljau/render.h"
 
@@ -77,8 +81,10 @@ typedef struct run_result {
 } run_result;
 
 /* Median over `reps` renders of the wall time per frame (and the stage report of the median). */
-static run_result measure(const cj_scene *s, int w, int spp, int threads, int reps) {
+static run_result measure(const cj_scene *s, int w, int spp, int threads, int reps,
+                          cj_render_cache *cache) {
     cj_render_options o = cj_render_options_default();
+    o.cache = cache;
     o.width = o.height = w;
     o.spp = spp;
     o.threads = threads;
@@ -86,6 +92,11 @@ static run_result measure(const cj_scene *s, int w, int spp, int threads, int re
     double t[16];
     cj_stage_report reps_[16];
     if (reps > 16) reps = 16;
+    if (cache) { /* warm the cache: the measured frames reuse the tessellation */
+        cj_render_image *img = NULL;
+        if (cj_render_raster(s, &o, 0, NULL, &img, NULL)) exit(1);
+        cj_render_image_destroy(img);
+    }
     for (int i = 0; i < reps; ++i) {
         cj_render_image *img = NULL;
         double a = now();
@@ -140,7 +151,36 @@ static void peak_memory(void) {
            ru.ru_maxrss / 1024.0);
 }
 
+/* One frame for the callgrind comparison of an unused effect's cost. */
+static int one_frame(int unused) {
+    cj_scene *s = teapot(CJ_SHADE_PHONG, 0, 0);
+    if (unused) {
+        cj_texture t = cj_texture_default(CJ_TEX_CHECKER);
+        cj_material m = cj_material_default();
+        m.opacity = 0.5;
+        cj_light l = cj_light_default(CJ_LIGHT_SPOT);
+        l.intensity = 0.0;
+        cj_light a = cj_light_default(CJ_LIGHT_AMBIENT);
+        a.intensity = 0.0;
+        if (cj_scene_add_texture(s, &t, NULL) || cj_scene_add_material(s, &m, NULL) ||
+            cj_scene_add_light(s, &l, NULL) || cj_scene_add_light(s, &a, NULL))
+            return 1;
+    }
+    cj_render_options o = cj_render_options_default();
+    o.width = o.height = 256;
+    o.spp = 1;
+    o.threads = 1;
+    cj_render_image *img = NULL;
+    cj_stage_report rep;
+    if (cj_render_raster(s, &o, 0, NULL, &img, &rep)) return 1;
+    printf("frame %d: %.1f ms\n", unused, 1e3 * rep.total_seconds);
+    cj_render_image_destroy(img);
+    cj_scene_destroy(s);
+    return 0;
+}
+
 int main(int argc, char **argv) {
+    if (argc > 2 && !strcmp(argv[1], "frame")) return one_frame(atoi(argv[2]));
     int reps = argc > 1 ? atoi(argv[1]) : 3;
     if (reps < 1) reps = 1;
     printf("bench_render: Utah teapot (demo camera), 1024 x 1024, tol 0.25 px, median of %d "
@@ -164,7 +204,7 @@ int main(int argc, char **argv) {
     for (size_t c = 0; c < sizeof cfg / sizeof cfg[0]; ++c) {
         cj_scene *s = teapot(cfg[c].sh, cfg[c].tex, 0);
         for (int th = 1; th <= 2; ++th) {
-            run_result r = measure(s, 1024, cfg[c].spp, th, reps);
+            run_result r = measure(s, 1024, cfg[c].spp, th, reps, NULL);
             printf("%-26s %7d %7.1f %7.1f %8.1f %8.1f %8.1f %8.1f %10llu\n", cfg[c].name, th,
                    r.frame_ms, r.tess_ms, r.frame_ms - r.tess_ms, r.run_ms, r.raster_ms, r.shade_ms,
                    (unsigned long long)cj_stage_report_find(&r.rep, "tessellate_patches")->out);
@@ -182,33 +222,55 @@ int main(int argc, char **argv) {
            fill[0], fill[1]);
 
     /* cost of each effect: one feature added at a time, 1 thread */
-    printf("\ncost of each effect (1 thread, 1024 x 1024; stage seconds from the report, ms):\n");
+    /* the same frames with a warm tessellation cache (a still camera: the viewer, animation of
+     * transforms) */
+    printf("\nwith a warm tessellation cache (cj_render_cache; the same view, so the same "
+           "image):\n");
+    printf("%-26s %7s %7s %8s %8s %8s\n", "config", "threads", "frame", "tiles", "raster", "shade");
+    for (size_t c = 0; c < sizeof cfg / sizeof cfg[0]; ++c) {
+        cj_scene *s = teapot(cfg[c].sh, cfg[c].tex, 0);
+        for (int th = 1; th <= 2; ++th) {
+            cj_render_cache *cache = NULL;
+            if (cj_render_cache_create(NULL, &cache)) return 1;
+            run_result r = measure(s, 1024, cfg[c].spp, th, reps, cache);
+            printf("%-26s %7d %7.1f %8.1f %8.1f %8.1f\n", cfg[c].name, th, r.frame_ms, r.run_ms,
+                   r.raster_ms, r.shade_ms);
+            cj_render_cache_destroy(cache);
+        }
+        cj_scene_destroy(s);
+    }
+    cj_render_cache *cache = NULL;
+    if (cj_render_cache_create(NULL, &cache)) return 1;
+
+    printf("\ncost of each effect (1 thread, 1024 x 1024, warm tessellation cache; stage seconds "
+           "from the report, ms):\n");
     cj_scene *base = teapot(CJ_SHADE_PHONG, 0, 0);
     cj_scene_material_mut(base, 0)->shading = CJ_SHADE_PHONG;
-    run_result r0 = measure(base, 1024, 1, 1, reps);
+    run_result r0 = measure(base, 1024, 1, 1, reps, cache);
     printf("  phong, untextured, opaque, 1 spp: frame %.1f, shade_phong %.1f\n", r0.frame_ms,
            1e3 * stage_sec(&r0.rep, "shade_phong"));
     cj_scene *tex = teapot(CJ_SHADE_PHONG, 1, 0);
-    run_result r1 = measure(tex, 1024, 1, 1, reps);
+    run_result r1 = measure(tex, 1024, 1, 1, reps, cache);
     printf("  + checker texture:   frame %.1f (%+.1f), texture+shading stage %.1f\n", r1.frame_ms,
            r1.frame_ms - r0.frame_ms, 1e3 * stage_sec(&r1.rep, "texture"));
     cj_scene *tr = teapot(CJ_SHADE_PHONG, 0, 1);
-    run_result r2 = measure(tr, 1024, 1, 1, reps);
+    run_result r2 = measure(tr, 1024, 1, 1, reps, cache);
     printf("  + transparent sphere: frame %.1f (%+.1f), sort_transparent %.1f, transparency %.1f "
            "(%llu fragments)\n",
            r2.frame_ms, r2.frame_ms - r0.frame_ms, 1e3 * stage_sec(&r2.rep, "sort_transparent"),
            1e3 * stage_sec(&r2.rep, "transparency"),
            (unsigned long long)cj_stage_report_find(&r2.rep, "transparency")->out);
-    run_result r3 = measure(base, 1024, 4, 1, reps);
+    run_result r3 = measure(base, 1024, 4, 1, reps, cache);
     printf("  4 spp instead of 1:  frame %.1f (%+.1f), rasterize %.1f, resolve %.1f\n", r3.frame_ms,
            r3.frame_ms - r0.frame_ms, r3.raster_ms, 1e3 * stage_sec(&r3.rep, "resolve"));
     cj_scene_node_mut(base, 0)->overlay.flags = CJ_OVERLAY_CONTROL_NET;
-    run_result r4 = measure(base, 1024, 1, 1, reps);
+    run_result r4 = measure(base, 1024, 1, 1, reps, cache);
     printf("  + control net:       frame %.1f (%+.1f), overlay_lines %.1f\n", r4.frame_ms,
            r4.frame_ms - r0.frame_ms, 1e3 * stage_sec(&r4.rep, "overlay_lines"));
     cj_scene_destroy(base);
     cj_scene_destroy(tex);
     cj_scene_destroy(tr);
+    cj_render_cache_destroy(cache);
     peak_memory();
     return 0;
 }

@@ -677,6 +677,56 @@ static void test_srgb(void **state) {
     printf("test_srgb: %d channel values rounded to the nearest sRGB code; NaN refused\n", checked);
 }
 
+static void test_tessellation_cache(void **state) {
+    (void)state;
+    rs_sphere_scene sc;
+    rs_sphere(&sc, 1);
+    int pn = rs_add_patch_quad(sc.s, sc.mat, -1.0, CJ_OVERLAY_CONTROL_NET);
+    cj_render_options o = cj_render_options_default();
+    o.width = 160;
+    o.height = 120;
+    cj_render_image *ref = render(sc.s, &o, 0, NULL);
+    cj_render_cache *cache = NULL;
+    assert_int_equal(cj_render_cache_create(NULL, &cache), CJ_OK);
+    o.cache = cache;
+    double hits[5];
+    const cj_stage *st;
+    cj_stage_report rep;
+    for (int i = 0; i < 2; ++i) { /* cold, then warm: the same image as without a cache */
+        cj_render_image *img = render(sc.s, &o, 0, &rep);
+        assert_true(same_image(ref, img));
+        cj_render_image_destroy(img);
+        st = cj_stage_report_find(&rep, "tessellate_patches");
+        hits[i] = st->extra[st->extra_count - 1].value;
+    }
+    /* the camera a little farther: the cached, finer mesh is reused and still within tol */
+    cj_camera cam = *cj_scene_camera(sc.s);
+    cam.eye = cj_v3(0, 0, 6);
+    rs_check(cj_scene_set_camera(sc.s, &cam));
+    cj_render_image_destroy(render(sc.s, &o, 0, &rep));
+    st = cj_stage_report_find(&rep, "tessellate_patches");
+    hits[2] = st->extra[st->extra_count - 1].value;
+    assert_true(st->extra[1].value <= 0.25); /* bound_px */
+    /* much farther: more than 2x coarser is allowed, so it tessellates again */
+    cam.eye = cj_v3(0, 0, 30);
+    rs_check(cj_scene_set_camera(sc.s, &cam));
+    cj_render_image_destroy(render(sc.s, &o, 0, &rep));
+    st = cj_stage_report_find(&rep, "tessellate_patches");
+    hits[3] = st->extra[st->extra_count - 1].value;
+    /* a control point moved: the key changes, it tessellates again */
+    cj_geometry *g = cj_scene_geometry_mut(sc.s, cj_scene_node(sc.s, pn)->geometry);
+    ((double *)g->u.patches.patches[0].pts)[2] += 0.25;
+    cj_render_image_destroy(render(sc.s, &o, 0, &rep));
+    st = cj_stage_report_find(&rep, "tessellate_patches");
+    hits[4] = st->extra[st->extra_count - 1].value;
+    assert_true(hits[0] == 0 && hits[1] == 1 && hits[2] == 1 && hits[3] == 0 && hits[4] == 0);
+    cj_render_cache_destroy(cache);
+    cj_render_image_destroy(ref);
+    cj_scene_destroy(sc.s);
+    printf("test_tessellation_cache: cold miss, warm hit with the same image, hit when 1.2x "
+           "farther (bound still <= tol), miss at 6x and after a control point moved\n");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stage_iff_feature),
@@ -688,6 +738,7 @@ int main(void) {
         cmocka_unit_test(test_view_tessellation),
         cmocka_unit_test(test_edge_cases),
         cmocka_unit_test(test_srgb),
+        cmocka_unit_test(test_tessellation_cache),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

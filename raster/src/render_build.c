@@ -251,8 +251,8 @@ static cj_status append_object(cj_rbuild *b, const cj_scene *scene, const cj_mes
 }
 
 cj_status cj_rbuild_scene(const cj_scene *scene, const cj_rview *view, double tol_px,
-                          unsigned flags, const unsigned *need, int cull, const cj_allocator *alloc,
-                          cj_rbuild *out) {
+                          unsigned flags, const unsigned *need, int cull, cj_render_cache *cache,
+                          const cj_allocator *alloc, cj_rbuild *out) {
     memset(out, 0, sizeof *out);
     out->alloc = cj_render_alloc(alloc);
     out->flags = flags;
@@ -314,9 +314,11 @@ cj_status cj_rbuild_scene(const cj_scene *scene, const cj_rview *view, double to
         }
         cj_mesh_clear(tmp);
         double ts = cj_render_now(), bound = 0.0;
-        int skip = 0;
-        st = cj_render_geometry_mesh(g, o, view, tol_px, tmp, &o->tol_obj, &bound, &o->grid_nu,
-                                     &o->grid_nv, &out->patches_in, &out->patches_culled, &skip);
+        int skip = 0, hit = 0;
+        st = cj_render_geometry_mesh(g, o, view, tol_px, cache, tmp, &o->tol_obj, &bound,
+                                     &o->grid_nu, &o->grid_nv, &out->patches_in,
+                                     &out->patches_culled, &skip, &hit);
+        out->cache_hits += (size_t)hit;
         double te = cj_render_now();
         int is_patch = g->kind == CJ_GEOM_PATCHES || g->kind == CJ_GEOM_REVOLUTION ||
                        g->kind == CJ_GEOM_GEN_CYLINDER;
@@ -354,7 +356,8 @@ cj_status cj_render_scene_mesh(const cj_scene *scene, const cj_render_options *o
     st = cj_rview_init(cj_scene_camera(scene), W, H, &view);
     if (st) return st;
     cj_rbuild b;
-    st = cj_rbuild_scene(scene, &view, tol, CJ_RB_NORMALS | CJ_RB_UVS, NULL, 1, alloc, &b);
+    st = cj_rbuild_scene(scene, &view, tol, CJ_RB_NORMALS | CJ_RB_UVS, NULL, 1,
+                         opt ? opt->cache : NULL, alloc, &b);
     if (st) return st;
     cj_mesh *m = NULL;
     st = cj_mesh_create(alloc, &m);

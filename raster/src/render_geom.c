@@ -341,9 +341,9 @@ static cj_status choose_grid(const cj_rsurf *si, double tol, int *nu, int *nv, d
 /* ---- one object ------------------------------------------------------------------------------ */
 
 static cj_status patches_mesh(const cj_patch *pt, size_t n, const cj_robject *o,
-                              const cj_rview *view, double tol_px, cj_mesh *mesh, double *tol_obj,
-                              double *bound, size_t *patches, size_t *culled, int *skip,
-                              const cj_allocator *alloc) {
+                              const cj_rview *view, double tol_px, cj_render_cache *cache,
+                              cj_mesh *mesh, double *tol_obj, double *bound, size_t *patches,
+                              size_t *culled, int *skip, int *hit, const cj_allocator *alloc) {
     cj_patch *vis = cj_ralloc(alloc, sizeof(cj_patch) * (n ? n : 1));
     if (!vis) return cj_fail(CJ_ERR_NOMEM, "patch list of %zu", n);
     size_t nv = 0;
@@ -369,10 +369,23 @@ static cj_status patches_mesh(const cj_patch *pt, size_t n, const cj_robject *o,
     cj_tess_options opt;
     memset(&opt, 0, sizeof opt);
     opt.tol = cj_rview_world_tol(view, dmin, tol_px) / o->sigma;
+    uint64_t key = 0;
+    if (cache) {
+        double tu, bo;
+        key = cj_rcache_key(vis, nv);
+        if (cj_rcache_lookup(cache, o->node, key, opt.tol, mesh, &tu, &bo)) {
+            cj_rfree(alloc, vis);
+            *hit = 1;
+            *tol_obj = tu;
+            *bound = cj_rview_pixels(view, dmin, bo * o->sigma);
+            return CJ_OK;
+        }
+    }
     cj_tess_report rep;
     cj_status st = cj_tessellate_patches(vis, nv, &opt, mesh, &rep);
     cj_rfree(alloc, vis);
     if (st) return st;
+    if (cache) cj_rcache_store(cache, o->node, key, opt.tol, rep.bound, mesh);
     *tol_obj = opt.tol;
     /* the bound in pixels at the nearest depth (every patch was held to that tolerance) */
     *bound = cj_rview_pixels(view, dmin, rep.bound * o->sigma);
@@ -380,16 +393,18 @@ static cj_status patches_mesh(const cj_patch *pt, size_t n, const cj_robject *o,
 }
 
 cj_status cj_render_geometry_mesh(const cj_geometry *g, const cj_robject *o, const cj_rview *view,
-                                  double tol_px, cj_mesh *mesh, double *tol_obj, double *bound,
-                                  int *nu, int *nv, size_t *patches, size_t *culled, int *skip) {
+                                  double tol_px, cj_render_cache *cache, cj_mesh *mesh,
+                                  double *tol_obj, double *bound, int *nu, int *nv, size_t *patches,
+                                  size_t *culled, int *skip, int *cache_hit) {
     *skip = 0;
+    *cache_hit = 0;
     *bound = 0.0;
     *nu = *nv = 0;
     cj_allocator a = mesh->alloc_;
     switch (g->kind) {
     case CJ_GEOM_PATCHES:
-        return patches_mesh(g->u.patches.patches, g->u.patches.count, o, view, tol_px, mesh,
-                            tol_obj, bound, patches, culled, skip, &a);
+        return patches_mesh(g->u.patches.patches, g->u.patches.count, o, view, tol_px, cache, mesh,
+                            tol_obj, bound, patches, culled, skip, cache_hit, &a);
     case CJ_GEOM_REVOLUTION:
     case CJ_GEOM_GEN_CYLINDER: {
         cj_patch *pt = NULL;
@@ -397,8 +412,8 @@ cj_status cj_render_geometry_mesh(const cj_geometry *g, const cj_robject *o, con
         size_t n = 0;
         cj_status st = cj_render_geometry_patches(g, &a, &pt, &n, &pts, &w);
         if (!st)
-            st = patches_mesh(pt, n, o, view, tol_px, mesh, tol_obj, bound, patches, culled, skip,
-                              &a);
+            st = patches_mesh(pt, n, o, view, tol_px, cache, mesh, tol_obj, bound, patches, culled,
+                              skip, cache_hit, &a);
         cj_rfree(&a, pt);
         cj_rfree(&a, pts);
         cj_rfree(&a, w);

@@ -88,6 +88,7 @@ typedef struct cj_rbuild {
     unsigned flags;
     /* figures for the stage report */
     size_t patches_in, patches_culled, patch_tris, surface_tris, mesh_tris, culled_back;
+    size_t cache_hits; /* patch objects whose tessellation came from the cache */
     double patch_bound_px, surface_bound_px; /* proven bounds in pixels (0 when none) */
     double tol_px;
     double sec_patches, sec_surfaces, sec_meshes, sec_transform, sec_cull;
@@ -99,8 +100,8 @@ typedef struct cj_rbuild {
  * are needed (bit CJ_RB_*), letting objects whose material needs nothing skip them.
  * Back faces of one-sided materials are dropped when cull != 0. */
 cj_status cj_rbuild_scene(const cj_scene *scene, const cj_rview *view, double tol_px,
-                          unsigned flags, const unsigned *need, int cull, const cj_allocator *alloc,
-                          cj_rbuild *out);
+                          unsigned flags, const unsigned *need, int cull, cj_render_cache *cache,
+                          const cj_allocator *alloc, cj_rbuild *out);
 void cj_rbuild_free(cj_rbuild *b);
 /* Appends a vertex / triangle (growing the arrays). */
 cj_status cj_rbuild_add_vertex(cj_rbuild *b, const double p[3], const float n[3], const float uv[2],
@@ -111,8 +112,17 @@ cj_status cj_rbuild_add_tri(cj_rbuild *b, uint32_t a, uint32_t c, uint32_t d, ui
  * set to the tolerance used, *bound to the proven bound (object units), *skip to 1 when the
  * geometry lies entirely outside the view (nothing added). Curves add nothing. */
 cj_status cj_render_geometry_mesh(const cj_geometry *g, const cj_robject *o, const cj_rview *view,
-                                  double tol_px, cj_mesh *mesh, double *tol_obj, double *bound,
-                                  int *nu, int *nv, size_t *patches, size_t *culled, int *skip);
+                                  double tol_px, cj_render_cache *cache, cj_mesh *mesh,
+                                  double *tol_obj, double *bound, int *nu, int *nv, size_t *patches,
+                                  size_t *culled, int *skip, int *cache_hit);
+
+/* render_cache.c: the key of a patch list (its bytes), lookup (appends the cached mesh to
+ * `mesh` on a hit: same node and key, cached tol <= tol <= 2 cached tol) and store. */
+uint64_t cj_rcache_key(const cj_patch *p, size_t n);
+int cj_rcache_lookup(cj_render_cache *c, int node, uint64_t key, double tol, cj_mesh *mesh,
+                     double *tol_used, double *bound);
+void cj_rcache_store(cj_render_cache *c, int node, uint64_t key, double tol, double bound,
+                     const cj_mesh *mesh);
 
 /* A geometry of kind REVOLUTION or GEN_CYLINDER as exact rational Bézier patches (render_geom.c).
  * pts/w receive the control points and weights (caller frees with alloc), patches the views. */

@@ -304,7 +304,7 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
     double sec_mip = cj_render_now() - ts;
 
     /* ---- scene -> world triangles ---- */
-    st = cj_rbuild_scene(scene, &view, tol_px, flags, need, 1, &A, &b);
+    st = cj_rbuild_scene(scene, &view, tol_px, flags, need, 1, o.cache, &A, &b);
     if (st) goto fail;
     c.obj_mat = cj_ralloc(&A, sizeof(int) * (b.object_count ? b.object_count : 1));
     if (!c.obj_mat) {
@@ -397,6 +397,7 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
     cj_stage_add_value(s, "tol_px", tol_px);
     cj_stage_add_value(s, "bound_px", b.patch_bound_px);
     cj_stage_add_value(s, "patches_culled", (double)b.patches_culled);
+    if (o.cache) cj_stage_add_value(s, "cache_hits", (double)b.cache_hits);
     s = stage(R, "tessellate_surfaces", f.surfaces,
               f.surfaces ? "the scene has analytic surfaces" : "no analytic surfaces", "objects", 0,
               "triangles", b.surface_tris, b.sec_surfaces);

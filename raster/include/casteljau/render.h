@@ -88,6 +88,7 @@ typedef struct cj_render_options {
     int max_depth;     /* ray tracer: 0 = the scene's */
     int use_seed;      /* ray tracer: 1 = use `seed` instead of the scene's */
     uint64_t seed;
+    struct cj_render_cache *cache; /* rasterizer: NULL, or a tessellation cache (below) */
 } cj_render_options;
 
 /* All zero: the scene decides. */
@@ -102,6 +103,19 @@ cj_render_options cj_render_options_default(void);
 cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, unsigned planes,
                            const cj_allocator *alloc, cj_render_image **out,
                            cj_stage_report *report);
+
+/* A TESSELLATION CACHE for repeated renders (animation, a viewer, the bench): per object node,
+ * the object-space tessellation of its visible patches and the tolerance it was built for. A
+ * render given the cache (cj_render_options.cache) reuses a node's mesh when the same patches
+ * (control points and weights bit for bit, same patches in view) need an object tolerance
+ * between the cached one and twice it, so the proven bound still holds (the mesh is at most
+ * 2x finer than needed); otherwise it tessellates and replaces the entry. Transforms may change
+ * freely (the mesh is in object space). The image is the same as without a cache whenever the
+ * cached tolerance equals the needed one (e.g. a still camera). Not thread-safe: one cache per
+ * renderer thread. The stage report's tessellate_patches gives cache_hits. */
+typedef struct cj_render_cache cj_render_cache;
+cj_status cj_render_cache_create(const cj_allocator *alloc, cj_render_cache **out);
+void cj_render_cache_destroy(cj_render_cache *cache);
 
 /* The world-space triangles the rasterizer draws for this scene and view (what cj_render_raster
  * rasterizes before clipping: tessellated for the view at the options' screen tolerance, back
