@@ -10,3 +10,8 @@ cj_add_test(test_cli_harden SOURCES test_cli_harden.c)
 target_compile_definitions(test_cli_harden PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
   CJ_VERSION="${PROJECT_VERSION}")
 add_dependencies(test_cli_harden casteljau)
+# The README's "$ command" transcripts, run and compared (they went stale once).
+cj_add_test(test_readme_examples SOURCES test_readme_examples.c)
+target_compile_definitions(test_readme_examples PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+  CJ_README="${PROJECT_SOURCE_DIR}/README.md")
+add_dependencies(test_readme_examples casteljau)
