@@ -24,6 +24,10 @@ endif()
 string(JOIN " " CJ_CONFIG_MODULES ${CJ_MODULES})
 
 install(EXPORT casteljauTargets NAMESPACE cj:: DESTINATION ${CJ_CMAKE_INSTALL_DIR})
+# The build tree is a package too: find_package(casteljau) with casteljau_DIR (or
+# CMAKE_PREFIX_PATH) set to the build folder uses the libraries in place, without installing.
+# The casteljauConfig.cmake generated below sits beside this file and includes it.
+export(EXPORT casteljauTargets NAMESPACE cj:: FILE ${PROJECT_BINARY_DIR}/casteljauTargets.cmake)
 configure_package_config_file(cmake/casteljauConfig.cmake.in
   ${PROJECT_BINARY_DIR}/casteljauConfig.cmake
   INSTALL_DESTINATION ${CJ_CMAKE_INSTALL_DIR})

@@ -15,3 +15,15 @@ cj_add_test(test_readme_examples SOURCES test_readme_examples.c)
 target_compile_definitions(test_readme_examples PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
   CJ_README="${PROJECT_SOURCE_DIR}/README.md")
 add_dependencies(test_readme_examples casteljau)
+# find_package(casteljau) straight from this build tree (exported targets, no install).
+set(cj_bt_flags)
+if(CJ_SANITIZE)
+  set(cj_bt_flags "-fsanitize=address,undefined")
+endif()
+add_test(NAME test_build_tree_package COMMAND ${CMAKE_COMMAND}
+  -DCJ_BUILD_DIR=${PROJECT_BINARY_DIR} -DCJ_WORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/build_tree_consumer
+  -DCJ_CONSUMER_DIR=${CMAKE_CURRENT_SOURCE_DIR}/install/consumer
+  -DCJ_C_COMPILER=${CMAKE_C_COMPILER} -DCJ_CXX_COMPILER=${CMAKE_CXX_COMPILER}
+  -DCJ_GENERATOR=${CMAKE_GENERATOR} "-DCJ_EXTRA_FLAGS=${cj_bt_flags}"
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/build_tree_package.cmake)
+set_tests_properties(test_build_tree_package PROPERTIES TIMEOUT 300)
