@@ -20,4 +20,9 @@ struct cj_particles {
     uint64_t steps;
 };
 
+/* particle_patches.c: moves a particle that crossed the collider on its step a -> x back to the
+ * surface and reflects v; returns 1 on a hit. */
+int cj_patch_collider_resolve_(const cj_patch_collider *c, const double a[3], double x[3],
+                               double v[3], double restitution);
+
 #endif

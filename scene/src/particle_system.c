@@ -89,6 +89,9 @@ static cj_status check_desc(const cj_particles_desc *d) {
         return cj_fail(CJ_ERR_NONFINITE, "flocking: a weight is not finite");
     if (f->radius < 0.0 || f->max_speed < 0.0)
         return cj_fail(CJ_ERR_RANGE, "flocking: radius and max_speed must be >= 0");
+    for (size_t i = 0; i < d->patch_collider_count; ++i)
+        if (!d->patch_colliders || !d->patch_colliders[i])
+            return cj_fail(CJ_ERR_ARGUMENT, "patch collider %zu is NULL", i);
     for (size_t i = 0; i < d->sphere_count; ++i) {
         const cj_sphere_collider *c = &d->spheres[i];
         if (!fin3(c->center) || !isfinite(c->radius) || !isfinite(c->friction))
@@ -116,6 +119,7 @@ cj_status cj_particles_create(const cj_particles_desc *d, const cj_allocator *al
     if (st != CJ_OK) return st;
     const size_t cap = d->capacity;
     const size_t bytes = sizeof(cj_particles) + sizeof(double) * (cap * 11 + d->emitter_count) +
+                         sizeof(cj_patch_collider *) * d->patch_collider_count +
                          sizeof(cj_emitter) * d->emitter_count +
                          sizeof(cj_sphere_collider) * d->sphere_count +
                          sizeof(cj_plane_collider) * d->plane_count;
@@ -147,6 +151,9 @@ cj_status cj_particles_create(const cj_particles_desc *d, const cj_allocator *al
     if (d->sphere_count)
         memcpy(p->spheres, d->spheres, sizeof(cj_sphere_collider) * d->sphere_count);
     if (d->plane_count) memcpy(p->planes, d->planes, sizeof(cj_plane_collider) * d->plane_count);
+    const cj_patch_collider **pcs = (const cj_patch_collider **)(p->planes + d->plane_count);
+    for (size_t i = 0; i < d->patch_collider_count; ++i) pcs[i] = d->patch_colliders[i];
+    p->d.patch_colliders = pcs;
     p->d.emitters = p->emitters;
     p->d.spheres = p->spheres;
     p->d.planes = p->planes;
@@ -349,11 +356,20 @@ cj_status cj_particles_step(cj_particles *p, double h, cj_particles_stats *stats
             if (s > f->max_speed)
                 for (int k = 0; k < 3; ++k) v[k] *= f->max_speed / s;
         }
-        for (int k = 0; k < 3; ++k) p->x[3 * i + k] += h * v[k];
+        for (int k = 0; k < 3; ++k) {
+            p->acc[3 * i + k] = p->x[3 * i + k]; /* the acceleration is used: keep x_old */
+            p->x[3 * i + k] += h * v[k];
+        }
     }
     double t2 = now_seconds();
     st.seconds_forces = t2 - t1;
-    if (p->d.plane_count || p->d.sphere_count) st.collisions = collide(p);
+    if (p->d.patch_collider_count)
+        for (size_t i = 0; i < p->count; ++i)
+            for (size_t j = 0; j < p->d.patch_collider_count; ++j)
+                st.collisions += (size_t)cj_patch_collider_resolve_(p->d.patch_colliders[j],
+                                                                    p->acc + 3 * i, p->x + 3 * i,
+                                                                    p->v + 3 * i, p->d.restitution);
+    if (p->d.plane_count || p->d.sphere_count) st.collisions += collide(p);
     st.seconds_collide = now_seconds() - t2;
     for (size_t i = 0; i < p->count;) {
         p->age[i] += h;

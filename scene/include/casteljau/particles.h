@@ -46,7 +46,9 @@
 #define CASTELJAU_PARTICLES_H
 
 #include "casteljau/alloc.h"
+#include "casteljau/patch.h"
 #include "casteljau/springs.h"
+#include "casteljau/transform.h"
 #include "casteljau/status.h"
 #include <stddef.h>
 #include <stdint.h>
@@ -78,6 +80,26 @@ typedef struct cj_flocking {
     double max_speed; /* 0: no cap */
 } cj_flocking;
 
+/* A collider made of Bézier patches (the teapot): the patches, mapped to world space by an
+ * affine matrix, in a BVH over their control-point boxes. A particle that moves from a to b in a
+ * step is tested along the SEGMENT a→b with the ray tracer's patch intersection
+ * (casteljau/ray.h: cj_ray_patch by subdivision + Newton to `tol` world units), so fast
+ * particles cannot tunnel through. On a hit the particle is put back at the hit point, moved
+ * off the surface by 1e-9 of the collider's size (plus tol) on the side it came from, and its
+ * velocity reflected (restitution, friction) as for spheres; the rest of that step's motion is
+ * dropped. Degrees above CJ_RAY_PATCH_MAX_DEGREE: CJ_ERR_DEGREE. The collider is read-only
+ * once built and may be shared by several particle systems (which must not outlive it). */
+typedef struct cj_patch_collider cj_patch_collider;
+
+cj_status cj_patch_collider_create(const cj_patch *patches, size_t count, const cj_xform3 *to_world,
+                                   double tol, double friction, const cj_allocator *alloc,
+                                   cj_patch_collider **out);
+void cj_patch_collider_destroy(cj_patch_collider *c);
+/* First hit of the segment a→b (parameter t in [0, 1]): 1 with t, the point and the unit normal
+ * facing a; 0 when the segment misses. */
+int cj_patch_collider_segment(const cj_patch_collider *c, const double a[3], const double b[3],
+                              double *t, double point[3], double normal[3]);
+
 typedef struct cj_particles_desc {
     size_t capacity;
     uint64_t seed;
@@ -90,7 +112,9 @@ typedef struct cj_particles_desc {
     const cj_sphere_collider *spheres;
     size_t plane_count;
     const cj_plane_collider *planes;
-    double restitution; /* [0, 1] */
+    size_t patch_collider_count;
+    const cj_patch_collider *const *patch_colliders; /* not owned; must outlive the system */
+    double restitution;                              /* [0, 1] */
     cj_flocking flocking;
 } cj_particles_desc;
 

@@ -1,0 +1,157 @@
+/* Patch colliders for particles: world-space copies of Bézier patches in a BVH, hit along each
+ * particle's step segment by the ray tracer's patch intersection. */
+#include "casteljau/particles.h"
+
+#include "casteljau/bvh.h"
+#include "casteljau/ray.h"
+#include "error_internal.h"
+#include "particle_internal.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct cj_patch_collider {
+    cj_allocator alloc;
+    int has_alloc;
+    size_t count;
+    cj_patch *patches; /* views into `pts` / `w` below */
+    double *pts, *w;
+    cj_bvh *bvh;
+    double tol, friction, offset;
+};
+
+static void *pc_alloc(const cj_allocator *a, size_t n) {
+    return a ? a->alloc(a->user, n) : malloc(n);
+}
+static void pc_free(const cj_allocator *a, void *p) {
+    if (a)
+        a->free(a->user, p);
+    else
+        free(p);
+}
+
+cj_status cj_patch_collider_create(const cj_patch *patches, size_t count, const cj_xform3 *to_world,
+                                   double tol, double friction, const cj_allocator *alloc,
+                                   cj_patch_collider **out) {
+    assert(out && (patches || count == 0));
+    if (count == 0) return cj_fail(CJ_ERR_EMPTY, "patch collider without patches");
+    if (!(tol > 0.0) || !isfinite(tol))
+        return cj_fail(CJ_ERR_ARGUMENT, "patch collider tol %g", tol);
+    if (!(friction >= 0.0 && friction <= 1.0))
+        return cj_fail(CJ_ERR_RANGE, "patch collider friction %g outside [0, 1]", friction);
+    size_t npts = 0, nw = 0;
+    for (size_t i = 0; i < count; ++i) {
+        cj_status st = cj_ray_patch_check(&patches[i], tol);
+        if (st != CJ_OK) {
+            char msg[200];
+            snprintf(msg, sizeof msg, "%s", cj_last_error());
+            return cj_fail(st, "patch collider, patch %zu: %s", i, msg);
+        }
+        const size_t n = (size_t)(patches[i].deg_u + 1) * (size_t)(patches[i].deg_v + 1);
+        npts += 3 * n;
+        if (patches[i].weights) nw += n;
+    }
+    const size_t bytes =
+        sizeof(cj_patch_collider) + sizeof(cj_patch) * count + sizeof(double) * (npts + nw);
+    cj_patch_collider *c = pc_alloc(alloc, bytes);
+    cj_aabb *boxes = malloc(sizeof(cj_aabb) * count);
+    if (!c || !boxes) {
+        if (c) pc_free(alloc, c);
+        free(boxes);
+        return cj_fail(CJ_ERR_NOMEM, "patch collider: no memory for %zu patches", count);
+    }
+    memset(c, 0, sizeof *c);
+    if (alloc) {
+        c->alloc = *alloc;
+        c->has_alloc = 1;
+    }
+    c->count = count;
+    c->patches = (cj_patch *)(c + 1);
+    c->pts = (double *)(c->patches + count);
+    c->w = c->pts + npts;
+    c->tol = tol;
+    c->friction = friction;
+    double *p = c->pts, *w = c->w, size = 0.0;
+    cj_status st = CJ_OK;
+    for (size_t i = 0; i < count && st == CJ_OK; ++i) {
+        const cj_patch *src = &patches[i];
+        const size_t n = (size_t)(src->deg_u + 1) * (size_t)(src->deg_v + 1);
+        if (to_world)
+            st = cj_xform3_apply_points(to_world, src->pts, n, p);
+        else
+            memcpy(p, src->pts, sizeof(double) * 3 * n);
+        const double *wi = NULL;
+        if (src->weights) {
+            memcpy(w, src->weights, sizeof(double) * n);
+            wi = w;
+            w += n;
+        }
+        c->patches[i] = cj_patch_view(src->deg_u, src->deg_v, p, wi);
+        boxes[i] = cj_aabb_empty();
+        for (size_t k = 0; k < n; ++k)
+            cj_aabb_grow(&boxes[i], cj_v3(p[3 * k], p[3 * k + 1], p[3 * k + 2]));
+        for (int k = 0; k < 3; ++k) size = fmax(size, boxes[i].hi[k] - boxes[i].lo[k]);
+        p += 3 * n;
+    }
+    if (st == CJ_OK) st = cj_bvh_build(boxes, count, alloc, &c->bvh);
+    free(boxes);
+    if (st != CJ_OK) {
+        pc_free(alloc, c);
+        return st;
+    }
+    c->offset = 1e-9 * size + tol;
+    *out = c;
+    return CJ_OK;
+}
+
+void cj_patch_collider_destroy(cj_patch_collider *c) {
+    if (!c) return;
+    cj_bvh_destroy(c->bvh);
+    pc_free(c->has_alloc ? &c->alloc : NULL, c);
+}
+
+static int hit_patch(void *user, uint32_t prim, const cj_ray *ray, cj_hit *hit) {
+    const cj_patch_collider *c = user;
+    return cj_ray_patch(ray, &c->patches[prim], c->tol, hit, NULL);
+}
+
+int cj_patch_collider_segment(const cj_patch_collider *c, const double a[3], const double b[3],
+                              double *t, double point[3], double normal[3]) {
+    cj_ray ray;
+    ray.org = cj_v3(a[0], a[1], a[2]);
+    ray.dir = cj_v3(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+    if (ray.dir.x == 0.0 && ray.dir.y == 0.0 && ray.dir.z == 0.0) return 0;
+    ray.tmin = 0.0;
+    ray.tmax = 1.0;
+    cj_hit h;
+    if (!cj_bvh_closest(c->bvh, &ray, hit_patch, (void *)c, &h, NULL)) return 0;
+    cj_vec3 n = h.n;
+    if (cj_v3_dot(n, ray.dir) > 0.0) n = cj_v3_scale(n, -1.0);
+    *t = h.t;
+    point[0] = h.p.x;
+    point[1] = h.p.y;
+    point[2] = h.p.z;
+    normal[0] = n.x;
+    normal[1] = n.y;
+    normal[2] = n.z;
+    return 1;
+}
+
+int cj_patch_collider_resolve_(const cj_patch_collider *c, const double a[3], double x[3],
+                               double v[3], double restitution) {
+    double t, p[3], n[3];
+    if (!cj_patch_collider_segment(c, a, x, &t, p, n)) return 0;
+    double vn = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        x[k] = p[k] + c->offset * n[k];
+        vn += v[k] * n[k];
+    }
+    if (vn < 0.0)
+        for (int k = 0; k < 3; ++k) {
+            const double vt = v[k] - vn * n[k];
+            v[k] = -restitution * vn * n[k] + (1.0 - c->friction) * vt;
+        }
+    return 1;
+}
