@@ -102,7 +102,7 @@ static void run(int threads, int size, int reps, double tol_px) {
     /* the same triangles as a mesh object: our renderer without the tessellation */
     cj_scene *sm = teapot_scene(size, tol_px, mesh);
     cj_vtk_renderer *vr = NULL;
-    if (cj_vtk_renderer_create_scene(sc, mesh, size, size, &vr)) die("VTK renderer");
+    if (cj_vtk_renderer_create_scene(sc, mesh, size, size, 0, &vr)) die("VTK renderer");
     float *rgba = malloc(sizeof(float) * 4 * (size_t)size * size);
     double *wall = malloc(sizeof(double) * NCOL * reps),
            *cpu = malloc(sizeof(double) * NCOL * reps);

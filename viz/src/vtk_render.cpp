@@ -20,6 +20,7 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkShaderProperty.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 
@@ -223,8 +224,24 @@ struct cj_vtk_renderer {
 
 namespace {
 
+// VTK 9.1's specular line for light complexity 3 (any positional light), and ours in its place:
+// h = normalize(v + l) with v = normalize(-vertexVC) towards the eye and l = -vertLightDirectionVC
+// towards the light; not gated by the diffuse term.
+const char *const kVtkSpecular =
+    "sf = sign(df)*attenuation*pow( max(0.0, dot( reflect(vertLightDirectionVC, "
+    "normalVCVSOutput), normalize(-vertexVC.xyz))), specularPower);";
+const char *const kBlinnSpecular =
+    "sf = attenuation*pow(max(0.0, dot(normalVCVSOutput, normalize(normalize(-vertexVC.xyz) - "
+    "vertLightDirectionVC))), specularPower);";
+// Orthographic: the eye direction is the view axis everywhere (VTK's own line uses the
+// fragment's position even then).
+const char *const kBlinnSpecularOrtho =
+    "sf = attenuation*pow(max(0.0, dot(normalVCVSOutput, normalize(vec3(0.0, 0.0, 1.0) - "
+    "vertLightDirectionVC))), specularPower);";
+
 void add_lights(vtkRenderer *ren, const cj_vtk_view *view, double ambient[3]) {
     ambient[0] = ambient[1] = ambient[2] = 0.0;
+    bool positional = false;
     for (size_t i = 0; i < view->light_count; i++) {
         const cj_light &l = view->lights[i];
         if (l.kind == CJ_LIGHT_AMBIENT) {
@@ -239,6 +256,7 @@ void add_lights(vtkRenderer *ren, const cj_vtk_view *view, double ambient[3]) {
         vl->SetIntensity(l.intensity);
         vl->SetAttenuationValues(1.0, 0.0, 0.0);
         if (l.kind == CJ_LIGHT_POINT) {
+            positional = true;
             vl->PositionalOn();
             vl->SetConeAngle(180.0);
             vl->SetPosition(l.position.x, l.position.y, l.position.z);
@@ -249,6 +267,17 @@ void add_lights(vtkRenderer *ren, const cj_vtk_view *view, double ambient[3]) {
             vl->SetPosition(-l.direction.x, -l.direction.y, -l.direction.z);
             vl->SetFocalPoint(0.0, 0.0, 0.0);
         }
+        ren->AddLight(vl);
+    }
+    if ((view->flags & CJ_VTK_BLINN_SPECULAR) && !positional) {
+        // VTK writes the per-fragment light loop we patch only when a light is positional.
+        vtkNew<vtkLight> vl;
+        vl->SetLightTypeToSceneLight();
+        vl->PositionalOn();
+        vl->SetConeAngle(180.0);
+        vl->SetIntensity(1e-20);
+        vl->SetPosition(0.0, 0.0, 1e6);
+        vl->SetFocalPoint(0.0, 0.0, 0.0);
         ren->AddLight(vl);
     }
 }
@@ -315,6 +344,12 @@ cj_status cj_vtk_renderer_create(const cj_vtk_view *view, const cj_vtk_object *o
         auto actor = vtkSmartPointer<vtkActor>::New();
         actor->SetMapper(mapper);
         set_material(actor->GetProperty(), objects[i].material, ambient);
+        if (view->flags & CJ_VTK_BLINN_SPECULAR)
+            actor->GetShaderProperty()->AddFragmentShaderReplacement(
+                kVtkSpecular, false,
+                view->camera.projection == CJ_PROJ_ORTHOGRAPHIC ? kBlinnSpecularOrtho
+                                                                : kBlinnSpecular,
+                true);
         auto id_actor = vtkSmartPointer<vtkActor>::New();
         id_actor->SetMapper(id_mapper);
         set_id_colour(id_actor->GetProperty(), objects[i].material, objects[i].id);

@@ -21,7 +21,7 @@ struct mesh_guard {
 } // namespace
 
 cj_status cj_vtk_renderer_create_scene(const cj_scene *scene, const cj_mesh *mesh, int width,
-                                       int height, cj_vtk_renderer **out) {
+                                       int height, unsigned flags, cj_vtk_renderer **out) {
     assert(scene && mesh && out);
     cj_status st = cj_scene_check(scene);
     if (st != CJ_OK) return st;
@@ -48,6 +48,7 @@ cj_status cj_vtk_renderer_create_scene(const cj_scene *scene, const cj_mesh *mes
         view.background = set->background;
         view.width = width > 0 ? width : set->width;
         view.height = height > 0 ? height : set->height;
+        view.flags = flags;
 
         // One sub-mesh per id, vertices renumbered in first-use order.
         std::vector<uint32_t> remap(mesh->vertex_count, UINT32_MAX);

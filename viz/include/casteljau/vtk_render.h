@@ -25,8 +25,9 @@
  *     our (p̄ − ē)·n⃗ > 0 test for a triangle counter-clockwise from outside), two-sided ones
  *     light both sides (VTK's two-sided lighting). Textures are ignored.
  *   KNOWN DIFFERENCE: VTK's specular term is Phong's (r⃗·v⃗)^α with r⃗ the reflected light
- *   direction, ours is Blinn's (n⃗·h⃗)^α (casteljau/scene.h); ambient and diffuse terms are the
- *   same formula. Colours are written to an 8-bit framebuffer without gamma, so the colour
+ *   direction, gated by n⃗·l⃗ > 0; ours is Blinn's (n⃗·h⃗)^α (casteljau/scene.h), which
+ *   CJ_VTK_BLINN_SPECULAR patches into VTK's shader; ambient and diffuse terms are the same
+ *   formula. Colours are written to an 8-bit framebuffer without gamma, so the colour
  *   plane holds linear values quantised to k/255 (clamped to [0, 1]).
  *   - no multisampling, no FXAA, no depth peeling: one sample per pixel at the pixel centre,
  *     like our rasterizer at 1 spp.
@@ -70,7 +71,18 @@ typedef struct cj_vtk_view {
     size_t light_count;
     cj_rgb background; /* linear, each in [0, 1] */
     int width, height; /* 1 .. 4096 each */
+    unsigned flags;    /* CJ_VTK_* below */
 } cj_vtk_view;
+
+/* cj_vtk_view.flags. */
+enum {
+    /* Our specular term instead of VTK's: c_p r_s Σ I max(0, n⃗·h⃗)^α with h⃗ the unit half
+     * vector of the light and eye directions, not gated by n⃗·l⃗ (casteljau/scene.h), patched
+     * into VTK's fragment shader (VTK 9.1's line for scenes with a positional light; a light
+     * of intensity 1e-20 far away is added when the scene has none, so that VTK emits that
+     * line). Orthographic views use the view axis as the eye direction, as ours do. */
+    CJ_VTK_BLINN_SPECULAR = 1u
+};
 
 /* Caller-owned output planes (see OUTPUT PLANES above); any may be NULL. */
 typedef struct cj_vtk_frame {
@@ -123,7 +135,7 @@ cj_status cj_vtk_render_mesh(const cj_vtk_view *view, const cj_vtk_object *objec
  * whose id names no visible object, a mesh without triangles), otherwise as
  * cj_vtk_renderer_create. */
 cj_status cj_vtk_renderer_create_scene(const cj_scene *scene, const cj_mesh *mesh, int width,
-                                       int height, cj_vtk_renderer **out);
+                                       int height, unsigned flags, cj_vtk_renderer **out);
 
 /* vtkImageDifference (VTK 9.1 with its defaults, AllowShift and Averaging on) between two
  * width × height RGBA8 images (alpha ignored), as VTK reports it: *thresholded is
