@@ -92,6 +92,59 @@ cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene) {
         doc->cloth_node = node;
         doc->cloth_geometry = geo;
     }
+    if (doc->has_particles && !doc->particles) {
+        for (int k = 0; k < doc->collide_count; ++k) {
+            int node = -1;
+            for (size_t i = 0; i < cj_scene_node_count(scene); ++i) {
+                const char *nm = cj_scene_node(scene, (int)i)->name;
+                if (nm && !strcmp(nm, doc->collide_with[k])) node = (int)i;
+            }
+            if (node < 0)
+                return cj_fail(CJ_ERR_ARGUMENT, "particles.collide_with[%d]: no object named '%s'",
+                               k, doc->collide_with[k]);
+            const cj_node *n = cj_scene_node(scene, node);
+            const cj_geometry *g = n->geometry >= 0 ? cj_scene_geometry(scene, n->geometry) : NULL;
+            if (!g || g->kind != CJ_GEOM_PATCHES)
+                return cj_fail(CJ_ERR_ARGUMENT,
+                               "particles.collide_with[%d]: '%s' is not made of Bezier patches", k,
+                               doc->collide_with[k]);
+            cj_xform3 world;
+            st = cj_scene_node_world(scene, node, &world);
+            if (!st)
+                st = cj_patch_collider_create(g->u.patches.patches, g->u.patches.count, &world,
+                                              1e-7, 0.1, NULL, &doc->patch_colliders[k]);
+            if (st) return st;
+        }
+        doc->pdesc.patch_collider_count = (size_t)doc->collide_count;
+        doc->pdesc.patch_colliders = (const cj_patch_collider *const *)doc->patch_colliders;
+        st = cj_particles_create(&doc->pdesc, NULL, &doc->particles);
+        if (st) return st;
+        int mat = -1, geo = -1;
+        cj_material m = cj_material_default();
+        m.color = doc->particle_color;
+        m.shading = CJ_SHADE_GOURAUD;
+        st = cj_scene_add_material(scene, &m, &mat);
+        if (!st) {
+            cj_geometry g;
+            memset(&g, 0, sizeof g);
+            g.kind = CJ_GEOM_SPHERE;
+            g.u.sphere.radius = doc->particle_radius > 0 ? doc->particle_radius : 0.04;
+            st = cj_scene_add_geometry(scene, &g, &geo);
+        }
+        for (size_t i = 0; !st && i < doc->pdesc.capacity; ++i) {
+            cj_node n;
+            memset(&n, 0, sizeof n);
+            n.parent = -1;
+            n.local = cj_transform_identity();
+            n.geometry = geo;
+            n.material = mat;
+            n.visible = 0;
+            int idx;
+            st = cj_scene_add_node(scene, &n, &idx);
+            if (!st && i == 0) doc->particle_node0 = idx;
+        }
+        if (st) return st;
+    }
     return cj_anim_bind(doc->anim, scene);
 }
 
@@ -101,14 +154,17 @@ cj_status cj_anim_doc_frame(cj_anim_doc *doc, cj_scene *scene, long frame,
     if (frame < 0) return cj_fail(CJ_ERR_RANGE, "frame %ld is negative", frame);
     cj_springs_stats sum;
     memset(&sum, 0, sizeof sum);
-    if (doc->cloth) {
-        if (frame < doc->sim_frame)
-            return cj_fail(CJ_ERR_RANGE,
-                           "frame %ld is before the simulation state (frame %ld): start from a "
-                           "checkpoint at or before it",
-                           frame, doc->sim_frame);
-        const double h = 1.0 / (doc->fps * doc->steps_per_frame);
-        while (doc->sim_frame < frame) {
+    cj_particles_stats psum;
+    memset(&psum, 0, sizeof psum);
+    const int simulated = doc->cloth || doc->particles;
+    if (simulated && frame < doc->sim_frame)
+        return cj_fail(CJ_ERR_RANGE,
+                       "frame %ld is before the simulation state (frame %ld): start from a "
+                       "checkpoint at or before it",
+                       frame, doc->sim_frame);
+    while (simulated && doc->sim_frame < frame) {
+        if (doc->cloth) {
+            const double h = 1.0 / (doc->fps * doc->steps_per_frame);
             for (int s = 0; s < doc->steps_per_frame; ++s) {
                 cj_springs_stats st1;
                 cj_status st = cj_springs_step(doc->cloth, doc->cloth_integrator, h, &st1);
@@ -120,8 +176,24 @@ cj_status cj_anim_doc_frame(cj_anim_doc *doc, cj_scene *scene, long frame,
                 sum.cg_iterations =
                     st1.cg_iterations > sum.cg_iterations ? st1.cg_iterations : sum.cg_iterations;
             }
-            ++doc->sim_frame;
         }
+        if (doc->particles) {
+            const double h = 1.0 / (doc->fps * doc->particle_steps);
+            for (int s = 0; s < doc->particle_steps; ++s) {
+                cj_particles_stats p1;
+                cj_status st = cj_particles_step(doc->particles, h, &p1);
+                if (st != CJ_OK) return st;
+                psum.emitted += p1.emitted;
+                psum.dropped += p1.dropped;
+                psum.died += p1.died;
+                psum.collisions += p1.collisions;
+                psum.neighbour_pairs += p1.neighbour_pairs;
+                psum.seconds_emit += p1.seconds_emit;
+                psum.seconds_forces += p1.seconds_forces;
+                psum.seconds_collide += p1.seconds_collide;
+            }
+        }
+        ++doc->sim_frame;
     }
     cj_anim_pose_info info;
     cj_status st = cj_anim_pose(scene, doc->anim, (double)frame / doc->fps, &info);
@@ -135,9 +207,20 @@ cj_status cj_anim_doc_frame(cj_anim_doc *doc, cj_scene *scene, long frame,
         memcpy(m->positions, cj_springs_positions(doc->cloth), sizeof(double) * 3 * nv);
         grid_normals(m->positions, doc->cloth_nu, doc->cloth_nv, m->normals);
     }
+    if (doc->particles && doc->particle_node0 >= 0) {
+        const size_t n = cj_particles_count(doc->particles);
+        const double *x = cj_particles_positions(doc->particles);
+        for (size_t i = 0; i < doc->pdesc.capacity; ++i) {
+            cj_node *nd = cj_scene_node_mut(scene, doc->particle_node0 + (int)i);
+            if (!nd)
+                return cj_fail(CJ_ERR_ARGUMENT, "the particles' nodes are gone from the scene");
+            nd->visible = i < n;
+            if (i < n) nd->local.translate = cj_v3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+        }
+    }
     if (report)
-        cj_anim_report_stages(report, doc->anim, &info, doc->cloth, doc->cloth ? &sum : NULL, NULL,
-                              NULL);
+        cj_anim_report_stages(report, doc->anim, &info, doc->cloth, doc->cloth ? &sum : NULL,
+                              doc->particles, doc->particles ? &psum : NULL);
     return CJ_OK;
 }
 
@@ -169,8 +252,9 @@ cj_status cj_anim_doc_save_state(const cj_anim_doc *doc, FILE *f) {
             ok = put_u64(f, u);
         }
     }
+    ok = ok && put_u64(f, doc->particles ? 1u : 0u);
     if (!ok || fflush(f) != 0) return cj_fail(CJ_ERR_IO, "writing the animation checkpoint failed");
-    return CJ_OK;
+    return doc->particles ? cj_particles_save(doc->particles, f) : CJ_OK;
 }
 
 cj_status cj_anim_doc_load_state(cj_anim_doc *doc, FILE *f) {
@@ -195,7 +279,15 @@ cj_status cj_anim_doc_load_state(cj_anim_doc *doc, FILE *f) {
         }
         memcpy(&buf[i], &u, sizeof u);
     }
-    cj_status st = want ? cj_springs_set_state(doc->cloth, buf, buf + want) : CJ_OK;
+    uint64_t has_p = 0;
+    if (!get_u64(f, &has_p) || has_p != (doc->particles ? 1u : 0u)) {
+        free(buf);
+        return cj_fail(CJ_ERR_PARSE, "checkpoint of another animation (particles %s)",
+                       doc->particles ? "missing" : "unexpected");
+    }
+    /* particles first: their loader changes nothing when it fails */
+    cj_status st = doc->particles ? cj_particles_load(doc->particles, f) : CJ_OK;
+    if (st == CJ_OK && want) st = cj_springs_set_state(doc->cloth, buf, buf + want);
     free(buf);
     if (st == CJ_OK) doc->sim_frame = (long)frame;
     return st;

@@ -457,9 +457,106 @@ static cj_status read_cloth(actx *c, cj_anim_doc *doc, const cJSON *cj,
     return CJ_OK;
 }
 
+static cj_status read_emitter(actx *c, const cJSON *e, const char *path, cj_emitter *out) {
+    static const char *const K[] = {"position",      "direction", "spread",   "speed",
+                                    "speed_jitter",  "rate",      "lifetime", "lifetime_jitter",
+                                    "jitter_radius", "start",     "stop",     NULL};
+    *out = cj_emitter_default();
+    cj_status st;
+    if ((st = keys(c, e, path, K)) || (st = vec3(c, e, path, "position", out->position)) ||
+        (st = vec3(c, e, path, "direction", out->direction)) ||
+        (st = num(c, e, path, "spread", 0, &out->spread)) ||
+        (st = num(c, e, path, "speed", 0, &out->speed)) ||
+        (st = num(c, e, path, "speed_jitter", 0, &out->speed_jitter)) ||
+        (st = num(c, e, path, "rate", 0, &out->rate)) ||
+        (st = num(c, e, path, "lifetime", 0, &out->lifetime)) ||
+        (st = num(c, e, path, "lifetime_jitter", 0, &out->lifetime_jitter)) ||
+        (st = num(c, e, path, "jitter_radius", 0, &out->jitter_radius)) ||
+        (st = num(c, e, path, "start", 0, &out->start)) ||
+        (st = num(c, e, path, "stop", 0, &out->stop)))
+        return st;
+    return CJ_OK;
+}
+
+static cj_status read_particles(actx *c, cj_anim_doc *doc, const cJSON *pj) {
+    static const char *const K[] = {"capacity",        "seed",     "restitution", "wind",
+                                    "steps_per_frame", "radius",   "color",       "collide_with",
+                                    "flocking",        "emitters", NULL};
+    static const char *const FK[] = {"radius",   "separation", "alignment",
+                                     "cohesion", "max_speed",  NULL};
+    cj_status st = keys(c, pj, "particles", K);
+    if (st) return st;
+    cj_particles_desc *d = &doc->pdesc;
+    double cap = 200, seed = 1, spf = 1, col[3] = {1, 0.8, 0.2};
+    doc->particle_radius = 0.04;
+    if ((st = num(c, pj, "particles", "capacity", 1, &cap)) ||
+        (st = num(c, pj, "particles", "seed", 0, &seed)) ||
+        (st = num(c, pj, "particles", "restitution", 0, &d->restitution)) ||
+        (st = vec3(c, pj, "particles", "wind", d->wind)) ||
+        (st = num(c, pj, "particles", "steps_per_frame", 1, &spf)) ||
+        (st = num(c, pj, "particles", "radius", 0, &doc->particle_radius)))
+        return st;
+    if (cap > 5000 || cap != floor(cap))
+        return jfail(c, cJSON_GetObjectItemCaseSensitive(pj, "capacity"), CJ_ERR_RANGE,
+                     "particles.capacity must be an integer in 1..5000");
+    const cJSON *cc = cJSON_GetObjectItemCaseSensitive(pj, "color");
+    if (cc && (st = nums(c, cc, "particles.color", 3, col, 3, NULL))) return st;
+    const cJSON *fl = cJSON_GetObjectItemCaseSensitive(pj, "flocking");
+    if (fl) {
+        cj_flocking *f = &d->flocking;
+        if ((st = keys(c, fl, "particles.flocking", FK)) ||
+            (st = num(c, fl, "particles.flocking", "radius", 0, &f->radius)) ||
+            (st = num(c, fl, "particles.flocking", "separation", -1e300, &f->separation)) ||
+            (st = num(c, fl, "particles.flocking", "alignment", -1e300, &f->alignment)) ||
+            (st = num(c, fl, "particles.flocking", "cohesion", -1e300, &f->cohesion)) ||
+            (st = num(c, fl, "particles.flocking", "max_speed", 0, &f->max_speed)))
+            return st;
+    }
+    const cJSON *cw = cJSON_GetObjectItemCaseSensitive(pj, "collide_with");
+    size_t i = 0;
+    if (cw && !cJSON_IsArray(cw))
+        return jfail(c, cw, CJ_ERR_PARSE, "particles.collide_with must be a list of names");
+    for (const cJSON *e = cw ? cw->child : NULL; e; e = e->next, ++i) {
+        if (i >= 8 || !cJSON_IsString(e))
+            return jfail(c, e, CJ_ERR_PARSE,
+                         "particles.collide_with[%zu] must be an object's "
+                         "name (at most 8)",
+                         i);
+        snprintf(doc->collide_with[i], sizeof doc->collide_with[i], "%s", e->valuestring);
+    }
+    doc->collide_count = (int)i;
+    const cJSON *em = cJSON_GetObjectItemCaseSensitive(pj, "emitters");
+    if (em && !cJSON_IsArray(em))
+        return jfail(c, em, CJ_ERR_PARSE, "particles.emitters must be a list");
+    i = 0;
+    for (const cJSON *e = em ? em->child : NULL; e; e = e->next, ++i) {
+        char path[48];
+        snprintf(path, sizeof path, "particles.emitters[%zu]", i);
+        if (i >= 16) return jfail(c, e, CJ_ERR_PARSE, "at most 16 emitters");
+        if ((st = read_emitter(c, e, path, &doc->emitters[i]))) return st;
+    }
+    d->capacity = (size_t)cap;
+    d->seed = (uint64_t)seed;
+    d->emitter_count = i;
+    d->emitters = doc->emitters;
+    doc->particle_steps = (int)spf;
+    doc->particle_color = cj_rgb_make(col[0], col[1], col[2]);
+    doc->has_particles = 1;
+    /* validate now (the patch colliders come at attach): errors point at the section */
+    cj_particles *probe = NULL;
+    st = cj_particles_create(d, NULL, &probe);
+    cj_particles_destroy(probe);
+    if (st) {
+        char msg[300];
+        snprintf(msg, sizeof msg, "%s", cj_last_error());
+        return jfail(c, pj, st, "particles: %s", msg);
+    }
+    return CJ_OK;
+}
+
 static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
-    static const char *const TOP[] = {"scene", "fps",       "frames", "channels", "gravity",
-                                      "drag",  "colliders", "cloth",  NULL};
+    static const char *const TOP[] = {"scene", "fps",       "frames", "channels",  "gravity",
+                                      "drag",  "colliders", "cloth",  "particles", NULL};
     cj_status st = keys(c, root, "document", TOP);
     if (st) return st;
     const cJSON *sc = cJSON_GetObjectItemCaseSensitive(root, "scene");
@@ -494,6 +591,8 @@ static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
     extra.dim = 3;
     cj_sphere_collider sph[8];
     cj_plane_collider pl[8];
+    memset(sph, 0, sizeof sph);
+    memset(pl, 0, sizeof pl);
     if ((st = vec3(c, root, "document", "gravity", extra.gravity)) ||
         (st = num(c, root, "document", "drag", 0, &extra.drag)))
         return st;
@@ -504,6 +603,17 @@ static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
     extra.planes = pl;
     const cJSON *cl = cJSON_GetObjectItemCaseSensitive(root, "cloth");
     if (cl && (st = read_cloth(c, doc, cl, &extra))) return st;
+    /* particles share gravity, drag and the colliders */
+    memcpy(doc->spheres, sph, sizeof sph);
+    memcpy(doc->planes, pl, sizeof pl);
+    memcpy(doc->pdesc.gravity, extra.gravity, sizeof extra.gravity);
+    doc->pdesc.drag = extra.drag;
+    doc->pdesc.spheres = doc->spheres;
+    doc->pdesc.sphere_count = extra.sphere_count;
+    doc->pdesc.planes = doc->planes;
+    doc->pdesc.plane_count = extra.plane_count;
+    const cJSON *pj = cJSON_GetObjectItemCaseSensitive(root, "particles");
+    if (pj && (st = read_particles(c, doc, pj))) return st;
     return CJ_OK;
 }
 
@@ -529,6 +639,7 @@ cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base
     if (!st) {
         doc->fps = 24;
         doc->cloth_node = doc->cloth_geometry = -1;
+        doc->particle_node0 = -1;
         doc->steps_per_frame = 1;
         st = cj_anim_create(NULL, &doc->anim);
     }
@@ -589,5 +700,7 @@ void cj_anim_doc_destroy(cj_anim_doc *doc) {
     if (!doc) return;
     cj_anim_destroy(doc->anim);
     cj_springs_destroy(doc->cloth);
+    cj_particles_destroy(doc->particles);
+    for (int i = 0; i < 8; ++i) cj_patch_collider_destroy(doc->patch_colliders[i]);
     free(doc);
 }

@@ -59,7 +59,7 @@ void cj_anim_report_stages(cj_stage_report *r, const cj_anim *anim, const cj_ani
         cj_stage_report_set(r, "flocking", 0, "no particle system");
     }
     const size_t sc = sp ? sp->nspheres + sp->nplanes : 0;
-    const size_t pc = pa ? pa->d.sphere_count + pa->d.plane_count : 0;
+    const size_t pc = pa ? pa->d.sphere_count + pa->d.plane_count + pa->d.patch_collider_count : 0;
     if (sc + pc) {
         s = cj_stage_report_set(r, "collisions", 1, "%zu cloth/spring and %zu particle colliders",
                                 sc, pc);

@@ -38,6 +38,9 @@ static const char ANIM[] =
     " \"colliders\": {\"spheres\": [{\"center\": [0, 0, 0], \"radius\": 1.02}]},\n"
     " \"cloth\": {\"grid\": [8, 8], \"corner\": [-1.2, 1.3, 1.2], \"edge_u\": [2.4, 0, 0],\n"
     "           \"edge_v\": [0, 0, -2.4], \"steps_per_frame\": 2},\n"
+    " \"particles\": {\"capacity\": 40, \"seed\": 3, \"restitution\": 0.5, \"radius\": 0.05,\n"
+    "   \"emitters\": [{\"position\": [0, 2.5, 0], \"rate\": 60, \"speed\": 2,\n"
+    "   \"spread\": 0.8, \"direction\": [0, 1, 0], \"lifetime\": 2}]},\n"
     " \"channels\": [\n"
     "  {\"target\": \"camera.eye\", \"path\": {\"points\": [[0, 2, 5], [5, 2, 0], [0, 2, -5],\n"
     "   [-5, 2, 0]], \"closed\": true}, \"duration\": 1, \"ease\": \"smoothstep\"},\n"
@@ -98,8 +101,8 @@ static void test_frames_and_checkpoints(void **state) {
     snprintf(a0, sizeof a0, "%s/long_0000.png", dir);
     snprintf(a9, sizeof a9, "%s/long_0009.png", dir);
     assert_false(same_file(a0, a9));
-    printf("10 frames rendered; frames 4..9 resumed from the checkpoint of frame 4 in another "
-           "process: %d/6 byte-identical PNGs\n",
+    printf("10 frames rendered (cloth + particles + camera path); frames 4..9 resumed from the "
+           "checkpoint of frame 4 in another process: %d/6 byte-identical PNGs\n",
            same);
     assert_int_equal(same, 6);
     run("a.json --frames 0:3 --gif a.gif --quiet", 0, &r);
@@ -114,8 +117,9 @@ static void test_frames_and_checkpoints(void **state) {
     printf("--gif wrote an animated GIF89a\n");
     run("a.json --frames 9:9 --no-render --stage-report --quiet", 0, &r);
     assert_non_null(strstr(r.out, "\"name\": \"spring_forces\", \"ran\": true"));
-    assert_non_null(strstr(r.out, "\"name\": \"particle_pass\", \"ran\": false"));
-    printf("stage report of frame 9: spring forces ran, particle pass left out\n");
+    assert_non_null(strstr(r.out, "\"name\": \"particle_pass\", \"ran\": true"));
+    assert_non_null(strstr(r.out, "\"name\": \"flocking\", \"ran\": false"));
+    printf("stage report of frame 9: spring forces and particle pass ran, flocking left out\n");
     cj_cli_result_free(&r);
 }
 
@@ -153,6 +157,10 @@ static void test_bad_input(void **state) {
     expect_bad("{\"scene\": \"scene.json\"}\n", "--fps -2", "--fps '-2'");
     expect_bad("{\"scene\": \"scene.json\"}\n", "--frames 5:2", "--frames '5:2'");
     expect_bad("{\"scene\": \"missing.json\"}\n", "", "missing.json");
+    expect_bad("{\"scene\": \"scene.json\", \"particles\": {\"collide_with\": [\"pot\"]}}\n", "",
+               "particles.collide_with[0]: no object named 'pot'");
+    expect_bad("{\"scene\": \"scene.json\", \"particles\": {\"emitters\": [{\"spread\": 9}]}}\n",
+               "", "bad.json:1: particles: emitter 0");
 }
 
 int main(void) {

@@ -30,8 +30,20 @@
  *   "cloth": {"grid": [24, 24], "corner": [-1.5, 2, -1.5], "edge_u": [3, 0, 0],
  *             "edge_v": [0, 0, 3], "mass": 1, "stiffness": [2000, 500, 50], "damping": 0.5,
  *             "pinned": [0, 23], "integrator": "implicit_euler", "steps_per_frame": 4,
- *             "color": [0.8, 0.2, 0.2], "name": "cloth"}
+ *             "color": [0.8, 0.2, 0.2], "name": "cloth"},
+ *   "particles": {"capacity": 300, "seed": 1, "restitution": 0.6, "wind": [0, 0, 0],
+ *                 "steps_per_frame": 2, "radius": 0.04, "color": [1, 0.8, 0.2],
+ *                 "collide_with": ["teapot"],   scene objects whose Bézier patches (placed by
+ *                                               their world transform) the particles bounce off
+ *                 "flocking": {"radius": 0, "separation": 0, "alignment": 0, "cohesion": 0,
+ *                              "max_speed": 0},
+ *                 "emitters": [{"position": [0, 4, 0], "direction": [0, -1, 0], "spread": 0.3,
+ *                               "speed": 2, "speed_jitter": 0.2, "rate": 60, "lifetime": 3,
+ *                               "lifetime_jitter": 0.2, "jitter_radius": 0.3, "start": 0,
+ *                               "stop": 0}]}
  * }
+ * Particles share "gravity", "drag" and "colliders" with the cloth; they are drawn as small
+ * spheres (one scene node per pool slot, hidden while the slot is empty).
  *
  * Errors name the file, the line and the JSON path ("flyby.json:12: channels[1].times[2] ...");
  * unknown or repeated keys are errors; a channel on a field that does not exist is reported when
@@ -48,6 +60,7 @@
 #define CASTELJAU_ANIM_JSON_H
 
 #include "casteljau/anim_scene.h"
+#include "casteljau/particles.h"
 #include "casteljau/springs.h"
 #include "casteljau/status.h"
 #include <stdio.h>
@@ -70,6 +83,21 @@ typedef struct cj_anim_doc {
     long sim_frame;     /* the frame the simulation state belongs to */
     int cloth_node;     /* scene node showing the cloth after attach, or −1 */
     int cloth_geometry; /* its mesh geometry */
+    /* particles: the description is kept until attach builds the system (its patch colliders
+     * come from the scene) */
+    int has_particles;
+    cj_particles_desc pdesc; /* emitters, spheres, planes point into the arrays below */
+    cj_emitter emitters[16];
+    cj_sphere_collider spheres[8];
+    cj_plane_collider planes[8];
+    char collide_with[8][64];
+    int collide_count;
+    cj_patch_collider *patch_colliders[8]; /* owned, built at attach */
+    cj_particles *particles;               /* owned, built at attach */
+    int particle_steps;
+    double particle_radius;
+    cj_rgb particle_color;
+    int particle_node0; /* first of pdesc.capacity sphere nodes, or −1 */
 } cj_anim_doc;
 
 cj_status cj_anim_doc_load(const char *path, cj_anim_doc **out);
