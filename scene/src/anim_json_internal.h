@@ -1,0 +1,41 @@
+/* Private: the animation document reader's line table and checked JSON accessors (every
+ * failure reported as "<file>:<line>: <path> <message>" through cj_fail). */
+#ifndef CASTELJAU_ANIM_JSON_INTERNAL_H
+#define CASTELJAU_ANIM_JSON_INTERNAL_H
+
+#include "casteljau/anim_json.h"
+#include "error_internal.h"
+
+#include <cjson/cJSON.h>
+#include <stddef.h>
+
+typedef struct actx {
+    const char *name, *base_dir;
+    const cJSON **nodes;
+    int *lines;
+    size_t n, cap;
+    int *scan; /* lines of values in document order */
+    size_t nscan, capscan;
+} actx;
+
+/* Records the line of every value of `root` (parsed from `text`). */
+void aj_lines(actx *c, const char *text, const cJSON *root);
+cj_status aj_jfail(const actx *c, const cJSON *n, cj_status st, const char *fmt, ...)
+    CJ_PRINTF(4, 5);
+/* obj is an object whose keys are all in `ok` (NULL-terminated), none repeated. */
+cj_status aj_keys(const actx *c, const cJSON *obj, const char *path, const char *const *ok);
+/* An optional finite number >= lo (missing: *out unchanged). */
+cj_status aj_num(const actx *c, const cJSON *obj, const char *path, const char *key, double lo,
+                 double *out);
+/* An array of exactly len numbers (len 0: up to cap) into v; *count (may be NULL) its length. */
+cj_status aj_nums(const actx *c, const cJSON *n, const char *path, int len, double *v, size_t cap,
+                  size_t *count);
+cj_status aj_vec3(const actx *c, const cJSON *obj, const char *path, const char *key, double *out);
+/* A string among `names`; *out its index (missing: unchanged). */
+cj_status aj_pick(const actx *c, const cJSON *obj, const char *path, const char *key,
+                  const char *const *names, int *out);
+/* One number (dim 1) or array of dim numbers per key, malloc'ed key-major; *dim 0 = any. */
+cj_status aj_key_values(const actx *c, const cJSON *arr, const char *path, int *dim, size_t want,
+                        double **out);
+
+#endif
