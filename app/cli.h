@@ -97,5 +97,6 @@ int cmd_tessellate(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_trace(int argc, char **argv);
 int cmd_animate(int argc, char **argv);
+int cmd_view(int argc, char **argv);
 
 #endif

@@ -5,3 +5,12 @@ if(TARGET cj::viz AND TARGET cj::scene AND TARGET cj::raster)
   cj_add_test(test_viewer_model SOURCES viewer/test_viewer_model.c
     LIBS cj::viz cj::raster cj::scene cj::surfaces)
 endif()
+if(CJ_HAVE_VIEWER AND TARGET casteljau)
+  cj_add_test(test_viewer_window SOURCES viewer/test_viewer_window.c support/xvfb.c
+    LIBS cj::viz cj::raster cj::scene cj::surfaces)
+  target_include_directories(test_viewer_window PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(test_viewer_window PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+  add_dependencies(test_viewer_window casteljau)
+  set_tests_properties(test_viewer_window PROPERTIES TIMEOUT 300)
+endif()

@@ -448,6 +448,25 @@ cj_status cj_vdoc_split(cj_vdoc *doc, size_t ci, double t) {
     return st;
 }
 
+cj_status cj_vdoc_set_style(cj_vdoc *doc, size_t ci, const cj_vcurve *style) {
+    cj_status st = need_curve(doc, ci);
+    if (st) return st;
+    cj_vcurve c;
+    if ((st = work_copy(doc, ci, 0, &c))) return st;
+    c.color = style->color;
+    c.width = style->width;
+    c.control_polygon = style->control_polygon;
+    c.control_points = style->control_points;
+    c.hull = style->hull;
+    c.normals = style->normals;
+    c.knots = style->knots;
+    c.nframes = style->nframes > CJ_PLOT_MAX_FRAMES ? CJ_PLOT_MAX_FRAMES : style->nframes;
+    memcpy(c.frames_t, style->frames_t, sizeof c.frames_t);
+    st = replace(doc, ci, 1, &c, 1);
+    curve_free(&c);
+    return st;
+}
+
 cj_status cj_vdoc_undo(cj_vdoc *doc) {
     if (!doc->pos) return cj_fail(CJ_ERR_EMPTY, "viewer: nothing to undo");
     vcmd *c = &doc->log[doc->pos - 1];

@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 /* ---- the plot -------------------------------------------------------------------------- */
@@ -136,6 +137,17 @@ cj_status cj_vdoc_save_json(const cj_vdoc *doc, const cj_vview *v, const cj_vdoc
         free(tmp);
         return st;
     }
+    /* mkstemp made it 0600: give it the mode of the file it replaces, else 0666 & ~umask */
+    struct stat sb;
+    mode_t mode;
+    if (stat(path, &sb) == 0) {
+        mode = sb.st_mode & 07777;
+    } else {
+        mode = umask(0);
+        umask(mode);
+        mode = 0666 & ~mode;
+    }
+    (void)fchmod(fd, mode);
     FILE *f = fdopen(fd, "w");
     if (!f) {
         close(fd);

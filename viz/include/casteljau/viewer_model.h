@@ -111,6 +111,10 @@ cj_status cj_vdoc_elevate(cj_vdoc *doc, size_t ci);
  * style. Splines: CJ_ERR_ARGUMENT. */
 cj_status cj_vdoc_split(cj_vdoc *doc, size_t ci, double t);
 
+/* Sets the plot style of curve ci (colour, width, control polygon/points, hull, normals, knots,
+ * frames) to style's; the points stay. */
+cj_status cj_vdoc_set_style(cj_vdoc *doc, size_t ci, const cj_vcurve *style);
+
 /* Undo / redo one command; CJ_ERR_EMPTY when there is none. */
 cj_status cj_vdoc_undo(cj_vdoc *doc);
 cj_status cj_vdoc_redo(cj_vdoc *doc);
