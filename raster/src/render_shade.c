@@ -27,9 +27,11 @@ static inline void normalize3f(float a[3]) {
     }
 }
 
-/* A = r_a I_a + r_d Σ I max(0, n·l),  S = c_p r_s Σ I max(0, n·h)^α at world point p. */
-void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const float n_in[3],
-                    float A[3], float S[3]) {
+/* A = r_a I_a + r_d Σ I max(0, n·l),  S = c_p r_s Σ I max(0, n·h)^α at world point p.
+ * Inlined into the Phong kernels; cj_rlight_eval is the same for the per-triangle and
+ * per-vertex set-up. */
+CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
+                          const float n_in[3], float A[3], float S[3]) {
     float n[3] = {n_in[0], n_in[1], n_in[2]}, v[3];
     if (c->view->cam.projection == CJ_PROJ_PERSPECTIVE) {
         v[0] = (float)(c->view->eye.x - p[0]);
@@ -70,13 +72,20 @@ void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const
         float h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
         normalize3f(h);
         float nh = dot3f(n, h);
-        float sp = powf(nh > 0.0f ? nh : 0.0f, m->alpha);
-        for (int k = 0; k < 3; ++k) sum_s[k] += f * L->I[k] * sp;
+        if (nh > 0.0f || m->alpha == 0.0f) { /* else max(0, n·h)^α = 0 exactly */
+            float sp = powf(nh > 0.0f ? nh : 0.0f, m->alpha);
+            for (int k = 0; k < 3; ++k) sum_s[k] += f * L->I[k] * sp;
+        }
     }
     for (int k = 0; k < 3; ++k) {
         A[k] = m->amb[k] + m->kd * sum_d[k];
         S[k] = m->spec[k] * sum_s[k];
     }
+}
+
+void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const float n_in[3],
+                    float A[3], float S[3]) {
+    light_eval(c, m, p, n_in, A, S);
 }
 
 /* u, v and their screen derivatives from the triangle's (u,v) plane at pixel point (sx, sy). */
@@ -145,7 +154,7 @@ CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1
                 p[k] = db0 * p0[k] + db1 * p1[k] + db2 * p2[k];
             }
             normalize3f(n);
-            cj_rlight_eval(c, m, p, n, A, S);
+            light_eval(c, m, p, n, A, S);
         }
         out[0] = cr[0] * A[0] + S[0];
         out[1] = cr[1] * A[1] + S[1];
