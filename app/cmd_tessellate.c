@@ -5,6 +5,7 @@
 #include "cli.h"
 
 #include "mesh_vtu.h"
+#include "weights.h"
 
 #include "casteljau/patchset.h"
 #include "casteljau/tessellate.h"
@@ -27,7 +28,8 @@ static const char tess_usage[] =
     "  --bpt     patches from a .bpt file (Newell's format: a count, then per patch 'M N' and\n"
     "            (M+1)(N+1) points 'x y z')\n"
     "  --patch   (M+1)(N+1) control points, row by row with u fastest (index j*(M+1)+i)\n"
-    "  --weights one weight > 0 per control point, same order: a rational patch (proven bound\n"
+    "  --weights one weight > 0 per control point, same order: a rational patch (scaled so the\n"
+    "            largest is in [1,2), which changes nothing; proven bound\n"
     "            too; its measured deviation is the smaller of |S - L| and |S - Q|, L the linear\n"
     "            and Q the homogeneous linear interpolant of the triangle)\n"
     "  --tol     bound on the distance from surface to mesh (model units; default 1e-3 of the\n"
@@ -230,6 +232,10 @@ int cmd_tessellate(int argc, char **argv) {
                                   weights[i]);
                     goto done;
                 }
+            if (weights_normalize(weights, nw)) {
+                rc = cli_fail(cmd, "--weights span more than the double range");
+                goto done;
+            }
         }
         single = cj_patch_view(m, n, pts, weights);
         cj_status st = cj_patch_size(&single, &size);

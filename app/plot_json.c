@@ -35,6 +35,8 @@
  */
 #include "plot_json.h"
 
+#include "weights.h"
+
 #include <cJSON.h>
 
 #include <math.h>
@@ -268,6 +270,8 @@ static int parse_bezier(ctx *c, const cJSON *it, const char *path, cj_plot *plot
             bad = -1;
         for (size_t i = 0; !bad && i < n; ++i)
             if (!(w[i] > 0)) bad = fail(c, "%s[%zu] = %g is not a positive weight", p, i, w[i]);
+        if (!bad && weights_normalize(w, n))
+            bad = fail(c, "%s: the weights span more than the double range", p);
         if (bad) {
             free(pts);
             free(w);
@@ -572,6 +576,36 @@ static void syntax_error(ctx *c, const char *text, const char *at) {
     fail(c, "JSON syntax error at line %d, column %d", line, col);
 }
 
+/* Work of the implicit items of one panel object, added to *work; fails naming the item at
+ * which the document's total crosses PLOT_JSON_MAX_WORK. Run over the whole document before
+ * anything is contoured, so that a document over the limit costs nothing. Malformed fields
+ * are left to the real parse (they count with their defaults here). */
+static int prescan_work(ctx *c, const cJSON *panel, const char *prefix, double *work) {
+    const cJSON *items = field(panel, "items");
+    if (!items || !cJSON_IsArray(items)) return 0;
+    size_t i = 0;
+    for (const cJSON *it = items->child; it; it = it->next, ++i) {
+        const cJSON *t = field(it, "type");
+        if (!t || !cJSON_IsString(t) || strcmp(t->valuestring, "implicit")) continue;
+        const cJSON *g = field(it, "grid"), *poly = field(it, "poly");
+        const double grid = g && cJSON_IsNumber(g) && g->valuedouble >= 4 && g->valuedouble <= 1024
+                                ? floor(g->valuedouble)
+                                : 64.0;
+        double terms = 3.0;
+        const cJSON *deg = poly ? field(poly, "degree") : NULL;
+        if (deg && cJSON_IsNumber(deg) && deg->valuedouble >= 1 && deg->valuedouble <= 32)
+            terms = (double)cj_implicit_poly_ncoef((int)deg->valuedouble);
+        *work += (grid + 1) * (grid + 1) * terms;
+        if (*work > PLOT_JSON_MAX_WORK)
+            return fail(c,
+                        "%s%sitems[%zu]: the document's implicit curves need more than %.0e "
+                        "evaluations of terms in all (grid^2 x terms; lower \"grid\" or the "
+                        "degree)",
+                        prefix, *prefix ? "." : "", i, PLOT_JSON_MAX_WORK);
+    }
+    return 0;
+}
+
 int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size) {
     ctx c = {why, why_size, 0, 0, 0.0};
     memset(doc, 0, sizeof *doc);
@@ -605,6 +639,19 @@ int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size)
         goto done;
     doc->width = w;
     doc->height = h;
+    {
+        double work = 0.0;
+        if (panels && cJSON_IsArray(panels)) {
+            int k = 0;
+            for (const cJSON *pn = panels->child; pn; pn = pn->next, ++k) {
+                char p[64];
+                pathf(p, sizeof p, "panels[%d]", k);
+                if (cJSON_IsObject(pn) && prescan_work(&c, pn, p, &work)) goto done;
+            }
+        } else if (!panels && prescan_work(&c, root, "", &work)) {
+            goto done;
+        }
+    }
     if (panels) {
         if (!cJSON_IsArray(panels) || cJSON_GetArraySize(panels) == 0 ||
             cJSON_GetArraySize(panels) > PLOT_JSON_MAX_PANELS) {

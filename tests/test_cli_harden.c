@@ -216,6 +216,152 @@ static void test_startup_without_oiio(void **state) {
     printf("test_cli_harden: eval maps no OpenImageIO (LD_DEBUG=libs); plot loads it on use\n");
 }
 
+static char *slurp(const char *path, size_t *len);
+
+static int file_exists(const char *p) {
+    return access(p, F_OK) == 0;
+}
+
+static void test_tessellate_first_contact(void **state) {
+    (void)state;
+    char d[] = "/tmp/cj_test_cli_tess_XXXXXX";
+    assert_non_null(mkdtemp(d));
+    char obj[600], vtu[600], bpt[600];
+    snprintf(obj, sizeof obj, "%s/t.obj", d);
+    snprintf(vtu, sizeof vtu, "%s/t.vtu", d);
+    snprintf(bpt, sizeof bpt, "%s/one.bpt", d);
+    /* --uniform 4096 on the teapot: 1.07e9 triangles, refused at once with the figure */
+    cj_cli_result r = run("tessellate", "--teapot", "--uniform", "4096", "-o", obj, NULL);
+    expect_refusal(&r, "teapot uniform 4096", "tessellate", "predicted", NULL);
+    assert_false(file_exists(obj));
+    r = run("tessellate", "--patch", "0,0,0;1,0,0;0,1,0;1,22550,0", "--degree", "1,1", "--tol",
+            "0.01", "-o", obj, NULL);
+    expect_refusal(&r, "stretched bilinear patch", "tessellate", "--max-triangles", NULL);
+    r = run("tessellate", "--patch", "0,0,0;1,0,0;2,0,0;0,1,0;1,1,1;2,1,0;0,2,0;1,2,0;2,2,0",
+            "--degree", "2,2", "--weights", "1;1;1;1;4096.5;1;1;1;1", "-o", obj, NULL);
+    expect_refusal(&r, "rational weight 4096.5", "tessellate", "--max-triangles", NULL);
+    r = run("tessellate", "--teapot", "--max-triangles", "5000", "-o", obj, NULL);
+    expect_refusal(&r, "teapot over a small --max-triangles", "tessellate", "5000", NULL);
+    /* degenerate patches: refused, no empty mesh written */
+    r = run("tessellate", "--patch", "1,1,1;1,1,1;1,1,1;1,1,1", "--degree", "1,1", "-o", obj, NULL);
+    expect_refusal(&r, "all control points equal", "tessellate", "degenerate", NULL);
+    r = run("tessellate", "--patch", "1,1,1", "--degree", "0,0", "-o", obj, NULL);
+    expect_refusal(&r, "degree 0,0", "tessellate", "degenerate", NULL);
+    assert_false(file_exists(obj));
+    /* equal huge weights: the plain bilinear patch, same mesh */
+    r = run("tessellate", "--patch", "0,0,0;1,0,0;0,1,0;1,1,1", "--degree", "1,1", "--weights",
+            "1e308;1e308;1e308;1e308", "-o", obj, NULL);
+    cj_cli_result plain =
+        run("tessellate", "--patch", "0,0,0;1,0,0;0,1,0;1,1,1", "--degree", "1,1", "-o", obj, NULL);
+    assert_int_equal(r.status, 0);
+    assert_int_equal(plain.status, 0);
+    assert_non_null(strstr(r.out, "triangles "));
+    if (strncmp(strstr(r.out, "triangles "), strstr(plain.out, "triangles "), 16))
+        fail_msg("weights 1e308 gave %s, the plain patch %s", r.out, plain.out);
+    cj_cli_result_free(&r);
+    cj_cli_result_free(&plain);
+    /* --bpt and .vtu */
+    FILE *f = fopen(bpt, "w");
+    assert_non_null(f);
+    fputs("1\n1 1\n0 0 0\n1 0 0\n0 1 0\n1 1 1\n", f);
+    fclose(f);
+    r = run("tessellate", "--bpt", bpt, "--uniform", "2", "-o", vtu, NULL);
+    if (r.status != 0 || strncmp(r.out, "patches 1\ntriangles 8\nvertices 9\n", 33))
+        fail_msg("--bpt to .vtu: exit %d, %s%s", r.status, r.out, r.err);
+    cj_cli_result_free(&r);
+    size_t n = 0;
+    char *x = slurp(vtu, &n);
+    assert_non_null(x);
+    assert_non_null(strstr(x, "<VTKFile type=\"UnstructuredGrid\""));
+    assert_non_null(strstr(x, "NumberOfPoints=\"9\" NumberOfCells=\"8\""));
+    assert_non_null(strstr(x, "</VTKFile>"));
+    free(x);
+    r = run("tessellate", "--bpt", "/nonexistent.bpt", "-o", obj, NULL);
+    expect_refusal(&r, "missing --bpt", "tessellate", "nonexistent.bpt", NULL);
+    unlink(vtu);
+    unlink(bpt);
+    rmdir(d);
+    printf("test_cli_harden: tessellate predicts and refuses oversized meshes (teapot uniform "
+           "4096, stretched and heavy-weight patches), refuses degenerate patches, treats equal "
+           "huge weights as the polynomial, reads --bpt and writes .vtu\n");
+}
+
+static void test_plot_first_contact(void **state) {
+    (void)state;
+    char d[] = "/tmp/cj_test_cli_plot_XXXXXX";
+    assert_non_null(mkdtemp(d));
+    char out[600], js[600];
+    snprintf(out, sizeof out, "%s/p.png", d);
+    snprintf(js, sizeof js, "%s/p.json", d);
+    cj_cli_result r = run("plot", "--demo", "--width", "64", "--height", "64", "-o", out, NULL);
+    if (r.status != 0 || !strstr(r.out, "(64 x 64)"))
+        fail_msg("plot --width 64 --height 64: exit %d, %s%s", r.status, r.out, r.err);
+    cj_cli_result_free(&r);
+    snprintf(out, sizeof out, "%s/p.jpg", d);
+    r = run("plot", "--demo", "--width=200", "--height=120", "-o", out, NULL);
+    assert_int_equal(r.status, 0);
+    cj_cli_result_free(&r);
+    size_t n = 0;
+    char *x = slurp(out, &n);
+    assert_non_null(x);
+    assert_true(n > 3 && (unsigned char)x[0] == 0xff && (unsigned char)x[1] == 0xd8);
+    free(x);
+    unlink(out);
+    r = run("plot", "--demo", "-o", "", NULL);
+    expect_refusal(&r, "empty output name", "plot", "-o", NULL);
+    snprintf(out, sizeof out, "%s/p.nosuchformat", d);
+    r = run("plot", "--demo", "-o", out, NULL);
+    expect_refusal(&r, "unknown image format", "plot", "nosuchformat", NULL);
+    assert_false(file_exists(out));
+    snprintf(out, sizeof out, "%s/p.png", d);
+    unlink(out);
+    FILE *f = fopen(js, "w");
+    assert_non_null(f);
+    fputs("{\"items\": [{\"type\": \"points\", \"points\": [[1, 2]]}]}", f);
+    fclose(f);
+    r = run("plot", js, "-o", out, NULL);
+    assert_int_equal(r.status, 0); /* a one-point item is valid */
+    cj_cli_result_free(&r);
+    /* a long title, and 200 implicit degree-32 items at grid 1024: refused before the work */
+    f = fopen(js, "w");
+    assert_non_null(f);
+    fputs("{\"title\": \"", f);
+    for (int i = 0; i < 2000; ++i) fputc('x', f);
+    fputs("\", \"items\": [{\"type\": \"points\", \"points\": [[1, 2]]}]}", f);
+    fclose(f);
+    r = run("plot", js, "-o", out, NULL);
+    expect_refusal(&r, "2000-byte title", "plot", "title", NULL);
+    f = fopen(js, "w");
+    assert_non_null(f);
+    fputs("{\"items\": [", f);
+    for (int i = 0; i < 200; ++i) {
+        fprintf(f,
+                "%s{\"type\": \"implicit\", \"grid\": 1024, \"box\": [-1,-1,1,1], "
+                "\"poly\": {\"degree\": 32, \"coef\": [-1",
+                i ? "," : "");
+        for (int k = 1; k < 561; ++k) fputs(k == 3 || k == 5 ? ",1" : ",0", f);
+        fputs("]}}", f);
+    }
+    fputs("]}", f);
+    fclose(f);
+    r = run("plot", js, "-o", out, NULL);
+    expect_refusal(&r, "200 degree-32 implicit items", "plot", "items[", NULL);
+    /* a JSON file just over 64 MiB (the limit said so but let 128 MiB through) */
+    f = fopen(js, "w");
+    assert_non_null(f);
+    assert_int_equal(fseek(f, (64L << 20) + 16, SEEK_SET), 0);
+    fputc(' ', f);
+    fclose(f);
+    r = run("plot", js, "-o", out, NULL);
+    expect_refusal(&r, "65 MiB of JSON", "plot", "64 MiB", NULL);
+    unlink(js);
+    unlink(out);
+    rmdir(d);
+    printf("test_cli_harden: plot renders 64x64 and one-point items, writes JPEG for .jpg, "
+           "checks -o before any work, refuses long titles, too much implicit work and JSON "
+           "over 64 MiB\n");
+}
+
 static int dir_entries(const char *d) {
     DIR *h = opendir(d);
     assert_non_null(h);
@@ -304,6 +450,8 @@ static void test_full_disk(void **state) {
 }
 
 int main(void) {
+    /* Two CTest programs from this file (CJ_HARDEN_GROUP 1 and 2), so each stays short. */
+#if CJ_HARDEN_GROUP == 1
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_option_syntax),
         cmocka_unit_test(test_version_and_help),
@@ -312,7 +460,17 @@ int main(void) {
         cmocka_unit_test(test_never_inf),
         cmocka_unit_test(test_contour_bounded),
         cmocka_unit_test(test_startup_without_oiio),
-        cmocka_unit_test(test_full_disk),
     };
+    (void)test_full_disk, (void)test_tessellate_first_contact, (void)test_plot_first_contact;
+#else
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_full_disk),
+        cmocka_unit_test(test_tessellate_first_contact),
+        cmocka_unit_test(test_plot_first_contact),
+    };
+    (void)test_option_syntax, (void)test_version_and_help, (void)test_stdin_parameters;
+    (void)test_one_line_messages, (void)test_never_inf, (void)test_contour_bounded;
+    (void)test_startup_without_oiio;
+#endif
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -6,10 +6,17 @@ if(CJ_WITH_OIIO AND TARGET cj::viz)
 endif()
 # The tool under hostile and first-contact use: option syntax, --help/--version, stdin,
 # one-line messages, never inf, bounded contour work, start-up without OpenImageIO.
-cj_add_test(test_cli_harden SOURCES test_cli_harden.c)
-target_compile_definitions(test_cli_harden PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
-  CJ_VERSION="${PROJECT_VERSION}")
-add_dependencies(test_cli_harden casteljau)
+# test_cli_harden_files: full disk for every writer, tessellate and plot first contact.
+foreach(g 1 2)
+  set(t test_cli_harden)
+  if(g EQUAL 2)
+    set(t test_cli_harden_files)
+  endif()
+  cj_add_test(${t} SOURCES test_cli_harden.c)
+  target_compile_definitions(${t} PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+    CJ_VERSION="${PROJECT_VERSION}" CJ_HARDEN_GROUP=${g})
+  add_dependencies(${t} casteljau)
+endforeach()
 # The README's "$ command" transcripts, run and compared (they went stale once).
 cj_add_test(test_readme_examples SOURCES test_readme_examples.c)
 target_compile_definitions(test_readme_examples PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
@@ -27,3 +34,10 @@ add_test(NAME test_build_tree_package COMMAND ${CMAKE_COMMAND}
   -DCJ_GENERATOR=${CMAKE_GENERATOR} "-DCJ_EXTRA_FLAGS=${cj_bt_flags}"
   -P ${CMAKE_CURRENT_SOURCE_DIR}/build_tree_package.cmake)
 set_tests_properties(test_build_tree_package PROPERTIES TIMEOUT 300)
+# Library side: CJ_ERR_RANGE on overflow, contour tolerance floor, tessellation size prediction,
+# degenerate patches, plot title cap and tick computation over the whole double range.
+if(TARGET cj::raster)
+  cj_add_test(test_harden_lib SOURCES test_harden_lib.c LIBS cj::surfaces cj::raster m)
+  target_compile_definitions(test_harden_lib PRIVATE
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+endif()
