@@ -222,6 +222,28 @@ typedef struct entry {
     double t0;
 } entry;
 
+/* The slab test of cj_aabb_ray, inlined into the traversal loop (same rounding-safe widening
+ * of the far distance by 1 + 2γ(3)). */
+static inline int box_hit(const cj_aabb *b, const double o[3], const double id[3], double tmin,
+                          double tmax, double *t0) {
+    const double widen = 1.0 + 2.0 * 3.3306690738754716e-16;
+    for (int k = 0; k < 3; k++) {
+        double tn = (b->lo[k] - o[k]) * id[k];
+        double tf = (b->hi[k] - o[k]) * id[k];
+        if (tn > tf) {
+            double s = tn;
+            tn = tf;
+            tf = s;
+        }
+        tf *= widen;
+        if (tn > tmin) tmin = tn;
+        if (tf < tmax) tmax = tf;
+        if (tmin > tmax) return 0;
+    }
+    *t0 = tmin;
+    return 1;
+}
+
 static cj_vec3 inverse_dir(cj_vec3 d) {
     return cj_v3(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
 }
@@ -231,13 +253,14 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
                     cj_hit *hit, int any, cj_bvh_trav_stats *stats) {
     cj_ray ray = *ray0;
     cj_vec3 inv = inverse_dir(ray.dir);
+    const double oc[3] = {ray.org.x, ray.org.y, ray.org.z}, ic[3] = {inv.x, inv.y, inv.z};
     cj_ray_tri_pre pre;
     if (bvh->tri) cj_ray_triangle_prepare(&ray, &pre);
     entry st[STACK];
     int sp = 0, found = 0;
-    double t0, t1;
+    double t0;
     uint64_t nodes = 1, prims = 0;
-    if (!cj_aabb_ray(&bvh->nodes[0].box, ray.org, inv, ray.tmin, ray.tmax, &t0, &t1)) {
+    if (!box_hit(&bvh->nodes[0].box, oc, ic, ray.tmin, ray.tmax, &t0)) {
         if (stats) stats->nodes += nodes;
         return 0;
     }
@@ -276,9 +299,9 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
             continue;
         }
         const cj_bvh_node *l = &bvh->nodes[nd->first], *r = &bvh->nodes[nd->first + 1];
-        double l0, l1, r0, r1;
-        int hl = cj_aabb_ray(&l->box, ray.org, inv, ray.tmin, ray.tmax, &l0, &l1);
-        int hr = cj_aabb_ray(&r->box, ray.org, inv, ray.tmin, ray.tmax, &r0, &r1);
+        double l0, r0;
+        int hl = box_hit(&l->box, oc, ic, ray.tmin, ray.tmax, &l0);
+        int hr = box_hit(&r->box, oc, ic, ray.tmin, ray.tmax, &r0);
         nodes += 2;
         if (sp + 2 > STACK) continue; /* cannot happen: depth is bounded by the build */
         if (hl && hr) {

@@ -70,7 +70,7 @@ double cj_aabb_area(const cj_aabb *b) {
 int cj_aabb_ray(const cj_aabb *b, cj_vec3 org, cj_vec3 inv_dir, double tmin, double tmax,
                 double *t0, double *t1) {
     const double o[3] = {org.x, org.y, org.z}, id[3] = {inv_dir.x, inv_dir.y, inv_dir.z};
-    const double widen = 1.0 + 2.0 * cj_gamma(3);
+    const double widen = 1.0 + 2.0 * 3.3306690738754716e-16; /* 1 + 2γ(3) */
     for (int k = 0; k < 3; k++) {
         double tn = (b->lo[k] - o[k]) * id[k];
         double tf = (b->hi[k] - o[k]) * id[k];
