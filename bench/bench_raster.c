@@ -6,6 +6,8 @@
  *   small: 1024 × 1024, 200 000 triangles with bounding boxes of S × S pixels (S = 4, 8, 16),
  *          random positions (--coherent: swept row by row like a mesh) and depths; triangles
  *          per second over prepare + raster.
+ *   mesh:  1024 × 1024, a grid mesh of 4 × 4 pixel quads (131 072 triangles, vertices shared
+ *          and jittered, one layer): triangles per second as above.
  * "raster" runs without a tile callback (clear, rasterize, depth test: the visibility pass);
  * "+vis" runs with an empty callback, so the visibility samples are also written out for it
  * (depth and source triangle per sample; barycentrics are switched off: depth only).
@@ -79,6 +81,38 @@ static void make(workload *w, int W, int H, size_t nt, double side) {
     }
 }
 
+/* A mesh: a grid of quads of side `side` pixels (two triangles each, vertices shared and
+ * jittered by up to a quarter of the side), depth varying smoothly, covering the image once. */
+static void make_mesh(workload *w, int W, int H, int side) {
+    const int nx = W / side, ny = H / side;
+    w->W = W;
+    w->H = H;
+    w->nv = (size_t)(nx + 1) * (ny + 1);
+    w->nt = (size_t)2 * nx * ny;
+    w->clip = malloc(sizeof(double) * 4 * w->nv);
+    w->tris = malloc(sizeof(uint32_t) * 3 * w->nt);
+    for (int j = 0; j <= ny; ++j)
+        for (int i = 0; i <= nx; ++i) {
+            const int inner = i > 0 && j > 0 && i < nx && j < ny;
+            const double px = i * side + (inner ? (urand() - 0.5) * 0.5 * side : 0);
+            const double py = j * side + (inner ? (urand() - 0.5) * 0.5 * side : 0);
+            double *c = w->clip + 4 * ((size_t)j * (nx + 1) + i);
+            c[0] = 2 * px / W - 1;
+            c[1] = 2 * py / H - 1;
+            c[2] = 0.5 * sin(0.01 * px) * cos(0.013 * py);
+            c[3] = 1;
+        }
+    size_t t = 0;
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            const uint32_t a = (uint32_t)(j * (nx + 1) + i), b = a + 1, c = a + (uint32_t)nx + 1,
+                           d = c + 1;
+            const uint32_t q[6] = {a, b, d, a, d, c};
+            memcpy(w->tris + 3 * t, q, sizeof q);
+            t += 2;
+        }
+}
+
 static void release(workload *w) {
     free(w->clip);
     free(w->tris);
@@ -145,7 +179,7 @@ static void frame(const workload *w, int spp, int threads, double *t_prep, doubl
     *t_resolve = t3 - t2;
 }
 
-#define NCONF 24
+#define NCONF 30
 int main(int argc, char **argv) {
     int reps = 5, cg = 0, only_w = -1, only_spp = 0, only_thr = 0;
     for (int i = 1; i < argc; ++i) {
@@ -162,7 +196,7 @@ int main(int argc, char **argv) {
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
             only_thr = atoi(argv[++i]);
         else {
-            fprintf(stderr, "usage: bench_raster [--reps N] [--callgrind] [--workload 0-3] "
+            fprintf(stderr, "usage: bench_raster [--reps N] [--callgrind] [--workload 0-4] "
                             "[--spp 1|4|16] [--threads 1|2]\n");
             return 2;
         }
@@ -170,17 +204,18 @@ int main(int argc, char **argv) {
     if (reps < 1) reps = 1;
     if (cg) reps = 1;
     const int S = cg ? 256 : 1024;
-    workload large, small[3];
+    workload large, small[4];
     make(&large, S, S, cg ? 4 : 24, S);
     static const int sides[3] = {4, 8, 16};
     for (int k = 0; k < 3; ++k) make(&small[k], S, S, cg ? 20000 : 200000, sides[k]);
+    make_mesh(&small[3], S, S, 4);
     static const int spps[3] = {1, 4, 16};
     /* configuration c: workload (0 large, 1..3 small), spp, threads */
 #define SKIP(k, s, th)                                                                             \
     ((only_w >= 0 && (k) != only_w) || (only_spp && spps[s] != only_spp) ||                        \
      (only_thr && (th) != only_thr))
-    uint64_t cov[4][3];
-    for (int k = 0; k < 4; ++k)
+    uint64_t cov[5][3];
+    for (int k = 0; k < 5; ++k)
         for (int s = 0; s < 3; ++s)
             cov[k][s] =
                 SKIP(k, s, 1) && SKIP(k, s, 2) ? 0 : covered(k ? &small[k - 1] : &large, spps[s]);
@@ -208,7 +243,9 @@ int main(int argc, char **argv) {
         const double v = cj_bench_median(&tv[c * reps], reps);
         const workload *w = k ? &small[k - 1] : &large;
         char name[64];
-        if (k)
+        if (k == 4)
+            snprintf(name, sizeof name, "mesh of 4x4 quads");
+        else if (k)
             snprintf(name, sizeof name, "small %dx%d box", sides[k - 1], sides[k - 1]);
         else
             snprintf(name, sizeof name, "large (1/2 image)");
@@ -220,6 +257,6 @@ int main(int argc, char **argv) {
     free(tr);
     free(tv);
     release(&large);
-    for (int k = 0; k < 3; ++k) release(&small[k]);
+    for (int k = 0; k < 4; ++k) release(&small[k]);
     return 0;
 }

@@ -200,6 +200,38 @@ static int setup_tri(const cj_raster_prep *p, const pvert *a, const pvert *b, co
 
 /* The set-up arrays, grown by doubling (most triangles give one set-up, so the first
  * capacity is the triangle count). */
+/* One vertex of the cache: outcode (bit p: outside plane p of cj_tri_clip; bit 6: w <= 0,
+ * left to the general path) and, for code 0, the projection. */
+#define VCACHE_SIZE 1024
+typedef struct vcache {
+    uint64_t tag; /* vertex index, UINT64_MAX = empty */
+    unsigned code;
+    pvert v;
+} vcache;
+
+static const vcache *vertex(vcache *cache, const double *clip, uint32_t i, double hw, double hh,
+                            double gx, double gy) {
+    vcache *e = &cache[i & (VCACHE_SIZE - 1)];
+    if (e->tag == i) return e;
+    const double *c = clip + 4 * (size_t)i;
+    const double x = c[0], y = c[1], z = c[2], w = c[3];
+    e->tag = i;
+    e->code = (unsigned)!(z + w >= 0.0) | (unsigned)!(w - z >= 0.0) << 1 |
+              (unsigned)!(gx * w - x >= 0.0) << 2 | (unsigned)!(gx * w + x >= 0.0) << 3 |
+              (unsigned)!(gy * w - y >= 0.0) << 4 | (unsigned)!(gy * w + y >= 0.0) << 5 |
+              (unsigned)!(w > 0.0) << 6;
+    if (e->code) return e;
+    const double xn = x / w, yn = y / w;
+    e->v.sx = (xn + 1.0) * hw;
+    e->v.sy = (yn + 1.0) * hh;
+    e->v.X = snap(xn, hw);
+    e->v.Y = snap(yn, hh);
+    e->v.z = z / w;
+    e->v.r = 1.0 / w;
+    e->v.q1 = e->v.q2 = 0.0;
+    return e;
+}
+
 typedef struct setup_list {
     const cj_allocator *alloc;
     cj_tri_setup *v;
@@ -330,10 +362,6 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
                        CJ_FRAMEBUFFER_MAX_SIDE);
     if (in->tri_count > (size_t)1 << 28)
         return cj_fail(CJ_ERR_RANGE, "raster: %zu triangles exceed the limit 2^28", in->tri_count);
-    for (size_t i = 0; i < 4 * in->vertex_count; ++i)
-        if (!isfinite(in->clip[i]))
-            return cj_fail(CJ_ERR_NONFINITE, "raster: clip coordinate %zu of vertex %zu is %g",
-                           i % 4, i / 4, in->clip[i]);
     for (size_t i = 0; i < 3 * in->tri_count; ++i)
         if (in->tris[i] >= in->vertex_count)
             return cj_fail(CJ_ERR_ARGUMENT, "raster: triangle %zu names vertex %u of %zu", i / 3,
@@ -375,9 +403,42 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     const double gx = 2.0 * CJ_TRI_GUARD_PX / in->width, gy = 2.0 * CJ_TRI_GUARD_PX / in->height;
     setup_list list = {&p->alloc, NULL, NULL, 0, 0};
     cj_status status = CJ_OK;
-    if (!list_reserve(&list, in->tri_count + 16))
+    for (size_t i = 0; i < 4 * in->vertex_count && status == CJ_OK; ++i)
+        if (!isfinite(in->clip[i]))
+            status = cj_fail(CJ_ERR_NONFINITE, "raster: clip coordinate %zu of vertex %zu is %g",
+                             i % 4, i / 4, in->clip[i]);
+    /* Mesh vertices are shared by several triangles, mostly close together in the input: a
+     * small direct-mapped cache keeps each vertex's outcode and projection (the same values as
+     * computing them again). */
+    vcache *cache = xalloc(&p->alloc, VCACHE_SIZE * sizeof *cache);
+    if (!cache)
+        status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for the vertex cache");
+    else
+        for (int i = 0; i < VCACHE_SIZE; ++i) cache[i].tag = UINT64_MAX;
+    if (status == CJ_OK && !list_reserve(&list, in->tri_count + 16))
         status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu set-up triangles", in->tri_count);
     for (size_t t = 0; t < in->tri_count && status == CJ_OK; ++t) {
+        const uint32_t *ix = in->tris + 3 * t;
+        const vcache *e[3];
+        for (int k = 0; k < 3; ++k) e[k] = vertex(cache, in->clip, ix[k], hw, hh, gx, gy);
+        const unsigned o0 = e[0]->code, o1 = e[1]->code, o2 = e[2]->code;
+        if (o0 & o1 & o2 & 63u) { /* all three outside one plane */
+            st.tris_rejected++;
+            continue;
+        }
+        if ((o0 | o1 | o2) == 0) { /* inside every plane: the projected vertices as they are */
+            pvert pv[3] = {e[0]->v, e[1]->v, e[2]->v};
+            pv[1].q1 = pv[1].r; /* b/w with the source barycentrics (0,0), (1,0), (0,1) */
+            pv[2].q2 = pv[2].r;
+            if (setup_tri(p, &pv[0], &pv[1], &pv[2], (uint32_t)t, 0, &list.v[list.n],
+                          &list.a[list.n])) {
+                list.n++;
+                st.tris_setup++;
+            } else {
+                st.tris_rejected++;
+            }
+            continue;
+        }
         cj_tri_vert tv[3];
         static const double bary[3][2] = {{0, 0}, {1, 0}, {0, 1}};
         for (int k = 0; k < 3; ++k) {
@@ -390,18 +451,8 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
             tv[k].b2 = bary[k][1];
         }
         cj_tri_vert poly[CJ_TRI_CLIP_MAX];
-        int cut = 0, n = 3;
-        /* Most triangles lie inside every plane: no clipping. */
-        int inside = 1;
-        for (int k = 0; k < 3 && inside; ++k) {
-            const cj_tri_vert *c = &tv[k];
-            inside = c->z + c->w >= 0.0 && c->w - c->z >= 0.0 && gx * c->w - c->x >= 0.0 &&
-                     gx * c->w + c->x >= 0.0 && gy * c->w - c->y >= 0.0 && gy * c->w + c->y >= 0.0;
-        }
-        if (inside)
-            memcpy(poly, tv, sizeof tv);
-        else
-            n = cj_tri_clip(tv, gx, gy, poly, &cut);
+        int cut = 0;
+        const int n = cj_tri_clip(tv, gx, gy, poly, &cut);
         st.tris_clipped += cut;
         pvert pv[CJ_TRI_CLIP_MAX];
         int ok = n >= 3;
@@ -447,6 +498,7 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
         if (made == 0) st.tris_rejected++;
         st.tris_setup += made;
     }
+    p->alloc.free(p->alloc.user, cache);
     p->setups = list.v;
     p->attrs = list.a;
     p->setup_count = list.n;
