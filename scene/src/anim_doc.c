@@ -112,7 +112,7 @@ cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene) {
             st = cj_scene_node_world(scene, node, &world);
             if (!st)
                 st = cj_patch_collider_create(g->u.patches.patches, g->u.patches.count, &world,
-                                              1e-7, 0.1, NULL, &doc->patch_colliders[k]);
+                                              1e-6, 0.1, NULL, &doc->patch_colliders[k]);
             if (st) return st;
         }
         doc->pdesc.patch_collider_count = (size_t)doc->collide_count;

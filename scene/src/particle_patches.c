@@ -101,7 +101,7 @@ cj_status cj_patch_collider_create(const cj_patch *patches, size_t count, const 
         pc_free(alloc, c);
         return st;
     }
-    c->offset = 1e-9 * size + tol;
+    c->offset = 1e-6 * size + 100.0 * tol; /* well clear of cj_ray_patch's own-surface rejection */
     *out = c;
     return CJ_OK;
 }
@@ -121,15 +121,19 @@ int cj_patch_collider_segment(const cj_patch_collider *c, const double a[3], con
                               double *t, double point[3], double normal[3]) {
     cj_ray ray;
     ray.org = cj_v3(a[0], a[1], a[2]);
-    ray.dir = cj_v3(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
-    if (ray.dir.x == 0.0 && ray.dir.y == 0.0 && ray.dir.z == 0.0) return 0;
+    const cj_vec3 d = cj_v3(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+    const double len = cj_v3_norm(d);
+    if (!(len > 0.0)) return 0;
+    /* a unit direction: cj_ray_patch missed short grazing segments given as b − a (a step of a
+     * few millimetres along a surface) and finds them with the same line at unit speed */
+    ray.dir = cj_v3_scale(d, 1.0 / len);
     ray.tmin = 0.0;
-    ray.tmax = 1.0;
+    ray.tmax = len;
     cj_hit h;
     if (!cj_bvh_closest(c->bvh, &ray, hit_patch, (void *)c, &h, NULL)) return 0;
     cj_vec3 n = h.n;
     if (cj_v3_dot(n, ray.dir) > 0.0) n = cj_v3_scale(n, -1.0);
-    *t = h.t;
+    *t = h.t / len;
     point[0] = h.p.x;
     point[1] = h.p.y;
     point[2] = h.p.z;

@@ -2,6 +2,7 @@
 #include "casteljau/springs.h"
 
 #include "error_internal.h"
+#include "particle_internal.h"
 #include "spring_internal.h"
 
 #include <assert.h>
@@ -173,7 +174,13 @@ static void resolve(double *x, double *v, size_t dim, const double *nrm, double 
 size_t cj_springs_collide(cj_springs *s) {
     const size_t dim = (size_t)s->dim;
     size_t hits = 0;
-    if (s->nspheres == 0 && s->nplanes == 0) return 0;
+    if (s->npatch && dim == 3)
+        for (size_t i = 0; i < s->count; ++i)
+            if (!s->fixed[i])
+                for (size_t j = 0; j < s->npatch; ++j)
+                    hits += (size_t)cj_patch_collider_resolve_(
+                        s->patch_colliders[j], s->xold + 3 * i, s->x + 3 * i, s->v + 3 * i, 0.0);
+    if (s->nspheres == 0 && s->nplanes == 0) return hits;
     for (size_t i = 0; i < s->count; ++i) {
         if (s->fixed[i]) continue;
         double *x = s->x + i * dim, *v = s->v + i * dim;

@@ -22,6 +22,9 @@ struct cj_springs {
     double *ode_work; /* RK4 work space */
     double *cg;       /* 7 × count × dim: dv, r, p, q, z, diag, rhs */
     double *cache;    /* 6 per spring: n (3), alpha, beta, gamma */
+    double *xold;     /* count × dim: positions before the step (patch colliders) */
+    size_t npatch;
+    const cj_patch_collider **patch_colliders;
 };
 
 /* Forces at (x, v) into f (count × dim). */

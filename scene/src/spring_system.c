@@ -48,6 +48,12 @@ static cj_status check_desc(const cj_springs_desc *d) {
         if (!isfinite(d->gravity[k])) return cj_fail(CJ_ERR_NONFINITE, "gravity not finite");
     if (!(d->drag >= 0.0 && isfinite(d->drag)))
         return cj_fail(CJ_ERR_RANGE, "drag %g must be finite and >= 0", d->drag);
+    for (size_t j = 0; j < d->patch_collider_count; ++j)
+        if (!d->patch_colliders || !d->patch_colliders[j])
+            return cj_fail(CJ_ERR_ARGUMENT, "patch collider %zu is NULL", j);
+    if (d->patch_collider_count && d->dim != 3)
+        return cj_fail(CJ_ERR_DIMENSION, "patch colliders need a 3D spring system (dim %d)",
+                       d->dim);
     for (size_t j = 0; j < d->sphere_count; ++j) {
         const cj_sphere_collider *c = &d->spheres[j];
         if (!isfinite(c->center[0]) || !isfinite(c->center[1]) || !isfinite(c->center[2]) ||
@@ -88,11 +94,12 @@ cj_status cj_springs_create(const cj_springs_desc *d, const cj_allocator *alloc,
     const size_t n = d->count * (size_t)d->dim;
     /* one block: the struct, then the arrays (doubles first for alignment) */
     const size_t ndoubles = 2 * n + d->count /* inv mass */ + d->count /* mass */ +
-                            cj_ode2_work_size(n, CJ_INTEGRATE_RK4) + 7 * n + d->spring_count * 6;
-    const size_t bytes = sizeof(cj_springs) + sizeof(double) * ndoubles +
-                         sizeof(cj_spring) * d->spring_count +
-                         sizeof(cj_sphere_collider) * d->sphere_count +
-                         sizeof(cj_plane_collider) * d->plane_count + d->count;
+                            cj_ode2_work_size(n, CJ_INTEGRATE_RK4) + 7 * n + d->spring_count * 6 +
+                            n;
+    const size_t bytes =
+        sizeof(cj_springs) + sizeof(double) * ndoubles + sizeof(cj_spring) * d->spring_count +
+        sizeof(cj_sphere_collider) * d->sphere_count + sizeof(cj_plane_collider) * d->plane_count +
+        sizeof(cj_patch_collider *) * d->patch_collider_count + d->count;
     cj_springs *s = sp_alloc(&tmp, bytes);
     if (!s) return cj_fail(CJ_ERR_NOMEM, "spring system: no memory for %zu particles", d->count);
     *s = tmp;
@@ -118,10 +125,16 @@ cj_status cj_springs_create(const cj_springs_desc *d, const cj_allocator *alloc,
     p += 7 * n;
     s->cache = p;
     p += d->spring_count * 6;
+    s->xold = p;
+    p += n;
     s->springs = (cj_spring *)p;
     s->spheres = (cj_sphere_collider *)(s->springs + d->spring_count);
     s->planes = (cj_plane_collider *)(s->spheres + d->sphere_count);
-    s->fixed = (unsigned char *)(s->planes + d->plane_count);
+    s->patch_colliders = (const cj_patch_collider **)(s->planes + d->plane_count);
+    s->npatch = d->patch_collider_count;
+    for (size_t i = 0; i < d->patch_collider_count; ++i)
+        s->patch_colliders[i] = d->patch_colliders[i];
+    s->fixed = (unsigned char *)(s->patch_colliders + d->patch_collider_count);
     memcpy(s->x, d->x, sizeof(double) * n);
     if (d->v)
         memcpy(s->v, d->v, sizeof(double) * n);
@@ -249,6 +262,7 @@ cj_status cj_springs_step(cj_springs *s, cj_integrator m, double h, cj_springs_s
     memset(&local, 0, sizeof local);
     cj_status st = CJ_OK;
     const double t0 = now_seconds();
+    if (s->npatch) memcpy(s->xold, s->x, sizeof(double) * s->count * (size_t)s->dim);
     if (m == CJ_INTEGRATE_IMPLICIT_EULER) {
         st = cj_springs_implicit_step(s, h, &local);
     } else {

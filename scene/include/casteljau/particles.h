@@ -85,7 +85,7 @@ typedef struct cj_flocking {
  * step is tested along the SEGMENT a→b with the ray tracer's patch intersection
  * (casteljau/ray.h: cj_ray_patch by subdivision + Newton to `tol` world units), so fast
  * particles cannot tunnel through. On a hit the particle is put back at the hit point, moved
- * off the surface by 1e-9 of the collider's size (plus tol) on the side it came from, and its
+ * off the surface by 1e-6 of the collider's size (plus 100 tol) on the side it came from, and its
  * velocity reflected (restitution, friction) as for spheres; the rest of that step's motion is
  * dropped. Degrees above CJ_RAY_PATCH_MAX_DEGREE: CJ_ERR_DEGREE. The collider is read-only
  * once built and may be shared by several particle systems (which must not outlive it). */

@@ -34,9 +34,11 @@
  * start, so a step depends on (x, v) alone and checkpoints resume bit-identically) and stops at
  * relative residual 1e-9 (far below the O(h) error of the method) or after CJ_SPRING_CG_MAX
  * iterations; hitting the cap still advances the state and returns CJ_ERR_CAP.
- * Collisions (after each step): a particle inside a sphere (|x − c| < r) or behind a plane
- * (n·x < offset) is moved to the surface along the normal, its inward normal velocity removed
- * and its tangential velocity scaled by (1 − friction).
+ * Collisions (after each step): a particle whose step segment crosses a patch collider is put
+ * back on the side it came from (as particles.h describes, restitution 0); then a particle
+ * inside a sphere (|x − c| < r) or behind a plane (n·x < offset) is moved to the surface along
+ * the normal, its inward normal velocity removed and its tangential velocity scaled by
+ * (1 − friction).
  *
  * OWNERSHIP: cj_springs_create() copies everything and allocates all its work space; a step
  * allocates nothing. Deterministic: the same inputs give bit-identical states.
@@ -120,6 +122,10 @@ typedef struct cj_plane_collider {
     double friction;
 } cj_plane_collider;
 
+/* Bézier-patch colliders (casteljau/particles.h, cj_patch_collider_create): each free particle's
+ * step segment is tested against them, so cloth can drape over the teapot. */
+typedef struct cj_patch_collider cj_patch_collider;
+
 typedef struct cj_springs_desc {
     int dim;                    /* 1, 2 or 3 */
     size_t count;               /* particles */
@@ -135,6 +141,8 @@ typedef struct cj_springs_desc {
     const cj_sphere_collider *spheres;
     size_t plane_count;
     const cj_plane_collider *planes;
+    size_t patch_collider_count;
+    const cj_patch_collider *const *patch_colliders; /* not owned; must outlive the system */
 } cj_springs_desc;
 
 typedef struct cj_springs cj_springs;
