@@ -93,6 +93,18 @@ static cj_scene *teapot_scene(int size, double tol_px, const cj_mesh *mesh) {
     return sc;
 }
 
+/* Threads of this process (Mesa's rasterizer threads show up here). */
+static int count_threads(void) {
+    int n = -1;
+    char line[256];
+    FILE *f = fopen("/proc/self/status", "r");
+    if (!f) return -1;
+    while (fgets(line, sizeof line, f))
+        if (!strncmp(line, "Threads:", 8)) n = atoi(line + 8);
+    fclose(f);
+    return n;
+}
+
 enum { OURS_PATCHES, OURS_WARM, OURS_MESH, VTK_RENDER, VTK_READ, NCOL };
 
 static void run(int threads, int size, int reps, double tol_px) {
@@ -154,7 +166,8 @@ static void run(int threads, int size, int reps, double tol_px) {
            "%10.1f\n",
            threads, mesh->triangle_count, mw[OURS_PATCHES], mw[OURS_WARM], mw[OURS_MESH],
            mw[VTK_RENDER], mw[VTK_READ], mc[OURS_WARM], mc[OURS_MESH], mc[VTK_READ]);
-    printf("        | VTK through %s, LP_NUM_THREADS=%s\n", gl, getenv("LP_NUM_THREADS"));
+    printf("        | VTK through %s, LP_NUM_THREADS=%s, %d threads in the process\n", gl,
+           getenv("LP_NUM_THREADS"), count_threads());
     fflush(stdout);
     free(rgba);
     free(wall);

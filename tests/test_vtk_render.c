@@ -634,6 +634,18 @@ static void test_refusals(void **state) {
     printf("refusals: no objects, zero width, near >= 0, a spot light, kd < 0, a NaN vertex: "
            "each refused (%s)\n",
            cj_last_error());
+    /* no display: an error, not VTK's abort() */
+    m->positions[4] = 0.0;
+    char *display = strdup(getenv("DISPLAY"));
+    assert_non_null(display);
+    unsetenv("DISPLAY");
+    assert_int_equal(cj_vtk_render_mesh(&view, &obj, 1, &frame, NULL), CJ_ERR_UNSUPPORTED);
+    setenv("DISPLAY", ":987", 1); /* (a display nobody serves) */
+    assert_int_equal(cj_vtk_render_mesh(&view, &obj, 1, &frame, NULL), CJ_ERR_UNSUPPORTED);
+    printf("refusals: without a display: %s\n", cj_last_error());
+    setenv("DISPLAY", display, 1);
+    free(display);
+    assert_int_equal(cj_vtk_render_mesh(&view, &obj, 1, &frame, NULL), CJ_OK);
     cj_mesh_destroy(m);
 }
 
