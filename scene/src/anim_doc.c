@@ -36,9 +36,57 @@ static void grid_normals(const double *x, int nu, int nv, double *n) {
     }
 }
 
+/* A patch collider from the scene object named `name` (its patches at their world placement). */
+static cj_status collider_for(const cj_scene *scene, const char *what, int k, const char *name,
+                              cj_patch_collider **out) {
+    int node = -1;
+    for (size_t i = 0; i < cj_scene_node_count(scene); ++i) {
+        const char *nm = cj_scene_node(scene, (int)i)->name;
+        if (nm && !strcmp(nm, name)) node = (int)i;
+    }
+    if (node < 0)
+        return cj_fail(CJ_ERR_ARGUMENT, "%s.collide_with[%d]: no object named '%s'", what, k, name);
+    const cj_node *n = cj_scene_node(scene, node);
+    const cj_geometry *g = n->geometry >= 0 ? cj_scene_geometry(scene, n->geometry) : NULL;
+    if (!g || g->kind != CJ_GEOM_PATCHES)
+        return cj_fail(CJ_ERR_ARGUMENT, "%s.collide_with[%d]: '%s' is not made of Bezier patches",
+                       what, k, name);
+    cj_xform3 world;
+    cj_status st = cj_scene_node_world(scene, node, &world);
+    if (st) return st;
+    return cj_patch_collider_create(g->u.patches.patches, g->u.patches.count, &world, 1e-6, 0.3,
+                                    NULL, out);
+}
+
 cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene) {
     assert(doc && scene);
     cj_status st = CJ_OK;
+    if (doc->cloth && doc->cloth_collide_count && !doc->cloth_colliders[0]) {
+        for (int k = 0; k < doc->cloth_collide_count; ++k) {
+            st = collider_for(scene, "cloth", k, doc->cloth_collide_with[k],
+                              &doc->cloth_colliders[k]);
+            if (st) return st;
+        }
+        /* rebuild the cloth with the same description plus the colliders */
+        cj_springs *old = doc->cloth;
+        cj_springs_desc extra;
+        memset(&extra, 0, sizeof extra);
+        extra.dim = 3;
+        memcpy(extra.gravity, doc->pdesc.gravity, sizeof extra.gravity);
+        extra.drag = doc->pdesc.drag;
+        extra.spheres = doc->spheres;
+        extra.sphere_count = doc->pdesc.sphere_count;
+        extra.planes = doc->planes;
+        extra.plane_count = doc->pdesc.plane_count;
+        extra.patch_collider_count = (size_t)doc->cloth_collide_count;
+        extra.patch_colliders = (const cj_patch_collider *const *)doc->cloth_colliders;
+        st = cj_springs_create_cloth(
+            doc->cloth_grid[0], doc->cloth_grid[1], doc->cloth_corner, doc->cloth_eu, doc->cloth_ev,
+            doc->cloth_mass, doc->cloth_k[0], doc->cloth_k[1], doc->cloth_k[2], doc->cloth_damping,
+            doc->cloth_pins, doc->cloth_pin_count, &extra, NULL, &doc->cloth);
+        if (st) return st;
+        cj_springs_destroy(old);
+    }
     if (doc->cloth && doc->cloth_node < 0) {
         const int nu = doc->cloth_nu, nv = doc->cloth_nv;
         const double *x = cj_springs_positions(doc->cloth);
@@ -94,25 +142,8 @@ cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene) {
     }
     if (doc->has_particles && !doc->particles) {
         for (int k = 0; k < doc->collide_count; ++k) {
-            int node = -1;
-            for (size_t i = 0; i < cj_scene_node_count(scene); ++i) {
-                const char *nm = cj_scene_node(scene, (int)i)->name;
-                if (nm && !strcmp(nm, doc->collide_with[k])) node = (int)i;
-            }
-            if (node < 0)
-                return cj_fail(CJ_ERR_ARGUMENT, "particles.collide_with[%d]: no object named '%s'",
-                               k, doc->collide_with[k]);
-            const cj_node *n = cj_scene_node(scene, node);
-            const cj_geometry *g = n->geometry >= 0 ? cj_scene_geometry(scene, n->geometry) : NULL;
-            if (!g || g->kind != CJ_GEOM_PATCHES)
-                return cj_fail(CJ_ERR_ARGUMENT,
-                               "particles.collide_with[%d]: '%s' is not made of Bezier patches", k,
-                               doc->collide_with[k]);
-            cj_xform3 world;
-            st = cj_scene_node_world(scene, node, &world);
-            if (!st)
-                st = cj_patch_collider_create(g->u.patches.patches, g->u.patches.count, &world,
-                                              1e-6, 0.1, NULL, &doc->patch_colliders[k]);
+            st =
+                collider_for(scene, "particles", k, doc->collide_with[k], &doc->patch_colliders[k]);
             if (st) return st;
         }
         doc->pdesc.patch_collider_count = (size_t)doc->collide_count;

@@ -205,8 +205,8 @@ static cj_status read_colliders(actx *c, const cJSON *cj, cj_sphere_collider *sp
 static cj_status read_cloth(actx *c, cj_anim_doc *doc, const cJSON *cj,
                             const cj_springs_desc *extra) {
     static const char *const K[] = {
-        "grid",   "corner",     "edge_u",          "edge_v", "mass", "stiffness", "damping",
-        "pinned", "integrator", "steps_per_frame", "color",  "name", NULL};
+        "grid",   "corner",     "edge_u",          "edge_v", "mass", "stiffness",    "damping",
+        "pinned", "integrator", "steps_per_frame", "color",  "name", "collide_with", NULL};
     cj_status st = aj_keys(c, cj, "cloth", K);
     if (st) return st;
     double grid[2] = {16, 16}, corner[3] = {-1, 1, -1}, eu[3] = {2, 0, 0}, ev[3] = {0, 0, 2};
@@ -246,6 +246,29 @@ static cj_status read_cloth(actx *c, cj_anim_doc *doc, const cJSON *cj,
         snprintf(msg, sizeof msg, "%s", cj_last_error());
         return aj_jfail(c, cj, st, "cloth: %s", msg);
     }
+    const cJSON *cw = cJSON_GetObjectItemCaseSensitive(cj, "collide_with");
+    size_t ncw = 0;
+    if (cw && !cJSON_IsArray(cw))
+        return aj_jfail(c, cw, CJ_ERR_PARSE, "cloth.collide_with must be a list of names");
+    for (const cJSON *e = cw ? cw->child : NULL; e; e = e->next, ++ncw) {
+        if (ncw >= 4 || !cJSON_IsString(e))
+            return aj_jfail(c, e, CJ_ERR_PARSE,
+                            "cloth.collide_with[%zu] must be an object's name (at most 4)", ncw);
+        snprintf(doc->cloth_collide_with[ncw], sizeof doc->cloth_collide_with[ncw], "%s",
+                 e->valuestring);
+    }
+    doc->cloth_collide_count = (int)ncw;
+    /* kept to rebuild the cloth with its patch colliders at attach */
+    doc->cloth_grid[0] = (int)grid[0];
+    doc->cloth_grid[1] = (int)grid[1];
+    memcpy(doc->cloth_corner, corner, sizeof corner);
+    memcpy(doc->cloth_eu, eu, sizeof eu);
+    memcpy(doc->cloth_ev, ev, sizeof ev);
+    memcpy(doc->cloth_k, k, sizeof k);
+    doc->cloth_mass = mass;
+    doc->cloth_damping = damping;
+    memcpy(doc->cloth_pins, ipins, sizeof(int) * npins);
+    doc->cloth_pin_count = npins;
     doc->cloth_nu = (int)grid[0];
     doc->cloth_nv = (int)grid[1];
     doc->cloth_integrator = (cj_integrator)integ;
@@ -498,5 +521,6 @@ void cj_anim_doc_destroy(cj_anim_doc *doc) {
     cj_springs_destroy(doc->cloth);
     cj_particles_destroy(doc->particles);
     for (int i = 0; i < 8; ++i) cj_patch_collider_destroy(doc->patch_colliders[i]);
+    for (int i = 0; i < 4; ++i) cj_patch_collider_destroy(doc->cloth_colliders[i]);
     free(doc);
 }

@@ -30,7 +30,8 @@
  *   "cloth": {"grid": [24, 24], "corner": [-1.5, 2, -1.5], "edge_u": [3, 0, 0],
  *             "edge_v": [0, 0, 3], "mass": 1, "stiffness": [2000, 500, 50], "damping": 0.5,
  *             "pinned": [0, 23], "integrator": "implicit_euler", "steps_per_frame": 4,
- *             "color": [0.8, 0.2, 0.2], "name": "cloth"},
+ *             "color": [0.8, 0.2, 0.2], "name": "cloth",
+ *             "collide_with": ["teapot"]},  scene objects made of Bézier patches it drapes over
  *   "particles": {"capacity": 300, "seed": 1, "restitution": 0.6, "wind": [0, 0, 0],
  *                 "steps_per_frame": 2, "radius": 0.04, "color": [1, 0.8, 0.2],
  *                 "collide_with": ["teapot"],   scene objects whose Bézier patches (placed by
@@ -98,6 +99,14 @@ typedef struct cj_anim_doc {
     double particle_radius;
     cj_rgb particle_color;
     int particle_node0; /* first of pdesc.capacity sphere nodes, or −1 */
+    /* cloth on patch objects: rebuilt at attach with the colliders */
+    char cloth_collide_with[4][64];
+    int cloth_collide_count;
+    cj_patch_collider *cloth_colliders[4];
+    int cloth_grid[2];
+    double cloth_corner[3], cloth_eu[3], cloth_ev[3], cloth_mass, cloth_k[3], cloth_damping;
+    int cloth_pins[64];
+    size_t cloth_pin_count;
 } cj_anim_doc;
 
 cj_status cj_anim_doc_load(const char *path, cj_anim_doc **out);
