@@ -41,3 +41,9 @@ if(TARGET cj::raster)
   target_compile_definitions(test_harden_lib PRIVATE
     CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
 endif()
+# An installed casteljau, moved to another prefix, finds its teapot and image plug-in.
+add_test(NAME test_installed_tool COMMAND ${CMAKE_COMMAND}
+  -DCJ_BUILD_DIR=${PROJECT_BINARY_DIR} -DCJ_WORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/installed_tool
+  -DCJ_LIBDIR=${CMAKE_INSTALL_LIBDIR} -DCJ_CONFIG=$<CONFIG>
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/installed_tool.cmake)
+set_tests_properties(test_installed_tool PROPERTIES TIMEOUT 300 RESOURCE_LOCK cj_install)

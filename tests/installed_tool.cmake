@@ -1,0 +1,35 @@
+# CTest script (cmake -P): installs the build into a prefix, MOVES the prefix elsewhere, and
+# runs the installed casteljau from there: it must find its teapot (<bindir>/../share) and its
+# OpenImageIO plug-in (<bindir>/../<libdir>/casteljau, checked with LD_DEBUG=libs) relative to
+# itself. Inputs (-D): CJ_BUILD_DIR CJ_WORK_DIR CJ_LIBDIR CJ_CONFIG.
+cmake_minimum_required(VERSION 3.20)
+file(REMOVE_RECURSE ${CJ_WORK_DIR})
+file(MAKE_DIRECTORY ${CJ_WORK_DIR})
+set(cfg_args)
+if(CJ_CONFIG)
+  set(cfg_args --config ${CJ_CONFIG})
+endif()
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
+    WORKING_DIRECTORY ${CJ_WORK_DIR})
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${out}\n${err}")
+  endif()
+  set(run_out "${out}" PARENT_SCOPE)
+  set(run_err "${err}" PARENT_SCOPE)
+endfunction()
+run("cmake --install" ${CMAKE_COMMAND} --install ${CJ_BUILD_DIR} --prefix ${CJ_WORK_DIR}/prefix
+    ${cfg_args})
+file(RENAME ${CJ_WORK_DIR}/prefix ${CJ_WORK_DIR}/moved)
+set(exe ${CJ_WORK_DIR}/moved/bin/casteljau)
+run("installed tessellate --teapot" ${exe} tessellate --teapot --uniform 2 -o t.obj)
+if(NOT run_out MATCHES "patches 32")
+  message(FATAL_ERROR "installed tessellate printed:\n${run_out}")
+endif()
+run("installed plot" ${CMAKE_COMMAND} -E env LD_DEBUG=libs ${exe} plot --demo --width 120
+    --height 90 -o g.png)
+string(REGEX MATCH "[^ \n]*libcasteljau_image_oiio.so" plugin "${run_err}")
+if(NOT plugin MATCHES "^${CJ_WORK_DIR}/moved/")
+  message(FATAL_ERROR "the installed plot did not load the moved plug-in (loaded: '${plugin}')")
+endif()
+message(STATUS "moved installation: teapot found, plug-in loaded from ${plugin}")
