@@ -459,6 +459,32 @@ static void test_ours_vs_vtk_sphere(void **state) {
     add_object(sc, &g, add_material(sc, cj_rgb_make(0.8, 0.5, 0.3), 0), cj_v3(0, 0, 0), 0.0);
     compare_with_vtk("sphere", sc, w, h);
 
+    /* the scene's drawn mesh exported with its camera */
+    {
+        cj_render_options o = cj_render_options_default();
+        cj_mesh *mesh = NULL;
+        assert_int_equal(cj_render_scene_mesh(sc, &o, NULL, &mesh), CJ_OK);
+        char path[] = "/tmp/cj_vtk_scene_XXXXXX";
+        const int fd = mkstemp(path);
+        assert_true(fd >= 0);
+        close(fd);
+        if (cj_vtk_write_scene(path, sc, mesh, 0, 0) != CJ_OK)
+            fail_msg("scene export: %s", cj_last_error());
+        FILE *f = fopen(path, "rb");
+        assert_non_null(f);
+        static char text[1 << 14];
+        const size_t got = fread(text, 1, sizeof text - 1, f);
+        fclose(f);
+        text[got] = '\0';
+        char want[64];
+        snprintf(want, sizeof want, "NumberOfPolys=\"%zu\"", mesh->triangle_count);
+        assert_non_null(strstr(text, want));
+        printf("sphere: cj_vtk_write_scene wrote the %zu drawn triangles with the camera\n",
+               mesh->triangle_count);
+        remove(path);
+        cj_mesh_destroy(mesh);
+    }
+
     /* our sphere's silhouette against the exact projected conic */
     cj_render_options opt = cj_render_options_default();
     opt.width = w;

@@ -147,12 +147,21 @@ cj_status cj_vtk_image_difference(const uint8_t *a, const uint8_t *b, int width,
                                   int threshold, double *error, double *thresholded);
 
 /* Writes the objects' meshes as one VTK poly data file (.vtp, binary appended) with point
- * normals, cell data "object_id" and field data "camera" (eye, gaze, up, near, far, fov_y,
- * ortho_height, projection), so ParaView shows what the renderer drew and from where.
+ * normals, cell data "object_id" and the camera as field data
+ * "camera_eye_gaze_up_near_far_fovy_orthoheight_projection_width_height" (16 doubles in that
+ * order: ē, g⃗, t⃗, f, F, fov_y, ortho_height, projection, width, height), so ParaView shows what
+ * the renderer drew and from where.
  * Written to "<path>.tmp" and renamed. Status: as cj_vtk_renderer_create for the inputs,
  * CJ_ERR_IO naming the path. */
 cj_status cj_vtk_write_scene_mesh(const char *path, const cj_vtk_view *view,
                                   const cj_vtk_object *objects, size_t count);
+
+/* The .vtp export of what our rasterizer draws of `scene` (mesh as for
+ * cj_vtk_renderer_create_scene), with the scene's camera and the image size (0: the scene's
+ * settings). Status as cj_vtk_renderer_create_scene (without a display: none is needed) and
+ * cj_vtk_write_scene_mesh. */
+cj_status cj_vtk_write_scene(const char *path, const cj_scene *scene, const cj_mesh *mesh,
+                             int width, int height);
 
 #ifdef __cplusplus
 }
