@@ -49,9 +49,8 @@ static void add_edge_inside(cover_target *t, double x0, double y0, double x1, do
         wt = -wt;
     }
     const double k = (x1 - x0) / (y1 - y0);
-    int r0 = (int)floor(y0), r1 = (int)ceil(y1) - 1;
-    if (r0 < 0) r0 = 0;
-    if (r1 > t->h - 1) r1 = t->h - 1;
+    /* rows clamped in double first: polygon coordinates may be far outside the target */
+    const int r0 = (int)floor(y0 > 0.0 ? y0 : 0.0), r1 = (int)ceil(y1 < t->h ? y1 : t->h) - 1;
     const int w = t->w;
     for (int ry = r0; ry <= r1; ++ry) {
         if (ry + CJ_STROKE_PREFETCH_ROWS <= r1) { /* the cell this edge reaches a few rows up */
@@ -114,9 +113,8 @@ static void add_edge(cover_target *t, double x0, double y0, double x1, double y1
     if (x1 > w) { /* the part right of the target: no pixel, but the span reaches the border */
         double yc = x0 >= w ? y0 : y0 + (y1 - y0) * ((w - x0) / (x1 - x0));
         double ylo = yc < y1 ? yc : y1, yhi = yc < y1 ? y1 : yc;
-        int r0 = (int)floor(ylo), r1 = (int)ceil(yhi) - 1;
-        if (r0 < 0) r0 = 0;
-        if (r1 > t->h - 1) r1 = t->h - 1;
+        const int r0 = (int)floor(ylo > 0.0 ? ylo : 0.0);
+        const int r1 = (int)ceil(yhi < t->h ? yhi : t->h) - 1;
         for (int ry = r0; ry <= r1; ++ry) touch_row(t, ry, t->w - 1, t->w - 1);
         if (x0 >= w) return;
         x1 = w, y1 = yc;
