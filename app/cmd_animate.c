@@ -20,7 +20,8 @@ static const char animate_usage[] =
     "usage: casteljau animate ANIM.json -o frames/frame_%04d.png [--frames A:B] [--fps F]\n"
     "                         [--width W --height H] [--spp 1|4|16] [--threads N]\n"
     "                         [--checkpoint-in FILE] [--checkpoint-out PATTERN]\n"
-    "                         [--checkpoint-every K] [--no-render] [--stage-report] [--quiet]\n"
+    "                         [--checkpoint-every K] [--no-render] [--trace] [--stage-report]\n"
+    "                         [--quiet]\n"
     "  ANIM.json           an animation document naming its scene (see\n"
     "                      scene/include/casteljau/anim_json.h): channels on scene fields,\n"
     "                      motion along paths at controlled speed, a cloth on colliders\n"
@@ -31,6 +32,8 @@ static const char animate_usage[] =
     "  --fps F             frames per second (default: the document's; the cloth takes\n"
     "                      steps_per_frame steps of 1/(F*steps) s per frame)\n"
     "  --width/--height/--spp/--threads   as in 'casteljau render'\n"
+    "  --trace             render with the ray tracer ('casteljau trace') instead of the\n"
+    "                      rasterizer (shadows, mirrors; slower)\n"
     "  --checkpoint-in F   start from the simulation state saved in F (its frame <= A)\n"
     "  --checkpoint-out P  write the state after frame f to P with %d replaced by f, for every\n"
     "                      f in A..B that is a multiple of K (--checkpoint-every K) and for B\n"
@@ -50,6 +53,7 @@ static const char animate_usage[] =
 #include "casteljau/anim_json.h"
 #include "casteljau/image_io.h"
 #include "casteljau/render.h"
+#include "casteljau/trace.h"
 #include "casteljau/scene_json.h"
 #include "casteljau/scene_textures.h"
 
@@ -154,7 +158,7 @@ int cmd_animate(int argc, char **argv) {
     anim_gif *gif = NULL;
     long fa = -1, fb = -1, every = 0;
     double fps = 0;
-    int no_render = 0, report = 0, quiet = 0;
+    int no_render = 0, report = 0, quiet = 0, trace = 0;
     cj_render_options opt = cj_render_options_default();
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
@@ -172,6 +176,10 @@ int cmd_animate(int argc, char **argv) {
         }
         if (!strcmp(a, "--quiet")) {
             quiet = 1;
+            continue;
+        }
+        if (!strcmp(a, "--trace")) {
+            trace = 1;
             continue;
         }
         if (a[0] != '-' || a[1] == '\0') {
@@ -290,7 +298,9 @@ int cmd_animate(int argc, char **argv) {
         }
         if (!no_render) {
             cj_render_image *img = NULL;
-            if (cj_render_raster(scene, &opt, 0, NULL, &img, &ren_rep)) {
+            const cj_status rs = trace ? cj_render_trace(scene, &opt, 0, NULL, &img, &ren_rep)
+                                       : cj_render_raster(scene, &opt, 0, NULL, &img, &ren_rep);
+            if (rs) {
                 rc = cli_error(cmd, "%s: frame %ld: %s", doc_path, f, cj_last_error());
                 break;
             }
