@@ -242,7 +242,13 @@ cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, u
             lights.ia.r += l->color.r * l->intensity;
             lights.ia.g += l->color.g * l->intensity;
             lights.ia.b += l->color.b * l->intensity;
-        } else if (lights.count < 64 && l->intensity > 0) {
+        } else if (l->intensity > 0) {
+            if (lights.count == TR_MAX_LIGHTS) {
+                tr_scene_free(&ts);
+                cj_render_image_destroy(img);
+                return cj_fail(CJ_ERR_CAP, "ray tracer: more than %d lights with intensity > 0",
+                               TR_MAX_LIGHTS);
+            }
             lights.light[lights.count++] = l;
         }
     }

@@ -4,7 +4,8 @@
 
 #include "trace_internal.h"
 
-#define TR_MAX_MEDIA 16
+#define TR_MAX_MEDIA  16
+#define TR_MAX_LIGHTS 64
 
 typedef struct tr_rng {
     uint64_t key;
@@ -18,7 +19,7 @@ typedef struct tr_lights {
     int unlit; /* the scene has no light at all: colour shown flat, as the rasterizer does */
     cj_rgb ia; /* Σ ambient colour × intensity */
     int count;
-    const cj_light *light[64];
+    const cj_light *light[TR_MAX_LIGHTS];
 } tr_lights;
 
 /* The stack of indices of refraction of the media the ray is inside (ior[0] = 1, air). */

@@ -57,7 +57,8 @@ extern "C" {
  * (spp: any >= 1; 0 = the scene's); report may be NULL. Status: whatever cj_scene_check
  * reports; CJ_ERR_RANGE (a size or spp out of range), CJ_ERR_ARGUMENT (an image texture
  * without pixels), CJ_ERR_DEGREE (a patch above CJ_RAY_PATCH_MAX_DEGREE), CJ_ERR_SINGULAR (a
- * singular object transform), CJ_ERR_NOMEM. *out is set only on success. */
+ * singular object transform), CJ_ERR_CAP (more than 64 non-ambient lights), CJ_ERR_NOMEM.
+ * *out is set only on success. */
 cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, unsigned planes,
                           const cj_allocator *alloc, cj_render_image **out,
                           cj_stage_report *report);
