@@ -213,6 +213,84 @@ static void tracer_run(const char *name, cj_scene *sc, int w, int h) {
     }
 }
 
+/* Soft shadows: a sphere on a floor under an area light; RMSE against a 1024-spp reference
+ * for 1..256 spp (stratified samples: pixel positions and light points) and ms per frame. */
+static void rmse_vs_spp(void) {
+    cj_scene *sc;
+    if (cj_scene_create(NULL, &sc)) return;
+    cj_camera cam = cj_camera_default();
+    cam.eye = cj_v3(0, 3, 6);
+    cam.gaze = cj_v3(0, -2.5, -6);
+    cj_scene_set_camera(sc, &cam);
+    cj_scene_settings set = cj_scene_settings_default();
+    set.width = 64;
+    set.height = 48;
+    cj_scene_set_settings(sc, &set);
+    cj_light amb = cj_light_default(CJ_LIGHT_AMBIENT), area = cj_light_default(CJ_LIGHT_AREA);
+    amb.intensity = 0.2;
+    area.position = cj_v3(-1.5, 4, -1.5);
+    area.edge_u = cj_v3(3, 0, 0);
+    area.edge_v = cj_v3(0, 0, 3);
+    cj_scene_add_light(sc, &amb, NULL);
+    cj_scene_add_light(sc, &area, NULL);
+    cj_material m = cj_material_default();
+    int im, g1, g2;
+    cj_scene_add_material(sc, &m, &im);
+    cj_geometry g;
+    memset(&g, 0, sizeof g);
+    g.kind = CJ_GEOM_PLANAR;
+    cj_planar_patch_init(&g.u.planar, cj_v3(-10, 0, 10), cj_v3(20, 0, 0), cj_v3(0, 0, -20));
+    cj_scene_add_geometry(sc, &g, &g1);
+    memset(&g, 0, sizeof g);
+    g.kind = CJ_GEOM_SPHERE;
+    g.u.sphere.center = cj_v3(0, 1, 0);
+    g.u.sphere.radius = 1;
+    cj_scene_add_geometry(sc, &g, &g2);
+    cj_node n;
+    memset(&n, 0, sizeof n);
+    n.parent = -1;
+    n.local = cj_transform_identity();
+    n.visible = 1;
+    n.overlay.iso_count = 1;
+    n.overlay.normal_length = 0.1;
+    n.material = im;
+    n.geometry = g1;
+    cj_scene_add_node(sc, &n, NULL);
+    n.geometry = g2;
+    cj_scene_add_node(sc, &n, NULL);
+    cj_render_options o = cj_render_options_default();
+    o.threads = 2;
+    o.spp = 1024;
+    cj_render_image *ref;
+    if (cj_render_trace(sc, &o, 0, NULL, &ref, NULL)) return;
+    printf("\nsoft shadow (area light), 64x48, RMSE against 1024 spp (stratified), 2 threads\n");
+    double prev = 0;
+    for (int spp = 1; spp <= 256; spp *= 4) {
+        o.spp = spp;
+        o.use_seed = 1;
+        o.seed = 777;
+        cj_render_image *img;
+        double t0 = cj_bench_wall();
+        if (cj_render_trace(sc, &o, 0, NULL, &img, NULL)) break;
+        double dt = cj_bench_wall() - t0, e = 0;
+        size_t np = 64 * 48;
+        for (size_t i = 0; i < np; i++)
+            for (int k = 0; k < 3; k++) {
+                double d = img->rgba[4 * i + k] - ref->rgba[4 * i + k];
+                e += d * d;
+            }
+        e = sqrt(e / (3.0 * np));
+        printf("  spp %4d: RMSE %.5f%s  %8.1f ms/frame\n", spp, e, prev > 0 ? "" : "", 1e3 * dt);
+        if (prev > 0)
+            printf("            ratio to the previous (4x samples): %.2f (1/sqrt(n): 0.50)\n",
+                   e / prev);
+        prev = e;
+        cj_render_image_destroy(img);
+    }
+    cj_render_image_destroy(ref);
+    cj_scene_destroy(sc);
+}
+
 int main(void) {
     printf("bench_trace: intersection cost per primitive kind (%d rays at the primitive's box)\n",
            NRAYS);
@@ -365,5 +443,6 @@ int main(void) {
     cj_mesh_destroy(tm);
     cj_bvh_destroy(sd.bvh);
     cj_patchset_destroy(set);
+    rmse_vs_spp();
     return 0;
 }
