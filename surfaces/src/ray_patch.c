@@ -126,7 +126,8 @@ static int net_flat(const ctx *c, const net *s, double lim) {
     double q[4][3];
     const int idx[4] = {0, m, n * (m + 1), n * (m + 1) + m};
     for (int k = 0; k < 4; k++)
-        for (int d = 0; d < 3; d++) q[k][d] = s->p[idx[k]][d] / s->p[idx[k]][3];
+        for (int d = 0; d < 3; d++)
+            q[k][d] = c->rational ? s->p[idx[k]][d] / s->p[idx[k]][3] : s->p[idx[k]][d];
     for (int j = 0; j <= n; j++) {
         double b = n ? (double)j / n : 0.0;
         for (int i = 0; i <= m; i++) {
@@ -136,7 +137,7 @@ static int net_flat(const ctx *c, const net *s, double lim) {
             for (int d = 0; d < 3; d++) {
                 double L = (1 - a) * (1 - b) * q[0][d] + a * (1 - b) * q[1][d] +
                            (1 - a) * b * q[2][d] + a * b * q[3][d];
-                double e = pp[d] / pp[3] - L;
+                double e = (c->rational ? pp[d] / pp[3] : pp[d]) - L;
                 d2 += e * e;
             }
             if (d2 > lim * lim) return 0;
@@ -181,6 +182,7 @@ static void net_eval(const ctx *c, const net *s, double a, double b, double f[2]
             const double *pp = s->p[j * (m + 1) + i];
             double w0 = Bu[i] * Bv[j], wu = dBu[i] * Bv[j], wv = Bu[i] * dBv[j];
             for (int k = 0; k < 4; k++) {
+                if (k == 2) continue; /* x3 (along the ray) is not needed by Newton */
                 P[k] += w0 * pp[k];
                 Pu[k] += wu * pp[k];
                 Pv[k] += wv * pp[k];
@@ -198,13 +200,16 @@ static int newton(ctx *c, const net *s, double *ua, double *vb, double *res) {
     double a = 0.5, b = 0.5, f[2], fu[2], fv[2];
     double best = INFINITY;
     if (c->stats) c->stats->newton++;
+    /* Quadratic convergence: stop once |F| is far below tol (or stops shrinking), evaluating
+     * F at the returned point exactly once more only if the loop ended after a step. */
+    double r = INFINITY;
+    int fresh = 0;
     for (int it = 0; it < 24; it++) {
         net_eval(c, s, a, b, f, fu, fv);
-        double r = hypot(f[0], f[1]);
-        if (!(r < best * 0.999) && it > 3) {
-            if (r < best) best = r;
-            break;
-        }
+        fresh = 1;
+        r = sqrt(f[0] * f[0] + f[1] * f[1]);
+        if (r <= 1e-4 * c->tol || r == 0.0) break;
+        if (!(r < best * 0.999) && it > 3) break;
         if (r < best) best = r;
         double det = fu[0] * fv[1] - fu[1] * fv[0];
         if (det == 0.0 || !isfinite(det)) break;
@@ -212,11 +217,13 @@ static int newton(ctx *c, const net *s, double *ua, double *vb, double *res) {
         double db = (fu[0] * f[1] - fu[1] * f[0]) / det;
         a -= da;
         b -= db;
+        fresh = 0;
         if (!(a > -0.5 && a < 1.5 && b > -0.5 && b < 1.5)) return 0;
-        if (r == 0.0) break;
     }
-    net_eval(c, s, a, b, f, fu, fv);
-    double r = hypot(f[0], f[1]);
+    if (!fresh) {
+        net_eval(c, s, a, b, f, fu, fv);
+        r = sqrt(f[0] * f[0] + f[1] * f[1]);
+    }
     const double eps = 1e-9;
     if (!(r <= c->tol) || a < -eps || a > 1 + eps || b < -eps || b > 1 + eps) return 0;
     *ua = fmin(1.0, fmax(0.0, a));
@@ -260,7 +267,7 @@ static void visit(ctx *c, const net *s, const double lo[3], const double hi[3], 
         }
         return;
     }
-    if (net_flat(c, s, diag / 16.0)) {
+    if (net_flat(c, s, diag / 8.0)) {
         double a, b, r;
         if (newton(c, s, &a, &b, &r)) {
             double t = net_x3(c, s, a, b);

@@ -160,7 +160,7 @@ typedef struct cj_ray_patch_stats {
  * directly by subdivision plus Newton: the ray is written as the intersection of two planes
  * (n1·x = d1, n2·x = d2 with n1, n2, dir orthonormal up to |dir|), sub-patches whose control
  * net's box misses the ray (in those plane distances and in t) are discarded, the others are
- * halved along their longer side until the net is flat (every control point within 1/16 of its
+ * halved along their longer side until the net is flat (every control point within 1/8 of its
  * box's diagonal of the bilinear patch of its corners) and Newton's method on
  * F(u, v) = (n1·S(u,v) − d1, n2·S(u,v) − d2) is started at the sub-patch centre. A solve is
  * accepted when |F| <= tol (the distance from S(u, v) to the ray line: `tol` is in world
