@@ -3,6 +3,7 @@
  * 4x/16x supersampled on 1 and 2 threads, Gouraud/Phong fill rates, the cost of each effect
  * from the stage report, and the peak memory of a 4096 x 4096 frame at 16 spp.
  * Usage: bench_render [repeats (default 3)]
+ *        bench_render effects [repeats]   only the cost of each effect and the peak memory
  *        bench_render warm N      N warm-cache 1024 x 1024 Phong frames (for profilers)
  *        bench_render frame 0|1   one 256 x 256 Phong frame of the teapot, without (0) or with (1)
  *                                 features the scene defines but does not use (a texture, a
@@ -204,7 +205,8 @@ int main(int argc, char **argv) {
         cj_scene_destroy(s);
         return 0;
     }
-    int reps = argc > 1 ? atoi(argv[1]) : 3;
+    int effects_only = argc > 1 && !strcmp(argv[1], "effects");
+    int reps = argc > 1 + effects_only ? atoi(argv[1 + effects_only]) : 3;
     if (reps < 1) reps = 1;
     printf("bench_render: Utah teapot (demo camera), 1024 x 1024, tol 0.25 px, median of %d "
            "frames; times in ms.\n  frame = wall time of the whole cj_render_raster call; cpu = "
@@ -213,6 +215,7 @@ int main(int argc, char **argv) {
            "tiles = wall time of the tile run (visibility + shading + output); raster, shade = "
            "their parts summed over the workers\n\n",
            reps);
+    if (effects_only) goto effects; /* bench_render effects [reps]: only the last part */
     printf("%-26s %7s %7s %7s %7s %8s %8s %8s %8s %10s\n", "config", "threads", "frame", "cpu",
            "tess", "non-tess", "tiles", "raster", "shade", "triangles");
     struct {
@@ -247,7 +250,6 @@ int main(int argc, char **argv) {
            "Phong %.1f Msamples/s\n",
            fill[0], fill[1]);
 
-    /* cost of each effect: one feature added at a time, 1 thread */
     /* the same frames with a warm tessellation cache (a still camera: the viewer, animation of
      * transforms) */
     printf("\nwith a warm tessellation cache (cj_render_cache; the same view, so the same "
@@ -266,34 +268,38 @@ int main(int argc, char **argv) {
         }
         cj_scene_destroy(s);
     }
+effects:;
     cj_render_cache *cache = NULL;
     if (cj_render_cache_create(NULL, &cache)) return 1;
 
-    printf("\ncost of each effect (1 thread, 1024 x 1024, warm tessellation cache; stage seconds "
-           "from the report, ms):\n");
+    printf("\ncost of each effect (1 thread, 1024 x 1024, warm tessellation cache; frame CPU ms "
+           "and the change; stage seconds (wall, summed over workers) from the report):\n");
     cj_scene *base = teapot(CJ_SHADE_PHONG, 0, 0);
-    cj_scene_material_mut(base, 0)->shading = CJ_SHADE_PHONG;
     run_result r0 = measure(base, 1024, 1, 1, reps, cache);
-    printf("  phong, untextured, opaque, 1 spp: frame %.1f, shade_phong %.1f\n", r0.frame_ms,
+    printf("  phong, untextured, opaque, 1 spp: cpu %.1f, shade_phong %.1f\n", r0.cpu_ms,
            1e3 * stage_sec(&r0.rep, "shade_phong"));
     cj_scene *tex = teapot(CJ_SHADE_PHONG, 1, 0);
     run_result r1 = measure(tex, 1024, 1, 1, reps, cache);
-    printf("  + checker texture:   frame %.1f (%+.1f), texture+shading stage %.1f\n", r1.frame_ms,
-           r1.frame_ms - r0.frame_ms, 1e3 * stage_sec(&r1.rep, "texture"));
+    printf("  + checker texture:    cpu %.1f (%+.1f), shade_phong incl. texture %.1f\n", r1.cpu_ms,
+           r1.cpu_ms - r0.cpu_ms, 1e3 * stage_sec(&r1.rep, "texture"));
     cj_scene *tr = teapot(CJ_SHADE_PHONG, 0, 1);
     run_result r2 = measure(tr, 1024, 1, 1, reps, cache);
-    printf("  + transparent sphere: frame %.1f (%+.1f), sort_transparent %.1f, transparency %.1f "
-           "(%llu fragments)\n",
-           r2.frame_ms, r2.frame_ms - r0.frame_ms, 1e3 * stage_sec(&r2.rep, "sort_transparent"),
+    printf("  + transparent sphere: cpu %.1f (%+.1f), sort_transparent %.1f, transparency %.1f "
+           "(%llu triangles, %llu fragments)\n",
+           r2.cpu_ms, r2.cpu_ms - r0.cpu_ms, 1e3 * stage_sec(&r2.rep, "sort_transparent"),
            1e3 * stage_sec(&r2.rep, "transparency"),
+           (unsigned long long)cj_stage_report_find(&r2.rep, "transparency")->in,
            (unsigned long long)cj_stage_report_find(&r2.rep, "transparency")->out);
     run_result r3 = measure(base, 1024, 4, 1, reps, cache);
-    printf("  4 spp instead of 1:  frame %.1f (%+.1f), rasterize %.1f, resolve %.1f\n", r3.frame_ms,
-           r3.frame_ms - r0.frame_ms, r3.raster_ms, 1e3 * stage_sec(&r3.rep, "resolve"));
+    printf("  4 spp instead of 1:   cpu %.1f (%+.1f), rasterize %.1f, resolve %.1f\n", r3.cpu_ms,
+           r3.cpu_ms - r0.cpu_ms, r3.raster_ms, 1e3 * stage_sec(&r3.rep, "resolve"));
+    run_result r5 = measure(base, 1024, 16, 1, reps, cache);
+    printf("  16 spp instead of 1:  cpu %.1f (%+.1f), rasterize %.1f, resolve %.1f\n", r5.cpu_ms,
+           r5.cpu_ms - r0.cpu_ms, r5.raster_ms, 1e3 * stage_sec(&r5.rep, "resolve"));
     cj_scene_node_mut(base, 0)->overlay.flags = CJ_OVERLAY_CONTROL_NET;
     run_result r4 = measure(base, 1024, 1, 1, reps, cache);
-    printf("  + control net:       frame %.1f (%+.1f), overlay_lines %.1f\n", r4.frame_ms,
-           r4.frame_ms - r0.frame_ms, 1e3 * stage_sec(&r4.rep, "overlay_lines"));
+    printf("  + control net:        cpu %.1f (%+.1f), overlay_lines %.1f\n", r4.cpu_ms,
+           r4.cpu_ms - r0.cpu_ms, 1e3 * stage_sec(&r4.rep, "overlay_lines"));
     cj_scene_destroy(base);
     cj_scene_destroy(tex);
     cj_scene_destroy(tr);
