@@ -640,6 +640,24 @@ static void test_edge_cases(void **state) {
     assert_non_null(strstr(cj_last_error(), "textures[0]"));
     assert_null(none);
     cj_scene_destroy(s);
+    /* a curved patch through the eye plane: tessellated (relaxing the tolerance if the near
+     * plane asks for too much), clipped, rendered */
+    rs_sphere_scene sc;
+    rs_sphere(&sc, 1);
+    rs_add_patch_quad(sc.s, sc.mat, 4.8, 0);
+    cj_scene_material_mut(sc.s, sc.mat)->two_sided = 1;
+    o = cj_render_options_default();
+    o.width = 120;
+    o.height = 90;
+    cj_render_image_destroy(render(sc.s, &o, 0, &rep));
+    const cj_stage *tp = cj_stage_report_find(&rep, "tessellate_patches");
+    const cj_stage *rz = cj_stage_report_find(&rep, "rasterize");
+    assert_true(tp->out > 0 && tp->extra[1].value > 0.0);
+    assert_true(rz->extra[0].value > 0); /* triangles cut by the near plane */
+    printf("test_edge_cases: a patch through the eye plane: %llu triangles, bound %.3g px, %g "
+           "clipped\n",
+           (unsigned long long)tp->out, tp->extra[1].value, rz->extra[0].value);
+    cj_scene_destroy(sc.s);
     printf("test_edge_cases: empty scene = background with alpha 0; a curve alone; spp 3, tile 4, "
            "tol -1 and an image texture without pixels refused\n");
 }

@@ -10,6 +10,9 @@
 #include <math.h>
 #include <string.h>
 
+/* Largest grid per direction of an analytic surface (a patch: half of it per patch). */
+#define CJ_RENDER_MAX_GRID 1024
+
 /* ---- the view ------------------------------------------------------------------------------ */
 
 cj_status cj_rview_init(const cj_camera *cam, int width, int height, cj_rview *out) {
@@ -327,10 +330,10 @@ static cj_status choose_grid(const cj_rsurf *si, double tol, int *nu, int *nv, d
     int min_v = (si->s.flags & CJ_SURF_PERIODIC_V) ? 3 : 1;
     if ((si->s.flags & CJ_SURF_COLLAPSED_V0) && (si->s.flags & CJ_SURF_COLLAPSED_V1)) min_v = 2;
     if ((si->s.flags & CJ_SURF_COLLAPSED_U0) && (si->s.flags & CJ_SURF_COLLAPSED_U1)) min_u = 2;
-    if (!(nu_d <= CJ_TESS_DEFAULT_MAX_SEGMENTS) || !(nv_d <= CJ_TESS_DEFAULT_MAX_SEGMENTS))
-        return cj_fail(
-            CJ_ERR_CAP, "%s needs %.0f x %.0f grid cells for tolerance %g (cap %d per direction)",
-            si->s.name ? si->s.name : "surface", nu_d, nv_d, tol, CJ_TESS_DEFAULT_MAX_SEGMENTS);
+    /* geometry reaching the near plane can ask for absurd grids: cap them, and report the
+     * bound of the grid used (then above tol; the stage report shows it) */
+    if (!(nu_d <= CJ_RENDER_MAX_GRID)) nu_d = CJ_RENDER_MAX_GRID;
+    if (!(nv_d <= CJ_RENDER_MAX_GRID)) nv_d = CJ_RENDER_MAX_GRID;
     *nu = nu_d < min_u ? min_u : (int)nu_d;
     *nv = nv_d < min_v ? min_v : (int)nv_d;
     double hu = lu / *nu, hv = lv / *nv;
@@ -382,7 +385,17 @@ static cj_status patches_mesh(const cj_patch *pt, size_t n, const cj_robject *o,
         }
     }
     cj_tess_report rep;
-    cj_status st = cj_tessellate_patches(vis, nv, &opt, mesh, &rep);
+    /* a patch set reaching the near plane can need more than the per-patch cap: relax the
+     * tolerance 4x at a time (the bound reported is the one reached, then above tol_px) */
+    opt.max_segments = CJ_RENDER_MAX_GRID / 2;
+    size_t v0 = mesh->vertex_count, t0 = mesh->triangle_count;
+    cj_status st;
+    for (int attempt = 0;; ++attempt) {
+        st = cj_tessellate_patches(vis, nv, &opt, mesh, &rep);
+        if (st != CJ_ERR_CAP || attempt == 12) break;
+        cj_mesh_truncate(mesh, v0, t0);
+        opt.tol *= 4.0;
+    }
     cj_rfree(alloc, vis);
     if (st) return st;
     if (cache) cj_rcache_store(cache, o->node, key, opt.tol, rep.bound, mesh);
