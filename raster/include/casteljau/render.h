@@ -26,7 +26,9 @@
  *     projection is at most tol_px pixels at the nearest depth of the visible patches (one
  *     cj_tessellate_patches call per object: watertight); other analytic surfaces on a grid
  *     meeting the same second-order bound; the stage report gives the triangles and the
- *     bound in pixels.
+ *     bound in pixels. Geometry reaching the near plane can ask for absurd counts: grids are
+ *     capped at 1024 cells per direction and a patch set needing more than 512 segments per
+ *     patch is retessellated at 4x the tolerance (repeatedly); bound_px then exceeds tol_px.
  *   - shading: Phong reflectance (casteljau/scene.h, cj_material) with point, directional and
  *     spot lights (area lights as a point at their centre), flat / Gouraud / Phong per
  *     material; no light at all shows each object's diffuse colour (times its texture); only
