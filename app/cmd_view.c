@@ -27,7 +27,7 @@ static const char view_usage[] =
     "  --spp, --tol-px 3D: samples per pixel and screen tolerance, stored in the scene\n"
     "  --replay        run a script of input events, then close (see the README)\n"
     "  --screenshot    PNG of the window's back buffer after the replay (or at exit)\n"
-    "  --frame-times   write each frame's seconds (render + upload + swap), one per line\n"
+    "  --frame-times   write each frame's wall and CPU seconds (render + upload + swap)\n"
     "  --hide-overlay  start without the text overlay (the picture alone)\n"
     "Keys: F1 in the window lists them. Ctrl+S saves to the input file (a .bpt or the teapot\n"
     "as a scene JSON beside it / teapot_scene.json), atomically.\n"

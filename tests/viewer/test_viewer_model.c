@@ -339,7 +339,7 @@ static void test_scene_drags(void **state) {
     double q0[3];
     assert_true(cj_vscene_project(vs, 5, W, H, q0));
     size_t k = 99;
-    assert_true(cj_vscene_pick(vs, W, H, q0[0] + 1, q0[1] + 1, 6, &k));
+    assert_true(cj_vscene_pick(vs, W, H, NULL, q0[0] + 1, q0[1] + 1, 6, &k));
     assert_int_equal(k, 5);
     /* Drag in the plane facing the camera: the point follows the cursor on screen. */
     cj_vscene_begin_drag(vs);

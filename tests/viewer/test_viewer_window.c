@@ -184,16 +184,22 @@ static void test_3d_drag_and_pixels(void **state) {
     cj_scene_settings set = *cj_scene_settings_get(s);
     set.width = W, set.height = H, set.spp = 1;
     assert_int_equal(cj_scene_set_settings(s, &set), CJ_OK);
+    /* the depth plane the viewer picks against (the same deterministic render) */
+    cj_render_image *img = NULL;
+    cj_render_options ro = cj_render_options_default();
+    assert_int_equal(cj_render_raster(s, &ro, CJ_IMAGE_DEPTH, NULL, &img, NULL), CJ_OK);
     cj_vscene *vs = NULL;
     assert_int_equal(cj_vscene_create(s, &vs), CJ_OK);
-    /* a control point on screen: the pick at the centre of its own pixel */
+    /* a visible control point on screen: the pick at the centre of its own pixel */
     size_t k = 0, picked = 0;
     double q[3];
     int found = 0;
     for (k = 0; k < cj_vscene_point_count(vs) && !found; k += 7)
         if (cj_vscene_project(vs, k, W, H, q) && q[0] > 40 && q[0] < W - 40 && q[1] > 40 &&
             q[1] < H - 40)
-            found = cj_vscene_pick(vs, W, H, floor(q[0]) + 0.5, floor(q[1]) + 0.5, 8, &picked);
+            found = cj_vscene_pick(vs, W, H, img->depth, floor(q[0]) + 0.5, floor(q[1]) + 0.5, 8,
+                                   &picked);
+    cj_render_image_destroy(img);
     assert_true(found);
     cj_vec3 before;
     cj_vscene_point(vs, picked, &before);

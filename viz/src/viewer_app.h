@@ -37,6 +37,7 @@ typedef struct cj_viewer {
     int axis;  /* axis of shift-drags: 0 x, 1 y, 2 z */
     int trace; /* ray-traced view on */
     int trace_spp, trace_done;
+    float *depth; /* pseudodepth plane of the last rasterized picture (hidden points) */
     /* pictures: `pic` is what the offline commands produce, `screen` adds the overlay */
     cj_framebuffer *pic, *screen;
     cj_font *font;

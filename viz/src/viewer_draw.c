@@ -150,8 +150,10 @@ cj_status cj_viewer_load(cj_viewer *v) {
 void cj_viewer_unload(cj_viewer *v) {
     cj_vdoc_destroy(v->doc);
     cj_vscene_destroy(v->vs);
+    free(v->depth);
     v->doc = NULL;
     v->vs = NULL;
+    v->depth = NULL;
 }
 
 const char *cj_viewer_save_path(const cj_viewer *v, char *buf, size_t size) {
@@ -189,9 +191,14 @@ static cj_status render_3d(cj_viewer *v) {
         v->trace_spp *= 4;
         v->trace_done = v->trace_spp > 64;
     } else {
-        st = cj_render_raster(scene, &ro, 0, NULL, &img, &rep);
+        st = cj_render_raster(scene, &ro, CJ_IMAGE_DEPTH, NULL, &img, &rep);
     }
     if (st) return st;
+    if (img->depth) {
+        const size_t n = (size_t)v->width * (size_t)v->height;
+        if (!v->depth) v->depth = malloc(n * sizeof *v->depth);
+        if (v->depth) memcpy(v->depth, img->depth, n * sizeof *v->depth);
+    }
     st = cj_render_image_to_srgb8(img, (uint8_t *)v->pic->pixels,
                                   (size_t)v->pic->stride * sizeof(cj_rgba));
     for (int y = 0; y < v->height; ++y)
@@ -287,9 +294,10 @@ static void overlay_2d(cj_viewer *v, char *s, size_t n) {
     const cj_vcurve *c = v->disp.curve >= 0 ? cj_vdoc_curve(v->doc, (size_t)v->disp.curve) : NULL;
     if (!c) return;
     static const char *const kinds[] = {"Bezier", "rational Bezier", "spline"};
+    char dg[32] = "";
+    if (c->kind != CJ_VCURVE_SPLINE) snprintf(dg, sizeof dg, ", degree %zu", c->count - 1);
     snprintf(s, n, "curve %ld/%zu: %s, %zu points%s | t = %.4f%s%s", v->disp.curve + 1,
-             cj_vdoc_curve_count(v->doc), kinds[c->kind], c->count,
-             c->kind == CJ_VCURVE_SPLINE ? "" : " (degree n = count - 1)", v->disp.t,
+             cj_vdoc_curve_count(v->doc), kinds[c->kind], c->count, dg, v->disp.t,
              v->disp.construction ? " | construction" : "", v->disp.frame ? " | frame" : "");
     text(v, line++, s);
     if (v->sel_point >= 0 && (size_t)v->sel_point < c->count) {
@@ -329,7 +337,7 @@ static void overlay_2d(cj_viewer *v, char *s, size_t n) {
             cj_bezier_error_bound(&b, v->method, v->disp.t, bound);
         }
         cj_flatten_bezier(&bp, &fo, NULL, 0, &np, &fs);
-        snprintf(s, n, "c(t) = (%.17g, %.17g) | %s (M), error <= (%.2e, %.2e)", val[0], val[1],
+        snprintf(s, n, "c(t) = (%.17g, %.17g) | M: %s, error <= (%.2e, %.2e)", val[0], val[1],
                  method_name(v->method), bound[0], bound[1]);
     }
     free(px);

@@ -336,7 +336,7 @@ void cj_viewer_button(cj_viewer *v, int button, int press, int mods, double x, d
     if (v->mode3d) {
         size_t k;
         if (button == VIEW_BUTTON_LEFT &&
-            cj_vscene_pick(v->vs, v->width, v->height, v->cx, v->cy, PICK_RADIUS, &k)) {
+            cj_vscene_pick(v->vs, v->width, v->height, v->depth, v->cx, v->cy, PICK_RADIUS, &k)) {
             v->sel3 = (long)k;
             v->drag = VIEW_DRAG_POINT;
             cj_vscene_begin_drag(v->vs);

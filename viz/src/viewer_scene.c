@@ -191,8 +191,8 @@ int cj_vscene_project(const cj_vscene *vs, size_t k, int width, int height, doub
     return project(&clip, w, width, height, out);
 }
 
-int cj_vscene_pick(const cj_vscene *vs, int width, int height, double px, double py, double radius,
-                   size_t *k) {
+int cj_vscene_pick(const cj_vscene *vs, int width, int height, const float *depth, double px,
+                   double py, double radius, size_t *k) {
     cj_xform3 clip;
     if (cj_camera_world_to_clip(cj_scene_camera(vs->scene), (double)width / height, &clip))
         return 0;
@@ -203,6 +203,9 @@ int cj_vscene_pick(const cj_vscene *vs, int width, int height, double px, double
         double q[3];
         if (cj_vscene_point(vs, i, &w) || !project(&clip, w, width, height, q)) continue;
         if (!(q[2] >= -1.0 && q[2] <= 1.0)) continue; /* outside near/far */
+        if (depth && q[0] >= 0 && q[1] >= 0 && q[0] < width && q[1] < height &&
+            q[2] > depth[(size_t)q[1] * (size_t)width + (size_t)q[0]] + CJ_VSCENE_DEPTH_TOL)
+            continue; /* behind a surface */
         if (!cj_vpick_within(q[0], q[1], px, py, radius)) continue;
         if (!found || cj_vpick_closer(q[0], q[1], b[0], b[1], px, py) < 0) {
             found = 1;

@@ -89,9 +89,16 @@ static cj_status screenshot(win *g, const char *path) {
     return st;
 }
 
-/* Draws one frame into the back buffer; optionally reads it; swaps. Records its time. */
-static cj_status frame(win *g, const char *shot) {
-    const double t0 = now_s();
+static double cpu_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Draws one frame into the back buffer; optionally reads it; swaps. Records its wall and
+ * process CPU time (render + upload + draw + swap + glFinish) when `record`. */
+static cj_status frame_timed(win *g, const char *shot, int record) {
+    const double t0 = now_s(), c0 = cpu_s();
     cj_status st = cj_viewer_draw(&g->v);
     const cj_framebuffer *fb = g->v.screen;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -113,14 +120,22 @@ static cj_status frame(win *g, const char *shot) {
     }
     glfwSwapBuffers(g->w);
     glFinish();
-    const double dt = now_s() - t0;
-    if (g->ntimes == g->cap) {
-        size_t cap = g->cap ? 2 * g->cap : 256;
+    const double dt = now_s() - t0, dc = cpu_s() - c0;
+    if (!record) return st;
+    if (g->ntimes + 2 > g->cap) {
+        size_t cap = g->cap ? 2 * g->cap : 512;
         double *nt = realloc(g->times, cap * sizeof *nt);
         if (nt) g->times = nt, g->cap = cap;
     }
-    if (g->ntimes < g->cap) g->times[g->ntimes++] = dt;
+    if (g->ntimes + 2 <= g->cap) {
+        g->times[g->ntimes++] = dt;
+        g->times[g->ntimes++] = dc;
+    }
     return st;
+}
+
+static cj_status frame(win *g, const char *shot) {
+    return frame_timed(g, shot, 1);
 }
 
 static cj_status run_replay(win *g, const char *script) {
@@ -158,7 +173,8 @@ static cj_status run_replay(win *g, const char *script) {
 static void write_times(const win *g, const char *path) {
     FILE *f = fopen(path, "w");
     if (!f) return;
-    for (size_t i = 0; i < g->ntimes; ++i) fprintf(f, "%.9f\n", g->times[i]);
+    for (size_t i = 0; i + 1 < g->ntimes; i += 2)
+        fprintf(f, "%.9f %.9f\n", g->times[i], g->times[i + 1]);
     fclose(f);
 }
 

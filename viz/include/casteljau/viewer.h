@@ -27,7 +27,7 @@ typedef struct cj_viewer_options {
     int width, height;       /* window size; 0 = the file's (curves) / scene's settings */
     const char *replay;      /* script of events; the window closes at its end */
     const char *screenshot;  /* PNG of the back buffer after the replay (or at exit) */
-    const char *frame_times; /* per-frame seconds written here, one per line, at exit */
+    const char *frame_times; /* per frame "wall_s cpu_s" written here, one line each, at exit */
     int hide_overlay;        /* start with the text overlay hidden */
     int spp;                 /* 3D: samples per pixel override (0 = the scene's) */
     double tol_px;           /* 3D: tessellation tolerance override in pixels (0 = scene's) */

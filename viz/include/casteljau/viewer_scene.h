@@ -49,9 +49,13 @@ cj_status cj_vscene_point(const cj_vscene *vs, size_t k, cj_vec3 *world);
 int cj_vscene_project(const cj_vscene *vs, size_t k, int width, int height, double out[3]);
 
 /* The visible point nearest to (px, py) within `radius` pixels (exact squared distances, ties
- * to the lowest index, as cj_vdoc_pick). Returns 1 and sets *k, or 0. */
-int cj_vscene_pick(const cj_vscene *vs, int width, int height, double px, double py, double radius,
-                   size_t *k);
+ * to the lowest index, as cj_vdoc_pick). `depth` (may be NULL) is the pseudodepth plane of the
+ * rendered picture (cj_render_image.depth, width × height, bottom row first): a point whose
+ * pseudodepth exceeds the plane's at its pixel by more than CJ_VSCENE_DEPTH_TOL is hidden
+ * behind a surface and not picked. Returns 1 and sets *k, or 0. */
+#define CJ_VSCENE_DEPTH_TOL 2e-4
+int cj_vscene_pick(const cj_vscene *vs, int width, int height, const float *depth, double px,
+                   double py, double radius, size_t *k);
 
 /* Drags point k: its position at the start of the drag plus the displacement of the cursor
  * from (px0, py0) to (px1, py1), measured on the plane through that start position facing the
