@@ -388,7 +388,10 @@ static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
             snprintf(doc->scene_path, sizeof doc->scene_path, "%s/%s", c->base_dir,
                      sc->valuestring);
     }
-    if ((st = aj_num(c, root, "document", "fps", 1e-9, &doc->fps))) return st;
+    if ((st = aj_num(c, root, "document", "fps", -1e300, &doc->fps))) return st;
+    if (!(doc->fps > 0.0) || doc->fps > 10000)
+        return aj_jfail(c, cJSON_GetObjectItemCaseSensitive(root, "fps"), CJ_ERR_RANGE,
+                        "fps must be in (0, 10000]");
     const cJSON *fr = cJSON_GetObjectItemCaseSensitive(root, "frames");
     if (fr) {
         double f[2];

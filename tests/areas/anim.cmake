@@ -7,6 +7,7 @@ if(TARGET cj::scene)
   cj_add_test(test_ik SOURCES anim/test_ik.c LIBS cj::scene)
   cj_add_test(test_particles SOURCES anim/test_particles.c LIBS cj::scene)
   cj_add_test(test_anim_scene SOURCES anim/test_anim_scene.c LIBS cj::scene)
+  cj_add_test(test_anim_json SOURCES anim/test_anim_json.c LIBS cj::scene)
 endif()
 # Contract of `casteljau animate` (frames, checkpoints, bad input): runs the built tool.
 if(TARGET casteljau AND CJ_WITH_OIIO)
