@@ -942,8 +942,17 @@ static void test_offsets(void **state) {
         cj_xform3 T = cj_xform3_translate(far.x, far.y, far.z);
         cj_ray_xform x;
         assert_int_equal(cj_ray_xform_init(&x, &T), CJ_OK);
-        for (int i = 0; i < 6000; i++) {
-            int kind = i % 4;
+        /* a wavy bicubic patch of size 2L */
+        double bp[48];
+        for (int j = 0; j < 4; j++)
+            for (int k = 0; k < 4; k++) {
+                bp[3 * (4 * j + k)] = far.x + L * (2.0 * k / 3 - 1);
+                bp[3 * (4 * j + k) + 1] = far.y + L * (2.0 * j / 3 - 1);
+                bp[3 * (4 * j + k) + 2] = far.z + L * (((j + k) % 2) ? 0.7 : -0.4);
+            }
+        cj_patch P = cj_patch_view(3, 3, bp, NULL);
+        for (int i = 0; i < 7500; i++) {
+            int kind = i % 5;
             cj_vec3 o = cj_v3_add(far, cj_v3_scale(rand_unit(&r), 4 * L));
             cj_vec3 tg = cj_v3_add(far, cj_v3_scale(rand_unit(&r), 0.5 * L));
             cj_ray ray = {o, cj_v3_sub(tg, o), 0.0, INFINITY};
@@ -957,6 +966,8 @@ static void test_offsets(void **state) {
                 got = cj_ray_torus(&ray, &to, &h);
             else if (kind == 2)
                 got = cj_ray_triangle(&ray, tv[0], tv[1], tv[2], &h);
+            else if (kind == 4)
+                got = cj_ray_patch(&ray, &P, 1e-7 * L, &h, NULL);
             else {
                 cj_ray ro;
                 cj_ray_to_object(&x, &ray, &ro);
@@ -984,6 +995,8 @@ static void test_offsets(void **state) {
                     again = cj_ray_torus(&sr, &to, &h2);
                 else if (kind == 2)
                     again = cj_ray_triangle(&sr, tv[0], tv[1], tv[2], &h2);
+                else if (kind == 4)
+                    again = cj_ray_patch(&sr, &P, 1e-7 * L, &h2, NULL);
                 else {
                     cj_ray ro;
                     cj_ray_to_object(&x, &sr, &ro);
@@ -1000,7 +1013,8 @@ static void test_offsets(void **state) {
             }
         }
     }
-    printf("  offsets (sphere, torus, triangle, placed ellipsoid at 1e6 and 1e-6 scale, far from "
+    printf("  offsets (sphere, torus, triangle, placed ellipsoid, bicubic patch at 1e6 and 1e-6 "
+           "scale, far from "
            "the origin): %ld secondary rays to both sides, %ld self-hits; largest offset %.2e of "
            "the object's size\n",
            n, self_hits, worst_rel);

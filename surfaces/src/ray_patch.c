@@ -200,15 +200,16 @@ static int newton(ctx *c, const net *s, double *ua, double *vb, double *res) {
     double a = 0.5, b = 0.5, f[2], fu[2], fv[2];
     double best = INFINITY;
     if (c->stats) c->stats->newton++;
-    /* Quadratic convergence: stop once |F| is far below tol (or stops shrinking), evaluating
-     * F at the returned point exactly once more only if the loop ended after a step. */
+    /* Run to full precision (until |F| stops shrinking): the root's t then decides reliably
+     * whether it lies before tmin (the surface a secondary ray leaves) or after it. F is
+     * evaluated at the returned point once more only if the loop ended after a step. */
     double r = INFINITY;
     int fresh = 0;
     for (int it = 0; it < 24; it++) {
         net_eval(c, s, a, b, f, fu, fv);
         fresh = 1;
         r = sqrt(f[0] * f[0] + f[1] * f[1]);
-        if (r <= 1e-4 * c->tol || r == 0.0) break;
+        if (r == 0.0) break;
         if (!(r < best * 0.999) && it > 3) break;
         if (r < best) best = r;
         double det = fu[0] * fv[1] - fu[1] * fv[0];
