@@ -232,6 +232,14 @@ int main(int argc, char **argv) {
     printf("bench_raster: depth-only visibility (no barycentrics), %d x %d, tiles 64, median of "
            "%d interleaved runs%s; 1 thread: thread CPU time, 2 threads: wall time\n",
            S, S, reps, cg ? " (callgrind workload)" : "");
+    FILE *la = fopen("/proc/loadavg", "r");
+    double load = -1;
+    if (la) {
+        if (fscanf(la, "%lf", &load) != 1) load = -1;
+        fclose(la);
+    }
+    if (load >= 0)
+        printf("load average %.2f at the end (2-thread wall times need an idle machine)\n", load);
     printf("%-20s %3s %3s %10s %8s %9s %9s %10s %10s %8s %8s\n", "workload", "spp", "thr",
            "covered", "prep ms", "raster ms", "+vis ms", "fill Ms/s", "+vis Ms/s", "Mtris/s",
            "+vis");
