@@ -116,12 +116,16 @@ static inline uint64_t span_kernel(float *dp, uint32_t *ip, int n, double rowz, 
         vs1 = _mm256_set1_epi64x(4 * st[1]);
         vs2 = _mm256_set1_epi64x(4 * st[2]);
     }
-    for (; i + 4 <= n; i += 4) {
+    /* Whole groups of four, the last one masked to the span: the lanes past the end read and
+     * write back their own values (the scratch planes are padded by 4). */
+    for (; i < n; i += 4) {
         __m256d z = _mm256_add_pd(vz, _mm256_mul_pd(va, dx));
         z = _mm256_min_pd(_mm256_max_pd(z, lo), hi);
         const __m128 zf = _mm256_cvtpd_ps(z);
         const __m128 old = _mm_loadu_ps(dp + i);
         __m128 m = _mm_cmplt_ps(zf, old);
+        if (n - i < 4)
+            m = _mm_and_ps(m, _mm_loadu_ps((const float *)k_lane_mask[(1 << (n - i)) - 1]));
         if (e) {
             const __m256i o = _mm256_or_si256(_mm256_or_si256(ve0, ve1), ve2);
             const int outside = _mm256_movemask_pd(_mm256_castsi256_pd(o));
@@ -135,11 +139,6 @@ static inline uint64_t span_kernel(float *dp, uint32_t *ip, int n, double rowz, 
         _mm_storeu_si128((__m128i *)(ip + i), _mm_blendv_epi8(oid, vid, _mm_castps_si128(m)));
         wr += (uint64_t)__builtin_popcount((unsigned)_mm_movemask_ps(m));
         dx = _mm256_add_pd(dx, step);
-    }
-    if (e && i) {
-        e0 += i * st[0];
-        e1 += i * st[1];
-        e2 += i * st[2];
     }
 #endif
     for (; i < n; ++i) {

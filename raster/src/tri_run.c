@@ -93,8 +93,9 @@ cj_status cj_raster_run(const cj_raster_prep *prep, int threads, cj_tile_fn fn, 
     for (int i = 0; i < threads; ++i) {
         ws[i].run = &r;
         ws[i].index = i;
-        ws[i].scratch.depth = a->alloc(a->user, n * sizeof(float));
-        ws[i].scratch.id = a->alloc(a->user, n * sizeof(uint32_t));
+        /* +4: the span kernels touch up to three samples past a span (unchanged). */
+        ws[i].scratch.depth = a->alloc(a->user, (n + 4) * sizeof(float));
+        ws[i].scratch.id = a->alloc(a->user, (n + 4) * sizeof(uint32_t));
         ws[i].samples = a->alloc(a->user, n * sizeof(cj_vis_sample));
         if (!ws[i].scratch.depth || !ws[i].scratch.id || !ws[i].samples) {
             st = cj_fail(CJ_ERR_NOMEM, "raster: no memory for the tile buffers of %d threads",
