@@ -10,7 +10,8 @@ if(CJ_HAVE_VIEWER AND TARGET casteljau)
     LIBS cj::viz cj::raster cj::scene cj::surfaces)
   target_include_directories(test_viewer_window PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_compile_definitions(test_viewer_window PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
-    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt"
+    CJ_ANIM_PATH="${PROJECT_SOURCE_DIR}/scenes/anim_flyby.json")
   add_dependencies(test_viewer_window casteljau)
   set_tests_properties(test_viewer_window PROPERTIES TIMEOUT 300)
 endif()

@@ -256,6 +256,26 @@ static void test_3d_drag_and_pixels(void **state) {
     cj_vscene_destroy(vs);
 }
 
+/* Playback: each drawn frame advances the animation by one frame, so after Space and three more
+ * pictures the viewer shows frame 4, which `casteljau animate` renders to the same pixels. */
+static void test_animation(void **state) {
+    (void)state;
+    write_file("anim.txt", "key space\nframe\nframe\nscreenshot anim_view.png\n");
+    char buf[2048];
+    snprintf(buf, sizeof buf,
+             "%s view %s --width 160 --height 120 --spp 1 --hide-overlay --replay anim.txt && "
+             "%s animate %s -o anim_%%d.png --frames 4:4 --width 160 --height 120 --spp 1 "
+             "--quiet",
+             CJ_CLI, CJ_ANIM_PATH, CJ_CLI, CJ_ANIM_PATH);
+    cj_cli_result r;
+    assert_int_equal(run(buf, &r), 0);
+    cj_cli_result_free(&r);
+    assert_int_equal(differ("anim_view.png", "anim_4.png"), 0);
+    printf("animation playback (scenes/anim_flyby.json): frame 4 in the viewer == `casteljau "
+           "animate` frame 4, 0 of %d pixels differ\n",
+           160 * 120);
+}
+
 static void test_xdotool(void **state) {
     (void)state;
     char path[512], buf[2048];
@@ -329,6 +349,7 @@ int main(void) {
         cmocka_unit_test(test_no_display),
         cmocka_unit_test(test_2d_drag_and_pixels),
         cmocka_unit_test(test_3d_drag_and_pixels),
+        cmocka_unit_test(test_animation),
         cmocka_unit_test(test_xdotool),
     };
     const int rc = cmocka_run_group_tests(tests, NULL, NULL);

@@ -37,7 +37,10 @@ typedef struct cj_viewer {
     int axis;  /* axis of shift-drags: 0 x, 1 y, 2 z */
     int trace; /* ray-traced view on */
     int trace_spp, trace_done;
-    float *depth; /* pseudodepth plane of the last rasterized picture (hidden points) */
+    float *depth;             /* pseudodepth plane of the last rasterized picture (hidden points) */
+    struct cj_anim_doc *anim; /* an animation document's timeline, or NULL */
+    long anim_frame;
+    int playing;
     /* pictures: `pic` is what the offline commands produce, `screen` adds the overlay */
     cj_framebuffer *pic, *screen;
     cj_font *font;
@@ -60,6 +63,8 @@ typedef struct cj_viewer {
 cj_status cj_viewer_load(cj_viewer *v);
 void cj_viewer_unload(cj_viewer *v);
 cj_status cj_viewer_save(cj_viewer *v, const char *path);
+/* While an animation plays: poses the scene at the next frame (one frame per drawn frame). */
+void cj_viewer_tick(cj_viewer *v);
 /* Renders `pic` if dirty, then `screen` = pic + overlay/help. */
 cj_status cj_viewer_draw(cj_viewer *v);
 /* The default save path ("" when the input was not a file the editor can write back). */

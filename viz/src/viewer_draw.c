@@ -4,6 +4,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "viewer_app.h"
 
+#include "casteljau/anim_json.h"
 #include "casteljau/flatten.h"
 #include "casteljau/line.h"
 #include "casteljau/patchset.h"
@@ -39,6 +40,22 @@ static int is_plot_json(const char *path) {
     free(buf);
     const int yes = root && (cJSON_GetObjectItemCaseSensitive(root, "items") ||
                              cJSON_GetObjectItemCaseSensitive(root, "panels"));
+    cJSON_Delete(root);
+    return yes;
+}
+
+/* An animation document names its scene at the top ("scene": "file.json"). */
+static int is_anim_json(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    char *buf = malloc(1 << 20);
+    size_t n = buf ? fread(buf, 1, (1 << 20) - 1, f) : 0;
+    fclose(f);
+    if (!buf) return 0;
+    buf[n] = '\0';
+    cJSON *root = cJSON_Parse(buf);
+    free(buf);
+    const int yes = cJSON_IsString(cJSON_GetObjectItemCaseSensitive(root, "scene"));
     cJSON_Delete(root);
     return yes;
 }
@@ -120,12 +137,22 @@ cj_status cj_viewer_load(cj_viewer *v) {
     } else if (ends_with(o->path, ".bpt")) {
         st = bpt_scene(o->path, &scene);
     } else {
+        const int anim = ends_with(o->path, ".json") && is_anim_json(o->path);
+        if (anim && (st = cj_anim_doc_load(o->path, &v->anim))) return st;
+        const char *sp = anim ? v->anim->scene_path : o->path;
         cj_scene_json_options jo = {o->teapot_path};
         char dir[4096];
-        st = cj_scene_load_json_ex(o->path, &jo, NULL, &scene);
-        if (!st && (st = cj_scene_load_textures(scene, dir_of(o->path, dir, sizeof dir)))) {
+        st = cj_scene_load_json_ex(sp, &jo, NULL, &scene);
+        if (!st && (st = cj_scene_load_textures(scene, dir_of(sp, dir, sizeof dir)))) {
             cj_scene_destroy(scene);
             scene = NULL;
+        }
+        if (!st && anim) {
+            v->anim_frame = v->anim->frame_first;
+            v->playing = 0;
+            st = cj_anim_doc_attach(v->anim, scene);
+            if (!st) st = cj_anim_doc_frame(v->anim, scene, v->anim_frame, NULL);
+            if (st) cj_scene_destroy(scene);
         }
     }
     if (st) return st;
@@ -151,6 +178,9 @@ void cj_viewer_unload(cj_viewer *v) {
     cj_vdoc_destroy(v->doc);
     cj_vscene_destroy(v->vs);
     free(v->depth);
+    if (v->anim) cj_anim_doc_destroy(v->anim);
+    v->anim = NULL;
+    v->playing = 0;
     v->doc = NULL;
     v->vs = NULL;
     v->depth = NULL;
@@ -158,7 +188,9 @@ void cj_viewer_unload(cj_viewer *v) {
 
 const char *cj_viewer_save_path(const cj_viewer *v, char *buf, size_t size) {
     const char *p = v->opt->path;
-    if (p && ends_with(p, ".json"))
+    if (p && v->anim)
+        snprintf(buf, size, "%.*s_posed.json", (int)(strlen(p) - 5), p); /* not the animation */
+    else if (p && ends_with(p, ".json"))
         snprintf(buf, size, "%s", p);
     else if (p)
         snprintf(buf, size, "%s.json", p); /* a .bpt is saved as a scene beside it */
@@ -355,6 +387,11 @@ static void overlay_3d(cj_viewer *v, char *s, size_t n) {
              v->bound_px, v->trace ? v->trace_spp / 4 : set->spp,
              v->trace && !v->trace_done ? " (refining)" : "");
     text(v, 1, s);
+    if (v->anim) {
+        snprintf(s, n, "animation: frame %ld of %d..%d (%s, Space)", v->anim_frame,
+                 v->anim->frame_first, v->anim->frame_last, v->playing ? "playing" : "paused");
+        text(v, 4 + (v->sel3 >= 0), s);
+    }
     snprintf(s, n,
              "tool: drag points on the camera plane; shift-drag along %c | %zu control points",
              "xyz"[v->axis], cj_vscene_point_count(v->vs));
@@ -368,6 +405,22 @@ static void overlay_3d(cj_viewer *v, char *s, size_t n) {
         snprintf(s, n, "point %ld: (%.6g, %.6g, %.6g)", v->sel3, w.x, w.y, w.z);
         text(v, 3, s);
     }
+}
+
+void cj_viewer_tick(cj_viewer *v) {
+    if (!v->anim || !v->playing) return;
+    if (v->anim_frame >= v->anim->frame_last) {
+        v->playing = 0;
+        snprintf(v->msg, sizeof v->msg, "end of the animation (F5 reloads it)");
+        return;
+    }
+    cj_status st = cj_anim_doc_frame(v->anim, cj_vscene_scene(v->vs), ++v->anim_frame, NULL);
+    if (!st) st = cj_vscene_update(v->vs);
+    if (st) {
+        v->playing = 0;
+        snprintf(v->msg, sizeof v->msg, "animation: %s", cj_last_error());
+    }
+    v->dirty = 1;
 }
 
 cj_status cj_viewer_draw(cj_viewer *v) {

@@ -35,7 +35,7 @@ static const char *const help_3d[] = {
     "left drag elsewhere  orbit;  right or middle drag  pan;  wheel  zoom",
     "N  control nets    W  wireframe    G  shading flat/Gouraud/Phong",
     "+ / -  screen tolerance x2 / /2    R  ray-traced view (refines while still)",
-    "Space  animation (not available in the viewer yet)",
+    "Space  play/pause the animation (an animation document: one frame per picture)",
     "ctrl+Z  undo    ctrl+Y or ctrl+shift+Z  redo    ctrl+S  save    F5  reload",
     "O  text overlay on/off    F1  this help    Esc/Q  quit",
     NULL};
@@ -251,7 +251,12 @@ static void key_3d(cj_viewer *v, int key) {
         say(v, "drag axis", CJ_OK);
         break;
     case GLFW_KEY_SPACE:
-        say(v, "animation playback is not available in the viewer yet", CJ_OK);
+        if (!v->anim) {
+            say(v, "no animation: open an animation document (casteljau animate's)", CJ_OK);
+        } else {
+            v->playing = !v->playing;
+            say(v, v->playing ? "playing" : "paused", CJ_OK);
+        }
         break;
     default:
         break;

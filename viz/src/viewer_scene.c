@@ -322,6 +322,15 @@ cj_status cj_vscene_drag(cj_vscene *vs, size_t k, int width, int height, double 
     return cj_vscene_set_point(vs, k, np);
 }
 
+cj_status cj_vscene_update(cj_vscene *vs) {
+    for (size_t n = 0; n < cj_scene_node_count(vs->scene); ++n) {
+        cj_status st = cj_scene_node_world(vs->scene, (int)n, &vs->world[n]);
+        if (st) return st;
+        if (cj_xform3_inverse(&vs->world[n], &vs->inv[n])) vs->inv[n] = cj_xform3_identity();
+    }
+    return CJ_OK;
+}
+
 cj_status cj_vscene_undo(cj_vscene *vs) {
     if (!vs->pos) return cj_fail(CJ_ERR_EMPTY, "viewer: nothing to undo");
     vmove *m = &vs->log[--vs->pos];

@@ -99,6 +99,7 @@ static double cpu_s(void) {
  * process CPU time (render + upload + draw + swap + glFinish) when `record`. */
 static cj_status frame_timed(win *g, const char *shot, int record) {
     const double t0 = now_s(), c0 = cpu_s();
+    if (record) cj_viewer_tick(&g->v);
     cj_status st = cj_viewer_draw(&g->v);
     const cj_framebuffer *fb = g->v.screen;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -244,7 +245,7 @@ cj_status cj_viewer_run(const cj_viewer_options *opt) {
         if (!st && opt->screenshot) st = frame(g, opt->screenshot);
     } else if (!st) {
         while (!st && !v->quit && !glfwWindowShouldClose(g->w)) {
-            const int refine = v->mode3d && v->trace && !v->trace_done;
+            const int refine = (v->mode3d && v->trace && !v->trace_done) || v->playing;
             if (v->dirty || refine || g->ntimes == 0) st = frame(g, NULL);
             if (refine)
                 glfwPollEvents();

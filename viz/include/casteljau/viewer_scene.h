@@ -69,6 +69,9 @@ cj_status cj_vscene_drag(cj_vscene *vs, size_t k, int width, int height, double 
 /* Sets point k to a world position (one command). */
 cj_status cj_vscene_set_point(cj_vscene *vs, size_t k, cj_vec3 world);
 
+/* Re-reads the nodes' world transforms (after animation posed the scene). */
+cj_status cj_vscene_update(cj_vscene *vs);
+
 cj_status cj_vscene_undo(cj_vscene *vs);
 cj_status cj_vscene_redo(cj_vscene *vs);
 size_t cj_vscene_undo_depth(const cj_vscene *vs);
