@@ -21,9 +21,12 @@
  *   - material: diffuse colour c_r with coefficient r_d, specular colour c_p with r_s and
  *     specular power α, opacity; FLAT shading → flat interpolation, GOURAUD/PHONG → VTK's
  *     per-fragment lighting with interpolated normals (VTK's OpenGL2 back end lights every
- *     fragment); one-sided materials cull back faces (by screen-space winding, which equals
- *     our (p̄ − ē)·n⃗ > 0 test for a triangle counter-clockwise from outside), two-sided ones
- *     light both sides (VTK's two-sided lighting). Textures are ignored.
+ *     fragment, so our GOURAUD, which interpolates colours, differs inside triangles);
+ *     one-sided materials cull back faces (by screen-space winding, which equals our
+ *     (p̄ − ē)·n⃗ > 0 test for a triangle counter-clockwise from outside), two-sided ones light
+ *     both sides (VTK's two-sided lighting flips the normal on back-facing triangles, by the
+ *     triangle's facing). Textures are ignored; opacity < 1 is blended in draw order (no
+ *     sorting, no depth peeling).
  *   KNOWN DIFFERENCE: VTK's specular term is Phong's (r⃗·v⃗)^α with r⃗ the reflected light
  *   direction, gated by n⃗·l⃗ > 0; ours is Blinn's (n⃗·h⃗)^α (casteljau/scene.h), which
  *   CJ_VTK_BLINN_SPECULAR patches into VTK's shader; ambient and diffuse terms are the same
