@@ -117,14 +117,14 @@ void cj_sphere_oracle_init(cj_sphere_oracle *o, const cj_camera *cam, int w, int
     o->w = w;
     o->h = h;
     o->r = r;
-    mpfr_t g[3], t[3], u[3], v[3], wv[3], d[3], tmp, tmp2;
-    mpfr_inits2(PREC, g[0], g[1], g[2], t[0], t[1], t[2], u[0], u[1], u[2], v[0], v[1], v[2], wv[0],
-                wv[1], wv[2], d[0], d[1], d[2], tmp, tmp2, (mpfr_ptr)0);
+    mpfr_t t[3], u[3], v[3], wv[3], d[3], tmp, tmp2;
+    mpfr_inits2(PREC, t[0], t[1], t[2], u[0], u[1], u[2], v[0], v[1], v[2], wv[0], wv[1], wv[2],
+                d[0], d[1], d[2], tmp, tmp2, (mpfr_ptr)0);
     mpfr_inits2(PREC, o->mC[0], o->mC[1], o->mC[2], o->mk, o->mtx, o->mty, o->mr2, o->s[0], o->s[1],
                 o->s[2], o->s[3], o->s[4], o->s[5], (mpfr_ptr)0);
     const double gd[3] = {cam->gaze.x, cam->gaze.y, cam->gaze.z};
     const double td[3] = {cam->up.x, cam->up.y, cam->up.z};
-    const double ed[3] = {c.x - 0.0, c.y, c.z};
+    const double ed[3] = {c.x, c.y, c.z};
     const double eye[3] = {cam->eye.x, cam->eye.y, cam->eye.z};
     for (int i = 0; i < 3; i++) {
         mpfr_set_d(wv[i], -gd[i], MPFR_RNDN);
@@ -143,7 +143,6 @@ void cj_sphere_oracle_init(cj_sphere_oracle *o, const cj_camera *cam, int w, int
     mpfr_set_d(o->mr2, r, MPFR_RNDN);
     mpfr_sqr(o->mr2, o->mr2, MPFR_RNDN);
     mpfr_sub(o->mk, o->mk, o->mr2, MPFR_RNDN); /* |C|^2 - r^2 */
-    const double aspect = (double)w / (double)h;
     if (cam->projection == CJ_PROJ_ORTHOGRAPHIC) {
         mpfr_set_d(o->mty, cam->ortho_height, MPFR_RNDN);
         mpfr_div_ui(o->mty, o->mty, 2, MPFR_RNDN);
@@ -157,15 +156,14 @@ void cj_sphere_oracle_init(cj_sphere_oracle *o, const cj_camera *cam, int w, int
     for (int i = 0; i < 3; i++) o->C[i] = mpfr_get_d(o->mC[i], MPFR_RNDN);
     o->tx = mpfr_get_d(o->mtx, MPFR_RNDN);
     o->ty = mpfr_get_d(o->mty, MPFR_RNDN);
-    (void)aspect;
     if (cam->projection == CJ_PROJ_ORTHOGRAPHIC)
         o->px_per_unit = h / cam->ortho_height;
     else
         o->px_per_unit =
             (h / 2.0) / o->ty / sqrt(o->C[0] * o->C[0] + o->C[1] * o->C[1] + o->C[2] * o->C[2]);
     fit_ellipse(o);
-    mpfr_clears(g[0], g[1], g[2], t[0], t[1], t[2], u[0], u[1], u[2], v[0], v[1], v[2], wv[0],
-                wv[1], wv[2], d[0], d[1], d[2], tmp, tmp2, (mpfr_ptr)0);
+    mpfr_clears(t[0], t[1], t[2], u[0], u[1], u[2], v[0], v[1], v[2], wv[0], wv[1], wv[2], d[0],
+                d[1], d[2], tmp, tmp2, (mpfr_ptr)0);
 }
 
 void cj_sphere_oracle_clear(cj_sphere_oracle *o) {
