@@ -575,6 +575,31 @@ static void test_ours_vs_vtk_teapot(void **state) {
     teapot_case("teapot");
 }
 
+/* Clipping: a floor reaching from behind the eye to beyond the far plane (two big triangles
+ * cut by both planes, in homogeneous coordinates by ours, by OpenGL's clipper in VTK) under a
+ * sphere, seen at a grazing angle. */
+static void test_ours_vs_vtk_clipping(void **state) {
+    (void)state;
+    const int w = 400, h = 300;
+    cj_camera cam = view_camera(cj_v3(0.0, 1.2, 4.0), cj_v3(0.0, 0.3, 0.0), cj_v3(0, 1, 0), 60);
+    cam.near = -0.3;
+    cam.far = -30.0;
+    cj_scene *sc = new_scene(&cam, w, h);
+    cj_geometry g = {0};
+    g.kind = CJ_GEOM_PLANAR;
+    assert_int_equal(
+        cj_planar_patch_init(&g.u.planar, cj_v3(-20, 0, 40), cj_v3(40, 0, 0), cj_v3(0, 0, -100)),
+        CJ_OK);
+    add_object(sc, &g, add_material(sc, cj_rgb_make(0.6, 0.7, 0.6), 1), cj_v3(0, 0, 0), 0.0);
+    cj_geometry b = {0};
+    b.kind = CJ_GEOM_SPHERE;
+    b.u.sphere.center = cj_v3(0.4, 0.8, 0.0);
+    b.u.sphere.radius = 0.8;
+    add_object(sc, &b, add_material(sc, cj_rgb_make(0.8, 0.4, 0.3), 0), cj_v3(0, 0, 0), 0.0);
+    compare_with_vtk("clipping", sc, w, h);
+    cj_scene_destroy(sc);
+}
+
 /* Specular highlights (r_s 0.3, alpha 24) with VTK's specular line replaced by ours
  * (CJ_VTK_BLINN_SPECULAR); without the replacement VTK's Phong lobe differs from ours by up to
  * 36/255 on the teapot (11838 channels beyond the tolerance), so the test sees the patch. */
@@ -715,6 +740,7 @@ int main(void) {
         cmocka_unit_test(test_ours_vs_vtk_quadrics_ortho_flat),
         cmocka_unit_test(test_ours_vs_vtk_teapot),
         cmocka_unit_test(test_ours_vs_vtk_specular),
+        cmocka_unit_test(test_ours_vs_vtk_clipping),
         cmocka_unit_test(test_export_vtp),
         cmocka_unit_test(test_refusals),
     };
