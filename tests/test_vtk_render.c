@@ -6,8 +6,9 @@
  *    largest ball inside the mesh), its radiance within 1/255 of exact Lambert + ambient,
  *    perspective and orthographic; the mask shifted by 2 px must fail the same check;
  *  - our cj_render_raster against VTK drawing the same triangles (cj_render_scene_mesh): a
- *    sphere, six quadrics (perspective Phong; orthographic flat), the teapot; with and without
- *    specular highlights (VTK's specular line replaced by ours). Object ids agree everywhere
+ *    sphere, six quadrics (perspective Phong; orthographic flat), the teapot, a floor cut by
+ *    the near and far planes; with and without specular highlights (VTK's specular line
+ *    replaced by ours). Object ids agree everywhere
  *    except within a one-pixel band around silhouettes (0 differing pixels outside it), depth
  *    agrees to float rounding plus the vertex-snapping allowance off the band, colours within
  *    CJ_COLOUR_TOL per channel, vtkImageDifference's thresholded error 0; and our sphere's mask
