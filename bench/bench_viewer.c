@@ -11,6 +11,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bench_clock.h"
 #include "casteljau/render.h"
+#include "casteljau/scene_json.h"
 #include "casteljau/viewer_scene.h"
 #include "xvfb.h"
 
@@ -56,6 +57,7 @@ int main(int argc, char **argv) {
         cj_render_image_destroy(img);
     }
     /* A visible control point near the middle of the picture: the one the viewer picks. */
+    const cj_camera cam0 = *cj_scene_camera(s);
     cj_vscene *vs = NULL;
     if (cj_vscene_create(s, &vs)) return fprintf(stderr, "%s\n", cj_last_error()), 1;
     size_t picked = 0;
@@ -67,6 +69,8 @@ int main(int argc, char **argv) {
             if (d < best) best = d, picked = k;
         }
     cj_vscene_project(vs, picked, W, H, q);
+    cj_vec3 start;
+    cj_vscene_point(vs, picked, &start);
     const int x = (int)floor(q[0]), y = H - 1 - (int)floor(q[1]);
     cj_vscene_destroy(vs);
     free(depth);
@@ -80,7 +84,7 @@ int main(int argc, char **argv) {
         const double a = 6.283185307179586 * i / frames;
         fprintf(f, "move %.3f %.3f\n", x + 40 * sin(a), y - 40 * (1 - cos(a)));
     }
-    fprintf(f, "release left %d %d\n", x, y);
+    fprintf(f, "release left %d %d\nsave %s.json\n", x, y, script);
     fclose(f);
 
     const pid_t xvfb = cj_test_xvfb_start(1280, 1100);
@@ -120,6 +124,21 @@ int main(int argc, char **argv) {
                1e3 * pct(d, nd, 1.0), 1e3 * pct(e, nd, 0.5), 1e3 * pct(e, nd, 0.99));
         free(v);
         free(c);
+        /* the drag really moved that point and not the camera: the circle brings the point back
+         * to its start (to rounding), while an orbit would have rewritten the camera */
+        char saved[64];
+        snprintf(saved, sizeof saved, "%s.json", script);
+        cj_scene_json_options jo = {CJ_TEAPOT_PATH};
+        cj_scene *m = NULL;
+        cj_vscene *vm = NULL;
+        cj_vec3 end;
+        if (cj_scene_load_json_ex(saved, &jo, NULL, &m) || cj_vscene_create(m, &vm) ||
+            cj_vscene_point(vm, picked, &end) ||
+            cj_v3_norm(cj_v3_sub(end, start)) > 1e-9 * cj_v3_norm(start) + 1e-12 ||
+            memcmp(cj_scene_camera(cj_vscene_scene(vm)), &cam0, sizeof cam0))
+            return fprintf(stderr, "bench_viewer: the replay did not drag point %zu\n", picked), 1;
+        cj_vscene_destroy(vm);
+        unlink(saved);
     }
     unlink(script);
     cj_test_xvfb_stop(xvfb);
