@@ -344,15 +344,17 @@ cj_status cj_channel_eval(const cj_channel *ch, double t, double *out) {
         return CJ_OK;
     }
     const cj_bezier c = cj_bezier_view(3, ch->dim, ch->segs + 4 * j * dim);
-    cj_status st = cj_bezier_eval_decasteljau(&c, u, out);
+    double tmp[CJ_CHANNEL_MAX_DIM];
+    cj_status st = cj_bezier_eval_decasteljau(&c, u, tmp);
     if (st != CJ_OK) return st;
     if (ch->kind == CJ_CHANNEL_QUATERNION) {
         const double nn =
-            sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
+            sqrt(tmp[0] * tmp[0] + tmp[1] * tmp[1] + tmp[2] * tmp[2] + tmp[3] * tmp[3]);
         if (!(nn > 0.0))
             return cj_fail(CJ_ERR_DEGENERATE, "glTF cubic rotation vanishes at time %g", t);
-        for (int k = 0; k < 4; ++k) out[k] /= nn;
+        for (int k = 0; k < 4; ++k) tmp[k] /= nn;
     }
+    memcpy(out, tmp, sizeof(double) * dim);
     return CJ_OK;
 }
 
