@@ -40,6 +40,12 @@ double cj_render_now(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+double cj_render_thread_cpu(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 cj_render_options cj_render_options_default(void) {
     cj_render_options o;
     memset(&o, 0, sizeof o);

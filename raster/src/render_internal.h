@@ -147,5 +147,7 @@ void *cj_ralloc(const cj_allocator *a, size_t bytes);
 void cj_rfree(const cj_allocator *a, void *p);
 
 double cj_render_now(void);
+/* CPU time of the calling thread, seconds. */
+double cj_render_thread_cpu(void);
 
 #endif

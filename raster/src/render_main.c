@@ -387,6 +387,7 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
     for (int i = 0; i < c.threads; ++i)
         for (int k = 0; k < CJ_RS_COUNT; ++k) {
             sum.sec[k] += c.count[i].sec[k];
+            sum.cpu[k] += c.count[i].cpu[k];
             sum.n[k] += c.count[i].n[k];
         }
     size_t tris_built = b.patch_tris + b.surface_tris + b.mesh_tris;
@@ -467,8 +468,10 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
         uint64_t n = sum.n[2 * m] + sum.n[2 * m + 1];
         textured += sum.n[2 * m + 1];
         tex_sec += sum.sec[2 * m + 1];
-        stage(R, name, f.model_used[m], why, "samples", n, "samples", n,
-              sum.sec[2 * m] + sum.sec[2 * m + 1]);
+        cj_stage *sh = stage(R, name, f.model_used[m], why, "samples", n, "samples", n,
+                             sum.sec[2 * m] + sum.sec[2 * m + 1]);
+        if (f.model_used[m])
+            cj_stage_add_value(sh, "cpu_seconds", sum.cpu[2 * m] + sum.cpu[2 * m + 1]);
     }
     if (f.textured) snprintf(why, sizeof why, "material %d has a texture", f.tex_mat);
     s = stage(R, "texture", f.textured, f.textured ? why : "no textures", "samples", textured,
@@ -479,9 +482,10 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
               "segments", c.lines.world_segments, "pixels", sum.n[CJ_RS_LINES],
               sum.sec[CJ_RS_LINES] + sec_lines_setup);
     if (f.transparent) snprintf(why, sizeof why, "material %d has opacity < 1", f.transp_mat);
-    stage(R, "transparency", f.transparent, f.transparent ? why : "no transparent material",
-          "triangles", c.transp.count, "fragments", sum.n[CJ_RS_TRANSPARENT],
-          sum.sec[CJ_RS_TRANSPARENT]);
+    s = stage(R, "transparency", f.transparent, f.transparent ? why : "no transparent material",
+              "triangles", c.transp.count, "fragments", sum.n[CJ_RS_TRANSPARENT],
+              sum.sec[CJ_RS_TRANSPARENT]);
+    if (f.transparent) cj_stage_add_value(s, "cpu_seconds", sum.cpu[CJ_RS_TRANSPARENT]);
     snprintf(why, sizeof why, "spp = %d", spp);
     stage(R, "resolve", spp > 1, why, "samples", spp > 1 ? sum.n[CJ_RS_RESOLVE] * (uint64_t)spp : 0,
           "pixels", sum.n[CJ_RS_RESOLVE], sum.sec[CJ_RS_RESOLVE]);

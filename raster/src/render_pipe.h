@@ -34,6 +34,7 @@ enum {
 
 typedef struct cj_rcount {
     double sec[CJ_RS_COUNT];
+    double cpu[CJ_RS_COUNT]; /* the same in the worker's CPU time (robust on a busy machine) */
     uint64_t n[CJ_RS_COUNT];
     uint64_t textured;
     char pad[64];

@@ -86,9 +86,10 @@ void cj_rtile_run(void *user, const cj_tile *t) {
     for (int k = 0; k < CJ_RK_COUNT; ++k) {
         size_t m = start[k + 1] - start[k];
         if (!m) continue;
-        double a = cj_render_now();
+        double a = cj_render_now(), ac = cj_render_thread_cpu();
         cj_rshade_kernel(c, k, t, ord + start[k], m, col);
         cnt->sec[CJ_RS_SHADE0 + k] += cj_render_now() - a;
+        cnt->cpu[CJ_RS_SHADE0 + k] += cj_render_thread_cpu() - ac;
         cnt->n[CJ_RS_SHADE0 + k] += m;
     }
 
@@ -98,11 +99,12 @@ void cj_rtile_run(void *user, const cj_tile *t) {
         cnt->sec[CJ_RS_LINES] += cj_render_now() - a;
     }
     if (c->has_transp) {
-        double a = cj_render_now();
+        double a = cj_render_now(), ac = cj_render_thread_cpu();
         frag_ctx f = {c, t, col, 0};
         cj_raster_tile_forward(c->transp.prep, t, frag, &f);
         cnt->n[CJ_RS_TRANSPARENT] += f.n;
         cnt->sec[CJ_RS_TRANSPARENT] += cj_render_now() - a;
+        cnt->cpu[CJ_RS_TRANSPARENT] += cj_render_thread_cpu() - ac;
     }
 
     double a = cj_render_now();
