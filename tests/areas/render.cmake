@@ -12,3 +12,6 @@ endif()
 # Texture sampling (private to raster/: raster/src/texture_internal.h).
 cj_add_test(test_render_texture SOURCES test_render_texture.c LIBS cj::raster cj::scene)
 target_include_directories(test_render_texture PRIVATE ${PROJECT_SOURCE_DIR}/raster/src)
+# Shading, silhouettes, transparency order and the tessellation bound against exact references.
+cj_add_test(test_render_shading SOURCES test_render_shading.c LIBS cj::raster cj::scene)
+target_include_directories(test_render_shading PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
