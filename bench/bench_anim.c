@@ -146,13 +146,15 @@ static double unstable_step(const problem *p, cj_integrator m) {
 static const cj_rgba COLORS[NM] = {
     {214, 39, 40, 255}, {31, 119, 180, 255}, {44, 160, 44, 255}, {148, 103, 189, 255}};
 
-static void plot_panel(cj_plot *pl, double err[NM][NH]) {
+/* sps == NULL: error against the step; else against the CPU seconds per simulated second. */
+static void plot_panel(cj_plot *pl, double err[NM][NH], double sps[NM][NH]) {
     for (int m = 0; m < NM; ++m) {
         double xy[2 * NH];
         size_t k = 0;
         for (int i = 0; i < NH; ++i)
             if (isfinite(err[m][i]) && err[m][i] > 0 && err[m][i] < 10) {
-                xy[2 * k] = 3.0 * log10(steps_h[i]); /* plots have equal aspect */
+                /* plots have equal aspect: the horizontal decades are stretched */
+                xy[2 * k] = sps ? 2.0 * log10(sps[m][i] / steps_h[i]) : 3.0 * log10(steps_h[i]);
                 xy[2 * k + 1] = log10(err[m][i]);
                 ++k;
             }
@@ -203,18 +205,22 @@ int main(int argc, char **argv) {
     }
     /* plot: two panels, log10 error against log10 h */
     cj_framebuffer *fb = NULL;
-    if (cj_framebuffer_create(1400, 620, 0, NULL, &fb) != CJ_OK) return 1;
+    if (cj_framebuffer_create(2100, 620, 0, NULL, &fb) != CJ_OK) return 1;
     cj_framebuffer_clear(fb, cj_rgba_make(255, 255, 255, 255));
     cj_font *font = NULL;
     if (cj_font_open(NULL, &font) != CJ_OK) font = NULL;
-    const char *titles[2] = {"damped oscillator: log10 max error (up) vs 3 log10 h (right)",
-                             "pendulum, 1 rad: log10 max error (up) vs 3 log10 h (right)"};
-    for (int pi = 0; pi < 2; ++pi) {
+    const char *titles[3] = {"damped oscillator: log10 max error (up) vs 3 log10 h (right)",
+                             "pendulum, 1 rad: log10 max error (up) vs 3 log10 h (right)",
+                             "oscillator: log10 error vs 2 log10 CPU s per simulated s"};
+    for (int pi = 0; pi < 3; ++pi) {
         cj_plot *pl = NULL;
         if (cj_plot_create(NULL, &pl) != CJ_OK) return 1;
         cj_plot_set_title(pl, titles[pi]);
-        cj_plot_set_view(pl, -13.5, -13.5, 0, 1);
-        plot_panel(pl, err[pi]);
+        if (pi < 2)
+            cj_plot_set_view(pl, -13.5, -13.5, 0, 1);
+        else
+            cj_plot_set_view(pl, -15, -13.5, -1.5, 1);
+        plot_panel(pl, err[pi < 2 ? pi : 0], pi < 2 ? NULL : sps[0]);
         if (cj_plot_render(pl, fb, pi * 700, 40, 700, 580, font) != CJ_OK)
             fprintf(stderr, "plot: %s\n", cj_last_error());
         cj_plot_destroy(pl);
@@ -227,9 +233,10 @@ int main(int argc, char **argv) {
             cj_font_measure(font, 16, cj_integrator_name((cj_integrator)m), &adv, NULL, NULL);
             x += adv + 40;
         }
-        cj_font_draw(
-            font, fb, x + 20, 14, 14, cj_rgba_make(90, 90, 90, 255),
-            "x = 3 log10 h: -12 is h = 1e-4 s, -3 is 0.1 s; lines stop where the error exceeds 10");
+        cj_font_draw(font, fb, x + 20, 14, 14, cj_rgba_make(90, 90, 90, 255),
+                     "left panels: x = 3 log10 h (-12 is h = 1e-4 s); right: x = 2 log10 (CPU s "
+                     "per simulated "
+                     "s), -8 is 1e-4 s; lines stop where the error exceeds 10");
         cj_font_close(font);
     }
     const cj_status st = cj_image_write(png, fb->width, fb->height, (const uint8_t *)fb->pixels,
