@@ -7,8 +7,9 @@
  *     X = rint(256 · fl(fl(fl(x_c / w_c) + 1) · (width / 2))),   Y likewise with y_c, height,
  * (round to nearest, ties to even; every product by a power of two is exact), i.e. 1/256 pixel
  * units. Sample s of pixel (x, y) sits at (256 x + ox[s], 256 y + oy[s]). The guard band keeps
- * |X|, |Y| <= 2^28 + 2^23, so edge-function coefficients stay below 2^30 and values below 2^61:
- * 64-bit arithmetic is exact.
+ * |X|, |Y| <= 256 (2^19 + 2^14) < 2^28 (sides <= 2^15), so edge-function coefficients stay
+ * below 2^29 and values below 2^60: 64-bit arithmetic is exact. (The snap adds and removes
+ * 1.5·2^52, which is rint for such values.)
  *
  * EDGE FUNCTIONS. After orienting the snapped triangle counter-clockwise (y up), edge k from
  * v_k to v_{k+1} has E_k(X, Y) = dx (Y − Y_k) − dy (X − X_k), positive inside. A sample on an
@@ -83,8 +84,8 @@ struct cj_raster_prep {
     uint32_t *bin_items;
 };
 
-/* Per-thread scratch of one run: the tile's depth and set-up index planes (structure of
- * arrays, in the sample order of cj_tile). */
+/* Per-thread scratch of one run: the tile's depth and set-up index planes, sample-major
+ * (plane q holds sample q of every pixel of the tile, row by row), padded by 4 entries. */
 typedef struct cj_tri_scratch {
     float *depth;
     uint32_t *id;
