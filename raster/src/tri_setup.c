@@ -25,8 +25,14 @@ static const double k_dpat4[4][2] = {{96 / 256.0, 32 / 256.0},
                                      {224 / 256.0, 96 / 256.0},
                                      {32 / 256.0, 160 / 256.0},
                                      {160 / 256.0, 224 / 256.0}};
-static double g_dpat16[16][2];
-static int g_dpat16_ready;
+/* pattern_fixed(16) / 256, written out so that the table is constant (no lazy init). */
+static const double k_dpat16[16][2] = {
+    {40 / 256.0, 24 / 256.0},   {104 / 256.0, 56 / 256.0},  {168 / 256.0, 8 / 256.0},
+    {232 / 256.0, 40 / 256.0},  {8 / 256.0, 88 / 256.0},    {72 / 256.0, 120 / 256.0},
+    {136 / 256.0, 72 / 256.0},  {200 / 256.0, 104 / 256.0}, {56 / 256.0, 152 / 256.0},
+    {120 / 256.0, 184 / 256.0}, {184 / 256.0, 136 / 256.0}, {248 / 256.0, 168 / 256.0},
+    {24 / 256.0, 216 / 256.0},  {88 / 256.0, 248 / 256.0},  {152 / 256.0, 200 / 256.0},
+    {216 / 256.0, 232 / 256.0}};
 
 static void pattern_fixed(int spp, int *ox, int *oy) {
     if (spp == 1) {
@@ -48,18 +54,8 @@ static void pattern_fixed(int spp, int *ox, int *oy) {
 const double (*cj_raster_sample_pattern(int spp))[2] {
     if (spp == 1) return k_dpat1;
     if (spp == 4) return k_dpat4;
-    if (spp != 16) return NULL;
-    if (!g_dpat16_ready) {
-        /* Idempotent: concurrent first calls write the same values. */
-        int ox[16], oy[16];
-        pattern_fixed(16, ox, oy);
-        for (int s = 0; s < 16; ++s) {
-            g_dpat16[s][0] = ox[s] / 256.0;
-            g_dpat16[s][1] = oy[s] / 256.0;
-        }
-        g_dpat16_ready = 1;
-    }
-    return (const double(*)[2])g_dpat16;
+    if (spp == 16) return k_dpat16;
+    return NULL;
 }
 
 /* ---- memory ------------------------------------------------------------------------------- */
