@@ -507,6 +507,27 @@ static void test_ours_vs_vtk_sphere(void **state) {
     cj_sphere_oracle_clear(&orc);
     cj_render_image_destroy(img);
     cj_scene_destroy(sc);
+
+    /* orthographic, non-square: ours against VTK and against the exact (circular) outline */
+    cj_camera oc = view_camera(cj_v3(-2.0, 0.5, 3.0), cj_v3(0, 0, 0), cj_v3(0, 1, 0), 40);
+    oc.projection = CJ_PROJ_ORTHOGRAPHIC;
+    oc.ortho_height = 3.0;
+    const int ow = 240, oh = 300;
+    sc = new_scene(&oc, ow, oh);
+    add_object(sc, &g, add_material(sc, cj_rgb_make(0.8, 0.5, 0.3), 0), cj_v3(0, 0, 0), 0.0);
+    compare_with_vtk("sphere_ortho", sc, ow, oh);
+    opt.width = ow;
+    opt.height = oh;
+    assert_int_equal(cj_render_raster(sc, &opt, CJ_IMAGE_IDS, NULL, &img, NULL), CJ_OK);
+    cj_sphere_oracle_init(&orc, &oc, ow, oh, g.u.sphere.center, g.u.sphere.radius);
+    cj_silhouette_check(&orc, img->ids, &sil);
+    printf("sphere_ortho: OUR mask vs the exact outline: %zu pixels differ, farthest %.3f px, "
+           "%zu beyond 1 px\n",
+           sil.differ, sil.max_dist, sil.beyond);
+    assert_int_equal(sil.beyond, 0);
+    cj_sphere_oracle_clear(&orc);
+    cj_render_image_destroy(img);
+    cj_scene_destroy(sc);
 }
 
 static void quadrics_case(const char *name, const cj_camera *cam, int w, int h) {
