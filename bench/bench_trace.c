@@ -264,28 +264,32 @@ static void rmse_vs_spp(void) {
     cj_render_image *ref;
     if (cj_render_trace(sc, &o, 0, NULL, &ref, NULL)) return;
     printf("\nsoft shadow (area light), 64x48, RMSE against 1024 spp (stratified), 2 threads\n");
-    double prev = 0;
-    for (int spp = 1; spp <= 256; spp *= 4) {
-        o.spp = spp;
-        o.use_seed = 1;
-        o.seed = 777;
-        cj_render_image *img;
-        double t0 = cj_bench_wall();
-        if (cj_render_trace(sc, &o, 0, NULL, &img, NULL)) break;
-        double dt = cj_bench_wall() - t0, e = 0;
-        size_t np = 64 * 48;
-        for (size_t i = 0; i < np; i++)
-            for (int k = 0; k < 3; k++) {
-                double d = img->rgba[4 * i + k] - ref->rgba[4 * i + k];
-                e += d * d;
-            }
-        e = sqrt(e / (3.0 * np));
-        printf("  spp %4d: RMSE %.5f%s  %8.1f ms/frame\n", spp, e, prev > 0 ? "" : "", 1e3 * dt);
-        if (prev > 0)
-            printf("            ratio to the previous (4x samples): %.2f (1/sqrt(n): 0.50)\n",
-                   e / prev);
-        prev = e;
-        cj_render_image_destroy(img);
+    for (int mode = 0; mode < 2; mode++) {
+        cj_trace_options to = {mode};
+        printf("  %s sampling (pixel positions and light points)\n",
+               mode ? "plain random" : "stratified");
+        double prev = 0;
+        for (int spp = 1; spp <= 256; spp *= 4) {
+            o.spp = spp;
+            o.use_seed = 1;
+            o.seed = 777;
+            cj_render_image *img;
+            double t0 = cj_bench_wall();
+            if (cj_render_trace_ex(sc, &o, &to, 0, NULL, &img, NULL)) break;
+            double dt = cj_bench_wall() - t0, e = 0;
+            size_t np = 64 * 48;
+            for (size_t i = 0; i < np; i++)
+                for (int k = 0; k < 3; k++) {
+                    double d = img->rgba[4 * i + k] - ref->rgba[4 * i + k];
+                    e += d * d;
+                }
+            e = sqrt(e / (3.0 * np));
+            printf("    spp %4d: RMSE %.5f  %8.1f ms/frame", spp, e, 1e3 * dt);
+            if (prev > 0) printf("  ratio to 1/4 the samples %.2f (1/sqrt(n): 0.50)", e / prev);
+            printf("\n");
+            prev = e;
+            cj_render_image_destroy(img);
+        }
     }
     cj_render_image_destroy(ref);
     cj_scene_destroy(sc);

@@ -325,10 +325,24 @@ static void test_threads_bit_identical(void **state) {
     assert_int_equal(cj_render_trace(sc, &o, 0, NULL, &other, NULL), CJ_OK);
     assert_true(memcmp(ref->rgba, other->rgba, sizeof(float) * 4 * 48 * 48) != 0);
     cj_render_image_destroy(other);
+    /* Plain random sampling: another image, still the same for any thread count. */
+    cj_trace_options to = {1};
+    cj_render_image *r1 = NULL, *r2 = NULL;
+    o = cj_render_options_default();
+    o.threads = 1;
+    assert_int_equal(cj_render_trace_ex(sc, &o, &to, 0, NULL, &r1, NULL), CJ_OK);
+    o.threads = 2;
+    o.tile_size = 8;
+    assert_int_equal(cj_render_trace_ex(sc, &o, &to, 0, NULL, &r2, NULL), CJ_OK);
+    assert_memory_equal(r1->rgba, r2->rgba, sizeof(float) * 4 * 48 * 48);
+    assert_true(memcmp(ref->rgba, r1->rgba, sizeof(float) * 4 * 48 * 48) != 0);
+    cj_render_image_destroy(r1);
+    cj_render_image_destroy(r2);
     cj_render_image_destroy(ref);
     cj_scene_destroy(sc);
     printf("  spp 4, area light, glossy mirror, glass: image and ids bit-identical for 1, 2, 3 "
-           "threads and tiles 8 and 32; another seed gives another image\n");
+           "threads and tiles 8 and 32 (also with plain random sampling); another seed gives "
+           "another image\n");
 }
 
 /* Signature image vs the rasterizer's ids: differing pixels must lie in the one-pixel band

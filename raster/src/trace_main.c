@@ -17,7 +17,7 @@ typedef struct tr_job {
     const cj_camera *cam;
     cj_xform3 clip;
     cj_render_image *img;
-    int w, h, spp, strata, max_depth, tile, tiles_x, ntiles;
+    int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random;
     uint64_t seed;
     cj_rgb bg;
     pthread_mutex_t lock;
@@ -43,7 +43,10 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
         sh->rng.key = tr_mix(pkey + (uint64_t)s);
         sh->rng.n = 0;
         double px = x + 0.5, py = y + 0.5;
-        if (j->spp > 1) {
+        if (j->spp > 1 && j->random) {
+            px = x + tr_rand(&sh->rng);
+            py = y + tr_rand(&sh->rng);
+        } else if (j->spp > 1) {
             int k = j->strata;
             if (k * k == j->spp) {
                 px = x + ((s % k) + tr_rand(&sh->rng)) / k;
@@ -97,6 +100,7 @@ static void *worker(void *arg) {
     sh.max_depth = j->max_depth;
     sh.spp = j->spp;
     sh.strata = j->strata;
+    sh.random = j->random;
     for (;;) {
         pthread_mutex_lock(&j->lock);
         int t = j->next++;
@@ -207,6 +211,13 @@ static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_sc
 cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, unsigned planes,
                           const cj_allocator *alloc, cj_render_image **out,
                           cj_stage_report *report) {
+    return cj_render_trace_ex(scene, opt, NULL, planes, alloc, out, report);
+}
+
+cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt,
+                             const cj_trace_options *topt, unsigned planes,
+                             const cj_allocator *alloc, cj_render_image **out,
+                             cj_stage_report *report) {
     double t_start = cj_render_now();
     cj_status st = cj_scene_check(scene);
     if (st) return st;
@@ -263,6 +274,7 @@ cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, u
     j.h = h;
     j.spp = spp;
     j.strata = (int)floor(sqrt((double)spp) + 0.5);
+    j.random = topt ? topt->random_sampling != 0 : 0;
     j.max_depth = max_depth;
     j.seed = o.use_seed ? o.seed : ss->seed;
     j.bg = ss->background;

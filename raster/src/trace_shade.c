@@ -82,7 +82,7 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
             double s = 0.5, t = 0.5;
             if (sh->spp > 1) {
                 /* stratified over the samples of the pixel at the first hit, random deeper */
-                if (depth == 0) {
+                if (depth == 0 && !sh->random) {
                     int k = sh->strata, si = (int)((sh->sample + sh->perm) % (uint32_t)sh->spp);
                     s = ((si % k) + tr_rand(&sh->rng)) / k;
                     t = ((si / k % k) + tr_rand(&sh->rng)) / k;

@@ -33,7 +33,7 @@ typedef struct tr_shade {
     const tr_lights *lights;
     tr_counts *c;
     cj_rgb background;
-    int max_depth, spp, strata;
+    int max_depth, spp, strata, random;
     uint32_t sample, perm;
     tr_rng rng;
 } tr_shade;

@@ -63,6 +63,18 @@ cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, u
                           const cj_allocator *alloc, cj_render_image **out,
                           cj_stage_report *report);
 
+/* Sampling choices beyond cj_render_options (all zero: the defaults). */
+typedef struct cj_trace_options {
+    int random_sampling; /* 1: plain uniform random pixel positions and area-light points instead
+                            of stratified ones (to measure what stratification gains) */
+} cj_trace_options;
+
+/* cj_render_trace with trace options (NULL: defaults); same status codes. */
+cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt,
+                             const cj_trace_options *topt, unsigned planes,
+                             const cj_allocator *alloc, cj_render_image **out,
+                             cj_stage_report *report);
+
 /* Refraction of the unit direction d at a surface with unit normal n facing against d
  * (d·n <= 0), from index n1 into n2 (Snell: n1 sin θ1 = n2 sin θ2): 1 and the unit refracted
  * direction in *t, or 0 on total internal reflection (n1 sin θ1 > n2). */
