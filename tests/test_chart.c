@@ -208,10 +208,15 @@ static void test_legend_notes_titles(void **state) {
             assert_true(fabs(ax - (74 + 0.4 * (R - 74))) < 1e-9);
             assert_true(fabs(ay - (48 + 0.5 * (T - 48))) < 1e-9);
             int ring = 0;
-            for (int k = 0; k < 8; ++k)
-                ring += is_color(
-                    near_px(fb, ax + 6 * cos(k * 0.785398), ay + 6 * sin(k * 0.785398)), GREEN);
-            assert_true(ring >= 6);
+            for (int k = 0; k < 8; ++k) {
+                /* a 1 px anti-aliased ring: its pixel is clearly green, the centre is not */
+                const cj_rgba q =
+                    near_px(fb, ax + 6 * cos(k * 0.785398), ay + 6 * sin(k * 0.785398));
+                ring += q.g > q.r + 50 && q.g > q.b + 50;
+            }
+            assert_true(ring >= 7);
+            const cj_rgba in = near_px(fb, ax + 2.5, ay + 0.5); /* on the red line: not green */
+            assert_false(in.g > in.r + 50);
             assert_true(dark_in(fb, (int)ax + 8, (int)ay + 5, (int)ax + 80, (int)ay + 18, GREEN) >
                         10);
         }
