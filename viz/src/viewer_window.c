@@ -23,6 +23,7 @@ typedef struct win {
     GLuint tex;
     double *times;
     size_t ntimes, cap;
+    int replaying; /* real input is ignored while a script drives the viewer */
 } win;
 
 static char glfw_msg[256];
@@ -48,24 +49,32 @@ static int glfw_mods(GLFWwindow *w) {
     return m;
 }
 
+static int live(GLFWwindow *w) {
+    return !((win *)glfwGetWindowUserPointer(w))->replaying;
+}
+
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     (void)scancode;
-    if (action != GLFW_RELEASE) cj_viewer_key(&((win *)glfwGetWindowUserPointer(w))->v, key, mods);
+    if (action != GLFW_RELEASE && live(w))
+        cj_viewer_key(&((win *)glfwGetWindowUserPointer(w))->v, key, mods);
 }
 
 static void on_button(GLFWwindow *w, int button, int action, int mods) {
     double x, y;
+    if (!live(w)) return;
     glfwGetCursorPos(w, &x, &y);
     cj_viewer_button(&((win *)glfwGetWindowUserPointer(w))->v, button, action == GLFW_PRESS, mods,
                      x, y);
 }
 
 static void on_cursor(GLFWwindow *w, double x, double y) {
+    if (!live(w)) return;
     cj_viewer_cursor(&((win *)glfwGetWindowUserPointer(w))->v, x, y, glfw_mods(w));
 }
 
 static void on_scroll(GLFWwindow *w, double dx, double dy) {
     (void)dx;
+    if (!live(w)) return;
     cj_viewer_scroll(&((win *)glfwGetWindowUserPointer(w))->v, dy);
 }
 
@@ -240,6 +249,7 @@ cj_status cj_viewer_run(const cj_viewer_options *opt) {
     if (!st && cj_font_open(NULL, &v->font)) v->font = NULL; /* no text, still a viewer */
     if (!st) st = open_window(g);
     if (!st && opt->replay) {
+        g->replaying = 1;
         st = frame(g, NULL);
         if (!st) st = run_replay(g, opt->replay);
         if (!st && opt->screenshot) st = frame(g, opt->screenshot);
