@@ -98,5 +98,6 @@ int cmd_render(int argc, char **argv);
 int cmd_trace(int argc, char **argv);
 int cmd_animate(int argc, char **argv);
 int cmd_view(int argc, char **argv);
+int cmd_report(int argc, char **argv);
 
 #endif

@@ -21,6 +21,7 @@ static const command commands[] = {
     {"trace", cmd_trace, "ray-trace a 3D scene (JSON, or --demo): shadows, mirrors, glass"},
     {"animate", cmd_animate,
      "render an animation (keyframes, paths, cloth) as numbered PNG frames"},
+    {"report", cmd_report, "measure accuracy against cost; HTML page with our charts (-o DIR)"},
     {"view", cmd_view, "interactive viewer and control-point editor (GLFW window, replay)"},
 };
 

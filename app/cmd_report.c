@@ -1,0 +1,230 @@
+/* casteljau report: the price list (issue 12) — accuracy against cost for the library's
+ * approximations, measured when the report is built, drawn by our own charts (raster/chart.h).
+ *
+ *   casteljau report -o DIR [--quick] [--no-callgrind]
+ *
+ * writes DIR/index.html (sections with their PNG charts next to it), DIR/summary.md (the short
+ * Markdown version the README embeds) and DIR/data.tsv (every table row, tab-separated, for
+ * scripts and the test). The measuring is done here, calling the library directly (not by
+ * running the bench programs): the sections need the per-point errors against the MPFR oracle
+ * (tests/support/oracle_mpfr.c, linked into the tool for this command) and the timing loop of
+ * each method, and parsing the benches' human tables would be more fragile than this.
+ *
+ * Costs are given twice: the median of interleaved repeated runs (methods alternate run by run
+ * so that a busy machine slows them alike) with the spread (max - min over median), and the
+ * instructions counted by valgrind --tool=callgrind on a fixed workload (the hidden mode
+ * `casteljau report --workload SPEC N`), as the difference of an N- and a 2N-unit run so that
+ * start-up cancels; a repeated N-unit run checks that counts repeat (printed on the page).
+ * --quick: few points per plot, short timings, callgrind only for that repeatability check
+ * (the test suite builds it in seconds). --no-callgrind skips valgrind entirely.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "cli.h"
+
+#ifdef CJ_HAVE_REPORT
+#include "report.h"
+
+#include "casteljau/framebuffer.h"
+#include "casteljau/image_io.h"
+#include "casteljau/status.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+static const char usage_text[] =
+    "usage: casteljau report -o DIR [--quick] [--no-callgrind]\n"
+    "  Measures error against cost for curve evaluation (4 methods x degrees x condition\n"
+    "  numbers, error against an MPFR oracle) and flattening (3 methods x tolerances), and\n"
+    "  writes DIR/index.html with PNG charts, DIR/summary.md and DIR/data.tsv.\n"
+    "  --quick         a few points per chart (seconds; what the test suite builds)\n"
+    "  --no-callgrind  no instruction counts (valgrind is used when installed)\n";
+
+double report_now_ns(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return 1e9 * (double)ts.tv_sec + (double)ts.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double report_median(double *v, size_t n, double *spread_pct) {
+    qsort(v, n, sizeof *v, cmp_double);
+    const double m = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    if (spread_pct) *spread_pct = m > 0 ? 100.0 * (v[n - 1] - v[0]) / m : 0.0;
+    return m;
+}
+
+void report_pareto(size_t n, const double *cost, const double *err, int *dominated_by) {
+    for (size_t i = 0; i < n; ++i) {
+        dominated_by[i] = -1;
+        for (size_t j = 0; j < n; ++j) {
+            if (j == i || !(cost[j] <= cost[i] && err[j] <= err[i])) continue;
+            if (!(cost[j] < cost[i] || err[j] < err[i])) continue;
+            if (dominated_by[i] < 0 || cost[j] < cost[dominated_by[i]]) dominated_by[i] = (int)j;
+        }
+    }
+}
+
+int report_chart(report *r, const cj_chart *c, const char *name, int w, int h) {
+    cj_framebuffer *fb = NULL;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", r->dir, name);
+    cj_status st = cj_framebuffer_create(w, h, 0, NULL, &fb);
+    if (!st) st = cj_chart_render(c, fb, 0, 0, w, h, r->font);
+    if (!st)
+        st = cj_image_write(path, w, h, (const uint8_t *)fb->pixels,
+                            (size_t)fb->stride * sizeof *fb->pixels);
+    cj_framebuffer_destroy(fb);
+    if (st) return cli_error("report", "chart %s: %s", name, cj_last_error());
+    fprintf(r->html, "<p><img src=\"%s\" width=\"%d\" height=\"%d\" alt=\"%s\"></p>\n", name, w, h,
+            name);
+    fprintf(r->md, "![%s](%s)\n\n", name, name);
+    return 0;
+}
+
+/* Instruction total of one callgrind run, or NAN. */
+static double callgrind_once(report *r, const char *spec, long n) {
+    char out[4096], cmd[9000];
+    snprintf(out, sizeof out, "%s/.callgrind.out", r->dir);
+    snprintf(cmd, sizeof cmd,
+             "valgrind --tool=callgrind --callgrind-out-file='%s' '%s' report --workload '%s' %ld "
+             ">/dev/null 2>&1",
+             out, r->self, spec, n);
+    if (system(cmd) != 0) return NAN;
+    FILE *f = fopen(out, "r");
+    if (!f) return NAN;
+    char line[512];
+    double total = NAN;
+    while (fgets(line, sizeof line, f))
+        if (!strncmp(line, "summary:", 8) || !strncmp(line, "totals:", 7))
+            total = strtod(strchr(line, ':') + 1, NULL);
+    fclose(f);
+    remove(out);
+    return total;
+}
+
+double report_callgrind(report *r, const char *spec, long n, double *rel_diff) {
+    if (!r->callgrind) return NAN;
+    const double a = callgrind_once(r, spec, n), b = callgrind_once(r, spec, 2 * n);
+    if (rel_diff) {
+        const double a2 = callgrind_once(r, spec, n);
+        *rel_diff = fabs(a2 - a) / a;
+    }
+    return (b - a) / (double)n;
+}
+
+int report_workload(const char *spec, long n) {
+    if (!strncmp(spec, "eval:", 5)) return report_eval_workload(spec, n);
+    if (!strncmp(spec, "flatten:", 8)) return report_flatten_workload(spec, n);
+    return cli_fail("report", "unknown workload '%s'", spec);
+}
+
+static int has_quote(const char *s) {
+    return strchr(s, '\'') != NULL;
+}
+
+int cmd_report(int argc, char **argv) {
+    static const cli_opt opts[] = {{"--output", "-o", 1},
+                                   {"--quick", NULL, 0},
+                                   {"--no-callgrind", NULL, 0},
+                                   {"--workload", NULL, 1}};
+    cli_parser p;
+    cli_parser_init(&p, "report", usage_text, argc, argv, opts, sizeof opts / sizeof opts[0]);
+    report r;
+    memset(&r, 0, sizeof r);
+    r.callgrind = 1;
+    const char *workload = NULL, *count = NULL, *v = NULL;
+    for (int k; (k = cli_next(&p, &v)) != CLI_END;) {
+        if (k == CLI_EXIT_OK) return 0;
+        if (k == CLI_BAD) return CLI_EXIT_USAGE;
+        if (k == CLI_POSITIONAL) {
+            if (!workload || count) return cli_fail("report", "unexpected argument '%s'", v);
+            count = v;
+        } else if (k == 0)
+            r.dir = v;
+        else if (k == 1)
+            r.quick = 1;
+        else if (k == 2)
+            r.callgrind = 0;
+        else
+            workload = v;
+    }
+    if (workload) {
+        long n = 0;
+        if (!count || cli_parse_int(count, 1, 100000000, &n))
+            return cli_fail("report", "--workload needs a unit count 1..1e8");
+        return report_workload(workload, n);
+    }
+    if (!r.dir) return cli_fail("report", "no output folder: give -o DIR");
+    if (mkdir(r.dir, 0777) != 0 && errno != EEXIST)
+        return cli_error("report", "cannot create %s: %s", r.dir, strerror(errno));
+    r.self = argv[0];
+    if (r.callgrind && (has_quote(r.dir) || has_quote(r.self) ||
+                        system("valgrind --version >/dev/null 2>&1") != 0))
+        r.callgrind = 0;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/index.html", r.dir);
+    r.html = fopen(path, "w");
+    snprintf(path, sizeof path, "%s/summary.md", r.dir);
+    r.md = fopen(path, "w");
+    snprintf(path, sizeof path, "%s/data.tsv", r.dir);
+    r.tsv = fopen(path, "w");
+    if (!r.html || !r.md || !r.tsv) {
+        if (r.html) fclose(r.html);
+        if (r.md) fclose(r.md);
+        if (r.tsv) fclose(r.tsv);
+        return cli_error("report", "cannot write into %s: %s", r.dir, strerror(errno));
+    }
+    if (cj_font_open(NULL, &r.font) != CJ_OK) {
+        cli_warn("report", "no font (%s): charts without text", cj_last_error());
+        r.font = NULL;
+    }
+    time_t now = time(NULL);
+    char when[64];
+    strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", gmtime(&now));
+    fprintf(r.html,
+            "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>casteljau: the price "
+            "list</title>\n<style>body{font-family:sans-serif;max-width:980px;margin:auto}"
+            "table{border-collapse:collapse;font-size:13px}td,th{border:1px solid #ccc;"
+            "padding:2px 6px;text-align:right}td.l{text-align:left}tr.dom{color:#888}</style>"
+            "</head><body>\n<h1>casteljau: what accuracy costs</h1>\n<p>Measured on this machine "
+            "at %s (%s report). Every figure was measured when this page was built. Times: median "
+            "of interleaved repeated runs, spread = (max &minus; min) / median. Instructions: "
+            "valgrind --tool=callgrind, difference of an N- and a 2N-unit run.</p>\n",
+            when, r.quick ? "quick" : "full");
+    fprintf(r.md, "# casteljau: what accuracy costs (%s report, %s)\n\n",
+            r.quick ? "quick" : "full", when);
+    fprintf(r.tsv, "section\tmethod\tparam\tcond\terr_max\terr_mean\tbound\tns\tspread_pct\t"
+                   "instr\textra\tpareto\n");
+    int status = report_eval(&r);
+    if (!status) status = report_flatten(&r);
+    if (!status && r.note[0]) {
+        fprintf(r.html, "<h2>Reproducibility</h2>\n<p>%s</p>\n", r.note);
+        fprintf(r.md, "%s\n", r.note);
+    }
+    fprintf(r.html, "</body></html>\n");
+    const int bad = ferror(r.html) | ferror(r.md) | ferror(r.tsv);
+    fclose(r.html);
+    fclose(r.md);
+    fclose(r.tsv);
+    cj_font_close(r.font);
+    if (!status && bad) status = cli_error("report", "writing into %s failed", r.dir);
+    if (!status) printf("wrote %s/index.html, summary.md, data.tsv\n", r.dir);
+    return status;
+}
+
+#else
+#include <stdio.h>
+int cmd_report(int argc, char **argv) {
+    (void)argc;
+    (void)argv;
+    return cli_fail("report", "this build has no report (needs OpenImageIO, raster/ and MPFR)");
+}
+#endif

@@ -1,0 +1,45 @@
+/* Private to `casteljau report` (issue 12, the price list): the page being written and the
+ * helpers every section shares (timing, Pareto fronts, charts to PNG, table rows). */
+#ifndef CASTELJAU_APP_REPORT_H
+#define CASTELJAU_APP_REPORT_H
+
+#include "casteljau/chart.h"
+#include "casteljau/text.h"
+
+#include <stddef.h>
+#include <stdio.h>
+
+typedef struct report {
+    const char *dir;  /* output folder */
+    int quick;        /* few points per plot, short timings (the test suite's version) */
+    FILE *html, *md;  /* index.html and summary.md, open for writing */
+    FILE *tsv;        /* data.tsv: every table row, machine-readable (checked by the test) */
+    cj_font *font;    /* NULL: charts without text */
+    const char *self; /* argv[0], for callgrind runs of the workload mode */
+    int callgrind;    /* 1: instruction counts by valgrind --tool=callgrind */
+    char note[512];   /* the callgrind repeatability line */
+} report;
+
+/* Monotonic clock in nanoseconds. */
+double report_now_ns(void);
+/* Median of v[0..n-1] (sorted in place) and the spread (max - min) / median in percent. */
+double report_median(double *v, size_t n, double *spread_pct);
+/* dominated_by[i] = index of a choice with cost <= and error <= (one strictly), the cheapest
+ * such; -1 when i is on the Pareto front. */
+void report_pareto(size_t n, const double *cost, const double *err, int *dominated_by);
+/* Renders the chart (w x h) to DIR/name (PNG) and adds <img> to the page; 0 on success. */
+int report_chart(report *r, const cj_chart *c, const char *name, int w, int h);
+/* Instructions per unit of the workload "casteljau report --workload SPEC N", from two
+ * callgrind runs with N and 2N units (the difference removes start-up); NAN when valgrind is
+ * missing or fails. rel_diff receives |run2 - run1| / run1 of a repeated N-unit run (the 0.5 %
+ * repeatability check) when not NULL. */
+double report_callgrind(report *r, const char *spec, long n, double *rel_diff);
+/* Runs one workload (for callgrind): returns 0, or 2 for an unknown spec. */
+int report_workload(const char *spec, long n);
+
+int report_eval(report *r);
+int report_flatten(report *r);
+int report_eval_workload(const char *spec, long n);    /* "eval:M:DEG" */
+int report_flatten_workload(const char *spec, long n); /* "flatten:M:TOL" */
+
+#endif
