@@ -221,6 +221,7 @@ int report_eval(report *r) {
         char title[128];
         snprintf(title, sizeof title, "Evaluation, condition ~%.0e: max error vs cost", ks[k]);
         cj_chart_set_title(c, title);
+        cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
         cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "ns per point (median)");
         cj_chart_set_axis(c, 1, CJ_CHART_LOG10, "max relative error / u");
         for (int m = 0; m < NM; ++m) {

@@ -216,6 +216,7 @@ int report_flatten(report *r) {
         if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
         cj_chart_set_title(c, k ? "Flattening: segments / continuous optimum"
                                 : "Flattening: measured deviation vs cost");
+        cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
         cj_chart_set_axis(c, 0, CJ_CHART_LOG10, k ? "tolerance" : "ns per curve (median)");
         cj_chart_set_axis(c, 1, k ? CJ_CHART_LINEAR : CJ_CHART_LOG10,
                           k ? "segments / optimum" : "max distance curve - polyline");

@@ -228,6 +228,33 @@ static void test_legend_notes_titles(void **state) {
     cj_font_close(font);
 }
 
+static void test_legend_outside(void **state) {
+    (void)state;
+    cj_font *font = NULL;
+    if (cj_font_open(NULL, &font) != CJ_OK) skip();
+    cj_chart *c = NULL;
+    assert_int_equal(cj_chart_create(NULL, &c), CJ_OK);
+    assert_int_equal(cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE), CJ_OK);
+    const double x[2] = {0, 10}, y[2] = {0, 10};
+    cj_chart_series_opts o = {"only", RED, 0.0, CJ_MARKER_CIRCLE, 4.0};
+    assert_int_equal(cj_chart_add_series(c, x, y, 2, &o), CJ_OK);
+    const cj_chart_rect r = cj_chart_layout(c, W, H, 1);
+    assert_true(r.right == W - 16 - CJ_CHART_LEGEND_WIDTH && r.top == H - 30);
+    cj_framebuffer *fb = NULL;
+    assert_int_equal(cj_framebuffer_create(W, H, 0, NULL, &fb), CJ_OK);
+    assert_int_equal(cj_chart_render(c, fb, 0, 0, W, H, font), CJ_OK);
+    /* the series' last point sits on the plot area's upper right corner; the legend marker
+     * 12 + 18 px right of it and 12 px down; nothing red between them */
+    assert_true(is_color(near_px(fb, r.right - 1.5, r.top - 1.5), RED));
+    assert_true(is_color(near_px(fb, r.right + 30, r.top - 12), RED));
+    assert_false(is_color(near_px(fb, r.right + 8, r.top - 12), RED));
+    printf("outside legend: plot area narrowed by %g px, entry right of it\n",
+           CJ_CHART_LEGEND_WIDTH);
+    cj_framebuffer_destroy(fb);
+    cj_chart_destroy(c);
+    cj_font_close(font);
+}
+
 static void test_bad_input(void **state) {
     (void)state;
     cj_chart *c = NULL;
@@ -256,6 +283,7 @@ static void test_bad_input(void **state) {
     assert_int_equal(cj_chart_set_range(c, 1, 2, 2), CJ_ERR_DEGENERATE);
     assert_int_equal(cj_chart_set_range(c, 1, 0, INFINITY), CJ_ERR_NONFINITE);
     assert_int_equal(cj_chart_set_axis(c, 2, CJ_CHART_LINEAR, NULL), CJ_ERR_ARGUMENT);
+    assert_int_equal(cj_chart_set_legend(c, CJ_LEGEND_COUNT_), CJ_ERR_RANGE);
     assert_int_equal(cj_chart_annotate(c, 1, NAN, "x", RED), CJ_ERR_NONFINITE);
     assert_int_equal(cj_chart_annotate(c, 1, 1, "", RED), CJ_ERR_RANGE);
     char longt[CJ_CHART_MAX_TEXT + 2];
@@ -273,6 +301,7 @@ int main(void) {
         cmocka_unit_test(test_log_axis_markers_and_ticks),
         cmocka_unit_test(test_line_and_marker_shapes),
         cmocka_unit_test(test_legend_notes_titles),
+        cmocka_unit_test(test_legend_outside),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -34,6 +34,7 @@ struct cj_chart {
     size_t ns;
     note notes[CJ_CHART_MAX_NOTES];
     size_t nn;
+    cj_chart_legend legend;
 };
 
 static void *std_alloc(void *u, size_t b) {
@@ -100,6 +101,14 @@ cj_status cj_chart_set_range(cj_chart *c, int axis, double lo, double hi) {
     return CJ_OK;
 }
 
+cj_status cj_chart_set_legend(cj_chart *c, cj_chart_legend where) {
+    assert(c);
+    if ((int)where < 0 || where >= CJ_LEGEND_COUNT_)
+        return cj_fail(CJ_ERR_RANGE, "unknown legend position %d", (int)where);
+    c->legend = where;
+    return CJ_OK;
+}
+
 cj_status cj_chart_set_title(cj_chart *c, const char *title) {
     assert(c);
     return copy_text(c->title, title, "chart title");
@@ -158,6 +167,7 @@ cj_chart_rect cj_chart_layout(const cj_chart *c, int w, int h, int with_text) {
         r.left = r.bottom = 12.0, r.right = w - 12.0, r.top = h - 12.0;
     } else {
         r.left = 74.0, r.bottom = 48.0, r.right = w - 16.0;
+        if (c->legend == CJ_LEGEND_OUTSIDE) r.right -= CJ_CHART_LEGEND_WIDTH;
         r.top = h - (c->title[0] ? 48.0 : 30.0);
     }
     return r;
@@ -415,7 +425,12 @@ cj_status cj_chart_render(const cj_chart *c, cj_framebuffer *fb, int x0, int y0,
             }
         if (!st && rows) {
             const double bw = wmax + 44, bh = rows * 16.0 + 8;
-            const double bx = r.right - 6 - bw, by = r.top - 6 - bh;
+            double bx = r.right - 6 - bw, by = r.top - 6 - bh;
+            if (c->legend == CJ_LEGEND_UPPER_LEFT || c->legend == CJ_LEGEND_LOWER_LEFT)
+                bx = r.left + 6;
+            if (c->legend == CJ_LEGEND_LOWER_LEFT || c->legend == CJ_LEGEND_LOWER_RIGHT)
+                by = r.bottom + 6;
+            if (c->legend == CJ_LEGEND_OUTSIDE) bx = r.right + 12, by = r.top - bh;
             double box[8] = {bx, by, bx + bw, by, bx + bw, by + bh, bx, by + bh};
             cj_plot_fill_convex(&cv, box, 4, cj_rgba_make(255, 255, 255, 230));
             st = cj_plot_stroke(&cv, box, 4, 1, cj_rgba_make(0xa0, 0xa0, 0xa0, 255), 1.0);

@@ -62,6 +62,18 @@ typedef struct cj_chart_rect {
     double left, bottom, right, top; /* x in [left, right], y in [bottom, top] */
 } cj_chart_rect;
 
+/* Where the legend goes. OUTSIDE puts it right of the plot area, which then ends
+ * CJ_CHART_LEGEND_WIDTH px further left (with text only), so that it never hides data. */
+typedef enum cj_chart_legend {
+    CJ_LEGEND_UPPER_RIGHT = 0,
+    CJ_LEGEND_UPPER_LEFT,
+    CJ_LEGEND_LOWER_LEFT,
+    CJ_LEGEND_LOWER_RIGHT,
+    CJ_LEGEND_OUTSIDE,
+    CJ_LEGEND_COUNT_
+} cj_chart_legend;
+#define CJ_CHART_LEGEND_WIDTH 190.0
+
 /* CJ_ERR_NOMEM. alloc NULL = malloc/free. Axes start linear, untitled, auto range. */
 cj_status cj_chart_create(const cj_allocator *alloc, cj_chart **out);
 void cj_chart_destroy(cj_chart *chart); /* NULL allowed */
@@ -72,6 +84,8 @@ cj_status cj_chart_set_axis(cj_chart *chart, int axis, cj_chart_scale scale, con
 /* Fixed range lo < hi, finite (CJ_ERR_NONFINITE, CJ_ERR_DEGENERATE); both > 0 on a log axis
  * (checked at render: CJ_ERR_RANGE). */
 cj_status cj_chart_set_range(cj_chart *chart, int axis, double lo, double hi);
+/* CJ_ERR_RANGE for an unknown position. Default CJ_LEGEND_UPPER_RIGHT. */
+cj_status cj_chart_set_legend(cj_chart *chart, cj_chart_legend where);
 cj_status cj_chart_set_title(cj_chart *chart, const char *title);
 /* A series of n >= 1 points (x[i], y[i]), finite (CJ_ERR_EMPTY, CJ_ERR_NONFINITE,
  * CJ_ERR_RANGE for widths/radii/marker, CJ_ERR_CAP past CJ_CHART_MAX_SERIES, CJ_ERR_NOMEM).
@@ -83,7 +97,7 @@ cj_status cj_chart_add_series(cj_chart *chart, const double *x, const double *y,
 cj_status cj_chart_annotate(cj_chart *chart, double x, double y, const char *text, cj_rgba color);
 
 /* The plot area for a w x h panel: margins 12 px without text; with text left 74, bottom 48,
- * right 16, top 30 (48 when there is a title). */
+ * right 16 (+ CJ_CHART_LEGEND_WIDTH with an outside legend), top 30 (48 when there is a title). */
 cj_chart_rect cj_chart_layout(const cj_chart *chart, int w, int h, int with_text);
 /* The axis ranges render uses (after auto ranging): lo[0..1], hi[0..1] for x and y.
  * CJ_ERR_EMPTY (no series and a range unset), CJ_ERR_RANGE (a value <= 0 on a log axis). */
@@ -92,8 +106,9 @@ cj_status cj_chart_ranges(const cj_chart *chart, double lo[2], double hi[2]);
 cj_status cj_chart_map(const cj_chart *chart, int w, int h, int with_text, double x, double y,
                        double *px, double *py);
 
-/* Legend geometry (text only): a box of width (widest label + 44) and height (16 rows + 8) whose
- * upper right corner is 6 px inside that of the plot area; entry i (0 at the top) has its line
+/* Legend geometry (text only): a box of width (widest label + 44) and height (16 rows + 8) with
+ * a corner 6 px inside the chosen corner of the plot area (OUTSIDE: its upper left corner 12 px
+ * right of the plot area's upper right corner); entry i (0 at the top) has its line
  * sample from box left + 6 to + 30 and its marker centred at (box left + 18, box top - 12 - 16 i),
  * its label at box left + 36. Annotation text: 11 px, pen at (x + 8, y + 6). Axis titles: 12 px,
  * the x title centred under the plot area with its baseline at y = 8, the y title left-aligned
