@@ -72,6 +72,23 @@ void report_pareto(size_t n, const double *cost, const double *err, int *dominat
     }
 }
 
+void report_front_series(cj_chart *c, size_t n, const double *cost, const double *err,
+                         const int *dominated_by, const char *label) {
+    double x[64], y[64];
+    size_t k = 0;
+    for (size_t i = 0; i < n && k < 64; ++i)
+        if (dominated_by[i] < 0) x[k] = cost[i], y[k] = fmax(err[i], 0.01), k++;
+    for (size_t i = 1; i < k; ++i) /* insertion sort by cost */
+        for (size_t j = i; j > 0 && x[j] < x[j - 1]; --j) {
+            double t = x[j];
+            x[j] = x[j - 1], x[j - 1] = t;
+            t = y[j], y[j] = y[j - 1], y[j - 1] = t;
+        }
+    if (k < 2) return;
+    cj_chart_series_opts o = {label, cj_rgba_make(0x30, 0x30, 0x30, 160), 4.0, CJ_MARKER_NONE, 0};
+    cj_chart_add_series(c, x, y, k, &o);
+}
+
 int report_chart(report *r, const cj_chart *c, const char *name, int w, int h) {
     cj_framebuffer *fb = NULL;
     char path[4096];

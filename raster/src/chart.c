@@ -456,7 +456,7 @@ cj_status cj_chart_render(const cj_chart *c, cj_framebuffer *fb, int x0, int y0,
     if (!st && font && c->axis_title[0][0])
         st = text_at(font, &cv, 0.5 * (r.left + r.right), 8, ls, 0.5, ink, c->axis_title[0]);
     if (!st && font && c->axis_title[1][0])
-        st = text_at(font, &cv, 8, r.top + 8, ls, 0.0, ink, c->axis_title[1]);
+        st = text_at(font, &cv, 8, r.top + 14, ls, 0.0, ink, c->axis_title[1]);
     if (!st)
         for (int row = 0; row < h; ++row)
             memcpy(fb->pixels + (ptrdiff_t)(y0 + row) * fb->stride + x0,

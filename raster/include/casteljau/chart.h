@@ -112,7 +112,7 @@ cj_status cj_chart_map(const cj_chart *chart, int w, int h, int with_text, doubl
  * sample from box left + 6 to + 30 and its marker centred at (box left + 18, box top - 12 - 16 i),
  * its label at box left + 36. Annotation text: 11 px, pen at (x + 8, y + 6). Axis titles: 12 px,
  * the x title centred under the plot area with its baseline at y = 8, the y title left-aligned
- * at x = 8 with its baseline 8 px above the plot area. Tick labels 12 px.
+ * at x = 8 with its baseline 14 px above the plot area. Tick labels 12 px.
  *
  * Renders into [x0, x0+w) x [y0, y0+h) of fb (filled white first; nothing outside touched).
  * Draw order: grid, series (clipped to the plot area), frame and ticks, annotations, legend
