@@ -24,6 +24,9 @@ typedef struct win {
     double *times;
     size_t ntimes, cap;
     int replaying; /* real input is ignored while a script drives the viewer */
+    /* The pointer as the last motion event put it. A press uses this, not glfwGetCursorPos
+     * (which asks the server where the pointer is NOW: a slow frame would see later motion). */
+    double px, py;
 } win;
 
 static char glfw_msg[256];
@@ -60,16 +63,16 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
 }
 
 static void on_button(GLFWwindow *w, int button, int action, int mods) {
-    double x, y;
     if (!live(w)) return;
-    glfwGetCursorPos(w, &x, &y);
-    cj_viewer_button(&((win *)glfwGetWindowUserPointer(w))->v, button, action == GLFW_PRESS, mods,
-                     x, y);
+    win *g = glfwGetWindowUserPointer(w);
+    cj_viewer_button(&g->v, button, action == GLFW_PRESS, mods, g->px, g->py);
 }
 
 static void on_cursor(GLFWwindow *w, double x, double y) {
     if (!live(w)) return;
-    cj_viewer_cursor(&((win *)glfwGetWindowUserPointer(w))->v, x, y, glfw_mods(w));
+    win *g = glfwGetWindowUserPointer(w);
+    g->px = x, g->py = y;
+    cj_viewer_cursor(&g->v, x, y, glfw_mods(w));
 }
 
 static void on_scroll(GLFWwindow *w, double dx, double dy) {
@@ -217,6 +220,7 @@ static cj_status open_window(win *g) {
     glfwSetCursorPosCallback(g->w, on_cursor);
     glfwSetScrollCallback(g->w, on_scroll);
     glfwSetWindowRefreshCallback(g->w, on_refresh);
+    glfwGetCursorPos(g->w, &g->px, &g->py);
     glDisable(GL_DITHER);
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
