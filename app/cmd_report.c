@@ -34,6 +34,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 static const char usage_text[] =
     "usage: casteljau report -o DIR [--quick] [--no-callgrind]\n"
@@ -182,7 +183,14 @@ int cmd_report(int argc, char **argv) {
     if (!r.dir) return cli_fail("report", "no output folder: give -o DIR");
     if (mkdir(r.dir, 0777) != 0 && errno != EEXIST)
         return cli_error("report", "cannot create %s: %s", r.dir, strerror(errno));
-    r.self = argv[0];
+    /* the tool itself, for the callgrind runs (argv[0] here is the command name) */
+    static char self[4096];
+    const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (len <= 0)
+        r.callgrind = 0;
+    else
+        self[len] = 0;
+    r.self = self;
     if (r.callgrind && (has_quote(r.dir) || has_quote(r.self) ||
                         system("valgrind --version >/dev/null 2>&1") != 0))
         r.callgrind = 0;

@@ -15,7 +15,7 @@ typedef struct report {
     FILE *html, *md;  /* index.html and summary.md, open for writing */
     FILE *tsv;        /* data.tsv: every table row, machine-readable (checked by the test) */
     cj_font *font;    /* NULL: charts without text */
-    const char *self; /* argv[0], for callgrind runs of the workload mode */
+    const char *self; /* path of the tool, for callgrind runs of the workload mode */
     int callgrind;    /* 1: instruction counts by valgrind --tool=callgrind */
     char note[512];   /* the callgrind repeatability line */
 } report;
