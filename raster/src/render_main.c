@@ -131,6 +131,7 @@ static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
         cj_rfree(a, lists[i]->kernel);
         cj_rfree(a, lists[i]->flat);
         cj_rfree(a, lists[i]->uvplane);
+        cj_rfree(a, lists[i]->back);
         cj_raster_prep_destroy(lists[i]->prep);
     }
     cj_rfree(a, c->clip);

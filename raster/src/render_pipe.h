@@ -10,7 +10,10 @@
  *   Gouraud  L = c_r·t·A + S        A, S per vertex, interpolated
  *   Phong    L = c_r·t·A + S        A, S per sample from the interpolated normal
  * with A = r_a I_a + r_d Σ I max(0, n·l), S = c_p r_s Σ I max(0, n·h)^α (h = (l+v)/|l+v|),
- * t the texture's RGB (1 without texture). Two-sided materials flip n to face the viewer. */
+ * t the texture's RGB (1 without texture). Two-sided materials light the side the viewer sees:
+ * where a triangle shows its back ((p̄ − ē)·n⃗ > 0 for its face normal n⃗, seed 7.2) every normal
+ * it shades with is flipped. The triangle decides, not the interpolated normal, which can point
+ * away from the viewer near a silhouette and would light the wrong side. */
 #ifndef CASTELJAU_RENDER_PIPE_H
 #define CASTELJAU_RENDER_PIPE_H
 
@@ -67,6 +70,8 @@ typedef struct cj_rlist {
     uint8_t *kernel; /* kernel per triangle */
     float *flat;     /* 6 per triangle (A, S) where flat-lit, else unused; may be NULL */
     double *uvplane; /* 9 per triangle where textured with a footprint filter; may be NULL */
+    uint8_t *back;   /* 1 per triangle: 1 where a two-sided triangle shows its back; NULL when the
+                        list has no two-sided triangle */
     cj_raster_prep *prep;
 } cj_rlist;
 
@@ -92,8 +97,10 @@ typedef struct cj_rctx {
     int width, height, spp, tile_size, tiles_x, threads;
     const double (*pattern)[2];
     double *clip;   /* 4 per vertex */
-    float *gouraud; /* 6 per vertex (A, S) for Gouraud-lit vertices, or NULL */
-    cj_rmat *mats;  /* per scene material, plus the default material at index nmat */
+    float *gouraud; /* gstride per vertex: (A, S) lit from the front, then (where two-sided
+                       Gouraud materials exist, gstride 12) from the back; or NULL */
+    int gstride;
+    cj_rmat *mats; /* per scene material, plus the default material at index nmat */
     int nmat;
     int *obj_mat; /* object -> index into mats */
     cj_rlight *lights;
@@ -111,8 +118,9 @@ typedef struct cj_rctx {
 } cj_rctx;
 
 /* render_shade.c */
+/* flip: light the other side (n -> -n). */
 void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const float n_in[3],
-                    float A[3], float S[3]);
+                    int flip, float A[3], float S[3]);
 /* Shades the samples idx[0..n) of the tile with kernel k into col (4 floats per sample). */
 void cj_rshade_kernel(const cj_rctx *c, int k, const cj_tile *t, const uint32_t *idx, size_t n,
                       float *col);

@@ -31,7 +31,7 @@ static inline void normalize3f(float a[3]) {
  * Inlined into the Phong kernels; cj_rlight_eval is the same for the per-triangle and
  * per-vertex set-up. */
 CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
-                          const float n_in[3], float A[3], float S[3]) {
+                          const float n_in[3], int flip, float A[3], float S[3]) {
     float n[3] = {n_in[0], n_in[1], n_in[2]}, v[3];
     if (c->view->cam.projection == CJ_PROJ_PERSPECTIVE) {
         v[0] = (float)(c->view->eye.x - p[0]);
@@ -43,7 +43,7 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
         v[1] = (float)-c->view->gaze_unit.y;
         v[2] = (float)-c->view->gaze_unit.z;
     }
-    if (m->two_sided && dot3f(n, v) < 0.0f) {
+    if (flip) {
         n[0] = -n[0];
         n[1] = -n[1];
         n[2] = -n[2];
@@ -84,8 +84,8 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
 }
 
 void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const float n_in[3],
-                    float A[3], float S[3]) {
-    light_eval(c, m, p, n_in, A, S);
+                    int flip, float A[3], float S[3]) {
+    light_eval(c, m, p, n_in, flip, A, S);
 }
 
 /* u, v and their screen derivatives from the triangle's (u,v) plane at pixel point (sx, sy). */
@@ -136,8 +136,9 @@ CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1
             const float *f = L->flat + 6 * (size_t)tri;
             A[0] = f[0], A[1] = f[1], A[2] = f[2], S[0] = f[3], S[1] = f[4], S[2] = f[5];
         } else if (model == CJ_RM_GOURAUD) {
-            const float *g0 = c->gouraud + 6 * (size_t)tv[0], *g1 = c->gouraud + 6 * (size_t)tv[1],
-                        *g2 = c->gouraud + 6 * (size_t)tv[2];
+            const size_t side = L->back && L->back[tri] ? 6 : 0, gs = (size_t)c->gstride;
+            const float *g0 = c->gouraud + gs * tv[0] + side, *g1 = c->gouraud + gs * tv[1] + side,
+                        *g2 = c->gouraud + gs * tv[2] + side;
             for (int k = 0; k < 3; ++k) {
                 A[k] = b0 * g0[k] + b1 * g1[k] + b2 * g2[k];
                 S[k] = b0 * g0[3 + k] + b1 * g1[3 + k] + b2 * g2[3 + k];
@@ -154,7 +155,7 @@ CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1
                 p[k] = db0 * p0[k] + db1 * p1[k] + db2 * p2[k];
             }
             normalize3f(n);
-            light_eval(c, m, p, n, A, S);
+            light_eval(c, m, p, n, L->back && L->back[tri], A, S);
         }
         out[0] = cr[0] * A[0] + S[0];
         out[1] = cr[1] * A[1] + S[1];
@@ -258,14 +259,40 @@ static int uv_plane(const cj_rctx *c, const uint32_t *tv, double out[9]) {
     return 1;
 }
 
+/* 1 if the viewer sees the back of triangle tv: (p̄ − ē)·n⃗ > 0 with n⃗ = (p1−p0)×(p2−p0) (seed
+ * 7.2), or g⃗·n⃗ > 0 for an orthographic camera (every view ray is parallel to g⃗). */
+static int shows_back(const cj_rctx *c, const uint32_t *tv) {
+    const double *p0 = c->b->pos + 3 * (size_t)tv[0], *p1 = c->b->pos + 3 * (size_t)tv[1],
+                 *p2 = c->b->pos + 3 * (size_t)tv[2];
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; ++k) {
+        e1[k] = p1[k] - p0[k];
+        e2[k] = p2[k] - p0[k];
+    }
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                   e1[0] * e2[1] - e1[1] * e2[0]};
+    double d[3];
+    if (c->view->cam.projection == CJ_PROJ_PERSPECTIVE) {
+        d[0] = p0[0] - c->view->eye.x;
+        d[1] = p0[1] - c->view->eye.y;
+        d[2] = p0[2] - c->view->eye.z;
+    } else {
+        d[0] = c->view->gaze_unit.x;
+        d[1] = c->view->gaze_unit.y;
+        d[2] = c->view->gaze_unit.z;
+    }
+    return d[0] * n[0] + d[1] * n[1] + d[2] * n[2] > 0.0;
+}
+
 cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a) {
     size_t n = L->count;
     L->kernel = cj_ralloc(a, n ? n : 1);
     if (!L->kernel) return cj_fail(CJ_ERR_NOMEM, "kernel table of %zu triangles", n);
-    int any_flat = 0, any_plane = 0;
+    int any_flat = 0, any_plane = 0, any_two_sided = 0;
     for (size_t t = 0; t < n; ++t) {
         const cj_rmat *m = &c->mats[c->obj_mat[L->obj[t]]];
         int tex = m->tex >= 0;
+        if (m->two_sided) any_two_sided = 1;
         L->kernel[t] = (uint8_t)(2 * m->model + tex);
         if (m->model == CJ_RM_FLAT) any_flat = 1;
         if (tex && c->samplers[m->tex].needs_deriv) any_plane = 1;
@@ -278,9 +305,14 @@ cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a)
         L->uvplane = cj_ralloc(a, sizeof(double) * 9 * (n ? n : 1));
         if (!L->uvplane) return cj_fail(CJ_ERR_NOMEM, "texture planes of %zu triangles", n);
     }
+    if (any_two_sided) {
+        L->back = cj_ralloc(a, n ? n : 1);
+        if (!L->back) return cj_fail(CJ_ERR_NOMEM, "facing flags of %zu triangles", n);
+    }
     for (size_t t = 0; t < n; ++t) {
         const cj_rmat *m = &c->mats[c->obj_mat[L->obj[t]]];
         const uint32_t *tv = L->tris + 3 * t;
+        if (L->back) L->back[t] = m->two_sided && shows_back(c, tv);
         if (m->model == CJ_RM_FLAT) {
             const double *p0 = c->b->pos + 3 * (size_t)tv[0], *p1 = c->b->pos + 3 * (size_t)tv[1],
                          *p2 = c->b->pos + 3 * (size_t)tv[2];
@@ -296,7 +328,8 @@ cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a)
             float nf[3] = {0, 0, 0};
             if (l > 0.0)
                 for (int k = 0; k < 3; ++k) nf[k] = (float)(nd[k] / l);
-            cj_rlight_eval(c, m, p, nf, L->flat + 6 * t, L->flat + 6 * t + 3);
+            cj_rlight_eval(c, m, p, nf, L->back && L->back[t], L->flat + 6 * t,
+                           L->flat + 6 * t + 3);
         }
         if (L->uvplane && m->tex >= 0 && c->samplers[m->tex].needs_deriv)
             if (!uv_plane(c, tv, L->uvplane + 9 * t)) memset(L->uvplane + 9 * t, 0, 72);
@@ -309,12 +342,16 @@ cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a)
 cj_status cj_rshade_prepare_gouraud(cj_rctx *c, const cj_allocator *a, size_t *vertices) {
     *vertices = 0;
     const cj_rbuild *b = c->b;
-    int any = 0;
-    for (size_t o = 0; o < b->object_count && !any; ++o)
-        if (c->mats[c->obj_mat[o]].model == CJ_RM_GOURAUD) any = 1;
+    int any = 0, two_sided = 0;
+    for (size_t o = 0; o < b->object_count; ++o)
+        if (c->mats[c->obj_mat[o]].model == CJ_RM_GOURAUD) {
+            any = 1;
+            if (c->mats[c->obj_mat[o]].two_sided) two_sided = 1;
+        }
     if (!any) return CJ_OK;
     size_t nv = b->vertex_count ? b->vertex_count : 1;
-    c->gouraud = cj_ralloc(a, sizeof(float) * 6 * nv);
+    c->gstride = two_sided ? 12 : 6;
+    c->gouraud = cj_ralloc(a, sizeof(float) * (size_t)c->gstride * nv);
     uint8_t *done = cj_ralloc(a, nv);
     if (!c->gouraud || !done) {
         cj_rfree(a, done);
@@ -331,8 +368,12 @@ cj_status cj_rshade_prepare_gouraud(cj_rctx *c, const cj_allocator *a, size_t *v
                 uint32_t v = L->tris[3 * t + k];
                 if (done[v]) continue;
                 done[v] = 1;
-                cj_rlight_eval(c, m, b->pos + 3 * (size_t)v, b->nrm + 3 * (size_t)v,
-                               c->gouraud + 6 * (size_t)v, c->gouraud + 6 * (size_t)v + 3);
+                float *g = c->gouraud + (size_t)c->gstride * v;
+                const double *p = b->pos + 3 * (size_t)v;
+                const float *nv3 = b->nrm + 3 * (size_t)v;
+                cj_rlight_eval(c, m, p, nv3, 0, g, g + 3);
+                /* a vertex shared by front- and back-facing triangles is lit from both sides */
+                if (m->two_sided) cj_rlight_eval(c, m, p, nv3, 1, g + 6, g + 9);
                 ++*vertices;
             }
         }
