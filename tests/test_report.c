@@ -1,0 +1,140 @@
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
+/* `casteljau report --quick` builds (so the report never rots): the files exist, the PNGs are
+ * PNGs and the page links them, every number of data.tsv is finite where it must be, and the
+ * figures are sane: measured evaluation errors within the proven bounds (de Casteljau,
+ * compensated), flattening deviations and bounds within the tolerance, segment counts at least
+ * ~the continuous optimum, positive times, every section with a Pareto front, and callgrind
+ * counts repeating within 0.5 % when valgrind ran. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char dir[256];
+
+static char *slurp(const char *name, size_t *len) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    const long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *b = malloc((size_t)n + 1);
+    assert_non_null(b);
+    assert_int_equal(fread(b, 1, (size_t)n, f), (size_t)n);
+    b[n] = 0;
+    fclose(f);
+    if (len) *len = (size_t)n;
+    return b;
+}
+
+static int count_of(const char *s, const char *needle) {
+    int n = 0;
+    for (const char *p = s; (p = strstr(p, needle)); p += strlen(needle)) n++;
+    return n;
+}
+
+static void test_quick_report(void **state) {
+    (void)state;
+    snprintf(dir, sizeof dir, "/tmp/cj_report_XXXXXX");
+    assert_non_null(mkdtemp(dir));
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "'%s' report --quick -o '%s' >/dev/null", CJ_CLI, dir);
+    assert_int_equal(system(cmd), 0);
+
+    char *html = slurp("index.html", NULL), *md = slurp("summary.md", NULL);
+    assert_non_null(html);
+    assert_non_null(md);
+    assert_non_null(strstr(html, "</html>"));
+    assert_int_equal(count_of(html, "<img "), 4);
+    assert_int_equal(count_of(html, "<table>"), 2);
+    const char *pngs[4] = {"eval_cond0.png", "eval_cond1.png", "flatten_0.png", "flatten_1.png"};
+    for (int i = 0; i < 4; ++i) {
+        size_t n = 0;
+        char *png = slurp(pngs[i], &n);
+        assert_non_null(png);
+        assert_true(n > 2000 && !memcmp(png, "\x89PNG\r\n\x1a\n", 8));
+        char ref[64];
+        snprintf(ref, sizeof ref, "src=\"%s\"", pngs[i]);
+        assert_non_null(strstr(html, ref));
+        assert_non_null(strstr(md, pngs[i]));
+        free(png);
+    }
+
+    char *tsv = slurp("data.tsv", NULL);
+    assert_non_null(tsv);
+    int rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
+    for (char *line = strtok(tsv, "\n"); line; line = strtok(NULL, "\n")) {
+        if (!strncmp(line, "section", 7)) continue;
+        char *f[12] = {0};
+        int nf = 0;
+        for (char *p = line; nf < 12; ++nf) {
+            f[nf] = p;
+            char *tab = strchr(p, '\t');
+            if (!tab) {
+                nf++;
+                break;
+            }
+            *tab = 0;
+            p = tab + 1;
+        }
+        assert_int_equal(nf, 12);
+        rows++;
+        const double ns = strtod(f[7], NULL);
+        assert_true(isfinite(ns) && ns > 0.1 && ns < 1e9);
+        const int front = !strcmp(f[11], "front");
+        if (!strcmp(f[0], "eval")) {
+            eval_rows++;
+            fronts_eval += front;
+            const double K = strtod(f[3], NULL), emax = strtod(f[4], NULL),
+                         emean = strtod(f[5], NULL), bound = strtod(f[6], NULL);
+            assert_true(isfinite(K) && K >= 1.0);
+            assert_true(isfinite(emax) && emax >= emean && emean >= 0);
+            if (!strcmp(f[1], "de Casteljau") || !strcmp(f[1], "compensated")) {
+                assert_true(isfinite(bound));
+                if (!(emax <= bound))
+                    fail_msg("%s at degree %s, cond %g: error %g u > bound %g u", f[1], f[2], K,
+                             emax, bound);
+            }
+        } else {
+            assert_string_equal(f[0], "flatten");
+            flat_rows++;
+            fronts_flat += front;
+            const double tol = strtod(f[2], NULL), dev = strtod(f[4], NULL),
+                         bound = strtod(f[6], NULL), ratio = strtod(f[10], NULL);
+            assert_true(dev > 0 && dev <= tol && bound <= tol * (1 + 1e-12) &&
+                        bound >= dev * 0.999);
+            assert_true(ratio >= 0.9 && ratio < 10);
+        }
+    }
+    assert_int_equal(eval_rows, 4 * 2 * 3); /* quick: 4 methods x 2 degrees x 3 conditions */
+    assert_int_equal(flat_rows, 3 * 3);     /* 3 methods x 3 tolerances */
+    assert_true(fronts_eval >= 6 && fronts_flat >= 1);
+    const char *rep = strstr(md, "differ by ");
+    if (rep) {
+        const double pct = strtod(rep + 10, NULL);
+        assert_true(pct >= 0 && pct <= 0.5);
+        printf("callgrind counts repeat within %.4f %%\n", pct);
+    } else {
+        printf("valgrind not available: instruction counts not checked\n");
+    }
+    printf("quick report in %s: index.html links 4 PNGs, %d rows (%d eval, %d flatten) finite; "
+           "errors within the bounds, deviations within tol, Pareto fronts present\n",
+           dir, rows, eval_rows, flat_rows);
+    free(tsv);
+    free(html);
+    free(md);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_quick_report)};
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
