@@ -7,6 +7,9 @@
  *   title, axes, margin, view, items   a single plot (see "panel" below), or
  *   panels           [panel, ...]: several plots in a grid of `columns` (default
  *                    ceil(sqrt(count))) columns, filled left to right, top to bottom
+ *   kind: "chart"    the document, or any entry of panels, may instead be a data chart with
+ *                    log/linear axes, series with markers, legend and annotations: its format
+ *                    is documented in chart_json.c (raster/chart.h draws it)
  * Panel:
  *   title            string drawn above the plot (at most CJ_PLOT_MAX_TITLE = 1024 bytes)
  *   axes             true/false: frame, grid, ticks and numeric labels (default true)
@@ -33,7 +36,7 @@
  * (grid + 1)^2 times the number of terms (3 for circle, ellipse, line; (n+1)(n+2)/2 for a
  * degree-n poly); above them the document is refused naming the item that crossed them.
  */
-#include "plot_json.h"
+#include "plot_json_internal.h"
 
 #include "weights.h"
 
@@ -45,233 +48,83 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct ctx {
-    char *why;
-    size_t why_size;
-    /* work counted against the document's limits (plot_json.h) */
-    size_t items, points;
-    double work;
-} ctx;
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 2, 3)))
-#endif
-static int
-fail(ctx *c, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(c->why, c->why_size, fmt, ap);
-    va_end(ap);
-    return -1;
-}
-
-/* snprintf for JSON paths (truncation of an absurdly deep path is harmless). */
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static void
-pathf(char *buf, size_t size, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(buf, size, fmt, ap);
-    va_end(ap);
-}
-
 static const cj_rgba palette[] = {{0x1f, 0x77, 0xb4, 255}, {0xff, 0x7f, 0x0e, 255},
                                   {0x2c, 0xa0, 0x2c, 255}, {0xd6, 0x27, 0x28, 255},
                                   {0x94, 0x67, 0xbd, 255}, {0x8c, 0x56, 0x4b, 255},
                                   {0xe3, 0x77, 0xc2, 255}, {0x17, 0xbe, 0xcf, 255}};
 
-static int check_keys(ctx *c, const cJSON *obj, const char *path, const char *const *allowed) {
-    for (const cJSON *f = obj->child; f; f = f->next) {
-        int ok = 0;
-        for (const char *const *a = allowed; *a && !ok; ++a) ok = !strcmp(f->string, *a);
-        if (!ok) {
-            char list[512] = "";
-            for (const char *const *a = allowed; *a; ++a) {
-                strncat(list, *a, sizeof list - strlen(list) - 1);
-                if (a[1]) strncat(list, ", ", sizeof list - strlen(list) - 1);
-            }
-            return fail(c, "%s: unknown field '%s' (known: %s)", path, f->string, list);
-        }
-    }
-    return 0;
-}
-
-static int hexval(char ch) {
-    if (ch >= '0' && ch <= '9') return ch - '0';
-    if (ch >= 'a' && ch <= 'f') return ch - 'a' + 10;
-    if (ch >= 'A' && ch <= 'F') return ch - 'A' + 10;
-    return -1;
-}
-
-static int parse_color(ctx *c, const cJSON *v, const char *path, cj_rgba *out) {
-    const char *s = cJSON_IsString(v) ? v->valuestring : NULL;
-    size_t n = s ? strlen(s) : 0;
-    int digits[8];
-    int ok = s && s[0] == '#' && (n == 4 || n == 7 || n == 9);
-    for (size_t i = 1; ok && i < n; ++i) ok = (digits[i - 1] = hexval(s[i])) >= 0;
-    if (!ok) return fail(c, "%s is not a colour \"#rgb\", \"#rrggbb\" or \"#rrggbbaa\"", path);
-    if (n == 4) {
-        *out = cj_rgba_make((uint8_t)(17 * digits[0]), (uint8_t)(17 * digits[1]),
-                            (uint8_t)(17 * digits[2]), 255);
-    } else {
-        uint8_t ch[4] = {0, 0, 0, 255};
-        for (size_t k = 0; k < (n - 1) / 2; ++k)
-            ch[k] = (uint8_t)(16 * digits[2 * k] + digits[2 * k + 1]);
-        *out = cj_rgba_make(ch[0], ch[1], ch[2], ch[3]);
-    }
-    return 0;
-}
-
-static int parse_number(ctx *c, const cJSON *v, const char *path, double lo, double hi,
-                        double *out) {
-    if (!cJSON_IsNumber(v)) return fail(c, "%s is not a number", path);
-    double d = v->valuedouble;
-    if (!isfinite(d)) return fail(c, "%s is not a finite number", path);
-    if (d < lo || d > hi) return fail(c, "%s = %g is outside [%g, %g]", path, d, lo, hi);
-    *out = d;
-    return 0;
-}
-
-static int parse_int(ctx *c, const cJSON *v, const char *path, int lo, int hi, int *out) {
-    double d = 0.0; /* set by parse_number on success */
-    if (parse_number(c, v, path, lo, hi, &d)) return -1;
-    if (d != floor(d)) return fail(c, "%s = %g is not an integer", path, d);
-    *out = (int)d;
-    return 0;
-}
-
-static int parse_bool(ctx *c, const cJSON *v, const char *path, int *out) {
-    if (!cJSON_IsBool(v)) return fail(c, "%s is not true or false", path);
-    *out = cJSON_IsTrue(v);
-    return 0;
-}
-
-/* A fixed-size array of numbers ([cx, cy, r] ...). */
-static int parse_numbers(ctx *c, const cJSON *v, const char *path, int count, double *out) {
-    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != count)
-        return fail(c, "%s is not an array of %d numbers", path, count);
-    int i = 0;
-    for (const cJSON *e = v->child; e; e = e->next, ++i) {
-        char p[300];
-        pathf(p, sizeof p, "%s[%d]", path, i);
-        if (parse_number(c, e, p, -INFINITY, INFINITY, &out[i])) return -1;
-    }
-    return 0;
-}
-
-/* [[x, y], ...] with at least min_count points into a new array (caller frees). */
-static int parse_points(ctx *c, const cJSON *v, const char *path, size_t min_count, double **out,
-                        size_t *count) {
-    if (!cJSON_IsArray(v)) return fail(c, "%s is not an array of [x, y] pairs", path);
-    size_t n = (size_t)cJSON_GetArraySize(v);
-    if (n < min_count)
-        return fail(c, "%s has %zu point%s, at least %zu needed", path, n, n == 1 ? "" : "s",
-                    min_count);
-    if (n > PLOT_JSON_MAX_POINTS - c->points)
-        return fail(c, "%s: the document has more than %d points in all", path,
-                    PLOT_JSON_MAX_POINTS);
-    c->points += n;
-    double *pts = malloc((n ? n : 1) * 2 * sizeof *pts);
-    if (!pts) return fail(c, "%s: out of memory", path);
-    size_t i = 0;
-    for (const cJSON *e = v->child; e; e = e->next, ++i) {
-        if (!cJSON_IsArray(e) || cJSON_GetArraySize(e) != 2 || !cJSON_IsNumber(e->child) ||
-            !cJSON_IsNumber(e->child->next)) {
-            free(pts);
-            return fail(c, "%s[%zu] is not a pair of numbers", path, i);
-        }
-        pts[2 * i] = e->child->valuedouble;
-        pts[2 * i + 1] = e->child->next->valuedouble;
-        if (!isfinite(pts[2 * i]) || !isfinite(pts[2 * i + 1])) {
-            free(pts);
-            return fail(c, "%s[%zu] has a coordinate that is not finite", path, i);
-        }
-    }
-    *out = pts;
-    *count = n;
-    return 0;
-}
-
-static int lib_fail(ctx *c, const char *path) {
-    return fail(c, "%s: %s", path, cj_last_error());
-}
-
-static const cJSON *field(const cJSON *obj, const char *key) {
-    return cJSON_GetObjectItemCaseSensitive(obj, key);
-}
-
 /* Optional field helpers: return 0 when absent (out untouched). */
 #define OPT(obj, key, path, call)                                                                  \
     do {                                                                                           \
-        const cJSON *v_ = field(obj, key);                                                         \
+        const cJSON *v_ = pj_field(obj, key);                                                      \
         if (v_) {                                                                                  \
             char p_[300];                                                                          \
-            pathf(p_, sizeof p_, "%s.%s", path, key);                                              \
+            pj_pathf(p_, sizeof p_, "%s.%s", path, key);                                           \
             if (call) return -1;                                                                   \
         }                                                                                          \
     } while (0)
 
-static int parse_bezier(ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color) {
+static int parse_bezier(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot,
+                        cj_rgba color) {
     static const char *const keys[] = {
         "type", "points",         "color",    "width",   "control_polygon", "control_points",
         "hull", "construction_t", "frames_t", "normals", "weights",         NULL};
-    if (check_keys(c, it, path, keys)) return -1;
+    if (pj_check_keys(c, it, path, keys)) return -1;
     cj_plot_bezier_opts o = cj_plot_bezier_defaults();
     o.color = color;
-    OPT(it, "color", path, parse_color(c, v_, p_, &o.color));
-    OPT(it, "width", path, parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &o.width));
-    OPT(it, "control_polygon", path, parse_bool(c, v_, p_, &o.control_polygon));
-    OPT(it, "control_points", path, parse_bool(c, v_, p_, &o.control_points));
-    OPT(it, "hull", path, parse_bool(c, v_, p_, &o.hull));
-    OPT(it, "normals", path, parse_bool(c, v_, p_, &o.normals));
-    const cJSON *ct = field(it, "construction_t");
+    OPT(it, "color", path, pj_parse_color(c, v_, p_, &o.color));
+    OPT(it, "width", path, pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &o.width));
+    OPT(it, "control_polygon", path, pj_parse_bool(c, v_, p_, &o.control_polygon));
+    OPT(it, "control_points", path, pj_parse_bool(c, v_, p_, &o.control_points));
+    OPT(it, "hull", path, pj_parse_bool(c, v_, p_, &o.hull));
+    OPT(it, "normals", path, pj_parse_bool(c, v_, p_, &o.normals));
+    const cJSON *ct = pj_field(it, "construction_t");
     if (ct) {
         char p[300];
-        pathf(p, sizeof p, "%s.construction_t", path);
-        if (parse_number(c, ct, p, 0.0, 1.0, &o.construction_t)) return -1;
+        pj_pathf(p, sizeof p, "%s.construction_t", path);
+        if (pj_parse_number(c, ct, p, 0.0, 1.0, &o.construction_t)) return -1;
         o.construction = 1;
     }
-    const cJSON *ft = field(it, "frames_t");
+    const cJSON *ft = pj_field(it, "frames_t");
     if (ft) {
         char p[300];
-        pathf(p, sizeof p, "%s.frames_t", path);
+        pj_pathf(p, sizeof p, "%s.frames_t", path);
         if (!cJSON_IsArray(ft) || cJSON_GetArraySize(ft) > CJ_PLOT_MAX_FRAMES)
-            return fail(c, "%s is not an array of at most %d parameters", p, CJ_PLOT_MAX_FRAMES);
+            return pj_fail(c, "%s is not an array of at most %d parameters", p, CJ_PLOT_MAX_FRAMES);
         for (const cJSON *e = ft->child; e; e = e->next) {
             char q[320];
-            pathf(q, sizeof q, "%s[%zu]", p, o.nframes);
-            if (parse_number(c, e, q, 0.0, 1.0, &o.frames_t[o.nframes])) return -1;
+            pj_pathf(q, sizeof q, "%s[%zu]", p, o.nframes);
+            if (pj_parse_number(c, e, q, 0.0, 1.0, &o.frames_t[o.nframes])) return -1;
             ++o.nframes;
         }
     }
-    const cJSON *pv = field(it, "points");
-    if (!pv) return fail(c, "%s: a bezier needs \"points\"", path);
+    const cJSON *pv = pj_field(it, "points");
+    if (!pv) return pj_fail(c, "%s: a bezier needs \"points\"", path);
     char p[300];
-    pathf(p, sizeof p, "%s.points", path);
+    pj_pathf(p, sizeof p, "%s.points", path);
     double *pts = NULL;
     size_t n = 0;
-    if (parse_points(c, pv, p, 1, &pts, &n)) return -1;
+    if (pj_parse_points(c, pv, p, 1, &pts, &n)) return -1;
     if (n > (size_t)CJ_BEZIER_MAX_DEGREE + 1) {
         free(pts);
-        return fail(c, "%s has %zu points: the degree is at most %d", p, n, CJ_BEZIER_MAX_DEGREE);
+        return pj_fail(c, "%s has %zu points: the degree is at most %d", p, n,
+                       CJ_BEZIER_MAX_DEGREE);
     }
     double *w = NULL;
-    const cJSON *wv = field(it, "weights");
+    const cJSON *wv = pj_field(it, "weights");
     if (wv) {
-        pathf(p, sizeof p, "%s.weights", path);
+        pj_pathf(p, sizeof p, "%s.weights", path);
         int bad = 0;
         if (!cJSON_IsArray(wv) || (size_t)cJSON_GetArraySize(wv) != n)
-            bad = fail(c, "%s is not an array of %zu weights (one per point)", p, n);
+            bad = pj_fail(c, "%s is not an array of %zu weights (one per point)", p, n);
         else if (!(w = malloc(n * sizeof *w)))
-            bad = fail(c, "%s: out of memory", p);
-        else if (parse_numbers(c, wv, p, (int)n, w))
+            bad = pj_fail(c, "%s: out of memory", p);
+        else if (pj_parse_numbers(c, wv, p, (int)n, w))
             bad = -1;
         for (size_t i = 0; !bad && i < n; ++i)
-            if (!(w[i] > 0)) bad = fail(c, "%s[%zu] = %g is not a positive weight", p, i, w[i]);
+            if (!(w[i] > 0)) bad = pj_fail(c, "%s[%zu] = %g is not a positive weight", p, i, w[i]);
         if (!bad && weights_normalize(w, n))
-            bad = fail(c, "%s: the weights span more than the double range", p);
+            bad = pj_fail(c, "%s: the weights span more than the double range", p);
         if (bad) {
             free(pts);
             free(w);
@@ -283,22 +136,23 @@ static int parse_bezier(ctx *c, const cJSON *it, const char *path, cj_plot *plot
     cj_status st = w ? cj_plot_add_rbezier(plot, &rb, &o) : cj_plot_add_bezier(plot, &b, &o);
     free(pts);
     free(w);
-    return st ? lib_fail(c, path) : 0;
+    return st ? pj_lib_fail(c, path) : 0;
 }
 
-static int parse_spline(ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color) {
+static int parse_spline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot,
+                        cj_rgba color) {
     static const char *const keys[] = {"type", "points", "color", "width", "tension",
                                        "kind", "closed", "knots", NULL};
-    if (check_keys(c, it, path, keys)) return -1;
+    if (pj_check_keys(c, it, path, keys)) return -1;
     cj_spline_options so = cj_spline_defaults();
     double width = 2.5;
     int knots = 1;
-    OPT(it, "color", path, parse_color(c, v_, p_, &color));
-    OPT(it, "width", path, parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
-    OPT(it, "tension", path, parse_number(c, v_, p_, -10.0, 10.0, &so.tension));
-    OPT(it, "closed", path, parse_bool(c, v_, p_, &so.closed));
-    OPT(it, "knots", path, parse_bool(c, v_, p_, &knots));
-    const cJSON *kv = field(it, "kind");
+    OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
+    OPT(it, "width", path, pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
+    OPT(it, "tension", path, pj_parse_number(c, v_, p_, -10.0, 10.0, &so.tension));
+    OPT(it, "closed", path, pj_parse_bool(c, v_, p_, &so.closed));
+    OPT(it, "knots", path, pj_parse_bool(c, v_, p_, &knots));
+    const cJSON *kv = pj_field(it, "kind");
     if (kv) {
         const char *k = cJSON_IsString(kv) ? kv->valuestring : "";
         if (!strcmp(k, "uniform"))
@@ -308,65 +162,66 @@ static int parse_spline(ctx *c, const cJSON *it, const char *path, cj_plot *plot
         else if (!strcmp(k, "chordal"))
             so.kind = CJ_SPLINE_CHORDAL;
         else
-            return fail(c, "%s.kind is not \"uniform\", \"centripetal\" or \"chordal\"", path);
+            return pj_fail(c, "%s.kind is not \"uniform\", \"centripetal\" or \"chordal\"", path);
     }
-    const cJSON *pv = field(it, "points");
-    if (!pv) return fail(c, "%s: a catmull-rom spline needs \"points\"", path);
+    const cJSON *pv = pj_field(it, "points");
+    if (!pv) return pj_fail(c, "%s: a catmull-rom spline needs \"points\"", path);
     char p[300];
-    pathf(p, sizeof p, "%s.points", path);
+    pj_pathf(p, sizeof p, "%s.points", path);
     double *pts = NULL;
     size_t n = 0;
-    if (parse_points(c, pv, p, so.closed ? 3 : 2, &pts, &n)) return -1;
+    if (pj_parse_points(c, pv, p, so.closed ? 3 : 2, &pts, &n)) return -1;
     cj_status st = cj_plot_add_spline(plot, pts, n, &so, color, width, knots);
     free(pts);
-    return st ? lib_fail(c, path) : 0;
+    return st ? pj_lib_fail(c, path) : 0;
 }
 
-static int parse_implicit(ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color) {
+static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot,
+                          cj_rgba color) {
     static const char *const keys[] = {"type", "color", "width", "circle", "ellipse",
                                        "line", "poly",  "box",   "grid",   NULL};
-    if (check_keys(c, it, path, keys)) return -1;
+    if (pj_check_keys(c, it, path, keys)) return -1;
     double width = 2.5;
     int grid = 64;
-    OPT(it, "color", path, parse_color(c, v_, p_, &color));
-    OPT(it, "width", path, parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
-    OPT(it, "grid", path, parse_int(c, v_, p_, 4, 1024, &grid));
+    OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
+    OPT(it, "width", path, pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
+    OPT(it, "grid", path, pj_parse_int(c, v_, p_, 4, 1024, &grid));
     const char *kinds[] = {"circle", "ellipse", "line", "poly"};
     int which = -1;
     for (int k = 0; k < 4; ++k)
-        if (field(it, kinds[k])) {
+        if (pj_field(it, kinds[k])) {
             if (which >= 0)
-                return fail(c, "%s has both \"%s\" and \"%s\": give exactly one curve", path,
-                            kinds[which], kinds[k]);
+                return pj_fail(c, "%s has both \"%s\" and \"%s\": give exactly one curve", path,
+                               kinds[which], kinds[k]);
             which = k;
         }
     if (which < 0)
-        return fail(c,
-                    "%s: an implicit item needs one of \"circle\", \"ellipse\", \"line\", "
-                    "\"poly\"",
-                    path);
+        return pj_fail(c,
+                       "%s: an implicit item needs one of \"circle\", \"ellipse\", \"line\", "
+                       "\"poly\"",
+                       path);
     char p[300];
-    pathf(p, sizeof p, "%s.%s", path, kinds[which]);
-    const cJSON *v = field(it, kinds[which]);
+    pj_pathf(p, sizeof p, "%s.%s", path, kinds[which]);
+    const cJSON *v = pj_field(it, kinds[which]);
     cj_implicit_shape shape;
     cj_implicit f;
     double box[4], a[5];
     int have_box = 0;
     double *coef = NULL;
     cj_status st = CJ_OK;
-    const cJSON *bv = field(it, "box");
+    const cJSON *bv = pj_field(it, "box");
     if (bv) {
         char q[300];
-        pathf(q, sizeof q, "%s.box", path);
-        if (parse_numbers(c, bv, q, 4, box)) return -1;
+        pj_pathf(q, sizeof q, "%s.box", path);
+        if (pj_parse_numbers(c, bv, q, 4, box)) return -1;
         if (!(box[0] < box[2] && box[1] < box[3]))
-            return fail(c, "%s is not [x0, y0, x1, y1] with x0 < x1 and y0 < y1", q);
+            return pj_fail(c, "%s is not [x0, y0, x1, y1] with x0 < x1 and y0 < y1", q);
         have_box = 1;
     }
     switch (which) {
     case 0:
-        if (parse_numbers(c, v, p, 3, a)) return -1;
-        if (!(a[2] > 0)) return fail(c, "%s: the radius %g is not positive", p, a[2]);
+        if (pj_parse_numbers(c, v, p, 3, a)) return -1;
+        if (!(a[2] > 0)) return pj_fail(c, "%s: the radius %g is not positive", p, a[2]);
         st = cj_implicit_circle(a[0], a[1], a[2], &shape, &f);
         if (!have_box) {
             const double r = 1.1 * a[2];
@@ -374,9 +229,9 @@ static int parse_implicit(ctx *c, const cJSON *it, const char *path, cj_plot *pl
         }
         break;
     case 1:
-        if (parse_numbers(c, v, p, 5, a)) return -1;
+        if (pj_parse_numbers(c, v, p, 5, a)) return -1;
         if (!(a[2] > 0 && a[3] > 0))
-            return fail(c, "%s: the radii %g, %g are not positive", p, a[2], a[3]);
+            return pj_fail(c, "%s: the radii %g, %g are not positive", p, a[2], a[3]);
         st = cj_implicit_ellipse(a[0], a[1], a[2], a[3], a[4], &shape, &f);
         if (!have_box) {
             const double r = 1.1 * fmax(a[2], a[3]);
@@ -384,33 +239,33 @@ static int parse_implicit(ctx *c, const cJSON *it, const char *path, cj_plot *pl
         }
         break;
     case 2:
-        if (parse_numbers(c, v, p, 3, a)) return -1;
-        if (!have_box) return fail(c, "%s: a \"line\" needs a \"box\" to be drawn in", path);
+        if (pj_parse_numbers(c, v, p, 3, a)) return -1;
+        if (!have_box) return pj_fail(c, "%s: a \"line\" needs a \"box\" to be drawn in", path);
         st = cj_implicit_line(a[0], a[1], a[2], &shape, &f);
         break;
     default: {
         static const char *const pkeys[] = {"degree", "coef", NULL};
-        if (!cJSON_IsObject(v)) return fail(c, "%s is not an object {\"degree\", \"coef\"}", p);
-        if (check_keys(c, v, p, pkeys)) return -1;
+        if (!cJSON_IsObject(v)) return pj_fail(c, "%s is not an object {\"degree\", \"coef\"}", p);
+        if (pj_check_keys(c, v, p, pkeys)) return -1;
         int degree = 0;
         char q[320];
-        pathf(q, sizeof q, "%s.degree", p);
-        if (!field(v, "degree")) return fail(c, "%s: missing \"degree\"", p);
-        if (parse_int(c, field(v, "degree"), q, 1, 32, &degree)) return -1;
+        pj_pathf(q, sizeof q, "%s.degree", p);
+        if (!pj_field(v, "degree")) return pj_fail(c, "%s: missing \"degree\"", p);
+        if (pj_parse_int(c, pj_field(v, "degree"), q, 1, 32, &degree)) return -1;
         size_t nc = cj_implicit_poly_ncoef(degree);
-        pathf(q, sizeof q, "%s.coef", p);
-        const cJSON *cv = field(v, "coef");
+        pj_pathf(q, sizeof q, "%s.coef", p);
+        const cJSON *cv = pj_field(v, "coef");
         if (!cv || !cJSON_IsArray(cv) || (size_t)cJSON_GetArraySize(cv) != nc)
-            return fail(c, "%s is not an array of %zu numbers (degree %d)", q, nc, degree);
+            return pj_fail(c, "%s is not an array of %zu numbers (degree %d)", q, nc, degree);
         coef = malloc(nc * sizeof *coef);
-        if (!coef) return fail(c, "%s: out of memory", q);
-        if (parse_numbers(c, cv, q, (int)nc, coef)) {
+        if (!coef) return pj_fail(c, "%s: out of memory", q);
+        if (pj_parse_numbers(c, cv, q, (int)nc, coef)) {
             free(coef);
             return -1;
         }
         if (!have_box) {
             free(coef);
-            return fail(c, "%s: a \"poly\" needs a \"box\" to be drawn in", path);
+            return pj_fail(c, "%s: a \"poly\" needs a \"box\" to be drawn in", path);
         }
         st = cj_implicit_poly(degree, coef, &shape, &f);
         break;
@@ -422,51 +277,52 @@ static int parse_implicit(ctx *c, const cJSON *it, const char *path, cj_plot *pl
     c->work += (double)(grid + 1) * (double)(grid + 1) * terms;
     if (!st && c->work > PLOT_JSON_MAX_WORK) {
         free(coef);
-        return fail(c,
-                    "%s: the document's implicit curves need more than %.0e evaluations of "
-                    "terms in all (grid^2 x terms; lower \"grid\" or the degree)",
-                    path, PLOT_JSON_MAX_WORK);
+        return pj_fail(c,
+                       "%s: the document's implicit curves need more than %.0e evaluations of "
+                       "terms in all (grid^2 x terms; lower \"grid\" or the degree)",
+                       path, PLOT_JSON_MAX_WORK);
     }
     if (!st) st = cj_plot_add_implicit(plot, &f, box, grid, color, width);
     free(coef);
-    return st ? lib_fail(c, path) : 0;
+    return st ? pj_lib_fail(c, path) : 0;
 }
 
-static int parse_polyline(ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color,
-                          int points_only) {
+static int parse_polyline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot,
+                          cj_rgba color, int points_only) {
     static const char *const lkeys[] = {"type",   "points",  "color", "width",
                                         "closed", "markers", NULL};
     static const char *const pkeys[] = {"type", "points", "color", "radius", NULL};
-    if (check_keys(c, it, path, points_only ? pkeys : lkeys)) return -1;
+    if (pj_check_keys(c, it, path, points_only ? pkeys : lkeys)) return -1;
     double width = points_only ? 4.0 : 2.0;
     int closed = 0, markers = 0;
-    OPT(it, "color", path, parse_color(c, v_, p_, &color));
+    OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
     OPT(it, points_only ? "radius" : "width", path,
-        parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
+        pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
     if (!points_only) {
-        OPT(it, "closed", path, parse_bool(c, v_, p_, &closed));
-        OPT(it, "markers", path, parse_bool(c, v_, p_, &markers));
+        OPT(it, "closed", path, pj_parse_bool(c, v_, p_, &closed));
+        OPT(it, "markers", path, pj_parse_bool(c, v_, p_, &markers));
     }
-    const cJSON *pv = field(it, "points");
+    const cJSON *pv = pj_field(it, "points");
     if (!pv)
-        return fail(c, "%s: a %s needs \"points\"", path, points_only ? "points item" : "polyline");
+        return pj_fail(c, "%s: a %s needs \"points\"", path,
+                       points_only ? "points item" : "polyline");
     char p[300];
-    pathf(p, sizeof p, "%s.points", path);
+    pj_pathf(p, sizeof p, "%s.points", path);
     double *pts = NULL;
     size_t n = 0;
-    if (parse_points(c, pv, p, points_only ? 1 : 2, &pts, &n)) return -1;
+    if (pj_parse_points(c, pv, p, points_only ? 1 : 2, &pts, &n)) return -1;
     cj_status st = points_only ? cj_plot_add_points(plot, pts, n, color, width)
                                : cj_plot_add_polyline(plot, pts, n, closed, color, width, markers);
     free(pts);
-    return st ? lib_fail(c, path) : 0;
+    return st ? pj_lib_fail(c, path) : 0;
 }
 
 /* One plot from an object holding title/axes/margin/view/background/items. `prefix` is the
  * JSON path of the object ("" for the document itself). */
-static int parse_panel(ctx *c, const cJSON *obj, const char *prefix, cj_rgba background,
+static int parse_panel(pj_ctx *c, const cJSON *obj, const char *prefix, cj_rgba background,
                        cj_plot **out) {
     cj_plot *plot = NULL;
-    if (cj_plot_create(NULL, &plot)) return fail(c, "%s", cj_last_error());
+    if (cj_plot_create(NULL, &plot)) return pj_fail(c, "%s", cj_last_error());
     cj_plot_set_background(plot, background);
     const char *path = *prefix ? prefix : "document";
     int axes = 1;
@@ -478,64 +334,64 @@ static int parse_panel(ctx *c, const cJSON *obj, const char *prefix, cj_rgba bac
         return -1;                                                                                 \
     } while (0)
     char p[300];
-    if ((v = field(obj, "axes"))) {
-        pathf(p, sizeof p, "%s%saxes", prefix, *prefix ? "." : "");
-        if (parse_bool(c, v, p, &axes)) PFAIL;
+    if ((v = pj_field(obj, "axes"))) {
+        pj_pathf(p, sizeof p, "%s%saxes", prefix, *prefix ? "." : "");
+        if (pj_parse_bool(c, v, p, &axes)) PFAIL;
     }
     cj_plot_set_axes(plot, axes);
-    if ((v = field(obj, "margin"))) {
-        pathf(p, sizeof p, "%s%smargin", prefix, *prefix ? "." : "");
-        if (parse_number(c, v, p, 0.0, 1000.0, &margin)) PFAIL;
+    if ((v = pj_field(obj, "margin"))) {
+        pj_pathf(p, sizeof p, "%s%smargin", prefix, *prefix ? "." : "");
+        if (pj_parse_number(c, v, p, 0.0, 1000.0, &margin)) PFAIL;
     }
     cj_plot_set_margin(plot, margin);
-    if ((v = field(obj, "title"))) {
-        pathf(p, sizeof p, "%s%stitle", prefix, *prefix ? "." : "");
+    if ((v = pj_field(obj, "title"))) {
+        pj_pathf(p, sizeof p, "%s%stitle", prefix, *prefix ? "." : "");
         if (!cJSON_IsString(v)) {
-            fail(c, "%s is not a string", p);
+            pj_fail(c, "%s is not a string", p);
             PFAIL;
         }
         if (cj_plot_set_title(plot, v->valuestring)) {
-            fail(c, "%s: %s", p, cj_last_error());
+            pj_fail(c, "%s: %s", p, cj_last_error());
             PFAIL;
         }
     }
-    if ((v = field(obj, "view"))) {
+    if ((v = pj_field(obj, "view"))) {
         double b[4];
-        pathf(p, sizeof p, "%s%sview", prefix, *prefix ? "." : "");
-        if (parse_numbers(c, v, p, 4, b)) PFAIL;
+        pj_pathf(p, sizeof p, "%s%sview", prefix, *prefix ? "." : "");
+        if (pj_parse_numbers(c, v, p, 4, b)) PFAIL;
         if (cj_plot_set_view(plot, b[0], b[1], b[2], b[3])) {
-            fail(c, "%s: %s", p, cj_last_error());
+            pj_fail(c, "%s: %s", p, cj_last_error());
             PFAIL;
         }
     }
-    const cJSON *items = field(obj, "items");
-    pathf(p, sizeof p, "%s%sitems", prefix, *prefix ? "." : "");
+    const cJSON *items = pj_field(obj, "items");
+    pj_pathf(p, sizeof p, "%s%sitems", prefix, *prefix ? "." : "");
     if (!items) {
-        fail(c, "%s: missing \"items\" (the list of things to draw)", path);
+        pj_fail(c, "%s: missing \"items\" (the list of things to draw)", path);
         PFAIL;
     }
     if (!cJSON_IsArray(items) || cJSON_GetArraySize(items) == 0) {
-        fail(c, "%s is not a non-empty array of items", p);
+        pj_fail(c, "%s is not a non-empty array of items", p);
         PFAIL;
     }
     size_t i = 0;
     for (const cJSON *it = items->child; it; it = it->next, ++i) {
         char ip[300];
-        pathf(ip, sizeof ip, "%s[%zu]", p, i);
+        pj_pathf(ip, sizeof ip, "%s[%zu]", p, i);
         if (!cJSON_IsObject(it)) {
-            fail(c, "%s is not an object", ip);
+            pj_fail(c, "%s is not an object", ip);
             PFAIL;
         }
-        const cJSON *t = field(it, "type");
+        const cJSON *t = pj_field(it, "type");
         if (!t || !cJSON_IsString(t)) {
-            fail(c,
-                 "%s.type is missing or not a string (bezier, catmull-rom, implicit, "
-                 "polyline, points)",
-                 ip);
+            pj_fail(c,
+                    "%s.type is missing or not a string (bezier, catmull-rom, implicit, "
+                    "polyline, points)",
+                    ip);
             PFAIL;
         }
         if (++c->items > PLOT_JSON_MAX_ITEMS) {
-            fail(c, "%s: the document has more than %d items in all", ip, PLOT_JSON_MAX_ITEMS);
+            pj_fail(c, "%s: the document has more than %d items in all", ip, PLOT_JSON_MAX_ITEMS);
             PFAIL;
         }
         cj_rgba color = palette[i % (sizeof palette / sizeof palette[0])];
@@ -551,8 +407,8 @@ static int parse_panel(ctx *c, const cJSON *obj, const char *prefix, cj_rgba bac
         else if (!strcmp(t->valuestring, "points"))
             r = parse_polyline(c, it, ip, plot, color, 1);
         else
-            r = fail(c, "%s.type '%s' is not bezier, catmull-rom, implicit, polyline or points", ip,
-                     t->valuestring);
+            r = pj_fail(c, "%s.type '%s' is not bezier, catmull-rom, implicit, polyline or points",
+                        ip, t->valuestring);
         if (r) PFAIL;
     }
 #undef PFAIL
@@ -561,11 +417,14 @@ static int parse_panel(ctx *c, const cJSON *obj, const char *prefix, cj_rgba bac
 }
 
 void plot_doc_free(plot_doc *doc) {
-    for (size_t i = 0; i < doc->npanels; ++i) cj_plot_destroy(doc->panels[i]);
+    for (size_t i = 0; i < doc->npanels; ++i) {
+        cj_plot_destroy(doc->panels[i]);
+        cj_chart_destroy(doc->charts[i]);
+    }
     doc->npanels = 0;
 }
 
-static void syntax_error(ctx *c, const char *text, const char *at) {
+static void syntax_error(pj_ctx *c, const char *text, const char *at) {
     int line = 1, col = 1;
     for (const char *s = text; at && s < at && *s; ++s) {
         if (*s == '\n')
@@ -573,41 +432,47 @@ static void syntax_error(ctx *c, const char *text, const char *at) {
         else
             col++;
     }
-    fail(c, "JSON syntax error at line %d, column %d", line, col);
+    pj_fail(c, "JSON syntax error at line %d, column %d", line, col);
 }
 
 /* Work of the implicit items of one panel object, added to *work; fails naming the item at
  * which the document's total crosses PLOT_JSON_MAX_WORK. Run over the whole document before
  * anything is contoured, so that a document over the limit costs nothing. Malformed fields
  * are left to the real parse (they count with their defaults here). */
-static int prescan_work(ctx *c, const cJSON *panel, const char *prefix, double *work) {
-    const cJSON *items = field(panel, "items");
+static int prescan_work(pj_ctx *c, const cJSON *panel, const char *prefix, double *work) {
+    const cJSON *items = pj_field(panel, "items");
     if (!items || !cJSON_IsArray(items)) return 0;
     size_t i = 0;
     for (const cJSON *it = items->child; it; it = it->next, ++i) {
-        const cJSON *t = field(it, "type");
+        const cJSON *t = pj_field(it, "type");
         if (!t || !cJSON_IsString(t) || strcmp(t->valuestring, "implicit")) continue;
-        const cJSON *g = field(it, "grid"), *poly = field(it, "poly");
+        const cJSON *g = pj_field(it, "grid"), *poly = pj_field(it, "poly");
         const double grid = g && cJSON_IsNumber(g) && g->valuedouble >= 4 && g->valuedouble <= 1024
                                 ? floor(g->valuedouble)
                                 : 64.0;
         double terms = 3.0;
-        const cJSON *deg = poly ? field(poly, "degree") : NULL;
+        const cJSON *deg = poly ? pj_field(poly, "degree") : NULL;
         if (deg && cJSON_IsNumber(deg) && deg->valuedouble >= 1 && deg->valuedouble <= 32)
             terms = (double)cj_implicit_poly_ncoef((int)deg->valuedouble);
         *work += (grid + 1) * (grid + 1) * terms;
         if (*work > PLOT_JSON_MAX_WORK)
-            return fail(c,
-                        "%s%sitems[%zu]: the document's implicit curves need more than %.0e "
-                        "evaluations of terms in all (grid^2 x terms; lower \"grid\" or the "
-                        "degree)",
-                        prefix, *prefix ? "." : "", i, PLOT_JSON_MAX_WORK);
+            return pj_fail(c,
+                           "%s%sitems[%zu]: the document's implicit curves need more than %.0e "
+                           "evaluations of terms in all (grid^2 x terms; lower \"grid\" or the "
+                           "degree)",
+                           prefix, *prefix ? "." : "", i, PLOT_JSON_MAX_WORK);
     }
     return 0;
 }
 
+/* "kind": "chart" (chart_json.c); anything else is read as a geometry panel. */
+static int is_chart(const cJSON *obj) {
+    const cJSON *k = pj_field(obj, "kind");
+    return k && cJSON_IsString(k) && !strcmp(k->valuestring, "chart");
+}
+
 int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size) {
-    ctx c = {why, why_size, 0, 0, 0.0};
+    pj_ctx c = {why, why_size, 0, 0, 0.0};
     memset(doc, 0, sizeof *doc);
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
@@ -624,18 +489,23 @@ int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size)
     int w = 800, h = 600;
     doc->background = cj_rgba_make(255, 255, 255, 255);
     if (!cJSON_IsObject(root)) {
-        fail(&c, "document is not a JSON object");
+        pj_fail(&c, "document is not a JSON object");
         goto done;
     }
-    panels = field(root, "panels");
-    if (check_keys(&c, root, "document", panels ? multi : single)) goto done;
-    if ((v = field(root, "width")) &&
-        parse_int(&c, v, "width", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &w))
+    panels = pj_field(root, "panels");
+    if (!panels && is_chart(root)) { /* the whole document is one chart */
+        static const char *const doc_keys[] = {"width", "height", "background", NULL};
+        if (chart_json_parse(&c, root, "document", doc_keys, &doc->charts[0])) goto done;
+        doc->npanels = 1;
+    }
+    if (!doc->npanels && pj_check_keys(&c, root, "document", panels ? multi : single)) goto done;
+    if ((v = pj_field(root, "width")) &&
+        pj_parse_int(&c, v, "width", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &w))
         goto done;
-    if ((v = field(root, "height")) &&
-        parse_int(&c, v, "height", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &h))
+    if ((v = pj_field(root, "height")) &&
+        pj_parse_int(&c, v, "height", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &h))
         goto done;
-    if ((v = field(root, "background")) && parse_color(&c, v, "background", &doc->background))
+    if ((v = pj_field(root, "background")) && pj_parse_color(&c, v, "background", &doc->background))
         goto done;
     doc->width = w;
     doc->height = h;
@@ -645,7 +515,7 @@ int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size)
             int k = 0;
             for (const cJSON *pn = panels->child; pn; pn = pn->next, ++k) {
                 char p[64];
-                pathf(p, sizeof p, "panels[%d]", k);
+                pj_pathf(p, sizeof p, "panels[%d]", k);
                 if (cJSON_IsObject(pn) && prescan_work(&c, pn, p, &work)) goto done;
             }
         } else if (!panels && prescan_work(&c, root, "", &work)) {
@@ -655,25 +525,33 @@ int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size)
     if (panels) {
         if (!cJSON_IsArray(panels) || cJSON_GetArraySize(panels) == 0 ||
             cJSON_GetArraySize(panels) > PLOT_JSON_MAX_PANELS) {
-            fail(&c, "panels is not an array of 1 to %d panels", PLOT_JSON_MAX_PANELS);
+            pj_fail(&c, "panels is not an array of 1 to %d panels", PLOT_JSON_MAX_PANELS);
             goto done;
         }
         int n = cJSON_GetArraySize(panels);
         doc->columns = (int)ceil(sqrt((double)n));
-        if ((v = field(root, "columns")) && parse_int(&c, v, "columns", 1, n, &doc->columns))
+        if ((v = pj_field(root, "columns")) && pj_parse_int(&c, v, "columns", 1, n, &doc->columns))
             goto done;
         int i = 0;
         for (const cJSON *pn = panels->child; pn; pn = pn->next, ++i) {
             char p[64];
-            pathf(p, sizeof p, "panels[%d]", i);
+            pj_pathf(p, sizeof p, "panels[%d]", i);
             if (!cJSON_IsObject(pn)) {
-                fail(&c, "%s is not an object", p);
+                pj_fail(&c, "%s is not an object", p);
                 goto done;
             }
-            if (check_keys(&c, pn, p, panel_keys)) goto done;
+            if (is_chart(pn)) {
+                if (chart_json_parse(&c, pn, p, NULL, &doc->charts[doc->npanels])) goto done;
+                doc->npanels++;
+                continue;
+            }
+            if (pj_check_keys(&c, pn, p, panel_keys)) goto done;
             if (parse_panel(&c, pn, p, doc->background, &doc->panels[doc->npanels])) goto done;
             doc->npanels++;
         }
+    } else if (doc->npanels == 1) { /* a chart document, parsed above */
+        doc->columns = 1;
+        doc->single = 1;
     } else {
         doc->columns = 1;
         doc->single = 1;
@@ -705,7 +583,10 @@ cj_status plot_doc_render(plot_doc *doc, cj_framebuffer *fb, cj_font *font) {
         const int x0 = col * fb->width / cols, x1 = (col + 1) * fb->width / cols;
         const int ytop = fb->height - row * fb->height / rows;
         const int ybot = fb->height - (row + 1) * fb->height / rows;
-        cj_status st = cj_plot_render(doc->panels[i], fb, x0, ybot, x1 - x0, ytop - ybot, font);
+        cj_status st =
+            doc->charts[i]
+                ? cj_chart_render(doc->charts[i], fb, x0, ybot, x1 - x0, ytop - ybot, font)
+                : cj_plot_render(doc->panels[i], fb, x0, ybot, x1 - x0, ytop - ybot, font);
         if (st) {
             doc->failed = i;
             return st;

@@ -3,6 +3,7 @@
 #ifndef CASTELJAU_APP_PLOT_JSON_H
 #define CASTELJAU_APP_PLOT_JSON_H
 
+#include "casteljau/chart.h"
 #include "casteljau/plot.h"
 #include <stddef.h>
 
@@ -22,7 +23,8 @@ typedef struct plot_doc {
     int columns; /* panels per row */
     size_t npanels;
     cj_plot *panels[PLOT_JSON_MAX_PANELS];
-    int single;     /* the document is one plot (no "panels") */
+    cj_chart *charts[PLOT_JSON_MAX_PANELS]; /* a chart panel ("kind": "chart"): panels[i] NULL */
+    int single;                             /* the document is one plot (no "panels") */
     size_t failed;  /* set by plot_doc_render on failure: the panel that failed */
     char where[32]; /* plot_doc_where's text */
 } plot_doc;

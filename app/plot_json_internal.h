@@ -1,0 +1,49 @@
+/* Private to the casteljau tool: helpers shared by the JSON readers of `casteljau plot`
+ * (plot_json.c: geometry panels, chart_json.c: chart panels). Every reader returns 0 on
+ * success, or -1 after writing a one-line reason naming the JSON path into the context. */
+#ifndef CASTELJAU_APP_PLOT_JSON_INTERNAL_H
+#define CASTELJAU_APP_PLOT_JSON_INTERNAL_H
+
+#include "plot_json.h"
+
+#include <cJSON.h>
+#include <stddef.h>
+
+typedef struct pj_ctx {
+    char *why;
+    size_t why_size;
+    /* work counted against the document's limits (plot_json.h) */
+    size_t items, points;
+    double work;
+} pj_ctx;
+
+#if defined(__GNUC__)
+#define PJ_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define PJ_PRINTF(a, b)
+#endif
+
+int pj_fail(pj_ctx *c, const char *fmt, ...) PJ_PRINTF(2, 3);
+void pj_pathf(char *buf, size_t size, const char *fmt, ...) PJ_PRINTF(3, 4);
+/* Fails naming the first field of obj not in the NULL-terminated list allowed. */
+int pj_check_keys(pj_ctx *c, const cJSON *obj, const char *path, const char *const *allowed);
+int pj_parse_color(pj_ctx *c, const cJSON *v, const char *path, cj_rgba *out);
+int pj_parse_number(pj_ctx *c, const cJSON *v, const char *path, double lo, double hi, double *out);
+int pj_parse_int(pj_ctx *c, const cJSON *v, const char *path, int lo, int hi, int *out);
+int pj_parse_bool(pj_ctx *c, const cJSON *v, const char *path, int *out);
+/* A fixed-size array of count numbers. */
+int pj_parse_numbers(pj_ctx *c, const cJSON *v, const char *path, int count, double *out);
+/* [[x, y], ...] with at least min_count points into a new array (caller frees); counted
+ * against PLOT_JSON_MAX_POINTS. */
+int pj_parse_points(pj_ctx *c, const cJSON *v, const char *path, size_t min_count, double **out,
+                    size_t *count);
+/* Fails with "path: <cj_last_error()>". */
+int pj_lib_fail(pj_ctx *c, const char *path);
+const cJSON *pj_field(const cJSON *obj, const char *key);
+
+/* A chart panel ("kind": "chart", format in chart_json.c) at path; extra_keys (NULL-terminated,
+ * may be NULL) are also accepted (the document's own fields when the chart is the document). */
+int chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path, const char *const *extra_keys,
+                     cj_chart **out);
+
+#endif
