@@ -39,7 +39,8 @@
 static const char usage_text[] =
     "usage: casteljau report -o DIR [--quick] [--no-callgrind]\n"
     "  Measures error against cost for curve evaluation (4 methods x degrees x condition\n"
-    "  numbers, error against an MPFR oracle) and flattening (3 methods x tolerances), and\n"
+    "  numbers, error against an MPFR oracle), flattening (3 methods x tolerances) and"
+    "  tessellation (teapot, uniform vs adaptive x tolerances), and\n"
     "  writes DIR/index.html with PNG charts, DIR/summary.md and DIR/data.tsv.\n"
     "  --quick         a few points per chart (seconds; what the test suite builds)\n"
     "  --no-callgrind  no instruction counts (valgrind is used when installed)\n";
@@ -230,6 +231,7 @@ int cmd_report(int argc, char **argv) {
                    "instr\textra\tpareto\n");
     int status = report_eval(&r);
     if (!status) status = report_flatten(&r);
+    if (!status) status = report_tess(&r);
     if (!status && r.note[0]) {
         fprintf(r.html, "<h2>Reproducibility</h2>\n<p>%s</p>\n", r.note);
         fprintf(r.md, "%s\n", r.note);

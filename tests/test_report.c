@@ -2,9 +2,9 @@
 /* `casteljau report --quick` builds (so the report never rots): the files exist, the PNGs are
  * PNGs and the page links them, every number of data.tsv is finite where it must be, and the
  * figures are sane: measured evaluation errors within the proven bounds (de Casteljau,
- * compensated), flattening deviations and bounds within the tolerance, segment counts at least
- * ~the continuous optimum, positive times, every section with a Pareto front, and callgrind
- * counts repeating within 0.5 % when valgrind ran. */
+ * compensated), flattening and tessellation deviations within bounds within the tolerance, segment
+ * counts at least ~the continuous optimum, positive times, every section with a Pareto front, and
+ * callgrind counts repeating within 0.5 % when valgrind ran. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -52,10 +52,11 @@ static void test_quick_report(void **state) {
     assert_non_null(html);
     assert_non_null(md);
     assert_non_null(strstr(html, "</html>"));
-    assert_int_equal(count_of(html, "<img "), 4);
-    assert_int_equal(count_of(html, "<table>"), 2);
-    const char *pngs[4] = {"eval_cond0.png", "eval_cond1.png", "flatten_0.png", "flatten_1.png"};
-    for (int i = 0; i < 4; ++i) {
+    assert_int_equal(count_of(html, "<img "), 5);
+    assert_int_equal(count_of(html, "<table>"), 3);
+    const char *pngs[5] = {"eval_cond0.png", "eval_cond1.png", "flatten_0.png", "flatten_1.png",
+                           "tess.png"};
+    for (int i = 0; i < 5; ++i) {
         size_t n = 0;
         char *png = slurp(pngs[i], &n);
         assert_non_null(png);
@@ -69,7 +70,7 @@ static void test_quick_report(void **state) {
 
     char *tsv = slurp("data.tsv", NULL);
     assert_non_null(tsv);
-    int rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
+    int rows = 0, tess_rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
     for (char *line = strtok(tsv, "\n"); line; line = strtok(NULL, "\n")) {
         if (!strncmp(line, "section", 7)) continue;
         char *f[12] = {0};
@@ -102,6 +103,12 @@ static void test_quick_report(void **state) {
                     fail_msg("%s at degree %s, cond %g: error %g u > bound %g u", f[1], f[2], K,
                              emax, bound);
             }
+        } else if (!strcmp(f[0], "tess")) {
+            tess_rows++;
+            const double tol = strtod(f[2], NULL), dev = strtod(f[4], NULL),
+                         bound = strtod(f[6], NULL), tris = strtod(f[10], NULL);
+            assert_true(dev > 0 && dev <= bound && bound <= tol * (1 + 1e-12));
+            assert_true(tris >= 32 * 2);
         } else {
             assert_string_equal(f[0], "flatten");
             flat_rows++;
@@ -115,6 +122,7 @@ static void test_quick_report(void **state) {
     }
     assert_int_equal(eval_rows, 4 * 2 * 3); /* quick: 4 methods x 2 degrees x 3 conditions */
     assert_int_equal(flat_rows, 3 * 3);     /* 3 methods x 3 tolerances */
+    assert_int_equal(tess_rows, 2 * 2);     /* uniform/adaptive x 2 tolerances */
     assert_true(fronts_eval >= 6 && fronts_flat >= 1);
     const char *rep = strstr(md, "differ by ");
     if (rep) {
@@ -124,9 +132,10 @@ static void test_quick_report(void **state) {
     } else {
         printf("valgrind not available: instruction counts not checked\n");
     }
-    printf("quick report in %s: index.html links 4 PNGs, %d rows (%d eval, %d flatten) finite; "
+    printf("quick report in %s: index.html links 5 PNGs, %d rows (%d eval, %d flatten, %d tess) "
+           "finite; "
            "errors within the bounds, deviations within tol, Pareto fronts present\n",
-           dir, rows, eval_rows, flat_rows);
+           dir, rows, eval_rows, flat_rows, tess_rows);
     free(tsv);
     free(html);
     free(md);
