@@ -75,11 +75,11 @@ void report_pareto(size_t n, const double *cost, const double *err, int *dominat
 }
 
 void report_front_series(cj_chart *c, size_t n, const double *cost, const double *err,
-                         const int *dominated_by, const char *label) {
+                         const int *dominated_by, double floor, const char *label) {
     double x[64], y[64];
     size_t k = 0;
     for (size_t i = 0; i < n && k < 64; ++i)
-        if (dominated_by[i] < 0) x[k] = cost[i], y[k] = fmax(err[i], 0.01), k++;
+        if (dominated_by[i] < 0) x[k] = cost[i], y[k] = fmax(err[i], floor), k++;
     for (size_t i = 1; i < k; ++i) /* insertion sort by cost */
         for (size_t j = i; j > 0 && x[j] < x[j - 1]; --j) {
             double t = x[j];

@@ -28,9 +28,10 @@ double report_median(double *v, size_t n, double *spread_pct);
  * such; -1 when i is on the Pareto front. */
 void report_pareto(size_t n, const double *cost, const double *err, int *dominated_by);
 /* Adds the Pareto front of the n choices (those with dominated_by < 0) as a thin dark line
- * through them in order of cost; label NULL = no legend entry. */
+ * through them in order of cost, errors drawn at least at floor (as the section draws its
+ * points); label NULL = no legend entry. */
 void report_front_series(cj_chart *c, size_t n, const double *cost, const double *err,
-                         const int *dominated_by, const char *label);
+                         const int *dominated_by, double floor, const char *label);
 /* Renders the chart (w x h) to DIR/name (PNG) and adds <img> to the page; 0 on success. */
 int report_chart(report *r, const cj_chart *c, const char *name, int w, int h);
 /* Instructions per unit of the workload "casteljau report --workload SPEC N", from two

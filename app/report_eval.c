@@ -254,7 +254,8 @@ int report_eval(report *r) {
             int dom[NM];
             for (int m = 0; m < NM; ++m) cost[m] = ns[m][d], err[m] = emax[m][d][k];
             report_pareto(NM, cost, err, dom);
-            report_front_series(c, NM, cost, err, dom, d == 0 ? "Pareto front (per degree)" : NULL);
+            report_front_series(c, NM, cost, err, dom, 0.01,
+                                d == 0 ? "Pareto front (per degree)" : NULL);
             for (int m = 0; m < NM; ++m)
                 if (dom[m] >= 0) {
                     char txt[48];

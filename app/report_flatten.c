@@ -220,7 +220,7 @@ int report_flatten(report *r) {
         cj_chart_set_axis(c, 0, CJ_CHART_LOG10, k ? "tolerance" : "ns per curve (median)");
         cj_chart_set_axis(c, 1, k ? CJ_CHART_LINEAR : CJ_CHART_LOG10,
                           k ? "segments / optimum" : "max distance curve - polyline");
-        if (!k) report_front_series(c, (size_t)(NMETH * nt), cost, err, dom, "Pareto front");
+        if (!k) report_front_series(c, (size_t)(NMETH * nt), cost, err, dom, 1e-17, "Pareto front");
         for (int m = 0; m < NMETH; ++m) {
             double x[7], y[7];
             for (int ti = 0; ti < nt; ++ti) {

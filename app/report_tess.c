@@ -123,7 +123,7 @@ int report_tess(report *r) {
     cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
     cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "µs per patch (median)");
     cj_chart_set_axis(c, 1, CJ_CHART_LOG10, "max distance patch - mesh");
-    report_front_series(c, (size_t)(2 * nt), cost, err, dom, "Pareto front");
+    report_front_series(c, (size_t)(2 * nt), cost, err, dom, 1e-300, "Pareto front");
     static const cj_rgba COL[2] = {{0xff, 0x7f, 0x0e, 255}, {0x1f, 0x77, 0xb4, 255}};
     for (int m = 0; m < 2; ++m) {
         cj_chart_series_opts o = {NAME[m], COL[m], 1.5, m ? CJ_MARKER_CIRCLE : CJ_MARKER_SQUARE,
