@@ -219,7 +219,8 @@ int report_eval(report *r) {
         cj_chart *c = NULL;
         if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
         char title[128];
-        snprintf(title, sizeof title, "Evaluation, condition ~%.0e: max error vs cost", ks[k]);
+        snprintf(title, sizeof title, "Evaluation, cond ~%.0e: error vs cost (ringed: dominated)",
+                 ks[k]);
         cj_chart_set_title(c, title);
         cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
         cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "ns per point (median)");
@@ -259,7 +260,7 @@ int report_eval(report *r) {
             for (int m = 0; m < NM; ++m)
                 if (dom[m] >= 0) {
                     char txt[48];
-                    snprintf(txt, sizeof txt, "n=%d dominated", degs[d]);
+                    snprintf(txt, sizeof txt, "n=%d", degs[d]);
                     cj_chart_annotate(c, ns[m][d], fmax(emax[m][d][k], 0.01), txt,
                                       cj_rgba_make(0x60, 0x60, 0x60, 255));
                 }

@@ -215,7 +215,7 @@ int report_flatten(report *r) {
         cj_chart *c = NULL;
         if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
         cj_chart_set_title(c, k ? "Flattening: segments / continuous optimum"
-                                : "Flattening: measured deviation vs cost");
+                                : "Flattening: deviation vs cost (ringed: dominated, tol)");
         cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
         cj_chart_set_axis(c, 0, CJ_CHART_LOG10, k ? "tolerance" : "ns per curve (median)");
         cj_chart_set_axis(c, 1, k ? CJ_CHART_LINEAR : CJ_CHART_LOG10,
@@ -236,7 +236,7 @@ int report_flatten(report *r) {
                 for (int ti = 0; ti < nt; ++ti)
                     if (dom[m * nt + ti] >= 0) {
                         char txt[48];
-                        snprintf(txt, sizeof txt, "dominated (tol 1e-%d)", tes[ti]);
+                        snprintf(txt, sizeof txt, "1e-%d", tes[ti]);
                         cj_chart_annotate(c, x[ti], y[ti], txt,
                                           cj_rgba_make(0x60, 0x60, 0x60, 255));
                     }

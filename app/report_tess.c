@@ -119,7 +119,7 @@ int report_tess(report *r) {
     fprintf(r->md, "\n");
     cj_chart *c = NULL;
     if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
-    cj_chart_set_title(c, "Tessellation (teapot): measured deviation vs cost");
+    cj_chart_set_title(c, "Teapot tessellation: deviation vs cost (ringed: dominated, tol)");
     cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
     cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "µs per patch (median)");
     cj_chart_set_axis(c, 1, CJ_CHART_LOG10, "max distance patch - mesh");
@@ -134,7 +134,7 @@ int report_tess(report *r) {
         for (int t = 0; t < nt; ++t)
             if (dom[m * nt + t] >= 0) {
                 char txt[48];
-                snprintf(txt, sizeof txt, "dominated (%.0e)", rels[t]);
+                snprintf(txt, sizeof txt, "%.0e", rels[t]);
                 cj_chart_annotate(c, us[m][t], y[t], txt, cj_rgba_make(0x60, 0x60, 0x60, 255));
             }
     }
