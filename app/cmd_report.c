@@ -142,6 +142,7 @@ double report_callgrind(report *r, const char *spec, long n, double *rel_diff) {
 int report_workload(const char *spec, long n) {
     if (!strncmp(spec, "eval:", 5)) return report_eval_workload(spec, n);
     if (!strncmp(spec, "flatten:", 8)) return report_flatten_workload(spec, n);
+    if (!strncmp(spec, "tess:", 5)) return report_tess_workload(spec, n);
     return cli_fail("report", "unknown workload '%s'", spec);
 }
 
