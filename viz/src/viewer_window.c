@@ -81,11 +81,12 @@ static void on_scroll(GLFWwindow *w, double dx, double dy) {
     cj_viewer_scroll(&((win *)glfwGetWindowUserPointer(w))->v, dy);
 }
 
-static cj_status frame(win *g, const char *shot);
+static cj_status frame_timed(win *g, const char *shot, int record);
 
-/* The window was uncovered or mapped: show the current picture again (no re-render). */
+/* The window was uncovered or mapped: show the current picture again (not a timed frame, and
+ * no animation step). */
 static void on_refresh(GLFWwindow *w) {
-    frame((win *)glfwGetWindowUserPointer(w), NULL);
+    frame_timed((win *)glfwGetWindowUserPointer(w), NULL, 0);
 }
 
 static cj_status screenshot(win *g, const char *path) {
