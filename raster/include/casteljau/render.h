@@ -135,8 +135,7 @@ cj_node cj_render_node(int geometry, int material);
  * (data/teapot.bpt), lit by an ambient, a point and a directional light, with a procedural
  * checker and its control net, on a checkered floor; 800 x 600, 4 samples per pixel.
  * Status: errors of cj_patchset_load_bpt (CJ_ERR_IO naming the file), CJ_ERR_NOMEM. */
-cj_status cj_render_demo_scene(const char *teapot_bpt, const cj_allocator *alloc,
-                               cj_scene **out);
+cj_status cj_render_demo_scene(const char *teapot_bpt, const cj_allocator *alloc, cj_scene **out);
 
 #ifdef __cplusplus
 }
