@@ -1,7 +1,7 @@
 # Ray intersection and BVH (surfaces/: ray.h, bvh.h), issue 9.
 cj_add_test(test_ray_watertight SOURCES test_ray_watertight.c LIBS cj::surfaces)
 target_compile_definitions(test_ray_watertight PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
-cj_add_test(test_ray_primitives SOURCES test_ray_primitives.c LIBS cj::surfaces PkgConfig::CJ_MPFR)
+cj_add_test(test_ray_primitives SOURCES test_ray_primitives.c ray_primitives_surfaces.c LIBS cj::surfaces PkgConfig::CJ_MPFR)
 cj_add_test(test_bvh SOURCES test_bvh.c LIBS cj::surfaces)
 # The ray tracer (raster/: trace.h): effects only where called for, shadows by hand, acne/leak
 # at 1e6/1e-6 scale, Snell, thread invariance, signature vs the rasterizer's ids.
