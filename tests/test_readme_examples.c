@@ -1,7 +1,7 @@
 /* The README's command-line transcripts are run and compared, so that they cannot go stale:
- * in every ``` block, a line "$ COMMAND" is run with /bin/sh (./build/casteljau replaced by the
- * casteljau under test) and its standard output must equal the lines that follow, up to the
- * next "$ " line or the end of the block. */
+ * in every ``` block, a line "$ ./build/casteljau ..." is run with /bin/sh (./build/casteljau
+ * replaced by the casteljau under test) and its standard output must equal the lines that
+ * follow, up to the next such line, another "$ " line or the end of the block. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -79,8 +79,10 @@ static void test_transcripts(void **state) {
         size_t len = nl ? (size_t)(nl - p) : strlen(p);
         ++line;
         const int fence = len >= 3 && !strncmp(p, "```", 3);
-        const int prompt = in_block && len >= 2 && !strncmp(p, "$ ", 2);
-        if (cmd && (fence || prompt)) { /* the previous command's output ends here */
+        /* Only transcripts of the tool itself run (a "$ scripts/setup.sh" would install). */
+        const int prompt = in_block && len >= 19 && !strncmp(p, "$ ./build/casteljau ", 20);
+        const int any_prompt = in_block && len >= 2 && !strncmp(p, "$ ", 2);
+        if (cmd && (fence || any_prompt)) { /* the previous command's output ends here */
             failed += !run_one(cmd, want, cmd_line);
             ++checked;
             free(cmd);
