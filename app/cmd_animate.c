@@ -262,7 +262,7 @@ int cmd_animate(int argc, char **argv) {
         goto done;
     }
     if (cj_anim_doc_attach(doc, scene)) {
-        rc = cli_fail(cmd, "%s: %s", doc_path, cj_last_error());
+        rc = cli_fail(cmd, "%s", cj_last_error()); /* names the document (and line) already */
         goto done;
     }
     if (ck_in) {

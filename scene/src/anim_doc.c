@@ -58,8 +58,7 @@ static cj_status collider_for(const cj_scene *scene, const char *what, int k, co
                                     NULL, out);
 }
 
-cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene) {
-    assert(doc && scene);
+static cj_status attach(cj_anim_doc *doc, cj_scene *scene, int *binding) {
     cj_status st = CJ_OK;
     if (doc->cloth && doc->cloth_collide_count && !doc->cloth_colliders[0]) {
         for (int k = 0; k < doc->cloth_collide_count; ++k) {
@@ -176,7 +175,23 @@ cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene) {
         }
         if (st) return st;
     }
+    *binding = 1;
     return cj_anim_bind(doc->anim, scene);
+}
+
+cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene) {
+    assert(doc && scene);
+    int binding = 0;
+    cj_status st = attach(doc, scene, &binding);
+    if (!st) return CJ_OK;
+    /* What names nothing in the scene is found only now: name the document, and for a channel
+     * its line, as the reader does for everything else. */
+    char msg[512];
+    snprintf(msg, sizeof msg, "%s", cj_last_error());
+    size_t i = binding ? cj_anim_bind_failed(doc->anim) : (size_t)-1;
+    if (i < doc->channel_line_count && doc->channel_lines[i] > 0)
+        return cj_fail(st, "%s:%d: %s", doc->source, doc->channel_lines[i], msg);
+    return cj_fail(st, "%s: %s", doc->source, msg);
 }
 
 cj_status cj_anim_doc_frame(cj_anim_doc *doc, cj_scene *scene, long frame,

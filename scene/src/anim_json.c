@@ -67,6 +67,7 @@ static cj_status read_path_channel(actx *c, cj_anim *anim, const cJSON *ch, cons
         if (!st) st = cj_catmull_rom(p, n, dim, &o, segs, ns, NULL, NULL);
         if (!st) st = cj_path_create(segs, ns, dim, 1e-10, NULL, &motion);
         if (!st) st = cj_anim_add_path(anim, target, motion, start, dur, (cj_ease)ease, accel);
+        if (!st) st = aj_channel_line(c, ch);
         if (st) {
             cj_path_destroy(motion);
             char msg[300];
@@ -149,6 +150,7 @@ static cj_status read_channel(actx *c, cj_anim *anim, const cJSON *ch, const cha
         d.tangents = tan;
         d.euler_order = (cj_euler_order)order;
         st = cj_anim_add(anim, tg->valuestring, &d);
+        if (!st) st = aj_channel_line(c, ch);
         if (st) {
             char msg[400];
             snprintf(msg, sizeof msg, "%s", cj_last_error());
@@ -465,7 +467,11 @@ cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base
         doc->steps_per_frame = 1;
         st = cj_anim_create(NULL, &doc->anim);
     }
-    if (!st) st = read_doc(&c, root, doc);
+    if (!st) {
+        snprintf(doc->source, sizeof doc->source, "%s", c.name);
+        c.doc = doc;
+        st = read_doc(&c, root, doc);
+    }
     cJSON_Delete(root);
     free(c.nodes);
     free(c.lines);
@@ -521,6 +527,7 @@ cj_status cj_anim_doc_load(const char *path, cj_anim_doc **out) {
 void cj_anim_doc_destroy(cj_anim_doc *doc) {
     if (!doc) return;
     cj_anim_destroy(doc->anim);
+    free(doc->channel_lines);
     cj_springs_destroy(doc->cloth);
     cj_particles_destroy(doc->particles);
     for (int i = 0; i < 8; ++i) cj_patch_collider_destroy(doc->patch_colliders[i]);

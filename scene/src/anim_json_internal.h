@@ -16,7 +16,13 @@ typedef struct actx {
     size_t n, cap;
     int *scan; /* lines of values in document order */
     size_t nscan, capscan;
+    cj_anim_doc *doc; /* the document being read (channel lines are recorded in it) */
 } actx;
+
+/* The line of value n (0 when unknown). */
+int aj_line(const actx *c, const cJSON *n);
+/* Records the line of the channel just added (for binding errors, which come later). */
+cj_status aj_channel_line(actx *c, const cJSON *n);
 
 /* Records the line of every value of `root` (parsed from `text`). */
 void aj_lines(actx *c, const char *text, const cJSON *root);

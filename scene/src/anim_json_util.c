@@ -86,6 +86,24 @@ static int line_of(const actx *c, const cJSON *n) {
     return 0;
 }
 
+int aj_line(const actx *c, const cJSON *n) {
+    return line_of(c, n);
+}
+
+cj_status aj_channel_line(actx *c, const cJSON *n) {
+    cj_anim_doc *d = c->doc;
+    if (!d) return CJ_OK;
+    if (d->channel_line_count == d->channel_line_cap) {
+        size_t cap = d->channel_line_cap ? 2 * d->channel_line_cap : 16;
+        int *p = realloc(d->channel_lines, sizeof *p * cap);
+        if (!p) return cj_fail(CJ_ERR_NOMEM, "no memory for the channels' lines");
+        d->channel_lines = p;
+        d->channel_line_cap = cap;
+    }
+    d->channel_lines[d->channel_line_count++] = line_of(c, n);
+    return CJ_OK;
+}
+
 cj_status aj_jfail(const actx *c, const cJSON *n, cj_status st, const char *fmt, ...) {
     char msg[512];
     va_list ap;

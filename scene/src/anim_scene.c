@@ -42,7 +42,8 @@ struct cj_anim {
     int has_alloc;
     size_t count, cap;
     entry *e;
-    cj_scene *scene; /* bound scene, or NULL */
+    cj_scene *scene;    /* bound scene, or NULL */
+    size_t bind_failed; /* the channel the last failed bind stopped at */
 };
 
 static void *a_alloc(const cj_anim *a, size_t n) {
@@ -310,6 +311,11 @@ static cj_status resolve(cj_scene *scene, cursor *c, binding *b) {
     return CJ_OK;
 }
 
+size_t cj_anim_bind_failed(const cj_anim *a) {
+    assert(a);
+    return a->bind_failed;
+}
+
 cj_status cj_anim_bind(cj_anim *a, cj_scene *scene) {
     assert(a && scene);
     binding *tmp = a_alloc(a, sizeof *tmp * (a->count ? a->count : 1));
@@ -338,6 +344,7 @@ cj_status cj_anim_bind(cj_anim *a, cj_scene *scene) {
         }
         if (st != CJ_OK) {
             a_free(a, tmp);
+            a->bind_failed = i;
             return st;
         }
         tmp[i] = b;

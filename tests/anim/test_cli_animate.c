@@ -147,7 +147,7 @@ static void test_bad_input(void **state) {
                "", "bad.json:2: channels[0]: channel 0 (camera.eye): key 2: time 0.5 is not after");
     expect_bad("{\"scene\": \"scene.json\", \"channels\": [\n"
                " {\"target\": \"nodes[3].translate\", \"times\": [0], \"values\": [[0,0,0]]}]}\n",
-               "", "bad.json: channel 0: nodes[3].translate: index 3 does not exist");
+               "", "bad.json:2: channel 0: nodes[3].translate: index 3 does not exist");
     expect_bad("{\"scene\": \"scene.json\", \"channels\": [\n"
                " {\"target\": \"camera.eye\", \"times\": [-1], \"values\": [[0,2,5]]}]}\n",
                "", "negative time");

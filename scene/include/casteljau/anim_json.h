@@ -48,7 +48,8 @@
  *
  * Errors name the file, the line and the JSON path ("flyby.json:12: channels[1].times[2] ...");
  * unknown or repeated keys are errors; a channel on a field that does not exist is reported when
- * the document is attached to its scene (cj_anim_doc_attach), with the channel's path.
+ * the document is attached to its scene (cj_anim_doc_attach), with the file, the channel's line
+ * and its path ("flyby.json:7: channel 0: nodes[3].translate: index 3 does not exist").
  *
  * SIMULATION: the cloth (and its colliders, gravity, drag) is a spring system (springs.h)
  * advanced in fixed steps of 1/(fps · steps_per_frame) seconds from t = 0; the scene shows it as
@@ -72,6 +73,9 @@ extern "C" {
 
 typedef struct cj_anim_doc {
     char scene_path[1024]; /* resolved; "" if the document names none */
+    char source[256];      /* the document's name in messages (its path) */
+    int *channel_lines;    /* owned: the line of each channel, in the order they were added */
+    size_t channel_line_count, channel_line_cap;
     double fps;
     int frame_first, frame_last;
     cj_anim *anim;     /* owned */
@@ -115,7 +119,7 @@ cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base
 void cj_anim_doc_destroy(cj_anim_doc *doc);
 
 /* Adds the cloth's mesh node (if any) to the scene and binds the channels (errors name the
- * channel and its path). Call once, before posing. */
+ * document, and for a channel its line and path). Call once, before posing. */
 cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene);
 
 /* Advances the simulation to frame `frame` (>= the current one; frames before it need a

@@ -83,6 +83,9 @@ void cj_anim_range(const cj_anim *anim, double *t0, double *t1);
 int cj_anim_animates_control_points(const cj_anim *anim);
 
 cj_status cj_anim_bind(cj_anim *anim, cj_scene *scene);
+/* After cj_anim_bind failed: the index of the channel it stopped at (so that a file reader can
+ * name the channel's line). */
+size_t cj_anim_bind_failed(const cj_anim *anim);
 
 typedef struct cj_anim_pose_info {
     size_t channels;    /* channels evaluated */
