@@ -306,6 +306,11 @@ cj_status cj_mesh_read_ply(const char *path, const cj_allocator *alloc, cj_mesh 
     for (int i = 0; i < ne && !st; ++i) {
         ply_elem *e = &elems[i];
         if (!strcmp(e->name, "vertex")) {
+            if (seen_vertex) {
+                /* faces index one vertex list; a second one has no meaning */
+                st = cj_fail(CJ_ERR_PARSE, "%s: element vertex appears twice", path);
+                break;
+            }
             if (e->count > CJ_MESH_MAX_VERTICES || e->count > len) {
                 st = cj_fail(CJ_ERR_RANGE, "%s: %zu vertices is more than the file holds", path,
                              e->count);

@@ -238,6 +238,12 @@ static void test_bad_input(void **state) {
          "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty double x\nproperty double "
          "y\nproperty double z\nend_header\n0 0 0\n",
          "%s: 4000000000 vertices is more than the file holds", CJ_ERR_RANGE},
+        /* found by fuzz_mesh_read: a second vertex element leaked the first one's buffers */
+        {"c9.ply",
+         "ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\nproperty double y\n"
+         "property double z\nelement vertex 1\nproperty double x\nproperty double y\nproperty "
+         "double z\nend_header\n0 0 0\n1 1 1\n",
+         "%s: element vertex appears twice", CJ_ERR_PARSE},
     };
     for (size_t i = 0; i < sizeof BAD / sizeof BAD[0]; ++i) {
         write_text(BAD[i].name, BAD[i].text);
