@@ -233,6 +233,7 @@ int cmd_report(int argc, char **argv) {
     int status = report_eval(&r);
     if (!status) status = report_flatten(&r);
     if (!status) status = report_tess(&r);
+    if (!status) status = report_arclen(&r);
     if (!status && r.note[0]) {
         fprintf(r.html, "<h2>Reproducibility</h2>\n<p>%s</p>\n", r.note);
         fprintf(r.md, "%s\n", r.note);

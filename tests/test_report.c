@@ -52,11 +52,11 @@ static void test_quick_report(void **state) {
     assert_non_null(html);
     assert_non_null(md);
     assert_non_null(strstr(html, "</html>"));
-    assert_int_equal(count_of(html, "<img "), 5);
-    assert_int_equal(count_of(html, "<table>"), 3);
-    const char *pngs[5] = {"eval_cond0.png", "eval_cond1.png", "flatten_0.png", "flatten_1.png",
-                           "tess.png"};
-    for (int i = 0; i < 5; ++i) {
+    assert_int_equal(count_of(html, "<img "), 6);
+    assert_int_equal(count_of(html, "<table>"), 4);
+    const char *pngs[6] = {"eval_cond0.png", "eval_cond1.png", "flatten_0.png",
+                           "flatten_1.png",  "tess.png",       "arclen.png"};
+    for (int i = 0; i < 6; ++i) {
         size_t n = 0;
         char *png = slurp(pngs[i], &n);
         assert_non_null(png);
@@ -71,6 +71,7 @@ static void test_quick_report(void **state) {
     char *tsv = slurp("data.tsv", NULL);
     assert_non_null(tsv);
     int rows = 0, tess_rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
+    int arc_rows = 0, fronts_arc = 0;
     for (char *line = strtok(tsv, "\n"); line; line = strtok(NULL, "\n")) {
         if (!strncmp(line, "section", 7)) continue;
         char *f[12] = {0};
@@ -109,6 +110,21 @@ static void test_quick_report(void **state) {
                          bound = strtod(f[6], NULL), tris = strtod(f[10], NULL);
             assert_true(dev > 0 && dev <= bound && bound <= tol * (1 + 1e-12));
             assert_true(tris >= 32 * 2);
+        } else if (!strcmp(f[0], "arclen")) {
+            /* adaptive: the error against the closed form within the tolerance asked for;
+             * chord sum: below the second-order bound L^2 ... loosely, error > 0 and < 1 */
+            arc_rows++;
+            fronts_arc += front;
+            const double param = strtod(f[2], NULL), emax = strtod(f[4], NULL),
+                         emean = strtod(f[5], NULL);
+            assert_true(isfinite(emax) && emax >= emean && emean >= 0);
+            if (!strcmp(f[1], "chord sum")) {
+                assert_true(emax > 0 && emax < 1);
+            } else {
+                const double est = strtod(f[6], NULL);
+                assert_true(isfinite(est) && est >= 0);
+                if (!(emax <= param)) fail_msg("arc length at tol %g: error %g > tol", param, emax);
+            }
         } else {
             assert_string_equal(f[0], "flatten");
             flat_rows++;
@@ -123,7 +139,8 @@ static void test_quick_report(void **state) {
     assert_int_equal(eval_rows, 4 * 2 * 3); /* quick: 4 methods x 2 degrees x 3 conditions */
     assert_int_equal(flat_rows, 3 * 3);     /* 3 methods x 3 tolerances */
     assert_int_equal(tess_rows, 2 * 2);     /* uniform/adaptive x 2 tolerances */
-    assert_true(fronts_eval >= 6 && fronts_flat >= 1);
+    assert_int_equal(arc_rows, 2 * 3);      /* adaptive/chord sum x 3 tolerances or N */
+    assert_true(fronts_eval >= 6 && fronts_flat >= 1 && fronts_arc >= 1);
     const char *rep = strstr(md, "differ by ");
     if (rep) {
         const double pct = strtod(rep + 10, NULL);
@@ -132,10 +149,10 @@ static void test_quick_report(void **state) {
     } else {
         printf("valgrind not available: instruction counts not checked\n");
     }
-    printf("quick report in %s: index.html links 5 PNGs, %d rows (%d eval, %d flatten, %d tess) "
-           "finite; "
-           "errors within the bounds, deviations within tol, Pareto fronts present\n",
-           dir, rows, eval_rows, flat_rows, tess_rows);
+    printf("quick report in %s: index.html links 6 PNGs, %d rows (%d eval, %d flatten, %d tess, "
+           "%d arclen) finite; errors within the bounds, deviations and arc length errors within "
+           "tol, Pareto fronts present\n",
+           dir, rows, eval_rows, flat_rows, tess_rows, arc_rows);
     free(tsv);
     free(html);
     free(md);
