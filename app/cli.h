@@ -65,6 +65,10 @@ void cli_parser_init(cli_parser *p, const char *cmd, const char *usage, int argc
  * else *value = NULL), or one of the CLI_* codes above. */
 int cli_next(cli_parser *p, const char **value);
 
+/* The Utah teapot of this installation: beside the executable (<bindir>/../share/casteljau, so
+ * a moved prefix still works), then the source tree of a build, then the configured prefix. */
+const char *cli_teapot_path(void);
+
 /* The version line "casteljau X.Y.Z". */
 const char *cli_version(void);
 

@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L /* readlink */
 #include "cli.h"
 
 #include <errno.h>
@@ -6,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* Escapes control characters (and DEL) so that echoed input cannot break a message's line. */
 static void put_escaped(FILE *f, const char *s) {
@@ -296,4 +298,30 @@ int cli_parse_list(const char *text, double **values, size_t *count, char *why, 
 
 void cli_print_double(double v) {
     printf("%.17g", v);
+}
+
+#ifndef CJ_TEAPOT_SOURCE
+#define CJ_TEAPOT_SOURCE "data/teapot.bpt"
+#endif
+#ifndef CJ_TEAPOT_INSTALLED
+#define CJ_TEAPOT_INSTALLED "/usr/local/share/casteljau/teapot.bpt"
+#endif
+#ifndef CJ_TEAPOT_FROM_BINDIR
+#define CJ_TEAPOT_FROM_BINDIR "../share/casteljau/teapot.bpt"
+#endif
+
+const char *cli_teapot_path(void) {
+    static char found[4096 + 64];
+    char exe[4096];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+        exe[n] = '\0';
+        char *slash = strrchr(exe, '/');
+        if (slash) {
+            slash[1] = '\0';
+            snprintf(found, sizeof found, "%s%s", exe, CJ_TEAPOT_FROM_BINDIR);
+            if (access(found, R_OK) == 0) return found;
+        }
+    }
+    return access(CJ_TEAPOT_SOURCE, R_OK) == 0 ? CJ_TEAPOT_SOURCE : CJ_TEAPOT_INSTALLED;
 }

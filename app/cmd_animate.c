@@ -9,13 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifndef CJ_TEAPOT_SOURCE
-#define CJ_TEAPOT_SOURCE "data/teapot.bpt"
-#endif
-#ifndef CJ_TEAPOT_INSTALLED
-#define CJ_TEAPOT_INSTALLED "/usr/local/share/casteljau/teapot.bpt"
-#endif
-
 static const char animate_usage[] =
     "usage: casteljau animate ANIM.json -o frames/frame_%04d.png [--frames A:B] [--fps F]\n"
     "                         [--width W --height H] [--spp 1|4|16] [--threads N]\n"
@@ -50,6 +43,7 @@ static const char animate_usage[] =
 #if defined(CJ_HAVE_PLOT)
 
 #include "anim_gif.h"
+#include "scene_cli.h"
 #include "casteljau/anim_json.h"
 #include "casteljau/image_io.h"
 #include "casteljau/render.h"
@@ -86,16 +80,6 @@ static void frame_name(const char *pattern, long frame, char *out, size_t size) 
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
 #endif
-}
-
-static const char *dir_of(const char *path, char *buf, size_t size) {
-    const char *slash = strrchr(path, '/');
-    if (!slash) return "";
-    size_t n = (size_t)(slash - path);
-    if (n >= size) n = size - 1;
-    memcpy(buf, path, n);
-    buf[n] = '\0';
-    return n ? buf : "/";
 }
 
 /* The frame as opaque 8-bit sRGB, to a PNG (out may be NULL) and to the GIF (may be NULL,
@@ -253,14 +237,7 @@ int cmd_animate(int argc, char **argv) {
         rc = cli_fail(cmd, "%s: the document names no \"scene\"", doc_path);
         goto done;
     }
-    cj_scene_json_options jo = {access(CJ_TEAPOT_SOURCE, R_OK) == 0 ? CJ_TEAPOT_SOURCE
-                                                                    : CJ_TEAPOT_INSTALLED};
-    char dir[4096];
-    if (cj_scene_load_json_ex(doc->scene_path, &jo, NULL, &scene) ||
-        cj_scene_load_textures(scene, dir_of(doc->scene_path, dir, sizeof dir))) {
-        rc = cli_fail(cmd, "%s", cj_last_error());
-        goto done;
-    }
+    if ((rc = cli_load_scene(cmd, doc->scene_path, &scene))) goto done;
     if (cj_anim_doc_attach(doc, scene)) {
         rc = cli_fail(cmd, "%s", cj_last_error()); /* names the document (and line) already */
         goto done;

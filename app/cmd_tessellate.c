@@ -44,16 +44,6 @@ static const char tess_usage[] =
     "line. Exit status 0; 2 for a bad argument or input (a degenerate patch, too many\n"
     "triangles); 1 when the file cannot be written or memory runs out.\n";
 
-#ifndef CJ_TEAPOT_SOURCE
-#define CJ_TEAPOT_SOURCE "data/teapot.bpt"
-#endif
-#ifndef CJ_TEAPOT_INSTALLED
-#define CJ_TEAPOT_INSTALLED "/usr/local/share/casteljau/teapot.bpt"
-#endif
-#ifndef CJ_TEAPOT_FROM_BINDIR
-#define CJ_TEAPOT_FROM_BINDIR "../share/casteljau/teapot.bpt"
-#endif
-
 static int has_ext(const char *path, const char *ext) {
     size_t a = strlen(path), b = strlen(ext);
     if (a <= b) return 0;
@@ -65,23 +55,9 @@ static int has_ext(const char *path, const char *ext) {
     return 1;
 }
 
-/* The teapot of this installation: beside the executable (<bindir>/../share/casteljau, so a
- * moved prefix still works), then the source tree of a build, then the configured prefix. */
+/* The teapot of this installation (cli_teapot_path: beside the executable first). */
 static cj_status load_teapot(cj_patchset **set) {
-    char exe[PATH_MAX], cand[PATH_MAX + 64];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n > 0) {
-        exe[n] = '\0';
-        char *slash = strrchr(exe, '/');
-        if (slash) {
-            slash[1] = '\0';
-            snprintf(cand, sizeof cand, "%s%s", exe, CJ_TEAPOT_FROM_BINDIR);
-            if (access(cand, R_OK) == 0) return cj_patchset_load_bpt(cand, NULL, set);
-        }
-    }
-    if (access(CJ_TEAPOT_SOURCE, R_OK) == 0)
-        return cj_patchset_load_bpt(CJ_TEAPOT_SOURCE, NULL, set);
-    return cj_patchset_load_bpt(CJ_TEAPOT_INSTALLED, NULL, set);
+    return cj_patchset_load_bpt(cli_teapot_path(), NULL, set);
 }
 
 /* Parses --degree M,N. */

@@ -8,13 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifndef CJ_TEAPOT_SOURCE
-#define CJ_TEAPOT_SOURCE "data/teapot.bpt"
-#endif
-#ifndef CJ_TEAPOT_INSTALLED
-#define CJ_TEAPOT_INSTALLED "/usr/local/share/casteljau/teapot.bpt"
-#endif
-
 static const char trace_usage[] =
     "usage: casteljau trace (SCENE.json | --demo) -o OUT.png|OUT.exr [--width W --height H]\n"
     "                       [--spp N] [--max-depth D] [--seed S] [--threads N] [--signature]\n"
@@ -34,45 +27,9 @@ static const char trace_usage[] =
 
 #if defined(CJ_HAVE_PLOT)
 
-#include "casteljau/image_io.h"
-#include "casteljau/scene_json.h"
-#include "casteljau/scene_textures.h"
+#include "scene_cli.h"
+
 #include "casteljau/trace.h"
-
-#include <unistd.h>
-
-static int ends_with(const char *path, const char *ext) {
-    size_t a = strlen(path), b = strlen(ext);
-    if (a <= b) return 0;
-    for (size_t i = 0; i < b; ++i) {
-        char c = path[a - b + i];
-        if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-        if (c != ext[i]) return 0;
-    }
-    return 1;
-}
-
-static int parse_long(const char *s, long lo, long hi, long *out) {
-    char *end;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end || v < lo || v > hi) return -1;
-    *out = v;
-    return 0;
-}
-
-static const char *teapot_path(void) {
-    return access(CJ_TEAPOT_SOURCE, R_OK) == 0 ? CJ_TEAPOT_SOURCE : CJ_TEAPOT_INSTALLED;
-}
-
-static const char *dir_of(const char *path, char *buf, size_t size) {
-    const char *slash = strrchr(path, '/');
-    if (!slash) return "";
-    size_t n = (size_t)(slash - path);
-    if (n >= size) n = size - 1;
-    memcpy(buf, path, n);
-    buf[n] = '\0';
-    return n ? buf : "/";
-}
 
 /* A distinct colour per object id (0, the background, is black). */
 static void id_colour(uint32_t id, float c[3]) {
@@ -86,124 +43,100 @@ static void id_colour(uint32_t id, float c[3]) {
     c[2] = 0.15f + 0.85f * (float)((h >> 24) & 255) / 255.0f;
 }
 
-static int write_image(const char *cmd, const char *out, int exr, cj_render_image *img,
-                       int signature) {
-    size_t n = (size_t)img->width * (size_t)img->height;
-    if (signature)
-        for (size_t i = 0; i < n; ++i) id_colour(img->ids[i], img->rgba + 4 * i);
-    cj_status st;
-    if (exr) {
-        float *px = malloc(n * 4 * sizeof(float));
-        if (!px) return cli_fail(cmd, "out of memory for a %d x %d image", img->width, img->height);
-        for (size_t i = 0; i < n; ++i) {
-            memcpy(px + 4 * i, img->rgba + 4 * i, 3 * sizeof(float));
-            px[4 * i + 3] = 1.0f;
-        }
-        st = cj_image_write_float(out, img->width, img->height, px, 0);
-        free(px);
-    } else {
-        uint8_t *px = malloc(n * 4);
-        if (!px) return cli_fail(cmd, "out of memory for a %d x %d image", img->width, img->height);
-        st = cj_render_image_to_srgb8(img, px, 0);
-        for (size_t i = 0; i < n; ++i) px[4 * i + 3] = 255;
-        if (!st) st = cj_image_write_png(out, img->width, img->height, px, 0);
-        free(px);
-    }
-    if (st) return cli_fail(cmd, "%s", cj_last_error());
-    return 0;
-}
-
 int cmd_trace(int argc, char **argv) {
     const char *cmd = "trace";
-    const char *scene_path = NULL, *out = NULL;
+    enum {
+        O_DEMO,
+        O_REPORT,
+        O_SIGNATURE,
+        O_OUT,
+        O_WIDTH,
+        O_HEIGHT,
+        O_SPP,
+        O_DEPTH,
+        O_SEED,
+        O_THREADS
+    };
+    static const cli_opt opts[] = {{"--demo", NULL, 0},      {"--stage-report", NULL, 0},
+                                   {"--signature", NULL, 0}, {"--output", "-o", 1},
+                                   {"--width", NULL, 1},     {"--height", NULL, 1},
+                                   {"--spp", NULL, 1},       {"--max-depth", NULL, 1},
+                                   {"--seed", NULL, 1},      {"--threads", NULL, 1}};
+    cli_parser ps;
+    cli_parser_init(&ps, cmd, trace_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
+    const char *scene_path = NULL, *out = NULL, *v;
     int demo = 0, report = 0, signature = 0;
+    long n;
     cj_render_options opt = cj_render_options_default();
-    long v_;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(trace_usage, stdout);
-            return 0;
-        }
-        if (!strcmp(a, "--demo")) {
-            demo = 1;
-            continue;
-        }
-        if (!strcmp(a, "--stage-report")) {
-            report = 1;
-            continue;
-        }
-        if (!strcmp(a, "--signature")) {
-            signature = 1;
-            continue;
-        }
-        if (a[0] != '-' || a[1] == '\0') {
+    for (;;) {
+        const int k = cli_next(&ps, &v);
+        if (k == CLI_END) break;
+        if (k == CLI_EXIT_OK) return 0;
+        if (k == CLI_BAD) return CLI_EXIT_USAGE;
+        switch (k) {
+        case CLI_POSITIONAL:
             if (scene_path)
-                return cli_fail(cmd, "more than one scene file ('%s', '%s')", scene_path, a);
-            scene_path = a;
-            continue;
-        }
-        if (i + 1 >= argc) return cli_fail(cmd, "option '%s' needs a value (or is unknown)", a);
-        const char *v = argv[++i];
-        if (!strcmp(a, "-o")) {
+                return cli_fail(cmd, "more than one scene file ('%s', '%s')", scene_path, v);
+            scene_path = v;
+            break;
+        case O_DEMO:
+            demo = 1;
+            break;
+        case O_REPORT:
+            report = 1;
+            break;
+        case O_SIGNATURE:
+            signature = 1;
+            break;
+        case O_OUT:
             out = v;
-        } else if (!strcmp(a, "--width")) {
-            if (parse_long(v, 1, 32768, &v_))
-                return cli_fail(cmd, "--width '%s' is not an integer in 1..32768", v);
-            opt.width = (int)v_;
-        } else if (!strcmp(a, "--height")) {
-            if (parse_long(v, 1, 32768, &v_))
-                return cli_fail(cmd, "--height '%s' is not an integer in 1..32768", v);
-            opt.height = (int)v_;
-        } else if (!strcmp(a, "--spp")) {
-            if (parse_long(v, 1, 65536, &v_))
+            break;
+        case O_WIDTH:
+        case O_HEIGHT:
+            if (cli_parse_int(v, 1, 32768, &n))
+                return cli_fail(cmd, "%s '%s' is not an integer in 1..32768",
+                                k == O_WIDTH ? "--width" : "--height", v);
+            *(k == O_WIDTH ? &opt.width : &opt.height) = (int)n;
+            break;
+        case O_SPP:
+            if (cli_parse_int(v, 1, 65536, &n))
                 return cli_fail(cmd, "--spp '%s' is not an integer in 1..65536", v);
-            opt.spp = (int)v_;
-        } else if (!strcmp(a, "--max-depth")) {
-            if (parse_long(v, 0, 64, &v_))
+            opt.spp = (int)n;
+            break;
+        case O_DEPTH:
+            if (cli_parse_int(v, 0, 64, &n))
                 return cli_fail(cmd, "--max-depth '%s' is not an integer in 0..64", v);
-            opt.max_depth = (int)v_;
-            if (v_ == 0) opt.max_depth = -1; /* 0 means "the scene's" in the options: see below */
-        } else if (!strcmp(a, "--seed")) {
+            opt.max_depth = n ? (int)n : -1; /* 0 means "the scene's" in the options: see below */
+            break;
+        case O_SEED: {
             char *end;
-            unsigned long long s = strtoull(v, &end, 10);
+            unsigned long long sd = strtoull(v, &end, 10);
             if (end == v || *end || v[0] == '-')
                 return cli_fail(cmd, "--seed '%s' is not a non-negative integer", v);
             opt.use_seed = 1;
-            opt.seed = (uint64_t)s;
-        } else if (!strcmp(a, "--threads")) {
-            if (parse_long(v, 1, 1024, &v_))
+            opt.seed = (uint64_t)sd;
+            break;
+        }
+        default: /* O_THREADS */
+            if (cli_parse_int(v, 1, 1024, &n))
                 return cli_fail(cmd, "--threads '%s' is not an integer in 1..1024", v);
-            opt.threads = (int)v_;
-        } else {
-            return cli_fail(cmd, "unknown option '%s' (try --help)", a);
+            opt.threads = (int)n;
+            break;
         }
     }
     if (demo && scene_path) return cli_fail(cmd, "give either a scene file or --demo, not both");
     if (!demo && !scene_path) return cli_fail(cmd, "no scene: give SCENE.json or --demo");
     if (!out) return cli_fail(cmd, "no output file: give -o OUT.png or -o OUT.exr");
-    int exr = ends_with(out, ".exr");
-    if (!exr && !ends_with(out, ".png"))
-        return cli_fail(cmd, "output '%s' must end in .png or .exr", out);
-    if (cj_image_check_destination(out, exr)) return cli_fail(cmd, "%s", cj_last_error());
+    int exr, rc = cli_render_output(cmd, out, &exr);
+    if (rc) return rc;
 
     cj_scene *scene = NULL;
-    cj_status st;
     if (demo) {
-        st = cj_trace_demo_scene(teapot_path(), NULL, &scene);
-    } else {
-        cj_scene_json_options jo = {teapot_path()};
-        st = cj_scene_load_json_ex(scene_path, &jo, NULL, &scene);
-        char dir[4096];
-        if (!st) {
-            st = cj_scene_load_textures(scene, dir_of(scene_path, dir, sizeof dir));
-            if (st) {
-                cj_scene_destroy(scene);
-                scene = NULL;
-            }
-        }
+        if (cj_trace_demo_scene(cli_teapot_path(), NULL, &scene))
+            return cli_fail(cmd, "%s", cj_last_error());
+    } else if ((rc = cli_load_scene(cmd, scene_path, &scene))) {
+        return rc;
     }
-    if (st) return cli_fail(cmd, "%s", cj_last_error());
     if (opt.max_depth < 0) {
         /* --max-depth 0: primary rays only; the options use 0 for "the scene's" */
         cj_scene_settings s = *cj_scene_settings_get(scene);
@@ -213,16 +146,17 @@ int cmd_trace(int argc, char **argv) {
     }
     cj_render_image *img = NULL;
     cj_stage_report rep;
-    st = cj_render_trace(scene, &opt, signature ? CJ_IMAGE_IDS : 0, NULL, &img, &rep);
-    if (st) {
-        cj_scene_destroy(scene);
-        return cli_fail(cmd, "%s%s%s", scene_path ? scene_path : "demo", ": ", cj_last_error());
-    }
-    int rc = write_image(cmd, out, exr, img, signature);
-    cj_render_image_destroy(img);
+    cj_status st = cj_render_trace(scene, &opt, signature ? CJ_IMAGE_IDS : 0, NULL, &img, &rep);
     cj_scene_destroy(scene);
+    if (st) return cli_fail(cmd, "%s: %s", scene_path ? scene_path : "demo", cj_last_error());
+    if (signature) { /* each object id its own colour; the background black */
+        size_t npx = (size_t)img->width * (size_t)img->height;
+        for (size_t i = 0; i < npx; ++i) id_colour(img->ids[i], img->rgba + 4 * i);
+    }
+    rc = cli_write_render(cmd, out, exr, img);
+    cj_render_image_destroy(img);
     if (rc) return rc;
-    if (report && cj_stage_report_json(&rep, stdout)) return cli_fail(cmd, "%s", cj_last_error());
+    if (report && cj_stage_report_json(&rep, stdout)) return cli_error(cmd, "%s", cj_last_error());
     return 0;
 }
 

@@ -1,0 +1,89 @@
+/* What the scene-drawing commands share (scene_cli.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "scene_cli.h"
+
+#include "cli.h"
+
+#include "casteljau/image_io.h"
+#include "casteljau/scene_json.h"
+#include "casteljau/scene_textures.h"
+
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#ifndef PATH_MAX
+#define PATH_MAX 4096
+#endif
+
+/* The folder of a path ("" for a bare name), into buf. */
+static const char *dir_of(const char *path, char *buf, size_t size) {
+    const char *slash = strrchr(path, '/');
+    if (!slash) return "";
+    size_t n = (size_t)(slash - path);
+    if (n >= size) n = size - 1;
+    memcpy(buf, path, n);
+    buf[n] = '\0';
+    return n ? buf : "/";
+}
+
+int cli_load_scene(const char *cmd, const char *path, cj_scene **out) {
+    cj_scene_json_options jo = {cli_teapot_path()};
+    cj_scene *scene = NULL;
+    cj_status st = cj_scene_load_json_ex(path, &jo, NULL, &scene);
+    char dir[PATH_MAX];
+    if (!st) st = cj_scene_load_textures(scene, dir_of(path, dir, sizeof dir));
+    if (st) {
+        cj_scene_destroy(scene);
+        return cli_fail(cmd, "%s", cj_last_error());
+    }
+    *out = scene;
+    return 0;
+}
+
+static int ends_with(const char *path, const char *ext) {
+    size_t a = strlen(path), b = strlen(ext);
+    if (a <= b) return 0;
+    for (size_t i = 0; i < b; ++i) {
+        char c = path[a - b + i];
+        if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
+        if (c != ext[i]) return 0;
+    }
+    return 1;
+}
+
+int cli_render_output(const char *cmd, const char *out, int *exr) {
+    *exr = ends_with(out, ".exr");
+    if (!*exr && !ends_with(out, ".png"))
+        return cli_fail(cmd, "output '%s' must end in .png or .exr", out);
+    if (cj_image_check_destination(out, *exr)) return cli_fail(cmd, "%s", cj_last_error());
+    return 0;
+}
+
+int cli_write_render(const char *cmd, const char *out, int exr, const cj_render_image *img) {
+    size_t n = (size_t)img->width * (size_t)img->height;
+    cj_status st;
+    if (exr) {
+        float *px = malloc(n * 4 * sizeof(float));
+        if (!px)
+            return cli_error(cmd, "out of memory for a %d x %d image", img->width, img->height);
+        for (size_t i = 0; i < n; ++i) {
+            memcpy(px + 4 * i, img->rgba + 4 * i, 3 * sizeof(float));
+            px[4 * i + 3] = 1.0f;
+        }
+        st = cj_image_write_float(out, img->width, img->height, px, 0);
+        free(px);
+    } else {
+        uint8_t *px = malloc(n * 4);
+        if (!px)
+            return cli_error(cmd, "out of memory for a %d x %d image", img->width, img->height);
+        st = cj_render_image_to_srgb8(img, px, 0);
+        for (size_t i = 0; i < n; ++i) px[4 * i + 3] = 255;
+        if (!st) st = cj_image_write_png(out, img->width, img->height, px, 0);
+        free(px);
+    }
+    if (st) return cli_error(cmd, "%s", cj_last_error());
+    return 0;
+}
