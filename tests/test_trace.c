@@ -326,7 +326,7 @@ static void test_threads_bit_identical(void **state) {
     assert_true(memcmp(ref->rgba, other->rgba, sizeof(float) * 4 * 48 * 48) != 0);
     cj_render_image_destroy(other);
     /* Plain random sampling: another image, still the same for any thread count. */
-    cj_trace_options to = {1};
+    cj_trace_options to = {1, 0};
     cj_render_image *r1 = NULL, *r2 = NULL;
     o = cj_render_options_default();
     o.threads = 1;
@@ -407,6 +407,52 @@ static void compare_ids(const char *name, const cj_scene *sc, int W, int H) {
     cj_render_image_destroy(ra);
 }
 
+static double patch_max_err(const cj_stage_report *rep) {
+    const cj_stage *s = cj_stage_report_find(rep, "patch_rays");
+    assert_non_null(s);
+    for (int i = 0; i < s->extra_count; i++)
+        if (strcmp(s->extra[i].key, "max_err") == 0) return s->extra[i].value;
+    fail_msg("patch_rays has no max_err");
+    return 0;
+}
+
+/* cj_trace_options.patch_tolerance: out-of-range values are refused with no image; a coarse
+ * tolerance really loosens the patch intersection (a larger distance to the ray reached). */
+static void test_patch_tolerance_option(void **state) {
+    (void)state;
+    cj_scene *sc;
+    assert_int_equal(cj_trace_demo_scene(CJ_TEAPOT_PATH, NULL, &sc), CJ_OK);
+    cj_render_options o = cj_render_options_default();
+    o.width = 40;
+    o.height = 30;
+    o.spp = 1;
+    o.threads = 1;
+    const double bad[4] = {-1e-7, NAN, 2.0, INFINITY};
+    for (int k = 0; k < 4; k++) {
+        cj_trace_options to = {0, bad[k]};
+        cj_render_image *img = NULL;
+        assert_int_equal(cj_render_trace_ex(sc, &o, &to, 0, NULL, &img, NULL), CJ_ERR_RANGE);
+        assert_null(img);
+    }
+    double err[2];
+    const double tol[2] = {1e-2, 0};
+    for (int k = 0; k < 2; k++) {
+        cj_trace_options to = {0, tol[k]};
+        cj_render_image *img = NULL;
+        cj_stage_report rep;
+        assert_int_equal(cj_render_trace_ex(sc, &o, &to, 0, NULL, &img, &rep), CJ_OK);
+        err[k] = patch_max_err(&rep);
+        cj_render_image_destroy(img);
+    }
+    /* the teapot's box diagonal is ~8: tolerance 1e-2 allows ~0.08, the default ~8e-7 */
+    assert_true(err[0] > 1e2 * err[1]);
+    assert_true(err[0] < 0.2);
+    cj_scene_destroy(sc);
+    printf("  patch_tolerance: -1e-7, NaN, 2, inf refused (CJ_ERR_RANGE, no image); largest "
+           "distance to the ray reached on the demo teapot %.3g at 1e-2 vs %.3g by default\n",
+           err[0], err[1]);
+}
+
 static void test_signature_vs_raster(void **state) {
     (void)state;
     cj_scene *sc;
@@ -432,6 +478,7 @@ int main(void) {
         cmocka_unit_test(test_only_called_effects),     cmocka_unit_test(test_shadows_and_scales),
         cmocka_unit_test(test_no_leak_under_thin_roof), cmocka_unit_test(test_refract),
         cmocka_unit_test(test_threads_bit_identical),   cmocka_unit_test(test_signature_vs_raster),
+        cmocka_unit_test(test_patch_tolerance_option),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -233,6 +233,9 @@ cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt
     int max_depth = o.max_depth ? o.max_depth : ss->max_depth;
     if (max_depth < 0 || max_depth > 64)
         return cj_fail(CJ_ERR_RANGE, "max depth %d outside 0..64", max_depth);
+    double ptol = topt ? topt->patch_tolerance : 0.0;
+    if (!(ptol == 0.0 || (ptol > 0.0 && ptol <= 1.0)))
+        return cj_fail(CJ_ERR_RANGE, "patch tolerance %g outside (0, 1]", ptol);
     cj_render_image *img = NULL;
     st = cj_render_image_create(w, h, planes, alloc, &img);
     if (st) return st;
@@ -244,6 +247,8 @@ cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt
         cj_render_image_destroy(img);
         return st;
     }
+    if (ptol > 0.0)
+        for (size_t i = 0; i < ts.nobj; i++) ts.objs[i].tol *= ptol / 1e-7;
     tr_lights lights;
     memset(&lights, 0, sizeof lights);
     lights.unlit = cj_scene_light_count(scene) == 0;

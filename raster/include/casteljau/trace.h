@@ -65,11 +65,15 @@ cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, u
 
 /* Sampling choices beyond cj_render_options (all zero: the defaults). */
 typedef struct cj_trace_options {
-    int random_sampling; /* 1: plain uniform random pixel positions and area-light points instead
-                            of stratified ones (to measure what stratification gains) */
+    int random_sampling;    /* 1: plain uniform random pixel positions and area-light points instead
+                               of stratified ones (to measure what stratification gains) */
+    double patch_tolerance; /* 0: the default 1e-7; else the tolerance of the direct Bézier
+                               patch intersection, relative to each patch object's box diagonal
+                               (to measure what accuracy costs); must be finite, in (0, 1] */
 } cj_trace_options;
 
-/* cj_render_trace with trace options (NULL: defaults); same status codes. */
+/* cj_render_trace with trace options (NULL: defaults); same status codes, and CJ_ERR_RANGE
+ * for a patch_tolerance that is not 0 and not in (0, 1]. */
 cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt,
                              const cj_trace_options *topt, unsigned planes,
                              const cj_allocator *alloc, cj_render_image **out,
