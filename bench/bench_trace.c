@@ -11,6 +11,7 @@
  *     threads, and ms per frame. */
 #define _POSIX_C_SOURCE 200809L
 #include "bench_clock.h"
+#include "bench_trace_more.h"
 #include "casteljau/bvh.h"
 #include "casteljau/patchset.h"
 #include "casteljau/ray.h"
@@ -265,7 +266,7 @@ static void rmse_vs_spp(void) {
     if (cj_render_trace(sc, &o, 0, NULL, &ref, NULL)) return;
     printf("\nsoft shadow (area light), 64x48, RMSE against 1024 spp (stratified), 2 threads\n");
     for (int mode = 0; mode < 2; mode++) {
-        cj_trace_options to = {mode};
+        cj_trace_options to = {mode, 0};
         printf("  %s sampling (pixel positions and light points)\n",
                mode ? "plain random" : "stratified");
         double prev = 0;
@@ -365,6 +366,7 @@ int main(void) {
     }
     cj_mesh *tm = NULL;
     cj_bvh *tb = NULL;
+    cj_mesh *fine = NULL;
     for (int k = 0; k < 3; k++) {
         const double tt[3] = {1e-2, 1e-3, 1e-4};
         cj_bvh *b;
@@ -375,6 +377,9 @@ int main(void) {
         if (k == 1) {
             tm = m;
             tb = b;
+        } else if (k == 2) {
+            fine = m; /* the reference of the patch-tolerance section */
+            cj_bvh_destroy(b);
         } else {
             cj_bvh_destroy(b);
             cj_mesh_destroy(m);
@@ -447,6 +452,10 @@ int main(void) {
     cj_mesh_destroy(tm);
     cj_bvh_destroy(sd.bvh);
     cj_patchset_destroy(set);
+    bench_trace_tolerance(CJ_TEAPOT_PATH, fine, 1e-4);
+    cj_mesh_destroy(fine);
     rmse_vs_spp();
+    bench_trace_rmse_shipped(CJ_SCENES_DIR "/raytrace.json", CJ_TEAPOT_PATH);
+    bench_trace_povray();
     return 0;
 }

@@ -1,9 +1,10 @@
 # bench_trace: ray intersection per primitive kind (patches direct vs tessellated), BVH scaling,
 # Embree on the same triangles (when libembree-dev is installed), tracer rays per second.
 if(TARGET cj::raster)
-  add_executable(bench_trace bench_trace.c)
+  add_executable(bench_trace bench_trace.c bench_trace_more.c)
   target_link_libraries(bench_trace PRIVATE cj::raster m)
-  target_compile_definitions(bench_trace PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+  target_compile_definitions(bench_trace PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt"
+                                               CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
   cj_warnings(bench_trace)
   find_path(CJ_EMBREE3_INCLUDE embree3/rtcore.h)
   find_library(CJ_EMBREE3_LIB embree3)
