@@ -52,8 +52,8 @@ static void test_quick_report(void **state) {
     assert_non_null(html);
     assert_non_null(md);
     assert_non_null(strstr(html, "</html>"));
-    assert_int_equal(count_of(html, "<img "), 6);
-    assert_int_equal(count_of(html, "<table>"), 4);
+    assert_int_equal(count_of(html, "<img "), 7);
+    assert_int_equal(count_of(html, "<table>"), 5);
     const char *pngs[6] = {"eval_cond0.png", "eval_cond1.png", "flatten_0.png",
                            "flatten_1.png",  "tess.png",       "arclen.png"};
     for (int i = 0; i < 6; ++i) {
@@ -71,7 +71,8 @@ static void test_quick_report(void **state) {
     char *tsv = slurp("data.tsv", NULL);
     assert_non_null(tsv);
     int rows = 0, tess_rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
-    int arc_rows = 0, fronts_arc = 0;
+    int arc_rows = 0, fronts_arc = 0, interp_rows = 0;
+    double equi_err[2] = {0, 0}; /* equispaced: error at the lowest and the highest degree */
     for (char *line = strtok(tsv, "\n"); line; line = strtok(NULL, "\n")) {
         if (!strncmp(line, "section", 7)) continue;
         char *f[12] = {0};
@@ -110,6 +111,21 @@ static void test_quick_report(void **state) {
                          bound = strtod(f[6], NULL), tris = strtod(f[10], NULL);
             assert_true(dev > 0 && dev <= bound && bound <= tol * (1 + 1e-12));
             assert_true(tris >= 32 * 2);
+        } else if (!strcmp(f[0], "interp")) {
+            /* Chebyshev: within the Bernstein-ellipse bound; equispaced: Runge's phenomenon */
+            interp_rows++;
+            const int deg = atoi(f[2]);
+            const double K = strtod(f[3], NULL), emax = strtod(f[4], NULL),
+                         bound = strtod(f[6], NULL);
+            assert_true(isfinite(K) && K >= 1.0 && isfinite(emax) && emax > 0);
+            if (!strcmp(f[1], "Chebyshev")) {
+                if (!(emax <= bound))
+                    fail_msg("Chebyshev interpolation at degree %d: error %g > bound %g", deg, emax,
+                             bound);
+            } else {
+                assert_string_equal(f[1], "equispaced");
+                equi_err[deg > 4] = emax;
+            }
         } else if (!strcmp(f[0], "arclen")) {
             /* adaptive: the error against the closed form within the tolerance asked for;
              * chord sum: below the second-order bound L^2 ... loosely, error > 0 and < 1 */
@@ -136,10 +152,12 @@ static void test_quick_report(void **state) {
             assert_true(ratio >= 0.9 && ratio < 10);
         }
     }
-    assert_int_equal(eval_rows, 4 * 2 * 3); /* quick: 4 methods x 2 degrees x 3 conditions */
-    assert_int_equal(flat_rows, 3 * 3);     /* 3 methods x 3 tolerances */
-    assert_int_equal(tess_rows, 2 * 2);     /* uniform/adaptive x 2 tolerances */
-    assert_int_equal(arc_rows, 2 * 3);      /* adaptive/chord sum x 3 tolerances or N */
+    assert_int_equal(eval_rows, 4 * 2 * 3);      /* quick: 4 methods x 2 degrees x 3 conditions */
+    assert_int_equal(flat_rows, 3 * 3);          /* 3 methods x 3 tolerances */
+    assert_int_equal(tess_rows, 2 * 2);          /* uniform/adaptive x 2 tolerances */
+    assert_int_equal(arc_rows, 2 * 3);           /* adaptive/chord sum x 3 tolerances or N */
+    assert_int_equal(interp_rows, 2 * 3);        /* equispaced/Chebyshev x degrees 4, 12, 24 */
+    assert_true(equi_err[1] > 10 * equi_err[0]); /* Runge: degree 24 far worse than 4 */
     assert_true(fronts_eval >= 6 && fronts_flat >= 1 && fronts_arc >= 1);
     const char *rep = strstr(md, "differ by ");
     if (rep) {
@@ -149,10 +167,10 @@ static void test_quick_report(void **state) {
     } else {
         printf("valgrind not available: instruction counts not checked\n");
     }
-    printf("quick report in %s: index.html links 6 PNGs, %d rows (%d eval, %d flatten, %d tess, "
-           "%d arclen) finite; errors within the bounds, deviations and arc length errors within "
-           "tol, Pareto fronts present\n",
-           dir, rows, eval_rows, flat_rows, tess_rows, arc_rows);
+    printf("quick report in %s: index.html links 7 PNGs, %d rows (%d eval, %d flatten, %d tess, "
+           "%d arclen, %d interp) finite; errors within the bounds, deviations and arc length "
+           "errors within tol, Chebyshev interpolation within its bound, Pareto fronts present\n",
+           dir, rows, eval_rows, flat_rows, tess_rows, arc_rows, interp_rows);
     free(tsv);
     free(html);
     free(md);
