@@ -132,7 +132,8 @@ int report_interp(report *r) {
     fprintf(r->md, "\n");
     cj_chart *c = NULL;
     if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
-    cj_chart_set_title(c, "Interpolating Runge's function: error vs cost (labels: degree)");
+    cj_chart_set_title(c,
+                       "Interpolating Runge's function: error vs cost (ringed: dominated, degree)");
     cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
     cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "ns per fit (median)");
     cj_chart_set_axis(c, 1, CJ_CHART_LOG10, "max |c(t) - f(t)|");
@@ -143,6 +144,7 @@ int report_interp(report *r) {
                                   5.0};
         cj_chart_add_series(c, ns[m], emax[m], (size_t)nd, &o);
         for (int d = 0; d < nd; ++d) {
+            if (dom[m * nd + d] < 0) continue; /* the annotation rings its point */
             char txt[16];
             snprintf(txt, sizeof txt, "%d", degs[d]);
             cj_chart_annotate(c, ns[m][d], emax[m][d], txt, cj_rgba_make(0x60, 0x60, 0x60, 255));

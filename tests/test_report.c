@@ -52,8 +52,8 @@ static void test_quick_report(void **state) {
     assert_non_null(html);
     assert_non_null(md);
     assert_non_null(strstr(html, "</html>"));
-    assert_int_equal(count_of(html, "<img "), 7);
-    assert_int_equal(count_of(html, "<table>"), 5);
+    assert_int_equal(count_of(html, "<img "), 8);
+    assert_int_equal(count_of(html, "<table>"), 6);
     const char *pngs[6] = {"eval_cond0.png", "eval_cond1.png", "flatten_0.png",
                            "flatten_1.png",  "tess.png",       "arclen.png"};
     for (int i = 0; i < 6; ++i) {
@@ -71,7 +71,7 @@ static void test_quick_report(void **state) {
     char *tsv = slurp("data.tsv", NULL);
     assert_non_null(tsv);
     int rows = 0, tess_rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
-    int arc_rows = 0, fronts_arc = 0, interp_rows = 0;
+    int arc_rows = 0, fronts_arc = 0, interp_rows = 0, contour_rows = 0;
     double equi_err[2] = {0, 0}; /* equispaced: error at the lowest and the highest degree */
     for (char *line = strtok(tsv, "\n"); line; line = strtok(NULL, "\n")) {
         if (!strncmp(line, "section", 7)) continue;
@@ -111,6 +111,13 @@ static void test_quick_report(void **state) {
                          bound = strtod(f[6], NULL), tris = strtod(f[10], NULL);
             assert_true(dev > 0 && dev <= bound && bound <= tol * (1 + 1e-12));
             assert_true(tris >= 32 * 2);
+        } else if (!strcmp(f[0], "contour")) {
+            /* the exact distance polyline - circle within the tolerance asked for */
+            contour_rows++;
+            const double tol = strtod(f[2], NULL), dev = strtod(f[4], NULL),
+                         pts = strtod(f[10], NULL);
+            assert_true(isfinite(dev) && dev > 0 && pts >= 8);
+            if (!(dev <= tol)) fail_msg("contour %s at tol %g: deviation %g > tol", f[1], tol, dev);
         } else if (!strcmp(f[0], "interp")) {
             /* Chebyshev: within the Bernstein-ellipse bound; equispaced: Runge's phenomenon */
             interp_rows++;
@@ -167,10 +174,11 @@ static void test_quick_report(void **state) {
     } else {
         printf("valgrind not available: instruction counts not checked\n");
     }
-    printf("quick report in %s: index.html links 7 PNGs, %d rows (%d eval, %d flatten, %d tess, "
-           "%d arclen, %d interp) finite; errors within the bounds, deviations and arc length "
-           "errors within tol, Chebyshev interpolation within its bound, Pareto fronts present\n",
-           dir, rows, eval_rows, flat_rows, tess_rows, arc_rows, interp_rows);
+    printf("quick report in %s: index.html links 8 PNGs, %d rows (%d eval, %d flatten, %d tess, "
+           "%d arclen, %d interp, %d contour) finite; errors within the bounds, deviations, arc "
+           "length errors and contour distances within tol, Chebyshev interpolation within its "
+           "bound, Pareto fronts present\n",
+           dir, rows, eval_rows, flat_rows, tess_rows, arc_rows, interp_rows, contour_rows);
     free(tsv);
     free(html);
     free(md);
