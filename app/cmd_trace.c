@@ -11,6 +11,7 @@
 static const char trace_usage[] =
     "usage: casteljau trace (SCENE.json | --demo) -o OUT.png|OUT.exr [--width W --height H]\n"
     "                       [--spp N] [--max-depth D] [--seed S] [--threads N] [--signature]\n"
+    "                       [--indirect N]\n"
     "                       [--stage-report]\n"
     "  SCENE.json      a scene file (the same files `casteljau render` reads)\n"
     "  --demo          built-in scene: a mirror sphere, a glass sphere and the Utah teapot\n"
@@ -22,6 +23,8 @@ static const char trace_usage[] =
     "  --max-depth     recursion depth of reflected/refracted rays (default: the scene's)\n"
     "  --seed          sampling seed (the image is the same for any thread count)\n"
     "  --threads       worker threads (default: one per core)\n"
+    "  --indirect      one-bounce diffuse interreflection: N cosine-weighted rays per diffuse\n"
+    "                  hit (default 0: off)\n"
     "  --signature     write the scene signature image instead: each object id its colour\n"
     "  --stage-report  print the stage report (JSON) on stdout\n";
 
@@ -55,19 +58,22 @@ int cmd_trace(int argc, char **argv) {
         O_SPP,
         O_DEPTH,
         O_SEED,
+        O_INDIRECT,
         O_THREADS
     };
-    static const cli_opt opts[] = {{"--demo", NULL, 0},      {"--stage-report", NULL, 0},
-                                   {"--signature", NULL, 0}, {"--output", "-o", 1},
-                                   {"--width", NULL, 1},     {"--height", NULL, 1},
-                                   {"--spp", NULL, 1},       {"--max-depth", NULL, 1},
-                                   {"--seed", NULL, 1},      {"--threads", NULL, 1}};
+    static const cli_opt opts[] = {
+        {"--demo", NULL, 0},     {"--stage-report", NULL, 0}, {"--signature", NULL, 0},
+        {"--output", "-o", 1},   {"--width", NULL, 1},        {"--height", NULL, 1},
+        {"--spp", NULL, 1},      {"--max-depth", NULL, 1},    {"--seed", NULL, 1},
+        {"--indirect", NULL, 1}, {"--threads", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, trace_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
     const char *scene_path = NULL, *out = NULL, *v;
     int demo = 0, report = 0, signature = 0;
     long n;
     cj_render_options opt = cj_render_options_default();
+    cj_trace_options topt;
+    memset(&topt, 0, sizeof topt);
     for (;;) {
         const int k = cli_next(&ps, &v);
         if (k == CLI_END) break;
@@ -117,6 +123,11 @@ int cmd_trace(int argc, char **argv) {
             opt.seed = (uint64_t)sd;
             break;
         }
+        case O_INDIRECT:
+            if (cli_parse_int(v, 0, 4096, &n))
+                return cli_fail(cmd, "--indirect '%s' is not an integer in 0..4096", v);
+            topt.indirect_samples = (int)n;
+            break;
         default: /* O_THREADS */
             if (cli_parse_int(v, 1, 1024, &n))
                 return cli_fail(cmd, "--threads '%s' is not an integer in 1..1024", v);
@@ -146,7 +157,8 @@ int cmd_trace(int argc, char **argv) {
     }
     cj_render_image *img = NULL;
     cj_stage_report rep;
-    cj_status st = cj_render_trace(scene, &opt, signature ? CJ_IMAGE_IDS : 0, NULL, &img, &rep);
+    cj_status st =
+        cj_render_trace_ex(scene, &opt, &topt, signature ? CJ_IMAGE_IDS : 0, NULL, &img, &rep);
     cj_scene_destroy(scene);
     if (st) return cli_fail(cmd, "%s: %s", scene_path ? scene_path : "demo", cj_last_error());
     if (signature) { /* each object id its own colour; the background black */

@@ -26,7 +26,7 @@ typedef struct tr_object {
 } tr_object;
 
 /* Per-thread counters of ray kinds. */
-enum { TR_PRIMARY = 0, TR_SHADOW, TR_REFLECT, TR_REFRACT, TR_THROUGH, TR_KINDS };
+enum { TR_PRIMARY = 0, TR_SHADOW, TR_REFLECT, TR_REFRACT, TR_THROUGH, TR_INDIRECT, TR_KINDS };
 
 typedef struct tr_counts {
     uint64_t cast[TR_KINDS], hit[TR_KINDS];

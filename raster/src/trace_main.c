@@ -17,7 +17,7 @@ typedef struct tr_job {
     const cj_camera *cam;
     cj_xform3 clip;
     cj_render_image *img;
-    int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random;
+    int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random, indirect;
     uint64_t seed;
     cj_rgb bg;
     pthread_mutex_t lock;
@@ -101,6 +101,7 @@ static void *worker(void *arg) {
     sh.spp = j->spp;
     sh.strata = j->strata;
     sh.random = j->random;
+    sh.indirect = j->indirect;
     for (;;) {
         pthread_mutex_lock(&j->lock);
         int t = j->next++;
@@ -114,9 +115,9 @@ static void *worker(void *arg) {
 }
 
 static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_scene *ts,
-                          const tr_counts *c, int spp, double build_s, int planes) {
+                          const tr_counts *c, int spp, int indirect, double build_s, int planes) {
     int shadow_lights = 0, receivers = 0, mirrors = -1, refr = -1, through = -1, tex = -1;
-    int area = -1, glossy = -1;
+    int area = -1, glossy = -1, diffuse = -1;
     for (size_t i = 0; i < cj_scene_light_count(scene); i++) {
         const cj_light *l = cj_scene_light(scene, (int)i);
         if (l->kind != CJ_LIGHT_AMBIENT && l->casts_shadows && l->intensity > 0) shadow_lights++;
@@ -130,6 +131,7 @@ static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_sc
         if (m->opacity < 1 && through < 0) through = (int)i;
         if (m->texture >= 0 && tex < 0) tex = (int)i;
         if (m->glossiness > 0 && glossy < 0) glossy = (int)i;
+        if (m->kd > 0 && m->transmission < 1 && diffuse < 0) diffuse = (int)i;
     }
     cj_stage *s = cj_stage_report_set(r, "build_bvh", 1, "%zu objects traced", ts->nobj);
     if (s) {
@@ -139,8 +141,8 @@ static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_sc
         strcpy(s->unit_out, "nodes");
         s->seconds = build_s;
     }
-    static const char *names[TR_KINDS] = {"primary_rays", "shadow_rays", "reflection_rays",
-                                          "refraction_rays", "transparency_rays"};
+    static const char *names[TR_KINDS] = {"primary_rays",    "shadow_rays",       "reflection_rays",
+                                          "refraction_rays", "transparency_rays", "indirect_rays"};
     for (int k = 0; k < TR_KINDS; k++) {
         int ran = c->cast[k] > 0;
         char why[CJ_STAGE_WHY_MAX];
@@ -169,6 +171,15 @@ static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_sc
                 snprintf(why, sizeof why, "material %d has transmission > 0", refr);
             else
                 snprintf(why, sizeof why, "no material has transmission > 0");
+            break;
+        case TR_INDIRECT:
+            if (indirect == 0)
+                snprintf(why, sizeof why, "indirect_samples 0: no diffuse interreflection");
+            else if (diffuse < 0)
+                snprintf(why, sizeof why, "no material has kd > 0");
+            else
+                snprintf(why, sizeof why, "%d cosine-weighted ray(s) per diffuse hit (material %d)",
+                         indirect, diffuse);
             break;
         default:
             if (through >= 0)
@@ -236,6 +247,9 @@ cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt
     double ptol = topt ? topt->patch_tolerance : 0.0;
     if (!(ptol == 0.0 || (ptol > 0.0 && ptol <= 1.0)))
         return cj_fail(CJ_ERR_RANGE, "patch tolerance %g outside (0, 1]", ptol);
+    int indirect = topt ? topt->indirect_samples : 0;
+    if (indirect < 0 || indirect > 4096)
+        return cj_fail(CJ_ERR_RANGE, "indirect samples %d outside 0..4096", indirect);
     cj_render_image *img = NULL;
     st = cj_render_image_create(w, h, planes, alloc, &img);
     if (st) return st;
@@ -281,6 +295,7 @@ cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt
     j.strata = (int)floor(sqrt((double)spp) + 0.5);
     j.random = topt ? topt->random_sampling != 0 : 0;
     j.max_depth = max_depth;
+    j.indirect = indirect;
     j.seed = o.use_seed ? o.seed : ss->seed;
     j.bg = ss->background;
     j.tile = o.tile_size ? o.tile_size : 32;
@@ -334,7 +349,7 @@ cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt
     }
     if (report) {
         cj_stage_report_init(report, "trace");
-        report_stages(report, scene, &ts, &sum, spp, build_s, (int)planes);
+        report_stages(report, scene, &ts, &sum, spp, indirect, build_s, (int)planes);
         report->total_seconds = cj_render_now() - t_start;
     }
     cj_rfree(&ts.alloc, counts);

@@ -63,6 +63,38 @@ static cj_vec3 phong_lobe(cj_vec3 r, double e, double u1, double u2) {
         cj_v3_scale(r, ct), cj_v3_add(cj_v3_scale(a, st * cos(ph)), cj_v3_scale(b, st * sin(ph)))));
 }
 
+cj_vec3 cj_trace_cosine_sample(cj_vec3 n, double u1, double u2) {
+    /* Malley: uniform on the disk, lifted; the projected solid angle makes the pdf cos θ / π */
+    double r = sqrt(u1), ph = 2.0 * PI * u2, z = sqrt(fmax(0.0, 1.0 - u1));
+    cj_vec3 a, b;
+    cj_frame_from_axis(n, &a, &b);
+    return cj_v3_normalize(cj_v3_add(
+        cj_v3_scale(n, z), cj_v3_add(cj_v3_scale(a, r * cos(ph)), cj_v3_scale(b, r * sin(ph)))));
+}
+
+/* One-bounce diffuse interreflection (trace.h): N cosine-weighted rays about the shading normal
+ * n, u1 stratified over the N. The Lambert term kd c_r L cos θ / π divided by the pdf cos θ / π
+ * leaves kd c_r L per ray: no cosine, no π. Rays below the geometric surface nf add nothing. */
+static cj_rgb indirect_light(tr_shade *sh, const cj_hit *h, cj_vec3 n, cj_vec3 nf,
+                             const cj_material *m, cj_rgb cr, int depth, tr_medium med) {
+    int N = sh->indirect;
+    double acc[3] = {0, 0, 0};
+    sh->in_indirect = 1;
+    for (int i = 0; i < N; i++) {
+        double u1 = (i + tr_rand(&sh->rng)) / N, u2 = tr_rand(&sh->rng);
+        cj_vec3 dir = cj_trace_cosine_sample(n, u1, u2);
+        if (!(cj_v3_dot(dir, nf) > 0.0)) continue;
+        cj_ray r = {cj_ray_offset_origin(h, dir), dir, 0.0, INFINITY};
+        cj_rgb L = tr_trace(sh, &r, TR_INDIRECT, depth + 1, med, NULL);
+        acc[0] += L.r;
+        acc[1] += L.g;
+        acc[2] += L.b;
+    }
+    sh->in_indirect = 0;
+    double w = m->kd / N;
+    return cj_rgb_make(cr.r * acc[0] * w, cr.g * acc[1] * w, cr.b * acc[2] * w);
+}
+
 static cj_vec3 reflect(cj_vec3 d, cj_vec3 n) {
     return cj_v3_sub(d, cj_v3_scale(n, 2.0 * cj_v3_dot(d, n)));
 }
@@ -156,6 +188,9 @@ cj_rgb tr_trace(tr_shade *sh, const cj_ray *ray, int kind, int depth, tr_medium 
     if (rt < 1.0) {
         cj_rgb loc = local_light(sh, m, &h, n, d, cr, depth);
         loc = add_scaled(loc, m->emission, 1.0);
+        if (sh->indirect > 0 && !sh->in_indirect && m->kd > 0.0 && depth < sh->max_depth &&
+            !sh->lights->unlit)
+            loc = add_scaled(loc, indirect_light(sh, &h, n, nf, m, cr, depth, med), 1.0);
         out = add_scaled(out, loc, (1.0 - rt) * op);
         if (op < 1.0 && depth < sh->max_depth) {
             cj_ray tr = {cj_ray_offset_origin(&h, d), d, 0.0, INFINITY};

@@ -34,6 +34,8 @@ typedef struct tr_shade {
     tr_counts *c;
     cj_rgb background;
     int max_depth, spp, strata, random;
+    int indirect;    /* diffuse interreflection rays per diffuse hit (0: off) */
+    int in_indirect; /* 1 while tracing an indirect ray: one bounce only */
     uint32_t sample, perm;
     tr_rng rng;
 } tr_shade;

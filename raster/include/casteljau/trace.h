@@ -39,7 +39,8 @@
  * (a k × k grid when spp = k², else spp strata along x) with a box filter; area-light points
  * (stratified the same way) and Phong-lobe glossy directions (exponent `glossiness`) come from
  * a counter-based generator hashed from (seed, pixel, sample, bounce, use), so the image is
- * BIT-IDENTICAL for any thread count and tile size.
+ * BIT-IDENTICAL for any thread count and tile size. Opt-in one-bounce diffuse interreflection
+ * (cj_trace_options.indirect_samples) draws cosine-weighted directions from the same generator.
  *
  * PLANES. CJ_IMAGE_IDS: the scene signature image (seed 11.4), the id of the first object hit
  * by the ray through the pixel centre (0 = background); CJ_IMAGE_DEPTH: its pseudodepth.
@@ -70,10 +71,17 @@ typedef struct cj_trace_options {
     double patch_tolerance; /* 0: the default 1e-7; else the tolerance of the direct Bézier
                                patch intersection, relative to each patch object's box diagonal
                                (to measure what accuracy costs); must be finite, in (0, 1] */
+    int indirect_samples;   /* 0: off (Whitted). N in 1..4096: ONE-BOUNCE DIFFUSE INTERREFLECTION:
+                               at each hit on a material with kd > 0 (lit scene, depth < max_depth,
+                               not itself reached by an indirect ray) N cosine-weighted hemisphere
+                               rays about the shading normal (cj_trace_cosine_sample, u1
+                               stratified over the N) each add kd c_r L_in / N to the local term,
+                               L_in traced with depth + 1 but casting no further indirect rays.
+                               Counted in the stage "indirect_rays". */
 } cj_trace_options;
 
 /* cj_render_trace with trace options (NULL: defaults); same status codes, and CJ_ERR_RANGE
- * for a patch_tolerance that is not 0 and not in (0, 1]. */
+ * for a patch_tolerance that is not 0 and not in (0, 1] or indirect_samples outside 0..4096. */
 cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt,
                              const cj_trace_options *topt, unsigned planes,
                              const cj_allocator *alloc, cj_render_image **out,
@@ -83,6 +91,11 @@ cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt
  * (d·n <= 0), from index n1 into n2 (Snell: n1 sin θ1 = n2 sin θ2): 1 and the unit refracted
  * direction in *t, or 0 on total internal reflection (n1 sin θ1 > n2). */
 int cj_trace_refract(cj_vec3 d, cj_vec3 n, double n1, double n2, cj_vec3 *t);
+
+/* Cosine-weighted direction about the unit normal n (pdf cos θ / π) from (u1, u2) in [0, 1)²
+ * by Malley's method: the point (sqrt(u1) cos 2πu2, sqrt(u1) sin 2πu2) of the unit disk lifted
+ * to the hemisphere (height sqrt(1 − u1) = cos θ). A unit vector with n·d >= 0. */
+cj_vec3 cj_trace_cosine_sample(cj_vec3 n, double u1, double u2);
 
 /* The built-in demo of `casteljau trace --demo`: the lit Utah teapot (patches, traced
  * directly) on a checkered floor, a mirror sphere and a glass sphere (ior 1.5). */
