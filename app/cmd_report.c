@@ -236,6 +236,7 @@ int cmd_report(int argc, char **argv) {
     if (!status) status = report_arclen(&r);
     if (!status) status = report_interp(&r);
     if (!status) status = report_contour(&r);
+    if (!status) status = report_ode(&r);
     if (!status && r.note[0]) {
         fprintf(r.html, "<h2>Reproducibility</h2>\n<p>%s</p>\n", r.note);
         fprintf(r.md, "%s\n", r.note);

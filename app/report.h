@@ -48,6 +48,7 @@ int report_tess(report *r);
 int report_arclen(report *r);
 int report_interp(report *r);
 int report_contour(report *r);
+int report_ode(report *r);
 int report_eval_workload(const char *spec, long n);    /* "eval:M:DEG" */
 int report_flatten_workload(const char *spec, long n); /* "flatten:M:TOL" */
 int report_tess_workload(const char *spec, long n);    /* "tess:K:RELTOL" */

@@ -52,8 +52,8 @@ static void test_quick_report(void **state) {
     assert_non_null(html);
     assert_non_null(md);
     assert_non_null(strstr(html, "</html>"));
-    assert_int_equal(count_of(html, "<img "), 8);
-    assert_int_equal(count_of(html, "<table>"), 6);
+    assert_int_equal(count_of(html, "<img "), 9);
+    assert_int_equal(count_of(html, "<table>"), 7);
     const char *pngs[6] = {"eval_cond0.png", "eval_cond1.png", "flatten_0.png",
                            "flatten_1.png",  "tess.png",       "arclen.png"};
     for (int i = 0; i < 6; ++i) {
@@ -71,8 +71,9 @@ static void test_quick_report(void **state) {
     char *tsv = slurp("data.tsv", NULL);
     assert_non_null(tsv);
     int rows = 0, tess_rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
-    int arc_rows = 0, fronts_arc = 0, interp_rows = 0, contour_rows = 0;
-    double equi_err[2] = {0, 0}; /* equispaced: error at the lowest and the highest degree */
+    int arc_rows = 0, fronts_arc = 0, interp_rows = 0, contour_rows = 0, ode_rows = 0;
+    double ode_err[4][2] = {{0}}; /* integrator x (N = 32, N = 256) */
+    double equi_err[2] = {0, 0};  /* equispaced: error at the lowest and the highest degree */
     for (char *line = strtok(tsv, "\n"); line; line = strtok(NULL, "\n")) {
         if (!strncmp(line, "section", 7)) continue;
         char *f[12] = {0};
@@ -111,6 +112,15 @@ static void test_quick_report(void **state) {
                          bound = strtod(f[6], NULL), tris = strtod(f[10], NULL);
             assert_true(dev > 0 && dev <= bound && bound <= tol * (1 + 1e-12));
             assert_true(tris >= 32 * 2);
+        } else if (!strcmp(f[0], "ode")) {
+            ode_rows++;
+            const int N = atoi(f[2]);
+            const double emax = strtod(f[4], NULL);
+            assert_true(isfinite(emax) && emax > 0 && (N == 32 || N == 256));
+            static const char *const INT[4] = {"explicit_euler", "symplectic_euler", "rk4",
+                                               "implicit_euler"};
+            for (int m = 0; m < 4; ++m)
+                if (!strcmp(f[1], INT[m])) ode_err[m][N == 256] = emax;
         } else if (!strcmp(f[0], "contour")) {
             /* the exact distance polyline - circle within the tolerance asked for */
             contour_rows++;
@@ -159,11 +169,20 @@ static void test_quick_report(void **state) {
             assert_true(ratio >= 0.9 && ratio < 10);
         }
     }
-    assert_int_equal(eval_rows, 4 * 2 * 3);      /* quick: 4 methods x 2 degrees x 3 conditions */
-    assert_int_equal(flat_rows, 3 * 3);          /* 3 methods x 3 tolerances */
-    assert_int_equal(tess_rows, 2 * 2);          /* uniform/adaptive x 2 tolerances */
-    assert_int_equal(arc_rows, 2 * 3);           /* adaptive/chord sum x 3 tolerances or N */
-    assert_int_equal(interp_rows, 2 * 3);        /* equispaced/Chebyshev x degrees 4, 12, 24 */
+    assert_int_equal(eval_rows, 4 * 2 * 3); /* quick: 4 methods x 2 degrees x 3 conditions */
+    assert_int_equal(flat_rows, 3 * 3);     /* 3 methods x 3 tolerances */
+    assert_int_equal(tess_rows, 2 * 2);     /* uniform/adaptive x 2 tolerances */
+    assert_int_equal(arc_rows, 2 * 3);      /* adaptive/chord sum x 3 tolerances or N */
+    assert_int_equal(interp_rows, 2 * 3);   /* equispaced/Chebyshev x degrees 4, 12, 24 */
+    assert_int_equal(contour_rows, 2 * 2);  /* grids 8, 64 x 2 tolerances */
+    assert_int_equal(ode_rows, 4 * 2);      /* 4 integrators x N = 32, 256 */
+    /* the orders against the closed form: 8x smaller h gains 8^4 = 4096 for RK4 (>= 100
+     * required), about 8 for the first-order methods (>= 4 required) */
+    for (int m = 0; m < 4; ++m) {
+        const double gain = ode_err[m][0] / ode_err[m][1];
+        if (!(gain >= (m == 2 ? 100 : 4)))
+            fail_msg("integrator %d: error only %g times smaller at N = 256 than at 32", m, gain);
+    }
     assert_true(equi_err[1] > 10 * equi_err[0]); /* Runge: degree 24 far worse than 4 */
     assert_true(fronts_eval >= 6 && fronts_flat >= 1 && fronts_arc >= 1);
     const char *rep = strstr(md, "differ by ");
@@ -174,11 +193,13 @@ static void test_quick_report(void **state) {
     } else {
         printf("valgrind not available: instruction counts not checked\n");
     }
-    printf("quick report in %s: index.html links 8 PNGs, %d rows (%d eval, %d flatten, %d tess, "
-           "%d arclen, %d interp, %d contour) finite; errors within the bounds, deviations, arc "
+    printf("quick report in %s: index.html links 9 PNGs, %d rows (%d eval, %d flatten, %d tess, "
+           "%d arclen, %d interp, %d contour, %d ode) finite; errors within the bounds, "
+           "deviations, arc "
            "length errors and contour distances within tol, Chebyshev interpolation within its "
-           "bound, Pareto fronts present\n",
-           dir, rows, eval_rows, flat_rows, tess_rows, arc_rows, interp_rows, contour_rows);
+           "bound, integrator orders as expected, Pareto fronts present\n",
+           dir, rows, eval_rows, flat_rows, tess_rows, arc_rows, interp_rows, contour_rows,
+           ode_rows);
     free(tsv);
     free(html);
     free(md);
