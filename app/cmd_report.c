@@ -40,7 +40,8 @@ static const char usage_text[] =
     "usage: casteljau report -o DIR [--quick] [--no-callgrind]\n"
     "  Measures error against cost for curve evaluation (4 methods x degrees x condition\n"
     "  numbers, error against an MPFR oracle), flattening (3 methods x tolerances) and\n"
-    "  tessellation (teapot, uniform vs adaptive x tolerances), and\n"
+    "  tessellation (teapot, uniform vs adaptive x tolerances), arc length, interpolation\n"
+    "  (Chebyshev vs equispaced), implicit contouring and the ODE integrators, and\n"
     "  writes DIR/index.html with PNG charts, DIR/summary.md and DIR/data.tsv.\n"
     "  --quick         a few points per chart (seconds; what the test suite builds)\n"
     "  --no-callgrind  no instruction counts (valgrind is used when installed)\n";
