@@ -32,9 +32,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     for (char *p = buf; p < buf + size - 1 && argc < 64; p += strlen(p) + 1) argv[argc++] = p;
     argv[argc] = NULL;
     switch (data[0] % 4) {
-    case 0: cmd_eval(argc, argv); break;
-    case 1: cmd_interp(argc, argv); break;
-    case 2: cmd_contour(argc, argv); break;
+    case 0:
+        cmd_eval(argc, argv);
+        break;
+    case 1:
+        cmd_interp(argc, argv);
+        break;
+    case 2:
+        cmd_contour(argc, argv);
+        break;
     default: {
         /* the shared parsers on every argument */
         for (int i = 1; i < argc; ++i) {

@@ -20,8 +20,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         char path[64];
         snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
         cj_mesh *mesh = NULL;
-        cj_status st = data[0] & 1 ? cj_mesh_read_ply(path, NULL, &mesh)
-                                   : cj_mesh_read_obj(path, NULL, &mesh);
+        cj_status st =
+            data[0] & 1 ? cj_mesh_read_ply(path, NULL, &mesh) : cj_mesh_read_obj(path, NULL, &mesh);
         if (st == CJ_OK) cj_mesh_destroy(mesh);
     }
     close(fd);
