@@ -23,10 +23,20 @@
 
 static uint64_t g_seed;
 
+/* GCC names AddressSanitizer builds __SANITIZE_ADDRESS__, clang through __has_feature. */
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CJ_TEST_CLANG_ASAN 1
+#endif
+#endif
+#ifndef CJ_TEST_CLANG_ASAN
+#define CJ_TEST_CLANG_ASAN 0
+#endif
+
 static double scale_factor(void) {
     const char *s = getenv("CJ_RASTER_EXACT_SCALE");
     double f = s ? atof(s) : 1.0;
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || CJ_TEST_CLANG_ASAN
     if (!s) f = 0.1;
 #endif
     return f > 0 ? f : 1.0;

@@ -729,7 +729,13 @@ static void test_refusals(void **state) {
     cj_mesh_destroy(m);
 }
 
-#if defined(__SANITIZE_ADDRESS__)
+/* GCC names AddressSanitizer builds __SANITIZE_ADDRESS__, clang through __has_feature. */
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CJ_TEST_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(CJ_TEST_ASAN)
 #include <dlfcn.h>
 /* Mesa unloads its DRI driver when the last GL context goes, leaving blocks the driver still
  * referenced from its own globals: LeakSanitizer then reports them as leaks of an "<unknown
