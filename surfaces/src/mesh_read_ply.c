@@ -245,7 +245,6 @@ static cj_status ply_faces(ply_reader *r, const ply_elem *e, cj_mesh *m) {
     if (il < 0 || e->ltype[il] < 0)
         return cj_fail(CJ_ERR_PARSE, "%s: element face has no vertex_indices list", r->path);
     for (size_t i = 0; i < e->count; ++i) {
-        int line = r->line;
         for (int k = 0; k < e->nprops; ++k) {
             double cnt = 1, d;
             cj_status st = CJ_OK;
@@ -257,12 +256,18 @@ static cj_status ply_faces(ply_reader *r, const ply_elem *e, cj_mesh *m) {
                 if (st) return st;
                 continue;
             }
-            if (cnt < 3) {
+            /* every corner takes at least one byte of the file: a larger count (found by
+             * fuzz_mesh_read: 8.9e97) is refused before it is converted to an integer */
+            if (cnt < 3 || cnt > (double)(r->end - r->s) || cnt != floor(cnt)) {
                 if (r->binary)
-                    return cj_fail(CJ_ERR_RANGE, "%s: face %zu has %g corners (at least 3)",
+                    return cj_fail(CJ_ERR_RANGE,
+                                   "%s: face %zu has %g corners (at least 3, at most the file's "
+                                   "size)",
                                    r->path, i, cnt);
-                return cj_fail(CJ_ERR_RANGE, "%s:%d: face %zu has %g corners (at least 3)", r->path,
-                               line, i, cnt);
+                return cj_fail(CJ_ERR_RANGE,
+                               "%s:%d: face %zu has %g corners (at least 3, at most the file's "
+                               "size)",
+                               r->path, r->line, i, cnt); /* the line the count was read on */
             }
             uint32_t first = 0, prev = 0;
             for (int j = 0; j < (int)cnt; ++j) {

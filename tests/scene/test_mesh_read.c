@@ -244,6 +244,12 @@ static void test_bad_input(void **state) {
          "property double z\nelement vertex 1\nproperty double x\nproperty double y\nproperty "
          "double z\nend_header\n0 0 0\n1 1 1\n",
          "%s: element vertex appears twice", CJ_ERR_PARSE},
+        /* found by fuzz_mesh_read: a corner count beyond int was converted to int (UB) */
+        {"c10.ply",
+         "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+         "property double z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n"
+         "0 0 0\n1 0 0\n0 1 0\n8.9e97 0 1 2\n",
+         "%s:13: face 0 has 8.9e+97 corners (at least 3, at most the file's size)", CJ_ERR_RANGE},
     };
     for (size_t i = 0; i < sizeof BAD / sizeof BAD[0]; ++i) {
         write_text(BAD[i].name, BAD[i].text);
