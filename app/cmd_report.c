@@ -144,6 +144,8 @@ int report_workload(const char *spec, long n) {
     if (!strncmp(spec, "eval:", 5)) return report_eval_workload(spec, n);
     if (!strncmp(spec, "flatten:", 8)) return report_flatten_workload(spec, n);
     if (!strncmp(spec, "tess:", 5)) return report_tess_workload(spec, n);
+    if (!strncmp(spec, "render:", 7)) return report_render_workload(spec, n);
+    if (!strncmp(spec, "trace:", 6)) return report_trace_workload(spec, n);
     return cli_fail("report", "unknown workload '%s'", spec);
 }
 
@@ -238,6 +240,8 @@ int cmd_report(int argc, char **argv) {
     if (!status) status = report_interp(&r);
     if (!status) status = report_contour(&r);
     if (!status) status = report_ode(&r);
+    if (!status) status = report_render(&r);
+    if (!status) status = report_trace(&r);
     if (!status && r.note[0]) {
         fprintf(r.html, "<h2>Reproducibility</h2>\n<p>%s</p>\n", r.note);
         fprintf(r.md, "%s\n", r.note);

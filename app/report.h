@@ -49,8 +49,14 @@ int report_arclen(report *r);
 int report_interp(report *r);
 int report_contour(report *r);
 int report_ode(report *r);
+int report_render(report *r); /* the rasterizer: screen tolerance x spp (report_render.c) */
+int report_trace(report *r);  /* the ray tracer: spp x sampling (report_trace.c) */
+/* Workloads for callgrind, "SECTION:..." (report_workload dispatches on the prefix); each
+ * does n units of the section's measured computation and prints nothing. */
 int report_eval_workload(const char *spec, long n);    /* "eval:M:DEG" */
 int report_flatten_workload(const char *spec, long n); /* "flatten:M:TOL" */
 int report_tess_workload(const char *spec, long n);    /* "tess:K:RELTOL" */
+int report_render_workload(const char *spec, long n);  /* "render:..." (report_render.c) */
+int report_trace_workload(const char *spec, long n);   /* "trace:..." (report_trace.c) */
 
 #endif

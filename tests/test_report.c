@@ -10,6 +10,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "test_report.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -52,26 +54,42 @@ static void test_quick_report(void **state) {
     assert_non_null(html);
     assert_non_null(md);
     assert_non_null(strstr(html, "</html>"));
-    assert_int_equal(count_of(html, "<img "), 9);
-    assert_int_equal(count_of(html, "<table>"), 7);
+    /* every chart the page shows is a PNG next to it, and summary.md links it too */
+    const int imgs = count_of(html, "<img ");
+    assert_true(imgs >= 9);
+    /* one table per section (the reproducibility note has none) */
+    assert_int_equal(count_of(html, "<table>"),
+                     count_of(html, "<h2>") - count_of(html, "<h2>Reproducibility</h2>"));
     const char *pngs[6] = {"eval_cond0.png", "eval_cond1.png", "flatten_0.png",
                            "flatten_1.png",  "tess.png",       "arclen.png"};
     for (int i = 0; i < 6; ++i) {
-        size_t n = 0;
-        char *png = slurp(pngs[i], &n);
-        assert_non_null(png);
-        assert_true(n > 2000 && !memcmp(png, "\x89PNG\r\n\x1a\n", 8));
         char ref[64];
         snprintf(ref, sizeof ref, "src=\"%s\"", pngs[i]);
         assert_non_null(strstr(html, ref));
-        assert_non_null(strstr(md, pngs[i]));
+    }
+    int pngs_seen = 0;
+    for (const char *p = html; (p = strstr(p, "<img src=\"")); ++pngs_seen) {
+        p += 10;
+        const char *q = strchr(p, '"');
+        assert_non_null(q);
+        char name[128];
+        assert_true(q - p > 4 && q - p < (long)sizeof name);
+        memcpy(name, p, (size_t)(q - p));
+        name[q - p] = 0;
+        size_t n = 0;
+        char *png = slurp(name, &n);
+        if (!png) fail_msg("the page shows %s, which is not in the folder", name);
+        assert_true(n > 2000 && !memcmp(png, "\x89PNG\r\n\x1a\n", 8));
+        assert_non_null(strstr(md, name));
         free(png);
     }
+    assert_int_equal(pngs_seen, imgs);
 
     char *tsv = slurp("data.tsv", NULL);
     assert_non_null(tsv);
     int rows = 0, tess_rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
     int arc_rows = 0, fronts_arc = 0, interp_rows = 0, contour_rows = 0, ode_rows = 0;
+    int render_rows = 0, trace_rows = 0;
     double ode_err[4][2] = {{0}}; /* integrator x (N = 32, N = 256) */
     double equi_err[2] = {0, 0};  /* equispaced: error at the lowest and the highest degree */
     for (char *line = strtok(tsv, "\n"); line; line = strtok(NULL, "\n")) {
@@ -158,6 +176,12 @@ static void test_quick_report(void **state) {
                 assert_true(isfinite(est) && est >= 0);
                 if (!(emax <= param)) fail_msg("arc length at tol %g: error %g > tol", param, emax);
             }
+        } else if (!strcmp(f[0], "render")) {
+            render_rows++;
+            report_check_render_row(f);
+        } else if (!strcmp(f[0], "trace")) {
+            trace_rows++;
+            report_check_trace_row(f);
         } else {
             assert_string_equal(f[0], "flatten");
             flat_rows++;
@@ -184,6 +208,8 @@ static void test_quick_report(void **state) {
             fail_msg("integrator %d: error only %g times smaller at N = 256 than at 32", m, gain);
     }
     assert_true(equi_err[1] > 10 * equi_err[0]); /* Runge: degree 24 far worse than 4 */
+    report_check_render_end(html, md);
+    report_check_trace_end(html, md);
     assert_true(fronts_eval >= 6 && fronts_flat >= 1 && fronts_arc >= 1);
     const char *rep = strstr(md, "differ by ");
     if (rep) {
@@ -193,13 +219,14 @@ static void test_quick_report(void **state) {
     } else {
         printf("valgrind not available: instruction counts not checked\n");
     }
-    printf("quick report in %s: index.html links 9 PNGs, %d rows (%d eval, %d flatten, %d tess, "
-           "%d arclen, %d interp, %d contour, %d ode) finite; errors within the bounds, "
+    printf("quick report in %s: index.html links %d PNGs, %d rows (%d eval, %d flatten, %d tess, "
+           "%d arclen, %d interp, %d contour, %d ode, %d render, %d trace) finite; errors "
+           "within the bounds, "
            "deviations, arc "
            "length errors and contour distances within tol, Chebyshev interpolation within its "
            "bound, integrator orders as expected, Pareto fronts present\n",
-           dir, rows, eval_rows, flat_rows, tess_rows, arc_rows, interp_rows, contour_rows,
-           ode_rows);
+           dir, imgs, rows, eval_rows, flat_rows, tess_rows, arc_rows, interp_rows, contour_rows,
+           ode_rows, render_rows, trace_rows);
     free(tsv);
     free(html);
     free(md);

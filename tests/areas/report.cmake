@@ -3,7 +3,7 @@
 cj_add_test(test_chart SOURCES test_chart.c LIBS cj::raster)
 # The quick price list builds and its figures are sane (runs the built tool; a few seconds).
 if(TARGET casteljau AND CJ_WITH_OIIO)
-  cj_add_test(test_report SOURCES test_report.c)
+  cj_add_test(test_report SOURCES test_report.c test_report_render.c test_report_trace.c)
   target_compile_definitions(test_report PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")
   add_dependencies(test_report casteljau)
 endif()
