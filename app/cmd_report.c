@@ -144,6 +144,10 @@ int report_workload(const char *spec, long n) {
     if (!strncmp(spec, "eval:", 5)) return report_eval_workload(spec, n);
     if (!strncmp(spec, "flatten:", 8)) return report_flatten_workload(spec, n);
     if (!strncmp(spec, "tess:", 5)) return report_tess_workload(spec, n);
+    if (!strncmp(spec, "arclen:", 7)) return report_arclen_workload(spec, n);
+    if (!strncmp(spec, "interp:", 7)) return report_interp_workload(spec, n);
+    if (!strncmp(spec, "contour:", 8)) return report_contour_workload(spec, n);
+    if (!strncmp(spec, "ode:", 4)) return report_ode_workload(spec, n);
     if (!strncmp(spec, "render:", 7)) return report_render_workload(spec, n);
     if (!strncmp(spec, "trace:", 6)) return report_trace_workload(spec, n);
     return cli_fail("report", "unknown workload '%s'", spec);

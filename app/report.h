@@ -56,6 +56,10 @@ int report_trace(report *r);  /* the ray tracer: spp x sampling (report_trace.c)
 int report_eval_workload(const char *spec, long n);    /* "eval:M:DEG" */
 int report_flatten_workload(const char *spec, long n); /* "flatten:M:TOL" */
 int report_tess_workload(const char *spec, long n);    /* "tess:K:RELTOL" */
+int report_arclen_workload(const char *spec, long n);  /* "arclen:M:TOL_OR_N" */
+int report_interp_workload(const char *spec, long n);  /* "interp:M:DEG" */
+int report_contour_workload(const char *spec, long n); /* "contour:GRID:TOL" */
+int report_ode_workload(const char *spec, long n);     /* "ode:M:N" */
 int report_render_workload(const char *spec, long n);  /* "render:..." (report_render.c) */
 int report_trace_workload(const char *spec, long n);   /* "trace:..." (report_trace.c) */
 

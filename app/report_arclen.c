@@ -4,7 +4,8 @@
  * ∫ sqrt(a t² + b t + c) dt evaluated in long double, so its own error (~1e-18 of the length)
  * is far below every tolerance measured. Per choice: max and mean absolute error over the
  * curves, the largest error estimate the function returned, ns per call (median of
- * interleaved runs). No callgrind counts here (the section is cheap to time). */
+ * interleaved runs), and in the full report instructions per call by callgrind (workload
+ * "arclen:M:TOL_OR_N", every curve once). */
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
@@ -70,6 +71,31 @@ static double chord_sum(const cj_bezier *c, int N) {
     return len;
 }
 
+/* n calls (the curves in turn, so 8 units are the table's mean over them): "arclen:0:TOL" is
+ * cj_bezier_arclength at tolerance TOL, "arclen:1:N" the chord sum of N steps. */
+int report_arclen_workload(const char *spec, long n) {
+    int m = -1;
+    double p = 0;
+    if (sscanf(spec, "arclen:%d:%lf", &m, &p) != 2 || m < 0 || m > 1 ||
+        (m == 0 && !(p >= 1e-15 && p <= 1)) || (m == 1 && !(p >= 1 && p <= 1 << 20)))
+        return cli_fail("report", "bad workload '%s' (arclen:0:TOL or arclen:1:N)", spec);
+    make_curves();
+    volatile double sink = 0;
+    for (long k = 0; k < n; ++k) {
+        const cj_bezier c = cj_bezier_view(2, 2, curves[k % NCURVE]);
+        double L = 0, e = 0;
+        if (m == 0) {
+            const cj_status st = cj_bezier_arclength(&c, 0, 1, p, &L, &e);
+            if (st && st != CJ_ERR_CAP) return 1;
+        } else {
+            L = chord_sum(&c, (int)p);
+        }
+        sink += L;
+    }
+    (void)sink;
+    return 0;
+}
+
 int report_arclen(report *r) {
     make_curves();
     long double ref[NCURVE];
@@ -80,7 +106,7 @@ int report_arclen(report *r) {
     const double *tols = r->quick ? TOL_QUICK : TOL_FULL;
     const int *Ns = r->quick ? N_QUICK : N_FULL;
     const int np = r->quick ? 3 : 6, runs = r->quick ? 5 : 15, reps = r->quick ? 20 : 200;
-    double ns[2][6], spread[2][6], emax[2][6], emean[2][6], est[2][6];
+    double ns[2][6], spread[2][6], emax[2][6], emean[2][6], est[2][6], instr[2][6];
     for (int p = 0; p < np; ++p) {
         double tm[2][16];
         volatile double sink = 0;
@@ -105,6 +131,10 @@ int report_arclen(report *r) {
         (void)sink;
         for (int m = 0; m < 2; ++m) {
             ns[m][p] = report_median(tm[m], (size_t)runs, &spread[m][p]);
+            /* 8 and 16 calls: every curve once and twice (a few Mi instructions at most) */
+            char spec[64];
+            snprintf(spec, sizeof spec, "arclen:%d:%.17g", m, m ? (double)Ns[p] : tols[p]);
+            instr[m][p] = r->quick ? NAN : report_callgrind(r, spec, NCURVE, NULL);
             emax[m][p] = emean[m][p] = 0, est[m][p] = m ? NAN : 0;
             for (int k = 0; k < NCURVE; ++k) {
                 const cj_bezier c = cj_bezier_view(2, 2, curves[k]);
@@ -134,14 +164,20 @@ int report_arclen(report *r) {
             "steps. Error: max |L &minus; exact| over the curves; estimate: the largest error "
             "estimate returned. Pareto front over all choices (cost ns/call, error max).</p>\n"
             "<table><tr><th class=l>method</th><th>tol / N</th><th>max err</th><th>mean err</th>"
-            "<th>estimate</th><th>ns/call</th><th>spread</th><th class=l>Pareto</th></tr>\n",
+            "<th>estimate</th><th>ns/call</th><th>spread</th><th>instr/call</th>"
+            "<th class=l>Pareto</th></tr>\n",
             NCURVE);
-    fprintf(r->md, "## Arc length (parabolas)\n\n| method | tol / N | max err | mean err | "
-                   "estimate | ns/call | Pareto |\n|---|---|---|---|---|---|---|\n");
+    fprintf(r->md,
+            "## Arc length (parabolas)\n\n| method | tol / N | max err | mean err | "
+            "estimate | ns/call | instr/call | Pareto |\n|---|---|---|---|---|---|---|---|\n");
     for (int m = 0; m < 2; ++m)
         for (int p = 0; p < np; ++p) {
             const int i = m * np + p;
-            char par[96], param[32];
+            char par[96], param[32], ins[32];
+            if (isfinite(instr[m][p]))
+                snprintf(ins, sizeof ins, "%.0f", instr[m][p]);
+            else
+                snprintf(ins, sizeof ins, "—");
             if (m)
                 snprintf(param, sizeof param, "N=%d", Ns[p]);
             else
@@ -154,14 +190,15 @@ int report_arclen(report *r) {
                 snprintf(par, sizeof par, "dominated by %s at %.0e", NAME[0], tols[dom[i] % np]);
             fprintf(r->html,
                     "<tr%s><td class=l>%s</td><td>%s</td><td>%.3g</td><td>%.3g</td><td>%.3g</td>"
-                    "<td>%.1f</td><td>%.0f %%</td><td class=l>%s</td></tr>\n",
+                    "<td>%.1f</td><td>%.0f %%</td><td>%s</td><td class=l>%s</td></tr>\n",
                     dom[i] < 0 ? "" : " class=dom", NAME[m], param, emax[m][p], emean[m][p],
-                    est[m][p], ns[m][p], spread[m][p], par);
-            fprintf(r->md, "| %s | %s | %.3g | %.3g | %.3g | %.1f | %s |\n", NAME[m], param,
-                    emax[m][p], emean[m][p], est[m][p], ns[m][p], par);
-            fprintf(r->tsv, "arclen\t%s\t%.6g\t\t%.6g\t%.6g\t%.6g\t%.3f\t%.6g\tnan\t%d\t%s\n",
+                    est[m][p], ns[m][p], spread[m][p], ins, par);
+            fprintf(r->md, "| %s | %s | %.3g | %.3g | %.3g | %.1f | %s | %s |\n", NAME[m], param,
+                    emax[m][p], emean[m][p], est[m][p], ns[m][p], ins, par);
+            fprintf(r->tsv, "arclen\t%s\t%.6g\t\t%.6g\t%.6g\t%.6g\t%.3f\t%.6g\t%.6g\t%d\t%s\n",
                     NAME[m], m ? (double)Ns[p] : tols[p], emax[m][p], emean[m][p], est[m][p],
-                    ns[m][p], spread[m][p], m ? Ns[p] : 0, dom[i] < 0 ? "front" : "dominated");
+                    ns[m][p], spread[m][p], instr[m][p], m ? Ns[p] : 0,
+                    dom[i] < 0 ? "front" : "dominated");
         }
     fprintf(r->html, "</table>\n");
     fprintf(r->md, "\n");

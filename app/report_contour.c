@@ -3,7 +3,8 @@
  * segment, | |p - c| - r | is largest at an end or where the segment comes closest to the
  * centre (|p - c| is convex along it), so max(| |a-c| - r |, | |b-c| - r |, r - d_min) is the
  * segment's deviation from the circle. Per choice: that deviation over all segments (bound:
- * the tolerance), vertices emitted, µs per contour (median of interleaved runs). */
+ * the tolerance), vertices emitted, µs per contour (median of interleaved runs), and in the full
+ * report instructions per contour by callgrind (workload "contour:GRID:TOL"). */
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
@@ -39,6 +40,24 @@ static cj_status emit(void *user, const double *xy, size_t npts, int closed, dou
     return CJ_OK;
 }
 
+/* n contours of the circle at "contour:GRID:TOL" (no measuring). */
+int report_contour_workload(const char *spec, long n) {
+    int g = 0;
+    double tol = 0;
+    if (sscanf(spec, "contour:%d:%lf", &g, &tol) != 2 || g < 1 || g > 4096 || !(tol > 0))
+        return cli_fail("report", "bad workload '%s' (contour:GRID:TOL)", spec);
+    cj_implicit_shape shape;
+    cj_implicit f;
+    if (cj_implicit_circle(CX, CY, R, &shape, &f)) return 1;
+    const double box[4] = {-1, -1, 1, 1};
+    const cj_contour_options o = {g, g, tol, NULL};
+    for (long k = 0; k < n; ++k) {
+        acc a = {0, 0, 0};
+        if (cj_implicit_contour(&f, box, &o, emit, &a, NULL)) return 1;
+    }
+    return 0;
+}
+
 int report_contour(report *r) {
     static const int G_FULL[] = {8, 32, 128, 512}, G_QUICK[] = {8, 64};
     static const double T_FULL[] = {1e-2, 1e-4, 1e-6, 1e-8}, T_QUICK[] = {1e-3, 1e-6};
@@ -51,7 +70,7 @@ int report_contour(report *r) {
         return cli_error("report", "contour: %s", cj_last_error());
     const double box[4] = {-1, -1, 1, 1};
     enum { NC = 16 };
-    double us[NC], spread[NC], dev[NC], pts[NC];
+    double us[NC], spread[NC], dev[NC], pts[NC], instr[NC];
     for (int i = 0; i < ng * nt; ++i) {
         const cj_contour_options o = {gs[i / nt], gs[i / nt], tols[i % nt], NULL};
         double tm[16];
@@ -67,6 +86,9 @@ int report_contour(report *r) {
         if (cj_implicit_contour(&f, box, &o, emit, &a, NULL))
             return cli_error("report", "contour: %s", cj_last_error());
         dev[i] = a.dev, pts[i] = (double)a.pts;
+        char spec[64];
+        snprintf(spec, sizeof spec, "contour:%d:%.17g", gs[i / nt], tols[i % nt]);
+        instr[i] = r->quick ? NAN : report_callgrind(r, spec, 1, NULL);
     }
     double err[NC];
     int dom[NC];
@@ -78,12 +100,16 @@ int report_contour(report *r) {
             "tolerance. Deviation: the exact largest distance of the polyline from the circle. "
             "Cost: &micro;s per contour. Pareto front over all choices.</p>\n<table><tr>"
             "<th>grid</th><th>tol</th><th>deviation</th><th>vertices</th><th>&micro;s</th>"
-            "<th>spread</th><th class=l>Pareto</th></tr>\n",
+            "<th>spread</th><th>instr</th><th class=l>Pareto</th></tr>\n",
             R, CX, CY);
     fprintf(r->md, "## Implicit contouring (circle)\n\n| grid | tol | deviation | vertices | µs | "
-                   "Pareto |\n|---|---|---|---|---|---|\n");
+                   "instr | Pareto |\n|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < ng * nt; ++i) {
-        char par[96];
+        char par[96], ins[32];
+        if (isfinite(instr[i]))
+            snprintf(ins, sizeof ins, "%.0f", instr[i]);
+        else
+            snprintf(ins, sizeof ins, "—");
         if (dom[i] < 0)
             snprintf(par, sizeof par, "front");
         else
@@ -91,14 +117,14 @@ int report_contour(report *r) {
                      tols[dom[i] % nt]);
         fprintf(r->html,
                 "<tr%s><td>%d</td><td>%.0e</td><td>%.3g</td><td>%.0f</td><td>%.1f</td>"
-                "<td>%.0f %%</td><td class=l>%s</td></tr>\n",
+                "<td>%.0f %%</td><td>%s</td><td class=l>%s</td></tr>\n",
                 dom[i] < 0 ? "" : " class=dom", gs[i / nt], tols[i % nt], dev[i], pts[i], us[i],
-                spread[i], par);
-        fprintf(r->md, "| %d | %.0e | %.3g | %.0f | %.1f | %s |\n", gs[i / nt], tols[i % nt],
-                dev[i], pts[i], us[i], par);
-        fprintf(r->tsv, "contour\tgrid %d\t%.6g\t\t%.6g\t\t%.6g\t%.3f\t%.6g\tnan\t%.0f\t%s\n",
-                gs[i / nt], tols[i % nt], dev[i], tols[i % nt], 1e3 * us[i], spread[i], pts[i],
-                dom[i] < 0 ? "front" : "dominated");
+                spread[i], ins, par);
+        fprintf(r->md, "| %d | %.0e | %.3g | %.0f | %.1f | %s | %s |\n", gs[i / nt], tols[i % nt],
+                dev[i], pts[i], us[i], ins, par);
+        fprintf(r->tsv, "contour\tgrid %d\t%.6g\t\t%.6g\t\t%.6g\t%.3f\t%.6g\t%.6g\t%.0f\t%s\n",
+                gs[i / nt], tols[i % nt], dev[i], tols[i % nt], 1e3 * us[i], spread[i], instr[i],
+                pts[i], dom[i] < 0 ? "front" : "dominated");
     }
     fprintf(r->html, "</table>\n");
     fprintf(r->md, "\n");

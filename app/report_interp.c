@@ -8,7 +8,8 @@
  * |f - p_n| <= 4 M ρ^-n / (ρ - 1), M the max of |f| on E_ρ (sampled at 20000 points, which
  * include the maximum on the imaginary axis, times 1.01), at the best of 40 ρ in (1, 1.21]
  * (the poles ±i/5 lie on E_1.2198), plus a rounding allowance of
- * 16 u cond. Equispaced parameters have no such bound (Runge's phenomenon): the error grows. */
+ * 16 u cond. Equispaced parameters have no such bound (Runge's phenomenon): the error grows.
+ * Full report: instructions per fit by callgrind (workload "interp:M:DEG"). */
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
@@ -43,6 +44,19 @@ static cj_status fit(int m, int n, double *ts, double *vals, double *bez, double
     return cj_interp_points(ts, vals, (size_t)n + 1, 1, -1, 1, bez, NULL, cond);
 }
 
+/* n fits (parameters, values, solve) at "interp:M:DEG", M = 0 equispaced, 1 Chebyshev. */
+int report_interp_workload(const char *spec, long n) {
+    int m = -1, deg = 0;
+    if (sscanf(spec, "interp:%d:%d", &m, &deg) != 2 || m < 0 || m > 1 || deg < 1 ||
+        deg > CJ_INTERP_MAX_DEGREE)
+        return cli_fail("report", "bad workload '%s' (interp:0|1:DEGREE)", spec);
+    double ts[CJ_INTERP_MAX_DEGREE + 1], vals[CJ_INTERP_MAX_DEGREE + 1],
+        bez[CJ_INTERP_MAX_DEGREE + 1], cond = 0;
+    for (long k = 0; k < n; ++k)
+        if (fit(m, deg, ts, vals, bez, &cond)) return 1;
+    return 0;
+}
+
 int report_interp(report *r) {
     static const int DEG_FULL[] = {4, 8, 12, 16, 20, 24, 32}, DEG_QUICK[] = {4, 12, 24};
     const int *degs = r->quick ? DEG_QUICK : DEG_FULL;
@@ -51,7 +65,7 @@ int report_interp(report *r) {
      * not decay), minimised per degree over 40 ellipses */
     double rhos[40], Ms[40];
     for (int j = 0; j < 40; ++j) rhos[j] = 1 + 0.21 * (j + 1) / 40, Ms[j] = ellipse_max(rhos[j]);
-    double ns[2][7], spread[2][7], emax[2][7], emean[2][7], bound[2][7], cond[2][7];
+    double ns[2][7], spread[2][7], emax[2][7], emean[2][7], bound[2][7], cond[2][7], instr[2][7];
     double ts[CJ_INTERP_MAX_DEGREE + 1], vals[CJ_INTERP_MAX_DEGREE + 1],
         bez[CJ_INTERP_MAX_DEGREE + 1];
     for (int d = 0; d < nd; ++d) {
@@ -67,6 +81,9 @@ int report_interp(report *r) {
             }
         for (int m = 0; m < 2; ++m) {
             ns[m][d] = report_median(tm[m], (size_t)runs, &spread[m][d]);
+            char spec[64];
+            snprintf(spec, sizeof spec, "interp:%d:%d", m, n);
+            instr[m][d] = r->quick ? NAN : report_callgrind(r, spec, 20, NULL);
             if (fit(m, n, ts, vals, bez, &cond[m][d]))
                 return cli_error("report", "interpolation: %s", cj_last_error());
             const cj_bezier c = cj_bezier_view(n, 1, bez);
@@ -103,15 +120,19 @@ int report_interp(report *r) {
         "plus 16u&middot;cond. Cost: ns per fit (parameters, values, solve). Pareto front over "
         "all choices.</p>\n<table><tr><th class=l>parameters</th><th>degree</th><th>cond</th>"
         "<th>max err</th><th>mean err</th><th>bound</th><th>ns/fit</th><th>spread</th>"
-        "<th class=l>Pareto</th></tr>\n",
+        "<th>instr/fit</th><th class=l>Pareto</th></tr>\n",
         NSAMPLE);
     fprintf(r->md,
             "## Interpolation (Runge's function)\n\n| parameters | degree | cond | max err | "
-            "bound | ns/fit | Pareto |\n|---|---|---|---|---|---|---|\n");
+            "bound | ns/fit | instr/fit | Pareto |\n|---|---|---|---|---|---|---|---|\n");
     for (int m = 0; m < 2; ++m)
         for (int d = 0; d < nd; ++d) {
             const int i = m * nd + d;
-            char par[96];
+            char par[96], ins[32];
+            if (isfinite(instr[m][d]))
+                snprintf(ins, sizeof ins, "%.0f", instr[m][d]);
+            else
+                snprintf(ins, sizeof ins, "—");
             if (dom[i] < 0)
                 snprintf(par, sizeof par, "front");
             else
@@ -119,14 +140,15 @@ int report_interp(report *r) {
                          degs[dom[i] % nd]);
             fprintf(r->html,
                     "<tr%s><td class=l>%s</td><td>%d</td><td>%.3g</td><td>%.3g</td><td>%.3g</td>"
-                    "<td>%.3g</td><td>%.0f</td><td>%.0f %%</td><td class=l>%s</td></tr>\n",
+                    "<td>%.3g</td><td>%.0f</td><td>%.0f %%</td><td>%s</td><td class=l>%s</td>"
+                    "</tr>\n",
                     dom[i] < 0 ? "" : " class=dom", NAME[m], degs[d], cond[m][d], emax[m][d],
-                    emean[m][d], bound[m][d], ns[m][d], spread[m][d], par);
-            fprintf(r->md, "| %s | %d | %.3g | %.3g | %.3g | %.0f | %s |\n", NAME[m], degs[d],
-                    cond[m][d], emax[m][d], bound[m][d], ns[m][d], par);
-            fprintf(r->tsv, "interp\t%s\t%d\t%.6g\t%.6g\t%.6g\t%.6g\t%.3f\t%.6g\tnan\t%d\t%s\n",
+                    emean[m][d], bound[m][d], ns[m][d], spread[m][d], ins, par);
+            fprintf(r->md, "| %s | %d | %.3g | %.3g | %.3g | %.0f | %s | %s |\n", NAME[m], degs[d],
+                    cond[m][d], emax[m][d], bound[m][d], ns[m][d], ins, par);
+            fprintf(r->tsv, "interp\t%s\t%d\t%.6g\t%.6g\t%.6g\t%.6g\t%.3f\t%.6g\t%.6g\t%d\t%s\n",
                     NAME[m], degs[d], cond[m][d], emax[m][d], emean[m][d], bound[m][d], ns[m][d],
-                    spread[m][d], degs[d], dom[i] < 0 ? "front" : "dominated");
+                    spread[m][d], instr[m][d], degs[d], dom[i] < 0 ? "front" : "dominated");
         }
     fprintf(r->html, "</table>\n");
     fprintf(r->md, "\n");

@@ -2,7 +2,8 @@
  * x'' = -ω² x - 2ζω x' (ω = 2π, ζ = 0.1, x(0) = 1, x'(0) = 0) over [0, 2] with N steps, against
  * its closed form x(t) = e^(-ζωt) (cos ω_d t + ζω/ω_d sin ω_d t), ω_d = ω sqrt(1 - ζ²). Per
  * (integrator, N): max |x_n - x(t_n)| over the steps, µs per integration (median of
- * interleaved runs). No bound is claimed; the test checks the orders (RK4 gains >= 100x from
+ * interleaved runs), in the full report instructions per integration by callgrind (workload
+ * "ode:M:N"). No bound is claimed; the test checks the orders (RK4 gains >= 100x from
  * N = 32 to 256, the Euler methods >= 4x). */
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
@@ -44,6 +45,21 @@ static double run(cj_integrator m, int N, int measure) {
     return measure ? emax : x;
 }
 
+/* n integrations over [0, 2] at "ode:M:N" (integrator M, N steps; no measuring). */
+int report_ode_workload(const char *spec, long n) {
+    int m = -1, N = 0;
+    if (sscanf(spec, "ode:%d:%d", &m, &N) != 2 || m < 0 || m > 3 || N < 1 || N > 1 << 24)
+        return cli_fail("report", "bad workload '%s' (ode:INTEGRATOR0-3:STEPS)", spec);
+    volatile double sink = 0;
+    for (long k = 0; k < n; ++k) {
+        const double x = run((cj_integrator)m, N, 0);
+        if (!isfinite(x)) return 1;
+        sink += x;
+    }
+    (void)sink;
+    return 0;
+}
+
 int report_ode(report *r) {
     static const int N_FULL[] = {16, 64, 256, 1024, 4096}, N_QUICK[] = {32, 256};
     const int *Ns = r->quick ? N_QUICK : N_FULL;
@@ -52,7 +68,7 @@ int report_ode(report *r) {
     for (int m = 0; m < NM; ++m)
         if (cj_ode2_work_size(1, (cj_integrator)m) > 64)
             return cli_error("report", "integrators: work space too large");
-    double us[NM * 5], spread[NM * 5], err[NM * 5];
+    double us[NM * 5], spread[NM * 5], err[NM * 5], instr[NM * 5];
     for (int i = 0; i < nn; ++i) {
         double tm[NM][16];
         volatile double sink = 0;
@@ -68,6 +84,9 @@ int report_ode(report *r) {
             err[m * nn + i] = run((cj_integrator)m, Ns[i], 1);
             if (!isfinite(err[m * nn + i]))
                 return cli_error("report", "integrators: %s", cj_last_error());
+            char spec[64];
+            snprintf(spec, sizeof spec, "ode:%d:%d", m, Ns[i]);
+            instr[m * nn + i] = r->quick ? NAN : report_callgrind(r, spec, 4, NULL);
         }
     }
     int dom[NM * 5];
@@ -78,13 +97,17 @@ int report_ode(report *r) {
             "against the closed form. Error: max |x<sub>n</sub> &minus; x(t<sub>n</sub>)|; cost: "
             "&micro;s per integration. Pareto front over all choices.</p>\n<table><tr>"
             "<th class=l>integrator</th><th>N</th><th>h&omega;</th><th>max err</th>"
-            "<th>&micro;s</th><th>spread</th><th class=l>Pareto</th></tr>\n",
+            "<th>&micro;s</th><th>spread</th><th>instr</th><th class=l>Pareto</th></tr>\n",
             ZETA, T_END);
-    fprintf(r->md, "## Integrators (damped oscillator)\n\n| integrator | N | max err | µs | Pareto "
-                   "|\n|---|---|---|---|---|\n");
+    fprintf(r->md, "## Integrators (damped oscillator)\n\n| integrator | N | max err | µs | instr "
+                   "| Pareto |\n|---|---|---|---|---|---|\n");
     for (int i = 0; i < NM * nn; ++i) {
         const int m = i / nn, N = Ns[i % nn];
-        char par[96];
+        char par[96], ins[32];
+        if (isfinite(instr[i]))
+            snprintf(ins, sizeof ins, "%.0f", instr[i]);
+        else
+            snprintf(ins, sizeof ins, "—");
         if (dom[i] < 0)
             snprintf(par, sizeof par, "front");
         else
@@ -93,12 +116,12 @@ int report_ode(report *r) {
         const char *name = cj_integrator_name((cj_integrator)m);
         fprintf(r->html,
                 "<tr%s><td class=l>%s</td><td>%d</td><td>%.3g</td><td>%.3g</td><td>%.2f</td>"
-                "<td>%.0f %%</td><td class=l>%s</td></tr>\n",
+                "<td>%.0f %%</td><td>%s</td><td class=l>%s</td></tr>\n",
                 dom[i] < 0 ? "" : " class=dom", name, N, T_END / N * W, err[i], us[i], spread[i],
-                par);
-        fprintf(r->md, "| %s | %d | %.3g | %.2f | %s |\n", name, N, err[i], us[i], par);
-        fprintf(r->tsv, "ode\t%s\t%d\t\t%.6g\t\t\t%.3f\t%.6g\tnan\t%d\t%s\n", name, N, err[i],
-                1e3 * us[i], spread[i], N, dom[i] < 0 ? "front" : "dominated");
+                ins, par);
+        fprintf(r->md, "| %s | %d | %.3g | %.2f | %s | %s |\n", name, N, err[i], us[i], ins, par);
+        fprintf(r->tsv, "ode\t%s\t%d\t\t%.6g\t\t\t%.3f\t%.6g\t%.6g\t%d\t%s\n", name, N, err[i],
+                1e3 * us[i], spread[i], instr[i], N, dom[i] < 0 ? "front" : "dominated");
     }
     fprintf(r->html, "</table>\n");
     fprintf(r->md, "\n");
