@@ -1,0 +1,262 @@
+/* The adaptive grid search for one patch: slab densities, equidistributed grid lines, and the
+ * search over grid scales (then uniform grids) for the build with the fewest triangles whose
+ * proven bound meets the tolerance. */
+#include "casteljau/tessellate.h"
+#include "error_internal.h"
+#include "patch_internal.h"
+#include "tessellate_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Breakpoints 0 = b[0] < ... < b[cnt] = 1 equidistributing the piecewise constant density
+ * rho[0..S-1] on S equal slabs (uniform where the density vanishes everywhere). */
+static void equidistribute(const double *rho, int S, int cnt, double *b) {
+    double total = 0.0;
+    for (int a = 0; a < S; ++a) total += rho[a] / S;
+    b[0] = 0.0;
+    b[cnt] = 1.0;
+    if (!(total > 0.0)) {
+        for (int i = 1; i < cnt; ++i) b[i] = (double)i / cnt;
+        return;
+    }
+    int a = 0;
+    double acc = 0.0;
+    for (int i = 1; i < cnt; ++i) {
+        const double target = total * i / cnt;
+        while (a < S - 1 && acc + rho[a] / S < target) {
+            acc += rho[a] / S;
+            ++a;
+        }
+        double x = rho[a] > 0.0 ? (double)a / S + (target - acc) / rho[a] : (double)(a + 1) / S;
+        if (x > (double)(a + 1) / S) x = (double)(a + 1) / S;
+        b[i] = x;
+    }
+    for (int i = 1; i < cnt; ++i) /* strictly increasing */
+        if (!(b[i] > b[i - 1]) || !(b[i] < 1.0)) b[i] = b[i - 1] + (1.0 - b[i - 1]) / (cnt - i + 1);
+}
+
+/* Side counts of one build: a collapsed side follows the grid of its direction; otherwise the
+ * fixed count kfix[e] or, when planning (kfix NULL), the larger of the edge-flatness count
+ * ke[e] and the grid count along that side, so that the zipper triangles next to the side are
+ * no wider than the grid cells there (a straight edge across which the patch twists needs as
+ * many segments as the interior, or its slivers force the whole interior finer). */
+static void side_counts(const ptess *P, const int ke[4], const int *kfix, int nu, int nv,
+                        int k[4]) {
+    for (int e = 0; e < 4; ++e) {
+        const int ng = (e & 1) ? nv : nu;
+        if (P->e[e].collapsed)
+            k[e] = ng;
+        else if (kfix)
+            k[e] = kfix[e];
+        else
+            k[e] = ke[e] > ng ? ke[e] : ng;
+    }
+}
+
+/* Builds grid g with side counts k; *pass receives whether the proven bound is <= tol. The
+ * build stays in the mesh (replacing whatever was there after vs, ts). */
+static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, grid g,
+                          const int k[4], double tol, size_t q, size_t vs, size_t ts, int *pass) {
+    static const double flat[CJ_TESS_SLABS]; /* zero density: uniform lines */
+    const int nu = g.nu, nv = g.nv;
+    double *ub = t_alloc(P->mesh, sizeof(double) * (size_t)(nu + 1));
+    double *vb = t_alloc(P->mesh, sizeof(double) * (size_t)(nv + 1));
+    cj_status st = CJ_OK;
+    if (!ub || !vb) {
+        st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %zu", q);
+    } else {
+        equidistribute(g.uni ? flat : rho_u, CJ_TESS_SLABS, nu, ub);
+        equidistribute(g.uni ? flat : rho_v, CJ_TESS_SLABS, nv, vb);
+        cj_mesh_truncate(P->mesh, vs, ts);
+        P->abort_over = tol; /* a failing build is never kept: stop it early */
+        st = cj_tess_build_patch(P, nu, ub, nv, vb, k);
+        P->abort_over = 0.0;
+        *pass = !st && !P->aborted && P->bound <= tol;
+    }
+    t_free(P->mesh, ub);
+    t_free(P->mesh, vb);
+    return st;
+}
+
+/* Grid densities of the set-up patch: sqrt of the second-derivative bound on CJ_TESS_SLABS slabs
+ * per direction (the mixed term counts in both, so a straight direction is still refined where it
+ * twists), and the cell counts of the search's starting grid for tol (base_u, base_v). */
+void cj_tess_patch_densities(ptess *P, double tol, double *rho_u, double *rho_v, double *base_u,
+                             double *base_v) {
+    {
+        double su = 0.0, sv = 0.0;
+        if (P->rational) {
+            /* densities only shape the grid (the bound is checked per triangle): per cell of
+             * CJ_TESS_SLABS x CJ_TESS_SLABS, the smaller of the largest |S_uu|, |S_uv|, |S_vv|
+             * sampled at its corners and centre and of the homogeneous bound's M's */
+            for (int a = 0; a < CJ_TESS_SLABS; ++a) rho_u[a] = rho_v[a] = 0.0;
+            for (int a = 0; a < CJ_TESS_SLABS; ++a)
+                for (int b = 0; b < CJ_TESS_SLABS; ++b) {
+                    static const double off[5][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0.5, 0.5}};
+                    double fu = 0.0, fv = 0.0, qb[4];
+                    cj_patch_sub_h(P->h, 4, P->m, P->n, (double)a / CJ_TESS_SLABS,
+                                   (double)(a + 1) / CJ_TESS_SLABS, (double)b / CJ_TESS_SLABS,
+                                   (double)(b + 1) / CJ_TESS_SLABS, P->trinet);
+                    cj_tess_homog_bounds(P, P->trinet, qb);
+                    for (int o = 0; o < 5; ++o) {
+                        double d[27];
+                        cj_patch_derivs_unchecked(P->p, P->h, 4, (a + off[o][0]) / CJ_TESS_SLABS,
+                                                  (b + off[o][1]) / CJ_TESS_SLABS, 2, 2, d);
+                        const double suu = sqrt(d[18] * d[18] + d[19] * d[19] + d[20] * d[20]);
+                        const double suv = sqrt(d[12] * d[12] + d[13] * d[13] + d[14] * d[14]);
+                        const double svv = sqrt(d[6] * d[6] + d[7] * d[7] + d[8] * d[8]);
+                        fu = fmax(fu, sqrt(fmax(suu, suv)));
+                        fv = fmax(fv, sqrt(fmax(svv, suv)));
+                    }
+                    /* the bound kept is the smaller of the two (cj_tess_rational_tri_bound) */
+                    rho_u[a] = fmax(rho_u[a], fmin(fu, CJ_TESS_SLABS * sqrt(fmax(qb[0], qb[1]))));
+                    rho_v[b] = fmax(rho_v[b], fmin(fv, CJ_TESS_SLABS * sqrt(fmax(qb[2], qb[1]))));
+                }
+        } else {
+            for (int a = 0; a < CJ_TESS_SLABS; ++a) {
+                const dbounds bu = cj_tess_strip_bounds(P, (double)a / CJ_TESS_SLABS,
+                                                        (double)(a + 1) / CJ_TESS_SLABS, 0.0, 1.0);
+                const dbounds bv = cj_tess_strip_bounds(P, 0.0, 1.0, (double)a / CJ_TESS_SLABS,
+                                                        (double)(a + 1) / CJ_TESS_SLABS);
+                rho_u[a] = sqrt(fmax(bu.uu, bu.uv));
+                rho_v[a] = sqrt(fmax(bv.vv, bv.uv));
+            }
+        }
+        for (int a = 0; a < CJ_TESS_SLABS; ++a) {
+            su += rho_u[a] / CJ_TESS_SLABS;
+            sv += rho_v[a] / CJ_TESS_SLABS;
+        }
+        *base_u = su / sqrt(4.0 * tol);
+        *base_v = sv / sqrt(4.0 * tol);
+    }
+}
+
+/* Adaptive choice for one patch. Interior: a grid of nu x nv cells whose lines equidistribute
+ * the slab densities, nu = ceil(s base_u), nv = ceil(s base_v), with the scale s the smallest
+ * (found by growing, then bisection) for which the per-triangle bound is <= tol; then uniform
+ * K x K grids with fewer triangles than that build are tried (smallest passing K by
+ * bisection), so a patch never gets more triangles than the uniform grid its sides allow.
+ * Sides: when planning (kfix NULL) each build uses side_counts() and kout receives the counts
+ * of the kept build; otherwise the counts kfix are imposed and the grid *hint (nu >= 2) is
+ * tried first. The mesh then holds the passing build with the fewest triangles (when planning:
+ * some build, to be truncated); *out is that grid. */
+cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const int *kfix,
+                                 const grid *hint, int kout[4], grid *out) {
+    int ke[4];
+    for (int s = 0; s < 4; ++s) {
+        ke[s] = P->e[s].collapsed
+                    ? 0
+                    : cj_tess_edge_segments(P->e[s].pts, P->e[s].degree, 0.25 * tol, cap);
+        if (ke[s] > cap)
+            return cj_fail(CJ_ERR_CAP,
+                           "patch %zu, edge %d needs more than %d segments for tolerance %.3g", q,
+                           s, cap, tol);
+    }
+    /* grid densities: see cj_tess_patch_densities */
+    double base_u, base_v;
+    double rho_u[CJ_TESS_SLABS], rho_v[CJ_TESS_SLABS];
+    cj_tess_patch_densities(P, tol, rho_u, rho_v, &base_u, &base_v);
+    const size_t vs = P->mesh->vertex_count, ts = P->mesh->triangle_count;
+    cj_status st = CJ_OK;
+    int k[4];
+    if (kfix && hint && hint->nu >= 2 && hint->nv >= 2) {
+        int pass = 0;
+        side_counts(P, ke, kfix, hint->nu, hint->nv, k);
+        if ((st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, &pass))) return st;
+        if (pass) {
+            *out = *hint;
+            memcpy(kout, k, sizeof k);
+            return CJ_OK;
+        }
+    }
+    double lo = 0.0, hi = 0.0, s = 1.0;
+    grid best = {0, 0, 0}, last = {-1, -1, 0};
+    size_t best_tris = (size_t)-1;
+    int last_pass = 0;
+    for (int iter = 0; iter < 60; ++iter) {
+        int nu = (int)fmin(ceil(s * base_u), (double)cap + 1.0);
+        int nv = (int)fmin(ceil(s * base_v), (double)cap + 1.0);
+        if (nu < 2) nu = 2;
+        if (nv < 2) nv = 2;
+        if (nu > cap || nv > cap) {
+            if (best.nu) break; /* a finer passing build exists */
+            st = cj_fail(CJ_ERR_CAP,
+                         "patch %zu needs more than %d segments per direction for tolerance %.3g",
+                         q, cap, tol);
+            break;
+        }
+        int pass;
+        if (nu == last.nu && nv == last.nv) {
+            pass = last_pass;
+        } else {
+            const grid g = {nu, nv, 0};
+            side_counts(P, ke, kfix, nu, nv, k);
+            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, &pass))) break;
+            const size_t tris = P->mesh->triangle_count - ts;
+            if (pass && tris < best_tris) {
+                best_tris = tris;
+                best = g;
+            }
+            last = g;
+            last_pass = pass;
+        }
+        if (pass)
+            hi = s;
+        else
+            lo = s;
+        if (hi == 0.0)
+            s *= 1.5; /* no passing scale yet */
+        else if (lo == 0.0 && iter < 8)
+            s *= 0.6; /* passing: look for a smaller scale */
+        else if (hi - lo > 0.03 * hi)
+            s = 0.5 * (lo + hi);
+        else
+            break;
+        if (lo == 0.0 && iter >= 8) lo = s; /* stop shrinking */
+    }
+    if (!st && best.nu == 0)
+        st = cj_fail(CJ_ERR_CAP, "patch %zu: no grid met tolerance %.3g", q, tol);
+    if (!st && best_tris == 0) /* every triangle collapsed: nothing to search for */
+        st = cj_fail(CJ_ERR_DEGENERATE,
+                     "patch %zu is degenerate: its surface has no area (every triangle "
+                     "collapses to a point or a curve)",
+                     q);
+    if (!st) {
+        /* uniform K x K grids with fewer than best_tris triangles: the largest such K first;
+         * if it passes, bisect for the smallest passing K (the bound decreases with K) */
+        int khi = (int)floor(sqrt((double)(best_tris - 1) / 2.0));
+        if (khi > cap) khi = cap;
+        int klo = 1; /* klo fails (or is below the minimum 2), khi passes */
+        int probe = khi;
+        while (probe >= 2 && probe > klo) {
+            const grid g = {probe, probe, 1};
+            int pass;
+            side_counts(P, ke, kfix, probe, probe, k);
+            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, &pass))) break;
+            const size_t tris = P->mesh->triangle_count - ts;
+            last = g;
+            if (pass && tris < best_tris) {
+                best_tris = tris;
+                best = g;
+            }
+            if (!pass) {
+                if (probe == khi) break; /* no uniform grid that small passes */
+                klo = probe;
+            } else {
+                khi = probe;
+            }
+            probe = (klo + khi) / 2;
+            if (probe == klo) break;
+        }
+    }
+    side_counts(P, ke, kfix, best.nu, best.nv, k);
+    /* rebuild the best grid unless it is the last build or only planning (kfix NULL) */
+    if (!st && kfix && (best.nu != last.nu || best.nv != last.nv || best.uni != last.uni)) {
+        int pass; /* deterministic: it passes again */
+        st = try_grid(P, rho_u, rho_v, best, k, tol, q, vs, ts, &pass);
+    }
+    *out = best;
+    memcpy(kout, k, sizeof k);
+    return st;
+}
