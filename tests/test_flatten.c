@@ -1,6 +1,7 @@
 /* Flattening: the proven bound holds against dense sampling of the exact curve (an independent
  * long-double evaluator), on random curves of degrees 2-10 (polynomial and rational, 2D and
- * 3D) and on hard shapes; the quarter circle needs 12 segments; caps and errors are reported. */
+ * 3D) and on hard shapes; the quarter circle needs 12 segments; caps and errors are reported.
+ * The oracle lives in flatten_oracle.c, the fast planar path's test in flatten_fast_path.c. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -8,110 +9,13 @@
 
 #include "casteljau/flatten.h"
 #include "flatten_internal.h" /* the cheap and refined piece bounds, compared directly */
+#include "flatten_test.h"
 #include "rng.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* ---- oracle: long-double de Casteljau on homogeneous points, independent of the library --- */
-
-static void oracle_eval(int n, int d, const double *pts, const double *w, long double t,
-                        long double *out) {
-    long double h[64 * (CJ_MAX_DIM + 1)]; /* the tests use degrees < 64 */
-    assert_true(n < 64);
-    const int D = d + 1;
-    for (int i = 0; i <= n; ++i) {
-        const long double wi = w ? (long double)w[i] : 1.0L;
-        for (int k = 0; k < d; ++k) h[i * D + k] = wi * (long double)pts[i * d + k];
-        h[i * D + d] = wi;
-    }
-    for (int r = n; r > 0; --r)
-        for (int i = 0; i < r * D; ++i) h[i] = (1.0L - t) * h[i] + t * h[i + D];
-    for (int k = 0; k < d; ++k) out[k] = h[k] / h[d];
-}
-
-static long double dist_point_segment(const long double *p, const double *a, const double *b,
-                                      int d) {
-    long double ab2 = 0, ap_ab = 0;
-    for (int k = 0; k < d; ++k) {
-        const long double ab = (long double)b[k] - a[k];
-        ab2 += ab * ab;
-        ap_ab += (p[k] - a[k]) * ab;
-    }
-    long double s = ab2 > 0 ? ap_ab / ab2 : 0;
-    if (s < 0) s = 0;
-    if (s > 1) s = 1;
-    long double dd = 0;
-    for (int k = 0; k < d; ++k) {
-        const long double q = p[k] - (a[k] + s * ((long double)b[k] - a[k]));
-        dd += q * q;
-    }
-    return sqrtl(dd);
-}
-
-/* Collects vertices and parameters from the callback. */
-typedef struct poly {
-    int d;
-    size_t n, cap;
-    double *pts, *ts;
-    size_t *piece;
-} poly;
-
-static void sink(void *user, const double *pt, int dim, size_t piece, double t) {
-    poly *p = user;
-    assert_int_equal(dim, p->d);
-    if (p->n == p->cap) {
-        p->cap = p->cap ? 2 * p->cap : 64;
-        p->pts = realloc(p->pts, sizeof(double) * p->cap * (size_t)p->d);
-        p->ts = realloc(p->ts, sizeof(double) * p->cap);
-        p->piece = realloc(p->piece, sizeof(size_t) * p->cap);
-        assert_non_null(p->pts);
-        assert_non_null(p->ts);
-        assert_non_null(p->piece);
-    }
-    memcpy(p->pts + p->n * (size_t)p->d, pt, sizeof(double) * (size_t)dim);
-    p->ts[p->n] = t;
-    p->piece[p->n] = piece;
-    p->n++;
-}
-
-static void poly_free(poly *p) {
-    free(p->pts);
-    free(p->ts);
-    free(p->piece);
-    memset(p, 0, sizeof *p);
-}
-
-/* Largest distance from dense samples of the curve (per segment, `per` samples plus the
- * segment's own parameters) to that segment of the polyline. Distance to the own segment is
- * at least the distance to the whole polyline, so this is a stricter check. Also checks the
- * vertices lie on the curve. */
-static double measure(int n, int d, const double *pts, const double *w, const poly *p, int per,
-                      double *vertex_err) {
-    long double worst = 0, verr = 0;
-    /* keep the cost bounded on very fine flattenings */
-    if (p->n > 1 && (size_t)per * (p->n - 1) > 400000) per = (int)(400000 / (p->n - 1));
-    if (per < 2) per = 2;
-    for (size_t j = 0; j < p->n; ++j) {
-        long double c[CJ_MAX_DIM], e = 0;
-        oracle_eval(n, d, pts, w, p->ts[j], c);
-        for (int k = 0; k < d; ++k) e += (c[k] - p->pts[j * d + k]) * (c[k] - p->pts[j * d + k]);
-        if (sqrtl(e) > verr) verr = sqrtl(e);
-    }
-    for (size_t j = 0; j + 1 < p->n; ++j) {
-        const long double t0 = p->ts[j], t1 = p->ts[j + 1];
-        for (int s = 0; s <= per; ++s) {
-            long double c[CJ_MAX_DIM];
-            oracle_eval(n, d, pts, w, t0 + (t1 - t0) * s / per, c);
-            const long double dd = dist_point_segment(c, p->pts + j * d, p->pts + (j + 1) * d, d);
-            if (dd > worst) worst = dd;
-        }
-    }
-    if (vertex_err) *vertex_err = (double)verr;
-    return (double)worst;
-}
 
 static const char *mname(int m) {
     return m == CJ_FLATTEN_UNIFORM     ? "uniform"
@@ -562,139 +466,6 @@ static void test_bounds_direct(void **state) {
     printf("bounds: parabola bound = exact 50, 90° arc bound within the min-weight factor of "
            "the sagitta %.3f (%.3f), Wang count %zu as computed by hand\n",
            sag, b, m);
-}
-
-/* ---- the fast planar path (degrees 2 and 3) where its estimate is worst ------------------- */
-
-/* Largest distance of the curve from the polyline segment of its own parameter interval:
- * `per` samples per segment, then the largest sample refined by golden-section search on its
- * two neighbouring sample intervals (the distance is smooth there). */
-static double measure_refined(int n, const double *pts, const poly *p, int per) {
-    long double worst = 0;
-    for (size_t j = 0; j + 1 < p->n; ++j) {
-        const long double t0 = p->ts[j], t1 = p->ts[j + 1];
-        const double *a = p->pts + 2 * j, *b = p->pts + 2 * j + 2;
-        long double best = -1, tb = t0;
-        for (int s = 0; s <= per; ++s) {
-            long double c[2];
-            const long double t = t0 + (t1 - t0) * s / per;
-            oracle_eval(n, 2, pts, NULL, t, c);
-            const long double dd = dist_point_segment(c, a, b, 2);
-            if (dd > best) best = dd, tb = t;
-        }
-        long double lo = fmaxl(t0, tb - (t1 - t0) / per), hi = fminl(t1, tb + (t1 - t0) / per);
-        for (int it = 0; it < 40; ++it) {
-            const long double m1 = lo + (hi - lo) * 0.381966L, m2 = hi - (hi - lo) * 0.381966L;
-            long double c1[2], c2[2];
-            oracle_eval(n, 2, pts, NULL, m1, c1);
-            oracle_eval(n, 2, pts, NULL, m2, c2);
-            const long double d1 = dist_point_segment(c1, a, b, 2),
-                              d2 = dist_point_segment(c2, a, b, 2);
-            if (d1 > best) best = d1;
-            if (d2 > best) best = d2;
-            if (d1 < d2)
-                lo = m1;
-            else
-                hi = m2;
-        }
-        if (best > worst) worst = best;
-    }
-    return (double)worst;
-}
-
-/* Near-optimal flattening of a planar quadratic or cubic: bound <= tol, refined sampled
- * deviation <= bound (up to rounding of these coordinates), exact end points, increasing
- * parameters, vertices on the curve. Returns the deviation / bound ratio. */
-static double check_fast(int n, const double *pts, double tol, const char *what) {
-    double scale = 0;
-    for (int i = 0; i < (n + 1) * 2; ++i) scale = fmax(scale, fabs(pts[i]));
-    cj_flatten_opts o = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, tol);
-    poly p = {.d = 2};
-    cj_flatten_stats st;
-    cj_bezier c = cj_bezier_view(n, 2, pts);
-    cj_status s = cj_flatten_bezier_cb(&c, &o, sink, &p, &st);
-    if (s != CJ_OK) fail_msg("%s (tol %g): status %d: %s", what, tol, s, cj_last_error());
-    double verr;
-    (void)measure(n, 2, pts, NULL, &p, 2, &verr);
-    const double dev = measure_refined(n, pts, &p, 32);
-    if (!(st.bound <= tol) || !(dev <= st.bound * (1 + 1e-9) + 1e-12 * scale) ||
-        st.segments + 1 != p.n || verr > 1e-11 * scale)
-        fail_msg("%s (tol %g): segments %zu bound %g measured %g vertex err %g", what, tol,
-                 st.segments, st.bound, dev, verr);
-    assert_true(p.pts[0] == pts[0] && p.pts[1] == pts[1]);
-    assert_true(p.pts[2 * (p.n - 1)] == pts[2 * n] && p.pts[2 * (p.n - 1) + 1] == pts[2 * n + 1]);
-    for (size_t j = 0; j + 1 < p.n; ++j) assert_true(p.ts[j] < p.ts[j + 1]);
-    poly_free(&p);
-    return st.bound > 0 ? dev / st.bound : 1.0;
-}
-
-static void test_fast_path_hard(void **state) {
-    (void)state;
-    const uint64_t seed = cj_test_seed("test_flatten_fast", 1313);
-    cj_rng r;
-    cj_rng_init(&r, seed);
-    char what[160];
-    int count = 0;
-    double worst_ratio = 0;
-    const double tols[] = {1e-3, 0.01, 0.25, 1, 10};
-    /* Near-cusps: affine images of the cusp (0,0) (1,1) (0,1) (1,0) with the last point moved
-     * by 10^-1 .. 10^-9 of the size, and quadratics whose control point runs far past the
-     * chord (the curve turns back on itself). */
-    for (int c = 0; c < 80; ++c) {
-        double m[4], pts[8];
-        for (int k = 0; k < 4; ++k) m[k] = cj_rng_range(&r, -300, 300);
-        const double base[8] = {0, 0, 1, 1, 0, 1, 1, 0};
-        const double ox = cj_rng_range(&r, -500, 500), oy = cj_rng_range(&r, -500, 500);
-        for (int i = 0; i < 4; ++i) {
-            pts[2 * i] = ox + m[0] * base[2 * i] + m[1] * base[2 * i + 1];
-            pts[2 * i + 1] = oy + m[2] * base[2 * i] + m[3] * base[2 * i + 1];
-        }
-        const double eps = pow(10.0, -cj_rng_range(&r, 1, 9)) * 300;
-        pts[6] += cj_rng_range(&r, -eps, eps);
-        pts[7] += cj_rng_range(&r, -eps, eps);
-        const double tol = tols[c % 5];
-        snprintf(what, sizeof what, "seed %llu near-cusp cubic %d (eps %.2g)",
-                 (unsigned long long)seed, c, eps);
-        worst_ratio = fmax(worst_ratio, check_fast(3, pts, tol, what));
-        ++count;
-    }
-    for (int c = 0; c < 80; ++c) {
-        /* Control points beyond the chord: the inner points project outside [b_0, b_n]. */
-        double pts[8];
-        const double L = cj_rng_range(&r, 10, 500), past = cj_rng_range(&r, 0.1, 3) * L;
-        const double h1 = cj_rng_range(&r, -1, 1) * L, h2 = cj_rng_range(&r, -1, 1) * L;
-        const double q[8] = {0, 0, L + past, h1, -past, h2, L, 0};
-        const double ang = cj_rng_range(&r, 0, 6.283185307179586);
-        for (int i = 0; i < 4; ++i) {
-            pts[2 * i] = q[2 * i] * cos(ang) - q[2 * i + 1] * sin(ang) + 100;
-            pts[2 * i + 1] = q[2 * i] * sin(ang) + q[2 * i + 1] * cos(ang) - 50;
-        }
-        const int n = c % 2 ? 3 : 2;
-        if (n == 2) pts[2] = pts[2] + 0.0, pts[4] = pts[6], pts[5] = pts[7];
-        const double tol = tols[c % 5];
-        snprintf(what, sizeof what, "seed %llu past-the-chord degree %d case %d",
-                 (unsigned long long)seed, n, c);
-        worst_ratio = fmax(worst_ratio, check_fast(n, pts, tol, what));
-        ++count;
-    }
-    /* Tiny and huge coordinates: random quadratics and cubics scaled by 2^-660 (~1e-199),
-     * 1e-200, 1e200 and 2^660, with the tolerance scaled alike. */
-    const double scales[4] = {0x1p-660, 1e-200, 1e200, 0x1p660};
-    for (int c = 0; c < 120; ++c) {
-        double pts[8];
-        const int n = 2 + c % 2;
-        const double sc = scales[(c / 2) % 4];
-        for (int i = 0; i < (n + 1) * 2; ++i) pts[i] = cj_rng_range(&r, -500, 500) * sc;
-        const double tol = tols[c % 5] * sc;
-        snprintf(what, sizeof what, "seed %llu scaled %g degree %d case %d",
-                 (unsigned long long)seed, sc, n, c);
-        worst_ratio = fmax(worst_ratio, check_fast(n, pts, tol, what));
-        ++count;
-    }
-    printf("fast path (planar degree 2/3): %d near-cusps, control points past the chord, "
-           "coordinates 1e-200..1e200: bound <= tol and refined sampled deviation <= bound "
-           "(largest deviation/bound %.6f)\n",
-           count, worst_ratio);
 }
 
 int main(void) {
