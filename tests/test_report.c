@@ -16,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 
 static char dir[256];
 
@@ -89,7 +90,7 @@ static void test_quick_report(void **state) {
     assert_non_null(tsv);
     int rows = 0, tess_rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
     int arc_rows = 0, fronts_arc = 0, interp_rows = 0, contour_rows = 0, ode_rows = 0;
-    int render_rows = 0, trace_rows = 0;
+    int render_rows = 0, trace_rows = 0, tess_surf[4] = {0, 0, 0, 0};
     double ode_err[4][2] = {{0}}; /* integrator x (N = 32, N = 256) */
     double equi_err[2] = {0, 0};  /* equispaced: error at the lowest and the highest degree */
     for (char *line = strtok(tsv, "\n"); line; line = strtok(NULL, "\n")) {
@@ -125,11 +126,21 @@ static void test_quick_report(void **state) {
                              emax, bound);
             }
         } else if (!strcmp(f[0], "tess")) {
+            /* every surface (teapot; sphere, torus, cylinder measured exactly against the true
+             * surface): deviation <= bound <= tol, at least 2 triangles per patch */
             tess_rows++;
             const double tol = strtod(f[2], NULL), dev = strtod(f[4], NULL),
                          bound = strtod(f[6], NULL), tris = strtod(f[10], NULL);
-            assert_true(dev > 0 && dev <= bound && bound <= tol * (1 + 1e-12));
-            assert_true(tris >= 32 * 2);
+            if (!(dev > 0 && dev <= bound && bound <= tol * (1 + 1e-12)))
+                fail_msg("tessellation %s at tol %g: deviation %g, bound %g", f[1], tol, dev,
+                         bound);
+            static const char *const SURF[4] = {"teapot", "sphere", "torus", "cylinder"};
+            static const int PATCHES[4] = {32, 8, 16, 4};
+            int s = 0;
+            while (s < 4 && !strstr(f[1], SURF[s])) s++;
+            assert_true(s < 4 && (!strncmp(f[1], "uniform ", 8) || !strncmp(f[1], "adaptive ", 9)));
+            tess_surf[s]++;
+            assert_true(tris >= 2 * PATCHES[s]);
         } else if (!strcmp(f[0], "ode")) {
             ode_rows++;
             const int N = atoi(f[2]);
@@ -195,11 +206,13 @@ static void test_quick_report(void **state) {
     }
     assert_int_equal(eval_rows, 4 * 2 * 3); /* quick: 4 methods x 2 degrees x 3 conditions */
     assert_int_equal(flat_rows, 3 * 3);     /* 3 methods x 3 tolerances */
-    assert_int_equal(tess_rows, 2 * 2);     /* uniform/adaptive x 2 tolerances */
+    assert_int_equal(tess_rows, 10);        /* 2 methods x (teapot 2 tols, 3 models 1) */
     assert_int_equal(arc_rows, 2 * 3);      /* adaptive/chord sum x 3 tolerances or N */
     assert_int_equal(interp_rows, 2 * 3);   /* equispaced/Chebyshev x degrees 4, 12, 24 */
     assert_int_equal(contour_rows, 2 * 2);  /* grids 8, 64 x 2 tolerances */
     assert_int_equal(ode_rows, 4 * 2);      /* 4 integrators x N = 32, 256 */
+    assert_int_equal(tess_surf[0], 2 * 2);
+    for (int s = 1; s < 4; ++s) assert_int_equal(tess_surf[s], 2);
     /* the orders against the closed form: 8x smaller h gains 8^4 = 4096 for RK4 (>= 100
      * required), about 8 for the first-order methods (>= 4 required) */
     for (int m = 0; m < 4; ++m) {
@@ -234,7 +247,33 @@ static void test_quick_report(void **state) {
     assert_int_equal(system(cmd), 0);
 }
 
+/* The callgrind workloads the full report counts (the quick report does not run them): each
+ * runs and exits 0, and a malformed spec is refused with the usage status 2. */
+static void test_workloads(void **state) {
+    (void)state;
+    static const char *const OK[] = {"arclen:0:1e-06", "arclen:1:256",   "interp:0:12",
+                                     "interp:1:24",    "contour:8:0.01", "ode:2:256",
+                                     "tess:2:0.01:1",  "tess:0:0.01:2",  "tess:3:0.01:3"};
+    static const char *const BAD[] = {"arclen:2:1", "interp:1:0", "contour:0:0.1", "ode:4:16",
+                                      "tess:0:0.01:4"};
+    char cmd[1024];
+    for (size_t i = 0; i < sizeof OK / sizeof *OK; ++i) {
+        snprintf(cmd, sizeof cmd, "'%s' report --workload '%s' 2", CJ_CLI, OK[i]);
+        if (system(cmd) != 0) fail_msg("workload %s failed", OK[i]);
+    }
+    for (size_t i = 0; i < sizeof BAD / sizeof *BAD; ++i) {
+        snprintf(cmd, sizeof cmd, "'%s' report --workload '%s' 2 2>/dev/null", CJ_CLI, BAD[i]);
+        const int st = system(cmd);
+        if (!(st != -1 && WIFEXITED(st) && WEXITSTATUS(st) == 2))
+            fail_msg("workload %s: status %d, want exit 2", BAD[i], st);
+    }
+    printf("workloads: %zu specs run (arclen, interp, contour, ode, tess on the sphere, torus, "
+           "cylinder), %zu malformed ones refused with status 2\n",
+           sizeof OK / sizeof *OK, sizeof BAD / sizeof *BAD);
+}
+
 int main(void) {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_quick_report)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_quick_report),
+                                       cmocka_unit_test(test_workloads)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
