@@ -4,6 +4,7 @@
 
 #include "error_internal.h"
 #include "vtk_render_internal.h"
+#include "vtk_write.h"
 
 #include <vtkCellData.h>
 #include <vtkCellArray.h>
@@ -21,8 +22,6 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <cassert>
-#include <cstdio>
-#include <string>
 
 namespace {
 
@@ -123,24 +122,6 @@ cj_status cj_vtk_write_scene_mesh(const char *path, const cj_vtk_view *view,
     for (size_t k = 0; k < sizeof cam / sizeof cam[0]; k++) camera->SetValue((vtkIdType)k, cam[k]);
     pd->GetFieldData()->AddArray(camera);
 
-    const std::string tmp = std::string(path) + ".tmp";
-    if (std::FILE *probe = std::fopen(tmp.c_str(), "wb"))
-        std::fclose(probe);
-    else
-        return cj_fail(CJ_ERR_IO, "cannot create %s", tmp.c_str());
     vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName(tmp.c_str());
-    writer->SetInputData(pd);
-    writer->SetDataModeToAppended();
-    writer->EncodeAppendedDataOff();
-    writer->SetCompressorTypeToNone();
-    if (writer->Write() != 1) {
-        std::remove(tmp.c_str());
-        return cj_fail(CJ_ERR_IO, "VTK could not write %s", tmp.c_str());
-    }
-    if (std::rename(tmp.c_str(), path) != 0) {
-        std::remove(tmp.c_str());
-        return cj_fail(CJ_ERR_IO, "could not rename %s to %s", tmp.c_str(), path);
-    }
-    return CJ_OK;
+    return cj_vtk_write_xml(writer, pd, path);
 }

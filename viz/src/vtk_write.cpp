@@ -1,3 +1,4 @@
+// The one way viz/ writes a VTK XML file: to a temporary next to it, renamed when complete.
 #include "vtk_write.h"
 
 #include "error_internal.h"
@@ -5,11 +6,12 @@
 #include <vtkNew.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
+#include <vtkXMLWriter.h>
 
 #include <cstdio>
 #include <string>
 
-cj_status cj_vtk_write_grid(vtkUnstructuredGrid *grid, const char *path) {
+cj_status cj_vtk_write_xml(vtkXMLWriter *writer, vtkDataObject *data, const char *path) {
     const std::string tmp = std::string(path) + ".tmp";
     // Probe the location first so that an unwritable path fails with our message alone
     // (VTK would print its own error to the console).
@@ -17,9 +19,8 @@ cj_status cj_vtk_write_grid(vtkUnstructuredGrid *grid, const char *path) {
         std::fclose(probe);
     else
         return cj_fail(CJ_ERR_IO, "cannot create %s", tmp.c_str());
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
     writer->SetFileName(tmp.c_str());
-    writer->SetInputData(grid);
+    writer->SetInputData(data);
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff();
     writer->SetCompressorTypeToNone();
@@ -32,4 +33,9 @@ cj_status cj_vtk_write_grid(vtkUnstructuredGrid *grid, const char *path) {
         return cj_fail(CJ_ERR_IO, "could not rename %s to %s", tmp.c_str(), path);
     }
     return CJ_OK;
+}
+
+cj_status cj_vtk_write_grid(vtkUnstructuredGrid *grid, const char *path) {
+    vtkNew<vtkXMLUnstructuredGridWriter> writer;
+    return cj_vtk_write_xml(writer, grid, path);
 }
