@@ -65,6 +65,14 @@ void cli_parser_init(cli_parser *p, const char *cmd, const char *usage, int argc
  * else *value = NULL), or one of the CLI_* codes above. */
 int cli_next(cli_parser *p, const char **value);
 
+/* cli_next for the loop of a command, the control codes handled: returns 1 while there is an
+ * argument, with *k its index in opts or CLI_POSITIONAL and *value as cli_next; returns 0 when
+ * the loop must end, with *status -1 when every argument was read (go on), else the exit status
+ * to return now (0 after --help or --version, CLI_EXIT_USAGE after a message). Use:
+ *     while (cli_next_arg(&ps, &k, &v, &status)) { ... }
+ *     if (status >= 0) return status; */
+int cli_next_arg(cli_parser *p, int *k, const char **value, int *status);
+
 /* The Utah teapot of this installation: beside the executable (<bindir>/../share/casteljau, so
  * a moved prefix still works), then the source tree of a build, then the configured prefix. */
 const char *cli_teapot_path(void);

@@ -164,6 +164,12 @@ int cli_next(cli_parser *p, const char **value) {
     return CLI_BAD;
 }
 
+int cli_next_arg(cli_parser *p, int *k, const char **value, int *status) {
+    *k = cli_next(p, value);
+    *status = *k == CLI_END ? -1 : *k == CLI_EXIT_OK ? 0 : CLI_EXIT_USAGE;
+    return *k >= 0 || *k == CLI_POSITIONAL;
+}
+
 int cli_parse_int(const char *s, long lo, long hi, long *out) {
     char *end = NULL;
     errno = 0;

@@ -106,13 +106,10 @@ int cmd_contour(int argc, char **argv) {
         {"--grid", NULL, 1},   {"--stats", NULL, 0},   {"--max-points", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, "contour", contour_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
-    for (;;) {
-        const char *v;
+    const char *v;
+    int k, status;
+    while (cli_next_arg(&ps, &k, &v, &status)) {
         char q[160];
-        const int k = cli_next(&ps, &v);
-        if (k == CLI_END) break;
-        if (k == CLI_EXIT_OK) return 0;
-        if (k == CLI_BAD) return CLI_EXIT_USAGE;
         if (k == CLI_POSITIONAL)
             return cli_fail("contour", "unexpected argument '%s' (try 'casteljau contour --help')",
                             cli_quote(v, q, sizeof q));
@@ -152,6 +149,7 @@ int cmd_contour(int argc, char **argv) {
             max_points = (size_t)m;
         }
     }
+    if (status >= 0) return status;
     if (!shape_opt)
         return cli_fail("contour", "missing the curve: --circle, --ellipse, --line or --poly");
     if (!have_box) return cli_fail("contour", "missing --box x0,y0,x1,y1");

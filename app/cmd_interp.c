@@ -76,13 +76,10 @@ int cmd_interp(int argc, char **argv) {
                                    {"--params", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, "interp", interp_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
-    for (;;) {
-        const char *v;
+    const char *v;
+    int k, status;
+    while (cli_next_arg(&ps, &k, &v, &status)) {
         char q[160];
-        const int k = cli_next(&ps, &v);
-        if (k == CLI_END) break;
-        if (k == CLI_EXIT_OK) return 0;
-        if (k == CLI_BAD) return CLI_EXIT_USAGE;
         if (k == CLI_POSITIONAL)
             return cli_fail("interp", "unexpected argument '%s' (the points go in --points)",
                             cli_quote(v, q, sizeof q));
@@ -115,6 +112,7 @@ int cmd_interp(int argc, char **argv) {
             params_text = v;
         }
     }
+    if (status >= 0) return status;
     if (!points_text) return cli_fail("interp", "missing --points (try 'casteljau interp --help')");
     if (kind == KIND_POLY && (have_tension || have_cb || closed))
         return cli_fail("interp", "--tension, --continuity, --bias and --closed apply to the "

@@ -74,11 +74,8 @@ int cmd_trace(int argc, char **argv) {
     cj_render_options opt = cj_render_options_default();
     cj_trace_options topt;
     memset(&topt, 0, sizeof topt);
-    for (;;) {
-        const int k = cli_next(&ps, &v);
-        if (k == CLI_END) break;
-        if (k == CLI_EXIT_OK) return 0;
-        if (k == CLI_BAD) return CLI_EXIT_USAGE;
+    int k, status;
+    while (cli_next_arg(&ps, &k, &v, &status)) {
         switch (k) {
         case CLI_POSITIONAL:
             if (scene_path)
@@ -135,19 +132,10 @@ int cmd_trace(int argc, char **argv) {
             break;
         }
     }
-    if (demo && scene_path) return cli_fail(cmd, "give either a scene file or --demo, not both");
-    if (!demo && !scene_path) return cli_fail(cmd, "no scene: give SCENE.json or --demo");
-    if (!out) return cli_fail(cmd, "no output file: give -o OUT.png or -o OUT.exr");
-    int exr, rc = cli_render_output(cmd, out, &exr);
-    if (rc) return rc;
-
+    if (status >= 0) return status;
     cj_scene *scene = NULL;
-    if (demo) {
-        if (cj_trace_demo_scene(cli_teapot_path(), NULL, &scene))
-            return cli_fail(cmd, "%s", cj_last_error());
-    } else if ((rc = cli_load_scene(cmd, scene_path, &scene))) {
-        return rc;
-    }
+    int exr, rc = cli_open_scene(cmd, scene_path, demo, cj_trace_demo_scene, out, &exr, &scene);
+    if (rc) return rc;
     if (opt.max_depth < 0) {
         /* --max-depth 0: primary rays only; the options use 0 for "the scene's" */
         cj_scene_settings s = *cj_scene_settings_get(scene);
@@ -165,11 +153,7 @@ int cmd_trace(int argc, char **argv) {
         size_t npx = (size_t)img->width * (size_t)img->height;
         for (size_t i = 0; i < npx; ++i) id_colour(img->ids[i], img->rgba + 4 * i);
     }
-    rc = cli_write_render(cmd, out, exr, img);
-    cj_render_image_destroy(img);
-    if (rc) return rc;
-    if (report && cj_stage_report_json(&rep, stdout)) return cli_error(cmd, "%s", cj_last_error());
-    return 0;
+    return cli_finish_render(cmd, out, exr, img, report ? &rep : NULL);
 }
 
 #else

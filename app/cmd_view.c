@@ -52,13 +52,10 @@ int cmd_view(int argc, char **argv) {
         {"--title", NULL, 1},      {"--teapot", NULL, 0}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, view_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
-    for (;;) {
-        const char *v;
+    const char *v;
+    int k, status;
+    while (cli_next_arg(&ps, &k, &v, &status)) {
         long n;
-        const int k = cli_next(&ps, &v);
-        if (k == CLI_END) break;
-        if (k == CLI_EXIT_OK) return 0;
-        if (k == CLI_BAD) return CLI_EXIT_USAGE;
         switch (k) {
         case CLI_POSITIONAL:
             if (o.path) return cli_fail(cmd, "more than one input ('%s', '%s')", o.path, v);
@@ -104,6 +101,7 @@ int cmd_view(int argc, char **argv) {
             break;
         }
     }
+    if (status >= 0) return status;
     if (teapot && o.path) return cli_fail(cmd, "give either a file or --teapot, not both");
     if (!teapot && !o.path) return cli_fail(cmd, "nothing to view: give a file or --teapot");
     o.teapot_path = access(CJ_TEAPOT_SOURCE, R_OK) == 0 ? CJ_TEAPOT_SOURCE : CJ_TEAPOT_INSTALLED;

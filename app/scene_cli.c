@@ -87,3 +87,26 @@ int cli_write_render(const char *cmd, const char *out, int exr, const cj_render_
     if (st) return cli_error(cmd, "%s", cj_last_error());
     return 0;
 }
+
+int cli_open_scene(const char *cmd, const char *scene_path, int demo, cli_demo_scene_fn make_demo,
+                   const char *out, int *exr, cj_scene **scene) {
+    if (demo && scene_path) return cli_fail(cmd, "give either a scene file or --demo, not both");
+    if (!demo && !scene_path) return cli_fail(cmd, "no scene: give SCENE.json or --demo");
+    if (!out) return cli_fail(cmd, "no output file: give -o OUT.png or -o OUT.exr");
+    int rc = cli_render_output(cmd, out, exr);
+    if (rc) return rc;
+    *scene = NULL;
+    if (!demo) return cli_load_scene(cmd, scene_path, scene);
+    if (make_demo(cli_teapot_path(), NULL, scene)) return cli_fail(cmd, "%s", cj_last_error());
+    return 0;
+}
+
+int cli_finish_render(const char *cmd, const char *out, int exr, cj_render_image *img,
+                      const cj_stage_report *report) {
+    const int rc = cli_write_render(cmd, out, exr, img);
+    cj_render_image_destroy(img);
+    if (rc) return rc;
+    if (report && cj_stage_report_json(report, stdout))
+        return cli_error(cmd, "%s", cj_last_error());
+    return 0;
+}

@@ -1,5 +1,6 @@
 /* Private to the casteljau tool: what the commands that draw scenes (render, trace, animate)
- * share: loading a scene file with its textures, and writing a rendered image. */
+ * share: loading a scene file with its textures, checking the scene and output arguments, and
+ * writing a rendered image. */
 #ifndef CASTELJAU_APP_SCENE_CLI_H
 #define CASTELJAU_APP_SCENE_CLI_H
 
@@ -18,5 +19,21 @@ int cli_render_output(const char *cmd, const char *out, int *exr);
 /* Writes img opaque (alpha 1): sRGB PNG or linear EXR. Prints a line and returns non-zero on
  * failure (1 for a failed write, as every writer of the tool). */
 int cli_write_render(const char *cmd, const char *out, int exr, const cj_render_image *img);
+
+/* The built-in scene of a command (cj_render_demo_scene, cj_trace_demo_scene). */
+typedef cj_status (*cli_demo_scene_fn)(const char *teapot_bpt, const cj_allocator *alloc,
+                                       cj_scene **out);
+
+/* What render and trace check once their options are parsed, in this order: exactly one of
+ * SCENE.json (scene_path) and --demo (demo), an output -o that cli_render_output accepts
+ * (*exr set); then the scene: cli_load_scene, or make_demo of the installation's teapot. On
+ * failure prints one line and returns CLI_EXIT_USAGE (nothing to free). */
+int cli_open_scene(const char *cmd, const char *scene_path, int demo, cli_demo_scene_fn make_demo,
+                   const char *out, int *exr, cj_scene **scene);
+
+/* The end of render and trace: writes img (cli_write_render), destroys it, then prints the
+ * stage report as JSON on stdout when report is not NULL. Returns the command's exit status. */
+int cli_finish_render(const char *cmd, const char *out, int exr, cj_render_image *img,
+                      const cj_stage_report *report);
 
 #endif
