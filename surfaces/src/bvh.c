@@ -1,5 +1,6 @@
 /* Bounding volume hierarchy: binned SAH build, closest/any-hit traversal (see bvh.h). */
 #include "casteljau/bvh.h"
+#include "aabb_internal.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
 
@@ -222,28 +223,6 @@ typedef struct entry {
     double t0;
 } entry;
 
-/* The slab test of cj_aabb_ray, inlined into the traversal loop (same rounding-safe widening
- * of the far distance by 1 + 2γ(3)). */
-static inline int box_hit(const cj_aabb *b, const double o[3], const double id[3], double tmin,
-                          double tmax, double *t0) {
-    const double widen = 1.0 + 2.0 * 3.3306690738754716e-16;
-    for (int k = 0; k < 3; k++) {
-        double tn = (b->lo[k] - o[k]) * id[k];
-        double tf = (b->hi[k] - o[k]) * id[k];
-        if (tn > tf) {
-            double s = tn;
-            tn = tf;
-            tf = s;
-        }
-        tf *= widen;
-        if (tn > tmin) tmin = tn;
-        if (tf < tmax) tmax = tf;
-        if (tmin > tmax) return 0;
-    }
-    *t0 = tmin;
-    return 1;
-}
-
 static cj_vec3 inverse_dir(cj_vec3 d) {
     return cj_v3(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
 }
@@ -260,7 +239,7 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
     int sp = 0, found = 0;
     double t0;
     uint64_t nodes = 1, prims = 0;
-    if (!box_hit(&bvh->nodes[0].box, oc, ic, ray.tmin, ray.tmax, &t0)) {
+    if (!cj_aabb_slab(&bvh->nodes[0].box, oc, ic, ray.tmin, ray.tmax, &t0, NULL)) {
         if (stats) stats->nodes += nodes;
         return 0;
     }
@@ -300,8 +279,8 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
         }
         const cj_bvh_node *l = &bvh->nodes[nd->first], *r = &bvh->nodes[nd->first + 1];
         double l0, r0;
-        int hl = box_hit(&l->box, oc, ic, ray.tmin, ray.tmax, &l0);
-        int hr = box_hit(&r->box, oc, ic, ray.tmin, ray.tmax, &r0);
+        int hl = cj_aabb_slab(&l->box, oc, ic, ray.tmin, ray.tmax, &l0, NULL);
+        int hr = cj_aabb_slab(&r->box, oc, ic, ray.tmin, ray.tmax, &r0, NULL);
         nodes += 2;
         if (sp + 2 > STACK) continue; /* cannot happen: depth is bounded by the build */
         if (hl && hr) {

@@ -1,5 +1,6 @@
 /* Rays: validation, offsetting secondary origins, boxes, placed objects. */
 #include "casteljau/ray.h"
+#include "aabb_internal.h"
 #include "error_internal.h"
 
 #include <math.h>
@@ -70,24 +71,7 @@ double cj_aabb_area(const cj_aabb *b) {
 int cj_aabb_ray(const cj_aabb *b, cj_vec3 org, cj_vec3 inv_dir, double tmin, double tmax,
                 double *t0, double *t1) {
     const double o[3] = {org.x, org.y, org.z}, id[3] = {inv_dir.x, inv_dir.y, inv_dir.z};
-    const double widen = 1.0 + 2.0 * 3.3306690738754716e-16; /* 1 + 2γ(3) */
-    for (int k = 0; k < 3; k++) {
-        double tn = (b->lo[k] - o[k]) * id[k];
-        double tf = (b->hi[k] - o[k]) * id[k];
-        if (tn > tf) {
-            double s = tn;
-            tn = tf;
-            tf = s;
-        }
-        tf *= widen;
-        /* NaN (0 * inf: origin on a slab plane of a ray parallel to it) leaves the bound. */
-        if (tn > tmin) tmin = tn;
-        if (tf < tmax) tmax = tf;
-        if (tmin > tmax) return 0;
-    }
-    *t0 = tmin;
-    *t1 = tmax;
-    return 1;
+    return cj_aabb_slab(b, o, id, tmin, tmax, t0, t1);
 }
 
 cj_aabb cj_aabb_triangle(cj_vec3 v0, cj_vec3 v1, cj_vec3 v2) {
