@@ -29,41 +29,17 @@ static const char render_usage[] =
 
 int cmd_render(int argc, char **argv) {
     const char *cmd = "render";
-    enum { O_DEMO, O_REPORT, O_OUT, O_WIDTH, O_HEIGHT, O_SPP, O_TOL, O_THREADS };
-    static const cli_opt opts[] = {{"--demo", NULL, 0},   {"--stage-report", NULL, 0},
-                                   {"--output", "-o", 1}, {"--width", NULL, 1},
-                                   {"--height", NULL, 1}, {"--spp", NULL, 1},
-                                   {"--tol-px", NULL, 1}, {"--threads", NULL, 1}};
+    enum { O_SPP = CLI_SO_COUNT, O_TOL };
+    static const cli_opt opts[] = {CLI_SCENE_OPTIONS, {"--spp", NULL, 1}, {"--tol-px", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, render_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
-    const char *scene_path = NULL, *out = NULL, *v;
-    int demo = 0, report = 0;
+    cli_scene_args a = {NULL, NULL, 0, 0};
+    const char *v;
     long n;
     cj_render_options opt = cj_render_options_default();
     int k, status;
     while (cli_next_arg(&ps, &k, &v, &status)) {
         switch (k) {
-        case CLI_POSITIONAL:
-            if (scene_path)
-                return cli_fail(cmd, "more than one scene file ('%s', '%s')", scene_path, v);
-            scene_path = v;
-            break;
-        case O_DEMO:
-            demo = 1;
-            break;
-        case O_REPORT:
-            report = 1;
-            break;
-        case O_OUT:
-            out = v;
-            break;
-        case O_WIDTH:
-        case O_HEIGHT:
-            if (cli_parse_int(v, 1, 32768, &n))
-                return cli_fail(cmd, "%s '%s' is not an integer in 1..32768",
-                                k == O_WIDTH ? "--width" : "--height", v);
-            *(k == O_WIDTH ? &opt.width : &opt.height) = (int)n;
-            break;
         case O_SPP:
             if (cli_parse_int(v, 1, 16, &n) || (n != 1 && n != 4 && n != 16))
                 return cli_fail(cmd, "--spp '%s' must be 1, 4 or 16", v);
@@ -73,23 +49,21 @@ int cmd_render(int argc, char **argv) {
             if (cli_parse_double(v, &opt.tol_px) || !(opt.tol_px > 0.0))
                 return cli_fail(cmd, "--tol-px '%s' is not a positive finite number", v);
             break;
-        default: /* O_THREADS */
-            if (cli_parse_int(v, 1, 1024, &n))
-                return cli_fail(cmd, "--threads '%s' is not an integer in 1..1024", v);
-            opt.threads = (int)n;
+        default: /* the scene file and the options render and trace share */
+            if (cli_scene_arg(cmd, k, v, &a, &opt)) return CLI_EXIT_USAGE;
             break;
         }
     }
     if (status >= 0) return status;
     cj_scene *scene = NULL;
-    int exr, rc = cli_open_scene(cmd, scene_path, demo, cj_render_demo_scene, out, &exr, &scene);
+    int exr, rc = cli_open_scene(cmd, &a, cj_render_demo_scene, &exr, &scene);
     if (rc) return rc;
     cj_render_image *img = NULL;
     cj_stage_report rep;
     cj_status st = cj_render_raster(scene, &opt, 0, NULL, &img, &rep);
     cj_scene_destroy(scene);
-    if (st) return cli_fail(cmd, "%s: %s", scene_path ? scene_path : "demo", cj_last_error());
-    return cli_finish_render(cmd, out, exr, img, report ? &rep : NULL);
+    if (st) return cli_fail(cmd, "%s: %s", a.scene_path ? a.scene_path : "demo", cj_last_error());
+    return cli_finish_render(cmd, a.out, exr, img, a.report ? &rep : NULL);
 }
 
 #else

@@ -48,28 +48,15 @@ static void id_colour(uint32_t id, float c[3]) {
 
 int cmd_trace(int argc, char **argv) {
     const char *cmd = "trace";
-    enum {
-        O_DEMO,
-        O_REPORT,
-        O_SIGNATURE,
-        O_OUT,
-        O_WIDTH,
-        O_HEIGHT,
-        O_SPP,
-        O_DEPTH,
-        O_SEED,
-        O_INDIRECT,
-        O_THREADS
-    };
-    static const cli_opt opts[] = {
-        {"--demo", NULL, 0},     {"--stage-report", NULL, 0}, {"--signature", NULL, 0},
-        {"--output", "-o", 1},   {"--width", NULL, 1},        {"--height", NULL, 1},
-        {"--spp", NULL, 1},      {"--max-depth", NULL, 1},    {"--seed", NULL, 1},
-        {"--indirect", NULL, 1}, {"--threads", NULL, 1}};
+    enum { O_SIGNATURE = CLI_SO_COUNT, O_SPP, O_DEPTH, O_SEED, O_INDIRECT };
+    static const cli_opt opts[] = {CLI_SCENE_OPTIONS,   {"--signature", NULL, 0},
+                                   {"--spp", NULL, 1},  {"--max-depth", NULL, 1},
+                                   {"--seed", NULL, 1}, {"--indirect", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, trace_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
-    const char *scene_path = NULL, *out = NULL, *v;
-    int demo = 0, report = 0, signature = 0;
+    cli_scene_args a = {NULL, NULL, 0, 0};
+    const char *v;
+    int signature = 0;
     long n;
     cj_render_options opt = cj_render_options_default();
     cj_trace_options topt;
@@ -77,29 +64,8 @@ int cmd_trace(int argc, char **argv) {
     int k, status;
     while (cli_next_arg(&ps, &k, &v, &status)) {
         switch (k) {
-        case CLI_POSITIONAL:
-            if (scene_path)
-                return cli_fail(cmd, "more than one scene file ('%s', '%s')", scene_path, v);
-            scene_path = v;
-            break;
-        case O_DEMO:
-            demo = 1;
-            break;
-        case O_REPORT:
-            report = 1;
-            break;
         case O_SIGNATURE:
             signature = 1;
-            break;
-        case O_OUT:
-            out = v;
-            break;
-        case O_WIDTH:
-        case O_HEIGHT:
-            if (cli_parse_int(v, 1, 32768, &n))
-                return cli_fail(cmd, "%s '%s' is not an integer in 1..32768",
-                                k == O_WIDTH ? "--width" : "--height", v);
-            *(k == O_WIDTH ? &opt.width : &opt.height) = (int)n;
             break;
         case O_SPP:
             if (cli_parse_int(v, 1, 65536, &n))
@@ -125,16 +91,14 @@ int cmd_trace(int argc, char **argv) {
                 return cli_fail(cmd, "--indirect '%s' is not an integer in 0..4096", v);
             topt.indirect_samples = (int)n;
             break;
-        default: /* O_THREADS */
-            if (cli_parse_int(v, 1, 1024, &n))
-                return cli_fail(cmd, "--threads '%s' is not an integer in 1..1024", v);
-            opt.threads = (int)n;
+        default: /* the scene file and the options render and trace share */
+            if (cli_scene_arg(cmd, k, v, &a, &opt)) return CLI_EXIT_USAGE;
             break;
         }
     }
     if (status >= 0) return status;
     cj_scene *scene = NULL;
-    int exr, rc = cli_open_scene(cmd, scene_path, demo, cj_trace_demo_scene, out, &exr, &scene);
+    int exr, rc = cli_open_scene(cmd, &a, cj_trace_demo_scene, &exr, &scene);
     if (rc) return rc;
     if (opt.max_depth < 0) {
         /* --max-depth 0: primary rays only; the options use 0 for "the scene's" */
@@ -148,12 +112,12 @@ int cmd_trace(int argc, char **argv) {
     cj_status st =
         cj_render_trace_ex(scene, &opt, &topt, signature ? CJ_IMAGE_IDS : 0, NULL, &img, &rep);
     cj_scene_destroy(scene);
-    if (st) return cli_fail(cmd, "%s: %s", scene_path ? scene_path : "demo", cj_last_error());
+    if (st) return cli_fail(cmd, "%s: %s", a.scene_path ? a.scene_path : "demo", cj_last_error());
     if (signature) { /* each object id its own colour; the background black */
         size_t npx = (size_t)img->width * (size_t)img->height;
         for (size_t i = 0; i < npx; ++i) id_colour(img->ids[i], img->rgba + 4 * i);
     }
-    return cli_finish_render(cmd, out, exr, img, report ? &rep : NULL);
+    return cli_finish_render(cmd, a.out, exr, img, a.report ? &rep : NULL);
 }
 
 #else

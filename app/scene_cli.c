@@ -88,15 +88,50 @@ int cli_write_render(const char *cmd, const char *out, int exr, const cj_render_
     return 0;
 }
 
-int cli_open_scene(const char *cmd, const char *scene_path, int demo, cli_demo_scene_fn make_demo,
-                   const char *out, int *exr, cj_scene **scene) {
-    if (demo && scene_path) return cli_fail(cmd, "give either a scene file or --demo, not both");
-    if (!demo && !scene_path) return cli_fail(cmd, "no scene: give SCENE.json or --demo");
-    if (!out) return cli_fail(cmd, "no output file: give -o OUT.png or -o OUT.exr");
-    int rc = cli_render_output(cmd, out, exr);
+int cli_scene_arg(const char *cmd, int k, const char *v, cli_scene_args *a,
+                  cj_render_options *opt) {
+    long n;
+    switch (k) {
+    case CLI_POSITIONAL:
+        if (a->scene_path)
+            return cli_fail(cmd, "more than one scene file ('%s', '%s')", a->scene_path, v);
+        a->scene_path = v;
+        break;
+    case CLI_SO_DEMO:
+        a->demo = 1;
+        break;
+    case CLI_SO_REPORT:
+        a->report = 1;
+        break;
+    case CLI_SO_OUT:
+        a->out = v;
+        break;
+    case CLI_SO_WIDTH:
+    case CLI_SO_HEIGHT:
+        if (cli_parse_int(v, 1, 32768, &n))
+            return cli_fail(cmd, "%s '%s' is not an integer in 1..32768",
+                            k == CLI_SO_WIDTH ? "--width" : "--height", v);
+        *(k == CLI_SO_WIDTH ? &opt->width : &opt->height) = (int)n;
+        break;
+    default: /* CLI_SO_THREADS */
+        if (cli_parse_int(v, 1, 1024, &n))
+            return cli_fail(cmd, "--threads '%s' is not an integer in 1..1024", v);
+        opt->threads = (int)n;
+        break;
+    }
+    return 0;
+}
+
+int cli_open_scene(const char *cmd, const cli_scene_args *a, cli_demo_scene_fn make_demo, int *exr,
+                   cj_scene **scene) {
+    if (a->demo && a->scene_path)
+        return cli_fail(cmd, "give either a scene file or --demo, not both");
+    if (!a->demo && !a->scene_path) return cli_fail(cmd, "no scene: give SCENE.json or --demo");
+    if (!a->out) return cli_fail(cmd, "no output file: give -o OUT.png or -o OUT.exr");
+    int rc = cli_render_output(cmd, a->out, exr);
     if (rc) return rc;
     *scene = NULL;
-    if (!demo) return cli_load_scene(cmd, scene_path, scene);
+    if (!a->demo) return cli_load_scene(cmd, a->scene_path, scene);
     if (make_demo(cli_teapot_path(), NULL, scene)) return cli_fail(cmd, "%s", cj_last_error());
     return 0;
 }

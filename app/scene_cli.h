@@ -24,12 +24,40 @@ int cli_write_render(const char *cmd, const char *out, int exr, const cj_render_
 typedef cj_status (*cli_demo_scene_fn)(const char *teapot_bpt, const cj_allocator *alloc,
                                        cj_scene **out);
 
+/* The arguments render and trace share: their option tables start with CLI_SCENE_OPTIONS, in
+ * the order of the CLI_SO_* indices; cli_scene_arg takes those and the scene file. */
+#define CLI_SCENE_OPTIONS                                                                          \
+    {"--demo", NULL, 0}, {"--stage-report", NULL, 0}, {"--output", "-o", 1}, {"--width", NULL, 1}, \
+        {"--height", NULL, 1}, {                                                                   \
+        "--threads", NULL, 1                                                                       \
+    }
+enum {
+    CLI_SO_DEMO,
+    CLI_SO_REPORT,
+    CLI_SO_OUT,
+    CLI_SO_WIDTH,
+    CLI_SO_HEIGHT,
+    CLI_SO_THREADS,
+    CLI_SO_COUNT /* the command's own options start here */
+};
+
+typedef struct cli_scene_args {
+    const char *scene_path; /* SCENE.json, or NULL */
+    const char *out;        /* -o */
+    int demo, report;       /* --demo, --stage-report */
+} cli_scene_args;
+
+/* Takes the positional argument (the scene file; a second one is an error) or the shared
+ * option k < CLI_SO_COUNT with its value v into *a, or into opt->width, height, threads.
+ * Returns 0, or CLI_EXIT_USAGE after a one-line message naming the bad value. */
+int cli_scene_arg(const char *cmd, int k, const char *v, cli_scene_args *a, cj_render_options *opt);
+
 /* What render and trace check once their options are parsed, in this order: exactly one of
- * SCENE.json (scene_path) and --demo (demo), an output -o that cli_render_output accepts
- * (*exr set); then the scene: cli_load_scene, or make_demo of the installation's teapot. On
- * failure prints one line and returns CLI_EXIT_USAGE (nothing to free). */
-int cli_open_scene(const char *cmd, const char *scene_path, int demo, cli_demo_scene_fn make_demo,
-                   const char *out, int *exr, cj_scene **scene);
+ * SCENE.json and --demo, an output -o that cli_render_output accepts (*exr set); then the
+ * scene: cli_load_scene, or make_demo of the installation's teapot. On failure prints one line
+ * and returns CLI_EXIT_USAGE (nothing to free). */
+int cli_open_scene(const char *cmd, const cli_scene_args *a, cli_demo_scene_fn make_demo, int *exr,
+                   cj_scene **scene);
 
 /* The end of render and trace: writes img (cli_write_render), destroys it, then prints the
  * stage report as JSON on stdout when report is not NULL. Returns the command's exit status. */
