@@ -80,6 +80,21 @@ static cj_status widest_label(cj_font *font, double size, ticks t, double *w) {
     return CJ_OK;
 }
 
+/* One tick: its mark seg (a segment) and, with a font, the label of v whose baseline starts at
+ * x - align * (the label's advance), y (align 0.5 centres it on x, 1 ends it at x). */
+static cj_status draw_tick(cj_plot_canvas *cv, cj_font *font, double size, cj_rgba ink,
+                           const double seg[4], double v, double step, double x, double align,
+                           double y) {
+    cj_status st = cj_plot_stroke(cv, seg, 2, 0, ink, 1.0);
+    if (st || !font) return st;
+    char buf[80];
+    double adv = 0;
+    format_tick(v, step, buf, sizeof buf);
+    st = cj_font_measure(font, size, buf, &adv, NULL, NULL);
+    if (!st) st = cj_font_draw(font, cv->fb, x - align * adv, y, size, ink, buf);
+    return st;
+}
+
 /* ---- render --------------------------------------------------------------------------- */
 
 cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0, int w, int h,
@@ -211,34 +226,16 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
         double frame[8] = {ax0, ay0, ax1, ay0, ax1, ay1, ax0, ay1};
         st = cj_plot_stroke(&cv, frame, 4, 1, ink, 1.0);
         for (int i = 0; !st && i < tx.count; ++i) {
-            double v = tx.first + i * tx.step;
-            double px = x.ox + x.s * (v - x.cx);
-            double seg[4] = {px, ay0, px, ay0 - tick_len};
-            st = cj_plot_stroke(&cv, seg, 2, 0, ink, 1.0);
-            if (!st && font) {
-                char buf[80];
-                double adv = 0;
-                format_tick(v, tx.step, buf, sizeof buf);
-                st = cj_font_measure(font, label_size, buf, &adv, NULL, NULL);
-                if (!st)
-                    st = cj_font_draw(font, cv.fb, px - adv / 2, ay0 - tick_len - 2 - lab_asc,
-                                      label_size, ink, buf);
-            }
+            const double v = tx.first + i * tx.step, px = x.ox + x.s * (v - x.cx);
+            const double seg[4] = {px, ay0, px, ay0 - tick_len};
+            st = draw_tick(&cv, font, label_size, ink, seg, v, tx.step, px, 0.5,
+                           ay0 - tick_len - 2 - lab_asc);
         }
         for (int i = 0; !st && i < ty.count; ++i) {
-            double v = ty.first + i * ty.step;
-            double py = x.oy + x.s * (v - x.cy);
-            double seg[4] = {ax0, py, ax0 - tick_len, py};
-            st = cj_plot_stroke(&cv, seg, 2, 0, ink, 1.0);
-            if (!st && font) {
-                char buf[80];
-                double adv = 0;
-                format_tick(v, ty.step, buf, sizeof buf);
-                st = cj_font_measure(font, label_size, buf, &adv, NULL, NULL);
-                if (!st)
-                    st = cj_font_draw(font, cv.fb, ax0 - tick_len - 3 - adv, py - 0.35 * label_size,
-                                      label_size, ink, buf);
-            }
+            const double v = ty.first + i * ty.step, py = x.oy + x.s * (v - x.cy);
+            const double seg[4] = {ax0, py, ax0 - tick_len, py};
+            st = draw_tick(&cv, font, label_size, ink, seg, v, ty.step, ax0 - tick_len - 3, 1.0,
+                           py - 0.35 * label_size);
         }
     }
     if (!st && font && plot->title) {
