@@ -97,6 +97,10 @@ int cli_parse_points(const char *text, double **pts, size_t *count, int *dim, ch
 /* Parses "a;b;c" (or "a,b,c") into a newly allocated list of doubles; same conventions. */
 int cli_parse_list(const char *text, double **values, size_t *count, char *why, size_t why_size);
 
+/* 1 when path ends in ext (given in lower case, with its dot: ".png") and has a name before
+ * it, ignoring the case of path's letters; else 0. */
+int cli_has_ext(const char *path, const char *ext);
+
 /* Prints a value with %.17g (round-trips every double). */
 void cli_print_double(double v);
 

@@ -170,6 +170,17 @@ int cli_next_arg(cli_parser *p, int *k, const char **value, int *status) {
     return *k >= 0 || *k == CLI_POSITIONAL;
 }
 
+int cli_has_ext(const char *path, const char *ext) {
+    size_t a = strlen(path), b = strlen(ext);
+    if (a <= b) return 0;
+    for (size_t i = 0; i < b; ++i) {
+        char c = path[a - b + i];
+        if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
+        if (c != ext[i]) return 0;
+    }
+    return 1;
+}
+
 int cli_parse_int(const char *s, long lo, long hi, long *out) {
     char *end = NULL;
     errno = 0;

@@ -43,20 +43,9 @@ int cli_load_scene(const char *cmd, const char *path, cj_scene **out) {
     return 0;
 }
 
-static int ends_with(const char *path, const char *ext) {
-    size_t a = strlen(path), b = strlen(ext);
-    if (a <= b) return 0;
-    for (size_t i = 0; i < b; ++i) {
-        char c = path[a - b + i];
-        if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-        if (c != ext[i]) return 0;
-    }
-    return 1;
-}
-
 int cli_render_output(const char *cmd, const char *out, int *exr) {
-    *exr = ends_with(out, ".exr");
-    if (!*exr && !ends_with(out, ".png"))
+    *exr = cli_has_ext(out, ".exr");
+    if (!*exr && !cli_has_ext(out, ".png"))
         return cli_fail(cmd, "output '%s' must end in .png or .exr", out);
     if (cj_image_check_destination(out, *exr)) return cli_fail(cmd, "%s", cj_last_error());
     return 0;
