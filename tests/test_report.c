@@ -90,7 +90,9 @@ static void test_quick_report(void **state) {
     assert_non_null(tsv);
     int rows = 0, tess_rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
     int arc_rows = 0, fronts_arc = 0, interp_rows = 0, contour_rows = 0, ode_rows = 0;
-    int render_rows = 0, trace_rows = 0, tess_surf[4] = {0, 0, 0, 0};
+    int render_rows = 0, trace_rows = 0, tess_surf[4] = {0, 0, 0, 0}, arc_cubic_rows = 0;
+    /* the arc length's chord sum: set x (N = 16, N = 4096) */
+    double chord_err[2][2] = {{0, 0}, {0, 0}};
     double ode_err[4][2] = {{0}}; /* integrator x (N = 32, N = 256) */
     double equi_err[2] = {0, 0};  /* equispaced: error at the lowest and the highest degree */
     for (char *line = strtok(tsv, "\n"); line; line = strtok(NULL, "\n")) {
@@ -180,8 +182,13 @@ static void test_quick_report(void **state) {
             const double param = strtod(f[2], NULL), emax = strtod(f[4], NULL),
                          emean = strtod(f[5], NULL);
             assert_true(isfinite(emax) && emax >= emean && emean >= 0);
-            if (!strcmp(f[1], "chord sum")) {
+            /* both sets: parabolas against the closed form, "(cubics)" against the MPFR
+             * quadrature; the chord sum of second order (N = 16 -> 4096: error / 65536) */
+            const int cubic = strstr(f[1], "(cubics)") != NULL;
+            arc_cubic_rows += cubic;
+            if (!strncmp(f[1], "chord sum", 9)) {
                 assert_true(emax > 0 && emax < 1);
+                if (param == 16 || param == 4096) chord_err[cubic][param == 4096] = emax;
             } else {
                 const double est = strtod(f[6], NULL);
                 assert_true(isfinite(est) && est >= 0);
@@ -207,11 +214,16 @@ static void test_quick_report(void **state) {
     assert_int_equal(eval_rows, 4 * 2 * 3); /* quick: 4 methods x 2 degrees x 3 conditions */
     assert_int_equal(flat_rows, 3 * 3);     /* 3 methods x 3 tolerances */
     assert_int_equal(tess_rows, 10);        /* 2 methods x (teapot 2 tols, 3 models 1) */
-    assert_int_equal(arc_rows, 2 * 3);      /* adaptive/chord sum x 3 tolerances or N */
+    assert_int_equal(arc_rows, 4 * 3);      /* 2 sets x adaptive/chord sum x 3 tols or N */
     assert_int_equal(interp_rows, 2 * 3);   /* equispaced/Chebyshev x degrees 4, 12, 24 */
     assert_int_equal(contour_rows, 2 * 2);  /* grids 8, 64 x 2 tolerances */
     assert_int_equal(ode_rows, 4 * 2);      /* 4 integrators x N = 32, 256 */
     assert_int_equal(tess_surf[0], 2 * 2);
+    assert_int_equal(arc_cubic_rows, 2 * 3);
+    for (int set = 0; set < 2; ++set)
+        if (!(chord_err[set][1] > 0 && chord_err[set][0] > 1000 * chord_err[set][1]))
+            fail_msg("chord sum (set %d): error %g at N = 16, %g at N = 4096", set,
+                     chord_err[set][0], chord_err[set][1]);
     for (int s = 1; s < 4; ++s) assert_int_equal(tess_surf[s], 2);
     /* the orders against the closed form: 8x smaller h gains 8^4 = 4096 for RK4 (>= 100
      * required), about 8 for the first-order methods (>= 4 required) */
@@ -251,9 +263,9 @@ static void test_quick_report(void **state) {
  * runs and exits 0, and a malformed spec is refused with the usage status 2. */
 static void test_workloads(void **state) {
     (void)state;
-    static const char *const OK[] = {"arclen:0:1e-06", "arclen:1:256",   "interp:0:12",
-                                     "interp:1:24",    "contour:8:0.01", "ode:2:256",
-                                     "tess:2:0.01:1",  "tess:0:0.01:2",  "tess:3:0.01:3"};
+    static const char *const OK[] = {
+        "arclen:0:1e-06", "arclen:1:256:1", "interp:0:12",   "interp:1:24",   "contour:8:0.01",
+        "ode:2:256",      "tess:2:0.01:1",  "tess:0:0.01:2", "tess:3:0.01:3", "arclen:0:1e-09:1"};
     static const char *const BAD[] = {"arclen:2:1", "interp:1:0", "contour:0:0.1", "ode:4:16",
                                       "tess:0:0.01:4"};
     char cmd[1024];
