@@ -18,7 +18,7 @@
  * hit to its ray (stage "patch_rays", max_err), ms per frame.
  *
  * Instruction counts: `casteljau report --workload trace:stratified|random:SPP N` and
- * `trace:patch:TOLEXP N` trace N frames of the same scene at the full report's size (48 x 36)
+ * `trace:patch:TOLEXP N` trace N frames of the same scene at the full report's size (40 x 30)
  * on one thread. */
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
@@ -34,10 +34,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define NSPP    5
-#define NTOL    8
-#define WL_W    48 /* the full report's frame, also the workload's (callgrind) */
-#define WL_H    36
+#define NSPP 5
+#define NTOL 8
+/* the full report's frame, also the workload's: callgrind of all 18 cells takes about 2.5
+ * minutes at this size (the 256-spp cells most of it) */
+#define WL_W    40
+#define WL_H    30
 #define REF_TOL 1e-10
 
 static const int SPP_FULL[NSPP] = {1, 4, 16, 64, 256}, SPP_QUICK[] = {1, 4, 16};
@@ -265,10 +267,17 @@ static int trace_spp(report *r) {
             cj_render_image_destroy(img);
         }
     free(ref);
-    if (time_cells(sc, W, H, cells, nc, runs, r->quick ? 2.0 : 40.0, ms, spread)) {
+    /* timed with the two samplings of one spp next to each other, so that they see the same
+     * load on the machine */
+    cell tc[2 * NSPP];
+    double tms[2 * NSPP], tsp[2 * NSPP];
+    for (int k = 0; k < nc; ++k) tc[k] = cells[(k % 2) * ns + k / 2];
+    if (time_cells(sc, W, H, tc, nc, runs, r->quick ? 2.0 : 40.0, tms, tsp)) {
         cj_scene_destroy(sc);
         return cli_error("report", "trace: %s", cj_last_error());
     }
+    for (int k = 0; k < nc; ++k)
+        ms[(k % 2) * ns + k / 2] = tms[k], spread[(k % 2) * ns + k / 2] = tsp[k];
     cj_scene_destroy(sc);
     for (int k = 0; k < nc; ++k) {
         char spec[64];
@@ -284,11 +293,12 @@ static int trace_spp(report *r) {
             "Stratified sampling jitters pixel positions in a k&times;k grid and draws area-light "
             "points stratified; random sampling draws both uniformly (glossy directions are "
             "random in both). At 1 spp both are the same picture: pixel centres, the light's "
-            "centre, a sharp mirror. Error: RMSE of the linear radiance over all pixels and the 3 "
+            "centre, a sharp mirror (which of the two is then marked dominated is timing noise). "
+            "Error: RMSE of the linear radiance over all pixels and the 3 "
             "channels against a reference, the mean of two independent %d-spp renders A and B "
             "with random sampling and other seeds than the measured images (%.1f s on all cores). "
             "Their difference gives the reference's own noise, &sigma;<sub>ref</sub> = RMSE(A, "
-            "B) / 2 = %.2g: no RMSE much below it can be measured, and &radic;(RMSE&sup2; "
+            "B) / 2 = %.3g: no RMSE much below it can be measured, and &radic;(RMSE&sup2; "
             "&minus; &sigma;<sub>ref</sub>&sup2;) estimates the error against the noise-free "
             "picture. Cost: ms per frame on one thread (the image is the same for any thread "
             "count), median of %d interleaved runs; instructions per %d&times;%d frame "
@@ -298,7 +308,7 @@ static int trace_spp(report *r) {
         fprintf(r->html,
                 "<p>The reference is random-sampled because the stratified estimate does not "
                 "converge: two stratified %d-spp renders with the same seeds as A and B differ by "
-                "RMSE %.2g (the random pair: %.2g), and the first is %.2g from the reference. The "
+                "RMSE %.3g (the random pair: %.3g), and the first is %.3g from the reference. The "
                 "tracer pairs a sample's pixel stratum with its area-light stratum by a cyclic "
                 "shift (trace_shade.c), so at pixels where both the surface hit and the light's "
                 "visibility vary, the samples cover a 2D slice of the 4D pixel &times; light "
@@ -385,7 +395,7 @@ static int trace_tol(report *r) {
     if (cj_trace_demo_scene(cli_teapot_path(), NULL, &sc))
         return cli_error("report", "trace demo: %s", cj_last_error());
     cell cells[NTOL];
-    double err[NTOL], ms[NTOL], spread[NTOL], instr[NTOL], maxerr[NTOL], ndiff[NTOL];
+    double err[NTOL], ms[NTOL], spread[NTOL], instr[NTOL], maxerr[NTOL], ndiff[NTOL], rays[NTOL];
     cj_render_image *ri = NULL;
     const cell rc = {1, 0, REF_TOL};
     double *ref = malloc(np * 4 * sizeof *ref);
@@ -412,6 +422,10 @@ static int trace_tol(report *r) {
         }
         ndiff[i] = (double)nd;
         maxerr[i] = NAN;
+        rays[i] = 0; /* every kind of ray: equal counts mean the cost is per intersection */
+        for (int k = 0; k < rep.count; ++k)
+            if (strstr(rep.stages[k].name, "_rays") && strcmp(rep.stages[k].name, "patch_rays"))
+                rays[i] += (double)rep.stages[k].in;
         const cj_stage *s = cj_stage_report_find(&rep, "patch_rays");
         for (int k = 0; s && k < s->extra_count; ++k)
             if (!strcmp(s->extra[k].key, "max_err")) maxerr[i] = s->extra[k].value;
@@ -429,9 +443,11 @@ static int trace_tol(report *r) {
         instr[i] = r->quick ? NAN : report_callgrind(r, spec, 1, NULL);
     }
     /* RMSE 0 (the same picture as the reference) drawn at a floor on the log axis */
-    const double floor = 1e-6;
-    double y[NTOL];
-    for (int i = 0; i < nt; ++i) y[i] = fmax(err[i], floor);
+    double minerr = INFINITY, y[NTOL];
+    for (int i = 0; i < nt; ++i)
+        if (err[i] > 0) minerr = fmin(minerr, err[i]);
+    const double yfloor = isfinite(minerr) ? pow(10.0, floor(log10(minerr)) - 1) : 1e-6;
+    for (int i = 0; i < nt; ++i) y[i] = fmax(err[i], yfloor);
     int dom[NTOL];
     report_pareto((size_t)nt, ms, err, dom);
     fprintf(r->html,
@@ -441,11 +457,14 @@ static int trace_tol(report *r) {
             "distance from an accepted hit to its ray, relative to the teapot's box diagonal) "
             "from 1e&minus;%d to 1e&minus;%d, against the image at %.0e. Error: RMSE as above, "
             "pixels differing by more than 1/255 in a channel; max err: the largest distance to "
-            "the ray accepted (stage patch_rays, world units). Cost: ms per frame on one thread, "
-            "median of %d interleaved runs; instructions per %d&times;%d frame.</p>\n<table><tr>"
+            "the ray accepted (stage patch_rays, in the teapot's object units; its box diagonal "
+            "is about 8.3); rays: all rays the frame cast (primary, shadow, reflected, "
+            "refracted). Cost: ms per frame on one thread, median of %d interleaved runs; "
+            "instructions per %d&times;%d frame. On the chart an RMSE of 0 (the same image as "
+            "the reference) is drawn a decade below the smallest non-zero one.</p>\n<table><tr>"
             "<th class=l>intersection</th><th>tol</th><th>RMSE</th><th>pixels &gt; 1/255</th>"
-            "<th>max err</th><th>ms/frame</th><th>spread</th><th>instr/frame (%d&times;%d)</th>"
-            "<th class=l>Pareto</th></tr>\n",
+            "<th>max err</th><th>rays</th><th>ms/frame</th><th>spread</th>"
+            "<th>instr/frame (%d&times;%d)</th><th class=l>Pareto</th></tr>\n",
             W, H, tes[0], tes[nt - 1], REF_TOL, runs, WL_W, WL_H, WL_W, WL_H);
     fprintf(r->md,
             "## Ray tracer: patch tolerance (trace demo, %dx%d, 1 spp, against tol %.0e)\n\n"
@@ -461,8 +480,9 @@ static int trace_tol(report *r) {
         instr_text(ins, sizeof ins, instr[i]);
         fprintf(r->html,
                 "<tr%s><td class=l>patch direct</td><td>1e-%d</td><td>%.3g</td><td>%.0f</td>"
-                "<td>%.2g</td><td>%.2f</td><td>%.0f %%</td><td>%s</td><td class=l>%s</td></tr>\n",
-                dom[i] < 0 ? "" : " class=dom", tes[i], err[i], ndiff[i], maxerr[i], ms[i],
+                "<td>%.2g</td><td>%.0f</td><td>%.2f</td><td>%.0f %%</td><td>%s</td>"
+                "<td class=l>%s</td></tr>\n",
+                dom[i] < 0 ? "" : " class=dom", tes[i], err[i], ndiff[i], maxerr[i], rays[i], ms[i],
                 spread[i], ins, par);
         fprintf(r->md, "| 1e-%d | %.3g | %.0f | %.2g | %.2f | %s | %s |\n", tes[i], err[i],
                 ndiff[i], maxerr[i], ms[i], ins, par);
@@ -478,14 +498,36 @@ static int trace_tol(report *r) {
     cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
     cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "ms per frame, 1 thread (median)");
     cj_chart_set_axis(c, 1, CJ_CHART_LOG10, "RMSE against tol 1e-10");
-    report_front_series(c, (size_t)nt, ms, y, dom, floor, "Pareto front");
+    double ymax = yfloor; /* room for the labels above the top point and below the floor */
+    for (int i = 0; i < nt; ++i) ymax = fmax(ymax, y[i]);
+    cj_chart_set_range(c, 1, yfloor / 3, ymax * 3);
+    report_front_series(c, (size_t)nt, ms, y, dom, yfloor, "Pareto front");
     cj_chart_series_opts o = {"patch direct", cj_rgba_make(0x2c, 0xa0, 0x2c, 255), 1.0,
                               CJ_MARKER_CIRCLE, 5.0};
     cj_chart_add_series(c, ms, y, (size_t)nt, &o);
-    for (int i = 0; i < nt; ++i) { /* one method: every point is labelled */
-        char txt[16];
-        snprintf(txt, sizeof txt, "1e-%d", tes[i]);
-        cj_chart_annotate(c, ms[i], y[i], txt, cj_rgba_make(0x60, 0x60, 0x60, 255));
+    /* one method: every point is labelled; those with RMSE 0 (they pile up) once, at the
+     * cheapest of them */
+    int z = -1, nz = 0;
+    for (int i = 0; i < nt; ++i) {
+        char txt[48];
+        if (err[i] > 0) {
+            snprintf(txt, sizeof txt, "1e-%d", tes[i]);
+            cj_chart_annotate(c, ms[i], y[i], txt, cj_rgba_make(0x60, 0x60, 0x60, 255));
+        } else {
+            nz++;
+            if (z < 0 || ms[i] < ms[z]) z = i;
+        }
+    }
+    if (z >= 0) {
+        char txt[48];
+        int lo = 99, hi = 0;
+        for (int i = 0; i < nt; ++i)
+            if (!(err[i] > 0)) lo = tes[i] < lo ? tes[i] : lo, hi = tes[i] > hi ? tes[i] : hi;
+        if (nz > 1)
+            snprintf(txt, sizeof txt, "1e-%d .. 1e-%d: RMSE 0", lo, hi);
+        else
+            snprintf(txt, sizeof txt, "1e-%d: RMSE 0", lo);
+        cj_chart_annotate(c, ms[z], y[z], txt, cj_rgba_make(0x60, 0x60, 0x60, 255));
     }
     const int st = report_chart(r, c, "trace_tol.png", 760, 480);
     cj_chart_destroy(c);
