@@ -428,7 +428,7 @@ int report_arclen(report *r) {
                             set ? NULL : "Pareto front (per set)");
         for (int m = 0; m < 2; ++m) {
             char name[48];
-            snprintf(name, sizeof name, "%s, %s", NAME[m], SETNAME[set]);
+            snprintf(name, sizeof name, "%s, %s", m ? "chord sum" : "adaptive G-K", SETNAME[set]);
             cj_chart_series_opts o = {name, COL[set][m], 1.5, MK[set][m], 5.0};
             if (cj_chart_add_series(c, cost[set] + m * np, y + m * np, (size_t)np, &o)) {
                 cj_chart_destroy(c);
@@ -446,7 +446,7 @@ int report_arclen(report *r) {
                 }
         }
     }
-    const int st = report_chart(r, c, "arclen.png", 820, 480);
+    const int st = report_chart(r, c, "arclen.png", 860, 480);
     cj_chart_destroy(c);
     return st;
 }

@@ -91,6 +91,7 @@ static void test_quick_report(void **state) {
     int rows = 0, tess_rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
     int arc_rows = 0, fronts_arc = 0, interp_rows = 0, contour_rows = 0, ode_rows = 0;
     int render_rows = 0, trace_rows = 0, tess_surf[4] = {0, 0, 0, 0}, arc_cubic_rows = 0;
+    int contour_ellipse_rows = 0;
     /* the arc length's chord sum: set x (N = 16, N = 4096) */
     double chord_err[2][2] = {{0, 0}, {0, 0}};
     double ode_err[4][2] = {{0}}; /* integrator x (N = 32, N = 256) */
@@ -153,8 +154,9 @@ static void test_quick_report(void **state) {
             for (int m = 0; m < 4; ++m)
                 if (!strcmp(f[1], INT[m])) ode_err[m][N == 256] = emax;
         } else if (!strcmp(f[0], "contour")) {
-            /* the exact distance polyline - circle within the tolerance asked for */
+            /* the exact distance polyline - circle or ellipse within the tolerance asked for */
             contour_rows++;
+            contour_ellipse_rows += strstr(f[1], "(ellipse)") != NULL; /* exact, by Eberly */
             const double tol = strtod(f[2], NULL), dev = strtod(f[4], NULL),
                          pts = strtod(f[10], NULL);
             assert_true(isfinite(dev) && dev > 0 && pts >= 8);
@@ -216,10 +218,11 @@ static void test_quick_report(void **state) {
     assert_int_equal(tess_rows, 10);        /* 2 methods x (teapot 2 tols, 3 models 1) */
     assert_int_equal(arc_rows, 4 * 3);      /* 2 sets x adaptive/chord sum x 3 tols or N */
     assert_int_equal(interp_rows, 2 * 3);   /* equispaced/Chebyshev x degrees 4, 12, 24 */
-    assert_int_equal(contour_rows, 2 * 2);  /* grids 8, 64 x 2 tolerances */
+    assert_int_equal(contour_rows, 6);      /* circle: grids 8, 64, ellipse: 64; x 2 tols */
     assert_int_equal(ode_rows, 4 * 2);      /* 4 integrators x N = 32, 256 */
     assert_int_equal(tess_surf[0], 2 * 2);
     assert_int_equal(arc_cubic_rows, 2 * 3);
+    assert_int_equal(contour_ellipse_rows, 2);
     for (int set = 0; set < 2; ++set)
         if (!(chord_err[set][1] > 0 && chord_err[set][0] > 1000 * chord_err[set][1]))
             fail_msg("chord sum (set %d): error %g at N = 16, %g at N = 4096", set,
@@ -263,11 +266,12 @@ static void test_quick_report(void **state) {
  * runs and exits 0, and a malformed spec is refused with the usage status 2. */
 static void test_workloads(void **state) {
     (void)state;
-    static const char *const OK[] = {
-        "arclen:0:1e-06", "arclen:1:256:1", "interp:0:12",   "interp:1:24",   "contour:8:0.01",
-        "ode:2:256",      "tess:2:0.01:1",  "tess:0:0.01:2", "tess:3:0.01:3", "arclen:0:1e-09:1"};
-    static const char *const BAD[] = {"arclen:2:1", "interp:1:0", "contour:0:0.1", "ode:4:16",
-                                      "tess:0:0.01:4"};
+    static const char *const OK[] = {"arclen:0:1e-06",   "arclen:1:256:1",    "interp:0:12",
+                                     "interp:1:24",      "contour:8:0.01",    "ode:2:256",
+                                     "tess:2:0.01:1",    "tess:0:0.01:2",     "tess:3:0.01:3",
+                                     "arclen:0:1e-09:1", "contour:16:1e-05:1"};
+    static const char *const BAD[] = {"arclen:2:1",      "interp:1:0", "contour:0:0.1",
+                                      "contour:8:0.1:2", "ode:4:16",   "tess:0:0.01:4"};
     char cmd[1024];
     for (size_t i = 0; i < sizeof OK / sizeof *OK; ++i) {
         snprintf(cmd, sizeof cmd, "'%s' report --workload '%s' 2", CJ_CLI, OK[i]);
