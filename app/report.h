@@ -41,6 +41,16 @@ int report_chart(report *r, const cj_chart *c, const char *name, int w, int h);
 double report_callgrind(report *r, const char *spec, long n, double *rel_diff);
 /* Runs one workload (for callgrind): returns 0, or 2 for an unknown spec. */
 int report_workload(const char *spec, long n);
+/* One cell of a section's full table: runs `units` units of its computation (0: its set-up
+ * only); 0 on success. */
+typedef int (*report_cell_fn)(void *ctx, int cell, long units);
+/* Workload side of report_callgrind_cells (report_cgbatch.c): runs every cell with 0 and with
+ * n units, each between callgrind client requests (zero the counters, dump them). */
+int report_cells_workload(int ncell, long n, report_cell_fn cell, void *ctx);
+/* Instructions per unit of every cell of the workload "SECTION:all" from ONE callgrind run:
+ * out[i] = (dump of n units - dump of 0 units) / n; NAN when valgrind is off or fails (then
+ * returns -1). */
+int report_callgrind_cells(report *r, const char *spec, long n, int ncell, double *out);
 
 int report_eval(report *r);
 int report_flatten(report *r);

@@ -5,11 +5,12 @@
  *    ∫ sqrt(a t² + b t + c) dt evaluated in long double (its own error ~1e-18 of the length);
  *  - cubics (5 random, a near-cusp, a loop, an S), reference an MPFR quadrature with a proven
  *    error bound (cubic_length below: composite Gauss-Legendre, 48 nodes per panel, 256 bits,
- *    the panels split until the Bernstein-ellipse bound is below 1e-40).
+ *    panels halved until the speed's nearest complex root lies outside the Bernstein ellipse
+ *    E_4 of the panel; ~1e-46 per panel).
  * Both references are far below every tolerance measured. Per choice: max and mean absolute
  * error over the curves, the largest error estimate the function returned, ns per call (median
  * of interleaved runs), and in the full report instructions per call by callgrind (workload
- * "arclen:M:TOL_OR_N:SET", every curve once). Pareto fronts per set. */
+ * "arclen:all": all cells in one run, report_cgbatch.c). Pareto fronts per set. */
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
@@ -20,6 +21,7 @@
 #include <math.h>
 #include <mpfr.h>
 #include <stdio.h>
+#include <string.h>
 
 #define NCURVE 8
 static double curves[NCURVE][6], cubics[NCURVE][8];
@@ -264,10 +266,35 @@ static cj_status one_length(const cj_bezier *c, int m, double p, double *L, doub
     return st == CJ_ERR_CAP ? CJ_OK : st; /* CAP: best value, its estimate above tol */
 }
 
+static const double TOL_FULL[NP] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
+static const int N_FULL[NP] = {8, 32, 128, 512, 2048, 8192};
+
+/* Cell i of the full table (set i / 12, method (i / 6) % 2, parameter i % 6): `units` calls,
+ * the curves in turn. */
+static int arclen_cell(void *ctx, int i, long units) {
+    (void)ctx;
+    const int set = i / (2 * NP), m = (i / NP) % 2, p = i % NP;
+    const double prm = m ? (double)N_FULL[p] : TOL_FULL[p];
+    volatile double sink = 0;
+    for (long k = 0; k < units; ++k) {
+        const cj_bezier c = set_curve(set, (int)(k % NCURVE));
+        double L = 0, e = 0;
+        if (one_length(&c, m, prm, &L, &e)) return 1;
+        sink += L;
+    }
+    (void)sink;
+    return 0;
+}
+
 /* n calls (the curves in turn, so 8 units are the table's mean over them): "arclen:0:TOL[:SET]"
  * is cj_bezier_arclength at tolerance TOL, "arclen:1:N[:SET]" the chord sum of N steps; SET 0
- * parabolas (default), 1 cubics. */
+ * parabolas (default), 1 cubics; "arclen:all": every cell of the full table
+ * (report_cells_workload). */
 int report_arclen_workload(const char *spec, long n) {
+    if (!strcmp(spec, "arclen:all")) {
+        make_curves();
+        return report_cells_workload(NSET * 2 * NP, n, arclen_cell, NULL);
+    }
     int m = -1, set = 0;
     double p = 0;
     if (sscanf(spec, "arclen:%d:%lf:%d", &m, &p, &set) < 2 || m < 0 || m > 1 || set < 0 ||
@@ -304,13 +331,16 @@ int report_arclen(report *r) {
         oracle_bound = fmax(oracle_bound, b),
         max_panels = panels > max_panels ? panels : max_panels;
     }
-    static const double TOL_FULL[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12},
-                        TOL_QUICK[] = {1e-3, 1e-6, 1e-9};
-    static const int N_FULL[] = {8, 32, 128, 512, 2048, 8192}, N_QUICK[] = {16, 256, 4096};
+    static const double TOL_QUICK[] = {1e-3, 1e-6, 1e-9};
+    static const int N_QUICK[] = {16, 256, 4096};
     const double *tols = r->quick ? TOL_QUICK : TOL_FULL;
     const int *Ns = r->quick ? N_QUICK : N_FULL;
     const int np = r->quick ? 3 : 6, runs = r->quick ? 5 : 15, reps = r->quick ? 20 : 200;
     static arc_cell C[NSET][2][NP];
+    /* instructions per call, every cell in one callgrind run (8 calls each: every curve once) */
+    double cells[NSET * 2 * NP];
+    for (int i = 0; i < NSET * 2 * NP; ++i) cells[i] = NAN;
+    if (!r->quick) report_callgrind_cells(r, "arclen:all", NCURVE, NSET * 2 * NP, cells);
     for (int set = 0; set < NSET; ++set)
         for (int p = 0; p < np; ++p) {
             double tm[2][16];
@@ -333,10 +363,7 @@ int report_arclen(report *r) {
                 arc_cell *e = &C[set][m][p];
                 const double prm = m ? (double)Ns[p] : tols[p];
                 e->ns = report_median(tm[m], (size_t)runs, &e->spread);
-                /* 8 and 16 calls: every curve once and twice (a few Mi instructions at most) */
-                char spec[64];
-                snprintf(spec, sizeof spec, "arclen:%d:%.17g:%d", m, prm, set);
-                e->instr = r->quick ? NAN : report_callgrind(r, spec, NCURVE, NULL);
+                e->instr = cells[(set * 2 + m) * NP + p];
                 e->emax = e->emean = 0, e->est = m ? NAN : 0;
                 for (int k = 0; k < NCURVE; ++k) {
                     const cj_bezier c = set_curve(set, k);

@@ -10,7 +10,8 @@
  *    golden-section search on the segment (unimodal: the search converges to it).
  * Per choice: that deviation over all segments (bound: the tolerance), vertices emitted, µs per
  * contour (median of interleaved runs), and in the full report instructions per contour by
- * callgrind (workload "contour:GRID:TOL[:SHAPE]"). Pareto fronts per curve. */
+ * callgrind (all cells in one run, workload "contour:all", report_cgbatch.c). Pareto fronts per
+ * curve. */
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
@@ -19,6 +20,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 static const double CX = 0.03, CY = 0.01, R = 0.8;
 static const double EX = -0.02, EY = 0.04, ERX = 0.85, ERY = 0.4, EROT = 0.5;
@@ -124,9 +126,32 @@ static cj_status make_shape(int which, cj_implicit_shape *shape, cj_implicit *f)
                  : cj_implicit_circle(CX, CY, R, shape, f);
 }
 
+static const int G_FULL[] = {8, 32, 128, 512};
+static const double T_FULL[] = {1e-2, 1e-4, 1e-6, 1e-8};
+enum { NG_FULL = 4, NT_FULL = 4 };
+
+/* Cell i of the full table (curve i / 16, grid (i / 4) % 4, tolerance i % 4): `units`
+ * contours; 0 units: the curve's set-up only. */
+static int contour_cell(void *ctx, int i, long units) {
+    (void)ctx;
+    const int which = i / (NG_FULL * NT_FULL), g = (i / NT_FULL) % NG_FULL, t = i % NT_FULL;
+    cj_implicit_shape shape;
+    cj_implicit f;
+    if (make_shape(which, &shape, &f)) return 1;
+    const double box[4] = {-1, -1, 1, 1};
+    const cj_contour_options o = {G_FULL[g], G_FULL[g], T_FULL[t], NULL};
+    for (long k = 0; k < units; ++k) {
+        acc a = {0, which, 0, 0};
+        if (cj_implicit_contour(&f, box, &o, emit, &a, NULL)) return 1;
+    }
+    return 0;
+}
+
 /* n contours at "contour:GRID:TOL[:SHAPE]" (SHAPE 0 circle (default), 1 ellipse; no
- * measuring). */
+ * measuring); "contour:all": every cell of the full table (report_cells_workload). */
 int report_contour_workload(const char *spec, long n) {
+    if (!strcmp(spec, "contour:all"))
+        return report_cells_workload(NSHAPE * NG_FULL * NT_FULL, n, contour_cell, NULL);
     int g = 0, which = 0;
     double tol = 0;
     if (sscanf(spec, "contour:%d:%lf:%d", &g, &tol, &which) < 2 || g < 1 || g > 4096 ||
@@ -223,10 +248,10 @@ static int contour_chart(report *r, int which, const int *gs, int ng, const doub
 }
 
 int report_contour(report *r) {
-    static const int G_FULL[] = {8, 32, 128, 512}, G_QUICK[] = {8, 64}, G_QUICK_E[] = {64};
-    static const double T_FULL[] = {1e-2, 1e-4, 1e-6, 1e-8}, T_QUICK[] = {1e-3, 1e-6};
+    static const int G_QUICK[] = {8, 64}, G_QUICK_E[] = {64};
+    static const double T_QUICK[] = {1e-3, 1e-6};
     const double *tols = r->quick ? T_QUICK : T_FULL;
-    const int nt = r->quick ? 2 : 4, runs = r->quick ? 3 : 11;
+    const int nt = r->quick ? 2 : NT_FULL, runs = r->quick ? 3 : 11;
     const double box[4] = {-1, -1, 1, 1};
     static double us[NSHAPE][NC], spread[NSHAPE][NC], dev[NSHAPE][NC], pts[NSHAPE][NC],
         instr[NSHAPE][NC];
@@ -235,7 +260,7 @@ int report_contour(report *r) {
     for (int which = 0; which < NSHAPE; ++which) {
         /* quick: the ellipse on one grid only */
         gsof[which] = r->quick ? (which ? G_QUICK_E : G_QUICK) : G_FULL;
-        ngof[which] = r->quick ? (which ? 1 : 2) : 4;
+        ngof[which] = r->quick ? (which ? 1 : 2) : NG_FULL;
         const int *gs = gsof[which];
         cj_implicit_shape shape;
         cj_implicit f;
@@ -256,11 +281,12 @@ int report_contour(report *r) {
             if (cj_implicit_contour(&f, box, &o, emit, &a, NULL))
                 return cli_error("report", "contour: %s", cj_last_error());
             dev[which][i] = a.dev, pts[which][i] = (double)a.pts;
-            char spec[80];
-            snprintf(spec, sizeof spec, "contour:%d:%.17g:%d", gs[i / nt], tols[i % nt], which);
-            instr[which][i] = r->quick ? NAN : report_callgrind(r, spec, 1, NULL);
+            instr[which][i] = NAN;
         }
     }
+    /* instructions per contour, every cell in one callgrind run (1 contour each) */
+    if (!r->quick)
+        report_callgrind_cells(r, "contour:all", 1, NSHAPE * NG_FULL * NT_FULL, &instr[0][0]);
     fprintf(r->html,
             "<h2>Implicit contouring</h2>\n<p>Two curves in [&minus;1, 1]&sup2;, contoured by "
             "cj_implicit_contour on an n&times;n grid at a tolerance: the circle of radius %.2g "

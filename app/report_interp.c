@@ -9,7 +9,8 @@
  * include the maximum on the imaginary axis, times 1.01), at the best of 40 ρ in (1, 1.21]
  * (the poles ±i/5 lie on E_1.2198), plus a rounding allowance of
  * 16 u cond. Equispaced parameters have no such bound (Runge's phenomenon): the error grows.
- * Full report: instructions per fit by callgrind (workload "interp:M:DEG"). */
+ * Full report: instructions per fit by callgrind (all cells in one run, workload "interp:all",
+ * report_cgbatch.c). */
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
@@ -20,6 +21,7 @@
 #include <complex.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #define NSAMPLE 2001
 
@@ -44,8 +46,24 @@ static cj_status fit(int m, int n, double *ts, double *vals, double *bez, double
     return cj_interp_points(ts, vals, (size_t)n + 1, 1, -1, 1, bez, NULL, cond);
 }
 
-/* n fits (parameters, values, solve) at "interp:M:DEG", M = 0 equispaced, 1 Chebyshev. */
+static const int DEG_FULL[] = {4, 8, 12, 16, 20, 24, 32};
+enum { ND_FULL = 7 };
+
+/* Cell i of the full table (parameters i / 7, DEG_FULL[i % 7]): `units` fits. */
+static int interp_cell(void *ctx, int i, long units) {
+    (void)ctx;
+    double ts[CJ_INTERP_MAX_DEGREE + 1], vals[CJ_INTERP_MAX_DEGREE + 1],
+        bez[CJ_INTERP_MAX_DEGREE + 1], cond = 0;
+    for (long k = 0; k < units; ++k)
+        if (fit(i / ND_FULL, DEG_FULL[i % ND_FULL], ts, vals, bez, &cond)) return 1;
+    return 0;
+}
+
+/* n fits (parameters, values, solve) at "interp:M:DEG", M = 0 equispaced, 1 Chebyshev;
+ * "interp:all": every cell of the full table (report_cells_workload). */
 int report_interp_workload(const char *spec, long n) {
+    if (!strcmp(spec, "interp:all"))
+        return report_cells_workload(2 * ND_FULL, n, interp_cell, NULL);
     int m = -1, deg = 0;
     if (sscanf(spec, "interp:%d:%d", &m, &deg) != 2 || m < 0 || m > 1 || deg < 1 ||
         deg > CJ_INTERP_MAX_DEGREE)
@@ -58,9 +76,9 @@ int report_interp_workload(const char *spec, long n) {
 }
 
 int report_interp(report *r) {
-    static const int DEG_FULL[] = {4, 8, 12, 16, 20, 24, 32}, DEG_QUICK[] = {4, 12, 24};
+    static const int DEG_QUICK[] = {4, 12, 24};
     const int *degs = r->quick ? DEG_QUICK : DEG_FULL;
-    const int nd = r->quick ? 3 : 7, runs = r->quick ? 5 : 15, reps = r->quick ? 10 : 50;
+    const int nd = r->quick ? 3 : ND_FULL, runs = r->quick ? 5 : 15, reps = r->quick ? 10 : 50;
     /* the bound at its best ρ in (1, 1.21] (ρ near the poles: M explodes; near 1: ρ^-n does
      * not decay), minimised per degree over 40 ellipses */
     double rhos[40], Ms[40];
@@ -68,6 +86,9 @@ int report_interp(report *r) {
     double ns[2][7], spread[2][7], emax[2][7], emean[2][7], bound[2][7], cond[2][7], instr[2][7];
     double ts[CJ_INTERP_MAX_DEGREE + 1], vals[CJ_INTERP_MAX_DEGREE + 1],
         bez[CJ_INTERP_MAX_DEGREE + 1];
+    /* instructions per fit, every cell in one callgrind run (20 fits each) */
+    for (int i = 0; i < 2 * 7; ++i) instr[i / 7][i % 7] = NAN;
+    if (!r->quick) report_callgrind_cells(r, "interp:all", 20, 2 * ND_FULL, &instr[0][0]);
     for (int d = 0; d < nd; ++d) {
         const int n = degs[d];
         double tm[2][16];
@@ -81,9 +102,6 @@ int report_interp(report *r) {
             }
         for (int m = 0; m < 2; ++m) {
             ns[m][d] = report_median(tm[m], (size_t)runs, &spread[m][d]);
-            char spec[64];
-            snprintf(spec, sizeof spec, "interp:%d:%d", m, n);
-            instr[m][d] = r->quick ? NAN : report_callgrind(r, spec, 20, NULL);
             if (fit(m, n, ts, vals, bez, &cond[m][d]))
                 return cli_error("report", "interpolation: %s", cj_last_error());
             const cj_bezier c = cj_bezier_view(n, 1, bez);

@@ -2,9 +2,9 @@
  * x'' = -ω² x - 2ζω x' (ω = 2π, ζ = 0.1, x(0) = 1, x'(0) = 0) over [0, 2] with N steps, against
  * its closed form x(t) = e^(-ζωt) (cos ω_d t + ζω/ω_d sin ω_d t), ω_d = ω sqrt(1 - ζ²). Per
  * (integrator, N): max |x_n - x(t_n)| over the steps, µs per integration (median of
- * interleaved runs), in the full report instructions per integration by callgrind (workload
- * "ode:M:N"). No bound is claimed; the test checks the orders (RK4 gains >= 100x from
- * N = 32 to 256, the Euler methods >= 4x). */
+ * interleaved runs), in the full report instructions per integration by callgrind (all cells
+ * in one run, workload "ode:all", report_cgbatch.c). No bound is claimed; the test checks the
+ * orders (RK4 gains >= 100x from N = 32 to 256, the Euler methods >= 4x). */
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
@@ -13,6 +13,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 static const double W = 6.283185307179586, ZETA = 0.1, T_END = 2.0;
 
@@ -45,8 +46,26 @@ static double run(cj_integrator m, int N, int measure) {
     return measure ? emax : x;
 }
 
-/* n integrations over [0, 2] at "ode:M:N" (integrator M, N steps; no measuring). */
+static const int N_FULL[] = {16, 64, 256, 1024, 4096};
+enum { NM = 4, NN_FULL = 5 };
+
+/* Cell i of the full table (integrator i / 5, N_FULL[i % 5]): `units` integrations. */
+static int ode_cell(void *ctx, int i, long units) {
+    (void)ctx;
+    volatile double sink = 0;
+    for (long k = 0; k < units; ++k) {
+        const double x = run((cj_integrator)(i / NN_FULL), N_FULL[i % NN_FULL], 0);
+        if (!isfinite(x)) return 1;
+        sink += x;
+    }
+    (void)sink;
+    return 0;
+}
+
+/* n integrations over [0, 2] at "ode:M:N" (integrator M, N steps; no measuring); "ode:all":
+ * every cell of the full table (report_cells_workload). */
 int report_ode_workload(const char *spec, long n) {
+    if (!strcmp(spec, "ode:all")) return report_cells_workload(NM * NN_FULL, n, ode_cell, NULL);
     int m = -1, N = 0;
     if (sscanf(spec, "ode:%d:%d", &m, &N) != 2 || m < 0 || m > 3 || N < 1 || N > 1 << 24)
         return cli_fail("report", "bad workload '%s' (ode:INTEGRATOR0-3:STEPS)", spec);
@@ -61,14 +80,14 @@ int report_ode_workload(const char *spec, long n) {
 }
 
 int report_ode(report *r) {
-    static const int N_FULL[] = {16, 64, 256, 1024, 4096}, N_QUICK[] = {32, 256};
+    static const int N_QUICK[] = {32, 256};
     const int *Ns = r->quick ? N_QUICK : N_FULL;
-    const int nn = r->quick ? 2 : 5, runs = r->quick ? 3 : 11;
-    enum { NM = 4 };
+    const int nn = r->quick ? 2 : NN_FULL, runs = r->quick ? 3 : 11;
     for (int m = 0; m < NM; ++m)
         if (cj_ode2_work_size(1, (cj_integrator)m) > 64)
             return cli_error("report", "integrators: work space too large");
     double us[NM * 5], spread[NM * 5], err[NM * 5], instr[NM * 5];
+    for (int i = 0; i < NM * 5; ++i) instr[i] = NAN;
     for (int i = 0; i < nn; ++i) {
         double tm[NM][16];
         volatile double sink = 0;
@@ -84,11 +103,10 @@ int report_ode(report *r) {
             err[m * nn + i] = run((cj_integrator)m, Ns[i], 1);
             if (!isfinite(err[m * nn + i]))
                 return cli_error("report", "integrators: %s", cj_last_error());
-            char spec[64];
-            snprintf(spec, sizeof spec, "ode:%d:%d", m, Ns[i]);
-            instr[m * nn + i] = r->quick ? NAN : report_callgrind(r, spec, 4, NULL);
         }
     }
+    /* instructions per integration, every cell in one callgrind run (4 integrations each) */
+    if (!r->quick) report_callgrind_cells(r, "ode:all", 4, NM * NN_FULL, instr);
     int dom[NM * 5];
     report_pareto((size_t)(NM * nn), us, err, dom);
     fprintf(r->html,

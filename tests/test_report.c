@@ -262,14 +262,16 @@ static void test_quick_report(void **state) {
     assert_int_equal(system(cmd), 0);
 }
 
-/* The callgrind workloads the full report counts (the quick report does not run them): each
- * runs and exits 0, and a malformed spec is refused with the usage status 2. */
+/* The callgrind workloads the full report counts (the quick report does not run them; the
+ * "SECTION:all" ones run every cell of a full table): each runs and exits 0, and a malformed
+ * spec is refused with the usage status 2. */
 static void test_workloads(void **state) {
     (void)state;
-    static const char *const OK[] = {"arclen:0:1e-06",   "arclen:1:256:1",    "interp:0:12",
-                                     "interp:1:24",      "contour:8:0.01",    "ode:2:256",
-                                     "tess:2:0.01:1",    "tess:0:0.01:2",     "tess:3:0.01:3",
-                                     "arclen:0:1e-09:1", "contour:16:1e-05:1"};
+    static const char *const OK[] = {"arclen:0:1e-06",   "arclen:1:256:1",     "interp:0:12",
+                                     "interp:1:24",      "contour:8:0.01",     "ode:2:256",
+                                     "tess:2:0.01:1",    "tess:0:0.01:2",      "tess:3:0.01:3",
+                                     "arclen:0:1e-09:1", "contour:16:1e-05:1", "arclen:all",
+                                     "interp:all",       "contour:all",        "ode:all"};
     static const char *const BAD[] = {"arclen:2:1",      "interp:1:0", "contour:0:0.1",
                                       "contour:8:0.1:2", "ode:4:16",   "tess:0:0.01:4"};
     char cmd[1024];
@@ -283,8 +285,9 @@ static void test_workloads(void **state) {
         if (!(st != -1 && WIFEXITED(st) && WEXITSTATUS(st) == 2))
             fail_msg("workload %s: status %d, want exit 2", BAD[i], st);
     }
-    printf("workloads: %zu specs run (arclen, interp, contour, ode, tess on the sphere, torus, "
-           "cylinder), %zu malformed ones refused with status 2\n",
+    printf("workloads: %zu specs run (arclen, interp, contour, ode, each also on its whole full "
+           "table, tess on the sphere, torus, cylinder), %zu malformed ones refused with status "
+           "2\n",
            sizeof OK / sizeof *OK, sizeof BAD / sizeof *BAD);
 }
 

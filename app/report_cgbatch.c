@@ -1,0 +1,80 @@
+/* casteljau report: the instruction counts of all the cells of a section in ONE callgrind run,
+ * for the sections with many cheap cells (arc length, interpolation, contouring, integrators).
+ * report_callgrind runs valgrind twice per cell, and valgrind's start-up (about 1 s, more on a
+ * busy machine) is most of a cheap cell's run: 100 cells cost minutes. Here the workload
+ * "SECTION:all" runs every cell of the section's full table in turn, each twice between
+ * callgrind client requests (counters zeroed before, dumped after): once with 0 units (the
+ * cell's set-up only) and once with N units, and the count per unit is the difference of the
+ * two dumps over N, as report_callgrind's difference of an N- and a 2N-unit process (set-up,
+ * start-up and the client requests cancel). One unit of the first cell runs before any
+ * counting, so that no cell pays for a lazy initialisation. Without valgrind's header at build
+ * time the requests are no-ops, the dumps are missing and the counts NAN. */
+#define _POSIX_C_SOURCE 200809L
+#include "report.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#if defined(__has_include)
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define CJ_REPORT_CG_REQUESTS 1
+#endif
+#endif
+
+int report_cells_workload(int ncell, long n, report_cell_fn cell, void *ctx) {
+    if (cell(ctx, 0, 1)) return 1; /* warm-up, not counted */
+    for (int i = 0; i < ncell; ++i)
+        for (int k = 0; k < 2; ++k) {
+#ifdef CJ_REPORT_CG_REQUESTS
+            CALLGRIND_ZERO_STATS;
+#endif
+            const int rc = cell(ctx, i, k ? n : 0);
+#ifdef CJ_REPORT_CG_REQUESTS
+            CALLGRIND_DUMP_STATS;
+#endif
+            if (rc) return 1;
+        }
+    return 0;
+}
+
+/* Instruction total of a callgrind dump file, NAN if unreadable. */
+static double dump_total(const char *path) {
+    FILE *f = fopen(path, "r");
+    if (!f) return NAN;
+    char line[512];
+    double total = NAN;
+    while (fgets(line, sizeof line, f))
+        if (!strncmp(line, "summary:", 8) || !strncmp(line, "totals:", 7))
+            total = strtod(strchr(line, ':') + 1, NULL);
+    fclose(f);
+    return total;
+}
+
+int report_callgrind_cells(report *r, const char *spec, long n, int ncell, double *out) {
+    for (int i = 0; i < ncell; ++i) out[i] = NAN;
+    if (!r->callgrind) return 0;
+    char base[4096], path[4200], cmd[9000];
+    snprintf(base, sizeof base, "%s/.callgrind.cells", r->dir);
+    snprintf(cmd, sizeof cmd,
+             "valgrind --tool=callgrind --callgrind-out-file='%s' '%s' report --workload '%s' %ld "
+             ">/dev/null 2>&1",
+             base, r->self, spec, n);
+    const int ok = system(cmd) == 0;
+    for (int i = 0; i < ncell; ++i) {
+        double t[2];
+        for (int k = 0; k < 2; ++k) {
+            snprintf(path, sizeof path, "%s.%d", base, 2 * i + k + 1);
+            t[k] = ok ? dump_total(path) : NAN;
+        }
+        out[i] = (t[1] - t[0]) / (double)n;
+    }
+    for (int d = 1; d <= 2 * ncell; ++d) { /* also after a failed run: no stale dumps */
+        snprintf(path, sizeof path, "%s.%d", base, d);
+        remove(path);
+    }
+    remove(base);
+    return ok ? 0 : -1;
+}
