@@ -30,6 +30,8 @@
 enum { NSURF = 4, NTOL = 5, MAXP = 32 };
 static const char *const SNAME[NSURF] = {"teapot", "sphere", "torus", "cylinder"};
 static const double TORUS_R = 2.0, TORUS_r = 0.5;
+/* Patches per callgrind run (N; 2N in the second run), see report_tess_workload. */
+static const long CG_UNITS[NSURF] = {32, 2, 4, 1};
 
 typedef struct surf {
     cj_patchset *set; /* the teapot's, else NULL */
@@ -152,9 +154,12 @@ static cj_status tess(const surf *s, cj_mesh *mesh, double tol, int K, int measu
     return cj_tessellate_patches(s->patches, s->count, &opt, mesh, rep);
 }
 
-/* n patch tessellations (the surface's patches in turn): "tess:K:RELTOL[:S]", K > 0 uniform
- * K x K, K = 0 adaptive at RELTOL times the surface's size; S = 0 teapot (default), 1 sphere,
- * 2 torus, 3 cylinder. */
+/* n patch tessellations: "tess:K:RELTOL[:S]", K > 0 uniform K x K, K = 0 adaptive at RELTOL
+ * times the surface's size; S = 0 teapot (default), 1 sphere, 2 torus, 3 cylinder. Unit k
+ * tessellates patch 5k mod count (5 is prime to 32, 16, 8 and 4): every count consecutive units
+ * cover every patch once, and so do 4 consecutive units of the torus every quarter of its tube
+ * (patch b*4 + a) and 2 of the sphere both hemispheres, whose patches are congruent by exact
+ * quarter turns and mirrors: the report counts 2, 4 and 1 units there (see CG_UNITS). */
 int report_tess_workload(const char *spec, long n) {
     int K = -1, which = 0;
     double rel = 0;
@@ -173,7 +178,7 @@ int report_tess_workload(const char *spec, long n) {
         cj_mesh_clear(mesh);
         cj_tess_options opt = {rel * s.size, K, 0, 0};
         cj_tess_report rep;
-        rc = cj_tessellate_patches(s.patches + k % (long)s.count, 1, &opt, mesh, &rep) != 0;
+        rc = cj_tessellate_patches(s.patches + (5 * k) % (long)s.count, 1, &opt, mesh, &rep) != 0;
     }
     cj_mesh_destroy(mesh);
     cj_patchset_destroy(s.set);
@@ -225,12 +230,13 @@ static int measure_surface(report *r, int which, const surf *s, cj_mesh *mesh, c
             e->bound = rep.bound, e->tris = (double)rep.triangles;
             char spec[64];
             snprintf(spec, sizeof spec, "tess:%d:%g:%d", e->K, rels[t], which);
-            /* one surface's worth of patches (N and 2N), only at the coarse tolerances (the
-             * teapot >= 3e-3 of its size, the rational models 1e-2, whose adaptive planning
-             * costs milliseconds per patch at any tolerance), where callgrind takes seconds */
+            /* N and 2N patches (the teapot: all 32; the rational models: a set that represents
+             * their congruent patches, CG_UNITS), only at the coarse tolerances (the teapot
+             * >= 3e-3 of its size, the models 1e-2, whose adaptive planning costs milliseconds
+             * per patch at any tolerance), where callgrind takes seconds */
             e->instr = r->quick || rels[t] < (which ? 1e-2 : 3e-3)
                            ? NAN
-                           : report_callgrind(r, spec, (long)s->count, NULL);
+                           : report_callgrind(r, spec, CG_UNITS[which], NULL);
         }
         if (st) return cli_error("report", "tessellation (%s): %s", SNAME[which], cj_last_error());
     }
