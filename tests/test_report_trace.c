@@ -12,10 +12,14 @@
  *
  * Patch tolerance (rows "patch direct", param = tolerance 1e-2 and 1e-6): RMSE against the image
  * at 1e-10 finite and >= 0, pixels differing by > 1/255 (column extra) an integer >= 0; the tight
- * tolerance no worse than the coarse one and differing in at most 1 % of the pixels.
+ * tolerance no worse than the coarse one and differing in at most 1 % of the pixels, the coarse one
+ * differing in at least one pixel (the option takes effect: 21 pixels measured at 32 x 24).
  *
- * At the end: the row counts (3 spp x 2 samplings, 2 tolerances), a Pareto front among the spp
- * rows, and the page and summary.md show both charts. */
+ * At the end: the row counts (3 spp x 2 samplings, 2 tolerances, each exactly once), a Pareto
+ * front among the spp rows, and the page and summary.md show both charts.
+ *
+ * Checked that it can fail, on mutants of report_trace.c: both samplings random, random always at
+ * 1 spp, a 4-spp reference, one tolerance for both rows, the patch tolerance ignored. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -28,7 +32,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int spp_rows, tol_rows, fronts;
+static int spp_rows, tol_rows, fronts, seen[2][3], tol_seen[2];
 static double err[2][3];             /* [stratified, random][spp 1, 4, 16] */
 static double tol_err[2], tol_px[2]; /* [1e-2, 1e-6]: RMSE, pixels differing */
 static const int SPP[3] = {1, 4, 16};
@@ -43,6 +47,7 @@ void report_check_trace_row(char *const f[12]) {
         assert_true(isfinite(px) && px >= 0 && px == floor(px));
         assert_true(fabs(param - 1e-2) < 1e-12 || fabs(param - 1e-6) < 1e-16);
         const int k = param < 1e-3;
+        tol_seen[k]++;
         tol_err[k] = rmse, tol_px[k] = px;
         return;
     }
@@ -61,6 +66,7 @@ void report_check_trace_row(char *const f[12]) {
         fail_msg("trace %s %d spp: reference noise %g not well below the RMSE %g", f[1], spp,
                  sigma_ref, rmse);
     assert_true(isfinite(corr) && corr >= 0 && corr <= rmse);
+    seen[m][i]++;
     err[m][i] = rmse;
 }
 
@@ -68,6 +74,12 @@ void report_check_trace_end(const char *html, const char *md) {
     assert_int_equal(spp_rows, 3 * 2);
     assert_int_equal(tol_rows, 2);
     assert_true(fronts >= 1);
+    for (int m = 0; m < 2; ++m)
+        for (int i = 0; i < 3; ++i)
+            if (seen[m][i] != 1)
+                fail_msg("trace: %d rows for %s at %d spp", seen[m][i], m ? "random" : "stratified",
+                         SPP[i]);
+    assert_true(tol_seen[0] == 1 && tol_seen[1] == 1);
     /* 1 spp: the same picture whatever the sampling */
     if (err[0][0] != err[1][0])
         fail_msg("trace 1 spp: stratified RMSE %g differs from random %g", err[0][0], err[1][0]);
@@ -78,6 +90,8 @@ void report_check_trace_end(const char *html, const char *md) {
     if (!(err[0][2] <= 0.9 * err[1][2]))
         fail_msg("trace 16 spp: stratified RMSE %g not 10 %% below random %g", err[0][2],
                  err[1][2]);
+    /* the coarse tolerance shows (21 pixels at 32 x 24): the option takes effect */
+    assert_true(tol_err[0] > 0 && tol_px[0] >= 1);
     assert_true(tol_err[1] <= tol_err[0]);
     if (!(tol_px[1] <= 0.01 * 32 * 24))
         fail_msg("trace: %g pixels differ at patch tolerance 1e-6", tol_px[1]);
