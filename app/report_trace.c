@@ -5,11 +5,12 @@
  * traced by cj_render_trace_ex at spp 1 .. 256 (quick 1 .. 16) with stratified and with plain
  * random sampling (cj_trace_options.random_sampling). Error: the RMSE of the linear radiance
  * against a reference, sqrt(Σ (c − ref)² / 3P) over the P pixels and the 3 channels. The
- * reference is the mean of two stratified high-spp renders A and B with other seeds than the
- * measured images (same seeds would correlate the errors); A and B are independent, so the
+ * reference is the mean of two random-sampled high-spp renders A and B with other seeds than
+ * the measured images (same seeds would correlate the errors); A and B are independent, so the
  * reference's own noise is estimated as σ_ref = RMSE(A, B) / 2 and the error against the true
- * image as sqrt(max(0, RMSE² − σ_ref²)). Cost: ms per frame on one thread (the image does not
- * depend on the thread count), median of interleaved runs.
+ * image as sqrt(max(0, RMSE² − σ_ref²)). Not stratified: the tracer's stratified estimate is
+ * biased (see trace_spp; the full report measures it). Cost: ms per frame on one thread (the
+ * image does not depend on the thread count), median of interleaved runs.
  *
  * Part 2, what the direct Bézier-patch intersection's accuracy costs: the trace demo (the
  * teapot's 32 patches intersected directly, a mirror and a glass sphere) at 1 spp with
@@ -145,7 +146,7 @@ static double rmse(const float *a, const double *b, size_t np) {
  * sweep alternates run by run), each repeating frames for at least min_ms. */
 static int time_cells(const cj_scene *sc, int w, int h, const cell *cells, int nc, int runs,
                       double min_ms, double *ms, double *spread) {
-    double t[16][16];
+    double t[16][16]; /* nc <= 2 * NSPP, runs <= 7 */
     for (int k = 0; k < runs; ++k)
         for (int j = 0; j < nc; ++j) {
             const int i = k % 2 ? nc - 1 - j : j;
