@@ -5,10 +5,10 @@
  * errors of the image and not of the reference; the noise-corrected RMSE (column extra) within
  * [0, RMSE]; at 1 spp both samplings are the same picture (pixel centres, the light's centre),
  * so their RMSE must be identical; the RMSE falls with spp: at 16 spp at most half of 1 spp for
- * each sampling (1/sqrt(16) = 1/4 expected; measured 0.22-0.26 stratified, 0.33-0.38 random over
- * 12 image seeds x 3 reference seeds); stratified at 16 spp at least 10 % below random (measured
- * 0.61-0.75 of it over the same seeds). The images are deterministic for a given seed (the
- * section fixes its seeds), so none of this is flaky.
+ * each sampling (1/sqrt(16) = 1/4 expected; measured 0.22-0.26 stratified, 0.34-0.38 random over
+ * 12 image seeds x 3 pairs of 512-spp reference seeds); stratified at 16 spp at least 10 % below
+ * random (measured 0.61-0.76 of it over the same seeds). The images are deterministic for a given
+ * seed (the section fixes its seeds), so none of this is flaky.
  *
  * Patch tolerance (rows "patch direct", param = tolerance 1e-2 and 1e-6): RMSE against the image
  * at 1e-10 finite and >= 0, pixels differing by > 1/255 (column extra) an integer >= 0; the tight
