@@ -24,6 +24,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The callgrind workload's frame is small: at the finest tolerance a frame is mostly
+ * tessellation, and the 18 cells under callgrind must stay within a few minutes (one frame
+ * each in one valgrind run, "render:all"; 3 frames and 2 valgrind start-ups per cell with
+ * report_callgrind took 3.4 min on the busy machine). */
 enum { NT_MAX = 6, NS_MAX = 3, RUNS_MAX = 8, WL_W = 96, WL_H = 72 };
 
 static const double TOL_FULL[] = {4, 2, 1, 0.5, 0.25, 0.1}, TOL_QUICK[] = {2, 0.25};
@@ -83,22 +87,35 @@ static cj_status to_srgb(const cj_render_image *img, uint8_t *out) {
     return cj_render_image_to_srgb8(img, out, 0);
 }
 
-/* n frames at WL_W x WL_H, tol_px TOL, SPP samples, one thread. */
-int report_render_workload(const char *spec, long n) {
-    double tol = 0;
-    int spp = 0;
-    if (sscanf(spec, "render:%lf:%d", &tol, &spp) != 2 || !(tol >= 1e-3 && tol <= 100) ||
-        (spp != 1 && spp != 4 && spp != 16))
-        return cli_fail("report", "bad workload '%s' (render:TOL:SPP, SPP 1, 4 or 16)", spec);
-    cj_scene *s = NULL;
-    if (cj_render_demo_scene(cli_teapot_path(), NULL, &s))
-        return cli_error("report", "%s", cj_last_error());
+static int frames(const cj_scene *s, double tol, int spp, long n) {
     int rc = 0;
     for (long k = 0; k < n && !rc; ++k) {
         cj_render_image *img = NULL;
         rc = frame(s, WL_W, WL_H, tol, spp, NULL, &img, NULL) != CJ_OK;
         cj_render_image_destroy(img);
     }
+    return rc;
+}
+
+/* cell i of the full table (tol index i / 3, spp index i % 3) */
+static int render_cell(void *ctx, int i, long units) {
+    return frames(ctx, TOL_FULL[i / NS_MAX], SPP_FULL[i % NS_MAX], units);
+}
+
+/* n frames at WL_W x WL_H, tol_px TOL, SPP samples, one thread; "render:all": every cell of
+ * the full table (report_cells_workload). */
+int report_render_workload(const char *spec, long n) {
+    double tol = 0;
+    int spp = 0, all = !strcmp(spec, "render:all");
+    if (!all && (sscanf(spec, "render:%lf:%d", &tol, &spp) != 2 || !(tol >= 1e-3 && tol <= 100) ||
+                 (spp != 1 && spp != 4 && spp != 16)))
+        return cli_fail("report", "bad workload '%s' (render:TOL:SPP, SPP 1, 4 or 16; render:all)",
+                        spec);
+    cj_scene *s = NULL;
+    if (cj_render_demo_scene(cli_teapot_path(), NULL, &s))
+        return cli_error("report", "%s", cj_last_error());
+    const int rc =
+        all ? report_cells_workload(NT_MAX * NS_MAX, n, render_cell, s) : frames(s, tol, spp, n);
     cj_scene_destroy(s);
     return rc ? cli_error("report", "%s", cj_last_error()) : 0;
 }
@@ -225,11 +242,10 @@ int report_render(report *r) {
     }
     for (int i = 0; i < nt * ns; ++i) {
         ms[i] = report_median(tm[i], (size_t)runs, &spread[i]);
-        char spec[64];
-        snprintf(spec, sizeof spec, "render:%g:%d", tols[i / ns], spps[i % ns]);
-        /* 1 and 2 frames: the difference is one frame without the start-up */
-        instr[i] = r->quick ? NAN : report_callgrind(r, spec, 1, NULL);
+        instr[i] = NAN;
     }
+    /* one frame per cell, every cell in one callgrind run (the full grid is the workload's) */
+    if (!r->quick) report_callgrind_cells(r, "render:all", 1, NT_MAX * NS_MAX, instr);
     for (int t = 0; t < nt; ++t) tess_med[t] = report_median(tess_ms[t], (size_t)(runs * ns), NULL);
     int dom[NT_MAX * NS_MAX];
     double err[NT_MAX * NS_MAX];
@@ -252,12 +268,13 @@ int report_render(report *r) {
             "tess column is that part, the rest is what a warm cache would cost), median of %d "
             "interleaved runs. Triangles: the teapot's, bound: the largest the pipeline proved "
             "(stage report). Instructions per frame: callgrind on the same scene at %d&times;%d, "
-            "one thread. Pareto front over all choices (ms against differing %%).</p>\n"
+            "one thread. Pareto front over all choices (ms against differing %%); on the chart a "
+            "choice with no differing pixel would be drawn at half a pixel's share.</p>\n"
             "<table><tr><th>spp</th><th>tol_px</th><th>triangles</th><th>bound_px</th>"
             "<th>differing</th><th>tess "
             "only</th><th>RMSE</th><th>max</th><th>ms/frame</th><th>spread</th>"
-            "<th>tess ms</th><th>instr/frame</th><th class=l>Pareto</th></tr>\n",
-            w, h, ref_tol, ref_tris, ref_bound, ref_ms, runs, WL_W, WL_H);
+            "<th>tess ms</th><th>instr/frame (%d&times;%d)</th><th class=l>Pareto</th></tr>\n",
+            w, h, ref_tol, ref_tris, ref_bound, ref_ms, runs, WL_W, WL_H, WL_W, WL_H);
     fprintf(r->md,
             "## Renderer (demo teapot, %dx%d, reference tol_px %g at 16 spp)\n\n| spp | "
             "tol_px | triangles | bound_px | differing %% | tess only %% | RMSE | ms/frame | "
