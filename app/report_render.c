@@ -5,12 +5,13 @@
  *
  * Error: the share (in %) of pixels whose 8-bit sRGB colour (cj_render_image_to_srgb8, over
  * the scene's background) differs from the reference's by more than one level in any of R, G,
- * B; next to it the RMSE and the largest difference in 8-bit levels over all R, G, B values.
+ * B; next to it the RMSE and the largest difference in 8-bit levels over all R, G, B values,
+ * and the differing share against the reference tessellation at the same spp (tol_px alone).
  * Cost: ms per full frame on one thread, tessellation included (no render cache: a user who
  * picks tol_px pays the tessellation every time the view changes), the median of interleaved
  * runs. From the stage report: the teapot's triangles and the bound in pixels the pipeline
- * proved. Instructions per frame by callgrind on the same scene at WL_W x WL_H (workload
- * "render:TOL:SPP"). */
+ * proved. Instructions per frame by callgrind on the same scene at WL_W x WL_H, every cell in
+ * one valgrind run (workload "render:all"; "render:TOL:SPP" runs one cell). */
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
@@ -188,9 +189,9 @@ int report_render(report *r) {
     double ref_tris = 0, ref_bound = 0, ref_ms = 0;
     cj_stage_report rep;
     cj_render_image *img = NULL;
-    cj_status st = ref && cur && coarse ? CJ_OK : CJ_ERR_NOMEM;
-    for (int k = 0; k < ns; ++k)
-        if (spps[k] != 16 && !same[k]) st = CJ_ERR_NOMEM;
+    int oom = !ref || !cur || !coarse;
+    for (int k = 0; k < ns; ++k) oom |= spps[k] != 16 && !same[k];
+    cj_status st = oom ? CJ_ERR_NOMEM : CJ_OK;
     if (!st) st = cj_render_cache_create(NULL, &cache);
     if (!st) {
         const double t0 = report_now_ns();
@@ -238,7 +239,7 @@ int report_render(report *r) {
         if (same[k] != ref) free(same[k]);
     if (st) {
         free(ref), free(coarse);
-        return cli_error("report", "render: %s", cj_last_error());
+        return cli_error("report", "render: %s", oom ? "out of memory" : cj_last_error());
     }
     for (int i = 0; i < nt * ns; ++i) {
         ms[i] = report_median(tm[i], (size_t)runs, &spread[i]);
