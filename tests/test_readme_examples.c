@@ -79,8 +79,10 @@ static void test_transcripts(void **state) {
         size_t len = nl ? (size_t)(nl - p) : strlen(p);
         ++line;
         const int fence = len >= 3 && !strncmp(p, "```", 3);
-        /* Only transcripts of the tool itself run (a "$ scripts/setup.sh" would install). */
-        const int prompt = in_block && len >= 19 && !strncmp(p, "$ ./build/casteljau ", 20);
+        /* Only transcripts of the tool itself run (a "$ scripts/setup.sh" would install), and
+         * the printf lines that write their input files. */
+        const int prompt = in_block && ((len >= 20 && !strncmp(p, "$ ./build/casteljau ", 20)) ||
+                                        (len >= 9 && !strncmp(p, "$ printf ", 9)));
         const int any_prompt = in_block && len >= 2 && !strncmp(p, "$ ", 2);
         if (cmd && (fence || any_prompt)) { /* the previous command's output ends here */
             failed += !run_one(cmd, want, cmd_line);

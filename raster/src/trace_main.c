@@ -38,6 +38,7 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
     int covered = 0;
     uint64_t pkey = tr_mix(j->seed ^ tr_mix((uint64_t)pix));
     sh->perm = (uint32_t)(pkey >> 40);
+    sh->perm_key = tr_mix(pkey ^ 0x5851f42d4c957f2dull);
     for (int s = 0; s < j->spp; s++) {
         sh->sample = (uint32_t)s;
         sh->rng.key = tr_mix(pkey + (uint64_t)s);

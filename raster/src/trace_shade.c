@@ -28,6 +28,31 @@ double tr_rand(tr_rng *r) {
     return (double)(v >> 11) * 0x1p-53;
 }
 
+uint32_t tr_permute(uint32_t i, uint32_t n, uint64_t key) {
+    /* Each step is a bijection of the b-bit integers (xor, add, odd multiply, xor-shift), so
+     * their composition permutes [0, 2^b); walking the cycle until the value falls below n
+     * restricts it to a permutation of [0, n). */
+    uint32_t mask = n - 1;
+    mask |= mask >> 1;
+    mask |= mask >> 2;
+    mask |= mask >> 4;
+    mask |= mask >> 8;
+    mask |= mask >> 16;
+    uint32_t k0 = (uint32_t)key, k1 = (uint32_t)(key >> 32);
+    do {
+        i = (i ^ k0) & mask;
+        i = (i * 0x9e3779b1u) & mask;
+        i ^= i >> 3;
+        i = (i + k1) & mask;
+        i = (i * 0x85ebca6bu) & mask;
+        i ^= i >> 5;
+        i = (i ^ (k0 >> 7)) & mask;
+        i = (i * 0xc2b2ae35u) & mask;
+        i ^= i >> 2;
+    } while (i >= n);
+    return i;
+}
+
 int cj_trace_refract(cj_vec3 d, cj_vec3 n, double n1, double n2, cj_vec3 *t) {
     double eta = n1 / n2, ci = -cj_v3_dot(d, n);
     double k = 1.0 - eta * eta * (1.0 - ci * ci);
@@ -113,11 +138,23 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
         if (lt->kind == CJ_LIGHT_AREA) {
             double s = 0.5, t = 0.5;
             if (sh->spp > 1) {
-                /* stratified over the samples of the pixel at the first hit, random deeper */
+                /* Stratified over the samples of the pixel at the first hit, random deeper.
+                 * The light stratum of pixel sample s is a keyed random permutation of s:
+                 * a fixed pairing (such as a cyclic shift) ties each light stratum to one
+                 * part of the pixel, and the pixel's estimate then keeps a variance that
+                 * more samples do not reduce. The random offset makes every sample's
+                 * stratum uniform over the pixels, so the estimate stays unbiased. */
                 if (depth == 0 && !sh->random) {
-                    int k = sh->strata, si = (int)((sh->sample + sh->perm) % (uint32_t)sh->spp);
-                    s = ((si % k) + tr_rand(&sh->rng)) / k;
-                    t = ((si / k % k) + tr_rand(&sh->rng)) / k;
+                    uint32_t ns = (uint32_t)sh->spp;
+                    uint32_t si = (tr_permute(sh->sample, ns, sh->perm_key) + sh->perm) % ns;
+                    uint32_t k = (uint32_t)sh->strata;
+                    if (k * k == ns) {
+                        s = ((si % k) + tr_rand(&sh->rng)) / k;
+                        t = ((si / k) + tr_rand(&sh->rng)) / k;
+                    } else { /* spp strata across the light's first edge */
+                        s = (si + tr_rand(&sh->rng)) / ns;
+                        t = tr_rand(&sh->rng);
+                    }
                 } else {
                     s = tr_rand(&sh->rng);
                     t = tr_rand(&sh->rng);

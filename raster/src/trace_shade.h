@@ -14,6 +14,8 @@ typedef struct tr_rng {
 
 uint64_t tr_mix(uint64_t z);
 double tr_rand(tr_rng *r);
+/* A pseudo-random permutation of [0, n) chosen by key: i -> its image, for i < n, n >= 1. */
+uint32_t tr_permute(uint32_t i, uint32_t n, uint64_t key);
 
 typedef struct tr_lights {
     int unlit; /* the scene has no light at all: colour shown flat, as the rasterizer does */
@@ -34,9 +36,10 @@ typedef struct tr_shade {
     tr_counts *c;
     cj_rgb background;
     int max_depth, spp, strata, random;
-    int indirect;    /* diffuse interreflection rays per diffuse hit (0: off) */
-    int in_indirect; /* 1 while tracing an indirect ray: one bounce only */
-    uint32_t sample, perm;
+    int indirect;          /* diffuse interreflection rays per diffuse hit (0: off) */
+    int in_indirect;       /* 1 while tracing an indirect ray: one bounce only */
+    uint32_t sample, perm; /* the pixel sample; a random offset of the light strata */
+    uint64_t perm_key;     /* chooses the pixel's permutation of the light strata */
     tr_rng rng;
 } tr_shade;
 

@@ -17,3 +17,8 @@ if(CJ_WITH_OIIO AND TARGET cj::viz)
     CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
   add_dependencies(test_cli_trace casteljau)
 endif()
+# Stratified area-light sampling: the light strata's permutation, convergence, no bias.
+if(TARGET cj::raster)
+  cj_add_test(test_trace_sampling SOURCES test_trace_sampling.c LIBS cj::raster cj::scene)
+  target_include_directories(test_trace_sampling PRIVATE ${PROJECT_SOURCE_DIR}/raster/src)
+endif()
