@@ -296,7 +296,16 @@ static void rmse_vs_spp(void) {
     cj_scene_destroy(sc);
 }
 
-int main(void) {
+int main(int argc, char **argv) {
+    if (argc > 1 && strcmp(argv[1], "--sampling") == 0) { /* only the noise against spp */
+        rmse_vs_spp();
+        bench_trace_rmse_shipped(CJ_SCENES_DIR "/raytrace.json", CJ_TEAPOT_PATH);
+        return 0;
+    }
+    if (argc > 1) {
+        fprintf(stderr, "usage: bench_trace [--sampling]\n");
+        return 2;
+    }
     printf("bench_trace: intersection cost per primitive kind (%d rays at the primitive's box)\n",
            NRAYS);
     make_rays(cj_v3(0, 0, 0), 1.0);
