@@ -44,17 +44,6 @@ static const char tess_usage[] =
     "line. Exit status 0; 2 for a bad argument or input (a degenerate patch, too many\n"
     "triangles); 1 when the file cannot be written or memory runs out.\n";
 
-static int has_ext(const char *path, const char *ext) {
-    size_t a = strlen(path), b = strlen(ext);
-    if (a <= b) return 0;
-    for (size_t i = 0; i < b; ++i) {
-        char c = path[a - b + i];
-        if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-        if (c != ext[i]) return 0;
-    }
-    return 1;
-}
-
 /* The teapot of this installation (cli_teapot_path: beside the executable first). */
 static cj_status load_teapot(cj_patchset **set) {
     return cj_patchset_load_bpt(cli_teapot_path(), NULL, set);
@@ -148,8 +137,8 @@ int cmd_tessellate(int argc, char **argv) {
     if (!patch_text && weights_text) return cli_fail(cmd, "--weights is only for --patch");
     if (have_tol && uniform) return cli_fail(cmd, "give either --tol or --uniform, not both");
     if (!out) return cli_fail(cmd, "no output file: give -o OUT.obj, OUT.ply or OUT.vtu");
-    const int vtu = has_ext(out, ".vtu");
-    if (!has_ext(out, ".obj") && !has_ext(out, ".ply") && !vtu)
+    const int vtu = cli_has_ext(out, ".vtu");
+    if (!cli_has_ext(out, ".obj") && !cli_has_ext(out, ".ply") && !vtu)
         return cli_fail(cmd, "output '%s' must end in .obj, .ply or .vtu", out);
 
     cj_patchset *set = NULL;

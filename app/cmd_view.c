@@ -7,13 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifndef CJ_TEAPOT_SOURCE
-#define CJ_TEAPOT_SOURCE "data/teapot.bpt"
-#endif
-#ifndef CJ_TEAPOT_INSTALLED
-#define CJ_TEAPOT_INSTALLED "/usr/local/share/casteljau/teapot.bpt"
-#endif
-
 static const char view_usage[] =
     "usage: casteljau view (CURVES.json | SCENE.json | PATCHES.bpt | --teapot)\n"
     "                      [--width W --height H] [--spp N] [--tol-px T] [--threads N]\n"
@@ -36,8 +29,6 @@ static const char view_usage[] =
 #if defined(CJ_HAVE_VIEWER)
 
 #include "casteljau/viewer.h"
-
-#include <unistd.h>
 
 int cmd_view(int argc, char **argv) {
     const char *cmd = "view";
@@ -104,7 +95,7 @@ int cmd_view(int argc, char **argv) {
     if (status >= 0) return status;
     if (teapot && o.path) return cli_fail(cmd, "give either a file or --teapot, not both");
     if (!teapot && !o.path) return cli_fail(cmd, "nothing to view: give a file or --teapot");
-    o.teapot_path = access(CJ_TEAPOT_SOURCE, R_OK) == 0 ? CJ_TEAPOT_SOURCE : CJ_TEAPOT_INSTALLED;
+    o.teapot_path = cli_teapot_path(); /* beside the executable first: a moved prefix works */
     const cj_status st = cj_viewer_run(&o);
     if (st == CJ_ERR_UNSUPPORTED || st == CJ_ERR_NOMEM)
         return cli_error(cmd, "%s", cj_last_error());
