@@ -117,7 +117,12 @@ static double callgrind_once(report *r, const char *spec, long n) {
              "valgrind --tool=callgrind --callgrind-out-file='%s' '%s' report --workload '%s' %ld "
              ">/dev/null 2>&1",
              out, r->self, spec, n);
-    if (system(cmd) != 0) return NAN;
+    const int status = system(cmd);
+    if (status != 0) {
+        report_callgrind_failed(r, spec, status);
+        remove(out);
+        return NAN;
+    }
     FILE *f = fopen(out, "r");
     if (!f) return NAN;
     char line[512];
@@ -152,6 +157,15 @@ int report_workload(const char *spec, long n) {
     if (!strncmp(spec, "trace:", 6)) return report_trace_workload(spec, n);
     return cli_fail("report", "unknown workload '%s'", spec);
 }
+
+/* valgrind cannot run a program built with AddressSanitizer */
+#if defined(__SANITIZE_ADDRESS__)
+#define CJ_REPORT_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CJ_REPORT_ASAN 1
+#endif
+#endif
 
 static int has_quote(const char *s) {
     return strchr(s, '\'') != NULL;
@@ -203,6 +217,14 @@ int cmd_report(int argc, char **argv) {
     if (r.callgrind && (has_quote(r.dir) || has_quote(r.self) ||
                         system("valgrind --version >/dev/null 2>&1") != 0))
         r.callgrind = 0;
+#ifdef CJ_REPORT_ASAN
+    if (r.callgrind) {
+        r.callgrind = 0;
+        snprintf(r.note, sizeof r.note,
+                 "No instruction counts: this build has AddressSanitizer, whose shadow memory "
+                 "valgrind cannot run.");
+    }
+#endif
     char path[4096];
     snprintf(path, sizeof path, "%s/index.html", r.dir);
     r.html = fopen(path, "w");
@@ -246,6 +268,15 @@ int cmd_report(int argc, char **argv) {
     if (!status) status = report_ode(&r);
     if (!status) status = report_render(&r);
     if (!status) status = report_trace(&r);
+    if (!status && r.cg_fail[0]) { /* no instruction counts: say why, here and on stderr */
+        snprintf(r.note, sizeof r.note,
+                 "No instruction counts: %s. Run that workload by hand (casteljau report "
+                 "--workload SPEC 10 under valgrind --tool=callgrind) to see valgrind's message; "
+                 "an instruction set valgrind cannot decode (AVX-512) needs a build without it.",
+                 r.cg_fail);
+        fprintf(stderr, "casteljau report: warning: %s; the report has no instruction counts\n",
+                r.cg_fail);
+    }
     if (!status && r.note[0]) {
         fprintf(r.html, "<h2>Reproducibility</h2>\n<p>%s</p>\n", r.note);
         fprintf(r.md, "%s\n", r.note);

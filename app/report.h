@@ -10,14 +10,15 @@
 #include <stdio.h>
 
 typedef struct report {
-    const char *dir;  /* output folder */
-    int quick;        /* few points per plot, short timings (the test suite's version) */
-    FILE *html, *md;  /* index.html and summary.md, open for writing */
-    FILE *tsv;        /* data.tsv: every table row, machine-readable (checked by the test) */
-    cj_font *font;    /* NULL: charts without text */
-    const char *self; /* path of the tool, for callgrind runs of the workload mode */
-    int callgrind;    /* 1: instruction counts by valgrind --tool=callgrind */
-    char note[512];   /* the callgrind repeatability line */
+    const char *dir;   /* output folder */
+    int quick;         /* few points per plot, short timings (the test suite's version) */
+    FILE *html, *md;   /* index.html and summary.md, open for writing */
+    FILE *tsv;         /* data.tsv: every table row, machine-readable (checked by the test) */
+    cj_font *font;     /* NULL: charts without text */
+    const char *self;  /* path of the tool, for callgrind runs of the workload mode */
+    int callgrind;     /* 1: instruction counts by valgrind --tool=callgrind */
+    char note[1024];   /* the callgrind repeatability line, or why there are no counts */
+    char cg_fail[256]; /* why the first failed callgrind run failed ("" while none has) */
 } report;
 
 /* Monotonic clock in nanoseconds. */
@@ -51,6 +52,8 @@ int report_cells_workload(int ncell, long n, report_cell_fn cell, void *ctx);
  * out[i] = (dump of n units - dump of 0 units) / n; NAN when valgrind is off or fails (then
  * returns -1). */
 int report_callgrind_cells(report *r, const char *spec, long n, int ncell, double *out);
+/* Records the first failed valgrind command (its workload and exit status) in r->cg_fail. */
+void report_callgrind_failed(report *r, const char *spec, int status);
 
 int report_eval(report *r);
 int report_flatten(report *r);

@@ -16,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 
 #if defined(__has_include)
 #if __has_include(<valgrind/callgrind.h>)
@@ -62,7 +63,8 @@ int report_callgrind_cells(report *r, const char *spec, long n, int ncell, doubl
              "valgrind --tool=callgrind --callgrind-out-file='%s' '%s' report --workload '%s' %ld "
              ">/dev/null 2>&1",
              base, r->self, spec, n);
-    const int ok = system(cmd) == 0;
+    const int status = system(cmd), ok = status == 0;
+    if (!ok) report_callgrind_failed(r, spec, status);
     for (int i = 0; i < ncell; ++i) {
         double t[2];
         for (int k = 0; k < 2; ++k) {
@@ -77,4 +79,17 @@ int report_callgrind_cells(report *r, const char *spec, long n, int ncell, doubl
     }
     remove(base);
     return ok ? 0 : -1;
+}
+
+void report_callgrind_failed(report *r, const char *spec, int status) {
+    if (r->cg_fail[0]) return;
+    /* a signal (SIGILL: an instruction valgrind cannot decode) or an exit status */
+    if (WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) > 128))
+        snprintf(r->cg_fail, sizeof r->cg_fail,
+                 "valgrind --tool=callgrind on the workload %s was killed by signal %d", spec,
+                 WIFSIGNALED(status) ? WTERMSIG(status) : WEXITSTATUS(status) - 128);
+    else
+        snprintf(r->cg_fail, sizeof r->cg_fail,
+                 "valgrind --tool=callgrind on the workload %s failed (status %d)", spec,
+                 WIFEXITED(status) ? WEXITSTATUS(status) : status);
 }

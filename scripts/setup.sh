@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 PKGS="build-essential cmake pkg-config libcmocka-dev libmpfr-dev libgmp-dev libcjson-dev \
 liblapacke-dev libfreetype-dev fonts-dejavu-core libopenimageio-dev libvtk9-dev \
 xvfb xauth libgl1-mesa-dri libcairo2-dev clang libclang-rt-14-dev libgif-dev libembree-dev \
-libglfw3-dev xdotool"
+libglfw3-dev xdotool valgrind"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
