@@ -46,6 +46,14 @@ static const char usage_text[] =
     "  --quick         a few points per chart (seconds; what the test suite builds)\n"
     "  --no-callgrind  no instruction counts (valgrind is used when installed)\n";
 
+const char *report_g3(char *buf, double v) {
+    if (isfinite(v))
+        snprintf(buf, 32, "%.3g", v);
+    else
+        snprintf(buf, 32, "—");
+    return buf;
+}
+
 double report_now_ns(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);

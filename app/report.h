@@ -21,6 +21,8 @@ typedef struct report {
     char cg_fail[256]; /* why the first failed callgrind run failed ("" while none has) */
 } report;
 
+/* v as "%.3g" in buf (at least 32 bytes), or "—" when v is not finite (no such figure). */
+const char *report_g3(char *buf, double v);
 /* Monotonic clock in nanoseconds. */
 double report_now_ns(void);
 /* Median of v[0..n-1] (sorted in place) and the spread (max - min) / median in percent. */

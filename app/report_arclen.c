@@ -409,7 +409,7 @@ int report_arclen(report *r) {
             for (int p = 0; p < np; ++p) {
                 const int i = m * np + p, d = dom[set][i];
                 const arc_cell *e = &C[set][m][p];
-                char par[96], param[32], ins[32], name[48];
+                char par[96], param[32], ins[32], name[48], est[32];
                 snprintf(name, sizeof name, "%s%s", NAME[m], set ? " (cubics)" : "");
                 if (isfinite(e->instr))
                     snprintf(ins, sizeof ins, "%.0f", e->instr);
@@ -426,12 +426,12 @@ int report_arclen(report *r) {
                 else
                     snprintf(par, sizeof par, "dominated by %s at %.0e", NAME[0], tols[d % np]);
                 fprintf(r->html,
-                        "<tr%s><td class=l>%s</td><td>%s</td><td>%.3g</td><td>%.3g</td><td>%.3g"
+                        "<tr%s><td class=l>%s</td><td>%s</td><td>%.3g</td><td>%.3g</td><td>%s"
                         "</td><td>%.1f</td><td>%.0f %%</td><td>%s</td><td class=l>%s</td></tr>\n",
-                        d < 0 ? "" : " class=dom", name, param, e->emax, e->emean, e->est, e->ns,
-                        e->spread, ins, par);
-                fprintf(r->md, "| %s | %s | %.3g | %.3g | %.3g | %.1f | %s | %s |\n", name, param,
-                        e->emax, e->emean, e->est, e->ns, ins, par);
+                        d < 0 ? "" : " class=dom", name, param, e->emax, e->emean,
+                        report_g3(est, e->est), e->ns, e->spread, ins, par);
+                fprintf(r->md, "| %s | %s | %.3g | %.3g | %s | %.1f | %s | %s |\n", name, param,
+                        e->emax, e->emean, est, e->ns, ins, par);
                 fprintf(r->tsv, "arclen\t%s\t%.6g\t\t%.6g\t%.6g\t%.6g\t%.3f\t%.6g\t%.6g\t%d\t%s\n",
                         name, m ? (double)Ns[p] : tols[p], e->emax, e->emean, e->est, e->ns,
                         e->spread, e->instr, m ? Ns[p] : 0, d < 0 ? "front" : "dominated");

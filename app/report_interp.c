@@ -146,7 +146,7 @@ int report_interp(report *r) {
     for (int m = 0; m < 2; ++m)
         for (int d = 0; d < nd; ++d) {
             const int i = m * nd + d;
-            char par[96], ins[32];
+            char par[96], ins[32], bnd[32];
             if (isfinite(instr[m][d]))
                 snprintf(ins, sizeof ins, "%.0f", instr[m][d]);
             else
@@ -158,12 +158,12 @@ int report_interp(report *r) {
                          degs[dom[i] % nd]);
             fprintf(r->html,
                     "<tr%s><td class=l>%s</td><td>%d</td><td>%.3g</td><td>%.3g</td><td>%.3g</td>"
-                    "<td>%.3g</td><td>%.0f</td><td>%.0f %%</td><td>%s</td><td class=l>%s</td>"
+                    "<td>%s</td><td>%.0f</td><td>%.0f %%</td><td>%s</td><td class=l>%s</td>"
                     "</tr>\n",
                     dom[i] < 0 ? "" : " class=dom", NAME[m], degs[d], cond[m][d], emax[m][d],
-                    emean[m][d], bound[m][d], ns[m][d], spread[m][d], ins, par);
-            fprintf(r->md, "| %s | %d | %.3g | %.3g | %.3g | %.0f | %s | %s |\n", NAME[m], degs[d],
-                    cond[m][d], emax[m][d], bound[m][d], ns[m][d], ins, par);
+                    emean[m][d], report_g3(bnd, bound[m][d]), ns[m][d], spread[m][d], ins, par);
+            fprintf(r->md, "| %s | %d | %.3g | %.3g | %s | %.0f | %s | %s |\n", NAME[m], degs[d],
+                    cond[m][d], emax[m][d], bnd, ns[m][d], ins, par);
             fprintf(r->tsv, "interp\t%s\t%d\t%.6g\t%.6g\t%.6g\t%.6g\t%.3f\t%.6g\t%.6g\t%d\t%s\n",
                     NAME[m], degs[d], cond[m][d], emax[m][d], emean[m][d], bound[m][d], ns[m][d],
                     spread[m][d], instr[m][d], degs[d], dom[i] < 0 ? "front" : "dominated");
