@@ -32,20 +32,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static cj_node node(int g, int m) {
-    cj_node n;
-    memset(&n, 0, sizeof n);
-    n.parent = -1;
-    n.local = cj_transform_identity();
-    n.geometry = g;
-    n.material = m;
-    n.overlay.color = cj_rgb_make(1, 1, 1);
-    n.overlay.iso_count = 1;
-    n.overlay.normal_length = 0.1;
-    n.visible = 1;
-    return n;
-}
-
 /* Floor y = 0 (size 40 s), a sphere of radius s at height 2 s, a point light at 10 s straight
  * above it and an ambient light; every length scaled by s and moved by `shift`. */
 static cj_scene *sphere_scene(double s, cj_vec3 shift, double mirror, int w) {
@@ -88,7 +74,7 @@ static cj_scene *sphere_scene(double s, cj_vec3 shift, double mirror, int w) {
     g.u.sphere.center = cj_v3_add(shift, cj_v3(0, 2 * s, 0));
     g.u.sphere.radius = s;
     assert_int_equal(cj_scene_add_geometry(sc, &g, &ig2), CJ_OK);
-    cj_node n1 = node(ig1, ifm), n2 = node(ig2, ism);
+    cj_node n1 = cj_render_node(ig1, ifm), n2 = cj_render_node(ig2, ism);
     assert_int_equal(cj_scene_add_node(sc, &n1, NULL), CJ_OK);
     assert_int_equal(cj_scene_add_node(sc, &n2, NULL), CJ_OK);
     return sc;
@@ -258,7 +244,7 @@ static void test_no_leak_under_thin_roof(void **state) {
     assert_int_equal(
         cj_planar_patch_init(&g.u.planar, cj_v3(-1, h, 1), cj_v3(2, 0, 0), cj_v3(0, 0, -2)), CJ_OK);
     assert_int_equal(cj_scene_add_geometry(sc, &g, &ig2), CJ_OK);
-    cj_node n1 = node(ig1, im), n2 = node(ig2, im);
+    cj_node n1 = cj_render_node(ig1, im), n2 = cj_render_node(ig2, im);
     assert_int_equal(cj_scene_add_node(sc, &n1, NULL), CJ_OK);
     assert_int_equal(cj_scene_add_node(sc, &n2, NULL), CJ_OK);
     cj_render_image *img = trace(sc, 2, 0, CJ_IMAGE_IDS, NULL);

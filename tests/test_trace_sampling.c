@@ -54,20 +54,6 @@ static void test_permute_is_bijective(void **state) {
     assert_true(shifts * 100 < tried);
 }
 
-static cj_node node(int g, int m) {
-    cj_node n;
-    memset(&n, 0, sizeof n);
-    n.parent = -1;
-    n.local = cj_transform_identity();
-    n.geometry = g;
-    n.material = m;
-    n.overlay.color = cj_rgb_make(1, 1, 1);
-    n.overlay.iso_count = 1;
-    n.overlay.normal_length = 0.1;
-    n.visible = 1;
-    return n;
-}
-
 /* A floor, a unit sphere at height 2 and a 4 x 4 area light at height 6: the camera looks down
  * on the sphere's soft shadow, so most pixels are in the penumbra. */
 static cj_scene *penumbra_scene(int spp) {
@@ -109,7 +95,7 @@ static cj_scene *penumbra_scene(int spp) {
     g.u.sphere.center = cj_v3(0, 2, 0);
     g.u.sphere.radius = 1;
     assert_int_equal(cj_scene_add_geometry(sc, &g, &ig2), CJ_OK);
-    cj_node n1 = node(ig1, ifm), n2 = node(ig2, ifm);
+    cj_node n1 = cj_render_node(ig1, ifm), n2 = cj_render_node(ig2, ifm);
     assert_int_equal(cj_scene_add_node(sc, &n1, NULL), CJ_OK);
     assert_int_equal(cj_scene_add_node(sc, &n2, NULL), CJ_OK);
     return sc;
