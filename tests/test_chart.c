@@ -296,12 +296,65 @@ static void test_bad_input(void **state) {
     cj_chart_destroy(c);
 }
 
+/* Notes at one point: their texts take the upper right, lower right, upper left and lower left
+ * places in turn (chart.h), and a fifth, with no free place, is its ring alone. */
+static void test_notes_do_not_overlap(void **state) {
+    (void)state;
+    cj_font *font = NULL;
+    if (cj_font_open(NULL, &font) != CJ_OK) {
+        printf("no default font: note placement not checked\n");
+        return;
+    }
+    static const cj_rgba COLS[5] = {{220, 20, 20, 255},
+                                    {20, 160, 20, 255},
+                                    {20, 40, 220, 255},
+                                    {200, 20, 200, 255},
+                                    {20, 170, 170, 255}};
+    cj_chart *c = NULL;
+    assert_int_equal(cj_chart_create(NULL, &c), CJ_OK);
+    const double x[2] = {0, 10}, y[2] = {0, 10};
+    const cj_chart_series_opts o = {NULL, {0, 0, 0, 255}, 0.0, CJ_MARKER_CIRCLE, 0.5};
+    assert_int_equal(cj_chart_add_series(c, x, y, 2, &o), CJ_OK);
+    for (int k = 0; k < 5; ++k) assert_int_equal(cj_chart_annotate(c, 5, 5, "MMM", COLS[k]), CJ_OK);
+    cj_framebuffer *fb = NULL;
+    assert_int_equal(cj_framebuffer_create(W, H, 0, NULL, &fb), CJ_OK);
+    assert_int_equal(cj_chart_render(c, fb, 0, 0, W, H, font), CJ_OK);
+    double ax, ay, adv = 0, asc = 0, desc = 0;
+    assert_int_equal(cj_chart_map(c, W, H, 1, 5, 5, &ax, &ay), CJ_OK);
+    assert_int_equal(cj_font_measure(font, 11.0, "MMM", &adv, &asc, &desc), CJ_OK);
+    /* the documented boxes: [x0, x1] x [baseline - descent, baseline + ascent] */
+    const double bx[4] = {ax + 8, ax + 8, ax - 8 - adv, ax - 8 - adv},
+                 by[4] = {ay + 6, ay - 6 - asc, ay + 6, ay - 6 - asc};
+    for (int k = 0; k < 4; ++k) {
+        const int x0 = (int)floor(bx[k]), x1 = (int)ceil(bx[k] + adv),
+                  y0 = (int)floor(by[k] - desc), y1 = (int)ceil(by[k] + asc);
+        for (int j = 0; j < 5; ++j) {
+            const int ink = dark_in(fb, x0, y0, x1, y1, COLS[j]);
+            if (j == k && ink <= 10) fail_msg("note %d: no text in its place %d", k, k);
+            if (j != k && ink > 0) fail_msg("note %d's colour in place %d", j, k);
+        }
+    }
+    /* the fifth note: its colour only on its ring (within 7.5 px of the point) */
+    int stray = 0;
+    for (int py = 0; py < H; ++py)
+        for (int px = 0; px < W; ++px)
+            if (is_color(px_at(fb, px, py), COLS[4]) && hypot(px + 0.5 - ax, py + 0.5 - ay) > 7.5)
+                stray++;
+    assert_int_equal(stray, 0);
+    printf("five notes at one point: four texts in the four documented places, none overlapping; "
+           "the fifth is its ring alone\n");
+    cj_framebuffer_destroy(fb);
+    cj_chart_destroy(c);
+    cj_font_close(font);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_log_axis_markers_and_ticks),
         cmocka_unit_test(test_line_and_marker_shapes),
         cmocka_unit_test(test_legend_notes_titles),
         cmocka_unit_test(test_legend_outside),
+        cmocka_unit_test(test_notes_do_not_overlap),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

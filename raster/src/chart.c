@@ -399,7 +399,10 @@ cj_status cj_chart_render(const cj_chart *c, cj_framebuffer *fb, int x0, int y0,
                     st = cj_plot_stroke(&cv, seg, 2, 0, ink, 1.0);
                 }
     }
-    /* annotations */
+    /* annotations: the ring, and the text at the first of four places beside it that does not
+     * overlap an earlier note's text (notes of nearby points would print over each other) */
+    double placed[CJ_CHART_MAX_NOTES][4]; /* text boxes drawn so far: x0, y0, x1, y1 */
+    int nplaced = 0;
     for (size_t i = 0; !st && i < c->nn; ++i) {
         const note *nt_ = &c->notes[i];
         const double px = fwd(&m, 0, nt_->x), py = fwd(&m, 1, nt_->y);
@@ -410,7 +413,21 @@ cj_status cj_chart_render(const cj_chart *c, cj_framebuffer *fb, int x0, int y0,
             ring[2 * k] = px + 6 * cos(k * 0.2617993877991494),
                      ring[2 * k + 1] = py + 6 * sin(k * 0.2617993877991494);
         st = cj_plot_stroke(&cv, ring, 24, 1, nt_->color, 1.0);
-        if (!st && font) st = text_at(font, &cv, px + 8, py + 6, 11.0, 0.0, nt_->color, nt_->text);
+        if (st || !font) continue;
+        double adv = 0, asc = 0, desc = 0;
+        st = cj_font_measure(font, 11.0, nt_->text, &adv, &asc, &desc);
+        for (int k = 0; !st && k < 4; ++k) {
+            const double x = k < 2 ? px + 8 : px - 8 - adv, y = k % 2 ? py - 6 - asc : py + 6;
+            const double box[4] = {x, y - desc, x + adv, y + asc};
+            int free = 1;
+            for (int j = 0; j < nplaced && free; ++j)
+                free = box[2] <= placed[j][0] || box[0] >= placed[j][2] || box[3] <= placed[j][1] ||
+                       box[1] >= placed[j][3];
+            if (!free) continue;
+            memcpy(placed[nplaced++], box, sizeof box);
+            st = text_at(font, &cv, x, y, 11.0, 0.0, nt_->color, nt_->text);
+            break;
+        }
     }
     /* legend: inside the upper right corner, one row of 16 px per labelled series */
     if (!st && font) {

@@ -92,8 +92,12 @@ cj_status cj_chart_set_title(cj_chart *chart, const char *title);
  * Points <= 0 on a log axis make cj_chart_render fail with CJ_ERR_RANGE naming the series. */
 cj_status cj_chart_add_series(cj_chart *chart, const double *x, const double *y, size_t n,
                               const cj_chart_series_opts *opts);
-/* A note at data point (x, y): a ring of radius 6 px around it and the text to its upper right
- * (CJ_ERR_NONFINITE, CJ_ERR_RANGE for empty/long text, CJ_ERR_CAP, CJ_ERR_NOMEM). */
+/* A note at data point (x, y): a ring of radius 6 px around it and the text (11 px) to its upper
+ * right: pen at (px + 8, py + 6) on the baseline, y up. Where that text box (advance x ascent +
+ * descent) would overlap the text of an earlier note, it goes to the lower right (baseline
+ * py - 6 - ascent), else the upper left (ending at px - 8), else the lower left; where all four
+ * overlap, the note is drawn as its ring alone. (CJ_ERR_NONFINITE, CJ_ERR_RANGE for empty/long
+ * text, CJ_ERR_CAP, CJ_ERR_NOMEM.) */
 cj_status cj_chart_annotate(cj_chart *chart, double x, double y, const char *text, cj_rgba color);
 
 /* The plot area for a w x h panel: margins 12 px without text; with text left 74, bottom 48,
