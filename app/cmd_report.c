@@ -117,42 +117,6 @@ int report_chart(report *r, const cj_chart *c, const char *name, int w, int h) {
     return 0;
 }
 
-/* Instruction total of one callgrind run, or NAN. */
-static double callgrind_once(report *r, const char *spec, long n) {
-    char out[4096], cmd[9000];
-    snprintf(out, sizeof out, "%s/.callgrind.out", r->dir);
-    snprintf(cmd, sizeof cmd,
-             "valgrind --tool=callgrind --callgrind-out-file='%s' '%s' report --workload '%s' %ld "
-             ">/dev/null 2>&1",
-             out, r->self, spec, n);
-    const int status = system(cmd);
-    if (status != 0) {
-        report_callgrind_failed(r, spec, status);
-        remove(out);
-        return NAN;
-    }
-    FILE *f = fopen(out, "r");
-    if (!f) return NAN;
-    char line[512];
-    double total = NAN;
-    while (fgets(line, sizeof line, f))
-        if (!strncmp(line, "summary:", 8) || !strncmp(line, "totals:", 7))
-            total = strtod(strchr(line, ':') + 1, NULL);
-    fclose(f);
-    remove(out);
-    return total;
-}
-
-double report_callgrind(report *r, const char *spec, long n, double *rel_diff) {
-    if (!r->callgrind) return NAN;
-    const double a = callgrind_once(r, spec, n), b = callgrind_once(r, spec, 2 * n);
-    if (rel_diff) {
-        const double a2 = callgrind_once(r, spec, n);
-        *rel_diff = fabs(a2 - a) / a;
-    }
-    return (b - a) / (double)n;
-}
-
 int report_workload(const char *spec, long n) {
     if (!strncmp(spec, "eval:", 5)) return report_eval_workload(spec, n);
     if (!strncmp(spec, "flatten:", 8)) return report_flatten_workload(spec, n);

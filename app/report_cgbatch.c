@@ -1,5 +1,10 @@
-/* casteljau report: the instruction counts of all the cells of a section in ONE callgrind run,
- * for the sections with many cheap cells (arc length, interpolation, contouring, integrators).
+/* casteljau report: the instruction counts, by valgrind --tool=callgrind on the hidden workload
+ * mode (`casteljau report --workload SPEC N`).
+ *
+ * report_callgrind: one cell, from an N- and a 2N-unit process (start-up cancels).
+ *
+ * report_callgrind_cells: all the cells of a section in ONE callgrind run, for the sections
+ * with many cheap cells (arc length, interpolation, contouring, integrators, renderer).
  * report_callgrind runs valgrind twice per cell, and valgrind's start-up (about 1 s, more on a
  * busy machine) is most of a cheap cell's run: 100 cells cost minutes. Here the workload
  * "SECTION:all" runs every cell of the section's full table in turn, each twice between
@@ -54,17 +59,44 @@ static double dump_total(const char *path) {
     return total;
 }
 
-int report_callgrind_cells(report *r, const char *spec, long n, int ncell, double *out) {
-    for (int i = 0; i < ncell; ++i) out[i] = NAN;
-    if (!r->callgrind) return 0;
-    char base[4096], path[4200], cmd[9000];
-    snprintf(base, sizeof base, "%s/.callgrind.cells", r->dir);
+/* Runs the workload SPEC with n units under callgrind, dumps into out (with client requests,
+ * also out.1, out.2, ...); 1 on success, else 0 with the failure recorded in r->cg_fail. */
+static int run_callgrind(report *r, const char *out, const char *spec, long n) {
+    char cmd[9000];
     snprintf(cmd, sizeof cmd,
              "valgrind --tool=callgrind --callgrind-out-file='%s' '%s' report --workload '%s' %ld "
              ">/dev/null 2>&1",
-             base, r->self, spec, n);
-    const int status = system(cmd), ok = status == 0;
-    if (!ok) report_callgrind_failed(r, spec, status);
+             out, r->self, spec, n);
+    const int status = system(cmd);
+    if (status != 0) report_callgrind_failed(r, spec, status);
+    return status == 0;
+}
+
+/* Instruction total of one callgrind run, or NAN. */
+static double callgrind_once(report *r, const char *spec, long n) {
+    char out[4096];
+    snprintf(out, sizeof out, "%s/.callgrind.out", r->dir);
+    const double total = run_callgrind(r, out, spec, n) ? dump_total(out) : NAN;
+    remove(out);
+    return total;
+}
+
+double report_callgrind(report *r, const char *spec, long n, double *rel_diff) {
+    if (!r->callgrind) return NAN;
+    const double a = callgrind_once(r, spec, n), b = callgrind_once(r, spec, 2 * n);
+    if (rel_diff) {
+        const double a2 = callgrind_once(r, spec, n);
+        *rel_diff = fabs(a2 - a) / a;
+    }
+    return (b - a) / (double)n;
+}
+
+int report_callgrind_cells(report *r, const char *spec, long n, int ncell, double *out) {
+    for (int i = 0; i < ncell; ++i) out[i] = NAN;
+    if (!r->callgrind) return 0;
+    char base[4096], path[4200];
+    snprintf(base, sizeof base, "%s/.callgrind.cells", r->dir);
+    const int ok = run_callgrind(r, base, spec, n);
     for (int i = 0; i < ncell; ++i) {
         double t[2];
         for (int k = 0; k < 2; ++k) {

@@ -195,13 +195,6 @@ int report_trace_workload(const char *spec, long n) {
     return st ? cli_error("report", "trace workload: %s", cj_last_error()) : 0;
 }
 
-static void instr_text(char *s, size_t n, double v) {
-    if (isfinite(v))
-        snprintf(s, n, "%.3g", v);
-    else
-        snprintf(s, n, "—");
-}
-
 /* Part 1: spp x sampling against RMSE. */
 static int trace_spp(report *r) {
     const int *spps = r->quick ? SPP_QUICK : SPP_FULL;
@@ -238,7 +231,7 @@ static int trace_spp(report *r) {
     /* full report: the same pair stratified, to show that both samplings converge to one
      * picture (until 2026-11 the tracer paired pixel and light strata by a cyclic shift, and
      * this pair stayed 6x farther apart than the random one) */
-    double strat_pair = NAN, strat_bias = NAN;
+    double strat_pair = NAN, strat_ref_dist = NAN;
     if (!r->quick) {
         const cell sc2 = {REF, 0, 0};
         if (frame(sc, W, H, &sc2, 0, SEED_REF_A, &ra, NULL) ||
@@ -249,7 +242,7 @@ static int trace_spp(report *r) {
         }
         for (size_t i = 0; i < 4 * np; ++i) half[i] = rb->rgba[i];
         strat_pair = rmse(ra->rgba, half, np);
-        strat_bias = rmse(ra->rgba, ref, np);
+        strat_ref_dist = rmse(ra->rgba, ref, np);
         cj_render_image_destroy(ra), cj_render_image_destroy(rb);
     }
     free(half);
@@ -314,7 +307,7 @@ static int trace_spp(report *r) {
                 "with its area-light stratum through a random permutation per pixel "
                 "(trace_shade.c); a fixed pairing would leave each pixel a variance that more "
                 "samples do not lower.</p>\n",
-                REF, strat_pair, 2 * sigma_ref, strat_bias);
+                REF, strat_pair, 2 * sigma_ref, strat_ref_dist);
     fprintf(r->html,
             "<table><tr><th class=l>sampling</th><th>spp</th><th>RMSE</th>"
             "<th>RMSE &minus; ref. noise</th><th>ms/frame</th><th>spread</th>"
@@ -334,7 +327,7 @@ static int trace_spp(report *r) {
         else
             snprintf(par, sizeof par, "dominated by %s %d spp", SNAME[cells[dom[k]].random],
                      cells[dom[k]].spp);
-        instr_text(ins, sizeof ins, instr[k]);
+        report_g3(ins, instr[k]);
         const char *name = SNAME[cells[k].random];
         fprintf(r->html,
                 "<tr%s><td class=l>%s</td><td>%d</td><td>%.4g</td><td>%.4g</td><td>%.2f</td>"
@@ -478,7 +471,7 @@ static int trace_tol(report *r) {
             snprintf(par, sizeof par, "front");
         else
             snprintf(par, sizeof par, "dominated by tol 1e-%d", tes[dom[i]]);
-        instr_text(ins, sizeof ins, instr[i]);
+        report_g3(ins, instr[i]);
         fprintf(r->html,
                 "<tr%s><td class=l>patch direct</td><td>1e-%d</td><td>%.3g</td><td>%.0f</td>"
                 "<td>%.2g</td><td>%.0f</td><td>%.2f</td><td>%.0f %%</td><td>%s</td>"

@@ -33,3 +33,9 @@ int tess_smallest_uniform(const cj_patch *p, size_t np, double tol, size_t *tris
     cj_mesh_destroy(mesh);
     return K;
 }
+
+void tess_random_point(cj_rng *r, int m, int n, int q, double p[3]) {
+    p[0] = (double)(q % (m + 1)) / m + cj_rng_range(r, -0.4, 0.4);
+    p[1] = (double)(q / (m + 1)) / n + cj_rng_range(r, -0.4, 0.4);
+    p[2] = cj_rng_range(r, -0.8, 0.8);
+}

@@ -3,6 +3,7 @@
 #define CASTELJAU_TESSELLATE_TEST_H
 
 #include "casteljau/patch.h"
+#include "rng.h"
 
 #include <stddef.h>
 
@@ -11,5 +12,9 @@ double tess_binom(int n, int k);
 /* The smallest K whose uniform K x K tessellation of the np patches has a proven bound <= tol,
  * and its triangle count in *tris. */
 int tess_smallest_uniform(const cj_patch *p, size_t np, double tol, size_t *tris);
+
+/* Control point q of a random (m, n) net: the grid point (i/m, j/n, 0) moved by up to 0.4 in
+ * x and y, with z in [-0.8, 0.8] (three draws from r, in that order). */
+void tess_random_point(cj_rng *r, int m, int n, int q, double p[3]);
 
 #endif

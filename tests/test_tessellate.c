@@ -104,9 +104,7 @@ static void test_random_patches_within_tol(void **state) {
         const int m = cj_rng_int(&r, 1, 5), n = cj_rng_int(&r, 1, 5);
         double pts[36 * 3];
         for (int q = 0; q < (m + 1) * (n + 1); ++q) {
-            pts[3 * q] = (double)(q % (m + 1)) / m + cj_rng_range(&r, -0.4, 0.4);
-            pts[3 * q + 1] = (double)(q / (m + 1)) / n + cj_rng_range(&r, -0.4, 0.4);
-            pts[3 * q + 2] = cj_rng_range(&r, -0.8, 0.8);
+            tess_random_point(&r, m, n, q, pts + 3 * q);
         }
         cj_patch p = cj_patch_view(m, n, pts, NULL);
         double size;

@@ -177,9 +177,7 @@ static void test_rational_random(void **state) {
         const int m = cj_rng_int(&r, 1, 4), n = cj_rng_int(&r, 1, 4);
         double pts[25 * 3], w[25], w3[25];
         for (int q = 0; q < (m + 1) * (n + 1); ++q) {
-            pts[3 * q] = (double)(q % (m + 1)) / m + cj_rng_range(&r, -0.4, 0.4);
-            pts[3 * q + 1] = (double)(q / (m + 1)) / n + cj_rng_range(&r, -0.4, 0.4);
-            pts[3 * q + 2] = cj_rng_range(&r, -0.8, 0.8);
+            tess_random_point(&r, m, n, q, pts + 3 * q);
             w[q] = exp(cj_rng_range(&r, log(0.2), log(5.0))); /* in [0.2, 5] */
             w3[q] = 3.0 * w[q];
         }
