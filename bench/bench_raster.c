@@ -145,7 +145,7 @@ static uint64_t covered(const workload *w, int spp) {
     cj_raster_prep *p;
     if (cj_raster_prepare(&in, 64, NULL, &p, NULL) != CJ_OK) exit(1);
     fwd f = {p, {0}, malloc(sizeof(cj_vis_sample) * 64 * 64 * spp)};
-    cj_raster_run(p, 1, count_tile, &f, NULL);
+    cj_raster_run(p, 1, count_tile, &f, NULL, NULL);
     free(f.buf);
     cj_raster_prep_destroy(p);
     return f.c.n;
@@ -168,10 +168,10 @@ static void frame(const workload *w, int spp, int threads, double *t_prep, doubl
     if (cj_raster_prepare(&in, 64, NULL, &p, NULL) != CJ_OK) exit(1);
     cj_raster_prep_set_barycentrics(p, 0); /* depth only */
     const double t1 = clock();
-    if (cj_raster_run(p, threads, NULL, NULL, NULL) != CJ_OK) exit(1);
+    if (cj_raster_run(p, threads, NULL, NULL, NULL, NULL) != CJ_OK) exit(1);
     const double t2 = clock();
     /* Again with a (empty) tile callback: the visibility samples are written for it. */
-    if (cj_raster_run(p, threads, no_tile, NULL, NULL) != CJ_OK) exit(1);
+    if (cj_raster_run(p, threads, no_tile, NULL, NULL, NULL) != CJ_OK) exit(1);
     const double t3 = clock();
     cj_raster_prep_destroy(p);
     *t_prep = t1 - t0;

@@ -158,7 +158,7 @@ static inline cj_status rh_render(const cj_raster_input *in, int tile, int threa
     for (int i = 0; i < nt && i < RH_MAX_THREADS; ++i)
         h.fwd[i] = frag ? malloc(tn * sizeof(cj_vis_sample)) : NULL;
     cj_raster_stats rs;
-    st = cj_raster_run(prep, threads, rh_on_tile, &h, &rs);
+    st = cj_raster_run(prep, threads, rh_on_tile, &h, NULL, &rs);
     if (stats) {
         stats->samples_tested = rs.samples_tested;
         stats->samples_written = rs.samples_written;

@@ -347,8 +347,8 @@ static void test_errors_and_pattern(void **state) {
     int w, h, spp, ts;
     cj_raster_prep_layout(p, &w, &h, &spp, &ts);
     assert_true(w == 8 && h == 8 && spp == 1 && ts == 8);
-    assert_int_equal(cj_raster_run(p, -1, NULL, NULL, NULL), CJ_ERR_RANGE);
-    assert_int_equal(cj_raster_run(p, 0, NULL, NULL, NULL), CJ_OK);
+    assert_int_equal(cj_raster_run(p, -1, NULL, NULL, NULL, NULL), CJ_ERR_RANGE);
+    assert_int_equal(cj_raster_run(p, 0, NULL, NULL, NULL, NULL), CJ_OK);
     cj_raster_prep_destroy(p);
     p = NULL;
     assert_int_equal(cj_raster_prepare(&in, 0, NULL, &p, NULL), CJ_ERR_RANGE);

@@ -23,6 +23,7 @@ static const char *const status_names[CJ_STATUS_COUNT_] = {
     [CJ_ERR_IO] = "input/output error",
     [CJ_ERR_PARSE] = "malformed input",
     [CJ_ERR_UNSUPPORTED] = "not supported",
+    [CJ_ERR_CANCELLED] = "cancelled",
 };
 
 const char *cj_status_str(cj_status status) {

@@ -95,9 +95,12 @@ typedef void (*cj_tile_fn)(void *user, const cj_tile *tile);
  * take tiles in order. The same prep may be run many times. fn may be NULL (a pass that only
  * counts, e.g. the fill-rate bench: the tile samples are then not written). stats may be
  * NULL; otherwise its samples_tested, samples_written and seconds_raster are set (the
- * preparation's counters are left as they are). */
+ * preparation's counters are left as they are). progress may be NULL; otherwise every finished
+ * tile is reported to it and a cancelled gate stops the run: CJ_ERR_CANCELLED (the tiles not
+ * yet taken are left unrendered). */
+struct cj_rprogress;
 cj_status cj_raster_run(const cj_raster_prep *prep, int threads, cj_tile_fn fn, void *user,
-                        cj_raster_stats *stats);
+                        struct cj_rprogress *progress, cj_raster_stats *stats);
 
 /* Forward mode (transparent surfaces, coverage tests): for every triangle of `prep` in input
  * order and every sample of `tile` it covers whose depth is strictly less than the depth stored

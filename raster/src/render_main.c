@@ -4,6 +4,7 @@
 
 #include "casteljau/framebuffer.h"
 #include "error_internal.h"
+#include "render_progress.h"
 
 #include <math.h>
 #include <string.h>
@@ -378,7 +379,10 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
         }
     }
     ts = cj_render_now();
-    st = cj_raster_run(c.opaque.prep, c.threads, cj_rtile_run, &c, &run);
+    cj_rprogress pg;
+    cj_rprogress_init(&pg, &o, (uint64_t)c.tiles_x * (uint64_t)((H + tile - 1) / tile));
+    st = cj_raster_run(c.opaque.prep, c.threads, cj_rtile_run, &c, &pg, &run);
+    cj_rprogress_destroy(&pg);
     double sec_run = cj_render_now() - ts;
     if (st) goto fail;
 

@@ -5,6 +5,7 @@
 
 #include "error_internal.h"
 #include "render_internal.h"
+#include "render_progress.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -21,6 +22,7 @@ typedef struct tr_job {
     uint64_t seed;
     cj_rgb bg;
     pthread_mutex_t lock;
+    cj_rprogress *progress;
     int next;
     tr_counts *counts;
 } tr_job;
@@ -104,6 +106,7 @@ static void *worker(void *arg) {
     sh.random = j->random;
     sh.indirect = j->indirect;
     for (;;) {
+        if (cj_rprogress_stopped(j->progress)) break;
         pthread_mutex_lock(&j->lock);
         int t = j->next++;
         pthread_mutex_unlock(&j->lock);
@@ -111,6 +114,7 @@ static void *worker(void *arg) {
         int x0 = (t % j->tiles_x) * j->tile, y0 = (t / j->tiles_x) * j->tile;
         for (int y = y0; y < y0 + j->tile && y < j->h; y++)
             for (int x = x0; x < x0 + j->tile && x < j->w; x++) render_pixel(j, &sh, x, y);
+        cj_rprogress_tile_done(j->progress);
     }
     return NULL;
 }
@@ -322,6 +326,9 @@ cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt
     }
     memset(counts, 0, sizeof *counts * (size_t)nth);
     pthread_mutex_init(&j.lock, NULL);
+    cj_rprogress pg;
+    cj_rprogress_init(&pg, &o, (uint64_t)j.ntiles);
+    j.progress = &pg;
     int started = 0;
     for (int i = 0; i < nth; i++) {
         args[2 * i] = &j;
@@ -335,6 +342,16 @@ cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt
     worker(&args[0]);
     for (int i = 1; i <= started; i++) pthread_join(th[i], NULL);
     pthread_mutex_destroy(&j.lock);
+    int cancelled = cj_rprogress_stopped(&pg);
+    cj_rprogress_destroy(&pg);
+    if (cancelled) {
+        cj_rfree(&ts.alloc, counts);
+        cj_rfree(&ts.alloc, th);
+        cj_rfree(&ts.alloc, args);
+        tr_scene_free(&ts);
+        cj_render_image_destroy(img);
+        return cj_fail(CJ_ERR_CANCELLED, "ray tracer: cancelled by the progress callback");
+    }
     tr_counts sum;
     memset(&sum, 0, sizeof sum);
     for (int i = 0; i < nth; i++)

@@ -6,6 +6,7 @@
 #include "tri_internal.h"
 
 #include "error_internal.h"
+#include "render_progress.h"
 
 #include <assert.h>
 #include <pthread.h>
@@ -27,6 +28,7 @@ typedef struct run {
     const cj_raster_prep *prep;
     cj_tile_fn fn;
     void *user;
+    cj_rprogress *progress;
     atomic_int next;
     int tiles;
 } run;
@@ -36,6 +38,7 @@ static void *work(void *arg) {
     run *r = w->run;
     const cj_raster_prep *p = r->prep;
     for (;;) {
+        if (cj_rprogress_stopped(r->progress)) break;
         const int t = atomic_fetch_add(&r->next, 1);
         if (t >= r->tiles) break;
         cj_tile tile;
@@ -50,6 +53,7 @@ static void *work(void *arg) {
         tile.samples = w->samples;
         cj_tri_render_tile(p, &tile, &w->scratch, r->fn != NULL);
         if (r->fn) r->fn(r->user, &tile);
+        cj_rprogress_tile_done(r->progress);
     }
     return NULL;
 }
@@ -71,7 +75,7 @@ int cj_raster_thread_count(const cj_raster_prep *prep, int threads) {
 }
 
 cj_status cj_raster_run(const cj_raster_prep *prep, int threads, cj_tile_fn fn, void *user,
-                        cj_raster_stats *stats) {
+                        cj_rprogress *progress, cj_raster_stats *stats) {
     assert(prep);
     const double t0 = wall();
     if (threads < 0) return cj_fail(CJ_ERR_RANGE, "raster: thread count %d is negative", threads);
@@ -80,6 +84,7 @@ cj_status cj_raster_run(const cj_raster_prep *prep, int threads, cj_tile_fn fn, 
     r.prep = prep;
     r.fn = fn;
     r.user = user;
+    r.progress = progress;
     r.tiles = prep->tiles_x * prep->tiles_y;
     atomic_init(&r.next, 0);
     const cj_allocator *a = &prep->alloc;
@@ -120,6 +125,8 @@ cj_status cj_raster_run(const cj_raster_prep *prep, int threads, cj_tile_fn fn, 
         a->free(a->user, ws[i].samples);
     }
     a->free(a->user, ws);
+    if (st == CJ_OK && cj_rprogress_stopped(progress))
+        st = cj_fail(CJ_ERR_CANCELLED, "raster: cancelled by the progress callback");
     if (st == CJ_OK && stats) {
         stats->samples_tested = tested;
         stats->samples_written = written;

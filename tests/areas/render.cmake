@@ -15,3 +15,6 @@ target_include_directories(test_render_texture PRIVATE ${PROJECT_SOURCE_DIR}/ras
 # Shading, silhouettes, transparency order and the tessellation bound against exact references.
 cj_add_test(test_render_shading SOURCES test_render_shading.c LIBS cj::raster cj::scene)
 target_include_directories(test_render_shading PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+# Progress reports and cancellation through cj_render_options.progress, both back ends.
+cj_add_test(test_render_progress SOURCES test_render_progress.c LIBS cj::raster cj::scene)
+target_include_directories(test_render_progress PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})

@@ -29,6 +29,7 @@ typedef enum cj_status {
     CJ_ERR_IO,          /* reading or writing a file failed */
     CJ_ERR_PARSE,       /* malformed text input */
     CJ_ERR_UNSUPPORTED, /* the build or the input asks for something not available */
+    CJ_ERR_CANCELLED,   /* the caller's progress callback asked to stop; no result */
     CJ_STATUS_COUNT_
 } cj_status;
 

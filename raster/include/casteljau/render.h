@@ -81,6 +81,13 @@ void cj_render_image_destroy(cj_render_image *img);
  * NaN is never produced by the renderer; a NaN here is CJ_ERR_NONFINITE naming the pixel. */
 cj_status cj_render_image_to_srgb8(const cj_render_image *img, uint8_t *rgba8, size_t stride);
 
+/* PROGRESS AND CANCELLATION of a long render. The tile scheduler calls progress(user, done,
+ * total) after each finished tile (done of total tiles, 1 <= done <= total), from whichever
+ * worker thread finished it, one call at a time (calls never overlap; done increases). A
+ * nonzero return cancels: no worker starts another tile, the render returns CJ_ERR_CANCELLED
+ * and writes no image. NULL: no calls. The callback must not call the renderer. */
+typedef int (*cj_render_progress_fn)(void *user, uint64_t done, uint64_t total);
+
 typedef struct cj_render_options {
     int width, height; /* 0: the scene's settings */
     int spp;           /* 0: the scene's; the rasterizer takes 1, 4 or 16 */
@@ -90,7 +97,9 @@ typedef struct cj_render_options {
     int max_depth;     /* ray tracer: 0 = the scene's */
     int use_seed;      /* ray tracer: 1 = use `seed` instead of the scene's */
     uint64_t seed;
-    struct cj_render_cache *cache; /* rasterizer: NULL, or a tessellation cache (below) */
+    struct cj_render_cache *cache;  /* rasterizer: NULL, or a tessellation cache (below) */
+    cj_render_progress_fn progress; /* NULL, or called per finished tile (see above) */
+    void *progress_user;
 } cj_render_options;
 
 /* All zero: the scene decides. */
