@@ -1,8 +1,10 @@
-/* Animated GIF through giflib: per-frame median-cut palettes, a NETSCAPE2.0 loop block. */
+/* Animated GIF through giflib (file format, NETSCAPE2.0 loop block), per-frame palettes and
+ * dithered remapping through libimagequant. */
 #include "anim_gif.h"
 
 #include <fcntl.h>
 #include <gif_lib.h>
+#include <libimagequant.h>
 #include <stdio.h>
 #include <unistd.h>
 #include <stdlib.h>
@@ -11,15 +13,25 @@
 struct anim_gif {
     GifFileType *f;
     int w, h, delay;
-    GifByteType *r, *g, *b, *idx;
+    float dither;
+    uint8_t *rgba; /* the frame top-down, as GIF and libimagequant want it */
+    GifByteType *idx;
+    liq_attr *liq;
 };
+
+static void free_gif(anim_gif *g) {
+    if (g->liq) liq_attr_destroy(g->liq);
+    free(g->rgba);
+    free(g->idx);
+    free(g);
+}
 
 static void reason(char *why, int size, const char *what, int code) {
     snprintf(why, (size_t)size, "%s (%s)", what, GifErrorString(code) ? GifErrorString(code) : "?");
 }
 
-anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, char *why,
-                        int why_size) {
+anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, double dither,
+                        char *why, int why_size) {
     int err = 0;
     anim_gif *g = calloc(1, sizeof *g);
     const size_t n = (size_t)width * (size_t)height;
@@ -30,25 +42,25 @@ anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, c
     g->w = width;
     g->h = height;
     g->delay = delay_cs;
-    g->r = malloc(n);
-    g->g = malloc(n);
-    g->b = malloc(n);
+    g->dither = (float)dither;
+    g->rgba = malloc(4 * n);
     g->idx = malloc(n);
+    g->liq = liq_attr_create();
     /* open() ourselves: giflib would create the file readable by its owner only */
     const int fd =
-        (g->r && g->g && g->b && g->idx) ? open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666) : -1;
+        (g->rgba && g->idx && g->liq) ? open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666) : -1;
     g->f = fd >= 0 ? EGifOpenFileHandle(fd, &err) : NULL;
     if (fd >= 0 && !g->f) close(fd);
     if (!g->f) {
         reason(why, why_size, "cannot create the GIF", err);
-        free(g->r), free(g->g), free(g->b), free(g->idx), free(g);
+        free_gif(g);
         return NULL;
     }
     EGifSetGifVersion(g->f, true);
     if (EGifPutScreenDesc(g->f, width, height, 8, 0, NULL) == GIF_ERROR) {
         reason(why, why_size, "GIF screen descriptor", g->f->Error);
         EGifCloseFile(g->f, &err);
-        free(g->r), free(g->g), free(g->b), free(g->idx), free(g);
+        free_gif(g);
         return NULL;
     }
     /* loop forever: NETSCAPE2.0 application extension, sub-block {1, 0, 0} */
@@ -60,29 +72,37 @@ anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, c
         EGifPutExtensionTrailer(g->f) == GIF_ERROR) {
         reason(why, why_size, "GIF loop block", g->f->Error);
         EGifCloseFile(g->f, &err);
-        free(g->r), free(g->g), free(g->b), free(g->idx), free(g);
+        free_gif(g);
         return NULL;
     }
     return g;
 }
 
 int anim_gif_add(anim_gif *g, const uint8_t *rgba, char *why, int why_size) {
-    const size_t n = (size_t)g->w * (size_t)g->h;
-    for (int y = 0; y < g->h; ++y) { /* GIF rows go top-down */
-        const uint8_t *src = rgba + 4 * (size_t)(g->h - 1 - y) * (size_t)g->w;
-        for (int x = 0; x < g->w; ++x) {
-            const size_t o = (size_t)y * (size_t)g->w + (size_t)x;
-            g->r[o] = src[4 * x];
-            g->g[o] = src[4 * x + 1];
-            g->b[o] = src[4 * x + 2];
-        }
+    const size_t n = (size_t)g->w * (size_t)g->h, row = 4 * (size_t)g->w;
+    for (int y = 0; y < g->h; ++y) /* GIF rows go top-down */
+        memcpy(g->rgba + (size_t)y * row, rgba + (size_t)(g->h - 1 - y) * row, row);
+    liq_image *img = liq_image_create_rgba(g->liq, g->rgba, g->w, g->h, 0);
+    liq_result *res = NULL;
+    if (!img || liq_image_quantize(img, g->liq, &res) != LIQ_OK) {
+        if (img) liq_image_destroy(img);
+        snprintf(why, (size_t)why_size, "GIF colour quantisation failed");
+        return -1;
     }
-    int size = 256;
+    liq_set_dithering_level(res, g->dither);
+    const liq_error remapped = liq_write_remapped_image(res, img, g->idx, n);
+    const liq_palette *pal = liq_get_palette(res);
     GifColorType colors[256];
     memset(colors, 0, sizeof colors);
-    if (GifQuantizeBuffer((unsigned)g->w, (unsigned)g->h, &size, g->r, g->g, g->b, g->idx,
-                          colors) == GIF_ERROR) {
-        snprintf(why, (size_t)why_size, "GIF colour quantisation failed");
+    for (unsigned i = 0; i < pal->count && i < 256; ++i) {
+        colors[i].Red = pal->entries[i].r;
+        colors[i].Green = pal->entries[i].g;
+        colors[i].Blue = pal->entries[i].b;
+    }
+    liq_result_destroy(res);
+    liq_image_destroy(img);
+    if (remapped != LIQ_OK) {
+        snprintf(why, (size_t)why_size, "GIF colour remapping failed");
         return -1;
     }
     ColorMapObject *map = GifMakeMapObject(256, colors);
@@ -98,7 +118,6 @@ int anim_gif_add(anim_gif *g, const uint8_t *rgba, char *why, int why_size) {
     for (int y = 0; ok && y < g->h; ++y)
         ok = EGifPutLine(g->f, g->idx + (size_t)y * (size_t)g->w, g->w) != GIF_ERROR;
     GifFreeMapObject(map);
-    (void)n;
     if (!ok) {
         reason(why, why_size, "writing a GIF frame failed", g->f->Error);
         return -1;
@@ -109,7 +128,7 @@ int anim_gif_add(anim_gif *g, const uint8_t *rgba, char *why, int why_size) {
 int anim_gif_close(anim_gif *g, char *why, int why_size) {
     int err = 0;
     const int rc = EGifCloseFile(g->f, &err);
-    free(g->r), free(g->g), free(g->b), free(g->idx), free(g);
+    free_gif(g);
     if (rc == GIF_ERROR) {
         reason(why, why_size, "closing the GIF failed", err);
         return -1;

@@ -1,5 +1,7 @@
 /* Private to the casteljau tool: an animated GIF written frame by frame through giflib (Debian
- * libgif-dev), each frame quantised to its own 256-colour palette (giflib's median cut). */
+ * libgif-dev), each frame quantised to its own 256-colour palette by libimagequant (Debian
+ * libimagequant-dev) and remapped with Floyd-Steinberg dithering, so smooth shading does not
+ * fall into bands. */
 #ifndef CASTELJAU_APP_ANIM_GIF_H
 #define CASTELJAU_APP_ANIM_GIF_H
 
@@ -8,9 +10,10 @@
 typedef struct anim_gif anim_gif;
 
 /* Opens `path` for width x height frames shown `delay_cs` hundredths of a second each, looping
- * forever. Returns NULL with a reason in why[why_size] on failure. */
-anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, char *why,
-                        int why_size);
+ * forever, dithered at `dither` in [0, 1] (0: none, 1: full error diffusion). Returns NULL with
+ * a reason in why[why_size] on failure. */
+anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, double dither,
+                        char *why, int why_size);
 /* Appends a frame of RGBA8 pixels, rows BOTTOM-UP (as the renderer's images). 0 on success. */
 int anim_gif_add(anim_gif *g, const uint8_t *rgba, char *why, int why_size);
 /* Finishes the file. 0 on success. */

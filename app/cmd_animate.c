@@ -19,8 +19,12 @@ static const char animate_usage[] =
     "                      scene/include/casteljau/anim_json.h): channels on scene fields,\n"
     "                      motion along paths at controlled speed, a cloth on colliders\n"
     "  -o PATTERN          one PNG per frame; PATTERN holds one %d (e.g. %04d) for the frame\n"
+    "  -o FILM.mp4         instead, one film (.mp4 .mkv .mov: H.264; .webm: VP9; FFmpeg),\n"
+    "                      each frame encoded as it is rendered; width and height even\n"
+    "  --quality Q         film quality 1..100 (default 55 = H.264 CRF 23; 100 near lossless)\n"
     "  --gif OUT.gif       also (or instead) one animated GIF of the range, looping, each frame\n"
-    "                      quantised to its own 256 colours (giflib)\n"
+    "                      quantised to its own 256 colours (libimagequant) and dithered\n"
+    "  --dither D          GIF dithering level 0..1 (default 1; 0 = none, shows bands)\n"
     "  --frames A:B        frames A..B inclusive (default: the document's \"frames\")\n"
     "  --fps F             frames per second (default: the document's; the cloth takes\n"
     "                      steps_per_frame steps of 1/(F*steps) s per frame)\n"
@@ -43,6 +47,7 @@ static const char animate_usage[] =
 #if defined(CJ_HAVE_PLOT)
 
 #include "anim_gif.h"
+#include "anim_video.h"
 #include "scene_cli.h"
 #include "casteljau/anim_json.h"
 #include "casteljau/image_io.h"
@@ -82,10 +87,20 @@ static void frame_name(const char *pattern, long frame, char *out, size_t size) 
 #endif
 }
 
-/* The frame as opaque 8-bit sRGB, to a PNG (out may be NULL) and to the GIF (may be NULL,
- * opened at the first frame). */
-static int write_frame(const char *cmd, const char *out, const char *gif_path, anim_gif **gif,
-                       double fps, const cj_render_image *img) {
+/* Where the frames go besides PNGs: a GIF and a film, each opened at the first frame. */
+typedef struct anim_sinks {
+    const char *gif_path, *film_path;
+    anim_gif *gif;
+    anim_video *film;
+    double dither;
+    long quality;
+} anim_sinks;
+
+/* The frame as opaque 8-bit sRGB, to a PNG (out may be NULL) and to the GIF and film. */
+static int write_frame(const char *cmd, const char *out, anim_sinks *sinks, double fps,
+                       const cj_render_image *img) {
+    const char *gif_path = sinks->gif_path;
+    anim_gif **gif = &sinks->gif;
     const size_t n = (size_t)img->width * (size_t)img->height;
     uint8_t *px = malloc(n * 4);
     if (!px) return cli_error(cmd, "out of memory for a %d x %d image", img->width, img->height);
@@ -99,8 +114,8 @@ static int write_frame(const char *cmd, const char *out, const char *gif_path, a
     char why[256];
     if (gif_path && !*gif) {
         const int delay = (int)(100.0 / fps + 0.5);
-        *gif = anim_gif_open(gif_path, img->width, img->height, delay < 2 ? 2 : delay, why,
-                             (int)sizeof why);
+        *gif = anim_gif_open(gif_path, img->width, img->height, delay < 2 ? 2 : delay,
+                             sinks->dither, why, (int)sizeof why);
         if (!*gif) {
             free(px);
             return cli_error(cmd, "%s: %s", gif_path, why);
@@ -109,6 +124,14 @@ static int write_frame(const char *cmd, const char *out, const char *gif_path, a
     if (gif_path && anim_gif_add(*gif, px, why, (int)sizeof why)) {
         free(px);
         return cli_error(cmd, "%s: %s", gif_path, why);
+    }
+    if (sinks->film_path && !sinks->film)
+        sinks->film = anim_video_open(sinks->film_path, img->width, img->height, fps,
+                                      (int)sinks->quality, why, (int)sizeof why);
+    if (sinks->film_path &&
+        (!sinks->film || anim_video_add(sinks->film, px, why, (int)sizeof why))) {
+        free(px);
+        return cli_error(cmd, "%s: %s", sinks->film_path, why);
     }
     free(px);
     return 0;
@@ -139,7 +162,7 @@ static void progress(long done, long total, int quiet) {
 int cmd_animate(int argc, char **argv) {
     const char *cmd = "animate";
     const char *doc_path = NULL, *out = NULL, *ck_in = NULL, *ck_out = NULL, *gif_path = NULL;
-    anim_gif *gif = NULL;
+    anim_sinks sinks = {NULL, NULL, NULL, NULL, 1.0, ANIM_VIDEO_QUALITY_DEFAULT};
     long fa = -1, fb = -1, every = 0;
     double fps = 0;
     int no_render = 0, report = 0, quiet = 0, trace = 0;
@@ -178,6 +201,12 @@ int cmd_animate(int argc, char **argv) {
             out = v;
         } else if (!strcmp(a, "--gif")) {
             gif_path = v;
+        } else if (!strcmp(a, "--quality")) {
+            if (cli_parse_int(v, 1, 100, &sinks.quality))
+                return cli_fail(cmd, "--quality '%s' is not an integer in 1..100", v);
+        } else if (!strcmp(a, "--dither")) {
+            if (cli_parse_double(v, &sinks.dither) || !(sinks.dither >= 0 && sinks.dither <= 1))
+                return cli_fail(cmd, "--dither '%s' must be a number in [0, 1]", v);
         } else if (!strcmp(a, "--frames")) {
             const char *colon = strchr(v, ':');
             char first[32];
@@ -215,7 +244,13 @@ int cmd_animate(int argc, char **argv) {
         }
     }
     if (!doc_path) return cli_fail(cmd, "no animation: give ANIM.json (try --help)");
-    if (!no_render && !out && !gif_path)
+    if (out && anim_video_is_film(out)) { /* -o film.mp4: one film instead of PNGs */
+        sinks.film_path = out;
+        out = NULL;
+        if (no_render) return cli_fail(cmd, "a film needs rendering (drop --no-render)");
+    }
+    sinks.gif_path = gif_path;
+    if (!no_render && !out && !gif_path && !sinks.film_path)
         return cli_fail(cmd, "no output: give -o frames/frame_%%04d.png or --gif OUT.gif");
     if (no_render && gif_path) return cli_fail(cmd, "--gif needs rendering (drop --no-render)");
     if (out && !pattern_ok(out))
@@ -283,7 +318,7 @@ int cmd_animate(int argc, char **argv) {
             }
             char name[4096];
             if (out) frame_name(out, f, name, sizeof name);
-            rc = write_frame(cmd, out ? name : NULL, gif_path, &gif, doc->fps, img);
+            rc = write_frame(cmd, out ? name : NULL, &sinks, doc->fps, img);
             cj_render_image_destroy(img);
         }
         if (!rc && ck_out && (f == fb || (every && f % every == 0)))
@@ -299,10 +334,15 @@ int cmd_animate(int argc, char **argv) {
         }
     }
 done:
-    if (gif) {
+    if (sinks.gif) {
         char why[256];
-        if (anim_gif_close(gif, why, (int)sizeof why) && !rc)
+        if (anim_gif_close(sinks.gif, why, (int)sizeof why) && !rc)
             rc = cli_error(cmd, "%s: %s", gif_path, why);
+    }
+    if (sinks.film) {
+        char why[256];
+        if (anim_video_close(sinks.film, why, (int)sizeof why) && !rc)
+            rc = cli_error(cmd, "%s: %s", sinks.film_path, why);
     }
     cj_scene_destroy(scene);
     cj_anim_doc_destroy(doc);
