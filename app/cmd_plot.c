@@ -23,6 +23,7 @@ static const char plot_usage[] =
     "built-in gallery (--demo).\n"
     "  -o, --output  the image; its extension chooses the format, through OpenImageIO:\n"
     "                .png, .jpg/.jpeg (no alpha: composited over black), .tif, .exr, .bmp, ...\n"
+    "                or vector graphics with the same layout, drawn by cairo: .svg, .pdf\n"
     "  --width, --height  image size in pixels, 64..8192 (default: the document's, else\n"
     "                800 x 600; the demo is 1500 x 900)\n"
     "Options may come in any order, as --opt value or --opt=value.\n"
@@ -48,6 +49,7 @@ int cmd_plot(int argc, char **argv) {
 #else
 
 #include "plot_json.h"
+#include "plot_vector.h"
 
 #include "casteljau/image_io.h"
 #include "casteljau/text.h"
@@ -183,12 +185,15 @@ int cmd_plot(int argc, char **argv) {
     if (!demo && !input) return cli_fail("plot", "no input: give FILE.json or --demo");
     if (!output) return cli_fail("plot", "no output: give -o OUT.png");
     /* Before any work: a name, a format and a directory that can take the image. */
-    cj_status st = cj_image_check_destination(output, 0);
+    const int vector = plot_vector_format(output);
+    char why[512] = "";
+    if (vector && plot_vector_check(output, why, sizeof why))
+        return cli_error("plot", "-o: %s", why);
+    cj_status st = vector ? CJ_OK : cj_image_check_destination(output, 0);
     if (st)
         return st == CJ_ERR_ARGUMENT ? cli_fail("plot", "-o: %s", cj_last_error())
                                      : cli_error("plot", "-o: %s", cj_last_error());
 
-    char why[512] = "";
     char *text = NULL;
     if (!demo && !(text = read_file(input, why, sizeof why))) return cli_fail("plot", "%s", why);
     plot_doc doc;
@@ -203,6 +208,18 @@ int cmd_plot(int argc, char **argv) {
     int status = 0;
     st = cj_font_open(NULL, &font);
     if (st) status = cli_error("plot", "%s", cj_last_error());
+    if (!status && vector) { /* SVG or PDF through cairo (plot_vector.c) */
+        const int vs = plot_vector_write(&doc, font, output, why, sizeof why);
+        if (vs == CJ_ERR_NOMEM || vs == CJ_ERR_IO)
+            status = cli_error("plot", "%s", why);
+        else if (vs)
+            status = cli_fail("plot", "%s: %s", demo ? "demo" : input, why);
+        else
+            printf("wrote %s (%d x %d)\n", output, doc.width, doc.height);
+        cj_font_close(font);
+        plot_doc_free(&doc);
+        return status;
+    }
     if (!status && (st = cj_framebuffer_create(doc.width, doc.height, 0, NULL, &fb)))
         status = cli_error("plot", "%s", cj_last_error());
     if (!status && (st = plot_doc_render(&doc, fb, font))) {

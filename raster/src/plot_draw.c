@@ -10,6 +10,8 @@
 
 cj_status cj_plot_canvas_init(cj_plot_canvas *cv, int w, int h) {
     memset(cv, 0, sizeof *cv);
+    cv->w = w;
+    cv->h = h;
     cj_status st = cj_framebuffer_create(w, h, 0, NULL, &cv->fb);
     if (st) return st;
     cv->cover = calloc((size_t)w * (size_t)h, sizeof *cv->cover);
@@ -20,11 +22,60 @@ cj_status cj_plot_canvas_init(cj_plot_canvas *cv, int w, int h) {
     return CJ_OK;
 }
 
+void cj_plot_canvas_init_painter(cj_plot_canvas *cv, int w, int h, const cj_plot_painter *painter,
+                                 double ox, double oy) {
+    memset(cv, 0, sizeof *cv);
+    cv->painter = painter;
+    cv->ox = ox;
+    cv->oy = oy;
+    cv->w = w;
+    cv->h = h;
+}
+
+/* Panel coordinates to the painter's, into cv->pxy (n points; xy is left as it is). */
+static cj_status to_painter(cj_plot_canvas *cv, const double *xy, size_t n) {
+    if (n > cv->pxy_cap) {
+        size_t cap = n + n / 2 + 16;
+        double *p = realloc(cv->pxy, cap * 2 * sizeof *p);
+        if (!p) return cj_fail(CJ_ERR_NOMEM, "no memory for a polyline of %zu points", n);
+        cv->pxy = p;
+        cv->pxy_cap = cap;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        cv->pxy[2 * i] = xy[2 * i] + cv->ox;
+        cv->pxy[2 * i + 1] = xy[2 * i + 1] + cv->oy;
+    }
+    return CJ_OK;
+}
+
+static void keep_first(cj_plot_canvas *cv, cj_status st) {
+    if (st && !cv->paint_status) cv->paint_status = st;
+}
+
+void cj_plot_clear(cj_plot_canvas *cv, cj_rgba c) {
+    if (cv->painter) {
+        const double r[8] = {0, 0, cv->w, 0, cv->w, cv->h, 0, cv->h};
+        cj_plot_fill_convex(cv, r, 4, c);
+        return;
+    }
+    cj_framebuffer_clear(cv->fb, c);
+}
+
+cj_status cj_plot_text(cj_plot_canvas *cv, cj_font *font, double x, double y, double size,
+                       cj_rgba c, const char *utf8) {
+    if (!cv->painter) return cj_font_draw(font, cv->fb, x, y, size, c, utf8);
+    double adv = 0;
+    cj_status st = cj_font_measure(font, size, utf8, &adv, NULL, NULL);
+    if (st) return st;
+    return cv->painter->text(cv->painter->user, x + cv->ox, y + cv->oy, size, adv, c, utf8);
+}
+
 void cj_plot_canvas_free(cj_plot_canvas *cv) {
     cj_framebuffer_destroy(cv->fb);
     free(cv->cover);
     free(cv->poly);
     free(cv->vec);
+    free(cv->pxy);
     memset(cv, 0, sizeof *cv);
 }
 
@@ -49,6 +100,10 @@ static int clampi(double v, int lo, int hi) {
 cj_status cj_plot_stroke(cj_plot_canvas *cv, const double *xy, size_t n, int closed, cj_rgba c,
                          double width) {
     if (n == 0) return CJ_OK;
+    if (cv->painter) {
+        cj_status st = to_painter(cv, xy, n);
+        return st ? st : cv->painter->stroke(cv->painter->user, cv->pxy, n, closed, c, width);
+    }
     if (n > cv->vec_cap) {
         size_t cap = n + n / 2 + 16;
         cj_vec2 *v = realloc(cv->vec, cap * sizeof *v);
@@ -63,6 +118,10 @@ cj_status cj_plot_stroke(cj_plot_canvas *cv, const double *xy, size_t n, int clo
 
 void cj_plot_disc(cj_plot_canvas *cv, double x, double y, double r, cj_rgba c) {
     if (!isfinite(x) || !isfinite(y)) return;
+    if (cv->painter) {
+        keep_first(cv, cv->painter->disc(cv->painter->user, x + cv->ox, y + cv->oy, r, c));
+        return;
+    }
     const int w = cv->fb->width, h = cv->fb->height;
     int i0 = clampi(floor(x - r - 1), 0, w - 1), i1 = clampi(ceil(x + r + 1), 0, w - 1);
     int j0 = clampi(floor(y - r - 1), 0, h - 1), j1 = clampi(ceil(y + r + 1), 0, h - 1);
@@ -87,6 +146,11 @@ void cj_plot_fill_convex(cj_plot_canvas *cv, const double *xy, size_t n, cj_rgba
         }
     }
     if (!isfinite(area) || area == 0) return;
+    if (cv->painter) {
+        cj_status st = to_painter(cv, xy, n);
+        keep_first(cv, st ? st : cv->painter->fill(cv->painter->user, cv->pxy, n, c));
+        return;
+    }
     const double sgn = area > 0 ? 1.0 : -1.0;
     const int w = cv->fb->width, h = cv->fb->height;
     int i0 = clampi(floor(lo[0]), 0, w - 1), i1 = clampi(ceil(hi[0]), 0, w - 1);
@@ -128,6 +192,18 @@ cj_status cj_plot_arrow(cj_plot_canvas *cv, double x0, double y0, double x1, dou
 
 void cj_plot_blank_outside(cj_plot_canvas *cv, double x0, double y0, double x1, double y1,
                            cj_rgba c) {
+    if (cv->painter) { /* four bands around the frame, rounded outwards as below */
+        const double W = cv->w, H = cv->h, i0 = floor(x0), i1 = ceil(x1) + 1, j0 = floor(y0),
+                     j1 = ceil(y1) + 1;
+        const double bands[4][8] = {{0, 0, W, 0, W, j0, 0, j0},
+                                    {0, j1, W, j1, W, H, 0, H},
+                                    {0, j0, i0, j0, i0, j1, 0, j1},
+                                    {i1, j0, W, j0, W, j1, i1, j1}};
+        for (int k = 0; k < 4; ++k)
+            if (bands[k][4] > bands[k][0] && bands[k][5] > bands[k][1])
+                cj_plot_fill_convex(cv, bands[k], 4, c);
+        return;
+    }
     const int w = cv->fb->width, h = cv->fb->height;
     const int i0 = (int)floor(x0), i1 = (int)ceil(x1), j0 = (int)floor(y0), j1 = (int)ceil(y1);
     for (int j = 0; j < h; ++j)

@@ -1,10 +1,14 @@
 /* Private to raster/: the drawing canvas of cj_plot_render and its primitives (anti-aliased
- * strokes with round joins, discs, convex fills, arrows). */
+ * strokes with round joins, discs, convex fills, arrows, text). A canvas either rasterizes
+ * into its framebuffer or, with a painter (casteljau/plot_paint.h), hands every primitive to
+ * the painter's callbacks, offset by (ox, oy): the same layout code drives both. */
 #ifndef CASTELJAU_PLOT_INTERNAL_H
 #define CASTELJAU_PLOT_INTERNAL_H
 
 #include "casteljau/framebuffer.h"
+#include "casteljau/plot_paint.h"
 #include "casteljau/status.h"
+#include "casteljau/text.h"
 #include "casteljau/vec.h"
 #include <stddef.h>
 
@@ -16,9 +20,24 @@ typedef struct cj_plot_canvas {
     cj_vec2 *vec; /* scratch points for the stroker */
     size_t vec_cap;
     double arrow_len; /* length of frame arrows in pixels */
+    /* painting instead of rasterizing (fb is then NULL) */
+    const cj_plot_painter *painter;
+    double ox, oy;          /* the panel's corner in the painter's coordinates */
+    int w, h;               /* the panel's size */
+    cj_status paint_status; /* the first failure of a callback of a void primitive */
+    double *pxy;            /* scratch: points moved to the painter's coordinates */
+    size_t pxy_cap;
 } cj_plot_canvas;
 
 cj_status cj_plot_canvas_init(cj_plot_canvas *cv, int w, int h);
+/* A canvas of w x h that paints through `painter`, the panel's corner at (ox, oy). */
+void cj_plot_canvas_init_painter(cj_plot_canvas *cv, int w, int h, const cj_plot_painter *painter,
+                                 double ox, double oy);
+/* Fills the whole canvas with c (the background). */
+void cj_plot_clear(cj_plot_canvas *cv, cj_rgba c);
+/* Text with the pen at (x, y) on the baseline (cj_font_draw's conventions). */
+cj_status cj_plot_text(cj_plot_canvas *cv, cj_font *font, double x, double y, double size,
+                       cj_rgba c, const char *utf8);
 void cj_plot_canvas_free(cj_plot_canvas *cv);
 /* Makes room for n points in cv->poly. */
 cj_status cj_plot_canvas_reserve(cj_plot_canvas *cv, size_t n);

@@ -1,7 +1,9 @@
 /* Rendering a whole plot: the data box, the layout of the panel (margins, title, tick labels,
  * with a bare fallback for a small rectangle), the data-to-pixel map, grid, items, frame,
- * ticks and title, then the copy into the caller's framebuffer. */
+ * ticks and title, then the copy into the caller's framebuffer; or the same drawing handed to
+ * a painter (casteljau/plot_paint.h) for vector output. */
 #include "casteljau/plot.h"
+#include "casteljau/plot_paint.h"
 
 #include "error_internal.h"
 #include "plot_items_internal.h"
@@ -91,20 +93,26 @@ static cj_status draw_tick(cj_plot_canvas *cv, cj_font *font, double size, cj_rg
     double adv = 0;
     format_tick(v, step, buf, sizeof buf);
     st = cj_font_measure(font, size, buf, &adv, NULL, NULL);
-    if (!st) st = cj_font_draw(font, cv->fb, x - align * adv, y, size, ink, buf);
+    if (!st) st = cj_plot_text(cv, font, x - align * adv, y, size, ink, buf);
     return st;
 }
 
 /* ---- render --------------------------------------------------------------------------- */
 
-cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0, int w, int h,
-                         cj_font *font_in) {
-    assert(plot && fb);
-    if (x0 < 0 || y0 < 0 || w < 12 || h < 12 || w > fb->width - x0 || h > fb->height - y0)
+/* The layout and the drawing, into fb (painter NULL) or through the painter (fb NULL). */
+static cj_status plot_draw(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0, int w, int h,
+                           cj_font *font_in, const cj_plot_painter *painter) {
+    assert(plot && (fb || painter));
+    if (fb && (x0 < 0 || y0 < 0 || w < 12 || h < 12 || w > fb->width - x0 || h > fb->height - y0))
         return cj_fail(CJ_ERR_RANGE,
                        "plot rectangle %dx%d at (%d, %d) is not a rectangle of at least 12x12 "
                        "pixels inside the %dx%d framebuffer",
                        w, h, x0, y0, fb->width, fb->height);
+    if (!fb && (x0 < 0 || y0 < 0 || w < 12 || h < 12))
+        return cj_fail(CJ_ERR_RANGE,
+                       "plot rectangle %dx%d at (%d, %d) is not a rectangle of at least 12x12 "
+                       "pixels",
+                       w, h, x0, y0);
     double box[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
     if (plot->has_view) {
         memcpy(box, plot->view, sizeof box);
@@ -196,9 +204,12 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
         return cj_fail(CJ_ERR_DEGENERATE, "plotted data span cannot be scaled to pixels");
 
     cj_plot_canvas cv;
-    if ((st = cj_plot_canvas_init(&cv, w, h))) return st;
+    if (painter)
+        cj_plot_canvas_init_painter(&cv, w, h, painter, x0, y0);
+    else if ((st = cj_plot_canvas_init(&cv, w, h)))
+        return st;
     cv.arrow_len = fmax(36.0, fmin(90.0, 0.16 * fmin(ax1 - ax0, ay1 - ay0)));
-    cj_framebuffer_clear(cv.fb, plot->background);
+    cj_plot_clear(&cv, plot->background);
 
     const double vx0 = x.cx + (ax0 - x.ox) / x.s, vx1 = x.cx + (ax1 - x.ox) / x.s;
     const double vy0 = x.cy + (ay0 - x.oy) / x.s, vy1 = x.cy + (ay1 - x.oy) / x.s;
@@ -242,14 +253,27 @@ cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0
         double adv = 0, a = 0;
         st = cj_font_measure(font, title_size, plot->title, &adv, &a, NULL);
         if (!st)
-            st = cj_font_draw(font, cv.fb, 0.5 * (ax0 + ax1) - adv / 2, h - margin - a, title_size,
+            st = cj_plot_text(&cv, font, 0.5 * (ax0 + ax1) - adv / 2, h - margin - a, title_size,
                               cj_rgba_make(0x20, 0x20, 0x20, 255), plot->title);
     }
-    if (!st) {
+    if (!st) st = cv.paint_status;
+    if (!st && fb) {
         for (int row = 0; row < h; ++row)
             memcpy(fb->pixels + (ptrdiff_t)(y0 + row) * fb->stride + x0,
                    cv.fb->pixels + (ptrdiff_t)row * cv.fb->stride, (size_t)w * sizeof(cj_rgba));
     }
     cj_plot_canvas_free(&cv);
     return st;
+}
+
+cj_status cj_plot_render(const cj_plot *plot, cj_framebuffer *fb, int x0, int y0, int w, int h,
+                         cj_font *font) {
+    assert(fb);
+    return plot_draw(plot, fb, x0, y0, w, h, font, NULL);
+}
+
+cj_status cj_plot_paint(const cj_plot *plot, int x0, int y0, int w, int h, cj_font *font,
+                        const cj_plot_painter *painter) {
+    assert(painter && painter->stroke && painter->fill && painter->disc && painter->text);
+    return plot_draw(plot, NULL, x0, y0, w, h, font, painter);
 }
