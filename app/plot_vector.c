@@ -1,17 +1,21 @@
 /* Vector plots: a cj_plot_painter over cairo's SVG and PDF surfaces. Our coordinates have y up
  * from the bottom of the image; cairo's go down from the top, so y becomes height - y. Text is
- * set by cairo in DejaVu Sans (the face the raster path uses) at the same em size, stretched
- * horizontally to the advance the layout measured, so that labels end where the PNG's do. */
+ * set by cairo in the very font file the raster path uses (cj_font_find_default, opened with
+ * FreeType for cairo-ft: no fontconfig lookup) at the same em size, stretched horizontally to
+ * the advance the layout measured, so that labels end where the PNG's do. */
 #define _POSIX_C_SOURCE 200809L /* mkstemp, fdopen, fsync, fchmod */
 #include "plot_vector.h"
 
 #include "casteljau/chart.h"
 #include "casteljau/plot_paint.h"
 
+#include <cairo-ft.h>
 #include <cairo-pdf.h>
 #include <cairo-svg.h>
 #include <cairo.h>
 #include <errno.h>
+#include <ft2build.h>
+#include FT_FREETYPE_H
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -65,6 +69,7 @@ int plot_vector_check(const char *path, char *why, size_t why_size) {
 typedef struct painter_state {
     cairo_t *cr;
     double height;
+    cairo_font_face_t *face;
 } painter_state;
 
 static void set_colour(cairo_t *cr, cj_rgba c) {
@@ -112,7 +117,7 @@ static cj_status paint_text(void *user, double x, double y, double size_px, doub
     painter_state *p = user;
     cairo_t *cr = p->cr;
     cairo_save(cr);
-    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_face(cr, p->face);
     cairo_set_font_size(cr, size_px);
     cairo_text_extents_t ext;
     cairo_text_extents(cr, utf8, &ext);
@@ -160,6 +165,10 @@ static int paint_chart(cairo_t *cr, cj_chart *chart, cj_rgba bg, double x, doubl
     return st;
 }
 
+static void done_face(void *ft_face) {
+    FT_Done_Face(ft_face);
+}
+
 static cairo_status_t to_file(void *closure, const unsigned char *data, unsigned int length) {
     return fwrite(data, 1, length, closure) == length ? CAIRO_STATUS_SUCCESS
                                                       : CAIRO_STATUS_WRITE_ERROR;
@@ -167,12 +176,29 @@ static cairo_status_t to_file(void *closure, const unsigned char *data, unsigned
 
 int plot_vector_write(plot_doc *doc, cj_font *font, const char *path, char *why, size_t why_size) {
     const int format = plot_vector_format(path);
+    /* The raster path's font file, for cairo through FreeType. */
+    const char *font_path = cj_font_find_default();
+    FT_Library ft = NULL;
+    FT_Face ft_face = NULL;
+    if (!font_path || FT_Init_FreeType(&ft) || FT_New_Face(ft, font_path, 0, &ft_face)) {
+        snprintf(why, why_size, "cannot open the font %s", font_path ? font_path : "(none found)");
+        if (ft) FT_Done_FreeType(ft);
+        return CJ_ERR_IO;
+    }
     char tmp[4096];
     FILE *f = open_temp(path, tmp, sizeof tmp);
     if (!f) {
         snprintf(why, why_size, "%s: cannot create a file there (%s)", path, strerror(errno));
+        FT_Done_Face(ft_face);
+        FT_Done_FreeType(ft);
         return CJ_ERR_IO;
     }
+    /* cairo keeps the face while any scaled font uses it: it releases the FreeType face
+     * itself (user data), and the caches are flushed below before the library goes. */
+    static const cairo_user_data_key_t face_key;
+    cairo_font_face_t *face = cairo_ft_font_face_create_for_ft_face(ft_face, 0);
+    if (cairo_font_face_set_user_data(face, &face_key, ft_face, done_face))
+        FT_Done_Face(ft_face); /* (only when cairo is out of memory; the face is then unusable) */
     const double W = doc->width, H = doc->height;
     cairo_surface_t *surface;
     if (format == PLOT_VECTOR_SVG) {
@@ -182,7 +208,7 @@ int plot_vector_write(plot_doc *doc, cj_font *font, const char *path, char *why,
         surface = cairo_pdf_surface_create_for_stream(to_file, f, W, H);
     }
     cairo_t *cr = cairo_create(surface);
-    painter_state state = {cr, H};
+    painter_state state = {cr, H, face};
     const cj_plot_painter painter = {&state, paint_stroke, paint_fill, paint_disc, paint_text};
 
     /* As plot_doc_render: the background, then a grid of panels split exactly in pixels. */
@@ -213,6 +239,9 @@ int plot_vector_write(plot_doc *doc, cj_font *font, const char *path, char *why,
     cairo_surface_finish(surface);
     const cairo_status_t cs = cairo_surface_status(surface);
     cairo_surface_destroy(surface);
+    cairo_font_face_destroy(face);
+    cairo_debug_reset_static_data(); /* drops cairo's font caches: the face goes now */
+    FT_Done_FreeType(ft);
     if (!st && cs != CAIRO_STATUS_SUCCESS) {
         snprintf(why, why_size, "%s: cairo: %s", path, cairo_status_to_string(cs));
         st = cs == CAIRO_STATUS_NO_MEMORY ? CJ_ERR_NOMEM : CJ_ERR_IO;
