@@ -9,6 +9,7 @@
 #include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 struct anim_gif {
     GifFileType *f;
@@ -18,6 +19,11 @@ struct anim_gif {
     GifByteType *idx;
     liq_attr *liq;
 };
+
+int anim_gif_is_gif(const char *path) {
+    const size_t n = strlen(path);
+    return n > 4 && !strcasecmp(path + n - 4, ".gif");
+}
 
 static void free_gif(anim_gif *g) {
     if (g->liq) liq_attr_destroy(g->liq);

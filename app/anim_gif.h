@@ -9,6 +9,9 @@
 
 typedef struct anim_gif anim_gif;
 
+/* 1 if path ends in .gif (any case). */
+int anim_gif_is_gif(const char *path);
+
 /* Opens `path` for width x height frames shown `delay_cs` hundredths of a second each, looping
  * forever, dithered at `dither` in [0, 1] (0: none, 1: full error diffusion). Returns NULL with
  * a reason in why[why_size] on failure. */

@@ -20,6 +20,7 @@ static const char animate_usage[] =
     "                      motion along paths at controlled speed, a cloth on colliders\n"
     "  -o PATTERN          one PNG per frame; PATTERN holds one %d (e.g. %04d) for the frame\n"
     "  -o FILM.mp4         instead, one film (.mp4 .mkv .mov: H.264; .webm: VP9; FFmpeg),\n"
+    "                      or -o FILM.gif (as --gif FILM.gif)\n"
     "                      each frame encoded as it is rendered; width and height even\n"
     "  --quality Q         film quality 1..100 (default 55 = H.264 CRF 23; 100 near lossless)\n"
     "  --gif OUT.gif       also (or instead) one animated GIF of the range, looping, each frame\n"
@@ -248,6 +249,10 @@ int cmd_animate(int argc, char **argv) {
         sinks.film_path = out;
         out = NULL;
         if (no_render) return cli_fail(cmd, "a film needs rendering (drop --no-render)");
+    }
+    if (out && !gif_path && anim_gif_is_gif(out)) { /* -o film.gif: as --gif */
+        gif_path = out;
+        out = NULL;
     }
     sinks.gif_path = gif_path;
     if (!no_render && !out && !gif_path && !sinks.film_path)

@@ -302,6 +302,13 @@ static void test_gif_dithering(void **state) {
     assert_true(n_png > 256);
     assert_true(n_dith > n_plain);
     assert_true(e_dith < 0.75 * e_plain);
+    /* -o OUT.gif is --gif OUT.gif */
+    run("g.json --frames 0:0 -o same.gif --quiet", 0, &r);
+    cj_cli_result_free(&r);
+    static uint8_t same[CROP][CROP][3];
+    gif_crop("same.gif", same);
+    assert_memory_equal(same, dithered, sizeof same);
+    printf("-o same.gif: the same GIF as --gif\n");
     run("g.json --gif x.gif --dither 2 --quiet", 2, &r);
     assert_non_null(strstr(r.err, "--dither"));
     cj_cli_result_free(&r);
