@@ -133,38 +133,6 @@ static cj_status paint_text(void *user, double x, double y, double size_px, doub
     return CJ_OK;
 }
 
-/* A chart panel: drawn by the raster path, placed as an image (premultiplied ARGB32). */
-static int paint_chart(cairo_t *cr, cj_chart *chart, cj_rgba bg, double x, double ytop, int w,
-                       int h, cj_font *font) {
-    cj_framebuffer *fb = NULL;
-    if (cj_framebuffer_create(w, h, 0, NULL, &fb)) return -1;
-    cj_framebuffer_clear(fb, bg);
-    cj_status st = cj_chart_render(chart, fb, 0, 0, w, h, font);
-    cairo_surface_t *img = st ? NULL : cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);
-    if (img && cairo_surface_status(img) == CAIRO_STATUS_SUCCESS) {
-        unsigned char *data = cairo_image_surface_get_data(img);
-        const int stride = cairo_image_surface_get_stride(img);
-        for (int row = 0; row < h; ++row) { /* cairo's row 0 is the top */
-            const cj_rgba *src = fb->pixels + (ptrdiff_t)(h - 1 - row) * fb->stride;
-            uint32_t *dst = (uint32_t *)(data + (size_t)row * (size_t)stride);
-            for (int i = 0; i < w; ++i) {
-                const uint32_t a = src[i].a;
-                dst[i] = a << 24 | (uint32_t)((src[i].r * a + 127) / 255) << 16 |
-                         (uint32_t)((src[i].g * a + 127) / 255) << 8 |
-                         (uint32_t)((src[i].b * a + 127) / 255);
-            }
-        }
-        cairo_surface_mark_dirty(img);
-        cairo_set_source_surface(cr, img, x, ytop);
-        cairo_paint(cr);
-    } else if (!st) {
-        st = CJ_ERR_NOMEM;
-    }
-    if (img) cairo_surface_destroy(img);
-    cj_framebuffer_destroy(fb);
-    return st;
-}
-
 static void done_face(void *ft_face) {
     FT_Done_Face(ft_face);
 }
@@ -225,8 +193,8 @@ int plot_vector_write(plot_doc *doc, cj_font *font, const char *path, char *why,
         cairo_save(cr); /* a panel draws inside its rectangle only, as on a framebuffer */
         cairo_rectangle(cr, x0, doc->height - ytop, x1 - x0, ytop - ybot);
         cairo_clip(cr);
-        st = doc->charts[i] ? paint_chart(cr, doc->charts[i], doc->background, x0,
-                                          doc->height - ytop, x1 - x0, ytop - ybot, font)
+        st = doc->charts[i] ? (int)cj_chart_paint(doc->charts[i], x0, ybot, x1 - x0, ytop - ybot,
+                                                  font, &painter)
                             : (int)cj_plot_paint(doc->panels[i], x0, ybot, x1 - x0, ytop - ybot,
                                                  font, &painter);
         cairo_restore(cr);

@@ -18,9 +18,9 @@ int plot_vector_format(const char *path);
 int plot_vector_check(const char *path, char *why, size_t why_size);
 
 /* Paints doc into path (written to a temporary file renamed into place when complete, so an
- * existing file is kept on failure). Chart panels ("kind": "chart") are drawn by the raster
- * path and placed as images. Returns CJ_OK or a status with the reason in why: CJ_ERR_IO,
- * CJ_ERR_NOMEM (the writer), or the status of a panel that cannot be drawn. */
+ * existing file is kept on failure); chart panels ("kind": "chart") too. Returns CJ_OK or a status
+ * with the reason in why: CJ_ERR_IO, CJ_ERR_NOMEM (the writer), or the status of a panel that
+ * cannot be drawn. */
 int plot_vector_write(plot_doc *doc, cj_font *font, const char *path, char *why, size_t why_size);
 
 #endif

@@ -287,7 +287,7 @@ static cj_status text_at(cj_font *f, cj_plot_canvas *cv, double x, double y, dou
     double adv = 0;
     cj_status st = cj_font_measure(f, size, s, &adv, NULL, NULL);
     if (st) return st;
-    return cj_font_draw(f, cv->fb, x - align * adv, y, size, col, s);
+    return cj_plot_text(cv, f, x - align * adv, y, size, col, s);
 }
 
 /* Major ticks of an axis: values v[0..n-1] (at most 64) and whether each is labelled. */
@@ -319,23 +319,32 @@ static void tick_label(const mapping *m, int a, double v, char *buf, size_t cap)
         snprintf(buf, cap, "%g", v);
 }
 
-cj_status cj_chart_render(const cj_chart *c, cj_framebuffer *fb, int x0, int y0, int w, int h,
-                          cj_font *font) {
-    assert(c && fb);
-    if (x0 < 0 || y0 < 0 || w < 120 || h < 90 || w > fb->width - x0 || h > fb->height - y0)
-        return cj_fail(CJ_ERR_RANGE,
-                       "chart rectangle %dx%d at (%d, %d) is not a rectangle of at least 120x90 "
-                       "pixels inside the %dx%d framebuffer",
-                       w, h, x0, y0, fb->width, fb->height);
+/* The layout and the drawing, into fb (painter NULL) or through the painter (fb NULL). */
+static cj_status chart_draw(const cj_chart *c, cj_framebuffer *fb, int x0, int y0, int w, int h,
+                            cj_font *font, const cj_plot_painter *painter) {
+    assert(c && (fb || painter));
+    if (x0 < 0 || y0 < 0 || w < 120 || h < 90 ||
+        (fb && (w > fb->width - x0 || h > fb->height - y0)))
+        return fb ? cj_fail(CJ_ERR_RANGE,
+                            "chart rectangle %dx%d at (%d, %d) is not a rectangle of at least "
+                            "120x90 pixels inside the %dx%d framebuffer",
+                            w, h, x0, y0, fb->width, fb->height)
+                  : cj_fail(CJ_ERR_RANGE,
+                            "chart rectangle %dx%d at (%d, %d) is not a rectangle of at least "
+                            "120x90 pixels",
+                            w, h, x0, y0);
     mapping m;
     cj_status st = make_mapping(c, w, h, font != NULL, &m);
     if (st) return st;
     cj_plot_canvas cv;
-    if ((st = cj_plot_canvas_init(&cv, w, h))) return st;
+    if (painter)
+        cj_plot_canvas_init_painter(&cv, w, h, painter, x0, y0);
+    else if ((st = cj_plot_canvas_init(&cv, w, h)))
+        return st;
     const cj_rgba white = cj_rgba_make(255, 255, 255, 255),
                   ink = cj_rgba_make(0x20, 0x20, 0x20, 255),
                   grid = cj_rgba_make(0xe4, 0xe4, 0xe4, 255);
-    cj_framebuffer_clear(cv.fb, white);
+    cj_plot_clear(&cv, white);
     const cj_chart_rect r = m.r;
     double tv[2][64];
     int tl[2][64], nt[2];
@@ -474,10 +483,23 @@ cj_status cj_chart_render(const cj_chart *c, cj_framebuffer *fb, int x0, int y0,
         st = text_at(font, &cv, 0.5 * (r.left + r.right), 8, ls, 0.5, ink, c->axis_title[0]);
     if (!st && font && c->axis_title[1][0])
         st = text_at(font, &cv, 8, r.top + 14, ls, 0.0, ink, c->axis_title[1]);
-    if (!st)
+    if (!st) st = cv.paint_status;
+    if (!st && fb)
         for (int row = 0; row < h; ++row)
             memcpy(fb->pixels + (ptrdiff_t)(y0 + row) * fb->stride + x0,
                    cv.fb->pixels + (ptrdiff_t)row * cv.fb->stride, (size_t)w * sizeof(cj_rgba));
     cj_plot_canvas_free(&cv);
     return st;
+}
+
+cj_status cj_chart_render(const cj_chart *c, cj_framebuffer *fb, int x0, int y0, int w, int h,
+                          cj_font *font) {
+    assert(fb);
+    return chart_draw(c, fb, x0, y0, w, h, font, NULL);
+}
+
+cj_status cj_chart_paint(const cj_chart *c, int x0, int y0, int w, int h, cj_font *font,
+                         const cj_plot_painter *painter) {
+    assert(painter && painter->stroke && painter->fill && painter->disc && painter->text);
+    return chart_draw(c, NULL, x0, y0, w, h, font, painter);
 }

@@ -1,7 +1,7 @@
 /* casteljau: plots painted through caller-supplied drawing callbacks instead of rasterized, for
  * vector output (SVG, PDF through cairo, in the casteljau tool) with exactly the layout of
  * cj_plot_render: the same data box, margins, ticks, labels (measured with the same cj_font),
- * title and items, in the same order.
+ * title and items, in the same order; and charts (cj_chart_paint) as cj_chart_render draws them.
  *
  * Coordinates are the pixel coordinates cj_plot_render would use in a framebuffer holding the
  * panel at (x0, y0): origin at the lower-left corner of the image, y UP, one unit per pixel.
@@ -18,6 +18,7 @@
 #ifndef CASTELJAU_PLOT_PAINT_H
 #define CASTELJAU_PLOT_PAINT_H
 
+#include "casteljau/chart.h"
 #include "casteljau/plot.h"
 #include "casteljau/status.h"
 #include "casteljau/text.h"
@@ -50,6 +51,13 @@ typedef struct cj_plot_painter {
  * 12 x 12 with x0, y0 >= 0), plus whatever a callback returns. */
 cj_status cj_plot_paint(const cj_plot *plot, int x0, int y0, int w, int h, cj_font *font,
                         const cj_plot_painter *painter);
+
+/* Paints a chart (casteljau/chart.h) as cj_chart_render(chart, fb, x0, y0, w, h, font) would
+ * draw it, in the same way: a white fill of the panel, then grid, series, legend, notes,
+ * axes, labels and titles. Same statuses as cj_chart_render (the rectangle need only be at least
+ * 120 x 90 with x0, y0 >= 0), plus whatever a callback returns. */
+cj_status cj_chart_paint(const cj_chart *chart, int x0, int y0, int w, int h, cj_font *font,
+                         const cj_plot_painter *painter);
 
 #ifdef __cplusplus
 }
