@@ -9,7 +9,7 @@ liblapacke-dev libfreetype-dev fonts-dejavu-core libopenimageio-dev libvtk9-dev 
 xvfb xauth libgl1-mesa-dri libcairo2-dev clang libclang-rt-14-dev libgif-dev libembree-dev \
 libglfw3-dev xdotool valgrind"
 PKGS="$PKGS python3-cffi python3-numpy python3-pytest"
-PKGS="$PKGS libimagequant-dev libavformat-dev libavcodec-dev libswscale-dev poppler-utils"
+PKGS="$PKGS libimagequant-dev libavformat-dev libavcodec-dev libswscale-dev poppler-utils libexpat1-dev"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
