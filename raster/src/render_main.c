@@ -2,7 +2,7 @@
  * from what the scene uses. Every stage's entry in the report (run or left out, and the
  * feature that decided it) is written where the decision is made; the figures follow when the
  * stage has run. cj_rraster_frame at the bottom is the table of contents. */
-#include "render_pipe.h"
+#include "render_frame.h"
 
 #include "casteljau/framebuffer.h"
 #include "error_internal.h"
@@ -11,111 +11,6 @@
 
 #include <math.h>
 #include <string.h>
-
-static const char *model_name[CJ_RM_COUNT] = {"unlit", "flat", "gouraud", "phong"};
-
-typedef struct features {
-    int lit, any_ambient;
-    int model_used[CJ_RM_COUNT];
-    int model_mat[CJ_RM_COUNT]; /* a material using it (for the report) */
-    int textured, tex_mat, trilinear;
-    int transparent, transp_mat;
-    int one_sided;
-    int overlays, overlay_node;
-    int patches, surfaces, meshes;
-} features;
-
-static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], features *f) {
-    size_t n = cj_scene_light_count(scene);
-    Ia[0] = Ia[1] = Ia[2] = 0.0f;
-    for (size_t i = 0; i < n; ++i) {
-        const cj_light *L = cj_scene_light(scene, (int)i);
-        float I[3] = {(float)(L->color.r * L->intensity), (float)(L->color.g * L->intensity),
-                      (float)(L->color.b * L->intensity)};
-        /* a light that gives nothing is left out: the image is the same without it */
-        if (!(I[0] > 0.0f || I[1] > 0.0f || I[2] > 0.0f)) continue;
-        if (L->kind == CJ_LIGHT_AMBIENT) {
-            for (int k = 0; k < 3; ++k) Ia[k] += I[k];
-            f->any_ambient = 1;
-            continue;
-        }
-        cj_rlight *r = &c->lights[c->nlights++];
-        memset(r, 0, sizeof *r);
-        memcpy(r->I, I, sizeof I);
-        cj_vec3 pos = L->position;
-        if (L->kind == CJ_LIGHT_AREA) /* the rasterizer sees an area light as its centre */
-            pos = cj_v3_add(pos, cj_v3_scale(cj_v3_add(L->edge_u, L->edge_v), 0.5));
-        r->pos[0] = pos.x;
-        r->pos[1] = pos.y;
-        r->pos[2] = pos.z;
-        if (L->kind == CJ_LIGHT_DIRECTIONAL) {
-            cj_vec3 l = cj_v3_normalize(cj_v3_scale(L->direction, -1.0));
-            r->directional = 1;
-            r->l[0] = (float)l.x;
-            r->l[1] = (float)l.y;
-            r->l[2] = (float)l.z;
-        } else if (L->kind == CJ_LIGHT_SPOT) {
-            cj_vec3 a = cj_v3_normalize(L->direction);
-            r->spot = 1;
-            r->axis[0] = (float)a.x;
-            r->axis[1] = (float)a.y;
-            r->axis[2] = (float)a.z;
-            r->cos_cut = (float)cos(L->spot_angle);
-            r->spot_exp = (float)L->spot_exponent;
-        }
-    }
-    f->lit = c->nlights > 0;
-}
-
-/* Which materials the drawn objects use, and what they ask for (from the scene pass: the
- * drawn nodes and the geometry features). */
-static void scan_scene(const cj_rscene *rs, cj_rctx *c, features *f) {
-    const cj_scene *scene = rs->scene;
-    f->tex_mat = f->transp_mat = -1;
-    f->overlay_node = rs->overlay_node;
-    f->overlays = (rs->features & CJ_RF_OVERLAYS) != 0;
-    f->patches = (rs->features & CJ_RF_PATCHES) != 0;
-    f->surfaces = (rs->features & CJ_RF_SURFACES) != 0;
-    f->meshes = (rs->features & CJ_RF_MESHES) != 0;
-    for (int m = 0; m < CJ_RM_COUNT; ++m) f->model_mat[m] = -1;
-    for (size_t i = 0; i < rs->node_count; ++i) {
-        if (!rs->drawn[i]) continue;
-        const cj_node *nd = cj_scene_node(scene, (int)i);
-        if (cj_scene_geometry(scene, nd->geometry)->kind == CJ_GEOM_CURVE) continue;
-        int mi = nd->material >= 0 ? nd->material : c->nmat;
-        cj_rmat *m = &c->mats[mi];
-        m->used = 1;
-        if (f->model_mat[m->model] < 0) f->model_mat[m->model] = mi;
-        f->model_used[m->model] = 1;
-        if (m->tex >= 0) {
-            if (!f->textured) f->tex_mat = mi;
-            f->textured = 1;
-        }
-        if (m->opacity < 1.0f) {
-            if (!f->transparent) f->transp_mat = mi;
-            f->transparent = 1;
-        }
-        if (!m->two_sided) f->one_sided = 1;
-    }
-}
-
-static void set_material(cj_rmat *r, const cj_material *m, int lit, int any_ambient,
-                         const float Ia[3]) {
-    memset(r, 0, sizeof *r);
-    r->cr[0] = (float)m->color.r;
-    r->cr[1] = (float)m->color.g;
-    r->cr[2] = (float)m->color.b;
-    for (int k = 0; k < 3; ++k) r->amb[k] = (lit || any_ambient) ? (float)m->ka * Ia[k] : 1.0f;
-    r->spec[0] = (float)(m->specular.r * m->ks);
-    r->spec[1] = (float)(m->specular.g * m->ks);
-    r->spec[2] = (float)(m->specular.b * m->ks);
-    r->kd = (float)m->kd;
-    r->alpha = (float)m->alpha;
-    r->opacity = (float)m->opacity;
-    r->model = lit ? 1 + (int)m->shading : CJ_RM_UNLIT;
-    r->two_sided = m->two_sided != 0;
-    r->tex = m->texture;
-}
 
 static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
     cj_rlist *lists[2] = {&c->opaque, &c->transp};
@@ -139,8 +34,8 @@ static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
 }
 
 /* The figures of a stage whose decision is already recorded. */
-static cj_stage *figures(cj_stage_report *R, const char *name, const char *uin, uint64_t in,
-                         const char *uout, uint64_t out, double sec) {
+cj_stage *cj_rframe_figures(cj_stage_report *R, const char *name, const char *uin, uint64_t in,
+                            const char *uout, uint64_t out, double sec) {
     cj_stage *s = cj_stage_report_stage(R, name);
     if (!s) return NULL;
     snprintf(s->unit_in, sizeof s->unit_in, "%s", uin);
@@ -201,29 +96,6 @@ static cj_status prep_list(cj_rctx *c, cj_rlist *L, const cj_allocator *alloc,
 
 /* ---- one frame --------------------------------------------------------------------------- */
 
-/* Everything one frame of the rasterizer holds, step to step. */
-typedef struct raster_frame {
-    cj_renderer *r;
-    const cj_rscene *rs;
-    const cj_scene *scene;
-    cj_stage_report *R;
-    cj_allocator A;
-    int W, H, spp, tile;
-    double tol_px;
-    cj_rview view;
-    cj_rctx c;
-    features f;
-    float Ia[3];
-    unsigned *need, flags;
-    cj_rbuild b;
-    size_t transp_in, splits, gouraud_vertices;
-    int fallback;
-    cj_raster_stats rs_o, rs_t, run;
-    cj_rtarget target;
-    int pool_workers, pool_reused, buffers_reused;
-    double sec_mip, sec_sort, sec_project, sec_shade_setup, sec_lines_setup, sec_setup, sec_run;
-} raster_frame;
-
 /* The stages in the order the report lists them (each is filled where it is decided). */
 static const char *const stage_order[] = {"scene_check",
                                           "tessellate_patches",
@@ -251,7 +123,7 @@ static const char *const stage_order[] = {"scene_check",
                                           "frame"};
 
 /* Image size, samples, tolerance and tiles: the renderer's options over the scene's. */
-static cj_status resolve_settings(raster_frame *F) {
+static cj_status resolve_settings(cj_rframe *F) {
     const cj_render_options *o = &F->r->opt.render;
     const cj_scene_settings *ss = cj_scene_settings_get(F->scene);
     F->W = o->width ? o->width : ss->width;
@@ -277,7 +149,7 @@ static cj_status resolve_settings(raster_frame *F) {
 }
 
 /* The camera and the frame's constants the tiles read. */
-static cj_status setup_view(raster_frame *F) {
+static cj_status setup_view(cj_rframe *F) {
     cj_status st = cj_rview_init(cj_scene_camera(F->scene), F->W, F->H, &F->view);
     if (st) return st;
     cj_rctx *c = &F->c;
@@ -297,120 +169,19 @@ static cj_status setup_view(raster_frame *F) {
 }
 
 /* Lights, materials and the feature mask; the per-material attributes the build must make. */
-static cj_status prepare_materials(raster_frame *F) {
-    cj_rctx *c = &F->c;
-    features *f = &F->f;
-    const cj_scene *scene = F->scene;
-    c->nmat = (int)cj_scene_material_count(scene);
-    c->mats = cj_ralloc(&F->A, sizeof(cj_rmat) * (size_t)(c->nmat + 1));
-    c->lights = cj_ralloc(&F->A, sizeof(cj_rlight) * (cj_scene_light_count(scene) + 1));
-    c->nsamplers = (int)cj_scene_texture_count(scene);
-    c->samplers = cj_ralloc(&F->A, sizeof(cj_tex_sampler) * (size_t)(c->nsamplers + 1));
-    F->need = cj_ralloc(&F->A, sizeof(unsigned) * (size_t)(c->nmat + 1));
-    if (!c->mats || !c->lights || !c->samplers || !F->need)
-        return cj_fail(CJ_ERR_NOMEM, "render tables");
-    memset(c->samplers, 0, sizeof(cj_tex_sampler) * (size_t)(c->nsamplers + 1));
-    prepare_lights(scene, c, F->Ia, f);
-    for (int m = 0; m <= c->nmat; ++m) {
-        cj_material def = cj_material_default();
-        set_material(&c->mats[m], m < c->nmat ? cj_scene_material(scene, m) : &def, f->lit,
-                     f->any_ambient, F->Ia);
-    }
-    scan_scene(F->rs, c, f);
-    const int normals_overlay = (F->rs->features & CJ_RF_NORMALS_OVERLAY) != 0;
-    F->flags = 0;
-    for (int m = 0; m <= c->nmat; ++m) {
-        const cj_rmat *r = &c->mats[m];
-        F->need[m] = 0;
-        if (r->model == CJ_RM_GOURAUD || r->model == CJ_RM_PHONG || normals_overlay)
-            F->need[m] |= CJ_RB_NORMALS;
-        if (r->tex >= 0) F->need[m] |= CJ_RB_UVS;
-        if (r->used) F->flags |= F->need[m];
-    }
-    cj_stage_report *R = F->R;
-    cj_stage_report_set(R, "vertex_normals", (F->flags & CJ_RB_NORMALS) != 0, "%s",
-                        (F->flags & CJ_RB_NORMALS)
-                            ? (normals_overlay ? "a normals overlay or Gouraud/Phong shading"
-                                               : "lit Gouraud/Phong materials")
-                            : (f->lit ? "flat shading only: face normals" : "no lights"));
-    cj_stage_report_set(R, "texture_coords", (F->flags & CJ_RB_UVS) != 0, "%s",
-                        (F->flags & CJ_RB_UVS) ? "a material has a texture" : "no textures");
-    cj_stage_report_set(R, "cull_backfaces", f->one_sided, "%s",
-                        f->one_sided ? "one-sided materials" : "every material is two-sided");
-    cj_stage_report_set(R, "sort_transparent", f->transparent, "%s",
-                        f->transparent ? "a material has opacity < 1" : "no transparent material");
-    int any_setup = f->model_used[CJ_RM_FLAT] || f->model_used[CJ_RM_GOURAUD];
-    cj_stage_report_set(R, "shade_setup", any_setup, "%s",
-                        any_setup ? "flat/Gouraud materials: per-triangle/vertex lighting"
-                                  : "no flat or Gouraud material");
-    for (int m = 0; m < CJ_RM_COUNT; ++m) {
-        char name[CJ_STAGE_NAME_MAX];
-        snprintf(name, sizeof name, "shade_%s", model_name[m]);
-        if (f->model_used[m])
-            cj_stage_report_set(R, name, 1, "material %d is %s%s", f->model_mat[m], model_name[m],
-                                m == CJ_RM_UNLIT
-                                    ? (f->any_ambient ? " (ambient light only)" : " (no lights)")
-                                    : "");
-        else if (m == CJ_RM_UNLIT)
-            cj_stage_report_set(R, name, 0, "the scene has lights");
-        else if (f->lit)
-            cj_stage_report_set(R, name, 0, "no %s material", model_name[m]);
-        else
-            cj_stage_report_set(R, name, 0, "no lights");
-    }
-    if (f->textured)
-        cj_stage_report_set(R, "texture", 1, "material %d has a texture", f->tex_mat);
-    else
-        cj_stage_report_set(R, "texture", 0, "no textures");
-    if (f->overlays)
-        cj_stage_report_set(R, "overlay_lines", 1, "node %d has overlays or is a curve",
-                            f->overlay_node);
-    else
-        cj_stage_report_set(R, "overlay_lines", 0, "no overlays or curves");
-    if (f->transparent)
-        cj_stage_report_set(R, "transparency", 1, "material %d has opacity < 1", f->transp_mat);
-    else
-        cj_stage_report_set(R, "transparency", 0, "no transparent material");
-    cj_stage_report_set(R, "resolve", F->spp > 1, "spp = %d", F->spp);
-    return CJ_OK;
-}
-
-/* Samplers of the textures the drawn materials use (mipmaps for trilinear images). */
-static cj_status prepare_textures(raster_frame *F) {
-    cj_rctx *c = &F->c;
-    double ts = cj_render_now();
-    cj_status st = CJ_OK;
-    for (int m = 0; m <= c->nmat && !st; ++m) {
-        const cj_rmat *r = &c->mats[m];
-        if (!r->used || r->tex < 0 || c->samplers[r->tex].alloc.alloc) continue;
-        const cj_texture *tx = cj_scene_texture(F->scene, r->tex);
-        st = cj_tex_sampler_init(tx, r->tex, &F->A, &c->samplers[r->tex]);
-        if (tx->kind == CJ_TEX_IMAGE && tx->filter == CJ_TEX_TRILINEAR) F->f.trilinear = 1;
-    }
-    F->sec_mip = cj_render_now() - ts;
-    cj_stage_report_set(F->R, "mipmaps", F->f.trilinear, "%s",
-                        F->f.trilinear ? "a trilinear image texture"
-                                       : "no trilinear image texture");
-    figures(F->R, "mipmaps", "textures", (uint64_t)c->nsamplers, "textures", (uint64_t)c->nsamplers,
-            F->sec_mip);
-    return st;
-}
-
-/* Scene -> world triangles: tessellation for the view (through the renderer's cache),
- * transforms, culling. */
-static cj_status build_triangles(raster_frame *F) {
+static cj_status build_triangles(cj_rframe *F) {
     cj_render_cache *cache = cj_renderer_cache(F->r);
     cj_status st =
         cj_rbuild_scene(F->rs, &F->view, F->tol_px, F->flags, F->need, 1, cache, &F->A, &F->b);
     if (st) return st;
     const cj_rbuild *b = &F->b;
-    const features *f = &F->f;
+    const cj_rfeatures *f = &F->f;
     cj_stage_report *R = F->R;
     cj_stage *s =
         cj_stage_report_set(R, "tessellate_patches", f->patches, "%s",
                             f->patches ? "the scene has Bezier patch objects" : "no patch objects");
-    figures(R, "tessellate_patches", "patches", b->patches_in, "triangles", b->patch_tris,
-            b->sec_patches);
+    cj_rframe_figures(R, "tessellate_patches", "patches", b->patches_in, "triangles", b->patch_tris,
+                      b->sec_patches);
     cj_stage_add_value(s, "tol_px", F->tol_px);
     cj_stage_add_value(s, "bound_px", b->patch_bound_px);
     cj_stage_add_value(s, "patches_culled", (double)b->patches_culled);
@@ -421,21 +192,23 @@ static cj_status build_triangles(raster_frame *F) {
     s = cj_stage_report_set(R, "tessellate_surfaces", f->surfaces, "%s",
                             f->surfaces ? "the scene has analytic surfaces"
                                         : "no analytic surfaces");
-    figures(R, "tessellate_surfaces", "objects", 0, "triangles", b->surface_tris, b->sec_surfaces);
+    cj_rframe_figures(R, "tessellate_surfaces", "objects", 0, "triangles", b->surface_tris,
+                      b->sec_surfaces);
     cj_stage_add_value(s, "bound_px", b->surface_bound_px);
     cj_stage_report_set(R, "meshes", f->meshes, "%s",
                         f->meshes ? "the scene has triangle meshes" : "no mesh objects");
-    figures(R, "meshes", "triangles", b->mesh_tris, "triangles", b->mesh_tris, b->sec_meshes);
+    cj_rframe_figures(R, "meshes", "triangles", b->mesh_tris, "triangles", b->mesh_tris,
+                      b->sec_meshes);
     cj_stage_report_set(R, "transform", 1, "always");
-    figures(R, "transform", "vertices", b->vertex_count, "vertices", b->vertex_count,
-            b->sec_transform);
+    cj_rframe_figures(R, "transform", "vertices", b->vertex_count, "vertices", b->vertex_count,
+                      b->sec_transform);
     const uint64_t vn = (F->flags & CJ_RB_NORMALS) ? b->vertex_count : 0;
     const uint64_t vt = (F->flags & CJ_RB_UVS) ? b->vertex_count : 0;
-    figures(R, "vertex_normals", "vertices", vn, "vertices", vn, 0.0);
-    figures(R, "texture_coords", "vertices", vt, "vertices", vt, 0.0);
+    cj_rframe_figures(R, "vertex_normals", "vertices", vn, "vertices", vn, 0.0);
+    cj_rframe_figures(R, "texture_coords", "vertices", vt, "vertices", vt, 0.0);
     size_t built = b->patch_tris + b->surface_tris + b->mesh_tris;
-    figures(R, "cull_backfaces", "triangles", built + b->culled_back, "triangles", built,
-            b->sec_cull);
+    cj_rframe_figures(R, "cull_backfaces", "triangles", built + b->culled_back, "triangles", built,
+                      b->sec_cull);
     cj_rctx *c = &F->c;
     c->obj_mat = cj_ralloc(&F->A, sizeof(int) * (b->object_count ? b->object_count : 1));
     if (!c->obj_mat) return cj_fail(CJ_ERR_NOMEM, "object table");
@@ -445,7 +218,7 @@ static cj_status build_triangles(raster_frame *F) {
 }
 
 /* Opaque and transparent lists; the transparent one back to front (BSP). */
-static cj_status order_triangles(raster_frame *F) {
+static cj_status order_triangles(cj_rframe *F) {
     cj_rctx *c = &F->c;
     cj_status st = split_lists(c, &F->b, &F->A);
     if (st) return st;
@@ -457,8 +230,8 @@ static cj_status order_triangles(raster_frame *F) {
         F->sec_sort = cj_render_now() - ts;
         if (st) return st;
     }
-    cj_stage *s = figures(F->R, "sort_transparent", "triangles", F->transp_in, "triangles",
-                          c->transp.count, F->sec_sort);
+    cj_stage *s = cj_rframe_figures(F->R, "sort_transparent", "triangles", F->transp_in,
+                                    "triangles", c->transp.count, F->sec_sort);
     if (F->f.transparent) {
         cj_stage_add_value(s, "bsp_splits", (double)F->splits);
         cj_stage_add_value(s, "painter_fallback", F->fallback);
@@ -467,23 +240,23 @@ static cj_status order_triangles(raster_frame *F) {
 }
 
 /* Clip coordinates, per-triangle / per-vertex lighting, overlay segments. */
-static cj_status project_and_light(raster_frame *F) {
+static cj_status project_and_light(cj_rframe *F) {
     cj_rctx *c = &F->c;
     double ts = cj_render_now();
     cj_status st = project(c, &F->b, &F->A);
     F->sec_project = cj_render_now() - ts;
     if (st) return st;
     cj_stage_report_set(F->R, "project", 1, "always");
-    figures(F->R, "project", "vertices", F->b.vertex_count, "vertices", F->b.vertex_count,
-            F->sec_project);
+    cj_rframe_figures(F->R, "project", "vertices", F->b.vertex_count, "vertices", F->b.vertex_count,
+                      F->sec_project);
     ts = cj_render_now();
     st = cj_rshade_prepare_list(c, &c->opaque, &F->A);
     if (!st) st = cj_rshade_prepare_list(c, &c->transp, &F->A);
     if (!st) st = cj_rshade_prepare_gouraud(c, &F->A, &F->gouraud_vertices);
     F->sec_shade_setup = cj_render_now() - ts;
     if (st) return st;
-    figures(F->R, "shade_setup", "triangles", c->opaque.count + c->transp.count, "vertices",
-            F->gouraud_vertices, F->sec_shade_setup);
+    cj_rframe_figures(F->R, "shade_setup", "triangles", c->opaque.count + c->transp.count,
+                      "vertices", F->gouraud_vertices, F->sec_shade_setup);
     ts = cj_render_now();
     if (F->f.overlays) st = cj_rlines_build(c, F->scene, &F->A);
     F->sec_lines_setup = cj_render_now() - ts;
@@ -492,7 +265,7 @@ static cj_status project_and_light(raster_frame *F) {
 }
 
 /* Clipping, snapping, edge set-up and binning of both lists. */
-static cj_status setup_raster(raster_frame *F) {
+static cj_status setup_raster(cj_rframe *F) {
     cj_rctx *c = &F->c;
     double ts = cj_render_now();
     cj_status st = prep_list(c, &c->opaque, &F->A, &F->rs_o);
@@ -501,14 +274,14 @@ static cj_status setup_raster(raster_frame *F) {
     if (st) return st;
     c->has_transp = F->f.transparent && c->transp.count > 0;
     cj_stage_report_set(F->R, "raster_setup", 1, "always");
-    figures(F->R, "raster_setup", "triangles", F->rs_o.tris_in + F->rs_t.tris_in, "triangles",
-            F->rs_o.tris_setup + F->rs_t.tris_setup, F->sec_setup);
+    cj_rframe_figures(F->R, "raster_setup", "triangles", F->rs_o.tris_in + F->rs_t.tris_in,
+                      "triangles", F->rs_o.tris_setup + F->rs_t.tris_setup, F->sec_setup);
     return CJ_OK;
 }
 
 /* The image, the pool and the per-worker buffers (all kept by the renderer), then the tiles:
  * visibility, shading, overlays, transparency, resolve, output. */
-static cj_status run_tiles(raster_frame *F, unsigned planes, cj_render_image *const *image) {
+static cj_status run_tiles(cj_rframe *F, unsigned planes, cj_render_image *const *image) {
     cj_rctx *c = &F->c;
     cj_status st = cj_rtarget_acquire(F->r, F->W, F->H, planes, image, &F->target);
     if (st) return st;
@@ -539,7 +312,7 @@ static cj_status run_tiles(raster_frame *F, unsigned planes, cj_render_image *co
 }
 
 /* The per-tile stages' figures, summed over the workers. */
-static void report_tiles(raster_frame *F) {
+static void report_tiles(cj_rframe *F) {
     cj_rctx *c = &F->c;
     cj_stage_report *R = F->R;
     cj_rcount sum;
@@ -555,8 +328,8 @@ static void report_tiles(raster_frame *F) {
     for (int k = 0; k < CJ_RS_COUNT; ++k) cb += sum.sec[k];
     double vis = F->run.seconds_raster * c->threads - cb;
     cj_stage_report_set(R, "rasterize", 1, "always");
-    cj_stage *s = figures(R, "rasterize", "samples", F->run.samples_tested, "samples",
-                          F->run.samples_written, vis > 0.0 ? vis : 0.0);
+    cj_stage *s = cj_rframe_figures(R, "rasterize", "samples", F->run.samples_tested, "samples",
+                                    F->run.samples_written, vis > 0.0 ? vis : 0.0);
     cj_stage_add_value(s, "tris_clipped", (double)(F->rs_o.tris_clipped + F->rs_t.tris_clipped));
     cj_stage_add_value(s, "tris_rejected", (double)(F->rs_o.tris_rejected + F->rs_t.tris_rejected));
     cj_stage_add_value(s, "run_wall_seconds", F->sec_run);
@@ -564,36 +337,36 @@ static void report_tiles(raster_frame *F) {
     double tex_sec = 0.0;
     for (int m = 0; m < CJ_RM_COUNT; ++m) {
         char name[CJ_STAGE_NAME_MAX];
-        snprintf(name, sizeof name, "shade_%s", model_name[m]);
+        snprintf(name, sizeof name, "shade_%s", cj_rmodel_name[m]);
         uint64_t n = sum.n[2 * m] + sum.n[2 * m + 1];
         textured += sum.n[2 * m + 1];
         tex_sec += sum.sec[2 * m + 1];
-        cj_stage *sh =
-            figures(R, name, "samples", n, "samples", n, sum.sec[2 * m] + sum.sec[2 * m + 1]);
+        cj_stage *sh = cj_rframe_figures(R, name, "samples", n, "samples", n,
+                                         sum.sec[2 * m] + sum.sec[2 * m + 1]);
         if (F->f.model_used[m])
             cj_stage_add_value(sh, "cpu_seconds", sum.cpu[2 * m] + sum.cpu[2 * m + 1]);
     }
-    s = figures(R, "texture", "samples", textured, "samples", textured, tex_sec);
+    s = cj_rframe_figures(R, "texture", "samples", textured, "samples", textured, tex_sec);
     if (F->f.textured) cj_stage_add_value(s, "seconds_include_shading", 1.0);
-    figures(R, "overlay_lines", "segments", c->lines.world_segments, "pixels", sum.n[CJ_RS_LINES],
-            sum.sec[CJ_RS_LINES] + F->sec_lines_setup);
-    s = figures(R, "transparency", "triangles", c->transp.count, "fragments",
-                sum.n[CJ_RS_TRANSPARENT], sum.sec[CJ_RS_TRANSPARENT]);
+    cj_rframe_figures(R, "overlay_lines", "segments", c->lines.world_segments, "pixels",
+                      sum.n[CJ_RS_LINES], sum.sec[CJ_RS_LINES] + F->sec_lines_setup);
+    s = cj_rframe_figures(R, "transparency", "triangles", c->transp.count, "fragments",
+                          sum.n[CJ_RS_TRANSPARENT], sum.sec[CJ_RS_TRANSPARENT]);
     if (F->f.transparent) cj_stage_add_value(s, "cpu_seconds", sum.cpu[CJ_RS_TRANSPARENT]);
     const uint64_t spp = (uint64_t)F->spp;
-    figures(R, "resolve", "samples", spp > 1 ? sum.n[CJ_RS_RESOLVE] * spp : 0, "pixels",
-            sum.n[CJ_RS_RESOLVE], sum.sec[CJ_RS_RESOLVE]);
+    cj_rframe_figures(R, "resolve", "samples", spp > 1 ? sum.n[CJ_RS_RESOLVE] * spp : 0, "pixels",
+                      sum.n[CJ_RS_RESOLVE], sum.sec[CJ_RS_RESOLVE]);
     const uint64_t px = (uint64_t)F->W * (uint64_t)F->H;
     cj_stage_report_set(R, "output", 1, "always");
-    figures(R, "output", "pixels", px, "pixels", px,
-            sum.sec[CJ_RS_OUTPUT] + sum.sec[CJ_RS_BACKGROUND]);
+    cj_rframe_figures(R, "output", "pixels", px, "pixels", px,
+                      sum.sec[CJ_RS_OUTPUT] + sum.sec[CJ_RS_BACKGROUND]);
     cj_renderer_report_frame(F->r, R, F->pool_workers, F->pool_reused, F->buffers_reused,
                              !F->target.fresh);
 }
 
 cj_status cj_rraster_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
                            cj_render_image **image, cj_stage_report *R) {
-    raster_frame F;
+    cj_rframe F;
     memset(&F, 0, sizeof F);
     F.r = r;
     F.rs = rs;
@@ -603,8 +376,8 @@ cj_status cj_rraster_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     F.target.fresh = 0;
     cj_status st = resolve_settings(&F);
     if (!st) st = setup_view(&F);
-    if (!st) st = prepare_materials(&F);
-    if (!st) st = prepare_textures(&F);
+    if (!st) st = cj_rframe_materials(&F);
+    if (!st) st = cj_rframe_textures(&F);
     if (!st) st = build_triangles(&F);
     if (!st) st = order_triangles(&F);
     if (!st) st = project_and_light(&F);
