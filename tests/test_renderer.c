@@ -130,6 +130,9 @@ static void run_sequence(cj_scene *(*make)(void), const char *name, cj_backend b
         double h = value(&rep, stage, hit), m = value(&rep, stage, miss);
         double frame = value(&rep, "frame", "frame");
         assert_true(frame == e + 1);
+        /* the renderer keeps the same stage table */
+        assert_int_equal(cj_renderer_report(r)->count, rep.count);
+        assert_true(value(cj_renderer_report(r), "frame", "frame") == frame);
         if (e == E_NONE) assert_true(h == 0 && m >= 1);
         if (e == E_WARM || e == E_LOOK || e == E_SPP) assert_true(h >= 1 && m == 0);
         if (e == E_POINT) assert_true(m >= 1);

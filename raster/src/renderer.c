@@ -198,8 +198,7 @@ cj_status cj_renderer_draw(cj_renderer *r, const cj_scene *scene, cj_backend bac
                            unsigned planes, cj_render_image **image, cj_stage_report *report) {
     assert(r && scene && image);
     double t0 = cj_render_now();
-    cj_stage_report local;
-    cj_stage_report *R = report ? report : &local;
+    cj_stage_report *R = &r->report;
     cj_stage_report_init(R, backend == CJ_BACKEND_TRACE ? "trace" : "raster");
     cj_status st = cj_scene_check(scene);
     if (st) return st;
@@ -213,7 +212,13 @@ cj_status cj_renderer_draw(cj_renderer *r, const cj_scene *scene, cj_backend bac
         st = cj_rraster_frame(r, &rs, planes, image, R);
     cj_rscene_free(&rs);
     if (!st) R->total_seconds = cj_render_now() - t0;
+    if (report) *report = *R;
     return st;
+}
+
+const cj_stage_report *cj_renderer_report(const cj_renderer *r) {
+    assert(r);
+    return &r->report;
 }
 
 /* ---- the one-shot calls: a renderer used once ---------------------------------------------- */

@@ -13,9 +13,10 @@ struct tr_bvh_cache;
 struct cj_renderer {
     cj_allocator alloc;
     cj_renderer_options opt;
-    int caching;    /* 0 for a renderer used once: no tessellation or BVH cache to fill */
-    uint64_t frame; /* frames drawn (the current one counts) */
-    cj_rpool *pool; /* started at the first draw */
+    int caching;            /* 0 for a renderer used once: no tessellation or BVH cache to fill */
+    uint64_t frame;         /* frames drawn (the current one counts) */
+    cj_stage_report report; /* the stage table of the last draw */
+    cj_rpool *pool;         /* started at the first draw */
     cj_raster_workspace *ws;
     cj_render_cache *cache; /* own tessellation cache, or NULL */
     struct tr_bvh_cache *bvh;

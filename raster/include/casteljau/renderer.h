@@ -34,6 +34,7 @@
  *     later frame asks for more workers;
  *   - the per-worker tile buffers (the rasterizer's visibility planes and shading buffers),
  *     grown when a frame needs larger tiles or more workers, never reallocated otherwise;
+ *   - the STAGE TABLE of the last frame (cj_renderer_report);
  *   - nothing of the scene: the scene is read during cj_renderer_draw only and may be edited
  *     or destroyed freely between draws.
  *
@@ -110,6 +111,10 @@ const cj_renderer_options *cj_renderer_options_get(const cj_renderer *r);
  * unspecified pixels but stays valid. */
 cj_status cj_renderer_draw(cj_renderer *r, const cj_scene *scene, cj_backend backend,
                            unsigned planes, cj_render_image **image, cj_stage_report *report);
+
+/* The stage table of the last draw (what ran, why, what was reused: see above), kept by the
+ * renderer until the next draw; after a failed draw it holds what that draw recorded. */
+const cj_stage_report *cj_renderer_report(const cj_renderer *r);
 
 /* The world-space triangles the rasterizer would draw for this scene now (see
  * cj_render_scene_mesh), through the renderer's tessellation cache. Free with
