@@ -190,7 +190,7 @@ void cj_renderer_report_frame(const cj_renderer *r, cj_stage_report *R, int pool
     cj_stage_add_value(s, "frame", (double)r->frame);
     cj_stage_add_value(s, "pool_workers", pool_workers);
     cj_stage_add_value(s, "pool_reused", pool_reused);
-    cj_stage_add_value(s, "buffers_reused", buffers_reused);
+    if (buffers_reused >= 0) cj_stage_add_value(s, "buffers_reused", buffers_reused);
     cj_stage_add_value(s, "image_reused", image_reused);
 }
 

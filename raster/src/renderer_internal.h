@@ -54,7 +54,8 @@ cj_status cj_rtarget_acquire(cj_renderer *r, int width, int height, unsigned pla
                              cj_render_image *const *image, cj_rtarget *t);
 void cj_rtarget_finish(cj_rtarget *t, cj_render_image **image, cj_status st);
 
-/* Records the stage "frame": the frame number and what the renderer reused. */
+/* Records the stage "frame": the frame number and what the renderer reused (buffers_reused < 0:
+ * the back end keeps no tile buffers, left out). */
 void cj_renderer_report_frame(const cj_renderer *r, cj_stage_report *R, int pool_workers,
                               int pool_reused, int buffers_reused, int image_reused);
 

@@ -108,9 +108,15 @@ static void tile_task(void *user, int t, int worker) {
         for (int x = x0; x < x0 + j->tile && x < j->w; x++) render_pixel(j, sh, x, y);
 }
 
-static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_scene *ts,
-                          const tr_counts *c, int spp, int indirect, double build_s, int planes,
-                          size_t bvh_reused, size_t bvh_built) {
+static const char *const ray_stage[TR_KINDS] = {"primary_rays",      "shadow_rays",
+                                                "reflection_rays",   "refraction_rays",
+                                                "transparency_rays", "indirect_rays"};
+
+/* The stages the scene's lights and materials decide, recorded with their reasons before any
+ * ray is cast (a ray stage is marked as run afterwards, when rays of its kind were cast). */
+static void decide_stages(cj_stage_report *r, const cj_scene *scene, int spp, int indirect,
+                          unsigned planes) {
+    cj_stage_report_stage(r, "build_bvh"); /* the report's order */
     int shadow_lights = 0, receivers = 0, mirrors = -1, refr = -1, through = -1, tex = -1;
     int area = -1, glossy = -1, diffuse = -1;
     for (size_t i = 0; i < cj_scene_light_count(scene); i++) {
@@ -128,78 +134,40 @@ static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_sc
         if (m->glossiness > 0 && glossy < 0) glossy = (int)i;
         if (m->kd > 0 && m->transmission < 1 && diffuse < 0) diffuse = (int)i;
     }
-    cj_stage *s = cj_stage_report_set(r, "build_bvh", 1, "%zu objects traced", ts->nobj);
-    if (s) {
-        s->in = ts->nobj;
-        s->out = ts->top ? ts->top->node_count : 0;
-        strcpy(s->unit_in, "objects");
-        strcpy(s->unit_out, "nodes");
-        s->seconds = build_s;
-        cj_stage_add_value(s, "bvh_reused", (double)bvh_reused);
-        cj_stage_add_value(s, "bvh_built", (double)bvh_built);
-    }
-    static const char *names[TR_KINDS] = {"primary_rays",    "shadow_rays",       "reflection_rays",
-                                          "refraction_rays", "transparency_rays", "indirect_rays"};
-    for (int k = 0; k < TR_KINDS; k++) {
-        int ran = c->cast[k] > 0;
-        char why[CJ_STAGE_WHY_MAX];
-        switch (k) {
-        case TR_PRIMARY:
-            snprintf(why, sizeof why, "%d sample(s) per pixel", spp);
-            break;
-        case TR_SHADOW:
-            if (shadow_lights && receivers)
-                snprintf(why, sizeof why, "%d light(s) cast shadows, %d material(s) receive them",
-                         shadow_lights, receivers);
-            else
-                snprintf(why, sizeof why, "%s",
-                         shadow_lights ? "no material receives shadows" : "no light casts shadows");
-            break;
-        case TR_REFLECT:
-            if (mirrors >= 0)
-                snprintf(why, sizeof why, "material %d has mirror > 0", mirrors);
-            else if (refr >= 0)
-                snprintf(why, sizeof why, "total internal reflection in material %d", refr);
-            else
-                snprintf(why, sizeof why, "no material has mirror > 0");
-            break;
-        case TR_REFRACT:
-            if (refr >= 0)
-                snprintf(why, sizeof why, "material %d has transmission > 0", refr);
-            else
-                snprintf(why, sizeof why, "no material has transmission > 0");
-            break;
-        case TR_INDIRECT:
-            if (indirect == 0)
-                snprintf(why, sizeof why, "indirect_samples 0: no diffuse interreflection");
-            else if (diffuse < 0)
-                snprintf(why, sizeof why, "no material has kd > 0");
-            else
-                snprintf(why, sizeof why, "%d cosine-weighted ray(s) per diffuse hit (material %d)",
-                         indirect, diffuse);
-            break;
-        default:
-            if (through >= 0)
-                snprintf(why, sizeof why, "material %d has opacity < 1", through);
-            else
-                snprintf(why, sizeof why, "every material is opaque");
-            break;
-        }
-        s = cj_stage_report_set(r, names[k], ran, "%s", why);
-        if (!s) continue;
-        s->in = c->cast[k];
-        s->out = c->hit[k];
-        strcpy(s->unit_in, "rays");
-        strcpy(s->unit_out, "hits");
-        s->seconds = c->seconds[k];
-    }
-    s = cj_stage_report_set(r, "patch_rays", c->patch_rays > 0, "%s",
-                            c->patch_rays ? "patches intersected directly" : "no patch was hit");
-    if (s) {
-        s->in = c->patch_rays;
-        strcpy(s->unit_in, "hits");
-        cj_stage_add_value(s, "max_err", c->patch_max_err);
-    }
+    cj_stage_report_set(r, ray_stage[TR_PRIMARY], 0, "%d sample(s) per pixel", spp);
+    if (shadow_lights && receivers)
+        cj_stage_report_set(r, ray_stage[TR_SHADOW], 0,
+                            "%d light(s) cast shadows, %d material(s) receive them", shadow_lights,
+                            receivers);
+    else
+        cj_stage_report_set(r, ray_stage[TR_SHADOW], 0, "%s",
+                            shadow_lights ? "no material receives shadows"
+                                          : "no light casts shadows");
+    if (mirrors >= 0)
+        cj_stage_report_set(r, ray_stage[TR_REFLECT], 0, "material %d has mirror > 0", mirrors);
+    else if (refr >= 0)
+        cj_stage_report_set(r, ray_stage[TR_REFLECT], 0, "total internal reflection in material %d",
+                            refr);
+    else
+        cj_stage_report_set(r, ray_stage[TR_REFLECT], 0, "no material has mirror > 0");
+    if (refr >= 0)
+        cj_stage_report_set(r, ray_stage[TR_REFRACT], 0, "material %d has transmission > 0", refr);
+    else
+        cj_stage_report_set(r, ray_stage[TR_REFRACT], 0, "no material has transmission > 0");
+    if (through >= 0)
+        cj_stage_report_set(r, ray_stage[TR_THROUGH], 0, "material %d has opacity < 1", through);
+    else
+        cj_stage_report_set(r, ray_stage[TR_THROUGH], 0, "every material is opaque");
+    if (indirect == 0)
+        cj_stage_report_set(r, ray_stage[TR_INDIRECT], 0,
+                            "indirect_samples 0: no diffuse interreflection");
+    else if (diffuse < 0)
+        cj_stage_report_set(r, ray_stage[TR_INDIRECT], 0, "no material has kd > 0");
+    else
+        cj_stage_report_set(r, ray_stage[TR_INDIRECT], 0,
+                            "%d cosine-weighted ray(s) per diffuse hit (material %d)", indirect,
+                            diffuse);
+    cj_stage_report_stage(r, "patch_rays");
     if (tex >= 0)
         cj_stage_report_set(r, "textures", 1, "material %d has a texture", tex);
     else
@@ -214,6 +182,42 @@ static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_sc
                             : (spp > 1 ? "glossy lobe sampled" : "spp = 1: glossy as mirror"));
     cj_stage_report_set(r, "signature", (planes & CJ_IMAGE_IDS) != 0, "%s",
                         (planes & CJ_IMAGE_IDS) ? "ids plane asked for" : "no ids plane asked for");
+}
+
+/* The traced scene's stage, recorded when it is built. */
+static void report_build(cj_stage_report *r, const tr_scene *ts, double build_s, size_t bvh_reused,
+                         size_t bvh_built) {
+    cj_stage *s = cj_stage_report_set(r, "build_bvh", 1, "%zu objects traced", ts->nobj);
+    if (!s) return;
+    s->in = ts->nobj;
+    s->out = ts->top ? ts->top->node_count : 0;
+    strcpy(s->unit_in, "objects");
+    strcpy(s->unit_out, "nodes");
+    s->seconds = build_s;
+    cj_stage_add_value(s, "bvh_reused", (double)bvh_reused);
+    cj_stage_add_value(s, "bvh_built", (double)bvh_built);
+}
+
+/* The rays cast, summed over the workers: a ray stage ran when rays of its kind were cast. */
+static void report_rays(cj_stage_report *r, const tr_counts *c) {
+    for (int k = 0; k < TR_KINDS; k++) {
+        cj_stage *s = cj_stage_report_stage(r, ray_stage[k]);
+        if (!s) continue;
+        s->ran = c->cast[k] > 0;
+        s->in = c->cast[k];
+        s->out = c->hit[k];
+        strcpy(s->unit_in, "rays");
+        strcpy(s->unit_out, "hits");
+        s->seconds = c->seconds[k];
+    }
+    cj_stage *s =
+        cj_stage_report_set(r, "patch_rays", c->patch_rays > 0, "%s",
+                            c->patch_rays ? "patches intersected directly" : "no patch was hit");
+    if (s) {
+        s->in = c->patch_rays;
+        strcpy(s->unit_in, "hits");
+        cj_stage_add_value(s, "max_err", c->patch_max_err);
+    }
 }
 
 /* The frame's settings: the options over the scene's. */
@@ -290,6 +294,7 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
         if (img->depth)
             for (size_t i = 0; i < n; i++) img->depth[i] = 1.0f;
     }
+    decide_stages(R, scene, set.spp, set.indirect, planes);
     tr_scene ts;
     size_t bvh_reused = 0, bvh_built = 0;
     double t0 = cj_render_now();
@@ -300,6 +305,7 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
         cj_rtarget_finish(&target, image, st);
         return st;
     }
+    report_build(R, &ts, build_s, bvh_reused, bvh_built);
     if (set.ptol > 0.0)
         for (size_t i = 0; i < ts.nobj; i++) ts.objs[i].tol *= set.ptol / 1e-7;
     tr_lights lights;
@@ -341,9 +347,8 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     if (!st) {
         tr_counts sum;
         sum_counts(counts, nth, &sum);
-        report_stages(R, scene, &ts, &sum, set.spp, set.indirect, build_s, (int)planes, bvh_reused,
-                      bvh_built);
-        cj_renderer_report_frame(r, R, nth, pool_reused, 1, !target.fresh);
+        report_rays(R, &sum);
+        cj_renderer_report_frame(r, R, nth, pool_reused, -1, !target.fresh);
     }
     cj_rfree(&r->alloc, counts);
     cj_rfree(&r->alloc, j.shade);

@@ -43,9 +43,9 @@
  * pass (visibility, world transforms, lights, materials, the feature mask), transforming the
  * object-space meshes to the world, culling, projection, set-up, rasterization and shading (or
  * the top-level BVH and all rays). The stage report says what was reused: the stage "frame"
- * (frame number, pool workers, pool_reused, buffers_reused, image_reused), tessellate_patches
- * (cache_hits, cache_misses: patch objects taken from the cache / tessellated), build_bvh
- * (bvh_reused, bvh_built).
+ * (frame number, pool workers, pool_reused, buffers_reused (rasterizer), image_reused),
+ * tessellate_patches (cache_hits, cache_misses: patch objects taken from the cache / tessellated),
+ * build_bvh (bvh_reused, bvh_built).
  *
  * IMAGES. A draw gives exactly the one-shot call's image (bit for bit, any thread count)
  * whenever no cached tessellation is reused at another tolerance than the frame needs: an
