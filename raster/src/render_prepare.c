@@ -51,10 +51,9 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
     f->lit = c->nlights > 0;
 }
 
-/* Which materials the drawn objects use, and what they ask for (from the scene pass: the
- * drawn nodes and the geometry features). */
+/* What the materials of the drawn surfaces ask for (the scene pass lists them in order of first
+ * use, so each reason names the same material as a walk over the nodes would). */
 static void scan_scene(const cj_rscene *rs, cj_rctx *c, cj_rfeatures *f) {
-    const cj_scene *scene = rs->scene;
     f->tex_mat = f->transp_mat = -1;
     f->overlay_node = rs->overlay_node;
     f->overlays = (rs->features & CJ_RF_OVERLAYS) != 0;
@@ -62,21 +61,18 @@ static void scan_scene(const cj_rscene *rs, cj_rctx *c, cj_rfeatures *f) {
     f->surfaces = (rs->features & CJ_RF_SURFACES) != 0;
     f->meshes = (rs->features & CJ_RF_MESHES) != 0;
     for (int m = 0; m < CJ_RM_COUNT; ++m) f->model_mat[m] = -1;
-    for (size_t i = 0; i < rs->node_count; ++i) {
-        if (!rs->drawn[i]) continue;
-        const cj_node *nd = cj_scene_node(scene, (int)i);
-        if (cj_scene_geometry(scene, nd->geometry)->kind == CJ_GEOM_CURVE) continue;
-        int mi = nd->material >= 0 ? nd->material : c->nmat;
+    for (int k = 0; k < rs->material_order_count; ++k) {
+        const int mi = rs->material_order[k];
         cj_rmat *m = &c->mats[mi];
         m->used = 1;
         if (f->model_mat[m->model] < 0) f->model_mat[m->model] = mi;
         f->model_used[m->model] = 1;
-        if (m->tex >= 0) {
-            if (!f->textured) f->tex_mat = mi;
+        if (m->tex >= 0 && !f->textured) {
+            f->tex_mat = mi;
             f->textured = 1;
         }
-        if (m->opacity < 1.0f) {
-            if (!f->transparent) f->transp_mat = mi;
+        if (m->opacity < 1.0f && !f->transparent) {
+            f->transp_mat = mi;
             f->transparent = 1;
         }
         if (!m->two_sided) f->one_sided = 1;

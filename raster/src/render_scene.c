@@ -32,11 +32,16 @@ cj_status cj_rscene_prepare(const cj_scene *scene, const cj_allocator *alloc, cj
     uint8_t *shown = cj_ralloc(&out->alloc, n ? n : 1);
     out->drawn = cj_ralloc(&out->alloc, n ? n : 1);
     out->world = cj_ralloc(&out->alloc, sizeof(cj_xform3) * (n ? n : 1));
-    if (!shown || !out->drawn || !out->world) {
+    const int nm = (int)cj_scene_material_count(scene);
+    out->material_count = nm;
+    out->material_used = cj_ralloc(&out->alloc, (size_t)nm + 1);
+    out->material_order = cj_ralloc(&out->alloc, sizeof(int) * ((size_t)nm + 1));
+    if (!shown || !out->drawn || !out->world || !out->material_used || !out->material_order) {
         cj_rfree(&out->alloc, shown);
         cj_rscene_free(out);
         return cj_fail(CJ_ERR_NOMEM, "scene pass over %zu nodes", n);
     }
+    memset(out->material_used, 0, (size_t)nm + 1);
     cj_status st = CJ_OK;
     for (size_t i = 0; i < n && !st; ++i) {
         const cj_node *nd = cj_scene_node(scene, (int)i);
@@ -52,6 +57,12 @@ cj_status cj_rscene_prepare(const cj_scene *scene, const cj_allocator *alloc, cj
             out->features |= CJ_RF_OVERLAYS;
         }
         out->features |= kind_feature(g->kind);
+        if (g->kind == CJ_GEOM_CURVE) continue;
+        const int m = nd->material >= 0 ? nd->material : nm;
+        if (!out->material_used[m]) {
+            out->material_used[m] = 1;
+            out->material_order[out->material_order_count++] = m;
+        }
     }
     cj_rfree(&out->alloc, shown);
     if (st) cj_rscene_free(out);
@@ -61,6 +72,10 @@ cj_status cj_rscene_prepare(const cj_scene *scene, const cj_allocator *alloc, cj
 void cj_rscene_free(cj_rscene *rs) {
     cj_rfree(&rs->alloc, rs->drawn);
     cj_rfree(&rs->alloc, rs->world);
+    cj_rfree(&rs->alloc, rs->material_used);
+    cj_rfree(&rs->alloc, rs->material_order);
     rs->drawn = NULL;
     rs->world = NULL;
+    rs->material_used = NULL;
+    rs->material_order = NULL;
 }

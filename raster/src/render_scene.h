@@ -30,6 +30,13 @@ typedef struct cj_rscene {
     unsigned features;  /* CJ_RF_* */
     int overlay_node;   /* the first drawn node with overlays or a curve, or -1 */
     size_t drawn_count; /* drawn nodes */
+    /* materials of the drawn surfaces (curves excluded), index material_count = the default
+     * material of nodes without one: used[m], and the used ones in order of first use (node
+     * order), so "the first material that ..." is the same whichever list is read */
+    int material_count;
+    uint8_t *material_used;
+    int *material_order;
+    int material_order_count;
     cj_allocator alloc;
 } cj_rscene;
 
