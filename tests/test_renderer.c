@@ -4,13 +4,14 @@
  * material and a light changed, a node hidden and shown again, spp changed, the size changed);
  * its stage report says what it reused (tessellation cache hits and misses, BVHs reused and
  * built, pool, buffers and image reused); a cancelled frame leaves it usable; bad options are
- * refused. Scenes: the trace demo (teapot, floor, mirror and glass spheres) and the feature
+ * refused; its scene mesh is the one-shot call's. Scenes: the trace demo (teapot, floor, mirror and glass spheres) and the feature
  * scene of the rasterizer tests (textures, transparency, overlays, curves). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "casteljau/mesh.h"
 #include "casteljau/renderer.h"
 #include "render_test_util.h"
 
@@ -294,11 +295,39 @@ static void test_options(void **state) {
            "spp 3 refused by the rasterizer at the draw and taken by the tracer\n");
 }
 
+/* cj_renderer_scene_mesh: the one-shot call's mesh, cold and warm (from the cache). */
+static void test_scene_mesh(void **state) {
+    (void)state;
+    cj_scene *s = teapot_scene();
+    cj_renderer_options o = cj_renderer_options_default();
+    o.render.width = 96;
+    o.render.height = 72;
+    cj_renderer *r = NULL;
+    assert_int_equal(cj_renderer_create(&o, NULL, &r), CJ_OK);
+    cj_mesh *ref = NULL;
+    assert_int_equal(cj_render_scene_mesh(s, &o.render, NULL, &ref), CJ_OK);
+    assert_true(ref->triangle_count > 1000);
+    for (int k = 0; k < 2; ++k) {
+        cj_mesh *m = NULL;
+        assert_int_equal(cj_renderer_scene_mesh(r, s, &m), CJ_OK);
+        assert_int_equal(m->vertex_count, ref->vertex_count);
+        assert_int_equal(m->triangle_count, ref->triangle_count);
+        assert_memory_equal(m->positions, ref->positions, 3 * sizeof(double) * m->vertex_count);
+        assert_memory_equal(m->triangles, ref->triangles, 3 * sizeof(uint32_t) * m->triangle_count);
+        cj_mesh_destroy(m);
+    }
+    cj_mesh_destroy(ref);
+    cj_renderer_destroy(r);
+    cj_scene_destroy(s);
+    printf("test_scene_mesh: the renderer's mesh equals the one-shot mesh, cold and from its "
+           "cache\n");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_teapot_sequence), cmocka_unit_test(test_feature_sequence),
         cmocka_unit_test(test_alternating),     cmocka_unit_test(test_cancel_then_draw),
-        cmocka_unit_test(test_options),
+        cmocka_unit_test(test_options),         cmocka_unit_test(test_scene_mesh),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
