@@ -53,6 +53,7 @@ static const char animate_usage[] =
 #include "casteljau/anim_json.h"
 #include "casteljau/image_io.h"
 #include "casteljau/render.h"
+#include "casteljau/renderer.h"
 #include "casteljau/trace.h"
 #include "casteljau/scene_json.h"
 #include "casteljau/scene_textures.h"
@@ -158,6 +159,49 @@ static void progress(long done, long total, int quiet) {
     fprintf(stderr, "] %ld/%ld frames", done, total);
     if (done == total) fputc('\n', stderr);
     fflush(stderr);
+}
+
+/* What each frame's renderer reused (the tessellation cache, or the tracer's BVHs). */
+typedef struct reuse_row {
+    long frame;
+    double hits, misses;
+} reuse_row;
+typedef struct reuse_log {
+    reuse_row *rows;
+    size_t count, cap;
+} reuse_log;
+
+static double stage_value(const cj_stage_report *r, const char *stage, const char *key) {
+    const cj_stage *s = cj_stage_report_find(r, stage);
+    for (int i = 0; s && i < s->extra_count; ++i)
+        if (!strcmp(s->extra[i].key, key)) return s->extra[i].value;
+    return 0.0;
+}
+
+static int reuse_add(reuse_log *log, long frame, const cj_stage_report *r, int trace) {
+    if (log->count == log->cap) {
+        size_t cap = log->cap ? 2 * log->cap : 64;
+        reuse_row *rows = realloc(log->rows, cap * sizeof *rows);
+        if (!rows) return 1;
+        log->rows = rows;
+        log->cap = cap;
+    }
+    reuse_row *row = &log->rows[log->count++];
+    row->frame = frame;
+    row->hits = trace ? stage_value(r, "build_bvh", "bvh_reused")
+                      : stage_value(r, "tessellate_patches", "cache_hits");
+    row->misses = trace ? stage_value(r, "build_bvh", "bvh_built")
+                        : stage_value(r, "tessellate_patches", "cache_misses");
+    return 0;
+}
+
+static void reuse_print(const reuse_log *log, int trace, FILE *f) {
+    fputs("{\"frames\": [", f);
+    for (size_t i = 0; i < log->count; ++i)
+        fprintf(f, "%s{\"frame\": %ld, \"%s\": %.0f, \"%s\": %.0f}", i ? ", " : "",
+                log->rows[i].frame, trace ? "bvh_reused" : "cache_hits", log->rows[i].hits,
+                trace ? "bvh_built" : "cache_misses", log->rows[i].misses);
+    fputs("]}\n", f);
 }
 
 int cmd_animate(int argc, char **argv) {
@@ -273,6 +317,19 @@ int cmd_animate(int argc, char **argv) {
     }
     int rc = 0;
     cj_scene *scene = NULL;
+    /* one renderer for the whole animation: unchanged patches keep their tessellation (or BVH),
+     * the threads, tile buffers and the image live from the first frame to the last */
+    cj_renderer *ren = NULL;
+    cj_render_image *img = NULL;
+    reuse_log reuse = {NULL, 0, 0};
+    if (!no_render) {
+        cj_renderer_options ro = cj_renderer_options_default();
+        ro.render = opt;
+        if (cj_renderer_create(&ro, NULL, &ren)) {
+            rc = cli_fail(cmd, "%s", cj_last_error());
+            goto done;
+        }
+    }
     if (!doc->scene_path[0]) {
         rc = cli_fail(cmd, "%s: the document names no \"scene\"", doc_path);
         goto done;
@@ -314,17 +371,19 @@ int cmd_animate(int argc, char **argv) {
             break;
         }
         if (!no_render) {
-            cj_render_image *img = NULL;
-            const cj_status rs = trace ? cj_render_trace(scene, &opt, 0, NULL, &img, &ren_rep)
-                                       : cj_render_raster(scene, &opt, 0, NULL, &img, &ren_rep);
+            const cj_status rs = cj_renderer_draw(
+                ren, scene, trace ? CJ_BACKEND_TRACE : CJ_BACKEND_RASTER, 0, &img, &ren_rep);
             if (rs) {
                 rc = cli_error(cmd, "%s: frame %ld: %s", doc_path, f, cj_last_error());
+                break;
+            }
+            if (report && reuse_add(&reuse, f, &ren_rep, trace)) {
+                rc = cli_error(cmd, "out of memory for the frame report");
                 break;
             }
             char name[4096];
             if (out) frame_name(out, f, name, sizeof name);
             rc = write_frame(cmd, out ? name : NULL, &sinks, doc->fps, img);
-            cj_render_image_destroy(img);
         }
         if (!rc && ck_out && (f == fb || (every && f % every == 0)))
             rc = save_checkpoint(cmd, doc, ck_out, f);
@@ -335,10 +394,14 @@ int cmd_animate(int argc, char **argv) {
             if (!no_render) {
                 cj_stage_report_json(&ren_rep, stdout);
                 fputc('\n', stdout);
+                reuse_print(&reuse, trace, stdout);
             }
         }
     }
 done:
+    cj_render_image_destroy(img);
+    cj_renderer_destroy(ren);
+    free(reuse.rows);
     if (sinks.gif) {
         char why[256];
         if (anim_gif_close(sinks.gif, why, (int)sizeof why) && !rc)

@@ -26,6 +26,7 @@ static const char render_usage[] =
 #include "scene_cli.h"
 
 #include "casteljau/render.h"
+#include "casteljau/renderer.h"
 
 int cmd_render(int argc, char **argv) {
     const char *cmd = "render";
@@ -60,7 +61,12 @@ int cmd_render(int argc, char **argv) {
     if (rc) return rc;
     cj_render_image *img = NULL;
     cj_stage_report rep;
-    cj_status st = cj_render_raster(scene, &opt, 0, NULL, &img, &rep);
+    cj_renderer_options ro = cj_renderer_options_default();
+    ro.render = opt;
+    cj_renderer *r = NULL;
+    cj_status st = cj_renderer_create(&ro, NULL, &r);
+    if (!st) st = cj_renderer_draw(r, scene, CJ_BACKEND_RASTER, 0, &img, &rep);
+    cj_renderer_destroy(r);
     cj_scene_destroy(scene);
     if (st) return cli_fail(cmd, "%s: %s", a.scene_path ? a.scene_path : "demo", cj_last_error());
     return cli_finish_render(cmd, a.out, exr, img, a.report ? &rep : NULL);

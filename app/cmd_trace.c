@@ -32,6 +32,7 @@ static const char trace_usage[] =
 
 #include "scene_cli.h"
 
+#include "casteljau/renderer.h"
 #include "casteljau/trace.h"
 
 /* A distinct colour per object id (0, the background, is black). */
@@ -109,8 +110,14 @@ int cmd_trace(int argc, char **argv) {
     }
     cj_render_image *img = NULL;
     cj_stage_report rep;
-    cj_status st =
-        cj_render_trace_ex(scene, &opt, &topt, signature ? CJ_IMAGE_IDS : 0, NULL, &img, &rep);
+    cj_renderer_options ro = cj_renderer_options_default();
+    ro.render = opt;
+    ro.trace = topt;
+    cj_renderer *r = NULL;
+    cj_status st = cj_renderer_create(&ro, NULL, &r);
+    if (!st)
+        st = cj_renderer_draw(r, scene, CJ_BACKEND_TRACE, signature ? CJ_IMAGE_IDS : 0, &img, &rep);
+    cj_renderer_destroy(r);
     cj_scene_destroy(scene);
     if (st) return cli_fail(cmd, "%s: %s", a.scene_path ? a.scene_path : "demo", cj_last_error());
     if (signature) { /* each object id its own colour; the background black */

@@ -102,6 +102,22 @@ struct cj_rprogress;
 cj_status cj_raster_run(const cj_raster_prep *prep, int threads, cj_tile_fn fn, void *user,
                         struct cj_rprogress *progress, cj_raster_stats *stats);
 
+/* PER-WORKER TILE BUFFERS (scratch planes and visibility samples) kept across runs: a renderer
+ * holds one workspace for its lifetime, so frames after the first allocate nothing here. Grows
+ * when a run needs more workers or larger tiles; never shrinks. */
+typedef struct cj_raster_workspace cj_raster_workspace;
+cj_status cj_raster_workspace_create(const cj_allocator *alloc, cj_raster_workspace **out);
+void cj_raster_workspace_destroy(cj_raster_workspace *ws);
+
+/* cj_raster_run on a persistent worker pool (render_pool.h) with the workspace's buffers:
+ * min(cj_raster_thread_count(prep, threads), the pool's workers) workers. *buffers_reused (may
+ * be NULL) is set to 1 when the workspace's buffers served without a new allocation. */
+struct cj_rpool;
+cj_status cj_raster_run_on(const cj_raster_prep *prep, struct cj_rpool *pool, int threads,
+                           cj_raster_workspace *ws, cj_tile_fn fn, void *user,
+                           struct cj_rprogress *progress, cj_raster_stats *stats,
+                           int *buffers_reused);
+
 /* Forward mode (transparent surfaces, coverage tests): for every triangle of `prep` in input
  * order and every sample of `tile` it covers whose depth is strictly less than the depth stored
  * in tile->samples (which is NOT updated), calls frag(user, x, y, s, tri, depth, b1, b2). */

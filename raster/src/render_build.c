@@ -2,6 +2,7 @@
  * (render_geom.c), world transform of positions/normals/(u,v), back-face culling in world
  * space (seed 7.2). */
 #include "render_internal.h"
+#include "render_scene.h"
 
 #include "casteljau/mesh.h"
 #include "error_internal.h"
@@ -124,15 +125,14 @@ static double spectral_norm(const cj_xform3 *m) {
     return sqrt(lmax) * (1.0 + 1e-12);
 }
 
-static cj_status object_setup(const cj_scene *scene, int node, cj_robject *o) {
-    const cj_node *nd = cj_scene_node(scene, node);
+static cj_status object_setup(const cj_rscene *rs, int node, cj_robject *o) {
+    const cj_node *nd = cj_scene_node(rs->scene, node);
     memset(o, 0, sizeof *o);
     o->node = node;
     o->material = nd->material;
     o->id = nd->id;
     o->geometry = nd->geometry;
-    cj_status st = cj_scene_node_world(scene, node, &o->world);
-    if (st) return st;
+    o->world = rs->world[node];
     double(*m)[4] = o->world.m;
     o->det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
              m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
@@ -140,20 +140,13 @@ static cj_status object_setup(const cj_scene *scene, int node, cj_robject *o) {
     if (!(fabs(o->det) > 0.0) || !isfinite(o->det))
         return cj_fail(CJ_ERR_SINGULAR, "nodes[%d]: world transform is singular", node);
     cj_xform3 inv;
-    st = cj_xform3_inverse(&o->world, &inv);
+    cj_status st = cj_xform3_inverse(&o->world, &inv);
     if (st) return st;
     o->normal = cj_xform3_identity();
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) o->normal.m[i][j] = inv.m[j][i];
     o->sigma = spectral_norm(&o->world);
     return CJ_OK;
-}
-
-/* Visible unless the node or an ancestor is hidden. */
-static int node_visible(const cj_scene *scene, int node) {
-    for (int i = node; i >= 0; i = cj_scene_node(scene, i)->parent)
-        if (!cj_scene_node(scene, i)->visible) return 0;
-    return 1;
 }
 
 static cj_status append_object(cj_rbuild *b, const cj_scene *scene, const cj_mesh *mesh,
@@ -250,9 +243,10 @@ static cj_status append_object(cj_rbuild *b, const cj_scene *scene, const cj_mes
     return CJ_OK;
 }
 
-cj_status cj_rbuild_scene(const cj_scene *scene, const cj_rview *view, double tol_px,
-                          unsigned flags, const unsigned *need, int cull, cj_render_cache *cache,
+cj_status cj_rbuild_scene(const cj_rscene *rs, const cj_rview *view, double tol_px, unsigned flags,
+                          const unsigned *need, int cull, cj_render_cache *cache,
                           const cj_allocator *alloc, cj_rbuild *out) {
+    const cj_scene *scene = rs->scene;
     memset(out, 0, sizeof *out);
     out->alloc = cj_render_alloc(alloc);
     out->flags = flags;
@@ -282,10 +276,10 @@ cj_status cj_rbuild_scene(const cj_scene *scene, const cj_rview *view, double to
     }
     for (size_t i = 0; i < nn && !st; ++i) {
         const cj_node *nd = cj_scene_node(scene, (int)i);
-        if (nd->geometry < 0 || !node_visible(scene, (int)i)) continue;
+        if (!rs->drawn[i]) continue;
         const cj_geometry *g = cj_scene_geometry(scene, nd->geometry);
         cj_robject *o = &out->objects[out->object_count];
-        st = object_setup(scene, (int)i, o);
+        st = object_setup(rs, (int)i, o);
         if (st) break;
         uint32_t oi = (uint32_t)out->object_count++;
         o->v0 = o->v1 = out->vertex_count;
@@ -319,6 +313,10 @@ cj_status cj_rbuild_scene(const cj_scene *scene, const cj_rview *view, double to
                                      &o->grid_nu, &o->grid_nv, &out->patches_in,
                                      &out->patches_culled, &skip, &hit);
         out->cache_hits += (size_t)hit;
+        if (!skip && !hit &&
+            (g->kind == CJ_GEOM_PATCHES || g->kind == CJ_GEOM_REVOLUTION ||
+             g->kind == CJ_GEOM_GEN_CYLINDER))
+            ++out->cache_misses;
         double te = cj_render_now();
         int is_patch = g->kind == CJ_GEOM_PATCHES || g->kind == CJ_GEOM_REVOLUTION ||
                        g->kind == CJ_GEOM_GEN_CYLINDER;
@@ -339,42 +337,4 @@ cj_status cj_rbuild_scene(const cj_scene *scene, const cj_rview *view, double to
     cj_mesh_destroy(tmp);
     if (st) cj_rbuild_free(out);
     return st;
-}
-
-cj_status cj_render_scene_mesh(const cj_scene *scene, const cj_render_options *opt,
-                               const cj_allocator *alloc, cj_mesh **out) {
-    cj_status st = cj_scene_check(scene);
-    if (st) return st;
-    const cj_scene_settings *ss = cj_scene_settings_get(scene);
-    int W = opt && opt->width ? opt->width : ss->width;
-    int H = opt && opt->height ? opt->height : ss->height;
-    double tol = opt && opt->tol_px != 0.0 ? opt->tol_px : ss->tol_px;
-    if (W < 1 || H < 1 || !isfinite(tol) || !(tol > 0.0))
-        return cj_fail(CJ_ERR_RANGE, "image size %d x %d or tolerance %g px out of range", W, H,
-                       tol);
-    cj_rview view;
-    st = cj_rview_init(cj_scene_camera(scene), W, H, &view);
-    if (st) return st;
-    cj_rbuild b;
-    st = cj_rbuild_scene(scene, &view, tol, CJ_RB_NORMALS | CJ_RB_UVS, NULL, 1,
-                         opt ? opt->cache : NULL, alloc, &b);
-    if (st) return st;
-    cj_mesh *m = NULL;
-    st = cj_mesh_create(alloc, &m);
-    if (!st) st = cj_mesh_reserve(m, b.vertex_count, b.tri_count);
-    for (size_t v = 0; v < b.vertex_count && !st; ++v) {
-        double n[3] = {b.nrm[3 * v], b.nrm[3 * v + 1], b.nrm[3 * v + 2]};
-        double uv[2] = {b.uv[2 * v], b.uv[2 * v + 1]};
-        st = cj_mesh_add_vertex(m, b.pos + 3 * v, n, uv, NULL);
-    }
-    for (size_t t = 0; t < b.tri_count && !st; ++t)
-        st = cj_mesh_add_triangle(m, b.tris[3 * t], b.tris[3 * t + 1], b.tris[3 * t + 2],
-                                  (int32_t)b.objects[b.tobj[t]].id);
-    cj_rbuild_free(&b);
-    if (st) {
-        cj_mesh_destroy(m);
-        return st;
-    }
-    *out = m;
-    return CJ_OK;
 }

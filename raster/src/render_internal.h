@@ -88,18 +88,21 @@ typedef struct cj_rbuild {
     unsigned flags;
     /* figures for the stage report */
     size_t patches_in, patches_culled, patch_tris, surface_tris, mesh_tris, culled_back;
-    size_t cache_hits; /* patch objects whose tessellation came from the cache */
+    size_t cache_hits;   /* patch objects whose tessellation came from the cache */
+    size_t cache_misses; /* patch objects tessellated (in view, not found in the cache) */
     double patch_bound_px, surface_bound_px; /* proven bounds in pixels (0 when none) */
     double tol_px;
     double sec_patches, sec_surfaces, sec_meshes, sec_transform, sec_cull;
     cj_allocator alloc;
 } cj_rbuild;
 
-/* Builds the world triangles of every visible object of the scene for the view. flags: which
+/* Builds the world triangles of every drawn object of the scene pass `rs` (render_scene.h:
+ * which nodes are drawn, their world transforms) for the view. flags: which
  * vertex attributes to compute; `need` (may be NULL) says per material whether normals / uvs
  * are needed (bit CJ_RB_*), letting objects whose material needs nothing skip them.
  * Back faces of one-sided materials are dropped when cull != 0. */
-cj_status cj_rbuild_scene(const cj_scene *scene, const cj_rview *view, double tol_px,
+struct cj_rscene;
+cj_status cj_rbuild_scene(const struct cj_rscene *rs, const cj_rview *view, double tol_px,
                           unsigned flags, const unsigned *need, int cull, cj_render_cache *cache,
                           const cj_allocator *alloc, cj_rbuild *out);
 void cj_rbuild_free(cj_rbuild *b);

@@ -1,128 +1,16 @@
-/* cj_render_raster: the pipeline assembled from what the scene uses, with a stage report entry
- * for every stage, run or left out, and the feature that decided it. */
-#include "render_pipe.h"
+/* The rasterizer as a back end of the renderer (render.h, renderer.h): the pipeline assembled
+ * from what the scene uses. Every stage's entry in the report (run or left out, and the
+ * feature that decided it) is written where the decision is made; the figures follow when the
+ * stage has run. cj_rraster_frame at the bottom is the table of contents. */
+#include "render_frame.h"
 
 #include "casteljau/framebuffer.h"
 #include "error_internal.h"
 #include "render_progress.h"
+#include "renderer_internal.h"
 
 #include <math.h>
 #include <string.h>
-
-static const char *model_name[CJ_RM_COUNT] = {"unlit", "flat", "gouraud", "phong"};
-
-typedef struct features {
-    int lit, any_ambient;
-    int model_used[CJ_RM_COUNT];
-    int model_mat[CJ_RM_COUNT]; /* a material using it (for the report) */
-    int textured, tex_mat, trilinear;
-    int transparent, transp_mat;
-    int one_sided;
-    int overlays, overlay_node;
-    int patches, surfaces, meshes;
-} features;
-
-static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], features *f) {
-    size_t n = cj_scene_light_count(scene);
-    Ia[0] = Ia[1] = Ia[2] = 0.0f;
-    for (size_t i = 0; i < n; ++i) {
-        const cj_light *L = cj_scene_light(scene, (int)i);
-        float I[3] = {(float)(L->color.r * L->intensity), (float)(L->color.g * L->intensity),
-                      (float)(L->color.b * L->intensity)};
-        /* a light that gives nothing is left out: the image is the same without it */
-        if (!(I[0] > 0.0f || I[1] > 0.0f || I[2] > 0.0f)) continue;
-        if (L->kind == CJ_LIGHT_AMBIENT) {
-            for (int k = 0; k < 3; ++k) Ia[k] += I[k];
-            f->any_ambient = 1;
-            continue;
-        }
-        cj_rlight *r = &c->lights[c->nlights++];
-        memset(r, 0, sizeof *r);
-        memcpy(r->I, I, sizeof I);
-        cj_vec3 pos = L->position;
-        if (L->kind == CJ_LIGHT_AREA) /* the rasterizer sees an area light as its centre */
-            pos = cj_v3_add(pos, cj_v3_scale(cj_v3_add(L->edge_u, L->edge_v), 0.5));
-        r->pos[0] = pos.x;
-        r->pos[1] = pos.y;
-        r->pos[2] = pos.z;
-        if (L->kind == CJ_LIGHT_DIRECTIONAL) {
-            cj_vec3 l = cj_v3_normalize(cj_v3_scale(L->direction, -1.0));
-            r->directional = 1;
-            r->l[0] = (float)l.x;
-            r->l[1] = (float)l.y;
-            r->l[2] = (float)l.z;
-        } else if (L->kind == CJ_LIGHT_SPOT) {
-            cj_vec3 a = cj_v3_normalize(L->direction);
-            r->spot = 1;
-            r->axis[0] = (float)a.x;
-            r->axis[1] = (float)a.y;
-            r->axis[2] = (float)a.z;
-            r->cos_cut = (float)cos(L->spot_angle);
-            r->spot_exp = (float)L->spot_exponent;
-        }
-    }
-    f->lit = c->nlights > 0;
-}
-
-/* Which materials visible objects use, and what they ask for. */
-static void scan_scene(const cj_scene *scene, cj_rctx *c, features *f) {
-    size_t nn = cj_scene_node_count(scene);
-    f->tex_mat = f->transp_mat = f->overlay_node = -1;
-    for (int m = 0; m < CJ_RM_COUNT; ++m) f->model_mat[m] = -1;
-    for (size_t i = 0; i < nn; ++i) {
-        const cj_node *nd = cj_scene_node(scene, (int)i);
-        if (nd->geometry < 0) continue;
-        int vis = 1;
-        for (int p = (int)i; p >= 0; p = cj_scene_node(scene, p)->parent)
-            if (!cj_scene_node(scene, p)->visible) vis = 0;
-        if (!vis) continue;
-        const cj_geometry *g = cj_scene_geometry(scene, nd->geometry);
-        if (g->kind == CJ_GEOM_CURVE || nd->overlay.flags) {
-            if (!f->overlays) f->overlay_node = (int)i;
-            f->overlays = 1;
-        }
-        if (g->kind == CJ_GEOM_CURVE) continue;
-        if (g->kind == CJ_GEOM_PATCHES || g->kind == CJ_GEOM_REVOLUTION ||
-            g->kind == CJ_GEOM_GEN_CYLINDER)
-            f->patches = 1;
-        else if (g->kind == CJ_GEOM_MESH)
-            f->meshes = 1;
-        else
-            f->surfaces = 1;
-        int mi = nd->material >= 0 ? nd->material : c->nmat;
-        cj_rmat *m = &c->mats[mi];
-        m->used = 1;
-        if (f->model_mat[m->model] < 0) f->model_mat[m->model] = mi;
-        f->model_used[m->model] = 1;
-        if (m->tex >= 0) {
-            if (!f->textured) f->tex_mat = mi;
-            f->textured = 1;
-        }
-        if (m->opacity < 1.0f) {
-            if (!f->transparent) f->transp_mat = mi;
-            f->transparent = 1;
-        }
-        if (!m->two_sided) f->one_sided = 1;
-    }
-}
-
-static void set_material(cj_rmat *r, const cj_material *m, int lit, int any_ambient,
-                         const float Ia[3]) {
-    memset(r, 0, sizeof *r);
-    r->cr[0] = (float)m->color.r;
-    r->cr[1] = (float)m->color.g;
-    r->cr[2] = (float)m->color.b;
-    for (int k = 0; k < 3; ++k) r->amb[k] = (lit || any_ambient) ? (float)m->ka * Ia[k] : 1.0f;
-    r->spec[0] = (float)(m->specular.r * m->ks);
-    r->spec[1] = (float)(m->specular.g * m->ks);
-    r->spec[2] = (float)(m->specular.b * m->ks);
-    r->kd = (float)m->kd;
-    r->alpha = (float)m->alpha;
-    r->opacity = (float)m->opacity;
-    r->model = lit ? 1 + (int)m->shading : CJ_RM_UNLIT;
-    r->two_sided = m->two_sided != 0;
-    r->tex = m->texture;
-}
 
 static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
     cj_rlist *lists[2] = {&c->opaque, &c->transp};
@@ -143,18 +31,12 @@ static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
     for (int i = 0; i < c->nsamplers; ++i) cj_tex_sampler_free(&c->samplers[i]);
     cj_rfree(a, c->samplers);
     cj_rlines_free(&c->lines, a);
-    for (int i = 0; i < c->threads; ++i) {
-        if (c->color) cj_rfree(a, c->color[i]);
-        if (c->order) cj_rfree(a, c->order[i]);
-    }
-    cj_rfree(a, c->color);
-    cj_rfree(a, c->order);
-    cj_rfree(a, c->count);
 }
 
-static cj_stage *stage(cj_stage_report *R, const char *name, int ran, const char *why,
-                       const char *uin, uint64_t in, const char *uout, uint64_t out, double sec) {
-    cj_stage *s = cj_stage_report_set(R, name, ran, "%s", why);
+/* The figures of a stage whose decision is already recorded. */
+cj_stage *cj_rframe_figures(cj_stage_report *R, const char *name, const char *uin, uint64_t in,
+                            const char *uout, uint64_t out, double sec) {
+    cj_stage *s = cj_stage_report_stage(R, name);
     if (!s) return NULL;
     snprintf(s->unit_in, sizeof s->unit_in, "%s", uin);
     snprintf(s->unit_out, sizeof s->unit_out, "%s", uout);
@@ -212,297 +94,299 @@ static cj_status prep_list(cj_rctx *c, cj_rlist *L, const cj_allocator *alloc,
     return cj_raster_prepare(&in, c->tile_size, alloc, &L->prep, st);
 }
 
-cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, unsigned planes,
-                           const cj_allocator *alloc, cj_render_image **out,
-                           cj_stage_report *report) {
-    cj_stage_report local;
-    cj_stage_report *R = report ? report : &local;
-    cj_stage_report_init(R, "raster");
-    double T0 = cj_render_now();
-    cj_status st = cj_scene_check(scene);
-    if (st) return st;
-    const cj_scene_settings *ss = cj_scene_settings_get(scene);
-    cj_render_options o = opt ? *opt : cj_render_options_default();
-    int W = o.width ? o.width : ss->width, H = o.height ? o.height : ss->height;
-    int spp = o.spp ? o.spp : ss->spp;
-    double tol_px = o.tol_px != 0.0 ? o.tol_px : ss->tol_px;
-    int tile = o.tile_size ? o.tile_size : 64;
-    if (W < 1 || H < 1 || W > CJ_FRAMEBUFFER_MAX_SIDE || H > CJ_FRAMEBUFFER_MAX_SIDE)
-        return cj_fail(CJ_ERR_RANGE, "image size %d x %d outside 1..%d", W, H,
+/* ---- one frame --------------------------------------------------------------------------- */
+
+/* The stages in the order the report lists them (each is filled where it is decided). */
+static const char *const stage_order[] = {"scene_check",
+                                          "tessellate_patches",
+                                          "tessellate_surfaces",
+                                          "meshes",
+                                          "transform",
+                                          "vertex_normals",
+                                          "texture_coords",
+                                          "cull_backfaces",
+                                          "sort_transparent",
+                                          "project",
+                                          "shade_setup",
+                                          "mipmaps",
+                                          "raster_setup",
+                                          "rasterize",
+                                          "shade_unlit",
+                                          "shade_flat",
+                                          "shade_gouraud",
+                                          "shade_phong",
+                                          "texture",
+                                          "overlay_lines",
+                                          "transparency",
+                                          "resolve",
+                                          "output",
+                                          "frame"};
+
+/* Image size, samples, tolerance and tiles: the renderer's options over the scene's. */
+static cj_status resolve_settings(cj_rframe *F) {
+    const cj_render_options *o = &F->r->opt.render;
+    const cj_scene_settings *ss = cj_scene_settings_get(F->scene);
+    F->W = o->width ? o->width : ss->width;
+    F->H = o->height ? o->height : ss->height;
+    F->spp = o->spp ? o->spp : ss->spp;
+    F->tol_px = o->tol_px != 0.0 ? o->tol_px : ss->tol_px;
+    F->tile = o->tile_size ? o->tile_size : 64;
+    if (F->W < 1 || F->H < 1 || F->W > CJ_FRAMEBUFFER_MAX_SIDE || F->H > CJ_FRAMEBUFFER_MAX_SIDE)
+        return cj_fail(CJ_ERR_RANGE, "image size %d x %d outside 1..%d", F->W, F->H,
                        CJ_FRAMEBUFFER_MAX_SIDE);
-    if (spp != 1 && spp != 4 && spp != 16)
-        return cj_fail(CJ_ERR_RANGE, "samples per pixel %d: the rasterizer takes 1, 4 or 16", spp);
-    if (!isfinite(tol_px) || !(tol_px > 0.0))
-        return cj_fail(CJ_ERR_RANGE, "tessellation tolerance %g px must be > 0 and finite", tol_px);
-    if (tile < 8 || tile > 4096) return cj_fail(CJ_ERR_RANGE, "tile size %d outside 8..4096", tile);
-    if (o.threads < 0) return cj_fail(CJ_ERR_RANGE, "thread count %d must be >= 0", o.threads);
-    cj_allocator A = cj_render_alloc(alloc);
-    cj_stage_report_set(R, "scene_check", 1, "always");
+    if (F->spp != 1 && F->spp != 4 && F->spp != 16)
+        return cj_fail(CJ_ERR_RANGE, "samples per pixel %d: the rasterizer takes 1, 4 or 16",
+                       F->spp);
+    if (!isfinite(F->tol_px) || !(F->tol_px > 0.0))
+        return cj_fail(CJ_ERR_RANGE, "tessellation tolerance %g px must be > 0 and finite",
+                       F->tol_px);
+    if (F->tile < 8 || F->tile > 4096)
+        return cj_fail(CJ_ERR_RANGE, "tile size %d outside 8..4096", F->tile);
+    for (size_t i = 0; i < sizeof stage_order / sizeof stage_order[0]; ++i)
+        cj_stage_report_stage(F->R, stage_order[i]);
+    cj_stage_report_set(F->R, "scene_check", 1, "always");
+    return CJ_OK;
+}
 
-    cj_rview view;
-    st = cj_rview_init(cj_scene_camera(scene), W, H, &view);
+/* The camera and the frame's constants the tiles read. */
+static cj_status setup_view(cj_rframe *F) {
+    cj_status st = cj_rview_init(cj_scene_camera(F->scene), F->W, F->H, &F->view);
     if (st) return st;
-    cj_rctx c;
-    memset(&c, 0, sizeof c);
-    c.view = &view;
-    c.width = W;
-    c.height = H;
-    c.spp = spp;
-    c.tile_size = tile;
-    c.tiles_x = (W + tile - 1) / tile;
-    c.pattern = cj_raster_sample_pattern(spp);
-    c.bg[0] = (float)ss->background.r;
-    c.bg[1] = (float)ss->background.g;
-    c.bg[2] = (float)ss->background.b;
+    cj_rctx *c = &F->c;
+    const cj_scene_settings *ss = cj_scene_settings_get(F->scene);
+    c->view = &F->view;
+    c->width = F->W;
+    c->height = F->H;
+    c->spp = F->spp;
+    c->tile_size = F->tile;
+    c->tiles_x = (F->W + F->tile - 1) / F->tile;
+    c->pattern = cj_raster_sample_pattern(F->spp);
+    c->bg[0] = (float)ss->background.r;
+    c->bg[1] = (float)ss->background.g;
+    c->bg[2] = (float)ss->background.b;
+    c->b = &F->b;
+    return CJ_OK;
+}
 
-    /* ---- features: lights, materials, textures ---- */
-    features f;
-    memset(&f, 0, sizeof f);
-    c.nmat = (int)cj_scene_material_count(scene);
-    c.mats = cj_ralloc(&A, sizeof(cj_rmat) * (size_t)(c.nmat + 1));
-    c.lights = cj_ralloc(&A, sizeof(cj_rlight) * (cj_scene_light_count(scene) + 1));
-    c.nsamplers = (int)cj_scene_texture_count(scene);
-    c.samplers = cj_ralloc(&A, sizeof(cj_tex_sampler) * (size_t)(c.nsamplers + 1));
-    unsigned *need = cj_ralloc(&A, sizeof(unsigned) * (size_t)(c.nmat + 1));
-    cj_rbuild b;
-    memset(&b, 0, sizeof b);
-    c.b = &b;
-    cj_render_image *img = NULL;
-    if (!c.mats || !c.lights || !c.samplers || !need) {
-        st = cj_fail(CJ_ERR_NOMEM, "render tables");
-        goto fail;
+/* Lights, materials and the feature mask; the per-material attributes the build must make. */
+static cj_status build_triangles(cj_rframe *F) {
+    cj_render_cache *cache = cj_renderer_cache(F->r);
+    cj_status st =
+        cj_rbuild_scene(F->rs, &F->view, F->tol_px, F->flags, F->need, 1, cache, &F->A, &F->b);
+    if (st) return st;
+    const cj_rbuild *b = &F->b;
+    const cj_rfeatures *f = &F->f;
+    cj_stage_report *R = F->R;
+    cj_stage *s =
+        cj_stage_report_set(R, "tessellate_patches", f->patches, "%s",
+                            f->patches ? "the scene has Bezier patch objects" : "no patch objects");
+    cj_rframe_figures(R, "tessellate_patches", "patches", b->patches_in, "triangles", b->patch_tris,
+                      b->sec_patches);
+    cj_stage_add_value(s, "tol_px", F->tol_px);
+    cj_stage_add_value(s, "bound_px", b->patch_bound_px);
+    cj_stage_add_value(s, "patches_culled", (double)b->patches_culled);
+    if (cache) {
+        cj_stage_add_value(s, "cache_misses", (double)b->cache_misses);
+        cj_stage_add_value(s, "cache_hits", (double)b->cache_hits);
     }
-    memset(c.samplers, 0, sizeof(cj_tex_sampler) * (size_t)(c.nsamplers + 1));
-    float Ia[3];
-    prepare_lights(scene, &c, Ia, &f);
-    for (int m = 0; m <= c.nmat; ++m) {
-        cj_material def = cj_material_default();
-        set_material(&c.mats[m], m < c.nmat ? cj_scene_material(scene, m) : &def, f.lit,
-                     f.any_ambient, Ia);
+    s = cj_stage_report_set(R, "tessellate_surfaces", f->surfaces, "%s",
+                            f->surfaces ? "the scene has analytic surfaces"
+                                        : "no analytic surfaces");
+    cj_rframe_figures(R, "tessellate_surfaces", "objects", 0, "triangles", b->surface_tris,
+                      b->sec_surfaces);
+    cj_stage_add_value(s, "bound_px", b->surface_bound_px);
+    cj_stage_report_set(R, "meshes", f->meshes, "%s",
+                        f->meshes ? "the scene has triangle meshes" : "no mesh objects");
+    cj_rframe_figures(R, "meshes", "triangles", b->mesh_tris, "triangles", b->mesh_tris,
+                      b->sec_meshes);
+    cj_stage_report_set(R, "transform", 1, "always");
+    cj_rframe_figures(R, "transform", "vertices", b->vertex_count, "vertices", b->vertex_count,
+                      b->sec_transform);
+    const uint64_t vn = (F->flags & CJ_RB_NORMALS) ? b->vertex_count : 0;
+    const uint64_t vt = (F->flags & CJ_RB_UVS) ? b->vertex_count : 0;
+    cj_rframe_figures(R, "vertex_normals", "vertices", vn, "vertices", vn, 0.0);
+    cj_rframe_figures(R, "texture_coords", "vertices", vt, "vertices", vt, 0.0);
+    size_t built = b->patch_tris + b->surface_tris + b->mesh_tris;
+    cj_rframe_figures(R, "cull_backfaces", "triangles", built + b->culled_back, "triangles", built,
+                      b->sec_cull);
+    cj_rctx *c = &F->c;
+    c->obj_mat = cj_ralloc(&F->A, sizeof(int) * (b->object_count ? b->object_count : 1));
+    if (!c->obj_mat) return cj_fail(CJ_ERR_NOMEM, "object table");
+    for (size_t i = 0; i < b->object_count; ++i)
+        c->obj_mat[i] = b->objects[i].material >= 0 ? b->objects[i].material : c->nmat;
+    return CJ_OK;
+}
+
+/* Opaque and transparent lists; the transparent one back to front (BSP). */
+static cj_status order_triangles(cj_rframe *F) {
+    cj_rctx *c = &F->c;
+    cj_status st = split_lists(c, &F->b, &F->A);
+    if (st) return st;
+    F->transp_in = c->transp.count;
+    if (F->f.transparent) {
+        double ts = cj_render_now();
+        st = cj_rbsp_order(&F->b, &F->view, &c->transp.tris, &c->transp.obj, &c->transp.count,
+                           &F->splits, &F->fallback, &F->A);
+        F->sec_sort = cj_render_now() - ts;
+        if (st) return st;
     }
-    scan_scene(scene, &c, &f);
-    int normals_overlay = 0;
-    for (size_t i = 0; i < cj_scene_node_count(scene); ++i)
-        if (cj_scene_node(scene, (int)i)->overlay.flags & CJ_OVERLAY_NORMALS) normals_overlay = 1;
-    unsigned flags = 0;
-    for (int m = 0; m <= c.nmat; ++m) {
-        const cj_rmat *r = &c.mats[m];
-        need[m] = 0;
-        if (r->model == CJ_RM_GOURAUD || r->model == CJ_RM_PHONG || normals_overlay)
-            need[m] |= CJ_RB_NORMALS;
-        if (r->tex >= 0) need[m] |= CJ_RB_UVS;
-        if (r->used) flags |= need[m];
+    cj_stage *s = cj_rframe_figures(F->R, "sort_transparent", "triangles", F->transp_in,
+                                    "triangles", c->transp.count, F->sec_sort);
+    if (F->f.transparent) {
+        cj_stage_add_value(s, "bsp_splits", (double)F->splits);
+        cj_stage_add_value(s, "painter_fallback", F->fallback);
     }
-    /* samplers of the textures used */
+    return CJ_OK;
+}
+
+/* Clip coordinates, per-triangle / per-vertex lighting, overlay segments. */
+static cj_status project_and_light(cj_rframe *F) {
+    cj_rctx *c = &F->c;
     double ts = cj_render_now();
-    for (int m = 0; m <= c.nmat && !st; ++m) {
-        const cj_rmat *r = &c.mats[m];
-        if (!r->used || r->tex < 0 || c.samplers[r->tex].alloc.alloc) continue;
-        const cj_texture *tx = cj_scene_texture(scene, r->tex);
-        st = cj_tex_sampler_init(tx, r->tex, &A, &c.samplers[r->tex]);
-        if (tx->kind == CJ_TEX_IMAGE && tx->filter == CJ_TEX_TRILINEAR) f.trilinear = 1;
-    }
-    if (st) goto fail;
-    double sec_mip = cj_render_now() - ts;
+    cj_status st = project(c, &F->b, &F->A);
+    F->sec_project = cj_render_now() - ts;
+    if (st) return st;
+    cj_stage_report_set(F->R, "project", 1, "always");
+    cj_rframe_figures(F->R, "project", "vertices", F->b.vertex_count, "vertices", F->b.vertex_count,
+                      F->sec_project);
+    ts = cj_render_now();
+    st = cj_rshade_prepare_list(c, &c->opaque, &F->A);
+    if (!st) st = cj_rshade_prepare_list(c, &c->transp, &F->A);
+    if (!st) st = cj_rshade_prepare_gouraud(c, &F->A, &F->gouraud_vertices);
+    F->sec_shade_setup = cj_render_now() - ts;
+    if (st) return st;
+    cj_rframe_figures(F->R, "shade_setup", "triangles", c->opaque.count + c->transp.count,
+                      "vertices", F->gouraud_vertices, F->sec_shade_setup);
+    ts = cj_render_now();
+    if (F->f.overlays) st = cj_rlines_build(c, F->scene, &F->A);
+    F->sec_lines_setup = cj_render_now() - ts;
+    c->has_lines = F->f.overlays && c->lines.count > 0;
+    return st;
+}
 
-    /* ---- scene -> world triangles ---- */
-    st = cj_rbuild_scene(scene, &view, tol_px, flags, need, 1, o.cache, &A, &b);
-    if (st) goto fail;
-    c.obj_mat = cj_ralloc(&A, sizeof(int) * (b.object_count ? b.object_count : 1));
-    if (!c.obj_mat) {
-        st = cj_fail(CJ_ERR_NOMEM, "object table");
-        goto fail;
-    }
-    for (size_t i = 0; i < b.object_count; ++i)
-        c.obj_mat[i] = b.objects[i].material >= 0 ? b.objects[i].material : c.nmat;
-    st = split_lists(&c, &b, &A);
-    if (st) goto fail;
-    size_t transp_in = c.transp.count, splits = 0;
-    int fallback = 0;
-    double sec_sort = 0.0;
-    if (f.transparent) {
-        ts = cj_render_now();
-        st = cj_rbsp_order(&b, &view, &c.transp.tris, &c.transp.obj, &c.transp.count, &splits,
-                           &fallback, &A);
-        sec_sort = cj_render_now() - ts;
-        if (st) goto fail;
-    }
-    ts = cj_render_now();
-    st = project(&c, &b, &A);
-    double sec_project = cj_render_now() - ts;
-    if (st) goto fail;
-    ts = cj_render_now();
-    size_t gouraud_vertices = 0;
-    st = cj_rshade_prepare_list(&c, &c.opaque, &A);
-    if (!st) st = cj_rshade_prepare_list(&c, &c.transp, &A);
-    if (!st) st = cj_rshade_prepare_gouraud(&c, &A, &gouraud_vertices);
-    double sec_shade_setup = cj_render_now() - ts;
-    if (st) goto fail;
-    ts = cj_render_now();
-    if (f.overlays) st = cj_rlines_build(&c, scene, &A);
-    double sec_lines_setup = cj_render_now() - ts;
-    if (st) goto fail;
-    c.has_lines = f.overlays && c.lines.count > 0;
+/* Clipping, snapping, edge set-up and binning of both lists. */
+static cj_status setup_raster(cj_rframe *F) {
+    cj_rctx *c = &F->c;
+    double ts = cj_render_now();
+    cj_status st = prep_list(c, &c->opaque, &F->A, &F->rs_o);
+    if (!st && F->f.transparent) st = prep_list(c, &c->transp, &F->A, &F->rs_t);
+    F->sec_setup = cj_render_now() - ts;
+    if (st) return st;
+    c->has_transp = F->f.transparent && c->transp.count > 0;
+    cj_stage_report_set(F->R, "raster_setup", 1, "always");
+    cj_rframe_figures(F->R, "raster_setup", "triangles", F->rs_o.tris_in + F->rs_t.tris_in,
+                      "triangles", F->rs_o.tris_setup + F->rs_t.tris_setup, F->sec_setup);
+    return CJ_OK;
+}
 
-    /* ---- rasterize (visibility), shade per tile ---- */
-    cj_raster_stats rs_o, rs_t, run;
-    memset(&rs_o, 0, sizeof rs_o);
-    memset(&rs_t, 0, sizeof rs_t);
-    memset(&run, 0, sizeof run);
-    ts = cj_render_now();
-    st = prep_list(&c, &c.opaque, &A, &rs_o);
-    if (!st && f.transparent) st = prep_list(&c, &c.transp, &A, &rs_t);
-    double sec_setup = cj_render_now() - ts;
-    if (st) goto fail;
-    c.has_transp = f.transparent && c.transp.count > 0;
-    st = cj_render_image_create(W, H, planes, &A, &img);
-    if (st) goto fail;
-    c.img = img;
-    c.threads = cj_raster_thread_count(c.opaque.prep, o.threads);
-    size_t samples = (size_t)tile * (size_t)tile * (size_t)spp;
-    c.color = cj_ralloc(&A, sizeof(float *) * (size_t)c.threads);
-    c.order = cj_ralloc(&A, sizeof(uint32_t *) * (size_t)c.threads);
-    c.count = cj_ralloc(&A, sizeof(cj_rcount) * (size_t)c.threads);
-    if (!c.color || !c.order || !c.count) {
-        st = cj_fail(CJ_ERR_NOMEM, "per-thread tables");
-        goto fail;
-    }
-    memset(c.color, 0, sizeof(float *) * (size_t)c.threads);
-    memset(c.order, 0, sizeof(uint32_t *) * (size_t)c.threads);
-    memset(c.count, 0, sizeof(cj_rcount) * (size_t)c.threads);
-    for (int i = 0; i < c.threads; ++i) {
-        c.color[i] = cj_ralloc(&A, sizeof(float) * 4 * samples);
-        c.order[i] = cj_ralloc(&A, sizeof(uint32_t) * samples);
-        if (!c.color[i] || !c.order[i]) {
-            st = cj_fail(CJ_ERR_NOMEM, "tile buffers of %zu samples", samples);
-            goto fail;
-        }
-    }
-    ts = cj_render_now();
+/* The image, the pool and the per-worker buffers (all kept by the renderer), then the tiles:
+ * visibility, shading, overlays, transparency, resolve, output. */
+static cj_status run_tiles(cj_rframe *F, unsigned planes, cj_render_image *const *image) {
+    cj_rctx *c = &F->c;
+    cj_status st = cj_rtarget_acquire(F->r, F->W, F->H, planes, image, &F->target);
+    if (st) return st;
+    c->img = F->target.img;
+    F->pool_workers = cj_raster_thread_count(c->opaque.prep, F->r->opt.render.threads);
+    st = cj_renderer_pool(F->r, F->pool_workers, &F->pool_reused);
+    if (st) return st;
+    if (F->pool_workers > cj_rpool_threads(F->r->pool))
+        F->pool_workers = cj_rpool_threads(F->r->pool);
+    c->threads = F->pool_workers;
+    size_t samples = (size_t)F->tile * (size_t)F->tile * (size_t)F->spp;
+    st = cj_renderer_shade_buffers(F->r, c->threads, samples, &F->buffers_reused);
+    if (st) return st;
+    c->color = F->r->color;
+    c->order = F->r->order;
+    c->count = F->r->count;
+    double ts = cj_render_now();
     cj_rprogress pg;
-    cj_rprogress_init(&pg, &o, (uint64_t)c.tiles_x * (uint64_t)((H + tile - 1) / tile));
-    st = cj_raster_run(c.opaque.prep, c.threads, cj_rtile_run, &c, &pg, &run);
+    cj_rprogress_init(&pg, &F->r->opt.render,
+                      (uint64_t)c->tiles_x * (uint64_t)((F->H + F->tile - 1) / F->tile));
+    int ws_reused = 0;
+    st = cj_raster_run_on(c->opaque.prep, F->r->pool, c->threads, F->r->ws, cj_rtile_run, c, &pg,
+                          &F->run, &ws_reused);
     cj_rprogress_destroy(&pg);
-    double sec_run = cj_render_now() - ts;
-    if (st) goto fail;
+    F->sec_run = cj_render_now() - ts;
+    F->buffers_reused = F->buffers_reused && ws_reused;
+    return st;
+}
 
-    /* ---- the report ---- */
+/* The per-tile stages' figures, summed over the workers. */
+static void report_tiles(cj_rframe *F) {
+    cj_rctx *c = &F->c;
+    cj_stage_report *R = F->R;
     cj_rcount sum;
     memset(&sum, 0, sizeof sum);
-    for (int i = 0; i < c.threads; ++i)
+    for (int i = 0; i < c->threads; ++i)
         for (int k = 0; k < CJ_RS_COUNT; ++k) {
-            sum.sec[k] += c.count[i].sec[k];
-            sum.cpu[k] += c.count[i].cpu[k];
-            sum.n[k] += c.count[i].n[k];
+            sum.sec[k] += c->count[i].sec[k];
+            sum.cpu[k] += c->count[i].cpu[k];
+            sum.n[k] += c->count[i].n[k];
         }
-    size_t tris_built = b.patch_tris + b.surface_tris + b.mesh_tris;
-    cj_stage *s;
-    s = stage(R, "tessellate_patches", f.patches,
-              f.patches ? "the scene has Bezier patch objects" : "no patch objects", "patches",
-              b.patches_in, "triangles", b.patch_tris, b.sec_patches);
-    cj_stage_add_value(s, "tol_px", tol_px);
-    cj_stage_add_value(s, "bound_px", b.patch_bound_px);
-    cj_stage_add_value(s, "patches_culled", (double)b.patches_culled);
-    if (o.cache) cj_stage_add_value(s, "cache_hits", (double)b.cache_hits);
-    s = stage(R, "tessellate_surfaces", f.surfaces,
-              f.surfaces ? "the scene has analytic surfaces" : "no analytic surfaces", "objects", 0,
-              "triangles", b.surface_tris, b.sec_surfaces);
-    cj_stage_add_value(s, "bound_px", b.surface_bound_px);
-    stage(R, "meshes", f.meshes, f.meshes ? "the scene has triangle meshes" : "no mesh objects",
-          "triangles", b.mesh_tris, "triangles", b.mesh_tris, b.sec_meshes);
-    stage(R, "transform", 1, "always", "vertices", b.vertex_count, "vertices", b.vertex_count,
-          b.sec_transform);
-    stage(R, "vertex_normals", (flags & CJ_RB_NORMALS) != 0,
-          (flags & CJ_RB_NORMALS) ? (normals_overlay ? "a normals overlay or Gouraud/Phong shading"
-                                                     : "lit Gouraud/Phong materials")
-                                  : (f.lit ? "flat shading only: face normals" : "no lights"),
-          "vertices", (flags & CJ_RB_NORMALS) ? b.vertex_count : 0, "vertices",
-          (flags & CJ_RB_NORMALS) ? b.vertex_count : 0, 0.0);
-    stage(R, "texture_coords", (flags & CJ_RB_UVS) != 0,
-          (flags & CJ_RB_UVS) ? "a material has a texture" : "no textures", "vertices",
-          (flags & CJ_RB_UVS) ? b.vertex_count : 0, "vertices",
-          (flags & CJ_RB_UVS) ? b.vertex_count : 0, 0.0);
-    stage(R, "cull_backfaces", f.one_sided,
-          f.one_sided ? "one-sided materials" : "every material is two-sided", "triangles",
-          tris_built + b.culled_back, "triangles", tris_built, b.sec_cull);
-    s = stage(R, "sort_transparent", f.transparent,
-              f.transparent ? "a material has opacity < 1" : "no transparent material", "triangles",
-              transp_in, "triangles", c.transp.count, sec_sort);
-    if (f.transparent) {
-        cj_stage_add_value(s, "bsp_splits", (double)splits);
-        cj_stage_add_value(s, "painter_fallback", fallback);
-    }
-    stage(R, "project", 1, "always", "vertices", b.vertex_count, "vertices", b.vertex_count,
-          sec_project);
-    int any_setup = f.model_used[CJ_RM_FLAT] || f.model_used[CJ_RM_GOURAUD];
-    stage(R, "shade_setup", any_setup,
-          any_setup ? "flat/Gouraud materials: per-triangle/vertex lighting"
-                    : "no flat or Gouraud material",
-          "triangles", c.opaque.count + c.transp.count, "vertices", gouraud_vertices,
-          sec_shade_setup);
-    stage(R, "mipmaps", f.trilinear,
-          f.trilinear ? "a trilinear image texture" : "no trilinear image texture", "textures",
-          (uint64_t)c.nsamplers, "textures", (uint64_t)c.nsamplers, sec_mip);
-    stage(R, "raster_setup", 1, "always", "triangles", rs_o.tris_in + rs_t.tris_in, "triangles",
-          rs_o.tris_setup + rs_t.tris_setup, sec_setup);
     /* the workers' time outside the pipeline's tile callback: the visibility pass */
     double cb = 0.0;
     for (int k = 0; k < CJ_RS_COUNT; ++k) cb += sum.sec[k];
-    double vis = run.seconds_raster * c.threads - cb;
-    s = stage(R, "rasterize", 1, "always", "samples", run.samples_tested, "samples",
-              run.samples_written, vis > 0.0 ? vis : 0.0);
-    cj_stage_add_value(s, "tris_clipped", (double)(rs_o.tris_clipped + rs_t.tris_clipped));
-    cj_stage_add_value(s, "tris_rejected", (double)(rs_o.tris_rejected + rs_t.tris_rejected));
-    cj_stage_add_value(s, "run_wall_seconds", sec_run);
-    char why[CJ_STAGE_WHY_MAX];
+    double vis = F->run.seconds_raster * c->threads - cb;
+    cj_stage_report_set(R, "rasterize", 1, "always");
+    cj_stage *s = cj_rframe_figures(R, "rasterize", "samples", F->run.samples_tested, "samples",
+                                    F->run.samples_written, vis > 0.0 ? vis : 0.0);
+    cj_stage_add_value(s, "tris_clipped", (double)(F->rs_o.tris_clipped + F->rs_t.tris_clipped));
+    cj_stage_add_value(s, "tris_rejected", (double)(F->rs_o.tris_rejected + F->rs_t.tris_rejected));
+    cj_stage_add_value(s, "run_wall_seconds", F->sec_run);
     uint64_t textured = 0;
     double tex_sec = 0.0;
     for (int m = 0; m < CJ_RM_COUNT; ++m) {
         char name[CJ_STAGE_NAME_MAX];
-        snprintf(name, sizeof name, "shade_%s", model_name[m]);
-        if (f.model_used[m])
-            snprintf(why, sizeof why, "material %d is %s%s", f.model_mat[m], model_name[m],
-                     m == CJ_RM_UNLIT ? (f.any_ambient ? " (ambient light only)" : " (no lights)")
-                                      : "");
-        else
-            snprintf(why, sizeof why,
-                     m == CJ_RM_UNLIT ? "the scene has lights"
-                     : f.lit          ? "no %s material"
-                                      : "no lights",
-                     model_name[m]);
+        snprintf(name, sizeof name, "shade_%s", cj_rmodel_name[m]);
         uint64_t n = sum.n[2 * m] + sum.n[2 * m + 1];
         textured += sum.n[2 * m + 1];
         tex_sec += sum.sec[2 * m + 1];
-        cj_stage *sh = stage(R, name, f.model_used[m], why, "samples", n, "samples", n,
-                             sum.sec[2 * m] + sum.sec[2 * m + 1]);
-        if (f.model_used[m])
+        cj_stage *sh = cj_rframe_figures(R, name, "samples", n, "samples", n,
+                                         sum.sec[2 * m] + sum.sec[2 * m + 1]);
+        if (F->f.model_used[m])
             cj_stage_add_value(sh, "cpu_seconds", sum.cpu[2 * m] + sum.cpu[2 * m + 1]);
     }
-    if (f.textured) snprintf(why, sizeof why, "material %d has a texture", f.tex_mat);
-    s = stage(R, "texture", f.textured, f.textured ? why : "no textures", "samples", textured,
-              "samples", textured, tex_sec);
-    if (f.textured) cj_stage_add_value(s, "seconds_include_shading", 1.0);
-    if (f.overlays) snprintf(why, sizeof why, "node %d has overlays or is a curve", f.overlay_node);
-    s = stage(R, "overlay_lines", f.overlays, f.overlays ? why : "no overlays or curves",
-              "segments", c.lines.world_segments, "pixels", sum.n[CJ_RS_LINES],
-              sum.sec[CJ_RS_LINES] + sec_lines_setup);
-    if (f.transparent) snprintf(why, sizeof why, "material %d has opacity < 1", f.transp_mat);
-    s = stage(R, "transparency", f.transparent, f.transparent ? why : "no transparent material",
-              "triangles", c.transp.count, "fragments", sum.n[CJ_RS_TRANSPARENT],
-              sum.sec[CJ_RS_TRANSPARENT]);
-    if (f.transparent) cj_stage_add_value(s, "cpu_seconds", sum.cpu[CJ_RS_TRANSPARENT]);
-    snprintf(why, sizeof why, "spp = %d", spp);
-    stage(R, "resolve", spp > 1, why, "samples", spp > 1 ? sum.n[CJ_RS_RESOLVE] * (uint64_t)spp : 0,
-          "pixels", sum.n[CJ_RS_RESOLVE], sum.sec[CJ_RS_RESOLVE]);
-    stage(R, "output", 1, "always", "pixels", (uint64_t)W * (uint64_t)H, "pixels",
-          (uint64_t)W * (uint64_t)H, sum.sec[CJ_RS_OUTPUT] + sum.sec[CJ_RS_BACKGROUND]);
-    R->total_seconds = cj_render_now() - T0;
-    *out = img;
-    img = NULL;
-fail:
-    cj_render_image_destroy(img);
-    clear_ctx(&c, &A);
-    cj_rfree(&A, need);
-    cj_rbuild_free(&b);
+    s = cj_rframe_figures(R, "texture", "samples", textured, "samples", textured, tex_sec);
+    if (F->f.textured) cj_stage_add_value(s, "seconds_include_shading", 1.0);
+    cj_rframe_figures(R, "overlay_lines", "segments", c->lines.world_segments, "pixels",
+                      sum.n[CJ_RS_LINES], sum.sec[CJ_RS_LINES] + F->sec_lines_setup);
+    s = cj_rframe_figures(R, "transparency", "triangles", c->transp.count, "fragments",
+                          sum.n[CJ_RS_TRANSPARENT], sum.sec[CJ_RS_TRANSPARENT]);
+    if (F->f.transparent) cj_stage_add_value(s, "cpu_seconds", sum.cpu[CJ_RS_TRANSPARENT]);
+    const uint64_t spp = (uint64_t)F->spp;
+    cj_rframe_figures(R, "resolve", "samples", spp > 1 ? sum.n[CJ_RS_RESOLVE] * spp : 0, "pixels",
+                      sum.n[CJ_RS_RESOLVE], sum.sec[CJ_RS_RESOLVE]);
+    const uint64_t px = (uint64_t)F->W * (uint64_t)F->H;
+    cj_stage_report_set(R, "output", 1, "always");
+    cj_rframe_figures(R, "output", "pixels", px, "pixels", px,
+                      sum.sec[CJ_RS_OUTPUT] + sum.sec[CJ_RS_BACKGROUND]);
+    cj_renderer_report_frame(F->r, R, F->pool_workers, F->pool_reused, F->buffers_reused,
+                             !F->target.fresh);
+}
+
+cj_status cj_rraster_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
+                           cj_render_image **image, cj_stage_report *R) {
+    cj_rframe F;
+    memset(&F, 0, sizeof F);
+    F.r = r;
+    F.rs = rs;
+    F.scene = rs->scene;
+    F.R = R;
+    F.A = r->alloc;
+    F.target.fresh = 0;
+    cj_status st = resolve_settings(&F);
+    if (!st) st = setup_view(&F);
+    if (!st) st = cj_rframe_materials(&F);
+    if (!st) st = cj_rframe_textures(&F);
+    if (!st) st = build_triangles(&F);
+    if (!st) st = order_triangles(&F);
+    if (!st) st = project_and_light(&F);
+    if (!st) st = setup_raster(&F);
+    if (!st) st = run_tiles(&F, planes, image);
+    if (!st) report_tiles(&F);
+    cj_rtarget_finish(&F.target, image, st);
+    clear_ctx(&F.c, &F.A);
+    cj_rfree(&F.A, F.need);
+    cj_rbuild_free(&F.b);
     return st;
 }

@@ -4,6 +4,7 @@
 
 #include "error_internal.h"
 #include "render_internal.h"
+#include "render_scene.h"
 
 #include <math.h>
 #include <string.h>
@@ -88,8 +89,41 @@ static void pad(cj_aabb *b) {
     }
 }
 
-static cj_status build_object(const cj_scene *scene, int node_index, const cj_allocator *a,
-                              tr_object *o) {
+/* The object BVH (patches or mesh triangles): from the cache when the data did not change. */
+static cj_status object_bvh(tr_object *o, int node_index, tr_bvh_cache *cache,
+                            const cj_allocator *a, size_t *reused, size_t *built) {
+    if (cache) {
+        o->bvh = tr_bvh_cache_find(cache, node_index, o->g, o->patches, o->npatch);
+        if (o->bvh) {
+            o->bvh_cached = 1;
+            ++*reused;
+            return CJ_OK;
+        }
+    }
+    cj_status st;
+    if (o->patches) {
+        cj_aabb *boxes = cj_ralloc(a, o->npatch * sizeof *boxes);
+        if (!boxes) return cj_fail(CJ_ERR_NOMEM, "ray tracer: out of memory");
+        for (size_t i = 0; i < o->npatch; i++) {
+            boxes[i] = cj_aabb_patch(&o->patches[i]);
+            pad(&boxes[i]);
+        }
+        st = cj_bvh_build(boxes, o->npatch, a, &o->bvh);
+        cj_rfree(a, boxes);
+    } else {
+        const cj_mesh *m = o->g->u.mesh;
+        st = cj_bvh_mesh_build(m->positions, m->vertex_count, m->triangles, m->triangle_count, a,
+                               &o->bvh);
+    }
+    if (st) return st;
+    ++*built;
+    if (cache && tr_bvh_cache_store(cache, node_index, o->bvh)) o->bvh_cached = 1;
+    return CJ_OK;
+}
+
+static cj_status build_object(const cj_rscene *rs, int node_index, tr_bvh_cache *cache,
+                              const cj_allocator *a, tr_object *o, size_t *reused, size_t *built) {
+    const cj_scene *scene = rs->scene;
     const cj_node *nd = cj_scene_node(scene, node_index);
     const cj_geometry *g = cj_scene_geometry(scene, nd->geometry);
     memset(o, 0, sizeof *o);
@@ -97,12 +131,10 @@ static cj_status build_object(const cj_scene *scene, int node_index, const cj_al
     o->kind = g->kind;
     o->id = nd->id;
     o->material = nd->material;
-    cj_xform3 w;
-    cj_status st = cj_scene_node_world(scene, node_index, &w);
-    if (st) return st;
+    cj_xform3 w = rs->world[node_index];
     cj_xform3 id = cj_xform3_identity();
     o->identity = memcmp(&w, &id, sizeof w) == 0;
-    st = cj_ray_xform_init(&o->x, &w);
+    cj_status st = cj_ray_xform_init(&o->x, &w);
     if (st) return st;
     if (g->kind == CJ_GEOM_PATCHES) {
         o->patches = g->u.patches.patches;
@@ -114,19 +146,11 @@ static cj_status build_object(const cj_scene *scene, int node_index, const cj_al
     }
     if (o->patches) {
         if (o->npatch == 0) return cj_fail(CJ_ERR_EMPTY, "node %d: no patches", node_index);
-        cj_aabb *boxes = cj_ralloc(a, o->npatch * sizeof *boxes);
-        if (!boxes) return cj_fail(CJ_ERR_NOMEM, "ray tracer: out of memory");
         for (size_t i = 0; i < o->npatch; i++) {
             st = cj_ray_patch_check(&o->patches[i], 1.0);
-            if (st) {
-                cj_rfree(a, boxes);
-                return st;
-            }
-            boxes[i] = cj_aabb_patch(&o->patches[i]);
-            pad(&boxes[i]);
+            if (st) return st;
         }
-        st = cj_bvh_build(boxes, o->npatch, a, &o->bvh);
-        cj_rfree(a, boxes);
+        st = object_bvh(o, node_index, cache, a, reused, built);
         if (st) return st;
         cj_aabb b = object_box(o);
         double diag = sqrt((b.hi[0] - b.lo[0]) * (b.hi[0] - b.lo[0]) +
@@ -134,9 +158,7 @@ static cj_status build_object(const cj_scene *scene, int node_index, const cj_al
                            (b.hi[2] - b.lo[2]) * (b.hi[2] - b.lo[2]));
         o->tol = 1e-7 * (diag > 0.0 ? diag : 1.0);
     } else if (g->kind == CJ_GEOM_MESH) {
-        const cj_mesh *m = g->u.mesh;
-        st = cj_bvh_mesh_build(m->positions, m->vertex_count, m->triangles, m->triangle_count, a,
-                               &o->bvh);
+        st = object_bvh(o, node_index, cache, a, reused, built);
         if (st) return st;
     }
     cj_aabb ob = object_box(o);
@@ -147,7 +169,7 @@ static cj_status build_object(const cj_scene *scene, int node_index, const cj_al
 
 void tr_scene_free(tr_scene *s) {
     for (size_t i = 0; i < s->nobj; i++) {
-        cj_bvh_destroy(s->objs[i].bvh);
+        if (!s->objs[i].bvh_cached) cj_bvh_destroy(s->objs[i].bvh);
         cj_rfree(&s->alloc, s->objs[i].own_patches);
         cj_rfree(&s->alloc, s->objs[i].own_pts);
         cj_rfree(&s->alloc, s->objs[i].own_w);
@@ -159,7 +181,10 @@ void tr_scene_free(tr_scene *s) {
     memset(s, 0, sizeof *s);
 }
 
-cj_status tr_scene_build(const cj_scene *scene, const cj_allocator *alloc, tr_scene *out) {
+cj_status tr_scene_build(const cj_rscene *rs, tr_bvh_cache *cache, const cj_allocator *alloc,
+                         tr_scene *out, size_t *reused, size_t *built) {
+    const cj_scene *scene = rs->scene;
+    *reused = *built = 0;
     tr_scene s;
     memset(&s, 0, sizeof s);
     s.scene = scene;
@@ -179,13 +204,8 @@ cj_status tr_scene_build(const cj_scene *scene, const cj_allocator *alloc, tr_sc
     }
     for (size_t i = 0; i < nn && !st; i++) {
         const cj_node *nd = cj_scene_node(scene, (int)i);
-        if (nd->geometry < 0 || !nd->visible) continue;
-        /* an invisible ancestor hides the subtree */
-        int vis = 1;
-        for (int p = nd->parent; p >= 0; p = cj_scene_node(scene, p)->parent)
-            if (!cj_scene_node(scene, p)->visible) vis = 0;
-        if (!vis || !traced_kind(cj_scene_geometry(scene, nd->geometry)->kind)) continue;
-        st = build_object(scene, (int)i, &s.alloc, &s.objs[s.nobj]);
+        if (!rs->drawn[i] || !traced_kind(cj_scene_geometry(scene, nd->geometry)->kind)) continue;
+        st = build_object(rs, (int)i, cache, &s.alloc, &s.objs[s.nobj], reused, built);
         s.nobj++;
     }
     if (!st && s.nobj) {

@@ -21,7 +21,8 @@ typedef struct tr_object {
     size_t npatch;
     cj_patch *own_patches; /* revolution / general cylinder as rational patches */
     double *own_pts, *own_w;
-    cj_bvh *bvh; /* patches or mesh triangles */
+    cj_bvh *bvh;    /* patches or mesh triangles */
+    int bvh_cached; /* bvh belongs to the renderer's BVH cache, not to this object */
     cj_aabb wbox;
 } tr_object;
 
@@ -45,7 +46,24 @@ typedef struct tr_scene {
     cj_allocator alloc;
 } tr_scene;
 
-cj_status tr_scene_build(const cj_scene *scene, const cj_allocator *alloc, tr_scene *out);
+/* The renderer's per-object BVH cache (trace_cache.c; see casteljau/renderer.h). find: the
+ * cached BVH of `node` when its data (the patches p[0..np) or, for a mesh, g's positions and
+ * triangles) equals what it was built from, else NULL; it remembers the key for store, which
+ * takes ownership of a BVH built from that data (returns 0 when it cannot: the caller keeps
+ * it). sweep, after a frame: drops the entries of nodes the frame did not ask for. */
+typedef struct tr_bvh_cache tr_bvh_cache;
+cj_status tr_bvh_cache_create(const cj_allocator *alloc, tr_bvh_cache **out);
+void tr_bvh_cache_destroy(tr_bvh_cache *c);
+cj_bvh *tr_bvh_cache_find(tr_bvh_cache *c, int node, const cj_geometry *g, const cj_patch *p,
+                          size_t np);
+int tr_bvh_cache_store(tr_bvh_cache *c, int node, cj_bvh *bvh);
+void tr_bvh_cache_sweep(tr_bvh_cache *c);
+
+/* The traced scene of the frame's scene pass (render_scene.h: drawn nodes, world transforms).
+ * cache may be NULL; *reused / *built count the object BVHs taken from it / built. */
+struct cj_rscene;
+cj_status tr_scene_build(const struct cj_rscene *rs, tr_bvh_cache *cache, const cj_allocator *alloc,
+                         tr_scene *out, size_t *reused, size_t *built);
 void tr_scene_free(tr_scene *s);
 
 /* Closest hit (hit->obj = object index) / any hit in [tmin, tmax]. */

@@ -1,16 +1,15 @@
-/* cj_render_trace: tiles over threads, primary rays from the scene camera, the signature and
- * depth planes, the stage report (trace.h). */
-#define _POSIX_C_SOURCE 200809L
+/* The ray tracer as a back end of the renderer (trace.h, renderer.h): tiles on the renderer's
+ * worker pool, primary rays from the scene camera, the signature and depth planes, the stage
+ * report. */
 #include "trace_shade.h"
 
 #include "error_internal.h"
 #include "render_internal.h"
 #include "render_progress.h"
+#include "renderer_internal.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <string.h>
-#include <unistd.h>
 
 typedef struct tr_job {
     const tr_scene *s;
@@ -21,10 +20,7 @@ typedef struct tr_job {
     int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random, indirect;
     uint64_t seed;
     cj_rgb bg;
-    pthread_mutex_t lock;
-    cj_rprogress *progress;
-    int next;
-    tr_counts *counts;
+    tr_shade *shade; /* per worker */
 } tr_job;
 
 static float pseudodepth(const cj_xform3 *m, cj_vec3 p) {
@@ -90,37 +86,37 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
     }
 }
 
-static void *worker(void *arg) {
-    void **a = arg;
-    tr_job *j = a[0];
-    tr_counts *c = a[1];
-    tr_shade sh;
-    memset(&sh, 0, sizeof sh);
-    sh.s = j->s;
-    sh.lights = j->lights;
-    sh.c = c;
-    sh.background = j->bg;
-    sh.max_depth = j->max_depth;
-    sh.spp = j->spp;
-    sh.strata = j->strata;
-    sh.random = j->random;
-    sh.indirect = j->indirect;
-    for (;;) {
-        if (cj_rprogress_stopped(j->progress)) break;
-        pthread_mutex_lock(&j->lock);
-        int t = j->next++;
-        pthread_mutex_unlock(&j->lock);
-        if (t >= j->ntiles) break;
-        int x0 = (t % j->tiles_x) * j->tile, y0 = (t / j->tiles_x) * j->tile;
-        for (int y = y0; y < y0 + j->tile && y < j->h; y++)
-            for (int x = x0; x < x0 + j->tile && x < j->w; x++) render_pixel(j, &sh, x, y);
-        cj_rprogress_tile_done(j->progress);
-    }
-    return NULL;
+static void shade_init(const tr_job *j, tr_counts *c, tr_shade *sh) {
+    memset(sh, 0, sizeof *sh);
+    sh->s = j->s;
+    sh->lights = j->lights;
+    sh->c = c;
+    sh->background = j->bg;
+    sh->max_depth = j->max_depth;
+    sh->spp = j->spp;
+    sh->strata = j->strata;
+    sh->random = j->random;
+    sh->indirect = j->indirect;
 }
 
-static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_scene *ts,
-                          const tr_counts *c, int spp, int indirect, double build_s, int planes) {
+/* One tile: a task of the renderer's scheduler (render_pool.h). */
+static void tile_task(void *user, int t, int worker) {
+    tr_job *j = user;
+    tr_shade *sh = &j->shade[worker];
+    int x0 = (t % j->tiles_x) * j->tile, y0 = (t / j->tiles_x) * j->tile;
+    for (int y = y0; y < y0 + j->tile && y < j->h; y++)
+        for (int x = x0; x < x0 + j->tile && x < j->w; x++) render_pixel(j, sh, x, y);
+}
+
+static const char *const ray_stage[TR_KINDS] = {"primary_rays",      "shadow_rays",
+                                                "reflection_rays",   "refraction_rays",
+                                                "transparency_rays", "indirect_rays"};
+
+/* The stages the scene's lights and materials decide, recorded with their reasons before any
+ * ray is cast (a ray stage is marked as run afterwards, when rays of its kind were cast). */
+static void decide_stages(cj_stage_report *r, const cj_scene *scene, int spp, int indirect,
+                          unsigned planes) {
+    cj_stage_report_stage(r, "build_bvh"); /* the report's order */
     int shadow_lights = 0, receivers = 0, mirrors = -1, refr = -1, through = -1, tex = -1;
     int area = -1, glossy = -1, diffuse = -1;
     for (size_t i = 0; i < cj_scene_light_count(scene); i++) {
@@ -138,76 +134,40 @@ static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_sc
         if (m->glossiness > 0 && glossy < 0) glossy = (int)i;
         if (m->kd > 0 && m->transmission < 1 && diffuse < 0) diffuse = (int)i;
     }
-    cj_stage *s = cj_stage_report_set(r, "build_bvh", 1, "%zu objects traced", ts->nobj);
-    if (s) {
-        s->in = ts->nobj;
-        s->out = ts->top ? ts->top->node_count : 0;
-        strcpy(s->unit_in, "objects");
-        strcpy(s->unit_out, "nodes");
-        s->seconds = build_s;
-    }
-    static const char *names[TR_KINDS] = {"primary_rays",    "shadow_rays",       "reflection_rays",
-                                          "refraction_rays", "transparency_rays", "indirect_rays"};
-    for (int k = 0; k < TR_KINDS; k++) {
-        int ran = c->cast[k] > 0;
-        char why[CJ_STAGE_WHY_MAX];
-        switch (k) {
-        case TR_PRIMARY:
-            snprintf(why, sizeof why, "%d sample(s) per pixel", spp);
-            break;
-        case TR_SHADOW:
-            if (shadow_lights && receivers)
-                snprintf(why, sizeof why, "%d light(s) cast shadows, %d material(s) receive them",
-                         shadow_lights, receivers);
-            else
-                snprintf(why, sizeof why, "%s",
-                         shadow_lights ? "no material receives shadows" : "no light casts shadows");
-            break;
-        case TR_REFLECT:
-            if (mirrors >= 0)
-                snprintf(why, sizeof why, "material %d has mirror > 0", mirrors);
-            else if (refr >= 0)
-                snprintf(why, sizeof why, "total internal reflection in material %d", refr);
-            else
-                snprintf(why, sizeof why, "no material has mirror > 0");
-            break;
-        case TR_REFRACT:
-            if (refr >= 0)
-                snprintf(why, sizeof why, "material %d has transmission > 0", refr);
-            else
-                snprintf(why, sizeof why, "no material has transmission > 0");
-            break;
-        case TR_INDIRECT:
-            if (indirect == 0)
-                snprintf(why, sizeof why, "indirect_samples 0: no diffuse interreflection");
-            else if (diffuse < 0)
-                snprintf(why, sizeof why, "no material has kd > 0");
-            else
-                snprintf(why, sizeof why, "%d cosine-weighted ray(s) per diffuse hit (material %d)",
-                         indirect, diffuse);
-            break;
-        default:
-            if (through >= 0)
-                snprintf(why, sizeof why, "material %d has opacity < 1", through);
-            else
-                snprintf(why, sizeof why, "every material is opaque");
-            break;
-        }
-        s = cj_stage_report_set(r, names[k], ran, "%s", why);
-        if (!s) continue;
-        s->in = c->cast[k];
-        s->out = c->hit[k];
-        strcpy(s->unit_in, "rays");
-        strcpy(s->unit_out, "hits");
-        s->seconds = c->seconds[k];
-    }
-    s = cj_stage_report_set(r, "patch_rays", c->patch_rays > 0, "%s",
-                            c->patch_rays ? "patches intersected directly" : "no patch was hit");
-    if (s) {
-        s->in = c->patch_rays;
-        strcpy(s->unit_in, "hits");
-        cj_stage_add_value(s, "max_err", c->patch_max_err);
-    }
+    cj_stage_report_set(r, ray_stage[TR_PRIMARY], 0, "%d sample(s) per pixel", spp);
+    if (shadow_lights && receivers)
+        cj_stage_report_set(r, ray_stage[TR_SHADOW], 0,
+                            "%d light(s) cast shadows, %d material(s) receive them", shadow_lights,
+                            receivers);
+    else
+        cj_stage_report_set(r, ray_stage[TR_SHADOW], 0, "%s",
+                            shadow_lights ? "no material receives shadows"
+                                          : "no light casts shadows");
+    if (mirrors >= 0)
+        cj_stage_report_set(r, ray_stage[TR_REFLECT], 0, "material %d has mirror > 0", mirrors);
+    else if (refr >= 0)
+        cj_stage_report_set(r, ray_stage[TR_REFLECT], 0, "total internal reflection in material %d",
+                            refr);
+    else
+        cj_stage_report_set(r, ray_stage[TR_REFLECT], 0, "no material has mirror > 0");
+    if (refr >= 0)
+        cj_stage_report_set(r, ray_stage[TR_REFRACT], 0, "material %d has transmission > 0", refr);
+    else
+        cj_stage_report_set(r, ray_stage[TR_REFRACT], 0, "no material has transmission > 0");
+    if (through >= 0)
+        cj_stage_report_set(r, ray_stage[TR_THROUGH], 0, "material %d has opacity < 1", through);
+    else
+        cj_stage_report_set(r, ray_stage[TR_THROUGH], 0, "every material is opaque");
+    if (indirect == 0)
+        cj_stage_report_set(r, ray_stage[TR_INDIRECT], 0,
+                            "indirect_samples 0: no diffuse interreflection");
+    else if (diffuse < 0)
+        cj_stage_report_set(r, ray_stage[TR_INDIRECT], 0, "no material has kd > 0");
+    else
+        cj_stage_report_set(r, ray_stage[TR_INDIRECT], 0,
+                            "%d cosine-weighted ray(s) per diffuse hit (material %d)", indirect,
+                            diffuse);
+    cj_stage_report_stage(r, "patch_rays");
     if (tex >= 0)
         cj_stage_report_set(r, "textures", 1, "material %d has a texture", tex);
     else
@@ -224,156 +184,175 @@ static void report_stages(cj_stage_report *r, const cj_scene *scene, const tr_sc
                         (planes & CJ_IMAGE_IDS) ? "ids plane asked for" : "no ids plane asked for");
 }
 
-cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, unsigned planes,
-                          const cj_allocator *alloc, cj_render_image **out,
-                          cj_stage_report *report) {
-    return cj_render_trace_ex(scene, opt, NULL, planes, alloc, out, report);
+/* The traced scene's stage, recorded when it is built. */
+static void report_build(cj_stage_report *r, const tr_scene *ts, double build_s, size_t bvh_reused,
+                         size_t bvh_built) {
+    cj_stage *s = cj_stage_report_set(r, "build_bvh", 1, "%zu objects traced", ts->nobj);
+    if (!s) return;
+    s->in = ts->nobj;
+    s->out = ts->top ? ts->top->node_count : 0;
+    strcpy(s->unit_in, "objects");
+    strcpy(s->unit_out, "nodes");
+    s->seconds = build_s;
+    cj_stage_add_value(s, "bvh_reused", (double)bvh_reused);
+    cj_stage_add_value(s, "bvh_built", (double)bvh_built);
 }
 
-cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt,
-                             const cj_trace_options *topt, unsigned planes,
-                             const cj_allocator *alloc, cj_render_image **out,
-                             cj_stage_report *report) {
-    double t_start = cj_render_now();
-    cj_status st = cj_scene_check(scene);
-    if (st) return st;
-    cj_render_options o = opt ? *opt : cj_render_options_default();
-    const cj_scene_settings *ss = cj_scene_settings_get(scene);
-    int w = o.width ? o.width : ss->width, h = o.height ? o.height : ss->height;
-    int spp = o.spp ? o.spp : ss->spp;
-    if (spp < 1 || spp > 65536)
-        return cj_fail(CJ_ERR_RANGE, "samples per pixel %d outside 1..65536", spp);
-    if (o.threads < 0) return cj_fail(CJ_ERR_RANGE, "thread count %d must be >= 0", o.threads);
-    if (o.tile_size != 0 && o.tile_size < 8)
-        return cj_fail(CJ_ERR_RANGE, "tile size %d must be 0 or >= 8", o.tile_size);
-    int max_depth = o.max_depth ? o.max_depth : ss->max_depth;
-    if (max_depth < 0 || max_depth > 64)
-        return cj_fail(CJ_ERR_RANGE, "max depth %d outside 0..64", max_depth);
-    double ptol = topt ? topt->patch_tolerance : 0.0;
-    if (!(ptol == 0.0 || (ptol > 0.0 && ptol <= 1.0)))
-        return cj_fail(CJ_ERR_RANGE, "patch tolerance %g outside (0, 1]", ptol);
-    int indirect = topt ? topt->indirect_samples : 0;
-    if (indirect < 0 || indirect > 4096)
-        return cj_fail(CJ_ERR_RANGE, "indirect samples %d outside 0..4096", indirect);
-    cj_render_image *img = NULL;
-    st = cj_render_image_create(w, h, planes, alloc, &img);
-    if (st) return st;
-    tr_scene ts;
-    double t0 = cj_render_now();
-    st = tr_scene_build(scene, alloc, &ts);
-    double build_s = cj_render_now() - t0;
-    if (st) {
-        cj_render_image_destroy(img);
-        return st;
+/* The rays cast, summed over the workers: a ray stage ran when rays of its kind were cast. */
+static void report_rays(cj_stage_report *r, const tr_counts *c) {
+    for (int k = 0; k < TR_KINDS; k++) {
+        cj_stage *s = cj_stage_report_stage(r, ray_stage[k]);
+        if (!s) continue;
+        s->ran = c->cast[k] > 0;
+        s->in = c->cast[k];
+        s->out = c->hit[k];
+        strcpy(s->unit_in, "rays");
+        strcpy(s->unit_out, "hits");
+        s->seconds = c->seconds[k];
     }
-    if (ptol > 0.0)
-        for (size_t i = 0; i < ts.nobj; i++) ts.objs[i].tol *= ptol / 1e-7;
-    tr_lights lights;
-    memset(&lights, 0, sizeof lights);
-    lights.unlit = cj_scene_light_count(scene) == 0;
+    cj_stage *s =
+        cj_stage_report_set(r, "patch_rays", c->patch_rays > 0, "%s",
+                            c->patch_rays ? "patches intersected directly" : "no patch was hit");
+    if (s) {
+        s->in = c->patch_rays;
+        strcpy(s->unit_in, "hits");
+        cj_stage_add_value(s, "max_err", c->patch_max_err);
+    }
+}
+
+/* The frame's settings: the options over the scene's. */
+typedef struct trace_settings {
+    int w, h, spp, max_depth, indirect, tile, threads;
+    double ptol;
+} trace_settings;
+
+static cj_status resolve(const cj_renderer *r, const cj_scene *scene, trace_settings *t) {
+    const cj_render_options *o = &r->opt.render;
+    const cj_scene_settings *ss = cj_scene_settings_get(scene);
+    t->w = o->width ? o->width : ss->width;
+    t->h = o->height ? o->height : ss->height;
+    t->spp = o->spp ? o->spp : ss->spp;
+    if (t->spp < 1 || t->spp > 65536)
+        return cj_fail(CJ_ERR_RANGE, "samples per pixel %d outside 1..65536", t->spp);
+    t->max_depth = o->max_depth ? o->max_depth : ss->max_depth;
+    if (t->max_depth < 0 || t->max_depth > 64)
+        return cj_fail(CJ_ERR_RANGE, "max depth %d outside 0..64", t->max_depth);
+    t->ptol = r->opt.trace.patch_tolerance;
+    t->indirect = r->opt.trace.indirect_samples;
+    t->tile = o->tile_size ? o->tile_size : 32;
+    t->threads = o->threads;
+    return CJ_OK;
+}
+
+/* Ambient light summed; the other lights with intensity > 0 (at most TR_MAX_LIGHTS). */
+static cj_status gather_lights(const cj_scene *scene, tr_lights *lights) {
+    memset(lights, 0, sizeof *lights);
+    lights->unlit = cj_scene_light_count(scene) == 0;
     for (size_t i = 0; i < cj_scene_light_count(scene); i++) {
         const cj_light *l = cj_scene_light(scene, (int)i);
         if (l->kind == CJ_LIGHT_AMBIENT) {
-            lights.ia.r += l->color.r * l->intensity;
-            lights.ia.g += l->color.g * l->intensity;
-            lights.ia.b += l->color.b * l->intensity;
+            lights->ia.r += l->color.r * l->intensity;
+            lights->ia.g += l->color.g * l->intensity;
+            lights->ia.b += l->color.b * l->intensity;
         } else if (l->intensity > 0) {
-            if (lights.count == TR_MAX_LIGHTS) {
-                tr_scene_free(&ts);
-                cj_render_image_destroy(img);
+            if (lights->count == TR_MAX_LIGHTS)
                 return cj_fail(CJ_ERR_CAP, "ray tracer: more than %d lights with intensity > 0",
                                TR_MAX_LIGHTS);
-            }
-            lights.light[lights.count++] = l;
+            lights->light[lights->count++] = l;
         }
     }
+    return CJ_OK;
+}
+
+static void sum_counts(const tr_counts *per, int n, tr_counts *sum) {
+    memset(sum, 0, sizeof *sum);
+    for (int i = 0; i < n; i++) {
+        for (int k = 0; k < TR_KINDS; k++) {
+            sum->cast[k] += per[i].cast[k];
+            sum->hit[k] += per[i].hit[k];
+            sum->seconds[k] += per[i].seconds[k];
+        }
+        sum->patch_rays += per[i].patch_rays;
+        if (per[i].patch_max_err > sum->patch_max_err) sum->patch_max_err = per[i].patch_max_err;
+    }
+}
+
+cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
+                          cj_render_image **image, cj_stage_report *R) {
+    const cj_scene *scene = rs->scene;
+    trace_settings set;
+    memset(&set, 0, sizeof set);
+    cj_status st = resolve(r, scene, &set);
+    if (st) return st;
+    cj_rtarget target;
+    st = cj_rtarget_acquire(r, set.w, set.h, planes, image, &target);
+    if (st) return st;
+    cj_render_image *img = target.img;
+    if (!target.fresh) { /* the planes a traced pixel may leave untouched */
+        size_t n = (size_t)set.w * (size_t)set.h;
+        if (img->ids) memset(img->ids, 0, n * sizeof *img->ids);
+        if (img->depth)
+            for (size_t i = 0; i < n; i++) img->depth[i] = 1.0f;
+    }
+    decide_stages(R, scene, set.spp, set.indirect, planes);
+    tr_scene ts;
+    size_t bvh_reused = 0, bvh_built = 0;
+    double t0 = cj_render_now();
+    st = tr_scene_build(rs, r->bvh, &r->alloc, &ts, &bvh_reused, &bvh_built);
+    double build_s = cj_render_now() - t0;
+    if (r->bvh) tr_bvh_cache_sweep(r->bvh);
+    if (st) {
+        cj_rtarget_finish(&target, image, st);
+        return st;
+    }
+    report_build(R, &ts, build_s, bvh_reused, bvh_built);
+    if (set.ptol > 0.0)
+        for (size_t i = 0; i < ts.nobj; i++) ts.objs[i].tol *= set.ptol / 1e-7;
+    tr_lights lights;
+    st = gather_lights(scene, &lights);
     tr_job j;
     memset(&j, 0, sizeof j);
     j.s = &ts;
     j.lights = &lights;
     j.cam = cj_scene_camera(scene);
-    cj_camera_world_to_clip(j.cam, (double)w / h, &j.clip);
+    cj_camera_world_to_clip(j.cam, (double)set.w / set.h, &j.clip);
     j.img = img;
-    j.w = w;
-    j.h = h;
-    j.spp = spp;
-    j.strata = (int)floor(sqrt((double)spp) + 0.5);
-    j.random = topt ? topt->random_sampling != 0 : 0;
-    j.max_depth = max_depth;
-    j.indirect = indirect;
-    j.seed = o.use_seed ? o.seed : ss->seed;
-    j.bg = ss->background;
-    j.tile = o.tile_size ? o.tile_size : 32;
-    j.tiles_x = (w + j.tile - 1) / j.tile;
-    j.ntiles = j.tiles_x * ((h + j.tile - 1) / j.tile);
-    int nth = o.threads;
-    if (nth == 0) {
-        long nc = sysconf(_SC_NPROCESSORS_ONLN);
-        nth = nc > 0 ? (int)nc : 1;
+    j.w = set.w;
+    j.h = set.h;
+    j.spp = set.spp;
+    j.strata = (int)floor(sqrt((double)set.spp) + 0.5);
+    j.random = r->opt.trace.random_sampling != 0;
+    j.max_depth = set.max_depth;
+    j.indirect = set.indirect;
+    j.seed = r->opt.render.use_seed ? r->opt.render.seed : cj_scene_settings_get(scene)->seed;
+    j.bg = cj_scene_settings_get(scene)->background;
+    j.tile = set.tile;
+    j.tiles_x = (set.w + j.tile - 1) / j.tile;
+    j.ntiles = j.tiles_x * ((set.h + j.tile - 1) / j.tile);
+    int nth = cj_rpool_plan(set.threads, j.ntiles), pool_reused = 0;
+    if (!st) st = cj_renderer_pool(r, nth, &pool_reused);
+    if (!st && nth > cj_rpool_threads(r->pool)) nth = cj_rpool_threads(r->pool);
+    tr_counts *counts = cj_ralloc(&r->alloc, sizeof *counts * (size_t)nth);
+    j.shade = cj_ralloc(&r->alloc, sizeof *j.shade * (size_t)nth);
+    if (!st && (!counts || !j.shade)) st = cj_fail(CJ_ERR_NOMEM, "ray tracer: out of memory");
+    if (!st) {
+        memset(counts, 0, sizeof *counts * (size_t)nth);
+        for (int i = 0; i < nth; i++) shade_init(&j, &counts[i], &j.shade[i]);
+        cj_rprogress pg;
+        cj_rprogress_init(&pg, &r->opt.render, (uint64_t)j.ntiles);
+        if (cj_rpool_run(r->pool, j.ntiles, nth, tile_task, &j, &pg))
+            st = cj_fail(CJ_ERR_CANCELLED, "ray tracer: cancelled by the progress callback");
+        cj_rprogress_destroy(&pg);
     }
-    if (nth > j.ntiles) nth = j.ntiles;
-    if (nth > 256) nth = 256;
-    tr_counts *counts = cj_ralloc(&ts.alloc, sizeof *counts * (size_t)nth);
-    pthread_t *th = cj_ralloc(&ts.alloc, sizeof *th * (size_t)nth);
-    void **args = cj_ralloc(&ts.alloc, sizeof *args * 2 * (size_t)nth);
-    if (!counts || !th || !args) {
-        cj_rfree(&ts.alloc, counts);
-        cj_rfree(&ts.alloc, th);
-        cj_rfree(&ts.alloc, args);
-        tr_scene_free(&ts);
-        cj_render_image_destroy(img);
-        return cj_fail(CJ_ERR_NOMEM, "ray tracer: out of memory");
+    if (!st) {
+        tr_counts sum;
+        sum_counts(counts, nth, &sum);
+        report_rays(R, &sum);
+        cj_renderer_report_frame(r, R, nth, pool_reused, -1, !target.fresh);
     }
-    memset(counts, 0, sizeof *counts * (size_t)nth);
-    pthread_mutex_init(&j.lock, NULL);
-    cj_rprogress pg;
-    cj_rprogress_init(&pg, &o, (uint64_t)j.ntiles);
-    j.progress = &pg;
-    int started = 0;
-    for (int i = 0; i < nth; i++) {
-        args[2 * i] = &j;
-        args[2 * i + 1] = &counts[i];
-        if (i == 0) continue;
-        if (pthread_create(&th[i], NULL, worker, &args[2 * i]) == 0)
-            started++;
-        else
-            break;
-    }
-    worker(&args[0]);
-    for (int i = 1; i <= started; i++) pthread_join(th[i], NULL);
-    pthread_mutex_destroy(&j.lock);
-    int cancelled = cj_rprogress_stopped(&pg);
-    cj_rprogress_destroy(&pg);
-    if (cancelled) {
-        cj_rfree(&ts.alloc, counts);
-        cj_rfree(&ts.alloc, th);
-        cj_rfree(&ts.alloc, args);
-        tr_scene_free(&ts);
-        cj_render_image_destroy(img);
-        return cj_fail(CJ_ERR_CANCELLED, "ray tracer: cancelled by the progress callback");
-    }
-    tr_counts sum;
-    memset(&sum, 0, sizeof sum);
-    for (int i = 0; i < nth; i++)
-        for (int k = 0; k < TR_KINDS; k++) {
-            sum.cast[k] += counts[i].cast[k];
-            sum.hit[k] += counts[i].hit[k];
-            sum.seconds[k] += counts[i].seconds[k];
-        }
-    for (int i = 0; i < nth; i++) {
-        sum.patch_rays += counts[i].patch_rays;
-        if (counts[i].patch_max_err > sum.patch_max_err)
-            sum.patch_max_err = counts[i].patch_max_err;
-    }
-    if (report) {
-        cj_stage_report_init(report, "trace");
-        report_stages(report, scene, &ts, &sum, spp, indirect, build_s, (int)planes);
-        report->total_seconds = cj_render_now() - t_start;
-    }
-    cj_rfree(&ts.alloc, counts);
-    cj_rfree(&ts.alloc, th);
-    cj_rfree(&ts.alloc, args);
+    cj_rfree(&r->alloc, counts);
+    cj_rfree(&r->alloc, j.shade);
     tr_scene_free(&ts);
-    *out = img;
-    return CJ_OK;
+    cj_rtarget_finish(&target, image, st);
+    return st;
 }

@@ -121,6 +121,15 @@ static void test_frames_and_checkpoints(void **state) {
     assert_non_null(strstr(r.out, "\"name\": \"flocking\", \"ran\": false"));
     printf("stage report of frame 9: spring forces and particle pass ran, flocking left out\n");
     cj_cli_result_free(&r);
+    /* one renderer for the animation: a line of each frame's tessellation cache hits/misses */
+    run("a.json --frames 0:3 -o rep_%04d.png --stage-report --quiet", 0, &r);
+    const char *frames = strstr(r.out, "{\"frames\": [{\"frame\": 0, \"cache_hits\": 0, ");
+    assert_non_null(frames);
+    int rows = 0;
+    for (const char *p = frames; (p = strstr(p, "\"cache_misses\"")) != NULL; ++p) ++rows;
+    assert_int_equal(rows, 4);
+    printf("--stage-report with rendering: one reuse row per frame (4 rows, frame 0 cold)\n");
+    cj_cli_result_free(&r);
 }
 
 static void expect_bad(const char *doc, const char *args, const char *needle) {

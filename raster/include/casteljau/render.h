@@ -106,7 +106,8 @@ typedef struct cj_render_options {
 cj_render_options cj_render_options_default(void);
 
 /* Renders the scene with the rasterizer into *out, created here with the planes `planes`
- * (CJ_IMAGE_*) at the size the scene/options ask for (free with cj_render_image_destroy).
+ * (CJ_IMAGE_*) at the size the scene/options ask for (free with cj_render_image_destroy): a
+ * renderer used once (casteljau/renderer.h keeps one across frames, with its caches).
  * report may be NULL. Status: whatever cj_scene_check reports; CJ_ERR_RANGE (spp not 1, 4 or
  * 16, a size out of range), CJ_ERR_ARGUMENT (an image texture without pixels), CJ_ERR_NOMEM,
  * CJ_ERR_CAP (tessellation asked for more than the triangle cap). *out is set only on

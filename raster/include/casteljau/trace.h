@@ -54,7 +54,8 @@
 extern "C" {
 #endif
 
-/* Traces the scene into *out (created here with `planes`). Options as cj_render_raster's
+/* Traces the scene into *out (created here with `planes`): a renderer used once
+ * (casteljau/renderer.h keeps one across frames, with its BVHs). Options as cj_render_raster's
  * (spp: any >= 1; 0 = the scene's); report may be NULL. Status: whatever cj_scene_check
  * reports; CJ_ERR_RANGE (a size or spp out of range), CJ_ERR_ARGUMENT (an image texture
  * without pixels), CJ_ERR_DEGREE (a patch above CJ_RAY_PATCH_MAX_DEGREE), CJ_ERR_SINGULAR (a

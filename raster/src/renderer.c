@@ -1,0 +1,315 @@
+/* The renderer object (casteljau/renderer.h): what it owns across frames, the draw that runs
+ * the scene pass and hands the frame to a back end, and the one-shot calls as renderers used
+ * once. */
+#include "renderer_internal.h"
+
+#include "casteljau/mesh.h"
+#include "error_internal.h"
+#include "render_pipe.h"
+#include "trace_internal.h"
+
+#include <assert.h>
+#include <math.h>
+#include <string.h>
+
+cj_renderer_options cj_renderer_options_default(void) {
+    cj_renderer_options o;
+    memset(&o, 0, sizeof o);
+    o.render = cj_render_options_default();
+    return o;
+}
+
+/* The checks that need no scene; each back end checks the rest against the scene's settings. */
+static cj_status check_options(const cj_renderer_options *o) {
+    const cj_render_options *ro = &o->render;
+    if (ro->threads < 0) return cj_fail(CJ_ERR_RANGE, "thread count %d must be >= 0", ro->threads);
+    if (ro->tile_size != 0 && ro->tile_size < 8)
+        return cj_fail(CJ_ERR_RANGE, "tile size %d must be 0 or >= 8", ro->tile_size);
+    if (ro->spp < 0) return cj_fail(CJ_ERR_RANGE, "samples per pixel %d must be >= 0", ro->spp);
+    if (ro->width < 0 || ro->height < 0)
+        return cj_fail(CJ_ERR_RANGE, "image size %d x %d must be >= 0", ro->width, ro->height);
+    if (!(ro->tol_px >= 0.0) || !isfinite(ro->tol_px))
+        return cj_fail(CJ_ERR_RANGE, "tessellation tolerance %g px must be >= 0 and finite",
+                       ro->tol_px);
+    if (ro->max_depth < 0 || ro->max_depth > 64)
+        return cj_fail(CJ_ERR_RANGE, "max depth %d outside 0..64", ro->max_depth);
+    double pt = o->trace.patch_tolerance;
+    if (!(pt == 0.0 || (pt > 0.0 && pt <= 1.0)))
+        return cj_fail(CJ_ERR_RANGE, "patch tolerance %g outside (0, 1]", pt);
+    if (o->trace.indirect_samples < 0 || o->trace.indirect_samples > 4096)
+        return cj_fail(CJ_ERR_RANGE, "indirect samples %d outside 0..4096",
+                       o->trace.indirect_samples);
+    return CJ_OK;
+}
+
+static cj_status create(const cj_renderer_options *opt, const cj_allocator *alloc, int caching,
+                        cj_renderer **out) {
+    assert(out);
+    cj_renderer_options o = opt ? *opt : cj_renderer_options_default();
+    cj_status st = check_options(&o);
+    if (st) return st;
+    cj_allocator a = cj_render_alloc(alloc);
+    cj_renderer *r = cj_ralloc(&a, sizeof *r);
+    if (!r) return cj_fail(CJ_ERR_NOMEM, "renderer");
+    memset(r, 0, sizeof *r);
+    r->alloc = a;
+    r->opt = o;
+    r->caching = caching;
+    st = cj_raster_workspace_create(&a, &r->ws);
+    if (!st && caching) st = cj_render_cache_create(&a, &r->cache);
+    if (!st && caching) st = tr_bvh_cache_create(&a, &r->bvh);
+    if (st) {
+        cj_renderer_destroy(r);
+        return st;
+    }
+    *out = r;
+    return CJ_OK;
+}
+
+cj_status cj_renderer_create(const cj_renderer_options *opt, const cj_allocator *alloc,
+                             cj_renderer **out) {
+    return create(opt, alloc, 1, out);
+}
+
+cj_status cj_renderer_create_once(const cj_renderer_options *opt, const cj_allocator *alloc,
+                                  cj_renderer **out) {
+    return create(opt, alloc, 0, out);
+}
+
+static void free_shade_buffers(cj_renderer *r) {
+    for (int i = 0; i < r->shade_workers; ++i) {
+        cj_rfree(&r->alloc, r->color[i]);
+        cj_rfree(&r->alloc, r->order[i]);
+    }
+    cj_rfree(&r->alloc, r->color);
+    cj_rfree(&r->alloc, r->order);
+    cj_rfree(&r->alloc, r->count);
+    r->color = NULL;
+    r->order = NULL;
+    r->count = NULL;
+    r->shade_workers = 0;
+    r->shade_samples = 0;
+}
+
+void cj_renderer_destroy(cj_renderer *r) {
+    if (!r) return;
+    cj_rpool_destroy(r->pool);
+    cj_raster_workspace_destroy(r->ws);
+    cj_render_cache_destroy(r->cache);
+    tr_bvh_cache_destroy(r->bvh);
+    free_shade_buffers(r);
+    cj_allocator a = r->alloc;
+    cj_rfree(&a, r);
+}
+
+cj_status cj_renderer_set_options(cj_renderer *r, const cj_renderer_options *opt) {
+    assert(r && opt);
+    cj_status st = check_options(opt);
+    if (!st) r->opt = *opt;
+    return st;
+}
+
+const cj_renderer_options *cj_renderer_options_get(const cj_renderer *r) {
+    assert(r);
+    return &r->opt;
+}
+
+cj_status cj_renderer_pool(cj_renderer *r, int workers, int *reused) {
+    *reused = r->pool && cj_rpool_threads(r->pool) >= workers;
+    if (*reused) return CJ_OK;
+    cj_rpool_destroy(r->pool);
+    r->pool = NULL;
+    return cj_rpool_create(workers, &r->alloc, &r->pool);
+}
+
+cj_status cj_renderer_shade_buffers(cj_renderer *r, int workers, size_t samples, int *reused) {
+    *reused = workers <= r->shade_workers && samples <= r->shade_samples;
+    if (*reused) {
+        memset(r->count, 0, sizeof(cj_rcount) * (size_t)r->shade_workers);
+        return CJ_OK;
+    }
+    if (workers < r->shade_workers) workers = r->shade_workers;
+    if (samples < r->shade_samples) samples = r->shade_samples;
+    free_shade_buffers(r);
+    r->color = cj_ralloc(&r->alloc, sizeof(float *) * (size_t)workers);
+    r->order = cj_ralloc(&r->alloc, sizeof(uint32_t *) * (size_t)workers);
+    r->count = cj_ralloc(&r->alloc, sizeof(cj_rcount) * (size_t)workers);
+    if (!r->color || !r->order || !r->count) {
+        free_shade_buffers(r);
+        return cj_fail(CJ_ERR_NOMEM, "per-thread tables");
+    }
+    memset(r->color, 0, sizeof(float *) * (size_t)workers);
+    memset(r->order, 0, sizeof(uint32_t *) * (size_t)workers);
+    memset(r->count, 0, sizeof(cj_rcount) * (size_t)workers);
+    r->shade_workers = workers;
+    r->shade_samples = samples;
+    for (int i = 0; i < workers; ++i) {
+        r->color[i] = cj_ralloc(&r->alloc, sizeof(float) * 4 * samples);
+        r->order[i] = cj_ralloc(&r->alloc, sizeof(uint32_t) * samples);
+        if (!r->color[i] || !r->order[i]) {
+            free_shade_buffers(r);
+            return cj_fail(CJ_ERR_NOMEM, "tile buffers of %zu samples", samples);
+        }
+    }
+    return CJ_OK;
+}
+
+cj_render_cache *cj_renderer_cache(const cj_renderer *r) {
+    return r->opt.render.cache ? r->opt.render.cache : r->cache;
+}
+
+cj_status cj_rtarget_acquire(cj_renderer *r, int width, int height, unsigned planes,
+                             cj_render_image *const *image, cj_rtarget *t) {
+    const cj_render_image *old = *image;
+    if (old && old->width == width && old->height == height &&
+        (old->ids != NULL) == ((planes & CJ_IMAGE_IDS) != 0) &&
+        (old->depth != NULL) == ((planes & CJ_IMAGE_DEPTH) != 0)) {
+        t->img = *image;
+        t->fresh = 0;
+        return CJ_OK;
+    }
+    t->fresh = 1;
+    t->img = NULL;
+    return cj_render_image_create(width, height, planes, &r->alloc, &t->img);
+}
+
+void cj_rtarget_finish(cj_rtarget *t, cj_render_image **image, cj_status st) {
+    if (!t->fresh) return;
+    if (st) {
+        cj_render_image_destroy(t->img);
+        return;
+    }
+    if (*image != t->img) cj_render_image_destroy(*image);
+    *image = t->img;
+}
+
+void cj_renderer_report_frame(const cj_renderer *r, cj_stage_report *R, int pool_workers,
+                              int pool_reused, int buffers_reused, int image_reused) {
+    cj_stage *s = cj_stage_report_set(R, "frame", 1, "frame %llu of this renderer",
+                                      (unsigned long long)r->frame);
+    cj_stage_add_value(s, "frame", (double)r->frame);
+    cj_stage_add_value(s, "pool_workers", pool_workers);
+    cj_stage_add_value(s, "pool_reused", pool_reused);
+    if (buffers_reused >= 0) cj_stage_add_value(s, "buffers_reused", buffers_reused);
+    cj_stage_add_value(s, "image_reused", image_reused);
+}
+
+cj_status cj_renderer_draw(cj_renderer *r, const cj_scene *scene, cj_backend backend,
+                           unsigned planes, cj_render_image **image, cj_stage_report *report) {
+    assert(r && scene && image);
+    double t0 = cj_render_now();
+    cj_stage_report *R = &r->report;
+    cj_stage_report_init(R, backend == CJ_BACKEND_TRACE ? "trace" : "raster");
+    cj_status st = cj_scene_check(scene);
+    if (st) return st;
+    ++r->frame;
+    cj_rscene rs;
+    st = cj_rscene_prepare(scene, &r->alloc, &rs);
+    if (st) return st;
+    if (backend == CJ_BACKEND_TRACE)
+        st = cj_rtrace_frame(r, &rs, planes, image, R);
+    else
+        st = cj_rraster_frame(r, &rs, planes, image, R);
+    cj_rscene_free(&rs);
+    if (!st) R->total_seconds = cj_render_now() - t0;
+    if (report) *report = *R;
+    return st;
+}
+
+const cj_stage_report *cj_renderer_report(const cj_renderer *r) {
+    assert(r);
+    return &r->report;
+}
+
+/* ---- the one-shot calls: a renderer used once ---------------------------------------------- */
+
+static cj_status once(const cj_scene *scene, const cj_render_options *opt,
+                      const cj_trace_options *topt, cj_backend backend, unsigned planes,
+                      const cj_allocator *alloc, cj_render_image **out, cj_stage_report *report) {
+    assert(scene && out);
+    cj_renderer_options ro = cj_renderer_options_default();
+    if (opt) ro.render = *opt;
+    if (topt) ro.trace = *topt;
+    cj_renderer *r = NULL;
+    cj_status st = cj_renderer_create_once(&ro, alloc, &r);
+    if (st) return st;
+    cj_render_image *img = NULL;
+    st = cj_renderer_draw(r, scene, backend, planes, &img, report);
+    cj_renderer_destroy(r);
+    if (!st) *out = img;
+    return st;
+}
+
+cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, unsigned planes,
+                           const cj_allocator *alloc, cj_render_image **out,
+                           cj_stage_report *report) {
+    return once(scene, opt, NULL, CJ_BACKEND_RASTER, planes, alloc, out, report);
+}
+
+cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, unsigned planes,
+                          const cj_allocator *alloc, cj_render_image **out,
+                          cj_stage_report *report) {
+    return once(scene, opt, NULL, CJ_BACKEND_TRACE, planes, alloc, out, report);
+}
+
+cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt,
+                             const cj_trace_options *topt, unsigned planes,
+                             const cj_allocator *alloc, cj_render_image **out,
+                             cj_stage_report *report) {
+    return once(scene, opt, topt, CJ_BACKEND_TRACE, planes, alloc, out, report);
+}
+
+cj_status cj_renderer_scene_mesh(cj_renderer *r, const cj_scene *scene, cj_mesh **out) {
+    assert(r && scene && out);
+    cj_status st = cj_scene_check(scene);
+    if (st) return st;
+    const cj_scene_settings *ss = cj_scene_settings_get(scene);
+    const cj_render_options *opt = &r->opt.render;
+    int W = opt->width ? opt->width : ss->width;
+    int H = opt->height ? opt->height : ss->height;
+    double tol = opt->tol_px != 0.0 ? opt->tol_px : ss->tol_px;
+    if (W < 1 || H < 1 || !isfinite(tol) || !(tol > 0.0))
+        return cj_fail(CJ_ERR_RANGE, "image size %d x %d or tolerance %g px out of range", W, H,
+                       tol);
+    cj_rview view;
+    st = cj_rview_init(cj_scene_camera(scene), W, H, &view);
+    if (st) return st;
+    cj_rscene rs;
+    st = cj_rscene_prepare(scene, &r->alloc, &rs);
+    if (st) return st;
+    cj_rbuild b;
+    st = cj_rbuild_scene(&rs, &view, tol, CJ_RB_NORMALS | CJ_RB_UVS, NULL, 1, cj_renderer_cache(r),
+                         &r->alloc, &b);
+    cj_rscene_free(&rs);
+    if (st) return st;
+    cj_mesh *m = NULL;
+    st = cj_mesh_create(&r->alloc, &m);
+    if (!st) st = cj_mesh_reserve(m, b.vertex_count, b.tri_count);
+    for (size_t v = 0; v < b.vertex_count && !st; ++v) {
+        double n[3] = {b.nrm[3 * v], b.nrm[3 * v + 1], b.nrm[3 * v + 2]};
+        double uv[2] = {b.uv[2 * v], b.uv[2 * v + 1]};
+        st = cj_mesh_add_vertex(m, b.pos + 3 * v, n, uv, NULL);
+    }
+    for (size_t t = 0; t < b.tri_count && !st; ++t)
+        st = cj_mesh_add_triangle(m, b.tris[3 * t], b.tris[3 * t + 1], b.tris[3 * t + 2],
+                                  (int32_t)b.objects[b.tobj[t]].id);
+    cj_rbuild_free(&b);
+    if (st) {
+        cj_mesh_destroy(m);
+        return st;
+    }
+    *out = m;
+    return CJ_OK;
+}
+
+cj_status cj_render_scene_mesh(const cj_scene *scene, const cj_render_options *opt,
+                               const cj_allocator *alloc, cj_mesh **out) {
+    cj_renderer_options ro = cj_renderer_options_default();
+    if (opt) ro.render = *opt;
+    cj_renderer *r = NULL;
+    cj_status st = cj_renderer_create_once(&ro, alloc, &r);
+    if (st) return st;
+    st = cj_renderer_scene_mesh(r, scene, out);
+    cj_renderer_destroy(r);
+    return st;
+}
