@@ -125,7 +125,7 @@ cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double
  * the B-spline with the given (double) knots, points and t.
  * Polynomial B-spline: with M_k = Σ |d_i,k| N_{i,p}(t) and D_k = max |d_i,k| over the span's
  * p+1 points, u = 2^-53, eta = 2^-1074:
- *     |ĉ_k − c_k| <= gamma(5p) M_k + 4 p eta (1 + D_k).
+ *     |ĉ_k − c_k| <= gamma(5p) M_k + 4 (p+1) eta (1 + D_k).
  * Derivation: each of the p levels of de Boor forms d' = β d_{i−1} + α d_i with α, β ≥ 0 (t is
  * in the span), each of α, β computed with 3 roundings (two subtractions of doubles, one
  * division), the two products and the sum add 3 more: every term of level r carries a factor
@@ -136,8 +136,9 @@ cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double
  * 2 eta D_k (coefficients), carried by convex combinations: the second term, doubled for the
  * (1+gamma) growth.
  * NURBS: with the homogeneous bounds E_k (coordinate k of A = Σ w_i d_i N_i) and E_w (of
- * w = Σ w_i N_i), ŵ the computed weight and ĉ_k the computed value,
- *     |ĉ_k − c_k| <= (E_k + (|ĉ_k| + u|ĉ_k|) E_w) / (ŵ − E_w) + u |ĉ_k|      (if ŵ > 2 E_w).
+ * w = Σ w_i N_i; gamma(5p+1) there, for the rounding of w_i d_i), ŵ the computed weight sum and q_k
+ * = |Â_k/ŵ|: |ĉ_k − c_k| <= u q_k + (E_k + C_k E_w) / ŵ,   C_k = (q_k + E_k/ŵ) / (1 − E_w/ŵ) >=
+ * |c_k|, from Â/ŵ − A/w = ((Â − A) w − A (ŵ − w)) / (w ŵ) (requires ŵ > 2 E_w, else CJ_ERR_RANGE).
  * M_k is computed by de Boor on |d_i,k| and inflated by 1 + gamma(5p+8) so the computed bound
  * is an upper bound. Checked against an MPFR oracle (Cox–de Boor basis functions in 1024-bit
  * arithmetic) in tests/test_bspline_eval.c on random, repeated-knot, tiny-span, high-degree,
@@ -187,7 +188,8 @@ cj_status cj_bspline_elevate_count(const cj_bspline *c, int r, int *npts_out);
  * elevate each exactly (cj_bezier_elevate), join them and remove the p − m_j extra copies of
  * every interior knot again (exactly removable in exact arithmetic; *error, may be NULL,
  * receives the bound of the removals, a few rounding units of the coordinates). An unclamped
- * input comes out clamped over the same domain (the same curve there). Outputs sized by
+ * input comes out clamped over the same domain (the same curve there). Degree 0 is
+ * CJ_ERR_DEGREE and a jump (interior multiplicity p+1) CJ_ERR_ARGUMENT. Outputs sized by
  * cj_bspline_elevate_count: out_pts[npts_out*dim], out_w[npts_out] (NURBS), out_knots
  * [npts_out + p + r + 1]. Allocates its work space (CJ_ERR_NOMEM). */
 cj_status cj_bspline_elevate(const cj_bspline *c, int r, double *out_pts, double *out_w,
@@ -204,9 +206,10 @@ cj_status cj_bspline_bezier_count(const cj_bspline *c, int *npieces);
  *     cj_rbezier_view(p, dim, pts + j*(p+1)*dim, w + j*(p+1))       (NURBS; w must be given),
  * with c(t) = piece_j((t − breaks[j]) / (breaks[j+1] − breaks[j])). Bézier point i of the span
  * [a, b] is the blossom c[a^(p−i), b^i], computed by de Boor with level arguments (convex
- * combinations, same rounding model as cj_bspline_eval). The end point of piece j and the start
- * point of piece j+1 are bit-identical (the second is copied from the first), so polylines and
- * meshes built per piece join without gaps.
+ * combinations, same rounding model as cj_bspline_eval). Where the curve is continuous (the
+ * joint's knot has multiplicity <= p) the end point of piece j and the start point of piece j+1
+ * are bit-identical (the second is copied from the first), so polylines and meshes built per
+ * piece join without gaps; at a knot of multiplicity p+1 the pieces keep their own end points.
  * cap_pieces: capacity of the buffers in pieces (CJ_ERR_BUFFER if too small, nothing written);
  * breaks (may be NULL): npieces+1 values; *npieces (may be NULL) receives the count. w must be
  * non-NULL exactly for a NURBS (CJ_ERR_ARGUMENT otherwise). */
