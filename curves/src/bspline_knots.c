@@ -264,7 +264,13 @@ cj_status cj_bspline_remove_knot(const cj_bspline *c, double x, int r, double to
         cur = next;
         next = t;
     }
-    cj_bsp_h_to_view(&cur, out_pts, out_w, out_knots);
+    if (done > 0) {
+        cj_bsp_h_to_view(&cur, out_pts, out_w, out_knots);
+    } else { /* the input as it was, bit for bit (no round trip through w d / w) */
+        memcpy(out_pts, c->pts, sizeof(double) * (size_t)c->npts * (size_t)c->dim);
+        if (out_w) memcpy(out_w, c->weights, sizeof(double) * (size_t)c->npts);
+        memcpy(out_knots, c->knots, sizeof(double) * (size_t)nk);
+    }
     cj_bsp_h_free(&cur);
     cj_bsp_h_free(&next);
     cj_bsp_h_free(&scratch);

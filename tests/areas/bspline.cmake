@@ -6,3 +6,5 @@ target_include_directories(cj_test_bspline_oracle PUBLIC ${CMAKE_CURRENT_SOURCE_
 cj_warnings(cj_test_bspline_oracle)
 cj_add_test(test_bspline_eval SOURCES bspline/test_bspline_eval.c
   LIBS cj_test_bspline_oracle cj_test_oracle)
+cj_add_test(test_bspline_ops SOURCES bspline/test_bspline_ops.c
+  LIBS cj_test_bspline_oracle cj_test_oracle)
