@@ -5,13 +5,11 @@
 
 #include <assert.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
-cj_status cj_bspline_eval(const cj_bspline *c, double t, double *out) {
-    assert(out != NULL);
-    cj_status st = cj_bspline_check(c);
-    if (st) return st;
-    if ((st = cj_bsp_check_param(c, t, "parameter t"))) return st;
+void cj_bspline_eval_unchecked(const cj_bspline *c, double t, double *out) {
+    assert(t >= c->knots[c->degree] && t <= c->knots[c->npts]);
     const int p = c->degree, d = c->dim, hd = cj_bsp_hdim(c);
     const int s = cj_bsp_span(c, t);
     double loc[CJ_BSP_LOCAL];
@@ -22,6 +20,29 @@ cj_status cj_bspline_eval(const cj_bspline *c, double t, double *out) {
         for (int k = 0; k < d; ++k) out[k] = v[k] / v[d];
     else
         for (int k = 0; k < d; ++k) out[k] = v[k];
+}
+
+cj_status cj_bspline_eval(const cj_bspline *c, double t, double *out) {
+    assert(out != NULL);
+    cj_status st = cj_bspline_check(c);
+    if (st) return st;
+    if ((st = cj_bsp_check_param(c, t, "parameter t"))) return st;
+    cj_bspline_eval_unchecked(c, t, out);
+    return CJ_OK;
+}
+
+cj_status cj_bspline_eval_batch(const cj_bspline *c, const double *ts, size_t nt, double *out) {
+    assert((ts != NULL && out != NULL) || nt == 0);
+    cj_status st = cj_bspline_check(c);
+    if (st) return st;
+    for (size_t j = 0; j < nt; ++j) {
+        char what[48];
+        if (!isfinite(ts[j]) || ts[j] < c->knots[c->degree] || ts[j] > c->knots[c->npts]) {
+            snprintf(what, sizeof what, "parameter %zu", j);
+            return cj_bsp_check_param(c, ts[j], what);
+        }
+    }
+    for (size_t j = 0; j < nt; ++j) cj_bspline_eval_unchecked(c, ts[j], out + j * (size_t)c->dim);
     return CJ_OK;
 }
 

@@ -8,3 +8,4 @@ cj_add_test(test_bspline_eval SOURCES bspline/test_bspline_eval.c
   LIBS cj_test_bspline_oracle cj_test_oracle)
 cj_add_test(test_bspline_ops SOURCES bspline/test_bspline_ops.c
   LIBS cj_test_bspline_oracle cj_test_oracle)
+cj_add_test(test_bspline_fit SOURCES bspline/test_bspline_fit.c LIBS cj_test_bspline_oracle)

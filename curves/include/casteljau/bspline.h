@@ -110,6 +110,17 @@ cj_status cj_bspline_find_span(const cj_bspline *c, double t, int *span);
  * (t_{i+p+1−r} − t)/(t_{i+p+1−r} − t_i), so both are exact up to three roundings. */
 cj_status cj_bspline_eval(const cj_bspline *c, double t, double *out);
 
+/* cj_bspline_eval validates the whole curve on every call (O(npts) work: knots, points,
+ * weights), which dominates for long curves. For many evaluations of one curve:
+ *   - cj_bspline_eval_batch validates once, then evaluates ts[nt] (each in the domain, checked
+ *     before anything is written) into out[nt*dim], bit-identical to cj_bspline_eval;
+ *   - cj_bspline_eval_unchecked evaluates with no checks at all. CONTRACT (the caller's):
+ *     cj_bspline_check returned CJ_OK for this curve and nothing changed since, t is in the
+ *     domain [t_p, t_{n+1}] (not NaN), out holds dim doubles. Same result as cj_bspline_eval;
+ *     breaking the contract is undefined behaviour (debug builds assert the parameter). */
+cj_status cj_bspline_eval_batch(const cj_bspline *c, const double *ts, size_t nt, double *out);
+void cj_bspline_eval_unchecked(const cj_bspline *c, double t, double *out);
+
 /* Point and derivatives 0..kmax with respect to t: out[j*dim + k] = coordinate k of c^(j)(t),
  * j = 0..kmax (kmax in [0, CJ_BSPLINE_MAX_DERIV], else CJ_ERR_ARGUMENT); orders above p are
  * zero for a polynomial B-spline. Method: the j-th derivative of the span's local spline is the

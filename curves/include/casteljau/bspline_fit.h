@@ -47,7 +47,8 @@ cj_status cj_fit_params(const double *pts, int npts, int dim, cj_fit_param kind,
  * Q_k exactly up to the solver's rounding, and, when d_start / d_end (dim doubles each, or NULL)
  * are given, c'(0) = d_start, c'(1) = d_end. M = npts + (d_start != NULL) + (d_end != NULL)
  * control points into out_pts[M*dim], M + p + 1 knots into out_knots; *npts_out = M.
- * npts must be >= p + 1 − (number of end derivatives) and >= 2 (CJ_ERR_EMPTY otherwise).
+ * npts must be >= p + 1 − (number of end derivatives) and >= 2 (CJ_ERR_EMPTY otherwise); end
+ * derivatives need p >= 2 (CJ_ERR_DEGREE).
  * *residual (may be NULL) receives max_k |c(ū_k) − Q_k| measured by cj_bspline_eval.
  * CJ_ERR_SINGULAR if LAPACK reports a singular system (cannot happen with distinct parameters;
  * reported rather than assumed). */
@@ -73,8 +74,8 @@ cj_status cj_bspline_approximate(const double *pts, int npts, int dim, int degre
 
 /* The least-squares fit with exactly M control points (same rules as above, no search):
  * out_pts[M*dim], out_knots[M+p+1], *max_dev (may be NULL) the deviation at the data. */
-cj_status cj_bspline_lsq(const double *pts, int npts, int dim, int degree, cj_fit_param kind,
-                         int m, double *out_pts, double *out_knots, double *max_dev);
+cj_status cj_bspline_lsq(const double *pts, int npts, int dim, int degree, cj_fit_param kind, int m,
+                         double *out_pts, double *out_knots, double *max_dev);
 
 #ifdef __cplusplus
 }
