@@ -317,3 +317,51 @@ done:
     cj_bsp_h_free(&scratch);
     return st;
 }
+
+cj_status cj_bsp_h_decompose(const cj_bsp_h *src, double *pieces, double *breaks, int *npieces) {
+    const int p = src->p, hd = src->dim + src->rational, n1 = src->n1;
+    const double a = src->u[p], b = src->u[n1];
+    /* Insertions needed: every distinct breakpoint in [a, b] up to multiplicity p. */
+    int extra = 0;
+    for (int i = p; i <= n1; ++i)
+        if (i == p || src->u[i] != src->u[i - 1]) {
+            const int m = cj_bsp_multiplicity(src->u, n1 + p + 1, src->u[i]);
+            if (m < p) extra += p - m;
+        }
+    cj_bsp_h x = {0}, y = {0};
+    cj_status st = cj_bsp_h_alloc(&x, p, src->dim, src->rational, n1 + extra);
+    if (!st) st = cj_bsp_h_alloc(&y, p, src->dim, src->rational, n1 + extra);
+    if (st) {
+        cj_bsp_h_free(&x);
+        return st;
+    }
+    x.n1 = n1;
+    memcpy(x.h, src->h, sizeof(double) * (size_t)n1 * (size_t)hd);
+    memcpy(x.u, src->u, sizeof(double) * (size_t)(n1 + p + 1));
+    for (int i = p; i <= n1; ++i) {
+        if (i != p && src->u[i] == src->u[i - 1]) continue;
+        const double v = src->u[i];
+        if (v < a || v > b) continue;
+        for (int m = cj_bsp_multiplicity(x.u, x.n1 + p + 1, v); m < p; ++m) {
+            cj_bsp_insert_once(&x, v, &y);
+            cj_bsp_h t = x;
+            x = y;
+            y = t;
+        }
+    }
+    int np = 0;
+    for (int s = p; s < x.n1; ++s) {
+        if (!(x.u[s] < x.u[s + 1])) continue;
+        memcpy(pieces + (size_t)np * (size_t)((p + 1) * hd), x.h + (size_t)(s - p) * (size_t)hd,
+               sizeof(double) * (size_t)((p + 1) * hd));
+        if (breaks) {
+            breaks[np] = x.u[s];
+            breaks[np + 1] = x.u[s + 1];
+        }
+        ++np;
+    }
+    *npieces = np;
+    cj_bsp_h_free(&x);
+    cj_bsp_h_free(&y);
+    return CJ_OK;
+}

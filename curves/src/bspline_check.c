@@ -5,6 +5,28 @@
 #include <assert.h>
 #include <math.h>
 
+cj_status cj_bsp_check_knots(const double *knots, int npts, int p, const char *name) {
+    const int nk = npts + p + 1;
+    cj_status st = cj_check_finite(knots, (size_t)nk, name);
+    if (st) return st;
+    int run = 1;
+    for (int i = 1; i < nk; ++i) {
+        if (knots[i] < knots[i - 1])
+            return cj_fail(CJ_ERR_ARGUMENT,
+                           "%s %d (%.17g) is below %s %d (%.17g): knots must not decrease", name, i,
+                           knots[i], name, i - 1, knots[i - 1]);
+        run = knots[i] == knots[i - 1] ? run + 1 : 1;
+        if (run > p + 1)
+            return cj_fail(CJ_ERR_ARGUMENT,
+                           "%s %d (%.17g) has multiplicity %d, above degree + 1 = %d", name, i,
+                           knots[i], run, p + 1);
+    }
+    if (!(knots[p] < knots[npts]))
+        return cj_fail(CJ_ERR_DEGENERATE, "empty domain: %s %d equals %s %d (%.17g)", name, p, name,
+                       npts, knots[p]);
+    return CJ_OK;
+}
+
 cj_status cj_bspline_check(const cj_bspline *c) {
     assert(c != NULL);
     const int p = c->degree;
@@ -20,25 +42,9 @@ cj_status cj_bspline_check(const cj_bspline *c) {
         return cj_fail(CJ_ERR_EMPTY, "%d control points are too few for degree %d (need %d)",
                        c->npts, p, p + 1);
     assert(c->pts != NULL && c->knots != NULL);
-    const int nk = c->npts + p + 1;
-    cj_status st = cj_check_finite(c->knots, (size_t)nk, "knot");
+    cj_status st = cj_bsp_check_knots(c->knots, c->npts, p, "knot");
     if (st) return st;
     if ((st = cj_check_points(c->pts, (size_t)c->npts, c->dim, "control point"))) return st;
-    int run = 1;
-    for (int i = 1; i < nk; ++i) {
-        if (c->knots[i] < c->knots[i - 1])
-            return cj_fail(CJ_ERR_ARGUMENT,
-                           "knot %d (%.17g) is below knot %d (%.17g): knots must not decrease", i,
-                           c->knots[i], i - 1, c->knots[i - 1]);
-        run = c->knots[i] == c->knots[i - 1] ? run + 1 : 1;
-        if (run > p + 1)
-            return cj_fail(CJ_ERR_ARGUMENT,
-                           "knot %d (%.17g) has multiplicity %d, above degree + 1 = %d", i,
-                           c->knots[i], run, p + 1);
-    }
-    if (!(c->knots[p] < c->knots[c->npts]))
-        return cj_fail(CJ_ERR_DEGENERATE, "empty domain: knot %d equals knot %d (%.17g)", p,
-                       c->npts, c->knots[p]);
     if (c->weights) {
         if ((st = cj_check_finite(c->weights, (size_t)c->npts, "weight"))) return st;
         for (int i = 0; i < c->npts; ++i)

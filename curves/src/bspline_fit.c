@@ -100,38 +100,20 @@ static void clamp_ends(double *U, int p, int m) {
     }
 }
 
-cj_status cj_bspline_interpolate(const double *pts, int npts, int dim, int degree,
-                                 cj_fit_param kind, const double *d_start, const double *d_end,
-                                 double *out_pts, double *out_knots, int *npts_out,
-                                 double *residual) {
-    assert(pts != NULL && out_pts != NULL && out_knots != NULL && npts_out != NULL);
-    cj_status st = check_data(pts, npts, dim);
-    if (st) return st;
-    const int p = degree;
-    if (p < 1 || p > CJ_BSPLINE_MAX_DEGREE)
-        return cj_fail(CJ_ERR_DEGREE, "fitting degree %d is outside 1..%d", p,
-                       CJ_BSPLINE_MAX_DEGREE);
-    if (d_start && (st = cj_check_finite(d_start, (size_t)dim, "start derivative"))) return st;
-    if (d_end && (st = cj_check_finite(d_end, (size_t)dim, "end derivative"))) return st;
+cj_status cj_bsp_interp_solve(const double *pts, int npts, int dim, int p, const double *ts,
+                              const double *d_start, const double *d_end, double *out_pts,
+                              double *out_knots) {
     const int s0 = d_start != NULL, s1 = d_end != NULL, m = npts + s0 + s1;
-    if ((s0 || s1) && p < 2)
-        return cj_fail(CJ_ERR_DEGREE,
-                       "end derivatives need degree >= 2 (a polyline's end slopes are its "
-                       "chords)");
-    if (m < p + 1)
-        return cj_fail(CJ_ERR_EMPTY, "%d data points%s are too few for degree %d", npts,
-                       s0 || s1 ? " and end derivatives" : "", p);
-    double *ts = malloc(sizeof(double) * (size_t)npts);
+    cj_status st = CJ_OK;
     double *ext = malloc(sizeof(double) * (size_t)m);
     int *spans = malloc(sizeof(int) * (size_t)m);
     double *U = malloc(sizeof(double) * (size_t)(m + p + 1));
     double *ab = NULL, *rhs = malloc(sizeof(double) * (size_t)m * (size_t)dim);
     lapack_int *ipiv = malloc(sizeof(lapack_int) * (size_t)m);
-    if (!ts || !ext || !spans || !U || !rhs || !ipiv) {
+    if (!ext || !spans || !U || !rhs || !ipiv) {
         st = cj_fail(CJ_ERR_NOMEM, "no memory to interpolate %d points", npts);
         goto done;
     }
-    if ((st = cj_fit_params(pts, npts, dim, kind, ts))) goto done;
     /* Knots by averaging the parameters (an end with a derivative repeats its parameter). */
     int e = 0;
     if (s0) ext[e++] = 0.0;
@@ -201,19 +183,48 @@ cj_status cj_bspline_interpolate(const double *pts, int npts, int dim, int degre
             out_pts[(size_t)i * (size_t)dim + c] = v;
         }
     memcpy(out_knots, U, sizeof(double) * (size_t)(m + p + 1));
-    *npts_out = m;
-    if (residual) {
-        const cj_bspline c = cj_bspline_view(p, dim, m, out_pts, NULL, out_knots);
-        *residual = deviation(&c, pts, ts, npts);
-    }
 done:
-    free(ts);
     free(ext);
     free(spans);
     free(U);
     free(ab);
     free(rhs);
     free(ipiv);
+    return st;
+}
+
+cj_status cj_bspline_interpolate(const double *pts, int npts, int dim, int degree,
+                                 cj_fit_param kind, const double *d_start, const double *d_end,
+                                 double *out_pts, double *out_knots, int *npts_out,
+                                 double *residual) {
+    assert(pts != NULL && out_pts != NULL && out_knots != NULL && npts_out != NULL);
+    cj_status st = check_data(pts, npts, dim);
+    if (st) return st;
+    const int p = degree;
+    if (p < 1 || p > CJ_BSPLINE_MAX_DEGREE)
+        return cj_fail(CJ_ERR_DEGREE, "fitting degree %d is outside 1..%d", p,
+                       CJ_BSPLINE_MAX_DEGREE);
+    if (d_start && (st = cj_check_finite(d_start, (size_t)dim, "start derivative"))) return st;
+    if (d_end && (st = cj_check_finite(d_end, (size_t)dim, "end derivative"))) return st;
+    const int s0 = d_start != NULL, s1 = d_end != NULL, m = npts + s0 + s1;
+    if ((s0 || s1) && p < 2)
+        return cj_fail(CJ_ERR_DEGREE,
+                       "end derivatives need degree >= 2 (a polyline's end slopes are its "
+                       "chords)");
+    if (m < p + 1)
+        return cj_fail(CJ_ERR_EMPTY, "%d data points%s are too few for degree %d", npts,
+                       s0 || s1 ? " and end derivatives" : "", p);
+    double *ts = malloc(sizeof(double) * (size_t)npts);
+    if (!ts) return cj_fail(CJ_ERR_NOMEM, "no memory for %d parameters", npts);
+    if (!(st = cj_fit_params(pts, npts, dim, kind, ts)) &&
+        !(st = cj_bsp_interp_solve(pts, npts, dim, p, ts, d_start, d_end, out_pts, out_knots))) {
+        *npts_out = m;
+        if (residual) {
+            const cj_bspline c = cj_bspline_view(p, dim, m, out_pts, NULL, out_knots);
+            *residual = deviation(&c, pts, ts, npts);
+        }
+    }
+    free(ts);
     return st;
 }
 

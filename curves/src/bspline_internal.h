@@ -76,4 +76,21 @@ void cj_bsp_insert_once(const cj_bsp_h *src, double x, cj_bsp_h *dst);
 int cj_bsp_remove_once(const cj_bsp_h *src, double x, cj_bsp_h *dst, cj_bsp_h *scratch,
                        double *err);
 
+/* Interpolation at the given parameters ts[npts] (increasing, ts[0] = 0, ts[npts-1] = 1) with
+ * optional end derivatives, any dimension (the surface code passes whole rows as one point):
+ * out_pts[(npts + ends) * dim], out_knots[npts + ends + p + 1]. */
+cj_status cj_bsp_interp_solve(const double *pts, int npts, int dim, int p, const double *ts,
+                              const double *d_start, const double *d_end, double *out_pts,
+                              double *out_knots);
+
+/* Validates a knot vector of npts points of degree p (the rules of cj_bspline_check), naming
+ * the vector `name` ("knot", "u knot") in messages. */
+cj_status cj_bsp_check_knots(const double *knots, int npts, int p, const char *name);
+
+/* Bézier decomposition of a (wide, any dimension) polynomial curve: every breakpoint of the
+ * domain raised to multiplicity p by Boehm insertion, then the p+1 points of every non-empty
+ * span. pieces receives npieces*(p+1)*hd doubles (room for cj_bsp_h pieces of the count of
+ * non-empty spans), breaks npieces+1 values (may be NULL). Allocates its work space. */
+cj_status cj_bsp_h_decompose(const cj_bsp_h *src, double *pieces, double *breaks, int *npieces);
+
 #endif

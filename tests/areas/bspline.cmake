@@ -29,3 +29,5 @@ function(cj_bspline_add_plot_sources)
   endforeach()
 endfunction()
 cmake_language(DEFER CALL cj_bspline_add_plot_sources)
+cj_add_test(test_bspline_surface SOURCES bspline/test_bspline_surface.c
+  LIBS cj_test_bspline_oracle cj::surfaces)

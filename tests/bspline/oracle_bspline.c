@@ -161,3 +161,9 @@ double cj_obsp_abs_error(const cj_obsp *c, int k, double t, double computed, dou
     mpfr_clears(tt, v, m, e, (mpfr_ptr)0);
     return r;
 }
+
+void cj_obsp_basis(const double *knots, int n1, int p, const mpfr_t t, mpfr_t *N) {
+    const cj_obsp c = {p, 1, n1, NULL, NULL, knots};
+    for (int i = 0; i < n1; ++i) mpfr_set_prec(N[i], PREC);
+    basis(knots, n1, p, t, find_span(&c, t), N);
+}

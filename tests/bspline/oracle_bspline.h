@@ -30,4 +30,8 @@ void cj_obsp_eval(const cj_obsp *c, int k, const mpfr_t t, int kmax, mpfr_t *val
  * |computed - c_k(t)| rounded up, and the magnitude rounded up (may be NULL). */
 double cj_obsp_abs_error(const cj_obsp *c, int k, double t, double computed, double *magnitude);
 
+/* The n1 basis functions N_{i,p}(t) of the knot vector (t in its domain) into N[n1] (initialised
+ * mpfr_t; precision reset to CJ_ORACLE_BSP_PREC). */
+void cj_obsp_basis(const double *knots, int n1, int p, const mpfr_t t, mpfr_t *N);
+
 #endif
