@@ -31,3 +31,9 @@ endfunction()
 cmake_language(DEFER CALL cj_bspline_add_plot_sources)
 cj_add_test(test_bspline_surface SOURCES bspline/test_bspline_surface.c
   LIBS cj_test_bspline_oracle cj::surfaces)
+# Scene JSON surfaces, converted to patches at load (the render/trace paths take them as patches).
+if(TARGET cj::scene)
+  cj_add_test(test_scene_bspline SOURCES bspline/test_scene_bspline.c LIBS cj::scene)
+  target_compile_definitions(test_scene_bspline PRIVATE
+    CJ_SCENE_FILE="${PROJECT_SOURCE_DIR}/scenes/bsplines.json")
+endif()
