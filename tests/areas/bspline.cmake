@@ -37,3 +37,14 @@ if(TARGET cj::scene)
   target_compile_definitions(test_scene_bspline PRIVATE
     CJ_SCENE_FILE="${PROJECT_SOURCE_DIR}/scenes/bsplines.json")
 endif()
+# Cross-check against OpenCASCADE (Debian libocct-foundation-dev, libocct-modeling-data-dev,
+# libocct-modeling-algorithms-dev; scripts/setup.sh installs them). Skipped when not installed.
+find_package(OpenCASCADE QUIET COMPONENTS FoundationClasses ModelingData ModelingAlgorithms)
+if(OpenCASCADE_FOUND)
+  cj_add_test(test_occt_bspline SOURCES bspline/test_occt_bspline.cpp
+    LIBS TKernel TKMath TKG3d TKGeomBase TKGeomAlgo)
+  target_include_directories(test_occt_bspline SYSTEM PRIVATE ${OpenCASCADE_INCLUDE_DIR})
+  target_include_directories(test_occt_bspline PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/bspline)
+else()
+  message(STATUS "OpenCASCADE not found: test_occt_bspline is not built")
+endif()
