@@ -5,6 +5,8 @@
 
 #include "casteljau/bspline.h"
 #include "casteljau/bspline_fit.h"
+#include "casteljau/bspline_surface.h"
+#include "surface_json.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -17,6 +19,7 @@ static const char fit_usage[] =
     "usage: casteljau fit [--degree P] [--param uniform|chord|centripetal]\n"
     "                     [--tolerance TOL [--max-points M]] [--start-tangent \"x,y\"]\n"
     "                     [--end-tangent \"x,y\"] [-o FILE.json] [POINTS_FILE]\n"
+    "       casteljau fit --grid NU,NV [--degree P] [--param ...] [-o FILE.json] [POINTS_FILE]\n"
     "Fits a clamped B-spline of degree P (default 3) over [0,1] to the points in POINTS_FILE\n"
     "(or standard input): one point per line, its coordinates separated by spaces or commas\n"
     "(1..8 per point, the same on every line); blank lines and lines starting with # are\n"
@@ -27,6 +30,9 @@ static const char fit_usage[] =
     "                   it, interpolation through every point\n"
     "  --max-points     cap on the control points of the approximation (default: the points)\n"
     "  --start-tangent, --end-tangent   derivative at t = 0 / t = 1 (interpolation, P >= 2)\n"
+    "  --grid           the points (3D, NU*NV of them, u fastest: point j*NU + i) are a grid:\n"
+    "                   write the B-spline surface of degree P in u and v through them, the\n"
+    "                   JSON object that 'casteljau tessellate --surface' and scenes read\n"
     "  -o               write the JSON here (complete or not at all) instead of stdout\n"
     "Output: a JSON document for 'casteljau plot' and 'casteljau eval --curve': a title with\n"
     "the counts and the deviation reached, and one item {\"type\": \"bspline\", \"degree\",\n"
@@ -128,12 +134,54 @@ static void write_doc(FILE *f, const cj_bspline *c, const double *data, int n, c
     fprintf(f, "\n]}\n");
 }
 
+/* fit --grid: the interpolating surface, written as its JSON object. */
+static int fit_grid(const double *data, int n, int dim, int nu, int nv, int degree,
+                    cj_fit_param kind, const char *output) {
+    if (dim != 3) return cli_fail("fit", "--grid needs 3D points, not %d coordinates", dim);
+    if ((long)nu * nv != n)
+        return cli_fail("fit", "--grid %d,%d needs %ld points, the input has %d", nu, nv,
+                        (long)nu * nv, n);
+    double *P = malloc(sizeof(double) * 3 * (size_t)n);
+    double *ku = malloc(sizeof(double) * (size_t)(nu + degree + 1));
+    double *kv = malloc(sizeof(double) * (size_t)(nv + degree + 1));
+    int rc = 0;
+    if (!P || !ku || !kv) {
+        rc = cli_error("fit", "out of memory");
+    } else if (cj_bspline_surface_interpolate(data, nu, nv, degree, degree, kind, P, ku, kv, NULL,
+                                              NULL)) {
+        rc = cli_fail("fit", "%s", cj_last_error());
+    } else {
+        const cj_bspline_surface s = {degree, degree, nu, nv, P, NULL, ku, kv};
+        char why[256];
+        if (output) {
+            cli_file f;
+            if (cli_file_open(&f, output, why, sizeof why)) {
+                rc = cli_error("fit", "%s", why);
+            } else {
+                surface_json_write(f.fp, &s);
+                fputc('\n', f.fp);
+                if (cli_file_commit(&f, why, sizeof why)) rc = cli_error("fit", "%s", why);
+            }
+        } else {
+            surface_json_write(stdout, &s);
+            putchar('\n');
+            if (fflush(stdout) != 0 || ferror(stdout))
+                rc = cli_error("fit", "cannot write the output");
+        }
+    }
+    free(P);
+    free(ku);
+    free(kv);
+    return rc;
+}
+
 int cmd_fit(int argc, char **argv) {
-    enum { O_DEGREE, O_PARAM, O_TOL, O_MAXPTS, O_T0, O_T1, O_OUT };
+    enum { O_DEGREE, O_PARAM, O_TOL, O_MAXPTS, O_T0, O_T1, O_OUT, O_GRID };
     static const cli_opt opts[] = {{"--degree", NULL, 1},        {"--param", NULL, 1},
                                    {"--tolerance", NULL, 1},     {"--max-points", NULL, 1},
                                    {"--start-tangent", NULL, 1}, {"--end-tangent", NULL, 1},
-                                   {"--output", "-o", 1}};
+                                   {"--output", "-o", 1},        {"--grid", NULL, 1}};
+    int grid_u = 0, grid_v = 0;
     cli_parser ps;
     cli_parser_init(&ps, "fit", fit_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
     int degree = 3, status, k;
@@ -176,6 +224,14 @@ int cmd_fit(int argc, char **argv) {
             t0_text = v;
         } else if (k == O_T1) {
             t1_text = v;
+        } else if (k == O_GRID) {
+            char *e;
+            const long a = strtol(v, &e, 10), b = *e == ',' ? strtol(e + 1, &e, 10) : 0;
+            if (*e || a < 2 || b < 2 || a > 100000 || b > 100000)
+                return cli_fail("fit", "--grid '%s' is not NU,NV (two integers >= 2)",
+                                cli_quote(v, q, sizeof q));
+            grid_u = (int)a;
+            grid_v = (int)b;
         } else {
             output = v;
         }
@@ -186,6 +242,10 @@ int cmd_fit(int argc, char **argv) {
     if (tol >= 0.0 && (t0_text || t1_text))
         return cli_fail("fit", "--start-tangent and --end-tangent apply only to interpolation "
                                "(without --tolerance)");
+    if (grid_u && (tol >= 0.0 || t0_text || t1_text))
+        return cli_fail("fit", "--grid takes neither --tolerance nor end tangents");
+    if (grid_u && degree > CJ_PATCH_MAX_DEGREE)
+        return cli_fail("fit", "--degree %d exceeds %d for a surface", degree, CJ_PATCH_MAX_DEGREE);
     if (!input && isatty(0))
         return cli_fail("fit", "no points (give a file, or pipe them on standard input)");
     FILE *in = input ? fopen(input, "r") : stdin;
@@ -201,6 +261,10 @@ int cmd_fit(int argc, char **argv) {
     char why[256];
     size_t cnt;
     int tdim;
+    if (grid_u) {
+        rc = fit_grid(data, n, dim, grid_u, grid_v, degree, kind, output);
+        goto done;
+    }
     if (t0_text && (cli_parse_points(t0_text, &tan0, &cnt, &tdim, why, sizeof why) || cnt != 1 ||
                     tdim != dim)) {
         rc = cli_fail("fit", "--start-tangent is not one point of dimension %d", dim);

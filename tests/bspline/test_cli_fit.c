@@ -206,6 +206,35 @@ int main(void) {
     }
     CHECK(worst <= 4e-16, "NURBS circle through eval --curve: radius off by %g", worst);
     cj_cli_result_free(&r);
+    /* A grid: fit --grid writes the surface, tessellate --surface meshes its Bézier patches. */
+    char gfile[160], sfile[160];
+    snprintf(gfile, sizeof gfile, "%s/grid.txt", dir);
+    snprintf(sfile, sizeof sfile, "%s/surface.json", dir);
+    f = fopen(gfile, "w");
+    for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 8; ++i)
+            fprintf(f, "%g %g %.17g\n", 0.5 * i, 0.5 * j, 0.4 * sin(0.8 * i) * cos(0.7 * j));
+    fclose(f);
+    snprintf(cmd, sizeof cmd,
+             "'%s' fit --grid 8,6 '%s' -o '%s' && '%s' tessellate --surface '%s' -o '%s/s.obj'",
+             CJ_CLI, gfile, sfile, CJ_CLI, sfile, dir);
+    CHECK(run(cmd, &r) == 0 && strstr(r.out, "patches 15\n"),
+          "fit --grid | tessellate --surface: %d %s %s", r.status, r.out, r.err);
+    cj_cli_result_free(&r);
+    snprintf(cmd, sizeof cmd, "'%s' fit --grid 8,5 '%s'", CJ_CLI, gfile);
+    CHECK(run(cmd, &r) == 2 && strstr(r.err, "needs 40 points"), "wrong grid size: %s", r.err);
+    cj_cli_result_free(&r);
+    f = fopen(sfile, "w");
+    fputs("{\"type\": \"nurbs_surface\", \"degree\": [1, 1], \"size\": [2, 2], \"points\": "
+          "[[0,0,0],[1,0,0],[0,1,0],[1,1,1]], \"weights\": [1, 1, -1, 1]}",
+          f);
+    fclose(f);
+    snprintf(cmd, sizeof cmd, "'%s' tessellate --surface '%s' -o '%s/s.obj'", CJ_CLI, sfile, dir);
+    CHECK(run(cmd, &r) == 2 && strstr(r.err, "weight (0, 1)"), "negative surface weight: %s",
+          r.err);
+    cj_cli_result_free(&r);
+    printf("surfaces: fit --grid 8,6 then tessellate --surface meshes 15 patches; a wrong grid "
+           "size and a negative surface weight are refused naming them\n");
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     run(cmd, &r);
     cj_cli_result_free(&r);
