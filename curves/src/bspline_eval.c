@@ -79,26 +79,17 @@ static int homogeneous_derivs(const cj_bspline *c, int s, double t, int kmax, do
     return -1;
 }
 
-cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double *out) {
-    assert(out != NULL);
-    cj_status st = cj_bspline_check(c);
-    if (st) return st;
-    if ((st = cj_bsp_check_param(c, t, "parameter t"))) return st;
-    if (kmax < 0 || kmax > CJ_BSPLINE_MAX_DERIV)
-        return cj_fail(CJ_ERR_ARGUMENT, "derivative order %d is outside 0..%d", kmax,
-                       CJ_BSPLINE_MAX_DERIV);
+/* Derivatives 0..kmax into out; returns the first order that overflowed, or -1. */
+static int derivs(const cj_bspline *c, double t, int kmax, double *out) {
     const int d = c->dim, hd = cj_bsp_hdim(c);
     const int s = cj_bsp_span(c, t);
     double h[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_BSP_MAX_HDIM];
     int bad = homogeneous_derivs(c, s, t, kmax, h);
-    if (bad >= 0)
-        return cj_fail(CJ_ERR_RANGE, "derivative of order %d at t = %.17g overflows", bad, t);
     if (!c->weights) {
         memcpy(out, h, sizeof(double) * (size_t)((kmax + 1) * d));
-        return CJ_OK;
+        return bad;
     }
     /* Quotient rule, binomials by Pascal's rule row by row. */
-    double res[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_MAX_DIM];
     double binom[CJ_BSPLINE_MAX_DERIV + 1];
     const double w0 = h[d];
     binom[0] = 1.0;
@@ -109,14 +100,34 @@ cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double
         }
         for (int k = 0; k < d; ++k) {
             double v = h[j * hd + k];
-            for (int i = 1; i <= j; ++i) v -= binom[i] * h[i * hd + d] * res[(j - i) * d + k];
+            for (int i = 1; i <= j; ++i) v -= binom[i] * h[i * hd + d] * out[(j - i) * d + k];
             v /= w0;
-            if (!isfinite(v))
-                return cj_fail(CJ_ERR_RANGE, "derivative of order %d at t = %.17g overflows", j, t);
-            res[j * d + k] = v;
+            if (!isfinite(v) && bad < 0) bad = j;
+            out[j * d + k] = v;
         }
     }
-    memcpy(out, res, sizeof(double) * (size_t)((kmax + 1) * d));
+    return bad;
+}
+
+void cj_bspline_eval_derivs_unchecked(const cj_bspline *c, double t, int kmax, double *out) {
+    assert(t >= c->knots[c->degree] && t <= c->knots[c->npts]);
+    assert(kmax >= 0 && kmax <= CJ_BSPLINE_MAX_DERIV);
+    (void)derivs(c, t, kmax, out);
+}
+
+cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double *out) {
+    assert(out != NULL);
+    cj_status st = cj_bspline_check(c);
+    if (st) return st;
+    if ((st = cj_bsp_check_param(c, t, "parameter t"))) return st;
+    if (kmax < 0 || kmax > CJ_BSPLINE_MAX_DERIV)
+        return cj_fail(CJ_ERR_ARGUMENT, "derivative order %d is outside 0..%d", kmax,
+                       CJ_BSPLINE_MAX_DERIV);
+    double res[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_MAX_DIM];
+    const int bad = derivs(c, t, kmax, res);
+    if (bad >= 0)
+        return cj_fail(CJ_ERR_RANGE, "derivative of order %d at t = %.17g overflows", bad, t);
+    memcpy(out, res, sizeof(double) * (size_t)((kmax + 1) * c->dim));
     return CJ_OK;
 }
 

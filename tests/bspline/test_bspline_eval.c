@@ -147,6 +147,46 @@ static void test_derivs(cj_rng *r) {
            checked, worst);
 }
 
+/* The batch and unchecked entry points give exactly what the checked calls give. */
+static void test_unchecked(cj_rng *r) {
+    static bsp_case c;
+    int n = 0;
+    for (int rep = 0; rep < 40; ++rep) {
+        const int p = cj_rng_int(r, 0, 8);
+        bsp_generate(r, &c, p, p + 1 + cj_rng_int(r, 0, 12), cj_rng_int(r, 1, 4), rep % 2,
+                     rep % BSP_KNOTS_KINDS, BSP_COORDS_UNIT);
+        const cj_bspline v = bsp_view(&c);
+        double ts[16], batch[16 * 8];
+        for (int j = 0; j < 16; ++j) ts[j] = bsp_param(r, &c);
+        BSP_CHECK(cj_bspline_eval_batch(&v, ts, 16, batch) == CJ_OK, "%s: batch: %s", c.what,
+                  cj_last_error());
+        for (int j = 0; j < 16; ++j) {
+            double a[8], b[8], da[(CJ_BSPLINE_MAX_DERIV + 1) * 8],
+                db[(CJ_BSPLINE_MAX_DERIV + 1) * 8];
+            cj_bspline_eval(&v, ts[j], a);
+            cj_bspline_eval_unchecked(&v, ts[j], b);
+            cj_bspline_eval_derivs(&v, ts[j], p + 1, da);
+            cj_bspline_eval_derivs_unchecked(&v, ts[j], p + 1, db);
+            BSP_CHECK(!memcmp(a, b, sizeof(double) * (size_t)c.dim) &&
+                          !memcmp(a, batch + j * c.dim, sizeof(double) * (size_t)c.dim) &&
+                          !memcmp(da, db, sizeof(double) * (size_t)((p + 2) * c.dim)),
+                      "%s: t=%.17g: unchecked or batch results differ from the checked ones",
+                      c.what, ts[j]);
+            ++n;
+        }
+    }
+    const cj_bspline v = bsp_view(&c);
+    double t_bad[2] = {c.knots[c.p], 1e300};
+    double out[16];
+    BSP_CHECK(cj_bspline_eval_batch(&v, t_bad, 2, out) == CJ_ERR_RANGE &&
+                  strstr(cj_last_error(), "parameter 1"),
+              "batch with a parameter outside the domain: %s", cj_last_error());
+    printf("unchecked: %d evaluations: cj_bspline_eval_batch, _unchecked and "
+           "_derivs_unchecked are bit-identical to the checked calls; a bad batch parameter is "
+           "named\n",
+           n);
+}
+
 static void expect(cj_status got, cj_status want, const char *needle, const char *what) {
     BSP_CHECK(got == want, "%s: status %d, expected %d (%s)", what, got, want, cj_last_error());
     if (got != CJ_OK && needle)
@@ -218,6 +258,7 @@ int main(void) {
     test_values(&r);
     test_cancellation();
     test_derivs(&r);
+    test_unchecked(&r);
     test_bad_input();
     mpfr_free_cache();
     if (bsp_failures) {

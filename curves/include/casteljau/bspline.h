@@ -132,6 +132,11 @@ void cj_bspline_eval_unchecked(const cj_bspline *c, double t, double *out);
  * right end). A derivative beyond the double range is CJ_ERR_RANGE naming the order. */
 cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double *out);
 
+/* cj_bspline_eval_derivs without any check, under the contract of cj_bspline_eval_unchecked
+ * (validated curve, t in the domain) plus 0 <= kmax <= CJ_BSPLINE_MAX_DERIV. Same results; a
+ * derivative beyond the double range comes out as it is (infinite or NaN) instead of an error. */
+void cj_bspline_eval_derivs_unchecked(const cj_bspline *c, double t, int kmax, double *out);
+
 /* A-priori absolute error bound of cj_bspline_eval at t, per coordinate, for the exact value of
  * the B-spline with the given (double) knots, points and t.
  * Polynomial B-spline: with M_k = Σ |d_i,k| N_{i,p}(t) and D_k = max |d_i,k| over the span's
