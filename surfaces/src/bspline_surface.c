@@ -79,6 +79,62 @@ cj_status cj_bspline_surface_eval(const cj_bspline_surface *s, double u, double 
     return CJ_OK;
 }
 
+cj_status cj_bspline_surface_error_bound(const cj_bspline_surface *s, double u, double v,
+                                         double *bound) {
+    assert(bound != NULL);
+    cj_status st = cj_bspline_surface_check(s);
+    if (st) return st;
+    const cj_bspline cu = knot_view(s->knots_u, s->npts_u, s->deg_u);
+    const cj_bspline cv = knot_view(s->knots_v, s->npts_v, s->deg_v);
+    if ((st = cj_bsp_check_param(&cu, u, "parameter u"))) return st;
+    if ((st = cj_bsp_check_param(&cv, v, "parameter v"))) return st;
+    const int p = s->deg_u, q = s->deg_v, hd = s->weights ? 4 : 3;
+    const int su = cj_bsp_span(&cu, u), sv = cj_bsp_span(&cv, v);
+    double row[(CJ_PATCH_MAX_DEGREE + 1) * 4], mrow[(CJ_PATCH_MAX_DEGREE + 1) * 4];
+    double col[(CJ_PATCH_MAX_DEGREE + 1) * 4], mcol[(CJ_PATCH_MAX_DEGREE + 1) * 4];
+    double dmax[4] = {0, 0, 0, 0};
+    for (int jj = 0; jj <= q; ++jj) {
+        for (int ii = 0; ii <= p; ++ii) {
+            hpoint(s, su - p + ii, sv - q + jj, row + ii * hd);
+            for (int c = 0; c < hd; ++c) {
+                mrow[ii * hd + c] = fabs(row[ii * hd + c]);
+                dmax[c] = fmax(dmax[c], mrow[ii * hd + c]);
+            }
+        }
+        cj_bsp_deboor(s->knots_u, p, su, hd, row, u, NULL);
+        cj_bsp_deboor(s->knots_u, p, su, hd, mrow, u, NULL);
+        memcpy(col + jj * hd, row + p * hd, sizeof(double) * (size_t)hd);
+        memcpy(mcol + jj * hd, mrow + p * hd, sizeof(double) * (size_t)hd);
+    }
+    cj_bsp_deboor(s->knots_v, q, sv, hd, col, v, NULL);
+    cj_bsp_deboor(s->knots_v, q, sv, hd, mcol, v, NULL);
+    const double eta = 0x1p-1074, uu = CJ_UNIT_ROUNDOFF;
+    const int n = 5 * (p + q) + (s->weights != NULL);
+    const double g = cj_gamma(n), inflate = 1.0 + cj_gamma(n + 8);
+    double e[4];
+    for (int c = 0; c < hd; ++c) {
+        e[c] = (g * mcol[q * hd + c] * inflate + 4.0 * (p + q + 2) * eta * (1.0 + dmax[c])) *
+               (1.0 + 4 * uu);
+        if (!isfinite(e[c]))
+            return cj_fail(CJ_ERR_RANGE, "error bound of coordinate %d at (%.17g, %.17g) overflows",
+                           c, u, v);
+    }
+    if (!s->weights) {
+        memcpy(bound, e, 3 * sizeof(double));
+        return CJ_OK;
+    }
+    const double w = col[q * hd + 3], ew = e[3];
+    if (!(w > 2.0 * ew))
+        return cj_fail(CJ_ERR_RANGE, "weight sum %g at (%.17g, %.17g) is within its error bound %g",
+                       w, u, v, ew);
+    for (int c = 0; c < 3; ++c) {
+        const double qv = fabs(col[q * hd + c] / w) * (1.0 + 2 * uu);
+        const double cmax = (qv + e[c] / w) / (1.0 - ew / w) * (1.0 + 4 * uu);
+        bound[c] = (uu * qv + (e[c] + cmax * ew) / w + eta) * (1.0 + 8 * uu);
+    }
+    return CJ_OK;
+}
+
 static int spans(const double *knots, int npts, int p) {
     int n = 0;
     for (int i = p; i < npts; ++i) n += knots[i] < knots[i + 1];

@@ -44,6 +44,17 @@ cj_status cj_bspline_surface_check(const cj_bspline_surface *s);
  * NaN: CJ_ERR_NONFINITE. Allocates nothing. */
 cj_status cj_bspline_surface_eval(const cj_bspline_surface *s, double u, double v, double *out);
 
+/* A-priori absolute error bound of cj_bspline_surface_eval at (u,v), per coordinate (bound[3]),
+ * in the style of cj_bspline_error_bound: the u pass leaves every row value equal to the exact
+ * de Boor sum of its points times (1 + θ_ij), |θ| <= gamma(5p), and the v pass multiplies each
+ * row's term by (1 + φ_j), |φ| <= gamma(5q), so with M_k = Σ_i Σ_j |d_ij,k| N_i(u) N_j(v),
+ *     |Ŝ_k − S_k| <= gamma(5(p+q)) M_k + 4 (p+q+2) eta (1 + max |d_ij,k|)      (polynomial);
+ * a NURBS bounds the homogeneous numerator and weight the same way (gamma(5(p+q)+1), for the
+ * rounding of w d) and propagates them through the division exactly as cj_bspline_error_bound.
+ * Checked against the tensor MPFR oracle in tests/bspline/test_bspline_surface.c. */
+cj_status cj_bspline_surface_error_bound(const cj_bspline_surface *s, double u, double v,
+                                         double *bound);
+
 /* Number of Bézier patches: non-empty u spans times non-empty v spans. */
 cj_status cj_bspline_surface_patch_count(const cj_bspline_surface *s, int *count);
 
