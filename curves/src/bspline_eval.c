@@ -175,3 +175,56 @@ cj_status cj_bspline_error_bound(const cj_bspline *c, double t, double *bound) {
     }
     return CJ_OK;
 }
+
+cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax, double *bound) {
+    assert(bound != NULL);
+    cj_status st = cj_bspline_check(c);
+    if (st) return st;
+    if ((st = cj_bsp_check_param(c, t, "parameter t"))) return st;
+    if (kmax < 0 || kmax > CJ_BSPLINE_MAX_DERIV)
+        return cj_fail(CJ_ERR_ARGUMENT, "derivative order %d is outside 0..%d", kmax,
+                       CJ_BSPLINE_MAX_DERIV);
+    if (c->weights)
+        return cj_fail(CJ_ERR_UNSUPPORTED,
+                       "no derivative error bound for a NURBS (only for polynomial B-splines)");
+    const int p = c->degree, d = c->dim, s = cj_bsp_span(c, t);
+    double m[CJ_BSP_LOCAL], work[CJ_BSP_LOCAL];
+    cj_bsp_local(c, s, m);
+    for (int i = 0; i < (p + 1) * d; ++i) m[i] = fabs(m[i]);
+    const double eta = 0x1p-1074, u = CJ_UNIT_ROUNDOFF, inflate = 1.0 + cj_gamma(5 * p + 8);
+    double out[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_MAX_DIM];
+    for (int j = 0; j <= kmax; ++j) {
+        if (j > p) {
+            for (int k = 0; k < d; ++k) out[j * d + k] = 0.0;
+            continue;
+        }
+        if (j > 0) {
+            const double f = (double)(p - j + 1);
+            for (int jj = p; jj >= j; --jj) {
+                const int i = s - p + jj;
+                const double den = c->knots[i + p + 1 - j] - c->knots[i];
+                for (int k = 0; k < d; ++k)
+                    m[jj * d + k] = f * (m[jj * d + k] + m[(jj - 1) * d + k]) / den;
+            }
+        }
+        const int q = p - j;
+        double mmax[CJ_MAX_DIM] = {0};
+        for (int jj = j; jj <= p; ++jj)
+            for (int k = 0; k < d; ++k) mmax[k] = fmax(mmax[k], m[jj * d + k]);
+        memcpy(work, m + j * d, sizeof(double) * (size_t)((q + 1) * d));
+        cj_bsp_deboor(c->knots, q, s, d, work, t, NULL);
+        const double g = cj_gamma(5 * p - j);
+        for (int k = 0; k < d; ++k) {
+            const double b =
+                (g * work[q * d + k] * inflate + 8.0 * (p + 1) * eta * (1.0 + mmax[k] * inflate)) *
+                (1.0 + 4 * u);
+            if (!isfinite(b))
+                return cj_fail(CJ_ERR_RANGE,
+                               "error bound of derivative %d, coordinate %d at t = %.17g overflows",
+                               j, k, t);
+            out[j * d + k] = b;
+        }
+    }
+    memcpy(bound, out, sizeof(double) * (size_t)((kmax + 1) * d));
+    return CJ_OK;
+}

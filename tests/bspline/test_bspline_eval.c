@@ -100,10 +100,13 @@ static void test_derivs(cj_rng *r) {
         const int kmax = p + 2;
         for (int j = 0; j < 4; ++j) {
             const double t = bsp_param(r, &c);
-            double out[(CJ_BSPLINE_MAX_DERIV + 1) * 8];
+            double out[(CJ_BSPLINE_MAX_DERIV + 1) * 8], bnd[(CJ_BSPLINE_MAX_DERIV + 1) * 8];
             cj_status st = cj_bspline_eval_derivs(&v, t, kmax, out);
             BSP_CHECK(st == CJ_OK, "%s: derivs at %.17g: %s", c.what, t, cj_last_error());
             if (st) continue;
+            st = cj_bspline_derivs_error_bound(&v, t, kmax, bnd);
+            BSP_CHECK(rational ? st == CJ_ERR_UNSUPPORTED : st == CJ_OK, "%s: derivative bound: %s",
+                      c.what, cj_last_error());
             mpfr_t val[16], mag[16], tt, e;
             mpfr_inits2(64, tt, e, (mpfr_ptr)0);
             mpfr_set_prec(tt, 64);
@@ -120,11 +123,17 @@ static void test_derivs(cj_rng *r) {
                      * combines, so the error is a rounding multiple of Σ m^(q) N; NURBS: the
                      * quotient rule mixes orders, measured relative to the size of the value and
                      * of the lower orders. */
+                    /* Polynomial: the published bound (cj_bspline_derivs_error_bound), checked
+                     * also against the oracle's own magnitude Σ m^(q) N; NURBS: the quotient rule
+                     * mixes orders, measured relative to the value and the lower orders. */
                     double tol;
-                    if (!rational)
-                        tol = 2.0 * cj_gamma(5 * p + 4 * q + 4) * mpfr_get_d(mag[q], MPFR_RNDU) +
-                              0x1p-1000;
-                    else {
+                    if (!rational) {
+                        tol = bnd[q * c.dim + k];
+                        const double m = mpfr_get_d(mag[q], MPFR_RNDU);
+                        BSP_CHECK(q > p || tol >= cj_gamma(5 * p - q) * m,
+                                  "%s: order %d bound %.3g below gamma(5p-q) M = %.3g", c.what, q,
+                                  tol, cj_gamma(5 * p - q) * m);
+                    } else {
                         double scale = 0.0;
                         for (int i = 0; i <= q; ++i)
                             scale = fmax(scale, fabs(mpfr_get_d(val[i], MPFR_RNDN)));
@@ -141,8 +150,8 @@ static void test_derivs(cj_rng *r) {
         }
     }
     printf("derivatives: %ld values of orders 0..p+2 (above p they are zero) on 120 curves agree "
-           "with the oracle: polynomial within 2 gamma(5p+4q+4) Σ m^(q) N (differences of "
-           "magnitudes), NURBS within "
+           "with the oracle: polynomial within cj_bspline_derivs_error_bound (gamma(5p-q) "
+           "Σ m^(q) N, m^(q) the differences of magnitudes), NURBS within "
            "4e7 (q+1)(p+1) u max|c^(0..q)|; largest error/tolerance %.3g\n",
            checked, worst);
 }

@@ -161,6 +161,20 @@ void cj_bspline_eval_derivs_unchecked(const cj_bspline *c, double t, int kmax, d
  * huge- and tiny-coordinate curves. bound: dim doubles. */
 cj_status cj_bspline_error_bound(const cj_bspline *c, double t, double *bound);
 
+/* A-priori absolute error bound of cj_bspline_eval_derivs at t for a polynomial B-spline:
+ * bound[j*dim + k] for order j = 0..kmax (order 0 is cj_bspline_error_bound's). With the
+ * differences taken on magnitudes, m^(0)_i = |d_i,k|, m^(j)_i = (p−j+1)(m^(j−1)_i + m^(j−1)_{i−1})
+ * / (t_{i+p+1−j} − t_i), and M_j,k = Σ_i m^(j)_i N_{i,p−j}(t):
+ *     |ĉ^(j)_k − c^(j)_k| <= gamma(5p − j) M_j,k + 8 (p+1) eta (1 + max_i m^(j)_i)   (j <= p),
+ * and 0 above p. Derivation: a level of differences rounds four times (the subtraction of the
+ * points, that of the knots, the product by p−j+1 and the division), so by induction the
+ * computed order-j points are off by at most gamma(4j) m^(j); de Boor of degree p−j then adds
+ * gamma(5(p−j)) of the magnitudes, and (1+gamma(a)) gamma(b) + gamma(a) <= gamma(a+b). M is
+ * computed by the same recurrences and inflated by 1 + gamma(5p+8). A NURBS is
+ * CJ_ERR_UNSUPPORTED (the quotient rule's error is not bounded here). Checked against the MPFR
+ * oracle in tests/bspline/test_bspline_eval.c. */
+cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax, double *bound);
+
 /* ---- knots: insertion, refinement, removal ------------------------------------------- */
 
 /* Inserts the knot value x (in the domain) r >= 0 times by Boehm's algorithm, one at a time:
