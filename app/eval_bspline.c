@@ -47,9 +47,6 @@ static char *slurp(const char *path, char *why, size_t n) {
 }
 
 int eval_bspline_run(const char *path, int derivative, int want_bound, char **targs, int ntargs) {
-    if (want_bound && derivative > 0)
-        return cli_fail("eval", "--bound with --derivative is available for Bezier curves only "
-                                "(--points)");
     if (derivative > CJ_BSPLINE_MAX_DERIV)
         return cli_fail("eval", "--derivative %d exceeds %d for a B-spline", derivative,
                         CJ_BSPLINE_MAX_DERIV);
@@ -101,8 +98,10 @@ int eval_bspline_run(const char *path, int derivative, int want_bound, char **ta
     const int dim = c.dim;
     vals = malloc(sizeof(double) * nt * (size_t)dim * 2);
     double *der = malloc(sizeof(double) * (size_t)(derivative + 1) * (size_t)dim);
-    if (!vals || !der) {
+    double *bnd = malloc(sizeof(double) * (size_t)(derivative + 1) * (size_t)dim);
+    if (!vals || !der || !bnd) {
         free(der);
+        free(bnd);
         rc = cli_error("eval", "out of memory");
         goto done;
     }
@@ -110,10 +109,17 @@ int eval_bspline_run(const char *path, int derivative, int want_bound, char **ta
         double *v = vals + j * (size_t)dim * 2;
         cj_status st = cj_bspline_eval_derivs(&c, ts[j], derivative, der);
         if (!st) memcpy(v, der + (size_t)derivative * (size_t)dim, sizeof(double) * (size_t)dim);
-        if (!st && want_bound) st = cj_bspline_error_bound(&c, ts[j], v + dim);
+        if (!st && want_bound && derivative == 0) st = cj_bspline_error_bound(&c, ts[j], v + dim);
+        if (!st && want_bound && derivative > 0) {
+            st = cj_bspline_derivs_error_bound(&c, ts[j], derivative, bnd);
+            if (!st)
+                memcpy(v + dim, bnd + (size_t)derivative * (size_t)dim,
+                       sizeof(double) * (size_t)dim);
+        }
         if (st) rc = cli_fail("eval", "%s", cj_last_error());
     }
     free(der);
+    free(bnd);
     if (rc) goto done;
     for (size_t j = 0; j < nt; ++j) {
         const double *v = vals + j * (size_t)dim * 2;

@@ -206,6 +206,15 @@ int main(void) {
     }
     CHECK(worst <= 4e-16, "NURBS circle through eval --curve: radius off by %g", worst);
     cj_cli_result_free(&r);
+    snprintf(cmd, sizeof cmd, "'%s' eval --curve '%s' --derivative 1 --bound 0.5", CJ_CLI, cfile);
+    CHECK(run(cmd, &r) == 2 && strstr(r.err, "NURBS"), "derivative bound of a NURBS: %d %s",
+          r.status, r.err);
+    cj_cli_result_free(&r);
+    snprintf(cmd, sizeof cmd, "'%s' eval --curve '%s' --derivative 1 --bound 0.5", CJ_CLI,
+             json_path);
+    CHECK(run(cmd, &r) == 0 && strstr(r.out, " | "), "derivative bound of the fit: %d %s", r.status,
+          r.err);
+    cj_cli_result_free(&r);
     /* A grid: fit --grid writes the surface, tessellate --surface meshes its Bézier patches. */
     char gfile[160], sfile[160];
     snprintf(gfile, sizeof gfile, "%s/grid.txt", dir);
