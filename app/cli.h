@@ -115,5 +115,6 @@ int cmd_trace(int argc, char **argv);
 int cmd_animate(int argc, char **argv);
 int cmd_view(int argc, char **argv);
 int cmd_report(int argc, char **argv);
+int cmd_fit(int argc, char **argv);
 
 #endif

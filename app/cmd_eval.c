@@ -1,5 +1,6 @@
 /* casteljau eval: the evaluation contract other tools and tests rely on (see README). */
 #include "cli.h"
+#include "eval_bspline.h"
 
 #include "casteljau/bezier.h"
 
@@ -12,6 +13,7 @@
 static const char eval_usage[] =
     "usage: casteljau eval [--method decasteljau|bernstein|horner|compensated]\n"
     "                      [--derivative K] [--bound] --points \"x0,y0;x1,y1;...\" [T ...]\n"
+    "       casteljau eval [--derivative K] [--bound] --curve FILE.json [T ...]\n"
     "Evaluates the Bezier curve with these control points (degree = count - 1, any dimension\n"
     "1..8, the same for every point) at each parameter T (usually in [0,1]; decimal or C99 hex\n"
     "floats). Without T on the command line, the parameters are read from standard input,\n"
@@ -22,6 +24,9 @@ static const char eval_usage[] =
     "  --derivative  evaluate the K-th derivative instead (default 0)\n"
     "  --bound       append an absolute error bound per coordinate (a-priori; a-posteriori\n"
     "                for compensated)\n"
+    "  --curve       evaluate the first B-spline/NURBS item (\"type\": \"bspline\", as 'casteljau\n"
+    "                fit' writes it) of this JSON file instead, by de Boor; T must lie in its\n"
+    "                domain; --bound is its a-priori bound (with --derivative: polynomial only)\n"
     "Output: one line per T, in the order given: the coordinates with %.17g separated by one\n"
     "space, and with --bound ' |' and one bound per coordinate. Nothing is printed unless\n"
     "every T evaluates. Exit status 0; 2 for a bad argument or input, or a result that\n"
@@ -74,7 +79,7 @@ static void add_hodograph_error(const double *a, int m, int dim, int k, double t
 
 /* Reads white-space separated parameters from `f` into a growing array. Returns 0, or -1
  * with a message printed (exit status in *rc). */
-static int read_params(FILE *f, double **ts, size_t *nt, int *rc) {
+int eval_read_params(FILE *f, double **ts, size_t *nt, int *rc) {
     size_t cap = 1024, n = 0;
     double *v = malloc(sizeof(double) * cap);
     char tok[128];
@@ -128,12 +133,14 @@ static int read_params(FILE *f, double **ts, size_t *nt, int *rc) {
 int cmd_eval(int argc, char **argv) {
     cj_eval_method method = CJ_EVAL_DECASTELJAU;
     int derivative = 0, want_bound = 0;
-    const char *points_text = NULL;
-    enum { O_METHOD, O_DERIV, O_BOUND, O_POINTS };
+    const char *points_text = NULL, *curve_path = NULL;
+    int have_method = 0;
+    enum { O_METHOD, O_DERIV, O_BOUND, O_POINTS, O_CURVE };
     static const cli_opt opts[] = {{"--method", NULL, 1},
                                    {"--derivative", NULL, 1},
                                    {"--bound", NULL, 0},
-                                   {"--points", NULL, 1}};
+                                   {"--points", NULL, 1},
+                                   {"--curve", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, "eval", eval_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
     /* Positional parameters are collected in place (argv order), wherever they appear. */
@@ -152,7 +159,10 @@ int cmd_eval(int argc, char **argv) {
         char q[160];
         if (k == CLI_POSITIONAL) {
             targs[ntargs++] = (char *)v;
+        } else if (k == O_CURVE) {
+            curve_path = v;
         } else if (k == O_METHOD) {
+            have_method = 1;
             if (parse_method(v, &method))
                 bad = cli_fail("eval",
                                "unknown method '%s' (decasteljau, bernstein, horner, compensated)",
@@ -172,6 +182,13 @@ int cmd_eval(int argc, char **argv) {
             free(targs);
             return bad;
         }
+    }
+    if (curve_path) {
+        const int rc = points_text || have_method
+                           ? cli_fail("eval", "--curve takes neither --points nor --method")
+                           : eval_bspline_run(curve_path, derivative, want_bound, targs, ntargs);
+        free(targs);
+        return rc;
     }
     if (!points_text) {
         free(targs);
@@ -206,7 +223,7 @@ int cmd_eval(int argc, char **argv) {
         rc = cli_fail("eval", "no parameter T given (give them after the options, or pipe them "
                               "on standard input)");
         goto done;
-    } else if (read_params(stdin, &ts, &nt, &rc)) {
+    } else if (eval_read_params(stdin, &ts, &nt, &rc)) {
         goto done;
     }
     /* Results are computed in full before anything is printed: a bad T prints nothing. */

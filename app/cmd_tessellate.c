@@ -8,6 +8,7 @@
 #include "weights.h"
 
 #include "casteljau/patchset.h"
+#include "surface_json.h"
 #include "casteljau/tessellate.h"
 
 #include <limits.h>
@@ -21,10 +22,14 @@
 #define TESS_MAX_MAX_TRIANGLES     200000000L
 
 static const char tess_usage[] =
-    "usage: casteljau tessellate (--teapot | --bpt FILE | --patch \"x,y,z;...\" --degree M,N\n"
+    "usage: casteljau tessellate (--teapot | --bpt FILE | --surface FILE.json |\n"
+    "                            --patch \"x,y,z;...\" --degree M,N\n"
     "                            [--weights \"w;...\"]) [--tol T | --uniform K]\n"
     "                            [--max-triangles N] -o OUT.obj|OUT.ply|OUT.vtu\n"
     "  --teapot  the Utah teapot (32 bicubic patches, teapot.bpt of the installation)\n"
+    "  --surface a B-spline or NURBS surface (JSON: type bspline_surface | nurbs_surface, degree,\n"
+    "            size, points, knots_u/knots_v, weights; what 'casteljau fit --grid' writes),\n"
+    "            tessellated as its Bezier patches\n"
     "  --bpt     patches from a .bpt file (Newell's format: a count, then per patch 'M N' and\n"
     "            (M+1)(N+1) points 'x y z')\n"
     "  --patch   (M+1)(N+1) control points, row by row with u fastest (index j*(M+1)+i)\n"
@@ -70,13 +75,25 @@ int cmd_tessellate(int argc, char **argv) {
     int teapot = 0, have_tol = 0, uniform = 0;
     long max_triangles = TESS_DEFAULT_MAX_TRIANGLES;
     const char *patch_text = NULL, *degree_text = NULL, *weights_text = NULL, *out = NULL,
-               *bpt = NULL;
+               *bpt = NULL, *surface = NULL;
     double tol = 0.0;
-    enum { O_TEAPOT, O_BPT, O_PATCH, O_DEGREE, O_WEIGHTS, O_OUT, O_TOL, O_UNIFORM, O_MAXTRI };
-    static const cli_opt opts[] = {
-        {"--teapot", NULL, 0}, {"--bpt", NULL, 1},     {"--patch", NULL, 1},
-        {"--degree", NULL, 1}, {"--weights", NULL, 1}, {"--output", "-o", 1},
-        {"--tol", NULL, 1},    {"--uniform", NULL, 1}, {"--max-triangles", NULL, 1}};
+    enum {
+        O_TEAPOT,
+        O_BPT,
+        O_PATCH,
+        O_DEGREE,
+        O_WEIGHTS,
+        O_OUT,
+        O_TOL,
+        O_UNIFORM,
+        O_MAXTRI,
+        O_SURFACE
+    };
+    static const cli_opt opts[] = {{"--teapot", NULL, 0},        {"--bpt", NULL, 1},
+                                   {"--patch", NULL, 1},         {"--degree", NULL, 1},
+                                   {"--weights", NULL, 1},       {"--output", "-o", 1},
+                                   {"--tol", NULL, 1},           {"--uniform", NULL, 1},
+                                   {"--max-triangles", NULL, 1}, {"--surface", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, tess_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
     for (;;) {
@@ -96,6 +113,9 @@ int cmd_tessellate(int argc, char **argv) {
             break;
         case O_BPT:
             bpt = v;
+            break;
+        case O_SURFACE:
+            surface = v;
             break;
         case O_PATCH:
             patch_text = v;
@@ -129,9 +149,10 @@ int cmd_tessellate(int argc, char **argv) {
             break;
         }
     }
-    const int models = (teapot != 0) + (patch_text != NULL) + (bpt != NULL);
-    if (models > 1) return cli_fail(cmd, "give one of --teapot, --bpt or --patch");
-    if (models == 0) return cli_fail(cmd, "no model: give --teapot, --bpt FILE or --patch");
+    const int models = (teapot != 0) + (patch_text != NULL) + (bpt != NULL) + (surface != NULL);
+    if (models > 1) return cli_fail(cmd, "give one of --teapot, --bpt, --surface or --patch");
+    if (models == 0)
+        return cli_fail(cmd, "no model: give --teapot, --bpt FILE, --surface FILE or --patch");
     if (patch_text && !degree_text) return cli_fail(cmd, "--patch needs --degree M,N");
     if (!patch_text && degree_text) return cli_fail(cmd, "--degree is only for --patch");
     if (!patch_text && weights_text) return cli_fail(cmd, "--weights is only for --patch");
@@ -142,6 +163,7 @@ int cmd_tessellate(int argc, char **argv) {
         return cli_fail(cmd, "output '%s' must end in .obj, .ply or .vtu", out);
 
     cj_patchset *set = NULL;
+    surface_patches sp = {0, NULL, NULL, NULL};
     cj_patch single;
     double *pts = NULL, *weights = NULL;
     const cj_patch *patches;
@@ -158,6 +180,24 @@ int cmd_tessellate(int argc, char **argv) {
         count = set->count;
         double lo[3], hi[3];
         if ((st = cj_patchset_bbox(set, lo, hi, &size))) {
+            rc = cli_fail(cmd, "%s", cj_last_error());
+            goto done;
+        }
+    } else if (surface) {
+        char why[400];
+        int nomem = 0;
+        if (surface_json_load(surface, &sp, why, sizeof why, &nomem))
+            return nomem ? cli_error(cmd, "--surface: %s", why)
+                         : cli_fail(cmd, "--surface: %s", why);
+        patches = sp.patches;
+        count = sp.count;
+        cj_patchset view;
+        memset(&view, 0, sizeof view);
+        view.count = sp.count;
+        view.patches = sp.patches;
+        view.points = sp.pts;
+        double lo[3], hi[3];
+        if (cj_patchset_bbox(&view, lo, hi, &size)) {
             rc = cli_fail(cmd, "%s", cj_last_error());
             goto done;
         }
@@ -272,6 +312,7 @@ int cmd_tessellate(int argc, char **argv) {
     cj_mesh_destroy(mesh);
 done:
     cj_patchset_destroy(set);
+    surface_json_free(&sp);
     free(pts);
     free(weights);
     return rc;

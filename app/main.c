@@ -13,6 +13,7 @@ typedef struct command {
 static const command commands[] = {
     {"eval", cmd_eval, "evaluate a Bezier curve (or a derivative) at parameters"},
     {"interp", cmd_interp, "curves through points (Catmull-Rom, polynomial) as Bezier segments"},
+    {"fit", cmd_fit, "a B-spline through or near points (interpolation, least squares) as JSON"},
     {"contour", cmd_contour, "polylines of an implicit curve f(x,y) = 0 inside a box"},
     {"plot", cmd_plot, "render curves described in JSON (or --demo) to a PNG image"},
     {"tessellate", cmd_tessellate,

@@ -29,6 +29,9 @@
  *                  (graded order 1, x, y, x², xy, y², ...); box [x0,y0,x1,y1] (required for
  *                  line and poly; default: the circle's/ellipse's bounding square + 10 %),
  *                  grid (cells per side, default 64)
+ *   "bspline"      degree, points, knots (default clamped uniform), weights (optional: a
+ *                  NURBS), control_polygon, control_points, knot_markers (all true): drawn as
+ *                  its Bézier pieces (plot_json_bspline.c, format in bspline_json.h)
  *   "polyline"     points (>= 2), closed (false), markers (false)
  *   "points"       points (>= 1), radius (4 px)
  * Limits per document (so that any file is rendered in seconds): PLOT_JSON_MAX_ITEMS items,
@@ -385,8 +388,8 @@ static int parse_panel(pj_ctx *c, const cJSON *obj, const char *prefix, cj_rgba 
         const cJSON *t = pj_field(it, "type");
         if (!t || !cJSON_IsString(t)) {
             pj_fail(c,
-                    "%s.type is missing or not a string (bezier, catmull-rom, implicit, "
-                    "polyline, points)",
+                    "%s.type is missing or not a string (bezier, bspline, catmull-rom, "
+                    "implicit, polyline, points)",
                     ip);
             PFAIL;
         }
@@ -406,8 +409,12 @@ static int parse_panel(pj_ctx *c, const cJSON *obj, const char *prefix, cj_rgba 
             r = parse_polyline(c, it, ip, plot, color, 0);
         else if (!strcmp(t->valuestring, "points"))
             r = parse_polyline(c, it, ip, plot, color, 1);
+        else if (!strcmp(t->valuestring, "bspline"))
+            r = pj_parse_bspline(c, it, ip, plot, color);
         else
-            r = pj_fail(c, "%s.type '%s' is not bezier, catmull-rom, implicit, polyline or points",
+            r = pj_fail(c,
+                        "%s.type '%s' is not bezier, bspline, catmull-rom, implicit, polyline or "
+                        "points",
                         ip, t->valuestring);
         if (r) PFAIL;
     }

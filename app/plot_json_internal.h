@@ -46,4 +46,7 @@ const cJSON *pj_field(const cJSON *obj, const char *key);
 int chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path, const char *const *extra_keys,
                      cj_chart **out);
 
+/* A "bspline" item (plot_json_bspline.c). */
+int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color);
+
 #endif

@@ -29,11 +29,14 @@ enum {
     G_REVOLUTION,
     G_GEN_CYLINDER,
     G_MESH,
-    G_CURVE
+    G_CURVE,
+    G_BSPLINE_SURFACE,
+    G_NURBS_SURFACE
 };
 static const char *const GEOM_TYPES[] = {
-    "teapot", "bpt",      "patches",    "sphere",       "quadric", "torus", "cylinder", "planar",
-    "plane",  "bilinear", "revolution", "gen_cylinder", "mesh",    "curve", NULL};
+    "teapot",   "bpt",    "patches",         "sphere",        "quadric",    "torus",
+    "cylinder", "planar", "plane",           "bilinear",      "revolution", "gen_cylinder",
+    "mesh",     "curve",  "bspline_surface", "nurbs_surface", NULL};
 /* The keys of each type besides "type" (and "name" in the "geometries" list). */
 static const char *const GEOM_KEYS[][12] = {
     {NULL},
@@ -566,6 +569,8 @@ cj_status cj_json_read_geometry_(jctx *c, const cJSON *obj, const char *p, int *
     TRY(cj_json_enum_(c, obj, p, "type", GEOM_TYPES, &type));
     if (type == G_QUADRIC) return read_quadric(c, obj, p, named, index);
     if (type == G_CURVE) return read_curve(c, obj, p, named, index);
+    if (type == G_BSPLINE_SURFACE || type == G_NURBS_SURFACE)
+        return cj_json_read_bspline_surface_(c, obj, p, named, type == G_NURBS_SURFACE, index);
     TRY(geom_keys(c, obj, p, type, named));
     switch (type) {
     case G_TEAPOT:

@@ -98,5 +98,9 @@ cj_status cj_json_read_objects_(jctx *c, const cJSON *arr);
 cj_status cj_json_read_material_(jctx *c, const cJSON *obj, const char *p, int named, int *index);
 /* Builds the geometry described by obj and adds it to the scene; *index receives it. */
 cj_status cj_json_read_geometry_(jctx *c, const cJSON *obj, const char *path, int *index);
+/* "bspline_surface" (nurbs = 0) / "nurbs_surface" (nurbs = 1), converted to Bézier patches at
+ * load (scene_json_bspline.c). named: the object is an entry of "geometries" (may have "name"). */
+cj_status cj_json_read_bspline_surface_(jctx *c, const cJSON *obj, const char *path, int named,
+                                        int nurbs, int *index);
 
 #endif

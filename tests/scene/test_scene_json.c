@@ -242,7 +242,8 @@ static const bad_case BAD[] = {
     /* geometry */
     {"{\"objects\": [{\"geometry\":\n {\"type\": \"cube\"}}]}", CJ_ERR_PARSE,
      "scene.json:2: objects[0].geometry.type \"cube\" is not one of teapot, bpt, patches, sphere, "
-     "quadric, torus, cylinder, planar, plane, bilinear, revolution, gen_cylinder, mesh, curve"},
+     "quadric, torus, cylinder, planar, plane, bilinear, revolution, gen_cylinder, mesh, curve, "
+     "bspline_surface, nurbs_surface"},
     {"{\"objects\": [{\"geometry\": {\"type\": \"sphere\",\n \"radius\": 0}}]}", CJ_ERR_RANGE,
      "scene.json:2: objects[0].geometry.radius must be > 0"},
     {"{\"objects\": [{\"geometry\": {\"type\": \"sphere\"}}]}", CJ_ERR_PARSE,

@@ -83,6 +83,12 @@
  *   patches       "patches": [{"degree": [m, n], "points": [[x, y, z] × (m+1)(n+1)],
  *                 "weights": [(m+1)(n+1) numbers > 0] (optional: rational)}]; point j(m+1)+i
  *                 is b_ij (i along u runs fastest)
+ *   bspline_surface  "degree": [p, q], "size": [nu, nv], "points": [[x, y, z] × nu nv] (point
+ *                 j nu + i is d_ij, i along u fastest), "knots_u" (nu + p + 1 numbers),
+ *                 "knots_v" (nv + q + 1) (both optional: clamped uniform on [0, 1]); converted
+ *                 to its Bézier patches at load (casteljau/bspline_surface.h), so the geometry is
+ *                 "patches" from then on (and is written back as such)
+ *   nurbs_surface the same with "weights" [nu nv numbers > 0] (required): rational patches
  *   sphere        "center" ([0, 0, 0]), "radius"
  *   quadric       "kind": ellipsoid (a, b, c) | hyperboloid1 (a, b, c, v0, v1) | hyperboloid2
  *                 (a, b, c, v1, "lower": bool) | cone (a, b, c, v0, v1) | paraboloid (a, b, v1)

@@ -1,0 +1,40 @@
+/* Private to the casteljau tool: the B-spline / NURBS curve item of the JSON documents that
+ * `fit` writes and `eval --curve` and `plot` read:
+ *     {"type": "bspline", "degree": p, "points": [[x, y, ...], ...],
+ *      "knots": [t_0, ..., t_{n+p+1}]   (optional: clamped and uniform on [0, 1]),
+ *      "weights": [w_0, ..., w_n]        (optional: a NURBS)}
+ * Every point has the same dimension (1..8; 1..7 with weights). Rules of casteljau/bspline.h. */
+#ifndef CASTELJAU_APP_BSPLINE_JSON_H
+#define CASTELJAU_APP_BSPLINE_JSON_H
+
+#include "casteljau/bspline.h"
+
+#include <cJSON.h>
+#include <stddef.h>
+#include <stdio.h>
+
+typedef struct bsp_json {
+    int degree, dim, npts;
+    double *pts, *weights, *knots; /* owned; weights NULL for a polynomial B-spline */
+} bsp_json;
+
+/* Parses item (at JSON path `path`) into out. extra_keys: NULL-terminated field names also
+ * allowed (drawing options of plot), may be NULL. Returns 0, or -1 with a one-line reason
+ * naming the path into why. max_points caps the control points. */
+int bsp_json_parse(const cJSON *item, const char *path, const char *const *extra_keys,
+                   size_t max_points, bsp_json *out, char *why, size_t why_size);
+
+void bsp_json_free(bsp_json *b);
+
+static inline cj_bspline bsp_json_view(const bsp_json *b) {
+    return cj_bspline_view(b->degree, b->dim, b->npts, b->pts, b->weights, b->knots);
+}
+
+/* The first "bspline" item of a document: the object itself, or in its "items", or in the
+ * "items" of one of its "panels". Writes its JSON path to path[path_size]; NULL if none. */
+const cJSON *bsp_json_find(const cJSON *doc, char *path, size_t path_size);
+
+/* Writes the item (no trailing newline), numbers with %.17g, indented by `indent`. */
+void bsp_json_write(FILE *f, const cj_bspline *c, const char *indent);
+
+#endif

@@ -1,0 +1,145 @@
+/* casteljau eval --curve: the B-spline item of a JSON file, evaluated by de Boor. */
+#include "eval_bspline.h"
+#include "bspline_json.h"
+#include "cli.h"
+
+#include "casteljau/bspline.h"
+
+#include <cJSON.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define EVAL_MAX_BYTES ((size_t)256 << 20)
+
+static char *slurp(const char *path, char *why, size_t n) {
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        char q[160];
+        snprintf(why, n, "--curve: cannot open '%s'", cli_quote(path, q, sizeof q));
+        return NULL;
+    }
+    size_t cap = 1 << 16, len = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        len += fread(buf + len, 1, cap - len - 1, f);
+        if (ferror(f) || len > EVAL_MAX_BYTES) {
+            snprintf(why, n, "--curve: cannot read '%s'%s", path,
+                     len > EVAL_MAX_BYTES ? " (larger than 256 MiB)" : "");
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        if (feof(f)) break;
+        if (len + 1 < cap) continue;
+        char *nb = realloc(buf, cap * 2);
+        if (!nb) {
+            free(buf);
+            snprintf(why, n, "--curve: out of memory reading '%s'", path);
+        }
+        buf = nb;
+        cap *= 2;
+    }
+    fclose(f);
+    if (buf) buf[len] = '\0';
+    return buf;
+}
+
+int eval_bspline_run(const char *path, int derivative, int want_bound, char **targs, int ntargs) {
+    if (derivative > CJ_BSPLINE_MAX_DERIV)
+        return cli_fail("eval", "--derivative %d exceeds %d for a B-spline", derivative,
+                        CJ_BSPLINE_MAX_DERIV);
+    char why[512] = "";
+    char *text = slurp(path, why, sizeof why);
+    if (!text)
+        return why[0] == '-' && strstr(why, "memory") ? cli_error("eval", "%s", why)
+                                                      : cli_fail("eval", "%s", why);
+    cJSON *doc = cJSON_Parse(text);
+    free(text);
+    if (!doc) return cli_fail("eval", "--curve: '%s' is not valid JSON", path);
+    char ipath[96];
+    const cJSON *item = bsp_json_find(doc, ipath, sizeof ipath);
+    bsp_json b;
+    int rc = 0;
+    if (!item) {
+        cJSON_Delete(doc);
+        return cli_fail("eval", "--curve: '%s' has no item of type \"bspline\"", path);
+    }
+    if (bsp_json_parse(item, ipath, NULL, 50000000, &b, why, sizeof why)) {
+        cJSON_Delete(doc);
+        return cli_fail("eval", "--curve: %s", why);
+    }
+    cJSON_Delete(doc);
+    double *ts = NULL, *vals = NULL;
+    size_t nt = 0;
+    if (ntargs > 0) {
+        nt = (size_t)ntargs;
+        ts = malloc(sizeof(double) * nt);
+        if (!ts) {
+            rc = cli_error("eval", "out of memory");
+            goto done;
+        }
+        for (size_t j = 0; j < nt; ++j)
+            if (cli_parse_double(targs[j], &ts[j])) {
+                char q[80];
+                rc = cli_fail("eval", "parameter '%s' is not a finite number",
+                              cli_quote(targs[j], q, sizeof q));
+                goto done;
+            }
+    } else if (isatty(0)) {
+        rc = cli_fail("eval", "no parameter T given (give them after the options, or pipe them "
+                              "on standard input)");
+        goto done;
+    } else if (eval_read_params(stdin, &ts, &nt, &rc)) {
+        goto done;
+    }
+    const cj_bspline c = bsp_json_view(&b);
+    const int dim = c.dim;
+    vals = malloc(sizeof(double) * nt * (size_t)dim * 2);
+    double *der = malloc(sizeof(double) * (size_t)(derivative + 1) * (size_t)dim);
+    double *bnd = malloc(sizeof(double) * (size_t)(derivative + 1) * (size_t)dim);
+    if (!vals || !der || !bnd) {
+        free(der);
+        free(bnd);
+        rc = cli_error("eval", "out of memory");
+        goto done;
+    }
+    for (size_t j = 0; j < nt && !rc; ++j) {
+        double *v = vals + j * (size_t)dim * 2;
+        cj_status st = cj_bspline_eval_derivs(&c, ts[j], derivative, der);
+        if (!st) memcpy(v, der + (size_t)derivative * (size_t)dim, sizeof(double) * (size_t)dim);
+        if (!st && want_bound && derivative == 0) st = cj_bspline_error_bound(&c, ts[j], v + dim);
+        if (!st && want_bound && derivative > 0) {
+            st = cj_bspline_derivs_error_bound(&c, ts[j], derivative, bnd);
+            if (!st)
+                memcpy(v + dim, bnd + (size_t)derivative * (size_t)dim,
+                       sizeof(double) * (size_t)dim);
+        }
+        if (st) rc = cli_fail("eval", "%s", cj_last_error());
+    }
+    free(der);
+    free(bnd);
+    if (rc) goto done;
+    for (size_t j = 0; j < nt; ++j) {
+        const double *v = vals + j * (size_t)dim * 2;
+        for (int k = 0; k < dim; ++k) {
+            if (k) putchar(' ');
+            cli_print_double(v[k]);
+        }
+        if (want_bound) {
+            fputs(" |", stdout);
+            for (int k = 0; k < dim; ++k) {
+                putchar(' ');
+                cli_print_double(v[dim + k]);
+            }
+        }
+        putchar('\n');
+    }
+    if (fflush(stdout) != 0 || ferror(stdout)) rc = cli_error("eval", "cannot write the output");
+done:
+    free(ts);
+    free(vals);
+    bsp_json_free(&b);
+    return rc;
+}

@@ -1,0 +1,97 @@
+/* casteljau: tensor-product B-spline and NURBS surfaces in 3D, converted to Bézier patches so
+ * that tessellation, rendering and ray tracing (which take cj_patch) work on them.
+ *
+ * A surface of degrees (p, q) with nu × nv control points d_ij (i = 0..nu-1 along u, j along v),
+ * optional weights w_ij > 0 and knot vectors U (nu + p + 1 knots) and V (nv + q + 1) is
+ *
+ *     S(u,v) = Σ_i Σ_j w_ij d_ij N_{i,p}(u) N_{j,q}(v) / Σ_i Σ_j w_ij N_{i,p}(u) N_{j,q}(v)
+ *
+ * (all w_ij = 1: the polynomial surface) on the domain [u_p, u_nu] × [v_q, v_nv]. The control net
+ * is stored as cj_patch stores it, ROW BY ROW WITH u FASTEST: d_ij is pts[3*(j*nu + i) + k] and
+ * w_ij is weights[j*nu + i]. Each knot vector follows the rules of casteljau/bspline.h (clamped,
+ * unclamped or periodic-by-wrapping; multiplicities <= degree + 1; a non-empty domain).
+ *
+ * Validation (every function): degrees in [0, CJ_PATCH_MAX_DEGREE] (CJ_ERR_DEGREE; the patches
+ * must fit cj_patch), nu >= p+1 and nv >= q+1 (CJ_ERR_EMPTY), knots as for curves with messages
+ * naming "u knot i" / "v knot j" (CJ_ERR_ARGUMENT, CJ_ERR_NONFINITE, CJ_ERR_DEGENERATE), finite
+ * points named by (i, j) (CJ_ERR_NONFINITE), weights finite and > 0 named by (i, j)
+ * (CJ_ERR_NONFINITE, CJ_ERR_ARGUMENT). cj_bspline_surface is a non-owning view.
+ */
+#ifndef CASTELJAU_BSPLINE_SURFACE_H
+#define CASTELJAU_BSPLINE_SURFACE_H
+
+#include "casteljau/bspline_fit.h"
+#include "casteljau/patch.h"
+#include "casteljau/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct cj_bspline_surface {
+    int deg_u, deg_v;      /* p, q */
+    int npts_u, npts_v;    /* nu >= p+1, nv >= q+1 */
+    const double *pts;     /* 3*nu*nv coordinates, point (i, j) at j*nu + i */
+    const double *weights; /* NULL (polynomial) or nu*nv weights > 0, same order */
+    const double *knots_u; /* nu + p + 1 */
+    const double *knots_v; /* nv + q + 1 */
+} cj_bspline_surface;
+
+cj_status cj_bspline_surface_check(const cj_bspline_surface *s);
+
+/* S(u,v) into out[3]: de Boor in u on the q+1 rows of the v-span, then in v on the results
+ * (homogeneous for a NURBS, one division at the end). (u,v) outside the domain: CJ_ERR_RANGE;
+ * NaN: CJ_ERR_NONFINITE. Allocates nothing. */
+cj_status cj_bspline_surface_eval(const cj_bspline_surface *s, double u, double v, double *out);
+
+/* A-priori absolute error bound of cj_bspline_surface_eval at (u,v), per coordinate (bound[3]),
+ * in the style of cj_bspline_error_bound: the u pass leaves every row value equal to the exact
+ * de Boor sum of its points times (1 + θ_ij), |θ| <= gamma(5p), and the v pass multiplies each
+ * row's term by (1 + φ_j), |φ| <= gamma(5q), so with M_k = Σ_i Σ_j |d_ij,k| N_i(u) N_j(v),
+ *     |Ŝ_k − S_k| <= gamma(5(p+q)) M_k + 4 (p+q+2) eta (1 + max |d_ij,k|)      (polynomial);
+ * a NURBS bounds the homogeneous numerator and weight the same way (gamma(5(p+q)+1), for the
+ * rounding of w d) and propagates them through the division exactly as cj_bspline_error_bound.
+ * Checked against the tensor MPFR oracle in tests/bspline/test_bspline_surface.c. */
+cj_status cj_bspline_surface_error_bound(const cj_bspline_surface *s, double u, double v,
+                                         double *bound);
+
+/* Number of Bézier patches: non-empty u spans times non-empty v spans. */
+cj_status cj_bspline_surface_patch_count(const cj_bspline_surface *s, int *count);
+
+/* The surface as Bézier patches of degree (p, q), rational for a NURBS: every breakpoint of each
+ * direction raised to multiplicity p (q) by Boehm insertion on whole rows (columns), then the
+ * (p+1)(q+1) points of every span pair. Patch a along u, b along v is number b*nspans_u + a; its
+ * points (cj_patch layout) at pts + 3*(p+1)*(q+1)*k, weights at weights + (p+1)*(q+1)*k
+ * (weights must be given exactly for a NURBS, else CJ_ERR_ARGUMENT), so
+ *     cj_patch_view(p, q, pts + 3*(p+1)*(q+1)*k, weights ? weights + (p+1)*(q+1)*k : NULL)
+ * is patch k, covering [ub[a], ub[a+1]] × [vb[b], vb[b+1]] of the surface's parameters
+ * (ub, vb: the breaks, nspans_u + 1 and nspans_v + 1 values, either may be NULL). Neighbouring
+ * patches share their boundary control points bit for bit where the surface is continuous
+ * (they are the same refined control points), so watertight tessellation holds across them.
+ * cap: capacity in patches (CJ_ERR_BUFFER if too small); *count (may be NULL) the count.
+ * Allocates its work space (CJ_ERR_NOMEM). */
+cj_status cj_bspline_surface_to_patches(const cj_bspline_surface *s, double *pts, double *weights,
+                                        double *ub, double *vb, int cap, int *count);
+
+/* Inserts the knot x r times in direction dir (0: u, 1: v) by Boehm's algorithm on every row
+ * (column) at once: the same surface with nu + r (or nv + r) points in that direction. Outputs:
+ * out_pts (3 per point, same layout with the new count), out_w (NURBS; else NULL), out_knots
+ * (the refined direction's knot vector; the other one is unchanged). Multiplicity after
+ * insertion above the degree: CJ_ERR_ARGUMENT naming x; x outside the domain: CJ_ERR_RANGE. */
+cj_status cj_bspline_surface_insert_knot(const cj_bspline_surface *s, int dir, double x, int r,
+                                         double *out_pts, double *out_w, double *out_knots);
+
+/* Interpolation through a grid of nu × nv points Q_ij (same layout as pts) with degrees (p, q):
+ * parameters per direction are the average over the rows (columns) of cj_fit_params of each
+ * row (column); knots by averaging as in bspline_fit.h; every row is interpolated in u, then
+ * every column of the result in v (one banded solve per direction, all rows as right-hand
+ * sides). S(ū_i, v̄_j) = Q_ij up to rounding. Outputs: out_pts[3*nu*nv], knots_u[nu + p + 1],
+ * knots_v[nv + q + 1]; ubar[nu], vbar[nv] (may be NULL) the parameters used. */
+cj_status cj_bspline_surface_interpolate(const double *grid, int nu, int nv, int deg_u, int deg_v,
+                                         cj_fit_param kind, double *out_pts, double *knots_u,
+                                         double *knots_v, double *ubar, double *vbar);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
