@@ -33,6 +33,9 @@ typedef struct cj_viewer_options {
     double tol_px;           /* 3D: tessellation tolerance override in pixels (0 = scene's) */
     int threads;             /* renderer threads (0 = one per core) */
     const char *title;       /* window title (default "casteljau view") */
+    const char *timeline;    /* 3D: "<seconds> <event>" lines: keys, buttons, scrolls, render
+                                passes submitted, started, done or cancelled (with their tiles
+                                drawn), frames shown; seconds of CLOCK_MONOTONIC */
 } cj_viewer_options;
 
 /* Opens the window and runs until it is closed (or the replay ends). Returns CJ_OK;
