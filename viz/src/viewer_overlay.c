@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { PANEL_LINES = 10 };
+enum { PANEL_LINES = 12 };
 #define TEXT_PX 12.5
 #define LINE_PX 15.0
 #define PAD_PX  6.0
@@ -54,9 +54,12 @@ static void measure(cj_viewer *v, panel *p) {
 /* Draws the panel with its lower-left corner at (x0, y0) (framebuffer pixels, y up). */
 static void draw_panel(cj_viewer *v, const panel *p, double x0, double y0, cj_rgba bg, cj_rgba fg) {
     if (!p->n) return;
-    for (long y = (long)y0; y < (long)(y0 + p->h); ++y)
-        for (long x = (long)x0; x < (long)(x0 + p->w); ++x)
-            cj_framebuffer_blend(v->screen, x, y, bg);
+    const long xa = (long)x0, ya = (long)y0, xb = (long)(x0 + p->w) - 1, yb = (long)(y0 + p->h) - 1;
+    const cj_rgba edge = cj_rgba_make(110, 110, 110, 255);
+    for (long y = ya; y <= yb; ++y)
+        for (long x = xa; x <= xb; ++x)
+            cj_framebuffer_blend(v->screen, x, y,
+                                 (x == xa || x == xb || y == ya || y == yb) ? edge : bg);
     for (int i = 0; i < p->n; ++i)
         cj_font_draw(v->font, v->screen, x0 + PAD_PX, y0 + p->h - PAD_PX - 9.5 - LINE_PX * i,
                      TEXT_PX, fg, p->line[i]);
@@ -119,15 +122,15 @@ static const char *method_name(cj_eval_method m) {
     return n[m];
 }
 
-/* How many points of the curves (control points and samples along each curve) fall inside the
- * box [x0, x0 + w] × [y0, y0 + h] grown by 4 pixels. */
-static long covered(const cj_viewer *v, double x0, double y0, double w, double h) {
-    long n = 0;
+/* Pixel positions of the curves' control points and of samples along each curve (64 per
+ * curve) into xy (2 per point, at most cap points); returns their number. */
+static size_t curve_samples(const cj_viewer *v, double *xy, size_t cap) {
+    size_t n = 0;
     for (size_t ci = 0; ci < cj_vdoc_curve_count(v->doc); ++ci) {
         const cj_vcurve *c = cj_vdoc_curve(v->doc, ci);
         const int deg = (int)c->count - 1;
-        for (int i = 0; i <= 64 + (int)c->count; ++i) {
-            double p[2] = {0, 0}, q[2];
+        for (int i = 0; i <= 64 + (int)c->count && n < cap; ++i) {
+            double p[2] = {0, 0};
             if (i > 64) {
                 memcpy(p, c->pts + 2 * (i - 65), sizeof p);
             } else if (c->kind == CJ_VCURVE_RATIONAL) {
@@ -137,18 +140,27 @@ static long covered(const cj_viewer *v, double x0, double y0, double w, double h
                 cj_bezier b = cj_bezier_view(deg, 2, c->pts);
                 if (cj_bezier_eval(&b, CJ_EVAL_DECASTELJAU, i / 64.0, p)) continue;
             } else { /* a spline passes through its points: sample its polygon */
+                if (c->count < 2) continue;
                 const double s = i / 64.0 * (double)(c->count - 1);
                 const size_t k = (size_t)fmin(floor(s), (double)c->count - 2);
                 const double f = s - (double)k;
-                if (c->count < 2) continue;
                 p[0] = (1 - f) * c->pts[2 * k] + f * c->pts[2 * k + 2];
                 p[1] = (1 - f) * c->pts[2 * k + 1] + f * c->pts[2 * k + 3];
             }
-            cj_vview_to_px(&v->view, p[0], p[1], q);
-            n += q[0] >= x0 - 4 && q[0] <= x0 + w + 4 && q[1] >= y0 - 4 && q[1] <= y0 + h + 4;
+            cj_vview_to_px(&v->view, p[0], p[1], xy + 2 * n++);
         }
     }
     return n;
+}
+
+/* How many of the n sample points fall inside the box at (x0, y0) of size w × h grown by 4
+ * pixels. */
+static long covered(const double *xy, size_t n, double x0, double y0, double w, double h) {
+    long c = 0;
+    for (size_t i = 0; i < n; ++i)
+        c += xy[2 * i] >= x0 - 4 && xy[2 * i] <= x0 + w + 4 && xy[2 * i + 1] >= y0 - 4 &&
+             xy[2 * i + 1] <= y0 + h + 4;
+    return c;
 }
 
 static void overlay_2d(cj_viewer *v, panel *p) {
@@ -157,9 +169,10 @@ static void overlay_2d(cj_viewer *v, panel *p) {
     static const char *const kinds[] = {"Bezier", "rational Bezier", "spline"};
     char dg[32] = "";
     if (c->kind != CJ_VCURVE_SPLINE) snprintf(dg, sizeof dg, ", degree %zu", c->count - 1);
-    add(p, "curve %ld/%zu: %s, %zu points%s | t = %.4f%s%s", v->disp.curve + 1,
-        cj_vdoc_curve_count(v->doc), kinds[c->kind], c->count, dg, v->disp.t,
-        v->disp.construction ? " | construction" : "", v->disp.frame ? " | frame" : "");
+    add(p, "curve %ld/%zu: %s, %zu points%s", v->disp.curve + 1, cj_vdoc_curve_count(v->doc),
+        kinds[c->kind], c->count, dg);
+    add(p, "t = %.4f%s%s", v->disp.t, v->disp.construction ? " | construction" : "",
+        v->disp.frame ? " | frame" : "");
     if (v->sel_point >= 0 && (size_t)v->sel_point < c->count) {
         double q[2];
         const double *pt = c->pts + 2 * v->sel_point;
@@ -187,7 +200,8 @@ static void overlay_2d(cj_viewer *v, panel *p) {
         rp.pts = px;
         cj_rbezier_eval(&rb, v->disp.t, val);
         cj_flatten_rbezier(&rp, &fo, NULL, 0, &np, &fs);
-        add(p, "c(t) = (%.17g, %.17g) | rational de Casteljau (homogeneous)", val[0], val[1]);
+        add(p, "c(t) = (%.17g, %.17g)", val[0], val[1]);
+        add(p, "rational de Casteljau (homogeneous)");
     } else {
         cj_bezier b = cj_bezier_view(deg, 2, c->pts), bp = cj_bezier_view(deg, 2, px);
         if (deg <= CJ_BEZIER_BINOMIAL_MAX_DEGREE || v->method == CJ_EVAL_DECASTELJAU ||
@@ -196,12 +210,12 @@ static void overlay_2d(cj_viewer *v, panel *p) {
             cj_bezier_error_bound(&b, v->method, v->disp.t, bound);
         }
         cj_flatten_bezier(&bp, &fo, NULL, 0, &np, &fs);
-        add(p, "c(t) = (%.17g, %.17g) | M: %s, error <= (%.2e, %.2e)", val[0], val[1],
-            method_name(v->method), bound[0], bound[1]);
+        add(p, "c(t) = (%.17g, %.17g)", val[0], val[1]);
+        add(p, "M: %s, error <= (%.2e, %.2e)", method_name(v->method), bound[0], bound[1]);
     }
     free(px);
-    add(p, "flattening: tol %.2f px -> %zu segments, proven bound %.3f px", CJ_PLOT_FLATTEN_TOL,
-        fs.segments, fs.bound);
+    add(p, "flattening: tol %.2f px -> %zu segments,", CJ_PLOT_FLATTEN_TOL, fs.segments);
+    add(p, "  proven bound %.3f px", fs.bound);
 }
 
 /* The control points of the nodes whose control net is shown (and the selected one always):
@@ -260,22 +274,23 @@ static void overlay_3d(cj_viewer *v, panel *p) {
     points_3d(v);
 }
 
-/* The status panel's place: 3D top left; 2D the corner covering the fewest curve points
- * (ties: top left, top right, bottom left, bottom right). */
+/* The status panel's place: 3D the top left corner; 2D the place on an 8-pixel grid inside the
+ * window that covers the fewest curve points, nearest to the top left corner among equals. */
 static void place(const cj_viewer *v, const panel *p, double *x0, double *y0) {
     const double m = 4;
-    const double xs[4] = {m, v->width - m - p->w, m, v->width - m - p->w};
-    const double ys[4] = {v->height - m - p->h, v->height - m - p->h, m, m};
-    int best = 0;
-    if (!v->mode3d) {
-        long bc = -1;
-        for (int i = 0; i < 4; ++i) {
-            const long c = covered(v, xs[i], ys[i], p->w, p->h);
-            if (bc < 0 || c < bc) bc = c, best = i;
+    *x0 = m;
+    *y0 = v->height - m - p->h;
+    enum { CAP = 4096 };
+    double *xy = v->mode3d ? NULL : malloc(2 * CAP * sizeof *xy);
+    if (!xy) return;
+    const size_t n = curve_samples(v, xy, CAP);
+    long best = covered(xy, n, *x0, *y0, p->w, p->h);
+    for (double y = *y0; y >= m && best > 0; y -= 8)
+        for (double x = m; x + p->w <= v->width - m && best > 0; x += 8) {
+            const long c = covered(xy, n, x, y, p->w, p->h);
+            if (c < best) best = c, *x0 = x, *y0 = y;
         }
-    }
-    *x0 = xs[best];
-    *y0 = ys[best];
+    free(xy);
 }
 
 void cj_viewer_overlay(cj_viewer *v) {
@@ -291,7 +306,7 @@ void cj_viewer_overlay(cj_viewer *v) {
         measure(v, &p);
         double x0, y0;
         place(v, &p, &x0, &y0);
-        draw_panel(v, &p, x0, y0, cj_rgba_make(255, 255, 255, 200), cj_rgba_make(20, 20, 20, 255));
+        draw_panel(v, &p, x0, y0, cj_rgba_make(240, 240, 240, 215), cj_rgba_make(20, 20, 20, 255));
     }
     if (v->show_help && v->font) {
         panel h;

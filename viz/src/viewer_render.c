@@ -151,7 +151,7 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
         ro.height = (r->height + scale - 1) / scale;
         /* about the same work per tile at every spp, so a cancel lands within one tile's time;
          * any tile size gives the same image */
-        ro.tile_size = ro.spp >= 64 ? 8 : ro.spp >= 16 ? 16 : ro.spp >= 4 ? 32 : 64;
+        ro.tile_size = ro.spp >= 16 ? 8 : ro.spp >= 4 ? 16 : 32;
         st = cj_render_trace(job->scene, &ro, 0, NULL, &img, &rep);
     } else {
         const uint64_t key = view_key(job->scene);
