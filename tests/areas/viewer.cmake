@@ -16,3 +16,10 @@ if(CJ_HAVE_VIEWER AND TARGET casteljau)
   # ~10 s of CPU in RelWithDebInfo; the sanitizer build on a busy machine needs the margin
   set_tests_properties(test_viewer_window PROPERTIES TIMEOUT 900)
 endif()
+# Shared corners: linked moves of the teapot's coincident control points keep it watertight.
+if(TARGET cj::viz AND TARGET cj::scene AND TARGET cj::raster)
+  cj_add_test(test_viewer_shared SOURCES viewer/test_viewer_shared.c
+    LIBS cj::viz cj::raster cj::scene cj::surfaces)
+  target_compile_definitions(test_viewer_shared PRIVATE
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+endif()
