@@ -42,7 +42,7 @@ typedef struct cj_viewer {
     struct cj_vrender *rt;   /* the render thread (viewer_render.h) */
     unsigned long gen;       /* the state submitted last */
     unsigned long shown_gen; /* the state the picture shows */
-    int shown_trace, shown_pass;
+    int shown_trace, shown_pass, shown_spp;
     float *depth;             /* pseudodepth plane of the last rasterized picture (hidden points) */
     struct cj_anim_doc *anim; /* an animation document's timeline, or NULL */
     long anim_frame;

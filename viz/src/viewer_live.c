@@ -77,6 +77,7 @@ int cj_viewer_collect(cj_viewer *v) {
     v->shown_gen = f->gen;
     v->shown_trace = f->trace;
     v->shown_pass = f->pass;
+    v->shown_spp = f->spp;
     v->render_s = f->seconds;
     if (!f->trace) v->triangles = f->triangles, v->bound_px = f->bound_px;
     return 1;

@@ -248,14 +248,16 @@ static void points_3d(cj_viewer *v) {
 static void overlay_3d(cj_viewer *v, panel *p) {
     const cj_scene_settings *set = cj_scene_settings_get(cj_vscene_scene(v->vs));
     const int stale = v->shown_gen != v->gen;
+    const int scale = cj_vtrace_scale(v->shown_pass, v->width, v->height);
+    char res[32] = "";
+    if (scale > 1) snprintf(res, sizeof res, ", 1/%d resolution", scale);
     if (v->shown_trace)
         add(p, "ray traced pass %d/%d (%d spp%s) %.1f ms%s", v->shown_pass + 1, VIEW_TRACE_PASSES,
-            cj_vtrace_spp[v->shown_pass],
-            cj_vtrace_scale[v->shown_pass] > 1 ? ", 1/4 resolution" : "", 1e3 * v->render_s,
+            cj_vtrace_spp[v->shown_pass], res, 1e3 * v->render_s,
             stale || cj_viewer_refinable(v) ? " | refining" : "");
     else
         add(p, "rasterized %.1f ms | %zu triangles | tol %.3g px (bound %.3g px) | spp %d%s",
-            1e3 * v->render_s, v->triangles, set->tol_px, v->bound_px, set->spp,
+            1e3 * v->render_s, v->triangles, set->tol_px, v->bound_px, v->shown_spp,
             stale ? (v->trace && v->drag == VIEW_DRAG_NONE ? " | tracing" : " | rendering") : "");
     add(p, "tool: drag points on the camera plane; shift-drag along %c | %zu control points",
         "xyz"[v->axis], cj_vscene_point_count(v->vs));

@@ -7,6 +7,7 @@
 #include "casteljau/trace.h"
 #include "error_internal.h"
 
+#include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdatomic.h>
@@ -14,8 +15,13 @@
 #include <string.h>
 #include <time.h>
 
-const int cj_vtrace_scale[VIEW_TRACE_PASSES] = {4, 1, 1, 1, 1};
 const int cj_vtrace_spp[VIEW_TRACE_PASSES] = {1, 1, 4, 16, 64};
+
+int cj_vtrace_scale(int pass, int width, int height) {
+    if (pass > 0) return 1;
+    const int s = (int)ceil(sqrt((double)width * (double)height / 16384.0));
+    return s < 1 ? 1 : s > 16 ? 16 : s;
+}
 
 struct cj_vrender {
     int width, height, threads;
@@ -145,7 +151,7 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
     int scale = 1;
     const double t0 = now_s();
     if (job->trace) {
-        scale = cj_vtrace_scale[pass];
+        scale = cj_vtrace_scale(pass, r->width, r->height);
         ro.spp = cj_vtrace_spp[pass];
         ro.width = (r->width + scale - 1) / scale;
         ro.height = (r->height + scale - 1) / scale;
@@ -156,6 +162,7 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
     } else {
         const uint64_t key = view_key(job->scene);
         cj_render_cache *fresh = NULL;
+        if (job->interactive) ro.spp = 1; /* the still view after the drag has the scene's */
         if (job->interactive || (r->cache_exact && key == r->cache_view)) {
             ro.cache = r->cache;
         } else if (!cj_render_cache_create(NULL, &fresh)) {
@@ -175,6 +182,7 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
     }
     if (st) return st;
     f->seconds = now_s() - t0;
+    f->spp = ro.spp ? ro.spp : cj_scene_settings_get(job->scene)->spp;
     /* nearest upscaling of a low-resolution pass; alpha 255 (the window shows opaque pixels) */
     const size_t w = (size_t)r->width, h = (size_t)r->height, iw = (size_t)img->width;
     if (scale == 1) {

@@ -23,23 +23,28 @@
 #include <stdint.h>
 #include <stdio.h>
 
-/* Progressive ray-traced passes: pass p draws at 1/scale of the resolution (each direction,
- * shown with nearest upscaling) with spp samples per pixel. */
+/* Progressive ray-traced passes: pass p draws with cj_vtrace_spp[p] samples per pixel at
+ * 1/cj_vtrace_scale(p, width, height) of the resolution in each direction (shown with nearest
+ * upscaling): the quick first pass at about 128 x 128 pixels whatever the window's size, the
+ * others at full resolution. */
 enum { VIEW_TRACE_PASSES = 5 };
-extern const int cj_vtrace_scale[VIEW_TRACE_PASSES], cj_vtrace_spp[VIEW_TRACE_PASSES];
+extern const int cj_vtrace_spp[VIEW_TRACE_PASSES];
+int cj_vtrace_scale(int pass, int width, int height);
 
 typedef struct cj_vjob {
     cj_scene *scene;           /* the snapshot: owned by the job from cj_vrender_submit on */
     unsigned long gen;         /* the viewer state it shows (increases with every job) */
     int trace;                 /* 0: the rasterizer (with the depth plane); 1: the ray tracer */
     int first_pass, last_pass; /* trace: passes drawn, in order */
-    int interactive; /* raster: a drag in progress (cached meshes may be reused within their
-                        tolerance band; otherwise the picture is exactly the offline one) */
+    int interactive; /* raster: a drag in progress: 1 sample per pixel, cached meshes reused
+                        within their tolerance band (otherwise the picture is exactly the
+                        offline one) */
 } cj_vjob;
 
 typedef struct cj_vframe {
     unsigned long gen;
     int trace, pass; /* trace: which pass this is */
+    int spp;         /* samples per pixel drawn */
     cj_status status;
     char msg[256];  /* the error message when status != CJ_OK */
     uint8_t *rgba8; /* width × height sRGB, bottom row first, alpha 255 */
