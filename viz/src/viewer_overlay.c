@@ -273,7 +273,6 @@ static void overlay_3d(cj_viewer *v, panel *p) {
     if (v->anim)
         add(p, "animation: frame %ld of %d..%d (%s, Space)", v->anim_frame, v->anim->frame_first,
             v->anim->frame_last, v->playing ? "playing" : "paused");
-    points_3d(v);
 }
 
 /* The status panel's place: 3D the top left corner; 2D the place on an 8-pixel grid inside the
@@ -296,6 +295,7 @@ static void place(const cj_viewer *v, const panel *p, double *x0, double *y0) {
 }
 
 void cj_viewer_overlay(cj_viewer *v) {
+    if (v->show_overlay && v->mode3d) points_3d(v); /* marks, even without a font */
     if (v->show_overlay && v->font) {
         panel p;
         p.n = 0;
