@@ -1,7 +1,8 @@
 /* bench_viewer: `casteljau view` on the demo teapot under a private Xvfb (Mesa llvmpipe).
  *
  * 1. Replay drag (deterministic): one control point dragged along a 40 px circle at 1024 x 1024,
- *    1 spp, 0.25 px, through a replay script; a replay waits for every picture, so the viewer's
+ *    1 spp, 0.25 px (the viewer draws drag frames at 1 px), through a replay script; a replay waits
+ * for every picture, so the viewer's
  *    --frame-times give the cost of a drag frame (render + upload + draw + swap + glFinish):
  *    median, 90th and 99th percentiles and maximum for 1 and 2 renderer threads, and the median
  *    of cj_render_raster alone in this process.
@@ -121,10 +122,11 @@ static int replay_drag(int frames) {
     fprintf(f, "release left %d %d\nsave %s.json\n", x, y, script);
     fclose(f);
 
-    printf("1. replay drag: teapot demo scene %d x %d, 1 spp, tol 0.25 px (%zu triangles), "
-           "dragging control point %zu along a 40 px circle, %d frames, Xvfb + Mesa llvmpipe\n",
+    printf("1. replay drag: teapot demo scene %d x %d, 1 spp, tol 0.25 px (%zu triangles; the "
+           "viewer's drag frames at 1 px), dragging control point %zu along a 40 px circle, %d "
+           "frames, Xvfb + Mesa llvmpipe\n",
            W, H, tris, picked, frames);
-    printf("cj_render_raster alone (2 threads, in process): median %.1f ms\n",
+    printf("cj_render_raster alone at 0.25 px (2 threads, in process): median %.1f ms\n",
            1e3 * pct(rr, 5, 0.5));
     printf("%-8s %7s | wall: %8s %8s %8s %8s | process CPU: %8s %8s\n", "threads", "frames",
            "median", "p90", "p99", "max", "median", "p99");

@@ -43,6 +43,7 @@ typedef struct cj_viewer {
     unsigned long gen;       /* the state submitted last */
     unsigned long shown_gen; /* the state the picture shows */
     int shown_trace, shown_pass, shown_spp;
+    double shown_tol;         /* raster: the screen tolerance drawn */
     float *depth;             /* pseudodepth plane of the last rasterized picture (hidden points) */
     struct cj_anim_doc *anim; /* an animation document's timeline, or NULL */
     long anim_frame;

@@ -78,6 +78,7 @@ int cj_viewer_collect(cj_viewer *v) {
     v->shown_trace = f->trace;
     v->shown_pass = f->pass;
     v->shown_spp = f->spp;
+    v->shown_tol = f->tol_px;
     v->render_s = f->seconds;
     if (!f->trace) v->triangles = f->triangles, v->bound_px = f->bound_px;
     return 1;

@@ -246,7 +246,6 @@ static void points_3d(cj_viewer *v) {
 }
 
 static void overlay_3d(cj_viewer *v, panel *p) {
-    const cj_scene_settings *set = cj_scene_settings_get(cj_vscene_scene(v->vs));
     const int stale = v->shown_gen != v->gen;
     const int scale = cj_vtrace_scale(v->shown_pass, v->width, v->height);
     char res[32] = "";
@@ -257,7 +256,7 @@ static void overlay_3d(cj_viewer *v, panel *p) {
             stale || cj_viewer_refinable(v) ? " | refining" : "");
     else
         add(p, "rasterized %.1f ms | %zu triangles | tol %.3g px (bound %.3g px) | spp %d%s",
-            1e3 * v->render_s, v->triangles, set->tol_px, v->bound_px, v->shown_spp,
+            1e3 * v->render_s, v->triangles, v->shown_tol, v->bound_px, v->shown_spp,
             stale ? (v->trace && v->drag == VIEW_DRAG_NONE ? " | tracing" : " | rendering") : "");
     add(p, "tool: drag points on the camera plane; shift-drag along %c | %zu control points",
         "xyz"[v->axis], cj_vscene_point_count(v->vs));

@@ -162,7 +162,13 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
     } else {
         const uint64_t key = view_key(job->scene);
         cj_render_cache *fresh = NULL;
-        if (job->interactive) ro.spp = 1; /* the still view after the drag has the scene's */
+        if (job->interactive) {
+            /* a drag frame is a preview: 1 sample per pixel and at least 1 px of tessellation
+             * tolerance; the still view after the drag has the scene's */
+            const double tol = cj_scene_settings_get(job->scene)->tol_px;
+            ro.spp = 1;
+            ro.tol_px = tol > VIEW_DRAG_TOL_PX ? tol : VIEW_DRAG_TOL_PX;
+        }
         if (job->interactive || (r->cache_exact && key == r->cache_view)) {
             ro.cache = r->cache;
         } else if (!cj_render_cache_create(NULL, &fresh)) {
@@ -183,6 +189,7 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
     if (st) return st;
     f->seconds = now_s() - t0;
     f->spp = ro.spp ? ro.spp : cj_scene_settings_get(job->scene)->spp;
+    f->tol_px = ro.tol_px > 0 ? ro.tol_px : cj_scene_settings_get(job->scene)->tol_px;
     /* nearest upscaling of a low-resolution pass; alpha 255 (the window shows opaque pixels) */
     const size_t w = (size_t)r->width, h = (size_t)r->height, iw = (size_t)img->width;
     if (scale == 1) {

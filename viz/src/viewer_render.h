@@ -28,6 +28,8 @@
  * upscaling): the quick first pass at about 128 x 128 pixels whatever the window's size, the
  * others at full resolution. */
 enum { VIEW_TRACE_PASSES = 5 };
+/* The coarsest screen tolerance of a drag frame (pixels; a finer scene tolerance is kept). */
+#define VIEW_DRAG_TOL_PX 1.0
 extern const int cj_vtrace_spp[VIEW_TRACE_PASSES];
 int cj_vtrace_scale(int pass, int width, int height);
 
@@ -36,15 +38,16 @@ typedef struct cj_vjob {
     unsigned long gen;         /* the viewer state it shows (increases with every job) */
     int trace;                 /* 0: the rasterizer (with the depth plane); 1: the ray tracer */
     int first_pass, last_pass; /* trace: passes drawn, in order */
-    int interactive; /* raster: a drag in progress: 1 sample per pixel, cached meshes reused
-                        within their tolerance band (otherwise the picture is exactly the
-                        offline one) */
+    int interactive; /* raster: a drag in progress: 1 sample per pixel, a tolerance of at least
+                        VIEW_DRAG_TOL_PX, cached meshes reused within their tolerance band
+                        (otherwise the picture is exactly the offline one) */
 } cj_vjob;
 
 typedef struct cj_vframe {
     unsigned long gen;
     int trace, pass; /* trace: which pass this is */
     int spp;         /* samples per pixel drawn */
+    double tol_px;   /* raster: screen tolerance drawn */
     cj_status status;
     char msg[256];  /* the error message when status != CJ_OK */
     uint8_t *rgba8; /* width × height sRGB, bottom row first, alpha 255 */
