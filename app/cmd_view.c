@@ -11,7 +11,7 @@ static const char view_usage[] =
     "usage: casteljau view (CURVES.json | SCENE.json | PATCHES.bpt | --teapot)\n"
     "                      [--width W --height H] [--spp N] [--tol-px T] [--threads N]\n"
     "                      [--replay EVENTS.txt] [--screenshot OUT.png] [--frame-times F]\n"
-    "                      [--hide-overlay] [--title T]\n"
+    "                      [--hide-overlay] [--title T] [--timeline F]\n"
     "  CURVES.json     a plot JSON document of one plot with bezier / catmull-rom items: 2D\n"
     "                  mode (drag control points, insert/delete, elevate, split, undo, save)\n"
     "  SCENE.json      a scene (as `casteljau render` reads), PATCHES.bpt Bezier patches, or\n"
@@ -22,6 +22,7 @@ static const char view_usage[] =
     "  --screenshot    PNG of the window's back buffer after the replay (or at exit)\n"
     "  --frame-times   write each frame's wall and CPU seconds (render + upload + swap)\n"
     "  --hide-overlay  start without the text overlay (the picture alone)\n"
+    "  --timeline      3D: write input events, render passes and frames shown, timed\n"
     "Keys: F1 in the window lists them. Ctrl+S saves to the input file (a .bpt or the teapot\n"
     "as a scene JSON beside it / teapot_scene.json), atomically.\n"
     "Exit status: 0; 2 bad arguments, input or script; 1 no display or no memory.\n";
@@ -35,12 +36,25 @@ int cmd_view(int argc, char **argv) {
     cj_viewer_options o;
     memset(&o, 0, sizeof o);
     int teapot = 0;
-    enum { O_W, O_H, O_SPP, O_TOL, O_THR, O_REPLAY, O_SHOT, O_TIMES, O_HIDE, O_TITLE, O_TEAPOT };
+    enum {
+        O_W,
+        O_H,
+        O_SPP,
+        O_TOL,
+        O_THR,
+        O_REPLAY,
+        O_SHOT,
+        O_TIMES,
+        O_HIDE,
+        O_TITLE,
+        O_TIMELINE,
+        O_TEAPOT
+    };
     static const cli_opt opts[] = {
         {"--width", NULL, 1},      {"--height", NULL, 1},      {"--spp", NULL, 1},
         {"--tol-px", NULL, 1},     {"--threads", NULL, 1},     {"--replay", NULL, 1},
         {"--screenshot", NULL, 1}, {"--frame-times", NULL, 1}, {"--hide-overlay", NULL, 0},
-        {"--title", NULL, 1},      {"--teapot", NULL, 0}};
+        {"--title", NULL, 1},      {"--timeline", NULL, 1},    {"--teapot", NULL, 0}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, view_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
     const char *v;
@@ -86,6 +100,9 @@ int cmd_view(int argc, char **argv) {
             break;
         case O_TITLE:
             o.title = v;
+            break;
+        case O_TIMELINE:
+            o.timeline = v;
             break;
         default:
             teapot = 1;

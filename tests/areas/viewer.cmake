@@ -16,3 +16,21 @@ if(CJ_HAVE_VIEWER AND TARGET casteljau)
   # ~10 s of CPU in RelWithDebInfo; the sanitizer build on a busy machine needs the margin
   set_tests_properties(test_viewer_window PROPERTIES TIMEOUT 900)
 endif()
+# Shared corners: linked moves of the teapot's coincident control points keep it watertight.
+if(TARGET cj::viz AND TARGET cj::scene AND TARGET cj::raster)
+  cj_add_test(test_viewer_shared SOURCES viewer/test_viewer_shared.c
+    LIBS cj::viz cj::raster cj::scene cj::surfaces)
+  target_compile_definitions(test_viewer_shared PRIVATE
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+endif()
+# Real X input (xdotool) and the window's pixels read back from the X server: keys redraw, a
+# ray-traced pass is interrupted by a key, traced passes equal `casteljau trace`.
+if(CJ_HAVE_VIEWER AND TARGET casteljau)
+  find_package(X11 REQUIRED)
+  cj_add_test(test_viewer_live SOURCES viewer/test_viewer_live.c support/xvfb.c
+    LIBS cj::viz X11::X11)
+  target_include_directories(test_viewer_live PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(test_viewer_live PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")
+  add_dependencies(test_viewer_live casteljau)
+  set_tests_properties(test_viewer_live PROPERTIES TIMEOUT 900)
+endif()

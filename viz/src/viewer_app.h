@@ -13,6 +13,9 @@
 #include "casteljau/viewer_scene.h"
 
 #include <stddef.h>
+#include <stdio.h>
+
+struct cj_vrender;
 
 enum { VIEW_DRAG_NONE = 0, VIEW_DRAG_POINT, VIEW_DRAG_T, VIEW_DRAG_PAN, VIEW_DRAG_ORBIT };
 /* Modifier bits (GLFW's values). */
@@ -33,10 +36,14 @@ typedef struct cj_viewer {
     cj_eval_method method;
     /* 3D */
     cj_vscene *vs;
-    long sel3; /* selected control point, or -1 */
-    int axis;  /* axis of shift-drags: 0 x, 1 y, 2 z */
-    int trace; /* ray-traced view on */
-    int trace_spp, trace_done;
+    long sel3;               /* selected control point, or -1 */
+    int axis;                /* axis of shift-drags: 0 x, 1 y, 2 z */
+    int trace;               /* ray-traced view on */
+    struct cj_vrender *rt;   /* the render thread (viewer_render.h) */
+    unsigned long gen;       /* the state submitted last */
+    unsigned long shown_gen; /* the state the picture shows */
+    int shown_trace, shown_pass, shown_spp;
+    double shown_tol;         /* raster: the screen tolerance drawn */
     float *depth;             /* pseudodepth plane of the last rasterized picture (hidden points) */
     struct cj_anim_doc *anim; /* an animation document's timeline, or NULL */
     long anim_frame;
@@ -44,7 +51,9 @@ typedef struct cj_viewer {
     /* pictures: `pic` is what the offline commands produce, `screen` adds the overlay */
     cj_framebuffer *pic, *screen;
     cj_font *font;
-    int show_overlay, show_help, dirty;
+    int show_overlay, show_help;
+    int dirty;  /* the picture must be drawn again (the state changed) */
+    int redraw; /* the window must show the picture again (overlay, message, new picture) */
     /* input */
     int drag;
     double cx, cy;     /* cursor, framebuffer pixel coordinates (y up) */
@@ -65,8 +74,26 @@ void cj_viewer_unload(cj_viewer *v);
 cj_status cj_viewer_save(cj_viewer *v, const char *path);
 /* While an animation plays: poses the scene at the next frame (one frame per drawn frame). */
 void cj_viewer_tick(cj_viewer *v);
-/* Renders `pic` if dirty, then `screen` = pic + overlay/help. */
+/* 2D: renders `pic` if dirty. Then `screen` = pic + overlay/help. (3D pictures come from the
+ * render thread: viewer_live.c.) */
 cj_status cj_viewer_draw(cj_viewer *v);
+
+/* viewer_overlay.c: the status panel, selection, control points and help over `screen`. */
+void cj_viewer_overlay(cj_viewer *v);
+
+/* viewer_live.c: 3D pictures through the render thread. */
+cj_status cj_viewer_live_start(cj_viewer *v, FILE *timeline, void (*wake)(void));
+void cj_viewer_live_stop(cj_viewer *v);
+/* Hands the current state to the render thread (clears dirty): a drag the rasterizer with
+ * cached meshes, a still view the exact raster or the ray-traced passes (all of them, or only
+ * the quick first one when `one_pass`). */
+cj_status cj_viewer_submit(cj_viewer *v, int one_pass);
+/* Takes a finished frame into `pic` (and the depth plane); 1 if there was one. */
+int cj_viewer_collect(cj_viewer *v);
+/* The ray-traced view shows the current state and has a finer pass left. */
+int cj_viewer_refinable(const cj_viewer *v);
+/* Submits that next pass alone. */
+cj_status cj_viewer_refine(cj_viewer *v);
 /* The default save path ("" when the input was not a file the editor can write back). */
 const char *cj_viewer_save_path(const cj_viewer *v, char *buf, size_t size);
 

@@ -35,6 +35,7 @@ static const char *const help_3d[] = {
     "left drag elsewhere  orbit;  right or middle drag  pan;  wheel  zoom",
     "N  control nets    W  wireframe    G  shading flat/Gouraud/Phong",
     "+ / -  screen tolerance x2 / /2    R  ray-traced view (refines while still)",
+    "L  shared corners and edge points move together (on) / alone",
     "Space  play/pause the animation (an animation document: one frame per picture)",
     "ctrl+Z  undo    ctrl+Y or ctrl+shift+Z  redo    ctrl+S  save    F5  reload",
     "O  text overlay on/off    F1  this help    Esc/Q  quit",
@@ -240,9 +241,13 @@ static void key_3d(cj_viewer *v, int key) {
         break;
     case GLFW_KEY_R:
         v->trace = !v->trace;
-        v->trace_spp = 1;
-        v->trace_done = 0;
         say(v, v->trace ? "ray tracing" : "rasterizing", CJ_OK);
+        break;
+    case GLFW_KEY_L:
+        cj_vscene_set_linked(v->vs, !cj_vscene_linked(v->vs));
+        snprintf(v->msg, sizeof v->msg, "shared points move %s",
+                 cj_vscene_linked(v->vs) ? "together" : "alone");
+        v->redraw = 1; /* nothing in the picture changes */
         break;
     case GLFW_KEY_X:
     case GLFW_KEY_Y:
@@ -264,6 +269,9 @@ static void key_3d(cj_viewer *v, int key) {
 }
 
 void cj_viewer_key(cj_viewer *v, int key, int mods) {
+    /* every key at least shows the window again (the overlay and help are not in the picture:
+     * O, F1 and / change only the screen, and must show at once) */
+    v->redraw = 1;
     if (mods & VIEW_MOD_CTRL) {
         if (key == GLFW_KEY_Z)
             undo_redo(v, (mods & VIEW_MOD_SHIFT) != 0);
@@ -332,6 +340,9 @@ void cj_viewer_button(cj_viewer *v, int button, int press, int mods, double x, d
             else
                 cj_vdoc_end_drag(v->doc);
         }
+        /* 3D: the frames of a drag may reuse meshes and are never traced; the still view is
+         * drawn again as the offline renderers draw it */
+        if (v->drag != VIEW_DRAG_NONE && v->mode3d) v->dirty = 1;
         v->drag = VIEW_DRAG_NONE;
         return;
     }
@@ -349,7 +360,9 @@ void cj_viewer_button(cj_viewer *v, int button, int press, int mods, double x, d
         } else {
             v->drag = button == VIEW_BUTTON_LEFT ? VIEW_DRAG_ORBIT : VIEW_DRAG_PAN;
         }
-        v->dirty = 1;
+        /* the selection is overlay; a traced view gives way to the rasterized one at once */
+        v->redraw = 1;
+        if (v->trace) v->dirty = 1;
         return;
     }
     size_t ci, pi;

@@ -11,13 +11,16 @@
 #include <string.h>
 
 typedef struct vpt {
-    int node;
+    int node, geom;
     double *p; /* 3 coordinates inside the scene's geometry */
 } vpt;
 
+/* One moved point; the consecutive entries of one command share `cmd` (a linked move of a
+ * shared corner is several entries, undone and redone together). */
 typedef struct vmove {
     double *p;
     double from[3], to[3];
+    unsigned long cmd;
 } vmove;
 
 struct cj_vscene {
@@ -27,6 +30,9 @@ struct cj_vscene {
     cj_xform3 *world, *inv; /* per node */
     vmove *log;
     size_t nlog, pos, cap;
+    unsigned long ncmd;
+    int linked;   /* coincident points of one geometry move together (default on) */
+    double **grp; /* scratch: the points moved by one command (npts capacity) */
     int drag_open, drag_merge;
     cj_vec3 drag_start; /* world position of the dragged point when the drag began */
     /* orbit camera */
@@ -71,11 +77,12 @@ static cj_status collect(cj_vscene *vs) {
             for (size_t k = 0; k < g->u.patches.count; ++k) {
                 const cj_patch *pa = &g->u.patches.patches[k];
                 for (size_t i = 0; i < cj_patch_point_count(pa); ++i)
-                    vs->pts[vs->npts++] = (vpt){(int)n, (double *)pa->pts + 3 * i};
+                    vs->pts[vs->npts++] = (vpt){(int)n, node->geometry, (double *)pa->pts + 3 * i};
             }
         } else {
             for (size_t i = 0; i < g->u.curve.count; ++i)
-                vs->pts[vs->npts++] = (vpt){(int)n, (double *)g->u.curve.pts + 3 * i};
+                vs->pts[vs->npts++] =
+                    (vpt){(int)n, node->geometry, (double *)g->u.curve.pts + 3 * i};
         }
     }
     return CJ_OK;
@@ -133,11 +140,14 @@ cj_status cj_vscene_create(cj_scene *scene, cj_vscene **out) {
     vs->scene = scene;
     cj_status st = cj_scene_check(scene);
     if (!st) st = collect(vs);
+    if (!st && !(vs->grp = malloc((vs->npts ? vs->npts : 1) * sizeof *vs->grp)))
+        st = cj_fail(CJ_ERR_NOMEM, "viewer: out of memory for control points");
     if (st) {
         cj_vscene_destroy(vs);
         return st;
     }
     camera_init(vs);
+    vs->linked = 1;
     *out = vs;
     return CJ_OK;
 }
@@ -149,6 +159,7 @@ void cj_vscene_destroy(cj_vscene *vs) {
     free(vs->world);
     free(vs->inv);
     free(vs->log);
+    free(vs->grp);
     free(vs);
 }
 
@@ -159,7 +170,38 @@ size_t cj_vscene_point_count(const cj_vscene *vs) {
     return vs->npts;
 }
 size_t cj_vscene_undo_depth(const cj_vscene *vs) {
-    return vs->pos;
+    size_t n = 0;
+    for (size_t i = 0; i < vs->pos; ++i) n += i == 0 || vs->log[i].cmd != vs->log[i - 1].cmd;
+    return n;
+}
+
+void cj_vscene_set_linked(cj_vscene *vs, int on) {
+    vs->linked = on != 0;
+    vs->drag_merge = 0;
+}
+int cj_vscene_linked(const cj_vscene *vs) {
+    return vs->linked;
+}
+
+/* The distinct points moved with point k into vs->grp (k's own first): with linking on, every
+ * point of the same geometry at bit-identically the same place. Returns their number. */
+static size_t group_of(const cj_vscene *vs, size_t k) {
+    double *const p = vs->pts[k].p;
+    size_t n = 0;
+    vs->grp[n++] = p;
+    if (!vs->linked) return n;
+    for (size_t i = 0; i < vs->npts; ++i) {
+        double *q = vs->pts[i].p;
+        if (vs->pts[i].geom != vs->pts[k].geom || memcmp(q, p, 3 * sizeof *p)) continue;
+        int seen = 0; /* a geometry shared by several nodes lists its points once per node */
+        for (size_t j = 0; j < n && !seen; ++j) seen = vs->grp[j] == q;
+        if (!seen) vs->grp[n++] = q;
+    }
+    return n;
+}
+
+size_t cj_vscene_shared_count(const cj_vscene *vs, size_t k) {
+    return k < vs->npts ? group_of(vs, k) : 0;
 }
 
 cj_status cj_vscene_point(const cj_vscene *vs, size_t k, cj_vec3 *world) {
@@ -167,6 +209,10 @@ cj_status cj_vscene_point(const cj_vscene *vs, size_t k, cj_vec3 *world) {
         return cj_fail(CJ_ERR_ARGUMENT, "viewer: control point %zu does not exist (%zu)", k,
                        vs->npts);
     return cj_xform3_apply_point(&vs->world[vs->pts[k].node], lv(vs->pts[k].p), world);
+}
+
+int cj_vscene_point_node(const cj_vscene *vs, size_t k) {
+    return k < vs->npts ? vs->pts[k].node : -1;
 }
 
 static int project(const cj_xform3 *clip, cj_vec3 w, int width, int height, double out[3]) {
@@ -216,26 +262,40 @@ int cj_vscene_pick(const cj_vscene *vs, int width, int height, const float *dept
     return found;
 }
 
-static cj_status log_move(cj_vscene *vs, double *p, const double to[3]) {
-    vmove *last = vs->pos ? &vs->log[vs->pos - 1] : NULL;
-    if (vs->drag_merge && last && last->p == p && vs->pos == vs->nlog) {
-        memcpy(last->to, to, sizeof last->to);
-        memcpy(p, to, 3 * sizeof *p);
+/* Moves the n points of vs->grp to `to`: one command, or the continuation of the drag's
+ * command when the same points moved last. */
+static cj_status log_moves(cj_vscene *vs, size_t n, const double to[3]) {
+    int merge = vs->drag_merge && vs->pos == vs->nlog && vs->pos >= n;
+    for (size_t i = 0; merge && i < n; ++i) {
+        const vmove *m = &vs->log[vs->pos - n + i];
+        merge = m->p == vs->grp[i] && m->cmd == vs->log[vs->pos - 1].cmd &&
+                (vs->pos == n || vs->log[vs->pos - n - 1].cmd != m->cmd);
+    }
+    if (merge) {
+        for (size_t i = 0; i < n; ++i) {
+            memcpy(vs->log[vs->pos - n + i].to, to, 3 * sizeof *to);
+            memcpy(vs->grp[i], to, 3 * sizeof *to);
+        }
         return CJ_OK;
     }
     vs->nlog = vs->pos;
-    if (vs->nlog == vs->cap) {
+    if (vs->nlog + n > vs->cap) {
         size_t cap = vs->cap ? 2 * vs->cap : 64;
+        while (cap < vs->nlog + n) cap *= 2;
         vmove *nl = realloc(vs->log, cap * sizeof *nl);
         if (!nl) return cj_fail(CJ_ERR_NOMEM, "viewer: out of memory for the undo log");
         vs->log = nl;
         vs->cap = cap;
     }
-    vmove *m = &vs->log[vs->nlog++];
-    m->p = p;
-    memcpy(m->from, p, sizeof m->from);
-    memcpy(m->to, to, sizeof m->to);
-    memcpy(p, to, 3 * sizeof *p);
+    const unsigned long cmd = ++vs->ncmd;
+    for (size_t i = 0; i < n; ++i) {
+        vmove *m = &vs->log[vs->nlog++];
+        m->p = vs->grp[i];
+        m->cmd = cmd;
+        memcpy(m->from, m->p, sizeof m->from);
+        memcpy(m->to, to, sizeof m->to);
+        memcpy(m->p, to, sizeof m->to);
+    }
     vs->pos = vs->nlog;
     vs->drag_merge = vs->drag_open;
     return CJ_OK;
@@ -252,7 +312,7 @@ cj_status cj_vscene_set_point(cj_vscene *vs, size_t k, cj_vec3 world) {
     cj_status st = cj_xform3_apply_point(&vs->inv[vs->pts[k].node], world, &local);
     if (st) return st;
     const double to[3] = {local.x, local.y, local.z};
-    return log_move(vs, vs->pts[k].p, to);
+    return log_moves(vs, group_of(vs, k), to);
 }
 
 void cj_vscene_begin_drag(cj_vscene *vs) {
@@ -333,16 +393,22 @@ cj_status cj_vscene_update(cj_vscene *vs) {
 
 cj_status cj_vscene_undo(cj_vscene *vs) {
     if (!vs->pos) return cj_fail(CJ_ERR_EMPTY, "viewer: nothing to undo");
-    vmove *m = &vs->log[--vs->pos];
-    memcpy(m->p, m->from, sizeof m->from);
+    const unsigned long cmd = vs->log[vs->pos - 1].cmd;
+    while (vs->pos && vs->log[vs->pos - 1].cmd == cmd) {
+        const vmove *m = &vs->log[--vs->pos];
+        memcpy(m->p, m->from, sizeof m->from);
+    }
     vs->drag_merge = 0;
     return CJ_OK;
 }
 
 cj_status cj_vscene_redo(cj_vscene *vs) {
     if (vs->pos == vs->nlog) return cj_fail(CJ_ERR_EMPTY, "viewer: nothing to redo");
-    vmove *m = &vs->log[vs->pos++];
-    memcpy(m->p, m->to, sizeof m->to);
+    const unsigned long cmd = vs->log[vs->pos].cmd;
+    while (vs->pos < vs->nlog && vs->log[vs->pos].cmd == cmd) {
+        const vmove *m = &vs->log[vs->pos++];
+        memcpy(m->p, m->to, sizeof m->to);
+    }
     vs->drag_merge = 0;
     return CJ_OK;
 }

@@ -4,6 +4,7 @@
  * back buffer with glReadPixels before the swap. */
 #define _POSIX_C_SOURCE 200809L
 #include "viewer_app.h"
+#include "viewer_render.h"
 
 #include "casteljau/image_io.h"
 #include "error_internal.h"
@@ -27,6 +28,7 @@ typedef struct win {
     /* The pointer as the last motion event put it. A press uses this, not glfwGetCursorPos
      * (which asks the server where the pointer is NOW: a slow frame would see later motion). */
     double px, py;
+    FILE *timeline; /* --timeline: input, passes and frames shown */
 } win;
 
 static char glfw_msg[256];
@@ -58,13 +60,16 @@ static int live(GLFWwindow *w) {
 
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     (void)scancode;
-    if (action != GLFW_RELEASE && live(w))
-        cj_viewer_key(&((win *)glfwGetWindowUserPointer(w))->v, key, mods);
+    if (action == GLFW_RELEASE || !live(w)) return;
+    win *g = glfwGetWindowUserPointer(w);
+    cj_vrender_log(g->v.rt, "key %d", key);
+    cj_viewer_key(&g->v, key, mods);
 }
 
 static void on_button(GLFWwindow *w, int button, int action, int mods) {
     if (!live(w)) return;
     win *g = glfwGetWindowUserPointer(w);
+    cj_vrender_log(g->v.rt, "button %d %s", button, action == GLFW_PRESS ? "press" : "release");
     cj_viewer_button(&g->v, button, action == GLFW_PRESS, mods, g->px, g->py);
 }
 
@@ -78,15 +83,19 @@ static void on_cursor(GLFWwindow *w, double x, double y) {
 static void on_scroll(GLFWwindow *w, double dx, double dy) {
     (void)dx;
     if (!live(w)) return;
-    cj_viewer_scroll(&((win *)glfwGetWindowUserPointer(w))->v, dy);
+    win *g = glfwGetWindowUserPointer(w);
+    cj_vrender_log(g->v.rt, "scroll %g", dy);
+    cj_viewer_scroll(&g->v, dy);
 }
 
-static cj_status frame_timed(win *g, const char *shot, int record);
-
-/* The window was uncovered or mapped: show the current picture again (not a timed frame, and
- * no animation step). */
+/* The window was uncovered or mapped: show it again (in the loop, not inside the callback). */
 static void on_refresh(GLFWwindow *w) {
-    frame_timed((win *)glfwGetWindowUserPointer(w), NULL, 0);
+    ((win *)glfwGetWindowUserPointer(w))->v.redraw = 1;
+}
+
+/* Called by the render thread when a frame is ready: wakes the event loop. */
+static void wake(void) {
+    glfwPostEmptyEvent();
 }
 
 static cj_status screenshot(win *g, const char *path) {
@@ -108,11 +117,9 @@ static double cpu_s(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Draws one frame into the back buffer; optionally reads it; swaps. Records its wall and
- * process CPU time (render + upload + draw + swap + glFinish) when `record`. */
-static cj_status frame_timed(win *g, const char *shot, int record) {
-    const double t0 = now_s(), c0 = cpu_s();
-    if (record) cj_viewer_tick(&g->v);
+/* Shows `screen` (the picture and the overlay, composed now) in the back buffer; optionally
+ * reads it; swaps. */
+static cj_status present(win *g, const char *shot) {
     cj_status st = cj_viewer_draw(&g->v);
     const cj_framebuffer *fb = g->v.screen;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -134,8 +141,12 @@ static cj_status frame_timed(win *g, const char *shot, int record) {
     }
     glfwSwapBuffers(g->w);
     glFinish();
-    const double dt = now_s() - t0, dc = cpu_s() - c0;
-    if (!record) return st;
+    cj_vrender_log(g->v.rt, "shown gen %lu %s pass %d", g->v.shown_gen,
+                   g->v.shown_trace ? "trace" : "raster", g->v.shown_pass);
+    return st;
+}
+
+static void record_time(win *g, double dt, double dc) {
     if (g->ntimes + 2 > g->cap) {
         size_t cap = g->cap ? 2 * g->cap : 512;
         double *nt = realloc(g->times, cap * sizeof *nt);
@@ -145,11 +156,29 @@ static cj_status frame_timed(win *g, const char *shot, int record) {
         g->times[g->ntimes++] = dt;
         g->times[g->ntimes++] = dc;
     }
-    return st;
 }
 
-static cj_status frame(win *g, const char *shot) {
-    return frame_timed(g, shot, 1);
+/* A frame of a replay (and the first one): draws the state and waits for the picture, so a
+ * script is deterministic. A playing animation advances one frame; a still ray-traced view
+ * draws its next pass. Records its wall and process CPU time (render + upload + draw + swap +
+ * glFinish). */
+static cj_status frame_sync(win *g, const char *shot) {
+    const double t0 = now_s(), c0 = cpu_s();
+    cj_viewer *v = &g->v;
+    cj_status st = CJ_OK;
+    cj_viewer_tick(v);
+    if (v->mode3d) {
+        if (v->dirty)
+            st = cj_viewer_submit(v, 1);
+        else
+            st = cj_viewer_refine(v);
+        cj_vrender_wait(v->rt);
+        cj_viewer_collect(v);
+    }
+    cj_status s2 = present(g, shot);
+    if (!st) st = s2;
+    record_time(g, now_s() - t0, cpu_s() - c0);
+    return st;
 }
 
 static cj_status run_replay(win *g, const char *script) {
@@ -170,12 +199,12 @@ static cj_status run_replay(win *g, const char *script) {
             const cj_vevent *e = &ev[i];
             glfwPollEvents(); /* keep the window responsive */
             if (e->type == VEV_FRAME || e->type == VEV_SCREENSHOT) {
-                st = frame(g, e->type == VEV_SCREENSHOT ? e->arg : NULL);
+                st = frame_sync(g, e->type == VEV_SCREENSHOT ? e->arg : NULL);
             } else if (e->type == VEV_SAVE) {
                 st = cj_viewer_save(&g->v, e->arg);
             } else {
                 cj_viewer_apply(&g->v, e);
-                if (g->v.dirty) st = frame(g, NULL);
+                if (g->v.dirty || g->v.redraw) st = frame_sync(g, NULL);
             }
         }
     }
@@ -241,6 +270,28 @@ static cj_status open_window(win *g) {
                          g->v.height);
 }
 
+/* The interactive loop: input is handled at once while the render thread draws; a finished
+ * picture is shown as soon as it arrives (the thread wakes the loop), the overlay whenever it
+ * changes. The loop sleeps in glfwWaitEvents otherwise. */
+static cj_status run_live(win *g) {
+    cj_viewer *v = &g->v;
+    cj_status st = CJ_OK;
+    while (!st && !v->quit && !glfwWindowShouldClose(g->w)) {
+        if (v->mode3d) {
+            if (v->dirty) st = cj_viewer_submit(v, 0);
+            if (cj_viewer_collect(v) && v->playing && v->shown_gen == v->gen) cj_viewer_tick(v);
+        }
+        if (!st && (v->dirty || v->redraw)) {
+            const double t0 = now_s(), c0 = cpu_s();
+            st = present(g, NULL);
+            record_time(g, now_s() - t0, cpu_s() - c0);
+        }
+        if (v->quit || (v->mode3d && v->dirty)) continue;
+        glfwWaitEvents();
+    }
+    return st;
+}
+
 cj_status cj_viewer_run(const cj_viewer_options *opt) {
     win *g = calloc(1, sizeof *g);
     if (!g) return cj_fail(CJ_ERR_NOMEM, "viewer: out of memory");
@@ -248,33 +299,32 @@ cj_status cj_viewer_run(const cj_viewer_options *opt) {
     v->opt = opt;
     v->show_overlay = !opt->hide_overlay;
     v->dirty = 1;
-    cj_status st = cj_viewer_load(v);
+    cj_status st = CJ_OK;
+    if (opt->timeline && !(g->timeline = fopen(opt->timeline, "w")))
+        st = cj_fail(CJ_ERR_IO, "%s: cannot write the timeline", opt->timeline);
+    if (!st) st = cj_viewer_load(v);
     if (!st) st = cj_framebuffer_create(v->width, v->height, 0, NULL, &v->pic);
     if (!st) st = cj_framebuffer_create(v->width, v->height, 0, NULL, &v->screen);
     if (!st && cj_font_open(NULL, &v->font)) v->font = NULL; /* no text, still a viewer */
     if (!st) st = open_window(g);
+    if (!st) st = cj_viewer_live_start(v, g->timeline, wake);
     if (!st && opt->replay) {
         g->replaying = 1;
-        st = frame(g, NULL);
+        st = frame_sync(g, NULL);
         if (!st) st = run_replay(g, opt->replay);
-        if (!st && opt->screenshot) st = frame(g, opt->screenshot);
+        if (!st && opt->screenshot) st = frame_sync(g, opt->screenshot);
     } else if (!st) {
-        while (!st && !v->quit && !glfwWindowShouldClose(g->w)) {
-            const int refine = (v->mode3d && v->trace && !v->trace_done) || v->playing;
-            if (v->dirty || refine || g->ntimes == 0) st = frame(g, NULL);
-            if (refine)
-                glfwPollEvents();
-            else
-                glfwWaitEventsTimeout(0.5);
-        }
-        if (!st && opt->screenshot) st = frame(g, opt->screenshot);
+        st = run_live(g);
+        if (!st && opt->screenshot) st = present(g, opt->screenshot); /* what is shown */
     }
+    cj_viewer_live_stop(v); /* before the scene goes: the thread draws copies, but joins here */
     if (opt->frame_times) write_times(g, opt->frame_times);
     if (g->w) {
         glDeleteTextures(1, &g->tex);
         glfwDestroyWindow(g->w);
     }
     glfwTerminate();
+    if (g->timeline) fclose(g->timeline);
     cj_font_close(v->font);
     cj_framebuffer_destroy(v->pic);
     cj_framebuffer_destroy(v->screen);

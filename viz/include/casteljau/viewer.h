@@ -9,6 +9,11 @@
  * casteljau/viewer_scene.h (3D): picking, dragging, insert/delete, elevation, split, undo/redo,
  * atomic save and reload.
  *
+ * LIVE: 3D pictures are drawn by a render thread while the window keeps handling input and
+ * showing the last finished picture; a new input cancels the picture in flight (except the
+ * frames of a drag, which keep coming). The ray-traced view (R) is progressive: a quick
+ * low-resolution pass, then 1, 4, 16 and 64 samples per pixel, each shown when done.
+ *
  * REPLAY: every command can be driven by a script of input events (one per line), which runs
  * through the same handlers as real input; see cj_viewer_options.replay and the README.
  */
@@ -33,6 +38,9 @@ typedef struct cj_viewer_options {
     double tol_px;           /* 3D: tessellation tolerance override in pixels (0 = scene's) */
     int threads;             /* renderer threads (0 = one per core) */
     const char *title;       /* window title (default "casteljau view") */
+    const char *timeline;    /* 3D: "<seconds> <event>" lines: keys, buttons, scrolls, render
+                                passes submitted, started, done or cancelled (with their tiles
+                                drawn), frames shown; seconds of CLOCK_MONOTONIC */
 } cj_viewer_options;
 
 /* Opens the window and runs until it is closed (or the replay ends). Returns CJ_OK;

@@ -10,9 +10,14 @@
  * Editable points: every control point of every visible object whose geometry is
  * CJ_GEOM_PATCHES or CJ_GEOM_CURVE, in node order, then patch order, then point order (the
  * order of the tie rule). A geometry shared by several objects is editable through each of
- * them; a point is moved in the geometry, i.e. in every instance. Patches store their own copy
- * of shared corner points, so moving one patch's point opens a seam (the viewer moves one
- * point, as the user asked).
+ * them; a point is moved in the geometry, i.e. in every instance.
+ *
+ * Shared points: neighbouring patches store their own copies of a shared corner or edge point.
+ * With linking on (the default), a move of point k moves with it every other control point of
+ * the same geometry lying bit-identically where k lies when the move is made, all to the same
+ * place, as one command (undo restores them all). Shared edges whose control points were
+ * identical stay identical, so the tessellation stays watertight. With linking off only point
+ * k moves, which opens a seam where k was shared.
  *
  * Pixels: framebuffer coordinates of a width × height image (origin lower-left, y up), the
  * projection of the rasterizer: px = (x_ndc + 1) width / 2, py = (y_ndc + 1) height / 2.
@@ -44,6 +49,8 @@ cj_scene *cj_vscene_scene(cj_vscene *vs);
 size_t cj_vscene_point_count(const cj_vscene *vs);
 /* World position of editable point k. */
 cj_status cj_vscene_point(const cj_vscene *vs, size_t k, cj_vec3 *world);
+/* The node (index in the scene) through which point k is editable; -1 if k is out of range. */
+int cj_vscene_point_node(const cj_vscene *vs, size_t k);
 /* Pixel position (and pseudodepth) of point k in a width × height image; returns 0 when the
  * point is behind the eye (not on screen). */
 int cj_vscene_project(const cj_vscene *vs, size_t k, int width, int height, double out[3]);
@@ -69,11 +76,21 @@ cj_status cj_vscene_drag(cj_vscene *vs, size_t k, int width, int height, double 
 /* Sets point k to a world position (one command). */
 cj_status cj_vscene_set_point(cj_vscene *vs, size_t k, cj_vec3 world);
 
+/* Linking of coincident points (see above): on (1) by default. */
+void cj_vscene_set_linked(cj_vscene *vs, int on);
+int cj_vscene_linked(const cj_vscene *vs);
+/* The number of distinct control points a move of point k moves now (itself included): 1
+ * when linking is off or nothing else of its geometry lies exactly there; 0 if k is out of
+ * range. */
+size_t cj_vscene_shared_count(const cj_vscene *vs, size_t k);
+
 /* Re-reads the nodes' world transforms (after animation posed the scene). */
 cj_status cj_vscene_update(cj_vscene *vs);
 
+/* Undo/redo one command (a drag, or a set_point, with the points linked to it). */
 cj_status cj_vscene_undo(cj_vscene *vs);
 cj_status cj_vscene_redo(cj_vscene *vs);
+/* Commands that can be undone. */
 size_t cj_vscene_undo_depth(const cj_vscene *vs);
 
 /* ---- camera ------------------------------------------------------------------------------ */
