@@ -141,6 +141,33 @@ cj_status aj_num(const actx *c, const cJSON *obj, const char *path, const char *
     return CJ_OK;
 }
 
+cj_status aj_num_in(const actx *c, const cJSON *obj, const char *path, const char *key, double lo,
+                    double hi, int integer, double *out) {
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!n) return CJ_OK;
+    if (!cJSON_IsNumber(n) || !isfinite(n->valuedouble))
+        return aj_jfail(c, n, CJ_ERR_PARSE, "%s.%s must be a finite number", path, key);
+    const double v = n->valuedouble;
+    if (!(v >= lo && v <= hi) || (integer && v != floor(v)))
+        return aj_jfail(c, n, CJ_ERR_RANGE, "%s.%s = %g must be %s in [%g, %g]", path, key, v,
+                        integer ? "an integer" : "a number", lo, hi);
+    *out = v;
+    return CJ_OK;
+}
+
+cj_status aj_vec3_in(const actx *c, const cJSON *obj, const char *path, const char *key,
+                     double bound, double *out) {
+    double v[3] = {out[0], out[1], out[2]};
+    cj_status st = aj_vec3(c, obj, path, key, v);
+    if (st) return st;
+    const double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (!(len <= bound))
+        return aj_jfail(c, cJSON_GetObjectItemCaseSensitive(obj, key), CJ_ERR_RANGE,
+                        "%s.%s has length %g, over the limit of %g", path, key, len, bound);
+    memcpy(out, v, sizeof v);
+    return CJ_OK;
+}
+
 /* An array of exactly `len` numbers (len 0: any length up to cap) into v; *count the length. */
 cj_status aj_nums(const actx *c, const cJSON *n, const char *path, int len, double *v, size_t cap,
                   size_t *count) {

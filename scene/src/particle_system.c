@@ -334,11 +334,17 @@ cj_status cj_particles_step(cj_particles *p, double h, cj_particles_stats *stats
         const cj_emitter *e = &p->emitters[j];
         const int active = p->t >= e->start && (e->stop <= e->start || p->t < e->stop);
         if (!active) continue;
-        p->emit_acc[j] += e->rate * h;
-        while (p->emit_acc[j] >= 1.0) {
-            p->emit_acc[j] -= 1.0;
-            spawn(p, e, &st);
-        }
+        /* Bounded work whatever the rate, step or restored state: more than
+         * CJ_PARTICLES_MAX_EMIT_PER_STEP particles in one step is refused, not looped over. */
+        const double acc = p->emit_acc[j] + e->rate * h;
+        if (!(acc < CJ_PARTICLES_MAX_EMIT_PER_STEP + 1.0))
+            return cj_fail(CJ_ERR_RANGE,
+                           "emitter %zu would emit %g particles in one step of %g s (at most "
+                           "%g: lower its rate or shorten the step)",
+                           j, acc, h, CJ_PARTICLES_MAX_EMIT_PER_STEP);
+        const long n = (long)floor(acc);
+        p->emit_acc[j] = acc - (double)n;
+        for (long k = 0; k < n; ++k) spawn(p, e, &st);
     }
     double t1 = now_seconds();
     st.seconds_emit = t1 - t0;

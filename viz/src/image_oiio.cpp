@@ -3,6 +3,7 @@
 // Nothing here throws across the C boundary.
 #include "image_plugin.h"
 
+#include "casteljau/image_io.h"
 #include "casteljau/status.h"
 
 #include <OpenImageIO/filesystem.h>
@@ -202,6 +203,16 @@ int read_rgba8(const char *path, int *width, int *height, uint8_t **rgba, char *
             in->close();
             std::snprintf(why, why_size, "no pixels (%d x %d x %d)", w, h, nc);
             return CJ_ERR_IO;
+        }
+        // The header's claim, checked before decoding: a small file can declare a huge image.
+        if (w > CJ_IMAGE_MAX_SIDE || h > CJ_IMAGE_MAX_SIDE ||
+            (long long)w * h > CJ_IMAGE_MAX_PIXELS || nc > 64) {
+            in->close();
+            std::snprintf(why, why_size,
+                          "%d x %d pixels (%d channels) is over the limit of %d pixels a side "
+                          "and %lld pixels in all",
+                          w, h, nc, CJ_IMAGE_MAX_SIDE, (long long)CJ_IMAGE_MAX_PIXELS);
+            return CJ_ERR_RANGE;
         }
         std::vector<uint8_t> raw((std::size_t)w * h * nc);
         if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, raw.data())) {
