@@ -45,6 +45,7 @@ static const char animate_usage[] =
 
 #include "anim_gif.h"
 #include "cli_guard.h"
+#include "error_internal.h"
 #include "file_internal.h"
 #include "scene_cli.h"
 #include "casteljau/anim_json.h"
@@ -314,7 +315,17 @@ int cmd_animate(int argc, char **argv) {
             rc = cli_error(cmd, "no memory for a snapshot of the simulation");
             goto done;
         }
-        for (long f = fa; f <= fb && !st; ++f) st = cj_anim_doc_frame(doc, scene, f, NULL);
+        long f = fa;
+        for (; f <= fb && !st; ++f) {
+            st = cj_anim_doc_frame(doc, scene, f, NULL);
+            if (st) break;
+            if ((st = cj_scene_check(scene))) {
+                char msg[512];
+                snprintf(msg, sizeof msg, "%s", cj_last_error());
+                st = cj_fail(st, "%s: frame %ld: the simulation left the scene's limits: %s",
+                             doc_path, f, msg);
+            }
+        }
         if (st) {
             rc = cli_fail_status(cmd, st, "%s", cj_last_error());
             goto done;

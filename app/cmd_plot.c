@@ -51,6 +51,7 @@ int cmd_plot(int argc, char **argv) {
 
 #include "casteljau/image_io.h"
 #include "casteljau/text.h"
+#include "cli_guard.h"
 #include "file_internal.h"
 
 /* The gallery: the same JSON format users write, so the demo also exercises the parser. */
@@ -202,6 +203,10 @@ int cmd_plot(int argc, char **argv) {
     char why[512] = "";
     char *text = NULL;
     if (!demo && !(text = read_file(input, why, sizeof why))) return cli_fail("plot", "%s", why);
+    if (cli_guard_output("plot", "-o", output)) {
+        free(text);
+        return CLI_EXIT_USAGE;
+    }
     plot_doc doc;
     int rc = plot_json_parse(demo ? demo_json : text, &doc, why, sizeof why);
     free(text);

@@ -199,7 +199,7 @@ static int finite_state(const cj_springs *cloth) {
     const size_t n = 3 * cj_springs_count(cloth);
     const double *x = cj_springs_positions(cloth), *v = cj_springs_velocities(cloth);
     for (size_t i = 0; i < n; ++i)
-        if (!isfinite(x[i]) || !isfinite(v[i])) return 0;
+        if (!(fabs(x[i]) <= CJ_SCENE_MAX_COORD) || !isfinite(v[i])) return 0;
     return 1;
 }
 
@@ -225,12 +225,13 @@ cj_status cj_anim_doc_frame(cj_anim_doc *doc, cj_scene *scene, long frame,
                 cj_status st = cj_springs_step(doc->cloth, doc->cloth_integrator, h, &st1);
                 if (st != CJ_OK && st != CJ_ERR_CAP) return st;
                 if (!finite_state(doc->cloth))
-                    return cj_fail(CJ_ERR_NONFINITE,
-                                   "%s: the cloth blew up (positions no longer finite) in frame "
-                                   "%ld: its step 1/(fps * cloth.steps_per_frame) = %g s is too "
-                                   "long for cloth.stiffness; raise cloth.steps_per_frame or use "
-                                   "\"integrator\": \"implicit_euler\"",
-                                   doc->source, doc->sim_frame + 1, h);
+                    return cj_fail(
+                        CJ_ERR_NONFINITE,
+                        "%s: the cloth blew up (positions beyond +-1e9 or not finite) in frame "
+                        "%ld: its step 1/(fps * cloth.steps_per_frame) = %g s is too "
+                        "long for cloth.stiffness; raise cloth.steps_per_frame or use "
+                        "\"integrator\": \"implicit_euler\"",
+                        doc->source, doc->sim_frame + 1, h);
                 sum.seconds_forces += st1.seconds_forces;
                 sum.seconds_solve += st1.seconds_solve;
                 sum.seconds_collide += st1.seconds_collide;

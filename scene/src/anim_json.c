@@ -6,6 +6,7 @@
 #include "anim_json_internal.h"
 #include "error_internal.h"
 #include "file_internal.h"
+#include "json_depth_internal.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -487,6 +488,11 @@ cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base
         const char *at = cJSON_GetErrorPtr();
         int line = 1;
         for (const char *s = text; at && s < at && *s; ++s) line += *s == '\n';
+        if (cj_json_depth_at_(text, at) >= CJSON_NESTING_LIMIT)
+            return cj_fail(CJ_ERR_PARSE,
+                           "%s:%d: JSON nested deeper than %d levels (the reader's "
+                           "limit)",
+                           c.name, line, CJSON_NESTING_LIMIT);
         return cj_fail(CJ_ERR_PARSE, "%s:%d: JSON syntax error", c.name, line);
     }
     aj_lines(&c, text, root);

@@ -160,7 +160,7 @@ cj_status aj_vec3_in(const actx *c, const cJSON *obj, const char *path, const ch
     double v[3] = {out[0], out[1], out[2]};
     cj_status st = aj_vec3(c, obj, path, key, v);
     if (st) return st;
-    const double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const double len = hypot(hypot(v[0], v[1]), v[2]); /* no overflow for 1e200 */
     if (!(len <= bound))
         return aj_jfail(c, cJSON_GetObjectItemCaseSensitive(obj, key), CJ_ERR_RANGE,
                         "%s.%s has length %g, over the limit of %g", path, key, len, bound);

@@ -109,8 +109,8 @@ cj_status cj_particles_load(cj_particles *p, FILE *f) {
         if (!strcmp(bad, "time"))
             return cj_fail(CJ_ERR_PARSE, "particle checkpoint: time %g is not finite and >= 0", t);
         return cj_fail(CJ_ERR_PARSE,
-                       "particle checkpoint: %s %zu: %s is out of range (NaN, "
-                       "infinite or negative)",
+                       "particle checkpoint: %s %zu: %s is NaN, infinite or out of its "
+                       "range",
                        strchr(bad, '(') ? "emitter" : "particle", which, bad);
     }
     memcpy(p->emit_acc, buf, sizeof(double) * (size_t)ne);

@@ -4,6 +4,7 @@
  * position in a pre-order walk of the cJSON tree is its index in that list. */
 #include "scene_json_internal.h"
 #include "file_internal.h"
+#include "json_depth_internal.h"
 
 #include <assert.h>
 #include <errno.h>
@@ -532,6 +533,10 @@ cj_status cj_scene_parse_json_ex(const char *text, const char *name, const char 
             else
                 col++;
         }
+        if (cj_json_depth_at_(text, end) >= CJSON_NESTING_LIMIT)
+            return cj_fail(CJ_ERR_PARSE,
+                           "%s:%d:%d: JSON nested deeper than %d levels (the reader's limit)", name,
+                           line, col, CJSON_NESTING_LIMIT);
         return cj_fail(CJ_ERR_PARSE, "%s:%d:%d: JSON syntax error (line %d, column %d)", name, line,
                        col, line, col);
     }
