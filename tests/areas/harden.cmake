@@ -37,7 +37,9 @@ set_tests_properties(test_build_tree_package PROPERTIES TIMEOUT 300)
 # Library side: CJ_ERR_RANGE on overflow, contour tolerance floor, tessellation size prediction,
 # degenerate patches, plot title cap and tick computation over the whole double range.
 if(TARGET cj::raster)
-  cj_add_test(test_harden_lib SOURCES test_harden_lib.c LIBS cj::surfaces cj::raster m)
+  cj_add_test(test_harden_lib SOURCES test_harden_lib.c LIBS cj::surfaces cj::raster cj::scene m)
+  # issue 24: the shared reader and atomic writer (curves/src/file_internal.h)
+  target_include_directories(test_harden_lib PRIVATE ${PROJECT_SOURCE_DIR}/curves/src)
   target_compile_definitions(test_harden_lib PRIVATE
     CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
 endif()
