@@ -457,13 +457,22 @@ static void test_smaller(void **state) {
     r = tool("animate deepa.json -o d%%d.png");
     expect(&r, 2, "an animation nested 1200 deep", "animate", "syntax error", "nested deeper",
            NULL);
+    /* control characters as whitespace (cJSON accepts them): the line scanner of the animation
+     * reader looped forever on this (found by fuzz_anim_json) */
+    sh("printf '{\"scene\": \"teapot.json\", \"channels\": [\\022\\022{\"target\": "
+       "\"camera.eye\", \"interpolation\": \"step\", \"times\": [0], \"values\": [[0, 2, "
+       "9]]}]}' > ctl.json");
+    r = tool("animate ctl.json --no-render --frames 0:0");
+    if (r.status != 0) fail_msg("control characters as whitespace: exit %d: %s", r.status, r.err);
+    cj_cli_result_free(&r);
     /* a .bpt whose only patch is a point: tessellate names the file */
     sh("(echo 1; echo 3 3; for i in $(seq 16); do echo 1 1 1; done) > point.bpt");
     r = tool("tessellate --bpt point.bpt -o p.obj");
     expect(&r, 2, "a degenerate patch in a .bpt", "tessellate", NULL, "point.bpt", "degenerate",
            NULL);
     printf("test_cli_hostile: --seed 2^64 refused, JSON nested too deep named as such (scene "
-           "and animation), tessellate's degenerate-patch message names the .bpt\n");
+           "and animation), control characters as JSON whitespace read in bounded time, "
+           "tessellate's degenerate-patch message names the .bpt\n");
 }
 
 /* ---- the exit-code contract ---------------------------------------------------------------- */

@@ -354,10 +354,10 @@ cj_status cj_anim_doc_load_state(cj_anim_doc *doc, FILE *f) {
     }
     for (size_t i = 0; i < 2 * want; ++i)
         if (!isfinite(buf[i])) {
+            const char *what = isnan(buf[i]) ? "NaN" : "infinite";
             free(buf);
             return cj_fail(CJ_ERR_PARSE, "cloth vertex %zu: %s coordinate %zu is %s",
-                           (i % want) / 3, i < want ? "position" : "velocity", i % 3,
-                           isnan(buf[i]) ? "NaN" : "infinite");
+                           (i % want) / 3, i < want ? "position" : "velocity", i % 3, what);
         }
     uint64_t has_p = 0;
     if (!get_u64(f, &has_p) || has_p != (doc->particles ? 1u : 0u)) {
