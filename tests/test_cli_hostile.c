@@ -332,9 +332,17 @@ static void test_checkpoint_values(void **state) {
         snprintf(what, sizeof what, "checkpoint case %zu (%s)", i, cases[i].says);
         expect(&r, 2, what, "animate", NULL, "bad.bin", cases[i].says, NULL);
     }
+    /* the generator's state all zero (its fixed point): emission sampling never ended */
+    sh("cp ck_0002.bin bad.bin && dd if=/dev/zero of=bad.bin bs=1 seek=80 count=32 "
+       "conv=notrunc status=none");
+    r = tool("animate anim_particles.json --checkpoint-in bad.bin -o c_%%04d.png --frames 2:3 "
+             "--width 32 --height 24");
+    expect(&r, 2, "a checkpoint with an all-zero random state", "animate", NULL, "bad.bin",
+           "all zero", NULL);
     if (count_named("c_0")) fail_msg("a frame was written from a bad checkpoint");
     printf("test_cli_hostile: checkpoints with NaN/huge emit_acc, NaN/inf time, a NaN position, "
-           "NaN/inf life and frame 2^62 are refused naming the checkpoint and the value\n");
+           "NaN/inf life, frame 2^62 and an all-zero random state are refused naming the "
+           "checkpoint and the value\n");
 }
 
 static void test_radiance_and_geometry(void **state) {

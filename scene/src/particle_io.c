@@ -77,6 +77,11 @@ cj_status cj_particles_load(cj_particles *p, FILE *f) {
                        (unsigned long long)count, (unsigned long long)cap);
     for (int k = 0; k < 4; ++k)
         if (!get_u64(f, &rng[k])) return cj_fail(CJ_ERR_PARSE, "particle checkpoint truncated");
+    /* xoshiro256's one fixed point: from it every draw is 0 and the emitter's rejection
+     * sampling would never end (found by fuzz_checkpoint) */
+    if (!(rng[0] | rng[1] | rng[2] | rng[3]))
+        return cj_fail(CJ_ERR_PARSE, "particle checkpoint: the random generator's state is all "
+                                     "zero, a state it never reaches");
     /* read everything into scratch first so a truncated file changes nothing */
     const size_t nd = (size_t)ne + 8 * (size_t)count;
     double *buf = malloc(sizeof(double) * (nd ? nd : 1));

@@ -152,7 +152,8 @@ cj_status cj_particles_add(cj_particles *p, const double x[3], const double v[3]
 cj_status cj_particles_save(const cj_particles *p, FILE *f);
 /* Restores a state saved by cj_particles_save. Every value is checked before anything changes:
  * time finite and >= 0, each emitter's carried fraction in [0, 1), positions and velocities
- * finite, ages >= 0 and lifetimes > 0 (finite); a violation is CJ_ERR_PARSE naming the value
+ * finite, ages >= 0 and lifetimes > 0 (finite), a random state that is not all zero; a
+ * violation is CJ_ERR_PARSE naming the value
  * ("particle 3: velocity is NaN"). Truncated or foreign checkpoints are CJ_ERR_PARSE too. */
 cj_status cj_particles_load(cj_particles *p, FILE *f);
 
