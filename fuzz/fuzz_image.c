@@ -12,7 +12,19 @@
 #include <string.h>
 #include <unistd.h>
 
+int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+/* A target whose decoders cannot load would test nothing: say so and stop. */
+int LLVMFuzzerInitialize(int *argc, char ***argv) {
+    (void)argc;
+    (void)argv;
+    if (!cj_image_backend()) {
+        fprintf(stderr, "fuzz_image: %s\n", cj_last_error());
+        exit(1);
+    }
+    return 0;
+}
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     static const char *const ext[] = {"png", "jpg", "tif", "bmp", "gif",  "exr", "ppm", "tga",
