@@ -177,8 +177,13 @@ int cmd_report(int argc, char **argv) {
         return report_workload(workload, n);
     }
     if (!r.dir) return cli_fail("report", "no output folder: give -o DIR");
+    /* The destination is checked before any work (exit 2, as every command does): the folder
+     * can be made, and it takes new files. */
     if (mkdir(r.dir, 0777) != 0 && errno != EEXIST)
-        return cli_error("report", "cannot create %s: %s", r.dir, strerror(errno));
+        return cli_fail("report", "cannot create %s: %s", r.dir, strerror(errno));
+    char probe[4096];
+    snprintf(probe, sizeof probe, "%s/index.html", r.dir);
+    if (cj_file_check_output(probe, "report")) return cli_fail("report", "%s", cj_last_error());
     /* the tool itself, for the callgrind runs (argv[0] here is the command name) */
     static char self[4096];
     const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);

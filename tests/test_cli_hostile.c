@@ -508,6 +508,8 @@ static void test_exit_codes(void **state) {
         {"plot", "plot missing.json -o o.png"},
         {"render", "render teapot.json -o nodir/o.png"},
         {"tessellate", "tessellate --teapot -o nodir/o.obj"},
+        {"report", "report --quick --no-callgrind -o nodir/sub"},
+        {"report", "report --quick --no-callgrind -o teapot.json"},
     };
     for (size_t i = 0; i < sizeof bad_input / sizeof bad_input[0]; ++i) {
         r = tool("%s", bad_input[i][1]);
