@@ -31,6 +31,7 @@
 
 static const char *exe = CJ_CLI;
 static char dir[64];
+static const char *env_prefix = ""; /* "NAME=value" for the next runs, or "" */
 
 /* Runs `casteljau <args>` in the scratch folder, killed after 60 s. */
 static cj_cli_result tool(const char *fmt, ...) {
@@ -39,7 +40,8 @@ static cj_cli_result tool(const char *fmt, ...) {
     va_start(ap, fmt);
     vsnprintf(args, sizeof args, fmt, ap);
     va_end(ap);
-    snprintf(cmd, sizeof cmd, "cd '%s' && timeout -s KILL 60 '%s' %s", dir, exe, args);
+    snprintf(cmd, sizeof cmd, "cd '%s' && %s timeout -s KILL 60 '%s' %s", dir, env_prefix, exe,
+             args);
     cj_cli_result r;
     assert_int_equal(cj_cli_shell(cmd, &r), 0);
     return r;
@@ -231,7 +233,12 @@ static void test_image_caps(void **state) {
            "over the limit", NULL);
     sh("head -c 300 textures/porcelain.png > textures/cut.png");
     variant("teapot.json", "cut.json", "s|textures/porcelain.png|textures/cut.png|");
+    /* OpenImageIO's PNG reader longjmps over its own std::string on a truncated file (31 bytes
+     * that LeakSanitizer would turn into exit 1 in the sanitizer build): leaks are not checked
+     * for this one run */
+    env_prefix = "ASAN_OPTIONS=detect_leaks=0";
     r = tool("render cut.json -o o.png --width 32 --height 24");
+    env_prefix = "";
     /* one line: libpng's own "libpng error: ..." line is captured into ours */
     expect(&r, 2, "a truncated PNG texture", "render", "\\n", "cut.png", NULL);
     if (exists("o.png")) fail_msg("an image was written");
