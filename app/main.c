@@ -1,5 +1,6 @@
 /* casteljau: the command-line front end. Each sub-command lives in its own cmd_*.c file. */
 #include "cli.h"
+#include "file_internal.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -36,6 +37,8 @@ static void usage(FILE *f) {
 }
 
 int main(int argc, char **argv) {
+    /* Temporary files of the atomic writers are removed on Ctrl-C and SIGTERM. */
+    cj_temp_install_signal_cleanup();
     if (argc < 2) {
         usage(stderr);
         return CLI_EXIT_USAGE;
