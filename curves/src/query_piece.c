@@ -1,0 +1,214 @@
+/* Curve contexts for the certified queries: validation, interval evaluation of a point and its
+ * derivative over a parameter interval, and pieces by exact halving with a tracked error. */
+#include "query_internal.h"
+
+#include "error_internal.h"
+
+#include <assert.h>
+#include <float.h>
+
+cj_status cj_qctx_init(cj_qctx *q, const cj_curve2 *c, const char *what) {
+    assert(q && c && what);
+    if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE)
+        return cj_fail(CJ_ERR_DEGREE, "%s: degree %d outside 0..%d", what, c->degree,
+                       CJ_QUERY_MAX_DEGREE);
+    assert(c->pts);
+    int n = c->degree;
+    double scale = 0.0;
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 2; ++k) {
+            double v = c->pts[2 * i + k];
+            if (!isfinite(v))
+                return cj_fail(CJ_ERR_NONFINITE, "%s: control point %d, coordinate %d is %s", what,
+                               i, k, isnan(v) ? "NaN" : "infinite");
+            scale = fmax(scale, fabs(v));
+        }
+    int rational = 0;
+    if (c->weights)
+        for (int i = 0; i <= n; ++i) {
+            double w = c->weights[i];
+            if (!isfinite(w))
+                return cj_fail(CJ_ERR_NONFINITE, "%s: weight %d is %s", what, i,
+                               isnan(w) ? "NaN" : "infinite");
+            if (!(w > 0.0))
+                return cj_fail(CJ_ERR_ARGUMENT, "%s: weight %d is %g, must be > 0", what, i, w);
+            if (w != 1.0) rational = 1;
+        }
+    if (scale > 0x1p500)
+        return cj_fail(CJ_ERR_RANGE,
+                       "%s: coordinates up to %g exceed the range the queries "
+                       "certify (2^500)",
+                       what, scale);
+    int distinct = 0;
+    for (int i = 1; i <= n && !distinct; ++i)
+        distinct = c->pts[2 * i] != c->pts[0] || c->pts[2 * i + 1] != c->pts[1];
+    if (!distinct)
+        return cj_fail(CJ_ERR_DEGENERATE,
+                       "%s: all %d control points coincide (a point, not a "
+                       "curve)",
+                       what, n + 1);
+    q->n = n;
+    q->rational = rational;
+    q->scale = scale;
+    for (int i = 0; i <= n; ++i) {
+        cj_ivl w = cj_iv(rational ? c->weights[i] : 1.0);
+        for (int k = 0; k < 2; ++k)
+            q->h[i][k] = rational ? cj_imul(cj_iv(c->pts[2 * i + k]), w) : cj_iv(c->pts[2 * i + k]);
+        q->h[i][2] = w;
+    }
+    q->hmag = 0.0;
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 3; ++k) q->hmag = fmax(q->hmag, cj_imag(q->h[i][k]));
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            q->dh[i][k] = cj_imul(cj_iv((double)n), cj_isub(q->h[i + 1][k], q->h[i][k]));
+    return CJ_OK;
+}
+
+/* de Casteljau in interval arithmetic: Σ c_i B_i^m(t) for every t in T, per coordinate. */
+static void ideval(const cj_ivl (*c)[3], int m, int dims, cj_ivl T, cj_ivl out[3]) {
+    cj_ivl w[CJ_QUERY_MAXN + 1][3];
+    cj_ivl S = cj_isub(cj_iv(1.0), T);
+    for (int i = 0; i <= m; ++i)
+        for (int k = 0; k < dims; ++k) w[i][k] = c[i][k];
+    for (int r = m; r > 0; --r)
+        for (int i = 0; i < r; ++i)
+            for (int k = 0; k < dims; ++k)
+                w[i][k] = cj_iadd(cj_imul(S, w[i][k]), cj_imul(T, w[i + 1][k]));
+    for (int k = 0; k < dims; ++k) out[k] = w[0][k];
+}
+
+int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]) {
+    int n = q->n, dims = q->rational ? 3 : 2;
+    cj_ivl H[3], D[3];
+    ideval((const cj_ivl(*)[3])q->h, n, dims, T, H);
+    if (d) {
+        if (n == 0)
+            D[0] = D[1] = D[2] = cj_iv(0.0);
+        else
+            ideval((const cj_ivl(*)[3])q->dh, n - 1, dims, T, D);
+    }
+    if (!q->rational) {
+        for (int k = 0; k < 2; ++k) {
+            p[k] = H[k];
+            if (d) d[k] = D[k];
+        }
+    } else {
+        cj_ivl W = H[2];
+        if (!(W.lo > 0.0)) return 0;
+        for (int k = 0; k < 2; ++k) {
+            p[k] = cj_idiv(H[k], W);
+            /* c' = (P' - c w') / w: the quotient rule with the enclosure of c itself */
+            if (d) d[k] = cj_idiv(cj_isub(D[k], cj_imul(p[k], D[2])), W);
+        }
+    }
+    for (int k = 0; k < 2; ++k) {
+        if (!cj_ifinite(p[k])) return 0;
+        if (d && !cj_ifinite(d[k])) return 0;
+    }
+    return 1;
+}
+
+void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
+    p->n = q->n;
+    p->rational = q->rational;
+    p->a = 0.0;
+    p->b = 1.0;
+    double err = 0.0;
+    for (int i = 0; i <= q->n; ++i)
+        for (int k = 0; k < 3; ++k) {
+            cj_ivl v = q->h[i][k];
+            double m = cj_imid(v);
+            p->h[i][k] = m;
+            err = fmax(err, fmax(m - v.lo, v.hi - m));
+        }
+    p->err = cj_up(err);
+}
+
+void cj_qpiece_halve(const cj_qpiece *p, double mag, cj_qpiece *left, cj_qpiece *right) {
+    int n = p->n;
+    double w[CJ_QUERY_MAXN + 1][3];
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 3; ++k) w[i][k] = p->h[i][k];
+    cj_qpiece L, R;
+    L.n = R.n = n;
+    L.rational = R.rational = p->rational;
+    for (int k = 0; k < 3; ++k) {
+        L.h[0][k] = w[0][k];
+        R.h[n][k] = w[n][k];
+    }
+    for (int r = n; r > 0; --r) {
+        for (int i = 0; i < r; ++i)
+            for (int k = 0; k < 3; ++k) w[i][k] = 0.5 * (w[i][k] + w[i + 1][k]);
+        for (int k = 0; k < 3; ++k) {
+            L.h[n - r + 1][k] = w[0][k];
+            R.h[r - 1][k] = w[r - 1][k];
+        }
+    }
+    /* Each output point went through at most n averagings, each off by at most u times the
+     * largest magnitude (the addition) plus 2^-1075 (the halving, in the subnormal range);
+     * errors of the inputs pass through averages unchanged. */
+    double e = p->err + (double)n * ((mag + p->err) * 0x1p-53 + 0x1p-1074);
+    e *= 1.0 + 0x1p-40;
+    double m = 0.5 * (p->a + p->b); /* dyadic: exact */
+    L.a = p->a;
+    L.b = m;
+    R.a = m;
+    R.b = p->b;
+    L.err = R.err = e;
+    *left = L;
+    *right = R;
+}
+
+void cj_qpiece_boxes(const cj_qpiece *p, double lo[][2], double hi[][2]) {
+    double e = p->err;
+    for (int i = 0; i <= p->n; ++i) {
+        cj_ivl W = cj_iv2(cj_down(p->h[i][2] - e), cj_up(p->h[i][2] + e));
+        for (int k = 0; k < 2; ++k) {
+            cj_ivl X = cj_iv2(cj_down(p->h[i][k] - e), cj_up(p->h[i][k] + e));
+            if (!p->rational) { /* the weight is exactly 1 in every piece */
+                lo[i][k] = X.lo;
+                hi[i][k] = X.hi;
+                continue;
+            }
+            if (!(W.lo > 0.0)) {
+                lo[i][k] = -INFINITY;
+                hi[i][k] = INFINITY;
+                continue;
+            }
+            cj_ivl r = cj_idiv(X, W);
+            lo[i][k] = r.lo;
+            hi[i][k] = r.hi;
+        }
+    }
+}
+
+void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]) {
+    double blo[CJ_QUERY_MAXN + 1][2], bhi[CJ_QUERY_MAXN + 1][2];
+    cj_qpiece_boxes(p, blo, bhi);
+    for (int k = 0; k < 2; ++k) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+        for (int i = 0; i <= p->n; ++i) {
+            lo[k] = fmin(lo[k], blo[i][k]);
+            hi[k] = fmax(hi[k], bhi[i][k]);
+        }
+    }
+}
+
+void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L) {
+    q->n = 1;
+    q->rational = 0;
+    cj_ivl IL = cj_iv(L);
+    q->hmag = 0.0;
+    for (int k = 0; k < 2; ++k) {
+        cj_ivl off = cj_imul(IL, cj_iv(d[k]));
+        q->h[0][k] = cj_isub(cj_iv(p[k]), off);
+        q->h[1][k] = cj_iadd(cj_iv(p[k]), off);
+        q->dh[0][k] = cj_isub(q->h[1][k], q->h[0][k]);
+        q->hmag = fmax(q->hmag, fmax(cj_imag(q->h[0][k]), cj_imag(q->h[1][k])));
+    }
+    q->h[0][2] = q->h[1][2] = cj_iv(1.0);
+    q->dh[0][2] = cj_iv(0.0);
+    q->scale = q->hmag;
+}
