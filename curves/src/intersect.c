@@ -20,7 +20,7 @@
 #define MAX_ROOTS    512
 #define MAX_LEAVES   4096
 #define MAX_OVERLAPS 4
-#define MIN_WIDTH    0x1p-58
+#define MIN_WIDTH    0x1p-52
 
 typedef struct root {
     cj_ivl K[2]; /* enclosure */
@@ -291,23 +291,25 @@ static int simple_dirs(const cj_qpiece *const *ps, int np) {
         for (int q = 0; q < np; ++q) {
             const cj_qpiece *p = ps[q];
             int n = p->n;
-            double e = p->err;
+            const double *e = p->err;
             for (int i = 0; i < n; ++i) {
                 int jmax = p->rational ? n : 0;
                 for (int j = 0; j <= jmax; ++j) {
                     cj_ivl v[2];
                     for (int k = 0; k < 2; ++k) {
-                        cj_ivl a = cj_iv2(cj_down(p->h[i][k] - e), cj_up(p->h[i][k] + e));
-                        cj_ivl b = cj_iv2(cj_down(p->h[i + 1][k] - e), cj_up(p->h[i + 1][k] + e));
+                        cj_ivl a = cj_iv2(cj_down(p->h[i][k] - e[k]), cj_up(p->h[i][k] + e[k]));
+                        cj_ivl b =
+                            cj_iv2(cj_down(p->h[i + 1][k] - e[k]), cj_up(p->h[i + 1][k] + e[k]));
                         cj_ivl dP = cj_isub(b, a);
                         if (!p->rational) {
                             v[k] = dP;
                             continue;
                         }
-                        cj_ivl wa = cj_iv2(cj_down(p->h[i][2] - e), cj_up(p->h[i][2] + e));
-                        cj_ivl wb = cj_iv2(cj_down(p->h[i + 1][2] - e), cj_up(p->h[i + 1][2] + e));
-                        cj_ivl Wj = cj_iv2(cj_down(p->h[j][2] - e), cj_up(p->h[j][2] + e));
-                        cj_ivl Pj = cj_iv2(cj_down(p->h[j][k] - e), cj_up(p->h[j][k] + e));
+                        cj_ivl wa = cj_iv2(cj_down(p->h[i][2] - e[2]), cj_up(p->h[i][2] + e[2]));
+                        cj_ivl wb =
+                            cj_iv2(cj_down(p->h[i + 1][2] - e[2]), cj_up(p->h[i + 1][2] + e[2]));
+                        cj_ivl Wj = cj_iv2(cj_down(p->h[j][2] - e[2]), cj_up(p->h[j][2] + e[2]));
+                        cj_ivl Pj = cj_iv2(cj_down(p->h[j][k] - e[k]), cj_up(p->h[j][k] + e[k]));
                         v[k] = cj_isub(cj_imul(dP, Wj), cj_imul(Pj, cj_isub(wb, wa)));
                     }
                     if (pass == 0) {

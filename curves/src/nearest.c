@@ -8,7 +8,7 @@
 
 #include <assert.h>
 
-#define MIN_WIDTH  0x1p-58
+#define MIN_WIDTH  0x1p-52
 #define MAX_PIECES 4000000L
 
 typedef struct nrun {

@@ -90,7 +90,7 @@ typedef struct cj_qctx {
     cj_ivl h[CJ_QUERY_MAXN + 1][3];  /* homogeneous control points */
     cj_ivl dh[CJ_QUERY_MAXN + 1][3]; /* n (h_{i+1} - h_i), i < n */
     double scale;                    /* max |coordinate| of the control points */
-    double hmag;                     /* max |homogeneous coordinate| (bounds every piece) */
+    double hmag[3];                  /* max |homogeneous coordinate| k (bounds every piece) */
 } cj_qctx;
 
 /* Validates the curve (degree 0..CJ_QUERY_MAX_DEGREE, finite points, finite positive weights)
@@ -102,19 +102,21 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_curve2 *c, const char *what);
  * bound overflows (nothing certified then). */
 int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]);
 
-/* A piece of a curve on the parameter interval [a, b] (dyadic, so exact): homogeneous control
- * points computed by halving, within `err` (absolute, every coordinate) of the exact ones. */
+/* A piece of a curve on the parameter interval [a, b]: k 2^-d and (k+1) 2^-d from halvings of
+ * [0,1]; the callers stop halving at width 2^-52, so every midpoint (2k+1) 2^-(d+1) is exact:
+ * homogeneous control points computed by halving, within err[k] (absolute, coordinate k) of the
+ * exact ones. */
 typedef struct cj_qpiece {
     int n;
     int rational;
     double a, b;
-    double err;
+    double err[3]; /* per homogeneous coordinate (the weight's is 0 for a polynomial) */
     double h[CJ_QUERY_MAXN + 1][3];
 } cj_qpiece;
 
 void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p);
 /* Halves p into left and right (either may alias nothing else; p itself is not modified). */
-void cj_qpiece_halve(const cj_qpiece *p, double hmag, cj_qpiece *left, cj_qpiece *right);
+void cj_qpiece_halve(const cj_qpiece *p, const double hmag[3], cj_qpiece *left, cj_qpiece *right);
 /* A context for the straight line p + λ d over λ in [-L, L], as a degree-1 curve whose two
  * control points are enclosed exactly (t in [0,1] maps to λ = L (2 t - 1)). */
 void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L);

@@ -56,9 +56,10 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_curve2 *c, const char *what) {
             q->h[i][k] = rational ? cj_imul(cj_iv(c->pts[2 * i + k]), w) : cj_iv(c->pts[2 * i + k]);
         q->h[i][2] = w;
     }
-    q->hmag = 0.0;
-    for (int i = 0; i <= n; ++i)
-        for (int k = 0; k < 3; ++k) q->hmag = fmax(q->hmag, cj_imag(q->h[i][k]));
+    for (int k = 0; k < 3; ++k) {
+        q->hmag[k] = 0.0;
+        for (int i = 0; i <= n; ++i) q->hmag[k] = fmax(q->hmag[k], cj_imag(q->h[i][k]));
+    }
     for (int i = 0; i < n; ++i)
         for (int k = 0; k < 3; ++k)
             q->dh[i][k] = cj_imul(cj_iv((double)n), cj_isub(q->h[i + 1][k], q->h[i][k]));
@@ -114,18 +115,19 @@ void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
     p->rational = q->rational;
     p->a = 0.0;
     p->b = 1.0;
-    double err = 0.0;
-    for (int i = 0; i <= q->n; ++i)
-        for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3; ++k) {
+        double err = 0.0;
+        for (int i = 0; i <= q->n; ++i) {
             cj_ivl v = q->h[i][k];
             double m = cj_imid(v);
             p->h[i][k] = m;
             err = fmax(err, fmax(m - v.lo, v.hi - m));
         }
-    p->err = cj_up(err);
+        p->err[k] = err > 0.0 ? cj_up(err) : 0.0;
+    }
 }
 
-void cj_qpiece_halve(const cj_qpiece *p, double mag, cj_qpiece *left, cj_qpiece *right) {
+void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *left, cj_qpiece *right) {
     int n = p->n;
     double w[CJ_QUERY_MAXN + 1][3];
     for (int i = 0; i <= n; ++i)
@@ -147,25 +149,30 @@ void cj_qpiece_halve(const cj_qpiece *p, double mag, cj_qpiece *left, cj_qpiece 
     }
     /* Each output point went through at most n averagings, each off by at most u times the
      * largest magnitude (the addition) plus 2^-1075 (the halving, in the subnormal range);
-     * errors of the inputs pass through averages unchanged. */
-    double e = p->err + (double)n * ((mag + p->err) * 0x1p-53 + 0x1p-1074);
-    e *= 1.0 + 0x1p-40;
+     * errors of the inputs pass through averages unchanged. A polynomial's weights stay
+     * exactly 1. */
+    double e[3];
+    for (int k = 0; k < 3; ++k) {
+        e[k] = p->err[k] + (double)n * ((mag[k] + p->err[k]) * 0x1p-53 + 0x1p-1074);
+        e[k] *= 1.0 + 0x1p-40;
+    }
+    if (!p->rational) e[2] = 0.0;
     double m = 0.5 * (p->a + p->b); /* dyadic: exact */
     L.a = p->a;
     L.b = m;
     R.a = m;
     R.b = p->b;
-    L.err = R.err = e;
+    for (int k = 0; k < 3; ++k) L.err[k] = R.err[k] = e[k];
     *left = L;
     *right = R;
 }
 
 void cj_qpiece_boxes(const cj_qpiece *p, double lo[][2], double hi[][2]) {
-    double e = p->err;
+    const double *e = p->err;
     for (int i = 0; i <= p->n; ++i) {
-        cj_ivl W = cj_iv2(cj_down(p->h[i][2] - e), cj_up(p->h[i][2] + e));
+        cj_ivl W = cj_iv2(cj_down(p->h[i][2] - e[2]), cj_up(p->h[i][2] + e[2]));
         for (int k = 0; k < 2; ++k) {
-            cj_ivl X = cj_iv2(cj_down(p->h[i][k] - e), cj_up(p->h[i][k] + e));
+            cj_ivl X = cj_iv2(cj_down(p->h[i][k] - e[k]), cj_up(p->h[i][k] + e[k]));
             if (!p->rational) { /* the weight is exactly 1 in every piece */
                 lo[i][k] = X.lo;
                 hi[i][k] = X.hi;
@@ -200,15 +207,16 @@ void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L) {
     q->n = 1;
     q->rational = 0;
     cj_ivl IL = cj_iv(L);
-    q->hmag = 0.0;
+    q->hmag[0] = q->hmag[1] = 0.0;
+    q->hmag[2] = 1.0;
     for (int k = 0; k < 2; ++k) {
         cj_ivl off = cj_imul(IL, cj_iv(d[k]));
         q->h[0][k] = cj_isub(cj_iv(p[k]), off);
         q->h[1][k] = cj_iadd(cj_iv(p[k]), off);
         q->dh[0][k] = cj_isub(q->h[1][k], q->h[0][k]);
-        q->hmag = fmax(q->hmag, fmax(cj_imag(q->h[0][k]), cj_imag(q->h[1][k])));
+        q->hmag[k] = fmax(cj_imag(q->h[0][k]), cj_imag(q->h[1][k]));
     }
     q->h[0][2] = q->h[1][2] = cj_iv(1.0);
     q->dh[0][2] = cj_iv(0.0);
-    q->scale = q->hmag;
+    q->scale = fmax(q->hmag[0], q->hmag[1]);
 }

@@ -1,0 +1,7 @@
+# Issue 23: certified queries of curves (intersections, nearest points) against MPFR and
+# long-double polyline oracles (tests/query/query_oracle.c, independent of the library).
+add_library(cj_query_oracle STATIC ${CMAKE_CURRENT_SOURCE_DIR}/query/query_oracle.c)
+target_link_libraries(cj_query_oracle PUBLIC cj_test_support PkgConfig::CJ_MPFR)
+target_include_directories(cj_query_oracle PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/query)
+cj_warnings(cj_query_oracle)
+cj_add_test(test_intersect SOURCES query/test_intersect.c LIBS cj_query_oracle)
