@@ -575,8 +575,8 @@ static cj_status check_tol(double tol, double scale) {
     return CJ_OK;
 }
 
-cj_status cj_intersect_curves(const cj_curve2 *a, const cj_curve2 *b, double tol, cj_isect *out,
-                              int cap, int *count) {
+static cj_status curves_impl(const cj_curve2 *a, const cj_curve2 *b, double tol, cj_isect *out,
+                             int cap, int *count) {
     assert(a && b && count && (out || cap == 0));
     run *R = malloc(sizeof *R); /* the bookkeeping tables (~250 KiB) do not belong on a stack */
     cj_qctx *qa = malloc(sizeof *qa), *qb = malloc(sizeof *qb);
@@ -610,7 +610,7 @@ done:
     return st;
 }
 
-cj_status cj_intersect_self(const cj_curve2 *a, double tol, cj_isect *out, int cap, int *count) {
+static cj_status self_impl(const cj_curve2 *a, double tol, cj_isect *out, int cap, int *count) {
     assert(a && count && (out || cap == 0));
     run *R = malloc(sizeof *R);
     cj_qctx *qa = malloc(sizeof *qa);
@@ -639,8 +639,8 @@ done:
     return st;
 }
 
-cj_status cj_intersect_line(const cj_curve2 *a, const double p[2], const double d[2], double tol,
-                            cj_isect *out, int cap, int *count) {
+static cj_status line_impl(const cj_curve2 *a, const double p[2], const double d[2], double tol,
+                           cj_isect *out, int cap, int *count) {
     assert(a && p && d && count && (out || cap == 0));
     if (!isfinite(p[0]) || !isfinite(p[1]))
         return cj_fail(CJ_ERR_NONFINITE, "line point (%g, %g) is not finite", p[0], p[1]);
@@ -685,5 +685,59 @@ done:
     free(R);
     free(qa);
     free(qb);
+    return st;
+}
+
+/* ---- tiny scales -------------------------------------------------------------------------- */
+
+/* Curves far below 1 in size are scaled up by a power of two (exact) before the search, so that
+ * the squares and inverses in the proofs stay in the normal range; parameters are unchanged,
+ * points and distances are scaled back. */
+static void unscale(cj_isect *out, int n, int k, int line) {
+    for (int i = 0; i < n; ++i) {
+        out[i].point[0] = ldexp(out[i].point[0], -k);
+        out[i].point[1] = ldexp(out[i].point[1], -k);
+        out[i].deviation = ldexp(out[i].deviation, -k);
+        if (line) {
+            out[i].t = ldexp(out[i].t, -k);
+            out[i].t_lo = ldexp(out[i].t_lo, -k);
+            out[i].t_hi = ldexp(out[i].t_hi, -k);
+        }
+    }
+}
+
+cj_status cj_intersect_curves(const cj_curve2 *a, const cj_curve2 *b, double tol, cj_isect *out,
+                              int cap, int *count) {
+    assert(a && b && count && (out || cap == 0));
+    int k = cj_query_scale_exp(fmax(cj_query_scale(a), cj_query_scale(b)));
+    if (k == 0) return curves_impl(a, b, tol, out, cap, count);
+    double pa[2 * (CJ_QUERY_MAX_DEGREE + 1)], pb[2 * (CJ_QUERY_MAX_DEGREE + 1)];
+    cj_curve2 A = cj_query_scaled(a, k, pa), B = cj_query_scaled(b, k, pb);
+    cj_status st = curves_impl(&A, &B, ldexp(tol, k), out, cap, count);
+    unscale(out, *count < cap ? *count : cap, k, 0);
+    return st;
+}
+
+cj_status cj_intersect_self(const cj_curve2 *a, double tol, cj_isect *out, int cap, int *count) {
+    assert(a && count && (out || cap == 0));
+    int k = cj_query_scale_exp(cj_query_scale(a));
+    if (k == 0) return self_impl(a, tol, out, cap, count);
+    double pa[2 * (CJ_QUERY_MAX_DEGREE + 1)];
+    cj_curve2 A = cj_query_scaled(a, k, pa);
+    cj_status st = self_impl(&A, ldexp(tol, k), out, cap, count);
+    unscale(out, *count < cap ? *count : cap, k, 0);
+    return st;
+}
+
+cj_status cj_intersect_line(const cj_curve2 *a, const double p[2], const double d[2], double tol,
+                            cj_isect *out, int cap, int *count) {
+    assert(a && p && d && count && (out || cap == 0));
+    double sc = fmax(cj_query_scale(a), fmax(fabs(p[0]), fabs(p[1])));
+    int k = cj_query_scale_exp(sc);
+    if (k == 0) return line_impl(a, p, d, tol, out, cap, count);
+    double pa[2 * (CJ_QUERY_MAX_DEGREE + 1)], ps[2] = {ldexp(p[0], k), ldexp(p[1], k)};
+    cj_curve2 A = cj_query_scaled(a, k, pa);
+    cj_status st = line_impl(&A, ps, d, ldexp(tol, k), out, cap, count);
+    unscale(out, *count < cap ? *count : cap, k, 1);
     return st;
 }

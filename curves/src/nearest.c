@@ -142,8 +142,7 @@ static void search(nrun *N, const cj_qpiece *p, double lb) {
     }
 }
 
-cj_status cj_nearest_curve(const cj_curve2 *c, const double q[2], double tol, cj_nearest *out) {
-    assert(c && q && out);
+static cj_status nearest_impl(const cj_curve2 *c, const double q[2], double tol, cj_nearest *out) {
     cj_qctx ctx;
     cj_status st = cj_qctx_init(&ctx, c, "curve");
     if (st != CJ_OK) return st;
@@ -188,4 +187,24 @@ cj_status cj_nearest_curve(const cj_curve2 *c, const double q[2], double tol, cj
                        "written are valid but %g apart",
                        MAX_PIECES, N.best - lower);
     return CJ_OK;
+}
+
+cj_status cj_nearest_curve(const cj_curve2 *c, const double q[2], double tol, cj_nearest *out) {
+    assert(c && q && out);
+    double sc = fmax(cj_query_scale(c), fmax(fabs(q[0]), fabs(q[1])));
+    int k = cj_query_scale_exp(sc);
+    if (k == 0) return nearest_impl(c, q, tol, out);
+    /* tiny curves: scaled up by 2^k (exact), so the squared distances stay normal */
+    double pts[2 * (CJ_QUERY_MAX_DEGREE + 1)], qs[2] = {ldexp(q[0], k), ldexp(q[1], k)};
+    cj_curve2 C = cj_query_scaled(c, k, pts);
+    cj_nearest r;
+    cj_status st = nearest_impl(&C, qs, ldexp(tol, k), &r);
+    if (st != CJ_OK && st != CJ_ERR_CAP) return st;
+    r.point[0] = ldexp(r.point[0], -k);
+    r.point[1] = ldexp(r.point[1], -k);
+    /* scaling down rounds (maybe into subnormals): step the bounds outwards */
+    r.distance = cj_up(ldexp(r.distance, -k));
+    r.lower = fmax(0.0, cj_down(ldexp(r.lower, -k)));
+    *out = r;
+    return st;
 }

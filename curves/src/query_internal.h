@@ -125,4 +125,11 @@ void cj_qpiece_boxes(const cj_qpiece *p, double lo[][2], double hi[][2]);
 /* Enclosure of the whole piece: the box of its control point boxes. */
 void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]);
 
+/* Max |coordinate| of the control points (finite ones; validation catches the others), the
+ * exponent k that brings a scale below 2^-200 up to about 1 (0 otherwise), and a copy of the
+ * curve with its points scaled by 2^k into buf (2 (degree+1) doubles; exact for k >= 0). */
+double cj_query_scale(const cj_curve2 *c);
+int cj_query_scale_exp(double scale);
+cj_curve2 cj_query_scaled(const cj_curve2 *c, int k, double *buf);
+
 #endif

@@ -37,7 +37,7 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_curve2 *c, const char *what) {
     if (scale > 0x1p500)
         return cj_fail(CJ_ERR_RANGE,
                        "%s: coordinates up to %g exceed the range the queries "
-                       "certify (2^500)",
+                       "certify (2^500 = 3.3e150)",
                        what, scale);
     int distinct = 0;
     for (int i = 1; i <= n && !distinct; ++i)
@@ -219,4 +219,21 @@ void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L) {
     q->h[0][2] = q->h[1][2] = cj_iv(1.0);
     q->dh[0][2] = cj_iv(0.0);
     q->scale = fmax(q->hmag[0], q->hmag[1]);
+}
+
+double cj_query_scale(const cj_curve2 *c) {
+    double s = 0.0;
+    if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE) return 1.0; /* refused later */
+    for (int i = 0; i < 2 * (c->degree + 1); ++i)
+        if (isfinite(c->pts[i])) s = fmax(s, fabs(c->pts[i]));
+    return s;
+}
+
+int cj_query_scale_exp(double scale) {
+    return scale > 0.0 && scale < 0x1p-200 ? -ilogb(scale) : 0;
+}
+
+cj_curve2 cj_query_scaled(const cj_curve2 *c, int k, double *buf) {
+    for (int i = 0; i < 2 * (c->degree + 1); ++i) buf[i] = ldexp(c->pts[i], k);
+    return cj_curve2_view(c->degree, buf, c->weights);
 }

@@ -39,7 +39,7 @@ static int root_inside(const cj_curve2 *a, const cj_curve2 *b, const cj_isect *r
     double resid = qo_newton(&A, &B, r->s, r->t, s, t), scale = 0.0;
     for (int i = 0; i <= a->degree; ++i)
         scale = fmax(scale, fmax(fabs(a->pts[2 * i]), fabs(a->pts[2 * i + 1])));
-    int ok = resid < 1e-60 * scale && mpfr_cmp_d(s, r->s_lo) >= 0 && mpfr_cmp_d(s, r->s_hi) <= 0 &&
+    int ok = resid <= 1e-60 * scale && mpfr_cmp_d(s, r->s_lo) >= 0 && mpfr_cmp_d(s, r->s_hi) <= 0 &&
              mpfr_cmp_d(t, r->t_lo) >= 0 && mpfr_cmp_d(t, r->t_hi) <= 0;
     if (!ok)
         printf("  root check: residual %g, s %.17g in [%.17g, %.17g]? t %.17g in [%.17g, %.17g]?\n",
@@ -192,7 +192,7 @@ static void test_joints_overlaps(void) {
 static void test_scales_and_kinds(void) {
     double a[] = {0, 0, 1, 2, 2, -1, 3, 1}, b[] = {0, 1, 1, -1, 2, 2, 3, 0};
     int checked = 0;
-    for (int e = -2; e <= 2; ++e) {
+    for (int e = -4; e <= 2; ++e) {
         double f = pow(10.0, 75.0 * e), sa[8], sb[8];
         for (int i = 0; i < 8; ++i) sa[i] = a[i] * f, sb[i] = b[i] * f + 1e-3 * f;
         cj_curve2 A = cj_curve2_view(3, sa, NULL), B = cj_curve2_view(3, sb, NULL);
@@ -239,7 +239,7 @@ static void test_scales_and_kinds(void) {
     CHECK(n == 1 && res[0].kind == CJ_ISECT_CROSSING && res[0].s_lo == 0 && res[0].t_hi == 1,
           "closed: %d results", n);
     checked += 4;
-    printf("scales 1e-150..1e150, rational arc, infinite line, self (loop, cusp, simple, "
+    printf("scales 1e-300..1e150, rational arc, infinite line, self (loop, cusp, simple, "
            "closed): %d results checked against 256-bit Newton or by construction\n",
            checked);
 }
