@@ -115,5 +115,7 @@ int cmd_trace(int argc, char **argv);
 int cmd_animate(int argc, char **argv);
 int cmd_view(int argc, char **argv);
 int cmd_report(int argc, char **argv);
+int cmd_intersect(int argc, char **argv);
+int cmd_nearest(int argc, char **argv);
 
 #endif
