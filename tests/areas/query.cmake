@@ -6,3 +6,12 @@ target_include_directories(cj_query_oracle PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/qu
 cj_warnings(cj_query_oracle)
 cj_add_test(test_intersect SOURCES query/test_intersect.c LIBS cj_query_oracle)
 cj_add_test(test_nearest SOURCES query/test_nearest.c LIBS cj_query_oracle)
+# Contract of `casteljau intersect` / `casteljau nearest`: runs the built tool.
+cj_add_test(test_cli_query SOURCES query/test_cli_query.c)
+target_compile_definitions(test_cli_query PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+  CJ_QUERY_DOC="${PROJECT_SOURCE_DIR}/docs/queries_demo.json"
+  CJ_TMP_DIR="${CMAKE_CURRENT_BINARY_DIR}")
+if(CJ_WITH_OIIO AND TARGET cj::viz)
+  target_compile_definitions(test_cli_query PRIVATE CJ_HAVE_PLOT=1)
+endif()
+add_dependencies(test_cli_query casteljau)
