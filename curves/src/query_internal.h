@@ -86,11 +86,12 @@ static inline int cj_ifinite(cj_ivl a) {
  * (w x, w y, w) and their first hodograph, as intervals that contain the exact products. */
 typedef struct cj_qctx {
     int n;
-    int rational;                    /* 0: all weights 1 (then w = 1 and w' = 0 exactly) */
-    cj_ivl h[CJ_QUERY_MAXN + 1][3];  /* homogeneous control points */
-    cj_ivl dh[CJ_QUERY_MAXN + 1][3]; /* n (h_{i+1} - h_i), i < n */
-    double scale;                    /* max |coordinate| of the control points */
-    double hmag[3];                  /* max |homogeneous coordinate| k (bounds every piece) */
+    int rational;                     /* 0: all weights 1 (then w = 1 and w' = 0 exactly) */
+    cj_ivl h[CJ_QUERY_MAXN + 1][3];   /* homogeneous control points */
+    cj_ivl dh[CJ_QUERY_MAXN + 1][3];  /* n (h_{i+1} - h_i), i < n */
+    cj_ivl ddh[CJ_QUERY_MAXN + 1][3]; /* (n-1) (dh_{i+1} - dh_i), i < n-1 */
+    double scale;                     /* max |coordinate| of the control points */
+    double hmag[3];                   /* max |homogeneous coordinate| k (bounds every piece) */
 } cj_qctx;
 
 /* Validates the curve (degree 0..CJ_QUERY_MAX_DEGREE, finite points, finite positive weights)
@@ -101,6 +102,19 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_curve2 *c, const char *what);
  * a little beyond [0,1]); d may be NULL. Returns 0 if the weight enclosure reaches zero or a
  * bound overflows (nothing certified then). */
 int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]);
+
+/* Encloses c(t), c'(t) and c''(t) for every t in T. Returns 0 as cj_qctx_eval does. */
+int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]);
+
+static inline cj_ivl cj_isqr(cj_ivl a) {
+    if (a.lo >= 0) return cj_iv2(cj_down(a.lo * a.lo), cj_up(a.hi * a.hi));
+    if (a.hi <= 0) return cj_iv2(cj_down(a.hi * a.hi), cj_up(a.lo * a.lo));
+    double m = fmax(-a.lo, a.hi);
+    return cj_iv2(0.0, cj_up(m * m));
+}
+static inline cj_ivl cj_isqrt(cj_ivl a) {
+    return cj_iv2(a.lo > 0 ? fmax(0.0, cj_down(sqrt(a.lo))) : 0.0, cj_up(sqrt(fmax(a.hi, 0.0))));
+}
 
 /* A piece of a curve on the parameter interval [a, b]: k 2^-d and (k+1) 2^-d from halvings of
  * [0,1]; the callers stop halving at width 2^-52, so every midpoint (2k+1) 2^-(d+1) is exact:

@@ -63,6 +63,9 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_curve2 *c, const char *what) {
     for (int i = 0; i < n; ++i)
         for (int k = 0; k < 3; ++k)
             q->dh[i][k] = cj_imul(cj_iv((double)n), cj_isub(q->h[i + 1][k], q->h[i][k]));
+    for (int i = 0; i + 1 < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            q->ddh[i][k] = cj_imul(cj_iv((double)(n - 1)), cj_isub(q->dh[i + 1][k], q->dh[i][k]));
     return CJ_OK;
 }
 
@@ -107,6 +110,38 @@ int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]) {
         if (!cj_ifinite(p[k])) return 0;
         if (d && !cj_ifinite(d[k])) return 0;
     }
+    return 1;
+}
+
+int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]) {
+    int n = q->n, dims = q->rational ? 3 : 2;
+    cj_ivl H[3], D[3], DD[3];
+    ideval((const cj_ivl(*)[3])q->h, n, dims, T, H);
+    if (n >= 1)
+        ideval((const cj_ivl(*)[3])q->dh, n - 1, dims, T, D);
+    else
+        D[0] = D[1] = D[2] = cj_iv(0.0);
+    if (n >= 2)
+        ideval((const cj_ivl(*)[3])q->ddh, n - 2, dims, T, DD);
+    else
+        DD[0] = DD[1] = DD[2] = cj_iv(0.0);
+    for (int k = 0; k < 2; ++k) {
+        if (!q->rational) {
+            p[k] = H[k];
+            d[k] = D[k];
+            dd[k] = DD[k];
+            continue;
+        }
+        cj_ivl W = H[2];
+        if (!(W.lo > 0.0)) return 0;
+        p[k] = cj_idiv(H[k], W);
+        d[k] = cj_idiv(cj_isub(D[k], cj_imul(p[k], D[2])), W);
+        /* c'' = (P'' - 2 c' w' - c w'') / w */
+        cj_ivl num = cj_isub(DD[k], cj_imul(cj_iv(2.0), cj_imul(d[k], D[2])));
+        dd[k] = cj_idiv(cj_isub(num, cj_imul(p[k], DD[2])), W);
+    }
+    for (int k = 0; k < 2; ++k)
+        if (!cj_ifinite(p[k]) || !cj_ifinite(d[k]) || !cj_ifinite(dd[k])) return 0;
     return 1;
 }
 
