@@ -117,5 +117,6 @@ int cmd_view(int argc, char **argv);
 int cmd_report(int argc, char **argv);
 int cmd_intersect(int argc, char **argv);
 int cmd_nearest(int argc, char **argv);
+int cmd_offset(int argc, char **argv);
 
 #endif

@@ -8,6 +8,7 @@
 #include "casteljau/bezier.h"
 #include "casteljau/intersect.h"
 #include "casteljau/nearest.h"
+#include "casteljau/offset.h"
 
 #include <cJSON.h>
 
@@ -50,6 +51,17 @@ static const char nearest_usage[] =
     "          LOWER' for the nearest of all (LOWER the smallest lower bound)\n"
     "Output: the document with, per panel, the point and its nearest point marked and joined.\n"
     "Exit status as for intersect.\n";
+
+static const char offset_usage[] =
+    "usage: casteljau offset --distance D [--tol T] [--text] [FILE|-]\n"
+    "Offsets the \"bezier\" items of a plot JSON document (as for 'casteljau intersect') by D\n"
+    "(positive: to the left of the direction of travel) as cubic Bezier pieces, each proven\n"
+    "within T of the exact offset (cusps followed, loops kept: see docs/queries.md).\n"
+    "  --tol   default 1e-6 times the size of the curves and D\n"
+    "  --text  one line per piece: I K X0 Y0 X1 Y1 X2 Y2 X3 Y3 (item, piece), then\n"
+    "          'deviation I PIECES DEV CUSPS' per curve\n"
+    "Output: the document with the pieces added as \"bezier\" items (purple). Exit status as\n"
+    "for intersect.\n";
 
 typedef struct qcurve {
     int item; /* index in the panel's items */
@@ -211,6 +223,7 @@ typedef struct qopts {
     int self, have_line, text;
     double line[4];
     double point[2];
+    double distance;
 } qopts;
 
 /* Adds the answers of one result to the panel's marker items. */
@@ -351,6 +364,55 @@ static int nearest_panel(cJSON *panel, const char *where, const qopts *o) {
     return 0;
 }
 
+static int offset_panel(cJSON *panel, const char *where, const qopts *o) {
+    cJSON *items = cJSON_GetObjectItemCaseSensitive(panel, "items");
+    qcurve cv[QUERY_MAX_CURVES];
+    int rc = 0, nc = read_curves("offset", items, where, cv, &rc);
+    if (nc < 0) return rc;
+    double dd[1] = {o->distance};
+    double tol = o->tol > 0 ? o->tol : 1e-6 * (panel_size(cv, nc, dd, 1) + fabs(o->distance));
+    enum { CAP = 1 << 16 };
+    double *pts = malloc(sizeof(double) * 8 * CAP);
+    if (!pts) {
+        free_curves(cv, nc);
+        return cli_error("offset", "out of memory");
+    }
+    for (int i = 0; i < nc && !rc; ++i) {
+        cj_curve2 A = cj_curve2_view(cv[i].degree, cv[i].pts, cv[i].w);
+        int np = 0, cusps = 0;
+        double dev = 0;
+        cj_status st = cj_offset_curve(&A, o->distance, tol, pts, NULL, CAP, &np, &dev, &cusps);
+        if (st) {
+            rc = query_fail("offset", where, &cv[i], NULL, st);
+            break;
+        }
+        for (int k = 0; k < np; ++k) {
+            if (o->text) {
+                printf("%d %d", cv[i].item, k);
+                for (int j = 0; j < 8; ++j) printf(" "), cli_print_double(pts[8 * k + j]);
+                printf("\n");
+            }
+            cJSON *it = cJSON_CreateObject(), *pa = cJSON_CreateArray();
+            cJSON_AddStringToObject(it, "type", "bezier");
+            for (int j = 0; j < 4; ++j)
+                cJSON_AddItemToArray(pa, pair_json(pts[8 * k + 2 * j], pts[8 * k + 2 * j + 1]));
+            cJSON_AddItemToObject(it, "points", pa);
+            cJSON_AddStringToObject(it, "color", "#9467bd");
+            cJSON_AddFalseToObject(it, "control_polygon");
+            cJSON_AddFalseToObject(it, "control_points");
+            cJSON_AddItemToArray(items, it);
+        }
+        if (o->text) {
+            printf("deviation %d %d ", cv[i].item, np);
+            cli_print_double(dev);
+            printf(" %d\n", cusps);
+        }
+    }
+    free(pts);
+    free_curves(cv, nc);
+    return rc;
+}
+
 static int run_doc(const char *cmd, const char *path, const qopts *o,
                    int (*panel_fn)(cJSON *, const char *, const qopts *)) {
     int rc = 0;
@@ -411,19 +473,19 @@ static int parse_numbers(const char *cmd, const char *opt, const char *v, double
     return 0;
 }
 
-static int query_main(const char *cmd, const char *usage, int argc, char **argv, int nearest) {
-    enum { O_TOL, O_SELF, O_LINE, O_TEXT, O_POINT };
-    static const cli_opt opts[] = {{"--tol", NULL, 1},
-                                   {"--self", NULL, 0},
-                                   {"--line", NULL, 1},
-                                   {"--text", NULL, 0},
-                                   {"--point", NULL, 1}};
+enum { Q_INTERSECT, Q_NEAREST, Q_OFFSET };
+
+static int query_main(const char *cmd, const char *usage, int argc, char **argv, int which) {
+    enum { O_TOL, O_SELF, O_LINE, O_TEXT, O_POINT, O_DIST };
+    static const cli_opt opts[] = {{"--tol", NULL, 1},   {"--self", NULL, 0},
+                                   {"--line", NULL, 1},  {"--text", NULL, 0},
+                                   {"--point", NULL, 1}, {"--distance", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
     qopts o;
     memset(&o, 0, sizeof o);
     const char *path = NULL;
-    int k, status, have_point = 0;
+    int k, status, have_point = 0, have_dist = 0;
     const char *v;
     while (cli_next_arg(&ps, &k, &v, &status)) {
         char q[160];
@@ -438,7 +500,8 @@ static int query_main(const char *cmd, const char *usage, int argc, char **argv,
                                 cli_quote(v, q, sizeof q));
         } else if (k == O_TEXT) {
             o.text = 1;
-        } else if (nearest ? k != O_POINT : k == O_POINT) {
+        } else if ((which == Q_NEAREST) != (k == O_POINT) || (which == Q_OFFSET) != (k == O_DIST) ||
+                   (which != Q_INTERSECT && (k == O_SELF || k == O_LINE))) {
             return cli_fail(cmd, "%s does not apply to '%s' (try 'casteljau %s --help')",
                             opts[k].name, cmd, cmd);
         } else if (k == O_SELF) {
@@ -448,20 +511,33 @@ static int query_main(const char *cmd, const char *usage, int argc, char **argv,
             if (o.line[2] == 0 && o.line[3] == 0)
                 return cli_fail(cmd, "--line: the direction (DX,DY) is (0,0)");
             o.have_line = 1;
-        } else {
+        } else if (k == O_POINT) {
             if (parse_numbers(cmd, "--point", v, o.point, 2)) return CLI_EXIT_USAGE;
             have_point = 1;
+        } else {
+            if (cli_parse_double(v, &o.distance))
+                return cli_fail(cmd, "--distance '%s' is not a finite number",
+                                cli_quote(v, q, sizeof q));
+            have_dist = 1;
         }
     }
     if (status >= 0) return status;
-    if (nearest && !have_point) return cli_fail(cmd, "missing --point X,Y");
-    return run_doc(cmd, path ? path : "-", &o, nearest ? nearest_panel : intersect_panel);
+    if (which == Q_NEAREST && !have_point) return cli_fail(cmd, "missing --point X,Y");
+    if (which == Q_OFFSET && !have_dist) return cli_fail(cmd, "missing --distance D");
+    return run_doc(cmd, path ? path : "-", &o,
+                   which == Q_NEAREST  ? nearest_panel
+                   : which == Q_OFFSET ? offset_panel
+                                       : intersect_panel);
 }
 
 int cmd_intersect(int argc, char **argv) {
-    return query_main("intersect", intersect_usage, argc, argv, 0);
+    return query_main("intersect", intersect_usage, argc, argv, Q_INTERSECT);
 }
 
 int cmd_nearest(int argc, char **argv) {
-    return query_main("nearest", nearest_usage, argc, argv, 1);
+    return query_main("nearest", nearest_usage, argc, argv, Q_NEAREST);
+}
+
+int cmd_offset(int argc, char **argv) {
+    return query_main("offset", offset_usage, argc, argv, Q_OFFSET);
 }

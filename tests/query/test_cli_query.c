@@ -74,6 +74,30 @@ int main(void) {
         cj_cli_result_free(&r);
         ++checks;
     }
+    snprintf(cmd, sizeof cmd, "%s offset --distance 0.15 --tol 1e-5 --text %s", exe, doc);
+    if (!run(cmd, &r)) {
+        CHECK(r.status == 0 && count_lines(r.out, "deviation ") == 4 &&
+                  strstr(r.out, "deviation 2 ") != NULL,
+              "offset: %d\n%s%s", r.status, r.out, r.err);
+        for (const char *p = strstr(r.out, "deviation "); p; p = strstr(p + 1, "deviation ")) {
+            int item, np, cusps;
+            double dev;
+            CHECK(sscanf(p, "deviation %d %d %lf %d", &item, &np, &dev, &cusps) == 4 && np > 0 &&
+                      dev <= 1e-5,
+                  "offset deviation line: %.60s", p);
+        }
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+#ifdef CJ_HAVE_PLOT
+    snprintf(cmd, sizeof cmd, "%s offset --distance -0.2 %s | %s plot - -o %s/query_off.png", exe,
+             doc, exe, CJ_TMP_DIR);
+    if (!run(cmd, &r)) {
+        CHECK(r.status == 0, "offset | plot: %d %s", r.status, r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+#endif
     /* bad input: status 2 and one line naming what is wrong */
     const struct {
         const char *json, *args, *needle;
@@ -90,6 +114,10 @@ int main(void) {
         {"{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,1]]}]}", "nearest",
          "missing --point"},
         {"{\"items\": [", "intersect", "JSON syntax error"},
+        {"{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,1]]}]}", "offset",
+         "missing --distance"},
+        {"{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[2,2],[0,2],[2,0]]}]}",
+         "offset --distance 0.1", "t = 0.5"},
         {"{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,1]]}]}", "intersect --line 0,0,0,0",
          "direction"},
     };
