@@ -268,7 +268,7 @@ static int intersect_panel(cJSON *panel, const char *where, const qopts *o) {
         return cli_error("intersect", "out of memory");
     }
     for (int i = 0; i < nc && !rc; ++i) {
-        cj_curve2 A = cj_curve2_view(cv[i].degree, cv[i].pts, cv[i].w);
+        cj_bezier2 A = cj_bezier2_view(cv[i].degree, cv[i].pts, cv[i].w);
         int n = 0;
         cj_status st;
         if (o->have_line) {
@@ -288,7 +288,7 @@ static int intersect_panel(cJSON *panel, const char *where, const qopts *o) {
             }
         }
         for (int j = i + 1; j < nc && !rc && !o->have_line; ++j) {
-            cj_curve2 B = cj_curve2_view(cv[j].degree, cv[j].pts, cv[j].w);
+            cj_bezier2 B = cj_bezier2_view(cv[j].degree, cv[j].pts, cv[j].w);
             st = cj_intersect_curves(&A, &B, tol, res, QUERY_MAX_RESULTS, &n);
             if (st) rc = query_fail("intersect", where, &cv[i], &cv[j], st);
             for (int k = 0; k < n && !rc; ++k) {
@@ -325,7 +325,7 @@ static int nearest_panel(cJSON *panel, const char *where, const qopts *o) {
     int best_i = -1;
     double lower = INFINITY;
     for (int i = 0; i < nc && !rc; ++i) {
-        cj_curve2 A = cj_curve2_view(cv[i].degree, cv[i].pts, cv[i].w);
+        cj_bezier2 A = cj_bezier2_view(cv[i].degree, cv[i].pts, cv[i].w);
         cj_nearest r;
         cj_status st = cj_nearest_curve(&A, o->point, tol, &r);
         if (st) {
@@ -378,7 +378,7 @@ static int offset_panel(cJSON *panel, const char *where, const qopts *o) {
         return cli_error("offset", "out of memory");
     }
     for (int i = 0; i < nc && !rc; ++i) {
-        cj_curve2 A = cj_curve2_view(cv[i].degree, cv[i].pts, cv[i].w);
+        cj_bezier2 A = cj_bezier2_view(cv[i].degree, cv[i].pts, cv[i].w);
         int np = 0, cusps = 0;
         double dev = 0;
         cj_status st = cj_offset_curve(&A, o->distance, tol, pts, NULL, CAP, &np, &dev, &cusps);

@@ -35,8 +35,8 @@ int main(void) {
         double t0 = cj_bench_thread_cpu();
         found = 0;
         for (int i = 0; i + 1 < NCURVES; i += 2) {
-            cj_curve2 a = cj_curve2_view(3, curves[i], NULL),
-                      b = cj_curve2_view(3, curves[i + 1], NULL);
+            cj_bezier2 a = cj_bezier2_view(3, curves[i], NULL),
+                       b = cj_bezier2_view(3, curves[i + 1], NULL);
             int n = 0;
             if (cj_intersect_curves(&a, &b, 1e-9, res, 64, &n) == CJ_OK) found += n;
         }
@@ -50,7 +50,7 @@ int main(void) {
         double t0 = cj_bench_thread_cpu();
         pieces = 0;
         for (int i = 0; i < NCURVES; ++i) {
-            cj_curve2 a = cj_curve2_view(3, curves[i], NULL);
+            cj_bezier2 a = cj_bezier2_view(3, curves[i], NULL);
             double q[2] = {unit(), unit()};
             cj_nearest nr;
             if (cj_nearest_curve(&a, q, 1e-10, &nr) == CJ_OK) pieces += nr.pieces;
@@ -66,7 +66,7 @@ int main(void) {
         double t0 = cj_bench_thread_cpu();
         npieces = done = 0;
         for (int i = 0; i < noff; ++i) {
-            cj_curve2 a = cj_curve2_view(3, curves[i], NULL);
+            cj_bezier2 a = cj_bezier2_view(3, curves[i], NULL);
             int np = 0;
             double dev;
             if (cj_offset_curve(&a, 0.05, 1e-4, pts, NULL, 4096, &np, &dev, NULL) == CJ_OK)

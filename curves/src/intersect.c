@@ -372,7 +372,7 @@ static void self_adjacent(run *R, const cj_qpiece *l, const cj_qpiece *r) {
 /* ---- joints, overlaps, output ------------------------------------------------------------ */
 
 /* End points that are bitwise equal: an exact intersection at the corner (s0, t0). */
-static void joints(run *R, const cj_curve2 *a, const cj_curve2 *b) {
+static void joints(run *R, const cj_bezier2 *a, const cj_bezier2 *b) {
     for (int ea = 0; ea < 2; ++ea)
         for (int eb = 0; eb < 2; ++eb) {
             if (R->self && (ea == eb || ea > eb)) continue;
@@ -395,7 +395,7 @@ static void joints(run *R, const cj_curve2 *a, const cj_curve2 *b) {
 
 /* Polynomial pieces a[s1,s2] and b[t1,t2] as the same curve: max control point distance after
  * elevating both to one degree, plus the rounding of the two subdivisions. */
-static double coincidence(const cj_curve2 *a, double s1, double s2, const cj_curve2 *b, double t1,
+static double coincidence(const cj_bezier2 *a, double s1, double s2, const cj_bezier2 *b, double t1,
                           double t2) {
     enum { M = CJ_QUERY_MAX_DEGREE + 1 };
     double pa[2 * M], pb[2 * M], ea[2 * M], eb[2 * M];
@@ -415,7 +415,7 @@ static double coincidence(const cj_curve2 *a, double s1, double s2, const cj_cur
     return dev + 16.0 * (n + 2) * 0x1p-53 * scale;
 }
 
-static void overlaps(run *R, const cj_curve2 *a, const cj_curve2 *b) {
+static void overlaps(run *R, const cj_bezier2 *a, const cj_bezier2 *b) {
     if (a->weights || b->weights || R->self || R->line) return;
     double cand[4][2];
     int nc = 0;
@@ -575,7 +575,7 @@ static cj_status check_tol(double tol, double scale) {
     return CJ_OK;
 }
 
-static cj_status curves_impl(const cj_curve2 *a, const cj_curve2 *b, double tol, cj_isect *out,
+static cj_status curves_impl(const cj_bezier2 *a, const cj_bezier2 *b, double tol, cj_isect *out,
                              int cap, int *count) {
     assert(a && b && count && (out || cap == 0));
     run *R = malloc(sizeof *R); /* the bookkeeping tables (~250 KiB) do not belong on a stack */
@@ -610,7 +610,7 @@ done:
     return st;
 }
 
-static cj_status self_impl(const cj_curve2 *a, double tol, cj_isect *out, int cap, int *count) {
+static cj_status self_impl(const cj_bezier2 *a, double tol, cj_isect *out, int cap, int *count) {
     assert(a && count && (out || cap == 0));
     run *R = malloc(sizeof *R);
     cj_qctx *qa = malloc(sizeof *qa);
@@ -639,7 +639,7 @@ done:
     return st;
 }
 
-static cj_status line_impl(const cj_curve2 *a, const double p[2], const double d[2], double tol,
+static cj_status line_impl(const cj_bezier2 *a, const double p[2], const double d[2], double tol,
                            cj_isect *out, int cap, int *count) {
     assert(a && p && d && count && (out || cap == 0));
     if (!isfinite(p[0]) || !isfinite(p[1]))
@@ -706,37 +706,37 @@ static void unscale(cj_isect *out, int n, int k, int line) {
     }
 }
 
-cj_status cj_intersect_curves(const cj_curve2 *a, const cj_curve2 *b, double tol, cj_isect *out,
+cj_status cj_intersect_curves(const cj_bezier2 *a, const cj_bezier2 *b, double tol, cj_isect *out,
                               int cap, int *count) {
     assert(a && b && count && (out || cap == 0));
     int k = cj_query_scale_exp(fmax(cj_query_scale(a), cj_query_scale(b)));
     if (k == 0) return curves_impl(a, b, tol, out, cap, count);
     double pa[2 * (CJ_QUERY_MAX_DEGREE + 1)], pb[2 * (CJ_QUERY_MAX_DEGREE + 1)];
-    cj_curve2 A = cj_query_scaled(a, k, pa), B = cj_query_scaled(b, k, pb);
+    cj_bezier2 A = cj_query_scaled(a, k, pa), B = cj_query_scaled(b, k, pb);
     cj_status st = curves_impl(&A, &B, ldexp(tol, k), out, cap, count);
     unscale(out, *count < cap ? *count : cap, k, 0);
     return st;
 }
 
-cj_status cj_intersect_self(const cj_curve2 *a, double tol, cj_isect *out, int cap, int *count) {
+cj_status cj_intersect_self(const cj_bezier2 *a, double tol, cj_isect *out, int cap, int *count) {
     assert(a && count && (out || cap == 0));
     int k = cj_query_scale_exp(cj_query_scale(a));
     if (k == 0) return self_impl(a, tol, out, cap, count);
     double pa[2 * (CJ_QUERY_MAX_DEGREE + 1)];
-    cj_curve2 A = cj_query_scaled(a, k, pa);
+    cj_bezier2 A = cj_query_scaled(a, k, pa);
     cj_status st = self_impl(&A, ldexp(tol, k), out, cap, count);
     unscale(out, *count < cap ? *count : cap, k, 0);
     return st;
 }
 
-cj_status cj_intersect_line(const cj_curve2 *a, const double p[2], const double d[2], double tol,
+cj_status cj_intersect_line(const cj_bezier2 *a, const double p[2], const double d[2], double tol,
                             cj_isect *out, int cap, int *count) {
     assert(a && p && d && count && (out || cap == 0));
     double sc = fmax(cj_query_scale(a), fmax(fabs(p[0]), fabs(p[1])));
     int k = cj_query_scale_exp(sc);
     if (k == 0) return line_impl(a, p, d, tol, out, cap, count);
     double pa[2 * (CJ_QUERY_MAX_DEGREE + 1)], ps[2] = {ldexp(p[0], k), ldexp(p[1], k)};
-    cj_curve2 A = cj_query_scaled(a, k, pa);
+    cj_bezier2 A = cj_query_scaled(a, k, pa);
     cj_status st = line_impl(&A, ps, d, ldexp(tol, k), out, cap, count);
     unscale(out, *count < cap ? *count : cap, k, 1);
     return st;

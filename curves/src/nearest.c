@@ -13,7 +13,7 @@
 
 typedef struct nrun {
     const cj_qctx *q;
-    const cj_curve2 *c;
+    const cj_bezier2 *c;
     double qp[2];
     double tol;
     double best, best_t;
@@ -36,7 +36,7 @@ static double upper_at(const nrun *N, double t, double pt[2]) {
 
 /* Newton on g(t) = (c(t) - q) . c'(t) from t, clamped to [0,1]; returns the polished t. */
 static double polish(const nrun *N, double t) {
-    const cj_curve2 *c = N->c;
+    const cj_bezier2 *c = N->c;
     for (int it = 0; it < 8; ++it) {
         double d[6];
         cj_status st;
@@ -142,7 +142,7 @@ static void search(nrun *N, const cj_qpiece *p, double lb) {
     }
 }
 
-static cj_status nearest_impl(const cj_curve2 *c, const double q[2], double tol, cj_nearest *out) {
+static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol, cj_nearest *out) {
     cj_qctx ctx;
     cj_status st = cj_qctx_init(&ctx, c, "curve");
     if (st != CJ_OK) return st;
@@ -189,14 +189,14 @@ static cj_status nearest_impl(const cj_curve2 *c, const double q[2], double tol,
     return CJ_OK;
 }
 
-cj_status cj_nearest_curve(const cj_curve2 *c, const double q[2], double tol, cj_nearest *out) {
+cj_status cj_nearest_curve(const cj_bezier2 *c, const double q[2], double tol, cj_nearest *out) {
     assert(c && q && out);
     double sc = fmax(cj_query_scale(c), fmax(fabs(q[0]), fabs(q[1])));
     int k = cj_query_scale_exp(sc);
     if (k == 0) return nearest_impl(c, q, tol, out);
     /* tiny curves: scaled up by 2^k (exact), so the squared distances stay normal */
     double pts[2 * (CJ_QUERY_MAX_DEGREE + 1)], qs[2] = {ldexp(q[0], k), ldexp(q[1], k)};
-    cj_curve2 C = cj_query_scaled(c, k, pts);
+    cj_bezier2 C = cj_query_scaled(c, k, pts);
     cj_nearest r;
     cj_status st = nearest_impl(&C, qs, ldexp(tol, k), &r);
     if (st != CJ_OK && st != CJ_ERR_CAP) return st;

@@ -14,7 +14,7 @@
 
 typedef struct orun {
     const cj_qctx *q;
-    const cj_curve2 *c;
+    const cj_bezier2 *c;
     double d, tol;
     double *pts, *breaks;
     int cap, count;
@@ -29,7 +29,7 @@ typedef struct orun {
  * where c' vanishes. */
 static int offset_at(const orun *R, double t, double o[2], double od[2], double *stretch) {
     double v[6];
-    const cj_curve2 *c = R->c;
+    const cj_bezier2 *c = R->c;
     cj_status st;
     if (c->weights) {
         cj_rbezier r = cj_rbezier_view(c->degree, 2, c->pts, c->weights);
@@ -193,7 +193,7 @@ static void piece(orun *R, double a, double b, const double oa[2], const double 
     piece(R, m, b, om, odm, depth + 1);
 }
 
-cj_status cj_offset_curve(const cj_curve2 *c, double d, double tol, double *pts, double *breaks,
+cj_status cj_offset_curve(const cj_bezier2 *c, double d, double tol, double *pts, double *breaks,
                           int cap_pieces, int *npieces, double *deviation, int *cusps) {
     assert(c && npieces && deviation && (pts || cap_pieces == 0));
     cj_qctx q;

@@ -96,7 +96,7 @@ typedef struct cj_qctx {
 
 /* Validates the curve (degree 0..CJ_QUERY_MAX_DEGREE, finite points, finite positive weights)
  * naming `what` in the message, and fills the context. */
-cj_status cj_qctx_init(cj_qctx *q, const cj_curve2 *c, const char *what);
+cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what);
 
 /* Encloses the point c(t) and the derivative c'(t) for every t in the interval T (T may extend
  * a little beyond [0,1]); d may be NULL. Returns 0 if the weight enclosure reaches zero or a
@@ -142,8 +142,8 @@ void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]);
 /* Max |coordinate| of the control points (finite ones; validation catches the others), the
  * exponent k that brings a scale below 2^-200 up to about 1 (0 otherwise), and a copy of the
  * curve with its points scaled by 2^k into buf (2 (degree+1) doubles; exact for k >= 0). */
-double cj_query_scale(const cj_curve2 *c);
+double cj_query_scale(const cj_bezier2 *c);
 int cj_query_scale_exp(double scale);
-cj_curve2 cj_query_scaled(const cj_curve2 *c, int k, double *buf);
+cj_bezier2 cj_query_scaled(const cj_bezier2 *c, int k, double *buf);
 
 #endif

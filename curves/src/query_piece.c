@@ -7,7 +7,7 @@
 #include <assert.h>
 #include <float.h>
 
-cj_status cj_qctx_init(cj_qctx *q, const cj_curve2 *c, const char *what) {
+cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
     assert(q && c && what);
     if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE)
         return cj_fail(CJ_ERR_DEGREE, "%s: degree %d outside 0..%d", what, c->degree,
@@ -256,7 +256,7 @@ void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L) {
     q->scale = fmax(q->hmag[0], q->hmag[1]);
 }
 
-double cj_query_scale(const cj_curve2 *c) {
+double cj_query_scale(const cj_bezier2 *c) {
     double s = 0.0;
     if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE) return 1.0; /* refused later */
     for (int i = 0; i < 2 * (c->degree + 1); ++i)
@@ -268,7 +268,7 @@ int cj_query_scale_exp(double scale) {
     return scale > 0.0 && scale < 0x1p-200 ? -ilogb(scale) : 0;
 }
 
-cj_curve2 cj_query_scaled(const cj_curve2 *c, int k, double *buf) {
+cj_bezier2 cj_query_scaled(const cj_bezier2 *c, int k, double *buf) {
     for (int i = 0; i < 2 * (c->degree + 1); ++i) buf[i] = ldexp(c->pts[i], k);
-    return cj_curve2_view(c->degree, buf, c->weights);
+    return cj_bezier2_view(c->degree, buf, c->weights);
 }

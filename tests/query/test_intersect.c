@@ -26,13 +26,13 @@ static int failures = 0;
 #define CAP 256
 static cj_isect res[CAP];
 
-static qo_curve qc(const cj_curve2 *c) {
+static qo_curve qc(const cj_bezier2 *c) {
     qo_curve q = {c->degree, c->pts, c->weights};
     return q;
 }
 
 /* The 256-bit root from the reported estimate lies in the enclosure. Returns 1 if so. */
-static int root_inside(const cj_curve2 *a, const cj_curve2 *b, const cj_isect *r) {
+static int root_inside(const cj_bezier2 *a, const cj_bezier2 *b, const cj_isect *r) {
     qo_curve A = qc(a), B = qc(b);
     mpfr_t s, t;
     mpfr_inits2(256, s, t, (mpfr_ptr)0);
@@ -59,12 +59,12 @@ static int count_kind(const cj_isect *r, int n, cj_isect_kind k) {
 
 static void test_tangencies(void) {
     double par[] = {-1, 1, 0, -1, 1, 1}; /* y = x^2, x = 2s - 1 */
-    cj_curve2 P = cj_curve2_view(2, par, NULL);
+    cj_bezier2 P = cj_bezier2_view(2, par, NULL);
     int checked = 0;
     for (int k = 0; k < 5; ++k) {
         double dy[] = {0.0, 1e-6, -1e-6, 1e-24, 0x1p-60};
         double seg[] = {-1, dy[k], 1, dy[k]};
-        cj_curve2 S = cj_curve2_view(1, seg, NULL);
+        cj_bezier2 S = cj_bezier2_view(1, seg, NULL);
         int n = 0;
         cj_status st = cj_intersect_curves(&P, &S, 1e-9, res, CAP, &n);
         CHECK(st == CJ_OK, "tangency %d: %s", k, cj_last_error());
@@ -100,18 +100,18 @@ static void test_tangencies(void) {
 
 static void test_joints_overlaps(void) {
     double a[] = {0, 0, 1, 2, 2, -1, 3, 1};
-    cj_curve2 A = cj_curve2_view(3, a, NULL);
+    cj_bezier2 A = cj_bezier2_view(3, a, NULL);
     int n;
     /* a transversal joint: exact corner */
     double j1[] = {3, 1, 4, 0, 5, 2};
-    cj_curve2 J1 = cj_curve2_view(2, j1, NULL);
+    cj_bezier2 J1 = cj_bezier2_view(2, j1, NULL);
     CHECK(cj_intersect_curves(&A, &J1, 1e-9, res, CAP, &n) == CJ_OK, "%s", cj_last_error());
     CHECK(n == 1 && res[0].kind == CJ_ISECT_CROSSING && res[0].s_lo == 1.0 && res[0].s_hi == 1.0 &&
               res[0].t_lo == 0.0 && res[0].t_hi == 0.0 && res[0].at_end,
           "transversal joint: %d results", n);
     /* a tangent (G1) joint: a contact holding the corner */
     double j2[] = {3, 1, 4, 3, 5, 0};
-    cj_curve2 J2 = cj_curve2_view(2, j2, NULL);
+    cj_bezier2 J2 = cj_bezier2_view(2, j2, NULL);
     CHECK(cj_intersect_curves(&A, &J2, 1e-9, res, CAP, &n) == CJ_OK, "%s", cj_last_error());
     CHECK(n == 1 && res[0].kind == CJ_ISECT_CONTACT && res[0].s_hi == 1.0 && res[0].t_lo == 0.0,
           "tangent joint: %d results", n);
@@ -124,7 +124,7 @@ static void test_joints_overlaps(void) {
     CHECK(cj_intersect_curves(&A, &A, 1e-9, res, CAP, &n) == CJ_OK, "%s", cj_last_error());
     CHECK(n == 1 && res[0].kind == CJ_ISECT_OVERLAP && res[0].s_lo == 0 && res[0].s_hi == 1,
           "itself: %d results", n);
-    cj_curve2 R = cj_curve2_view(3, rev, NULL);
+    cj_bezier2 R = cj_bezier2_view(3, rev, NULL);
     CHECK(cj_intersect_curves(&A, &R, 1e-9, res, CAP, &n) == CJ_OK, "%s", cj_last_error());
     CHECK(n == 1 && res[0].kind == CJ_ISECT_OVERLAP, "reversed: %d results", n);
     /* sub-piece on [0.25, 0.75] by exact de Casteljau in binary fractions: written out */
@@ -145,7 +145,7 @@ static void test_joints_overlaps(void) {
             sub[2 * i + 1] = w[0][1];
         }
     }
-    cj_curve2 S = cj_curve2_view(3, sub, NULL);
+    cj_bezier2 S = cj_bezier2_view(3, sub, NULL);
     CHECK(cj_intersect_curves(&A, &S, 1e-9, res, CAP, &n) == CJ_OK, "%s", cj_last_error());
     CHECK(n == 1 && res[0].kind == CJ_ISECT_OVERLAP && fabs(res[0].s_lo - 0.25) < 1e-9 &&
               fabs(res[0].s_hi - 0.75) < 1e-9 && res[0].deviation <= 1e-9,
@@ -177,7 +177,7 @@ static void test_joints_overlaps(void) {
         }
         for (int i = 0; i < 4; ++i) right[2 * i] = rr[i][0], right[2 * i + 1] = rr[i][1];
     }
-    cj_curve2 Lf = cj_curve2_view(3, left, NULL), Rt = cj_curve2_view(3, right, NULL);
+    cj_bezier2 Lf = cj_bezier2_view(3, left, NULL), Rt = cj_bezier2_view(3, right, NULL);
     CHECK(cj_intersect_curves(&Lf, &Rt, 1e-9, res, CAP, &n) == CJ_OK, "%s", cj_last_error());
     CHECK(n == 1 && res[0].kind == CJ_ISECT_OVERLAP && fabs(res[0].s_lo - 0.5) < 1e-8 &&
               fabs(res[0].s_hi - 1.0) < 1e-12 && fabs(res[0].t_lo) < 1e-12 &&
@@ -195,7 +195,7 @@ static void test_scales_and_kinds(void) {
     for (int e = -4; e <= 2; ++e) {
         double f = pow(10.0, 75.0 * e), sa[8], sb[8];
         for (int i = 0; i < 8; ++i) sa[i] = a[i] * f, sb[i] = b[i] * f + 1e-3 * f;
-        cj_curve2 A = cj_curve2_view(3, sa, NULL), B = cj_curve2_view(3, sb, NULL);
+        cj_bezier2 A = cj_bezier2_view(3, sa, NULL), B = cj_bezier2_view(3, sb, NULL);
         int n;
         CHECK(cj_intersect_curves(&A, &B, 1e-9 * f, res, CAP, &n) == CJ_OK, "scale %g: %s", f,
               cj_last_error());
@@ -207,7 +207,7 @@ static void test_scales_and_kinds(void) {
     }
     /* rational: quarter circle against the diagonal, root at s = 1/2, t = sqrt(2)/2 */
     double w[] = {1, 0.70710678118654752, 1}, circ[] = {1, 0, 1, 1, 0, 1}, ln[] = {0, 0, 1, 1};
-    cj_curve2 C = cj_curve2_view(2, circ, w), L = cj_curve2_view(1, ln, NULL);
+    cj_bezier2 C = cj_bezier2_view(2, circ, w), L = cj_bezier2_view(1, ln, NULL);
     int n;
     CHECK(cj_intersect_curves(&C, &L, 1e-9, res, CAP, &n) == CJ_OK, "%s", cj_last_error());
     CHECK(n == 1 && res[0].kind == CJ_ISECT_CROSSING && root_inside(&C, &L, &res[0]),
@@ -215,7 +215,7 @@ static void test_scales_and_kinds(void) {
     ++checked;
     /* the infinite line y = 0.5 against a: λ is the x coordinate */
     double p[2] = {0, 0.5}, d[2] = {1, 0}, line[] = {0, 0.5, 1, 0.5};
-    cj_curve2 A = cj_curve2_view(3, a, NULL), Ln = cj_curve2_view(1, line, NULL);
+    cj_bezier2 A = cj_bezier2_view(3, a, NULL), Ln = cj_bezier2_view(1, line, NULL);
     CHECK(cj_intersect_line(&A, p, d, 1e-9, res, CAP, &n) == CJ_OK, "%s", cj_last_error());
     CHECK(n == 3, "line: %d results", n);
     for (int i = 0; i < n; ++i) {
@@ -225,8 +225,8 @@ static void test_scales_and_kinds(void) {
     /* self-intersections: a loop, a cusp, a simple curve, a closed curve */
     double loop[] = {0, 0, 3, 3, -1, 3, 2, 0}, cusp[] = {0, 0, 2, 2, 0, 2, 2, 0};
     double simple[] = {0, 0, 1, 1, 2, -1, 3, 0}, closed[] = {0, 0, 2, 3, -2, 3, 0, 0};
-    cj_curve2 Lo = cj_curve2_view(3, loop, NULL), Cu = cj_curve2_view(3, cusp, NULL);
-    cj_curve2 Si = cj_curve2_view(3, simple, NULL), Cl = cj_curve2_view(3, closed, NULL);
+    cj_bezier2 Lo = cj_bezier2_view(3, loop, NULL), Cu = cj_bezier2_view(3, cusp, NULL);
+    cj_bezier2 Si = cj_bezier2_view(3, simple, NULL), Cl = cj_bezier2_view(3, closed, NULL);
     CHECK(cj_intersect_self(&Lo, 1e-9, res, CAP, &n) == CJ_OK, "%s", cj_last_error());
     CHECK(n == 1 && res[0].kind == CJ_ISECT_CROSSING && root_inside(&Lo, &Lo, &res[0]) &&
               res[0].s_hi < res[0].t_lo,
@@ -247,9 +247,9 @@ static void test_scales_and_kinds(void) {
 static void test_bad_input(void) {
     double a[] = {0, 0, 1, 2, 2, -1, 3, 1}, nan_pts[] = {0, 0, 1, NAN, 2, 0};
     double pt[] = {1, 1, 1, 1, 1, 1}, w0[] = {1, 0, 1};
-    cj_curve2 A = cj_curve2_view(3, a, NULL), N = cj_curve2_view(2, nan_pts, NULL);
-    cj_curve2 P = cj_curve2_view(2, pt, NULL), W = cj_curve2_view(2, a, w0);
-    cj_curve2 D = cj_curve2_view(CJ_QUERY_MAX_DEGREE + 1, a, NULL);
+    cj_bezier2 A = cj_bezier2_view(3, a, NULL), N = cj_bezier2_view(2, nan_pts, NULL);
+    cj_bezier2 P = cj_bezier2_view(2, pt, NULL), W = cj_bezier2_view(2, a, w0);
+    cj_bezier2 D = cj_bezier2_view(CJ_QUERY_MAX_DEGREE + 1, a, NULL);
     int n;
     struct {
         cj_status st, want;
@@ -322,7 +322,7 @@ static void test_random_pairs(uint64_t seed, long npairs) {
         double a[2 * 25], b[2 * 25];
         random_curve(&r, na, f, off, a);
         random_curve(&r, nb, f, off, b);
-        cj_curve2 A = cj_curve2_view(na, a, NULL), B = cj_curve2_view(nb, b, NULL);
+        cj_bezier2 A = cj_bezier2_view(na, a, NULL), B = cj_bezier2_view(nb, b, NULL);
         int n = 0;
         cj_status s = cj_intersect_curves(&A, &B, 1e-9 * f * (1 + fabs(off)), res, CAP, &n);
         if (s != CJ_OK) {

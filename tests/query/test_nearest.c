@@ -27,7 +27,7 @@ static long samples_checked = 0;
 static double worst_gap = 0.0;
 
 /* One query checked: the certificate against nsamples exact distances. */
-static void check_query(const cj_curve2 *c, const double q[2], double tol, int nsamples,
+static void check_query(const cj_bezier2 *c, const double q[2], double tol, int nsamples,
                         const char *what) {
     cj_nearest r;
     cj_status st = cj_nearest_curve(c, q, tol, &r);
@@ -62,7 +62,7 @@ static void check_query(const cj_curve2 *c, const double q[2], double tol, int n
 static void test_adversarial(void) {
     /* on the curve: an end point and an interior point */
     double a[] = {0, 0, 1, 2, 2, -1, 3, 1};
-    cj_curve2 A = cj_curve2_view(3, a, NULL);
+    cj_bezier2 A = cj_bezier2_view(3, a, NULL);
     check_query(&A, (double[]){0, 0}, 1e-9, 1000, "end point on the curve");
     check_query(&A, (double[]){1.5, 0.5}, 1e-9, 1000, "interior point on the curve");
     cj_nearest r;
@@ -70,14 +70,14 @@ static void test_adversarial(void) {
     CHECK(r.distance <= 1e-9 && r.t < 1e-6, "end point: t %g distance %g", r.t, r.distance);
     /* equidistant: the centre of a quarter circle (every point at distance 1) */
     double w[] = {1, 0.70710678118654752, 1}, circ[] = {1, 0, 1, 1, 0, 1};
-    cj_curve2 C = cj_curve2_view(2, circ, w);
+    cj_bezier2 C = cj_bezier2_view(2, circ, w);
     check_query(&C, (double[]){0, 0}, 1e-9, 2000, "circle centre");
     cj_nearest_curve(&C, (double[]){0, 0}, 1e-9, &r);
     CHECK(fabs(r.distance - 1.0) < 1e-9 && r.lower > 1 - 2e-9, "circle centre: %.17g [%.17g]",
           r.distance, r.lower);
     /* two symmetric minima: a symmetric arch and a point on its axis */
     double arch[] = {0, 0, 0, 2, 2, 2, 2, 0};
-    cj_curve2 Ar = cj_curve2_view(3, arch, NULL);
+    cj_bezier2 Ar = cj_bezier2_view(3, arch, NULL);
     check_query(&Ar, (double[]){1, 0.2}, 1e-9, 2000, "symmetry axis");
     /* huge and tiny scales, high degree, rational */
     cj_rng rng;
@@ -85,12 +85,12 @@ static void test_adversarial(void) {
     for (int e = -2; e <= 2; ++e) {
         double f = pow(10.0, 70.0 * e), s[8];
         for (int i = 0; i < 8; ++i) s[i] = a[i] * f;
-        cj_curve2 S = cj_curve2_view(3, s, NULL);
+        cj_bezier2 S = cj_bezier2_view(3, s, NULL);
         check_query(&S, (double[]){1.2 * f, 0.9 * f}, 1e-9 * f, 500, "scaled");
     }
     double hd[2 * 41];
     for (int i = 0; i < 82; ++i) hd[i] = cj_rng_unit(&rng);
-    cj_curve2 H = cj_curve2_view(40, hd, NULL);
+    cj_bezier2 H = cj_bezier2_view(40, hd, NULL);
     check_query(&H, (double[]){0.5, 0.5}, 1e-9, 4000, "degree 40");
     printf("adversarial: points on the curve, circle centre (all equidistant), symmetry axis, "
            "scales 1e-140..1e140, degree 40\n");
@@ -107,7 +107,7 @@ static void test_random(uint64_t seed, int nq) {
         for (int i = 0; i <= n; ++i) w[i] = cj_rng_range(&r, 0.2, 3);
         q[0] = cj_rng_range(&r, -1.5, 1.5);
         q[1] = cj_rng_range(&r, -1.5, 1.5);
-        cj_curve2 c = cj_curve2_view(n, pts, k % 3 == 2 ? w : NULL);
+        cj_bezier2 c = cj_bezier2_view(n, pts, k % 3 == 2 ? w : NULL);
         char what[64];
         snprintf(what, sizeof what, "query %d (seed %llu)", k, (unsigned long long)seed);
         check_query(&c, q, 1e-10, 200, what);
@@ -120,7 +120,7 @@ static void test_random(uint64_t seed, int nq) {
 
 static void test_bad_input(void) {
     double a[] = {0, 0, 1, 2, 2, -1, 3, 1}, pt[] = {1, 1, 1, 1};
-    cj_curve2 A = cj_curve2_view(3, a, NULL), P = cj_curve2_view(1, pt, NULL);
+    cj_bezier2 A = cj_bezier2_view(3, a, NULL), P = cj_bezier2_view(1, pt, NULL);
     cj_nearest r;
     CHECK(cj_nearest_curve(&A, (double[]){NAN, 0}, 1e-9, &r) == CJ_ERR_NONFINITE &&
               strstr(cj_last_error(), "query point"),

@@ -75,7 +75,7 @@ static void cubic_at(const double *q, double u, double out[2]) {
 }
 
 /* One offset checked; returns the number of pieces. */
-static int check_offset(const cj_curve2 *c, double d, double tol, int nsamp, const char *what,
+static int check_offset(const cj_bezier2 *c, double d, double tol, int nsamp, const char *what,
                         int *cusps_out) {
     int np = 0, cusps = 0;
     double dev = 0;
@@ -110,7 +110,7 @@ static int check_offset(const cj_curve2 *c, double d, double tol, int nsamp, con
 
 static void test_offsets(void) {
     double a[] = {0, 0, 1, 2, 2, -1, 3, 1};
-    cj_curve2 A = cj_curve2_view(3, a, NULL);
+    cj_bezier2 A = cj_bezier2_view(3, a, NULL);
     int total = 0;
     const double ds[] = {0.1, -0.1, 0.5, -0.5, 1.0};
     for (size_t i = 0; i < sizeof ds / sizeof ds[0]; ++i) {
@@ -133,7 +133,7 @@ static void test_offsets(void) {
     }
     /* a circle arc offsets to a circle arc: radius 1 + 0.5 */
     double w[] = {1, 0.70710678118654752, 1}, circ[] = {1, 0, 1, 1, 0, 1};
-    cj_curve2 C = cj_curve2_view(2, circ, w);
+    cj_bezier2 C = cj_bezier2_view(2, circ, w);
     int np = check_offset(&C, -0.5, 1e-9, 16, "circle arc", NULL);
     for (int k = 0; k < np; ++k)
         for (int j = 0; j < 4; j += 3)
@@ -147,7 +147,7 @@ static void test_offsets(void) {
         int n = k % 2 ? 5 : 3;
         double p[12];
         for (int i = 0; i < 2 * (n + 1); ++i) p[i] = cj_rng_range(&r, -1, 1);
-        cj_curve2 R = cj_curve2_view(n, p, NULL);
+        cj_bezier2 R = cj_bezier2_view(n, p, NULL);
         char what[64];
         snprintf(what, sizeof what, "random %d", k);
         int cnt = 0, cu;
@@ -203,7 +203,7 @@ static void test_reduce(void) {
 
 static void test_bad_input(void) {
     double a[] = {0, 0, 1, 2, 2, -1, 3, 1}, cusp[] = {0, 0, 2, 2, 0, 2, 2, 0};
-    cj_curve2 A = cj_curve2_view(3, a, NULL), C = cj_curve2_view(3, cusp, NULL);
+    cj_bezier2 A = cj_bezier2_view(3, a, NULL), C = cj_bezier2_view(3, cusp, NULL);
     int np;
     double dev;
     CHECK(cj_offset_curve(&A, NAN, 1e-6, pts, brk, CAPP, &np, &dev, NULL) == CJ_ERR_NONFINITE &&

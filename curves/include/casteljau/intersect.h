@@ -1,6 +1,6 @@
 /* casteljau: certified intersections of plane Bézier and rational Bézier curves.
  *
- * A plane curve is a view cj_curve2: degree n, n+1 control points (x, y) point-major, and
+ * A plane curve is a view cj_bezier2: degree n, n+1 control points (x, y) point-major, and
  * optionally n+1 weights (NULL: a polynomial curve, all weights 1). Rational curves need finite
  * weights > 0, so the curve lies in the hull of its control points. B-spline and NURBS curves
  * are queried through their Bézier pieces.
@@ -68,14 +68,14 @@ extern "C" {
 /* Cap on the parameter boxes one intersection call examines. */
 #define CJ_ISECT_MAX_BOXES 2000000L
 
-typedef struct cj_curve2 {
+typedef struct cj_bezier2 {
     int degree;            /* 0..CJ_QUERY_MAX_DEGREE */
     const double *pts;     /* (degree+1)*2 coordinates: x0 y0 x1 y1 ... */
     const double *weights; /* degree+1 weights > 0, or NULL for a polynomial curve */
-} cj_curve2;
+} cj_bezier2;
 
-static inline cj_curve2 cj_curve2_view(int degree, const double *pts, const double *weights) {
-    cj_curve2 c;
+static inline cj_bezier2 cj_bezier2_view(int degree, const double *pts, const double *weights) {
+    cj_bezier2 c;
     c.degree = degree;
     c.pts = pts;
     c.weights = weights;
@@ -107,13 +107,13 @@ const char *cj_isect_kind_name(cj_isect_kind kind);
  * 0..CJ_QUERY_MAX_DEGREE), CJ_ERR_NONFINITE (a NaN or infinite coordinate or weight, naming
  * the curve and point), CJ_ERR_ARGUMENT (a weight <= 0; tol out of range), CJ_ERR_DEGENERATE
  * (a curve whose control points all coincide: a point, not a curve), CJ_ERR_CAP (see LIMITS). */
-cj_status cj_intersect_curves(const cj_curve2 *a, const cj_curve2 *b, double tol, cj_isect *out,
+cj_status cj_intersect_curves(const cj_bezier2 *a, const cj_bezier2 *b, double tol, cj_isect *out,
                               int cap, int *count);
 
 /* Intersections of curve a with the straight line through p in direction d (d != 0), with the
  * same guarantees; t is the line parameter λ of p + λ d. The line is enclosed exactly (as
  * intervals) over the span that covers the curve's control points. */
-cj_status cj_intersect_line(const cj_curve2 *a, const double p[2], const double d[2], double tol,
+cj_status cj_intersect_line(const cj_bezier2 *a, const double p[2], const double d[2], double tol,
                             cj_isect *out, int cap, int *count);
 
 /* Self-intersections of a: pairs s < t with a(s) = a(t), same kinds and guarantees. Pieces whose
@@ -121,7 +121,7 @@ cj_status cj_intersect_line(const cj_curve2 *a, const double p[2], const double 
  * the derivative) lie in an open half-plane are proven free of self-intersections; a piece
  * smaller than tol where that fails (a cusp, a loop smaller than tol) is reported as a CONTACT
  * with s and t intervals both covering it. */
-cj_status cj_intersect_self(const cj_curve2 *a, double tol, cj_isect *out, int cap, int *count);
+cj_status cj_intersect_self(const cj_bezier2 *a, double tol, cj_isect *out, int cap, int *count);
 
 #ifdef __cplusplus
 }

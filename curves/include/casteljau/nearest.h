@@ -35,7 +35,7 @@ typedef struct cj_nearest {
     long pieces;     /* pieces examined (the work done) */
 } cj_nearest;
 
-cj_status cj_nearest_curve(const cj_curve2 *c, const double q[2], double tol, cj_nearest *out);
+cj_status cj_nearest_curve(const cj_bezier2 *c, const double q[2], double tol, cj_nearest *out);
 
 #ifdef __cplusplus
 }

@@ -1,6 +1,6 @@
 /* casteljau: offset curves with a proven deviation, and degree reduction with an error bound.
  *
- * OFFSET. The offset of a plane curve c (cj_curve2: polynomial or rational) at signed distance
+ * OFFSET. The offset of a plane curve c (cj_bezier2: polynomial or rational) at signed distance
  * d is o(t) = c(t) + d N(t), N the unit left normal (c' turned +90 degrees, normalised):
  * positive d offsets to the left of the direction of travel. cj_offset_curve approximates o by
  * cubic Bézier pieces, each the Hermite cubic of o on a parameter interval [a, b] (end points
@@ -39,7 +39,7 @@
 extern "C" {
 #endif
 
-cj_status cj_offset_curve(const cj_curve2 *c, double d, double tol, double *pts, double *breaks,
+cj_status cj_offset_curve(const cj_bezier2 *c, double d, double tol, double *pts, double *breaks,
                           int cap_pieces, int *npieces, double *deviation, int *cusps);
 
 /* Degree reduction: the curve r of degree m < n (any dimension) closest to c in the least-squares
