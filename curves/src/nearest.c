@@ -85,7 +85,8 @@ static double piece_lower(const nrun *N, const cj_qpiece *p) {
         double below = cj_down(blo[k] - N->qp[k]), above = cj_down(N->qp[k] - bhi[k]);
         g[k] = fmax(0.0, fmax(below, above));
     }
-    double box = cj_down(sqrt(cj_down(cj_down(g[0] * g[0]) + cj_down(g[1] * g[1]))));
+    double box =
+        fmax(0.0, cj_down(sqrt(fmax(0.0, cj_down(cj_down(g[0] * g[0]) + cj_down(g[1] * g[1]))))));
     /* direction to the nearest point of the chord (midpoints of the end boxes) */
     double a[2], b[2];
     for (int k = 0; k < 2; ++k) {
@@ -115,6 +116,7 @@ static double piece_lower(const nrun *N, const cj_qpiece *p) {
 }
 
 static void search(nrun *N, const cj_qpiece *p, double lb) {
+    if (!(lb >= 0.0)) lb = 0.0; /* a NaN bound proves nothing */
     if (++N->pieces > MAX_PIECES || lb >= N->best - N->tol || p->b - p->a <= MIN_WIDTH) {
         N->lower = fmin(N->lower, lb);
         return;

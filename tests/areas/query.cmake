@@ -16,3 +16,5 @@ if(CJ_WITH_OIIO AND TARGET cj::viz)
 endif()
 add_dependencies(test_cli_query casteljau)
 cj_add_test(test_offset SOURCES query/test_offset.c LIBS cj_query_oracle)
+# Nearest point on Bézier patches (surfaces/): exact 256-bit grid distances against the bound.
+cj_add_test(test_patch_nearest SOURCES query/test_patch_nearest.c LIBS cj::surfaces PkgConfig::CJ_MPFR)
