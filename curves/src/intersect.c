@@ -38,8 +38,9 @@ typedef struct run {
     const cj_qctx *qa, *qb;
     double tol;
     double ext_a, ext_b; /* extents of the whole curves */
-    int self;            /* qa == qb, s < t */
-    int line;            /* qb is a line: no domain clipping on t */
+    long max_boxes;
+    int self; /* qa == qb, s < t */
+    int line; /* qb is a line: no domain clipping on t */
     long boxes;
     int capped;
     root roots[MAX_ROOTS];
@@ -50,6 +51,16 @@ typedef struct run {
     double overlap_dev[MAX_OVERLAPS];
     int noverlaps;
 } run;
+
+/* Empties the tables without touching their (large) storage. */
+static void run_reset(run *R) {
+    R->qa = R->qb = NULL;
+    R->tol = R->ext_a = R->ext_b = 0.0;
+    R->max_boxes = 0;
+    R->self = R->line = R->capped = 0;
+    R->boxes = 0;
+    R->nroots = R->nleaves = R->noverlaps = 0;
+}
 
 const char *cj_isect_kind_name(cj_isect_kind kind) {
     switch (kind) {
@@ -248,7 +259,7 @@ static int in_overlap(const run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
 
 static void pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
     if (R->capped) return;
-    if (++R->boxes > CJ_ISECT_MAX_BOXES) {
+    if (++R->boxes > R->max_boxes) {
         R->capped = 1;
         return;
     }
@@ -349,7 +360,7 @@ static void self_piece(run *R, const cj_qpiece *p) {
 /* l = [a, m], r = [m, b]: intersections a(s) = a(t) with s in l, t in r, s != t. */
 static void self_adjacent(run *R, const cj_qpiece *l, const cj_qpiece *r) {
     if (R->capped) return;
-    if (++R->boxes > CJ_ISECT_MAX_BOXES) {
+    if (++R->boxes > R->max_boxes) {
         R->capped = 1;
         return;
     }
@@ -588,19 +599,23 @@ static cj_status curves_impl(const cj_bezier2 *a, const cj_bezier2 *b, double to
     if ((st = cj_qctx_init(qa, a, "curve a")) != CJ_OK) goto done;
     if ((st = cj_qctx_init(qb, b, "curve b")) != CJ_OK) goto done;
     if ((st = check_tol(tol, fmax(qa->scale, qb->scale))) != CJ_OK) goto done;
-    memset(R, 0, sizeof *R);
-    R->qa = qa;
-    R->qb = qb;
-    R->tol = tol;
-    joints(R, a, b);
-    overlaps(R, a, b);
-    {
+    /* Overlaps are looked for only when a first search, capped low, leaves something
+     * unresolved: coincident pieces can neither be excluded nor certified, so they always do. */
+    for (int pass = 0; pass < 2; ++pass) {
+        run_reset(R);
+        R->qa = qa;
+        R->qb = qb;
+        R->tol = tol;
+        R->max_boxes = pass == 0 ? 20000 : CJ_ISECT_MAX_BOXES;
+        joints(R, a, b);
+        if (pass == 1) overlaps(R, a, b);
         cj_qpiece pa, pb;
         cj_qpiece_root(qa, &pa);
         cj_qpiece_root(qb, &pb);
         R->ext_a = extent(&pa);
         R->ext_b = extent(&pb);
         pair(R, &pa, &pb);
+        if (!R->capped && R->nleaves == 0) break;
     }
     st = finish(R, 0.0, out, cap, count);
 done:
@@ -621,10 +636,11 @@ static cj_status self_impl(const cj_bezier2 *a, double tol, cj_isect *out, int c
     }
     if ((st = cj_qctx_init(qa, a, "curve")) != CJ_OK) goto done;
     if ((st = check_tol(tol, qa->scale)) != CJ_OK) goto done;
-    memset(R, 0, sizeof *R);
+    run_reset(R);
     R->qa = R->qb = qa;
     R->tol = tol;
     R->self = 1;
+    R->max_boxes = CJ_ISECT_MAX_BOXES;
     joints(R, a, a);
     {
         cj_qpiece p;
@@ -668,11 +684,12 @@ static cj_status line_impl(const cj_bezier2 *a, const double p[2], const double 
             goto done;
         }
         cj_qctx_line(qb, p, d, L);
-        memset(R, 0, sizeof *R);
+        run_reset(R);
         R->qa = qa;
         R->qb = qb;
         R->tol = tol;
         R->line = 1;
+        R->max_boxes = CJ_ISECT_MAX_BOXES;
         cj_qpiece pa, pb;
         cj_qpiece_root(qa, &pa);
         cj_qpiece_root(qb, &pb);

@@ -59,6 +59,12 @@ static inline cj_ivl cj_ihull4(double p0, double p1, double p2, double p3) {
 static inline cj_ivl cj_imul(cj_ivl a, cj_ivl b) {
     return cj_ihull4(a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi);
 }
+/* a * b for a.lo >= 0 (then the bounds come from two products); NaN widens to the line. */
+static inline cj_ivl cj_imul_nonneg(cj_ivl a, cj_ivl b) {
+    double lo = (b.lo >= 0.0 ? a.lo : a.hi) * b.lo, hi = (b.hi >= 0.0 ? a.hi : a.lo) * b.hi;
+    if (isnan(lo + hi)) return cj_iv2(-INFINITY, INFINITY);
+    return cj_iv2(cj_down(lo), cj_up(hi));
+}
 /* Division by an interval that does not contain zero (the caller checks b.lo > 0 or b.hi < 0). */
 static inline cj_ivl cj_idiv(cj_ivl a, cj_ivl b) {
     return cj_ihull4(a.lo / b.lo, a.lo / b.hi, a.hi / b.lo, a.hi / b.hi);

@@ -75,10 +75,17 @@ static void ideval(const cj_ivl (*c)[3], int m, int dims, cj_ivl T, cj_ivl out[3
     cj_ivl S = cj_isub(cj_iv(1.0), T);
     for (int i = 0; i <= m; ++i)
         for (int k = 0; k < dims; ++k) w[i][k] = c[i][k];
-    for (int r = m; r > 0; --r)
-        for (int i = 0; i < r; ++i)
-            for (int k = 0; k < dims; ++k)
-                w[i][k] = cj_iadd(cj_imul(S, w[i][k]), cj_imul(T, w[i + 1][k]));
+    if (S.lo >= 0.0 && T.lo >= 0.0) { /* t in [0,1]: products with non-negative factors */
+        for (int r = m; r > 0; --r)
+            for (int i = 0; i < r; ++i)
+                for (int k = 0; k < dims; ++k)
+                    w[i][k] = cj_iadd(cj_imul_nonneg(S, w[i][k]), cj_imul_nonneg(T, w[i + 1][k]));
+    } else {
+        for (int r = m; r > 0; --r)
+            for (int i = 0; i < r; ++i)
+                for (int k = 0; k < dims; ++k)
+                    w[i][k] = cj_iadd(cj_imul(S, w[i][k]), cj_imul(T, w[i + 1][k]));
+    }
     for (int k = 0; k < dims; ++k) out[k] = w[0][k];
 }
 
