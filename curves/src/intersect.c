@@ -21,6 +21,8 @@
 #define MAX_LEAVES   4096
 #define MAX_OVERLAPS 4
 #define MIN_WIDTH    0x1p-52
+/* Krawczyk is tried once both pieces are this small against their curves */
+#define KRAWCZYK_SIZE 0.0625
 
 typedef struct root {
     cj_ivl K[2]; /* enclosure */
@@ -81,10 +83,15 @@ static void project(const double lo[][2], const double hi[][2], int n, const dou
                     double *pmin, double *pmax) {
     double mn = INFINITY, mx = -INFINITY;
     for (int i = 0; i <= n; ++i) {
-        cj_ivl d = cj_iadd(cj_imul(cj_iv(v[0]), cj_iv2(lo[i][0], hi[i][0])),
-                           cj_imul(cj_iv(v[1]), cj_iv2(lo[i][1], hi[i][1])));
-        mn = fmin(mn, d.lo);
-        mx = fmax(mx, d.hi);
+        /* the smallest and largest of v . x over the box, each product and the sum widened */
+        double a0 = v[0] >= 0 ? v[0] * lo[i][0] : v[0] * hi[i][0];
+        double a1 = v[1] >= 0 ? v[1] * lo[i][1] : v[1] * hi[i][1];
+        double b0 = v[0] >= 0 ? v[0] * hi[i][0] : v[0] * lo[i][0];
+        double b1 = v[1] >= 0 ? v[1] * hi[i][1] : v[1] * lo[i][1];
+        double l = cj_down(cj_down(a0) + cj_down(a1)), h = cj_up(cj_up(b0) + cj_up(b1));
+        if (isnan(l) || isnan(h)) l = -INFINITY, h = INFINITY;
+        mn = l < mn ? l : mn;
+        mx = h > mx ? h : mx;
     }
     *pmin = mn;
     *pmax = mx;
@@ -269,8 +276,8 @@ static void pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
     double ea = extent(pa), eb = extent(pb);
     /* Krawczyk needs the derivative enclosures to be narrow: try it once the pieces are small
      * against the curves (cheap exclusion does the coarse work). */
-    if ((ea <= R->ext_a * 0.25 || pa->n <= 1) && (eb <= R->ext_b * 0.25 || pb->n <= 1) &&
-        settle(R, S, T) != 0)
+    if ((ea <= R->ext_a * KRAWCZYK_SIZE || pa->n <= 1) &&
+        (eb <= R->ext_b * KRAWCZYK_SIZE || pb->n <= 1) && settle(R, S, T) != 0)
         return;
     int can_a = ea > R->tol && pa->b - pa->a > MIN_WIDTH;
     int can_b = eb > R->tol && pb->b - pb->a > MIN_WIDTH;

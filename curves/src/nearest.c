@@ -170,8 +170,22 @@ static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol
     N.pieces = 0;
     /* a good first upper bound: the best of a few samples, polished */
     int ns = 4 * c->degree + 4;
-    for (int i = 0; i <= ns; ++i) offer(&N, (double)i / ns);
-    offer(&N, polish(&N, N.best_t));
+    double t0 = 0.0, d0 = INFINITY;
+    for (int i = 0; i <= ns; ++i) { /* plain evaluations pick the start; bounds come later */
+        double t = (double)i / ns, pt[2];
+        cj_status es;
+        if (c->weights) {
+            cj_rbezier r = cj_rbezier_view(c->degree, 2, c->pts, c->weights);
+            es = cj_rbezier_eval(&r, t, pt);
+        } else {
+            cj_bezier b = cj_bezier_view(c->degree, 2, c->pts);
+            es = cj_bezier_eval(&b, CJ_EVAL_DECASTELJAU, t, pt);
+        }
+        double dd = hypot(pt[0] - q[0], pt[1] - q[1]);
+        if (es == CJ_OK && dd < d0) d0 = dd, t0 = t;
+    }
+    offer(&N, t0);
+    offer(&N, polish(&N, t0));
     cj_qpiece root;
     cj_qpiece_root(&ctx, &root);
     search(&N, &root, piece_lower(&N, &root));
