@@ -41,7 +41,8 @@
  * found exactly, at_end set). Overlaps of rational curves, and of polynomial curves related by a
  * non-linear change of parameter (a straight cubic over a line segment with other speeds), are
  * not recognised as overlaps: they come back as contacts, or, when long, as CJ_ERR_CAP once the
- * work cap is hit. The work is capped at CJ_ISECT_MAX_BOXES parameter boxes (CJ_ERR_CAP: the
+ * work cap is hit. Crossings of the shared piece with itself inside an overlap's parameter box
+ * (a loop of the common curve) are absorbed by the overlap. The work is capped at CJ_ISECT_MAX_BOXES parameter boxes (CJ_ERR_CAP: the
  * results found are written, `*count` is valid, but the list may be incomplete).
  *
  * TOLERANCE. tol is a distance in the curves' units: the size below which pieces are not split
@@ -51,8 +52,9 @@
  * refined far below tol; tol only limits how close two separate intersections can be and
  * still be told apart.
  *
- * No function here allocates: work space lives on the stack (about 3 KiB per recursion level,
- * at most 120 levels).
+ * Work space: one allocation of about 250 KiB per call for the tables of roots and contact
+ * leaves (CJ_ERR_NOMEM if it fails), and the stack (about 3 KiB per recursion level, at most
+ * 104 levels).
  */
 #ifndef CASTELJAU_INTERSECT_H
 #define CASTELJAU_INTERSECT_H
