@@ -23,3 +23,14 @@ if(CJ_OCCT_INCLUDE AND CJ_OCCT_TKGEOMALGO AND CJ_OCCT_TKGEOMBASE AND CJ_OCCT_TKG
 else()
   message(STATUS "OpenCASCADE not found: bench_query_occt is not built")
 endif()
+# kurbo (Debian librust-kurbo-dev) on the same cubics and points: a cargo project built offline
+# against /usr/share/cargo/registry (bench/kurbo_query/.cargo/config.toml). Not part of `all`:
+#   cmake --build build --target bench_query_kurbo && build/bench/kurbo_query/release/kurbo_query
+find_program(CJ_CARGO cargo)
+if(CJ_CARGO)
+  add_custom_target(bench_query_kurbo
+    COMMAND ${CMAKE_COMMAND} -E env CARGO_TARGET_DIR=${CMAKE_CURRENT_BINARY_DIR}/kurbo_query
+      ${CJ_CARGO} build --offline --release --quiet
+    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/kurbo_query
+    COMMENT "cargo build --offline: kurbo_query")
+endif()
