@@ -158,8 +158,8 @@ static long double orient(lp a, lp b, lp c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-int qo_polyline_crossings(const qo_curve *a, const qo_curve *b, int N, double *st, int cap,
-                          double *errbound) {
+static int crossings(const qo_curve *a, const qo_curve *b, int self, int N, double *st, int cap,
+                     double *errbound) {
     lp *pa = malloc(sizeof(lp) * (size_t)(N + 1)), *pb = malloc(sizeof(lp) * (size_t)(N + 1));
     assert(pa && pb);
     for (int i = 0; i <= N; ++i) {
@@ -188,6 +188,7 @@ int qo_polyline_crossings(const qo_curve *a, const qo_curve *b, int N, double *s
             if (ax1 < bx0 || bx1 < ax0 || ay1 < by0 || by1 < ay0) continue;
             for (int i = ia0; i < ia1; ++i)
                 for (int j = ib0; j < ib1; ++j) {
+                    if (self && j < i + 2) continue; /* s < t, neighbours share a sample */
                     long double o1 = orient(pa[i], pa[i + 1], pb[j]);
                     long double o2 = orient(pa[i], pa[i + 1], pb[j + 1]);
                     long double o3 = orient(pb[j], pb[j + 1], pa[i]);
@@ -208,4 +209,13 @@ int qo_polyline_crossings(const qo_curve *a, const qo_curve *b, int N, double *s
     free(pa);
     free(pb);
     return count;
+}
+
+int qo_polyline_crossings(const qo_curve *a, const qo_curve *b, int N, double *st, int cap,
+                          double *errbound) {
+    return crossings(a, b, 0, N, st, cap, errbound);
+}
+
+int qo_polyline_self_crossings(const qo_curve *a, int N, double *st, int cap, double *errbound) {
+    return crossings(a, a, 1, N, st, cap, errbound);
 }

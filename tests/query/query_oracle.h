@@ -31,4 +31,7 @@ double qo_distance(const qo_curve *c, double t, const double q[2]);
 int qo_polyline_crossings(const qo_curve *a, const qo_curve *b, int N, double *st, int cap,
                           double *errbound);
 
+/* Self-crossings of the polyline of a: pairs of non-neighbouring segments, s < t. */
+int qo_polyline_self_crossings(const qo_curve *a, int N, double *st, int cap, double *errbound);
+
 #endif
