@@ -41,8 +41,9 @@ typedef struct run {
     double tol;
     double ext_a, ext_b; /* extents of the whole curves */
     long max_boxes;
-    int self; /* qa == qb, s < t */
-    int line; /* qb is a line: no domain clipping on t */
+    const cj_bezier2 *ca; /* the first curve, for exact end points */
+    int self;             /* qa == qb, s < t */
+    int line;             /* qb is a line: no domain clipping on t */
     long boxes;
     int capped;
     root roots[MAX_ROOTS];
@@ -59,6 +60,7 @@ static void run_reset(run *R) {
     R->qa = R->qb = NULL;
     R->tol = R->ext_a = R->ext_b = 0.0;
     R->max_boxes = 0;
+    R->ca = NULL;
     R->self = R->line = R->capped = 0;
     R->boxes = 0;
     R->nroots = R->nleaves = R->noverlaps = 0;
@@ -553,7 +555,11 @@ static cj_status finish(run *R, double line_scale, cj_isect *out, int cap, int *
         o->s = 0.5 * o->s_lo + 0.5 * o->s_hi;
         o->t = 0.5 * o->t_lo + 0.5 * o->t_hi;
         cj_ivl p[2];
-        if (cj_qctx_eval(R->qa, cj_iv(o->s), p, NULL)) {
+        if (R->ca && o->s_lo == o->s_hi && (o->s == 0.0 || o->s == 1.0)) { /* an exact end */
+            const double *e = R->ca->pts + (o->s == 0.0 ? 0 : 2 * R->ca->degree);
+            o->point[0] = e[0];
+            o->point[1] = e[1];
+        } else if (cj_qctx_eval(R->qa, cj_iv(o->s), p, NULL)) {
             o->point[0] = cj_imid(p[0]);
             o->point[1] = cj_imid(p[1]);
         }
@@ -614,6 +620,7 @@ static cj_status curves_impl(const cj_bezier2 *a, const cj_bezier2 *b, double to
         R->qb = qb;
         R->tol = tol;
         R->max_boxes = pass == 0 ? 20000 : CJ_ISECT_MAX_BOXES;
+        R->ca = a;
         joints(R, a, b);
         if (pass == 1) overlaps(R, a, b);
         cj_qpiece pa, pb;
@@ -648,6 +655,7 @@ static cj_status self_impl(const cj_bezier2 *a, double tol, cj_isect *out, int c
     R->tol = tol;
     R->self = 1;
     R->max_boxes = CJ_ISECT_MAX_BOXES;
+    R->ca = a;
     joints(R, a, a);
     {
         cj_qpiece p;
