@@ -78,6 +78,45 @@ static int offset_encl(const orun *R, cj_ivl T, cj_ivl o[2], cj_ivl od[2]) {
     return 1;
 }
 
+/* Encloses o''(T) = c'' + d N'' with N = J T̂, T̂ = c'/s, s = |c'|:
+ *   T̂' = P / s,  P = c'' - T̂ (T̂ . c''),  s' = T̂ . c'',
+ *   T̂'' = (P' - T̂' s') / s,  P' = c''' - T̂' (T̂ . c'') - T̂ (T̂' . c'' + T̂ . c'''). */
+static int offset_encl2(const orun *R, cj_ivl T, cj_ivl odd[2]) {
+    cj_ivl p[2], c1[2], c2[2], c3[2];
+    if (!cj_qctx_eval3(R->q, T, p, c1, c2, c3)) return 0;
+    cj_ivl s2 = cj_iadd(cj_isqr(c1[0]), cj_isqr(c1[1]));
+    if (!(s2.lo > 0.0)) return 0;
+    cj_ivl s = cj_isqrt(s2), t[2], P[2], tp[2], Pp[2], tpp[2];
+    for (int k = 0; k < 2; ++k) t[k] = cj_idiv(c1[k], s);
+    cj_ivl tc2 = cj_iadd(cj_imul(t[0], c2[0]), cj_imul(t[1], c2[1]));
+    for (int k = 0; k < 2; ++k) {
+        P[k] = cj_isub(c2[k], cj_imul(t[k], tc2));
+        tp[k] = cj_idiv(P[k], s);
+    }
+    cj_ivl tpc2 = cj_iadd(cj_imul(tp[0], c2[0]), cj_imul(tp[1], c2[1]));
+    cj_ivl tc3 = cj_iadd(cj_imul(t[0], c3[0]), cj_imul(t[1], c3[1]));
+    for (int k = 0; k < 2; ++k) {
+        Pp[k] = cj_isub(cj_isub(c3[k], cj_imul(tp[k], tc2)), cj_imul(t[k], cj_iadd(tpc2, tc3)));
+        tpp[k] = cj_idiv(cj_isub(Pp[k], cj_imul(tp[k], tc2)), s);
+    }
+    cj_ivl D = cj_iv(R->d);
+    odd[0] = cj_iadd(c2[0], cj_imul(D, cj_ineg(tpp[1])));
+    odd[1] = cj_iadd(c2[1], cj_imul(D, tpp[0]));
+    return cj_ifinite(odd[0]) && cj_ifinite(odd[1]);
+}
+
+/* q'' over U: 6 Σ Δ²q_i B_i^1(u). */
+static void cubic_dd(const double q[8], cj_ivl U, cj_ivl dd[2]) {
+    cj_ivl S = cj_isub(cj_iv(1.0), U);
+    for (int k = 0; k < 2; ++k) {
+        cj_ivl a =
+            cj_isub(cj_iadd(cj_iv(q[4 + k]), cj_iv(q[k])), cj_imul(cj_iv(2.0), cj_iv(q[2 + k])));
+        cj_ivl b = cj_isub(cj_iadd(cj_iv(q[6 + k]), cj_iv(q[2 + k])),
+                           cj_imul(cj_iv(2.0), cj_iv(q[4 + k])));
+        dd[k] = cj_imul(cj_iv(6.0), cj_iadd(cj_imul(S, a), cj_imul(U, b)));
+    }
+}
+
 /* Cubic q and its derivative over U (intervals), control points exact doubles. */
 static void cubic_encl(const double q[8], cj_ivl U, cj_ivl v[2], cj_ivl dv[2]) {
     cj_ivl S = cj_isub(cj_iv(1.0), U);
@@ -98,23 +137,15 @@ static void cubic_encl(const double q[8], cj_ivl U, cj_ivl v[2], cj_ivl dv[2]) {
 }
 
 /* Proven bound of max |q(u) - o(a + (b-a) u)| over u in U (recursively refined); returns +inf
- * when it cannot be proven below tol within the depth. */
+ * when it cannot be proven below tol within the depth. Second-order Taylor form around the
+ * midpoint m: |e(m)| + |e'(m)| r + |e''(U)| r^2 / 2 per coordinate, r = |U| / 2, with
+ * e' = q' - (b-a) o' and e'' = q'' - (b-a)^2 o''. */
 static double prove(const orun *R, const double q[8], double a, double b, cj_ivl U, int depth) {
     double m = cj_imid(U);
     cj_ivl A = cj_iv(a), W = cj_isub(cj_iv(b), A);
-    /* at the midpoint */
-    cj_ivl qm[2], om[2];
-    cubic_encl(q, cj_iv(m), qm, NULL);
-    if (!offset_encl(R, cj_iadd(A, cj_imul(W, cj_iv(m))), om, NULL)) return INFINITY;
-    /* derivative over U: q'(U) - (b-a) o'(T) */
-    cj_ivl qv[2], qd[2], ov[2], od[2];
-    cubic_encl(q, U, qv, qd);
-    cj_ivl T = cj_iadd(A, cj_imul(W, U));
-    if (!offset_encl(R, T, ov, od)) {
-        if (depth >= MAX_SUB_DEPTH) return INFINITY;
-        cj_ivl L = cj_iv2(U.lo, m), Rr = cj_iv2(m, U.hi);
-        return fmax(prove(R, q, a, b, L, depth + 1), prove(R, q, a, b, Rr, depth + 1));
-    }
+    cj_ivl qm[2], qdm[2], om[2], odm[2];
+    cubic_encl(q, cj_iv(m), qm, qdm);
+    if (!offset_encl(R, cj_iadd(A, cj_imul(W, cj_iv(m))), om, odm)) return INFINITY;
     /* the error at the midpoint itself cannot shrink by refining U: give up early */
     double pm2 = 0.0;
     for (int k = 0; k < 2; ++k) {
@@ -122,16 +153,25 @@ static double prove(const orun *R, const double q[8], double a, double b, cj_ivl
         pm2 += em * em;
     }
     if (!(sqrt(pm2) <= 0.9 * R->tol)) return INFINITY;
-    cj_ivl half = cj_iv(0.5 * cj_iwidth(U) * (1.0 + 0x1p-50));
+    cj_ivl T = cj_iadd(A, cj_imul(W, U)), qdd[2], odd[2];
+    cubic_dd(q, U, qdd);
+    int ok = offset_encl2(R, T, odd);
     double e2 = 0.0;
-    for (int k = 0; k < 2; ++k) {
-        cj_ivl em = cj_isub(qm[k], om[k]);
-        cj_ivl ed = cj_isub(qd[k], cj_imul(W, od[k]));
-        double bound = cj_up(cj_imag(em) + cj_up(cj_imag(ed) * half.hi));
-        e2 = cj_up(e2 + cj_up(bound * bound));
+    if (ok) {
+        double r = 0.5 * cj_iwidth(U) * (1.0 + 0x1p-50);
+        cj_ivl W2 = cj_imul(W, W);
+        for (int k = 0; k < 2; ++k) {
+            double e0 = cj_imag(cj_isub(qm[k], om[k]));
+            double e1 = cj_imag(cj_isub(qdm[k], cj_imul(W, odm[k])));
+            double e2k = cj_imag(cj_isub(qdd[k], cj_imul(W2, odd[k])));
+            double bound = cj_up(e0 + cj_up(cj_up(e1 * r) + cj_up(cj_up(e2k * r) * r * 0.5)));
+            bound = cj_up(bound);
+            e2 = cj_up(e2 + cj_up(bound * bound));
+        }
     }
-    double e = cj_up(sqrt(e2));
-    if (e <= R->tol || depth >= MAX_SUB_DEPTH) return e <= R->tol ? e : INFINITY;
+    double e = ok ? cj_up(sqrt(e2)) : INFINITY;
+    if (e <= R->tol) return e;
+    if (depth >= MAX_SUB_DEPTH) return INFINITY;
     cj_ivl L = cj_iv2(U.lo, m), Rr = cj_iv2(m, U.hi);
     double el = prove(R, q, a, b, L, depth + 1);
     if (!(el <= R->tol)) return INFINITY;

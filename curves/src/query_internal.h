@@ -96,6 +96,7 @@ typedef struct cj_qctx {
     cj_ivl h[CJ_QUERY_MAXN + 1][3];   /* homogeneous control points */
     cj_ivl dh[CJ_QUERY_MAXN + 1][3];  /* n (h_{i+1} - h_i), i < n */
     cj_ivl ddh[CJ_QUERY_MAXN + 1][3]; /* (n-1) (dh_{i+1} - dh_i), i < n-1 */
+    cj_ivl d3h[CJ_QUERY_MAXN + 1][3]; /* (n-2) (ddh_{i+1} - ddh_i), i < n-2 */
     double scale;                     /* max |coordinate| of the control points */
     double hmag[3];                   /* max |homogeneous coordinate| k (bounds every piece) */
 } cj_qctx;
@@ -111,6 +112,8 @@ int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]);
 
 /* Encloses c(t), c'(t) and c''(t) for every t in T. Returns 0 as cj_qctx_eval does. */
 int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]);
+/* The same with c'''(t) too. */
+int cj_qctx_eval3(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2], cj_ivl d3[2]);
 
 static inline cj_ivl cj_isqr(cj_ivl a) {
     if (a.lo >= 0) return cj_iv2(cj_down(a.lo * a.lo), cj_up(a.hi * a.hi));

@@ -66,6 +66,9 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
     for (int i = 0; i + 1 < n; ++i)
         for (int k = 0; k < 3; ++k)
             q->ddh[i][k] = cj_imul(cj_iv((double)(n - 1)), cj_isub(q->dh[i + 1][k], q->dh[i][k]));
+    for (int i = 0; i + 2 < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            q->d3h[i][k] = cj_imul(cj_iv((double)(n - 2)), cj_isub(q->ddh[i + 1][k], q->ddh[i][k]));
     return CJ_OK;
 }
 
@@ -149,6 +152,37 @@ int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl d
     }
     for (int k = 0; k < 2; ++k)
         if (!cj_ifinite(p[k]) || !cj_ifinite(d[k]) || !cj_ifinite(dd[k])) return 0;
+    return 1;
+}
+
+int cj_qctx_eval3(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2],
+                  cj_ivl d3[2]) {
+    int n = q->n, dims = q->rational ? 3 : 2;
+    cj_ivl H[3], D[3], DD[3], D3[3];
+    ideval((const cj_ivl(*)[3])q->h, n, dims, T, H);
+    D[0] = D[1] = D[2] = DD[0] = DD[1] = DD[2] = D3[0] = D3[1] = D3[2] = cj_iv(0.0);
+    if (n >= 1) ideval((const cj_ivl(*)[3])q->dh, n - 1, dims, T, D);
+    if (n >= 2) ideval((const cj_ivl(*)[3])q->ddh, n - 2, dims, T, DD);
+    if (n >= 3) ideval((const cj_ivl(*)[3])q->d3h, n - 3, dims, T, D3);
+    for (int k = 0; k < 2; ++k) {
+        if (!q->rational) {
+            p[k] = H[k], d[k] = D[k], dd[k] = DD[k], d3[k] = D3[k];
+            continue;
+        }
+        cj_ivl W = H[2];
+        if (!(W.lo > 0.0)) return 0;
+        p[k] = cj_idiv(H[k], W);
+        d[k] = cj_idiv(cj_isub(D[k], cj_imul(p[k], D[2])), W);
+        cj_ivl num = cj_isub(DD[k], cj_imul(cj_iv(2.0), cj_imul(d[k], D[2])));
+        dd[k] = cj_idiv(cj_isub(num, cj_imul(p[k], DD[2])), W);
+        /* c''' = (P''' - 3 c'' w' - 3 c' w'' - c w''') / w */
+        cj_ivl t3 = cj_isub(D3[k], cj_imul(cj_iv(3.0), cj_imul(dd[k], D[2])));
+        t3 = cj_isub(t3, cj_imul(cj_iv(3.0), cj_imul(d[k], DD[2])));
+        d3[k] = cj_idiv(cj_isub(t3, cj_imul(p[k], D3[2])), W);
+    }
+    for (int k = 0; k < 2; ++k)
+        if (!cj_ifinite(p[k]) || !cj_ifinite(d[k]) || !cj_ifinite(dd[k]) || !cj_ifinite(d3[k]))
+            return 0;
     return 1;
 }
 

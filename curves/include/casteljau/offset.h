@@ -5,9 +5,10 @@
  * positive d offsets to the left of the direction of travel. cj_offset_curve approximates o by
  * cubic Bézier pieces, each the Hermite cubic of o on a parameter interval [a, b] (end points
  * o(a), o(b), end derivatives (b - a) o'(a), (b - a) o'(b)), and PROVES each piece: with
- * e(u) = q(u) - o(a + (b - a) u), the bound |e(m)| + |e'(U)| |U| / 2 (centred form, in
- * outward-rounded interval arithmetic over the exact control points, c, c', c'' enclosed) is
- * <= tol on every sub-interval U of a cover of [0,1]. A parametric distance bounds the
+ * e(u) = q(u) - o(a + (b - a) u), the second-order Taylor bound |e(m)| + |e'(m)| r +
+ * |e''(U)| r^2 / 2 (m the midpoint and r the half-width of U; in outward-rounded interval
+ * arithmetic over the exact control points, with c, c', c'', c''' enclosed) is <= tol on every
+ * sub-interval U of a cover of [0,1]. A parametric distance bounds the
  * Hausdorff distance, so every point of the pieces lies within *deviation <= tol of the true
  * offset and every point of the offset within *deviation of the pieces. Intervals that fail
  * are halved (adaptive, at most 2^20 pieces deep).
