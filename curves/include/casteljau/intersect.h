@@ -42,8 +42,9 @@
  * non-linear change of parameter (a straight cubic over a line segment with other speeds), are
  * not recognised as overlaps: they come back as contacts, or, when long, as CJ_ERR_CAP once the
  * work cap is hit. Crossings of the shared piece with itself inside an overlap's parameter box
- * (a loop of the common curve) are absorbed by the overlap. The work is capped at CJ_ISECT_MAX_BOXES parameter boxes (CJ_ERR_CAP: the
- * results found are written, `*count` is valid, but the list may be incomplete).
+ * (a loop of the common curve) are absorbed by the overlap. The work is capped at
+ * CJ_ISECT_MAX_BOXES parameter boxes (CJ_ERR_CAP: the results found are written, `*count` is valid,
+ * but the list may be incomplete).
  *
  * TOLERANCE. tol is a distance in the curves' units: the size below which pieces are not split
  * further. It must be finite, > 0, and at least 2^-40 times the largest control point
