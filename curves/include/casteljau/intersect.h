@@ -3,7 +3,7 @@
  * A plane curve is a view cj_bezier2: degree n, n+1 control points (x, y) point-major, and
  * optionally n+1 weights (NULL: a polynomial curve, all weights 1). Rational curves need finite
  * weights > 0, so the curve lies in the hull of its control points. B-spline and NURBS curves
- * are queried through their Bézier pieces.
+ * are queried through their Bézier pieces (one call per pair of pieces).
  *
  * WHAT IS GUARANTEED. Every intersection comes back with parameter intervals [s_lo, s_hi] on
  * the first curve and [t_lo, t_hi] on the second that are proven to contain it, with a kind:
