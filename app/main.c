@@ -25,6 +25,9 @@ static const command commands[] = {
      "render an animation (keyframes, paths, cloth) as numbered PNG frames"},
     {"report", cmd_report, "measure accuracy against cost; HTML page with our charts (-o DIR)"},
     {"view", cmd_view, "interactive viewer and control-point editor (GLFW window, replay)"},
+    {"intersect", cmd_intersect, "certified intersections of the curves of a plot JSON document"},
+    {"nearest", cmd_nearest, "certified nearest point on the curves of a plot JSON document"},
+    {"offset", cmd_offset, "offset curves of a plot JSON document, proven within a tolerance"},
 };
 
 static void usage(FILE *f) {
