@@ -8,6 +8,7 @@ PKGS="build-essential cmake pkg-config libcmocka-dev libmpfr-dev libgmp-dev libc
 liblapacke-dev libfreetype-dev fonts-dejavu-core libopenimageio-dev libvtk9-dev \
 xvfb xauth libgl1-mesa-dri libcairo2-dev clang libclang-rt-14-dev libgif-dev libembree-dev \
 libglfw3-dev xdotool valgrind"
+PKGS="$PKGS cargo librust-kurbo-dev"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
