@@ -11,14 +11,17 @@
  * form into a preallocated buffer.
  * Goals (measured, not asserted): near-optimal <= 1.10x, uniform <= 1.3x, deviation <= tol.
  *
- * Peer table (issue 13; with cairo when built with it, see bench/areas/flatten.cmake): degrees 3
- * and 2, each 10 000 random curves in a 1000 x 1000 box plus hard ones (loop, cusp, near-cusp,
- * inflection; a quadratic turning back on itself), tolerances 0.01, 0.25 and 1; ours
- * (near-optimal and uniform) against cairo_copy_path_flat (cairo_set_tolerance; quadratics as
- * their exact cubic elevation), measured in the same run with the repetitions interleaved,
- * thread CPU time, median of 5. Deviation: the largest distance from the curve to the polyline,
- * sampled at 8 parameters per segment plus 64 (long-double evaluation, distance to the nearest
- * segment of the whole polyline) and refined around the worst sample by golden-section search.
+ * Peer table (issues 13 and 20; with cairo and kurbo when built with them, see
+ * bench/areas/flatten.cmake): degrees 3 and 2, each 10 000 random curves in a 1000 x 1000 box
+ * plus hard ones (loop, cusp, near-cusp, inflection; a quadratic turning back on itself),
+ * tolerances 0.01, 0.25 and 1; ours (near-optimal and uniform) against kurbo 0.7's flatten
+ * (Levien's method; bench/kurbo, a Rust static library) and cairo_copy_path_flat
+ * (cairo_set_tolerance; quadratics as their exact cubic elevation), measured in the same run
+ * with the repetitions interleaved, thread CPU time, median (and range) of 5. Deviation: the
+ * largest distance from the curve to the whole polyline, enclosed to 1e-6 tol by the
+ * branch-and-bound oracle of flatten_oracle.c; a curve counts as over tol only when the
+ * enclosure's lower end is (proven), undecided when it straddles tol.
+ * BENCH_NPEER=<n> takes n random curves instead (quick looks), BENCH_DEGREE=<2|3> one degree.
  * BENCH_PEERS_ONLY=1 prints the peer table alone. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "casteljau/flatten.h"
