@@ -5,7 +5,8 @@
  *   - build time of each (median of 3);
  *   - BENCH_ONLY=<what> runs one piece alone, for instruction counts under callgrind
  *     (valgrind --tool=callgrind --toggle-collect=bench_run_<what> ...): what is one of
- *     ours_rays, embree_rays, ours_build, embree_build; BENCH_MESH=1 takes the large mesh.
+ *     ours_rays, embree_rays, ours_build, embree_build; BENCH_MESH=1 takes the large mesh,
+ *     BENCH_RAYS=<n> shoots n rays.
  * Rays: origins on a sphere of twice the mesh's box radius around its centre, aimed at uniform
  * points of the box (seeded). */
 #define _POSIX_C_SOURCE 200809L
@@ -24,7 +25,9 @@
 #include <embree3/rtcore.h>
 #endif
 
-#define NRAYS  100000
+#define NRAYS_DEFAULT 100000
+/* Rays per round (BENCH_RAYS=<n> in the BENCH_ONLY mode, for shorter callgrind runs). */
+static int g_nrays = NRAYS_DEFAULT;
 #define ROUNDS 5
 
 static uint64_t g_rng = 20261126;
@@ -42,9 +45,9 @@ static cj_ray *make_rays(const cj_mesh *m) {
         cj_v3(0.5 * (b.lo[0] + b.hi[0]), 0.5 * (b.lo[1] + b.hi[1]), 0.5 * (b.lo[2] + b.hi[2]));
     const cj_vec3 half = cj_v3(b.hi[0] - c.x, b.hi[1] - c.y, b.hi[2] - c.z);
     const double R = sqrt(cj_v3_dot(half, half));
-    cj_ray *rays = malloc(NRAYS * sizeof *rays);
+    cj_ray *rays = malloc(g_nrays * sizeof *rays);
     if (!rays) abort();
-    for (int i = 0; i < NRAYS; i++) {
+    for (int i = 0; i < g_nrays; i++) {
         cj_vec3 u;
         do {
             u = cj_v3(2 * urand() - 1, 2 * urand() - 1, 2 * urand() - 1);
@@ -66,7 +69,7 @@ static cj_ray *make_rays(const cj_mesh *m) {
 __attribute__((noinline)) int bench_run_ours_rays(const cj_bvh *b, const cj_ray *rays);
 __attribute__((noinline)) int bench_run_ours_rays(const cj_bvh *b, const cj_ray *rays) {
     int hits = 0;
-    for (int i = 0; i < NRAYS; i++) {
+    for (int i = 0; i < g_nrays; i++) {
         cj_hit h;
         hits += cj_bvh_mesh_closest(b, &rays[i], &h, NULL);
     }
@@ -115,7 +118,7 @@ __attribute__((noinline)) int bench_run_embree_rays(RTCScene scene, const cj_ray
 __attribute__((noinline)) int bench_run_embree_rays(RTCScene scene, const cj_ray *rays) {
     int hits = 0;
     struct RTCIntersectContext ctx;
-    for (int i = 0; i < NRAYS; i++) {
+    for (int i = 0; i < g_nrays; i++) {
         rtcInitIntersectContext(&ctx);
         struct RTCRayHit rh;
         memset(&rh, 0, sizeof rh);
@@ -169,11 +172,11 @@ static void measure(const char *name, const cj_mesh *m) {
     for (int r = 0; r < ROUNDS; r++) { /* rays, interleaved */
         double t0 = cj_bench_thread_cpu();
         hits[0] = bench_run_ours_rays(b, rays);
-        tr[0][r] = (cj_bench_thread_cpu() - t0) / NRAYS * 1e9;
+        tr[0][r] = (cj_bench_thread_cpu() - t0) / g_nrays * 1e9;
 #ifdef CJ_HAVE_EMBREE
         t0 = cj_bench_thread_cpu();
         hits[1] = bench_run_embree_rays(e.scene, rays);
-        tr[1][r] = (cj_bench_thread_cpu() - t0) / NRAYS * 1e9;
+        tr[1][r] = (cj_bench_thread_cpu() - t0) / g_nrays * 1e9;
 #endif
     }
     const int np = 1
@@ -190,7 +193,7 @@ static void measure(const char *name, const cj_mesh *m) {
     }
     for (int p = 0; p < np; p++)
         printf("| %s (%zu tri) | %s | %.1f (%.1f-%.1f) | %.1f%% | %.1f ms |\n", name,
-               m->triangle_count, who[p], med[p], lo[p], hi[p], 100.0 * hits[p] / NRAYS,
+               m->triangle_count, who[p], med[p], lo[p], hi[p], 100.0 * hits[p] / g_nrays,
                1e3 * bmed[p]);
     if (np == 2)
         printf("| | ratio ours / Embree | %.2f | | %.2f |\n", med[0] / med[1], bmed[0] / bmed[1]);
@@ -218,6 +221,8 @@ int main(void) {
     const double tols[2] = {1e-3, 6e-5};
     const char *big = getenv("BENCH_MESH");
     if (only) { /* one piece, for callgrind */
+        const char *nr = getenv("BENCH_RAYS");
+        if (nr && atoi(nr) > 0 && atoi(nr) <= NRAYS_DEFAULT) g_nrays = atoi(nr);
         cj_mesh *m = teapot(set, tols[big ? 1 : 0]);
         const cj_ray *rays = make_rays(m);
         cj_bvh *b = NULL;
@@ -231,7 +236,7 @@ int main(void) {
             embree_free(e);
         }
 #endif
-        printf("%zu triangles, %d rays\n", m->triangle_count, NRAYS);
+        printf("%zu triangles, %d rays\n", m->triangle_count, g_nrays);
         if (b) cj_bvh_destroy(b);
         free((void *)rays);
         cj_mesh_destroy(m);
@@ -240,7 +245,7 @@ int main(void) {
     }
     printf("## bench_trace_peer: closest hit, one thread, %d rays, median (range) of %d "
            "interleaved rounds, thread CPU\n\n",
-           NRAYS, ROUNDS);
+           g_nrays, ROUNDS);
     printf("| mesh | BVH | ns/ray | hit | build (ours: thread CPU; Embree: wall) |\n"
            "|---|---|---|---|---|\n");
     for (int k = 0; k < 2; k++) {
