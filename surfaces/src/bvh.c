@@ -244,9 +244,11 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
     const cj_bvh4 *w = bvh->wide_;
     cj_bvh4_ray r4;
     const cj_vec3 inv = inverse_dir(ray.dir);
-    r4.o[0] = ray.org.x, r4.o[1] = ray.org.y, r4.o[2] = ray.org.z;
-    r4.id[0] = inv.x, r4.id[1] = inv.y, r4.id[2] = inv.z;
-    for (int k = 0; k < 3; k++) r4.neg[k] = signbit(r4.id[k]) != 0;
+    const double oc[3] = {ray.org.x, ray.org.y, ray.org.z}, ic[3] = {inv.x, inv.y, inv.z};
+    for (int k = 0; k < 3; k++) {
+        for (int i = 0; i < 4; i++) r4.o[k][i] = oc[k], r4.id[k][i] = ic[k];
+        r4.neg[k] = signbit(ic[k]) != 0;
+    }
     cj_ray_tri_pre pre;
     if (bvh->tri) cj_ray_triangle_prepare(&ray, &pre);
     wentry st[WIDE_STACK];
@@ -294,8 +296,8 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
         if (sp + 4 > WIDE_STACK) continue; /* cannot happen: depth is bounded by the build */
         /* push the met children farthest first, so the nearest is visited next */
         const int base = sp;
-        for (int i = 0; i < 4; i++) {
-            if (!(mask >> i & 1)) continue;
+        for (; mask; mask &= mask - 1) {
+            const int i = __builtin_ctz((unsigned)mask);
             const wentry c = {wn->child[i], t0[i]};
             int j = sp++;
             while (j > base && st[j - 1].t0 < c.t0) {

@@ -1,14 +1,11 @@
 /* The 4-wide BVH that traversal walks: collapsed from the binary SAH tree, boxes unchanged, and
- * its 4-box slab test (AVX when the compiler targets it, else a plain loop over the lanes). */
+ * its 4-box slab test (bvh_internal.h). */
 #include "bvh_internal.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
 
 #include <math.h>
 #include <string.h>
-#ifdef __AVX__
-#include <immintrin.h>
-#endif
 
 static double box_area(const cj_aabb *b) {
     const double dx = b->hi[0] - b->lo[0], dy = b->hi[1] - b->lo[1], dz = b->hi[2] - b->lo[2];
@@ -92,41 +89,4 @@ void cj_bvh4_destroy(cj_bvh *bvh) {
     cj_allocator_free(&bvh->alloc_, w->nodes);
     cj_allocator_free(&bvh->alloc_, w);
     bvh->wide_ = NULL;
-}
-
-int cj_bvh4_slab(const cj_bvh4_node *n, const cj_bvh4_ray *r, double tmin, double tmax,
-                 double t0[4]) {
-    const double widen = 1.0 + 2.0 * 3.3306690738754716e-16; /* 1 + 2γ(3), as cj_aabb_slab */
-#ifdef __AVX__
-    __m256d vmin = _mm256_set1_pd(tmin), vmax = _mm256_set1_pd(tmax);
-    const __m256d vw = _mm256_set1_pd(widen);
-    for (int k = 0; k < 3; ++k) {
-        const double *nearp = r->neg[k] ? n->hi[k] : n->lo[k];
-        const double *farp = r->neg[k] ? n->lo[k] : n->hi[k];
-        const __m256d o = _mm256_set1_pd(r->o[k]), id = _mm256_set1_pd(r->id[k]);
-        const __m256d tn = _mm256_mul_pd(_mm256_sub_pd(_mm256_loadu_pd(nearp), o), id);
-        const __m256d tf =
-            _mm256_mul_pd(_mm256_mul_pd(_mm256_sub_pd(_mm256_loadu_pd(farp), o), id), vw);
-        /* max/min return their second operand when the first is NaN: NaN leaves the bound */
-        vmin = _mm256_max_pd(tn, vmin);
-        vmax = _mm256_min_pd(tf, vmax);
-    }
-    _mm256_storeu_pd(t0, vmin);
-    return _mm256_movemask_pd(_mm256_cmp_pd(vmin, vmax, _CMP_LE_OQ));
-#else
-    int mask = 0;
-    for (int i = 0; i < 4; ++i) {
-        double lo = tmin, hi = tmax;
-        for (int k = 0; k < 3; ++k) {
-            const double tn = ((r->neg[k] ? n->hi[k][i] : n->lo[k][i]) - r->o[k]) * r->id[k];
-            const double tf =
-                ((r->neg[k] ? n->lo[k][i] : n->hi[k][i]) - r->o[k]) * r->id[k] * widen;
-            if (tn > lo) lo = tn;
-            if (tf < hi) hi = tf;
-        }
-        t0[i] = lo;
-        if (lo <= hi) mask |= 1 << i;
-    }
-    return mask;
-#endif
 }
