@@ -2,6 +2,7 @@
 #include "casteljau/bvh.h"
 #include "aabb_internal.h"
 #include "bvh_internal.h"
+#include "ray_triangle_internal.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
 
@@ -253,6 +254,8 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
     if (bvh->tri) cj_ray_triangle_prepare(&ray, &pre);
     wentry st[WIDE_STACK];
     int sp = 0, found = 0;
+    uint32_t best = 0; /* built-in triangles: the closest so far, its t, edge values and sum */
+    double best_t = 0.0, best_e[3] = {0.0, 0.0, 0.0}, best_det = 1.0;
     uint64_t nodes = 0, prims = 0;
     st[sp++] = (wentry){0, ray.tmin};
     cj_hit h;
@@ -266,12 +269,26 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
                 int got;
                 prims++;
                 if (bvh->tri) {
+                    /* the test alone; the hit record is filled once, for the closest */
                     const double *v = bvh->tri + 9 * (size_t)i;
-                    got = cj_ray_triangle_pre(&ray, &pre, cj_v3(v[0], v[1], v[2]),
-                                              cj_v3(v[3], v[4], v[5]), cj_v3(v[6], v[7], v[8]), &h);
-                } else {
-                    got = fn(user, prim, &ray, &h);
+                    double t, ev[3], det;
+                    if (!cj_tri_core(&ray, &pre, cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]),
+                                     cj_v3(v[6], v[7], v[8]), &t, ev, &det))
+                        continue;
+                    found = 1;
+                    if (any) {
+                        if (stats) {
+                            stats->nodes += nodes;
+                            stats->prims += prims;
+                        }
+                        return 1;
+                    }
+                    best = i, best_t = t, best_det = det;
+                    memcpy(best_e, ev, sizeof ev);
+                    ray.tmax = t;
+                    continue;
                 }
+                got = fn(user, prim, &ray, &h);
                 if (got && h.t >= ray.tmin && h.t <= ray.tmax) {
                     found = 1;
                     if (any) {
@@ -310,6 +327,12 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
     if (stats) {
         stats->nodes += nodes;
         stats->prims += prims;
+    }
+    if (found && bvh->tri) {
+        const double *v = bvh->tri + 9 * (size_t)best;
+        cj_tri_fill(cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]), cj_v3(v[6], v[7], v[8]),
+                    best_t, best_e, best_det, hit);
+        hit->prim = bvh->prims[best];
     }
     return found;
 }
