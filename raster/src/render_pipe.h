@@ -9,11 +9,12 @@
  *   flat     L = c_r·t·A + S        A, S per triangle at its centroid (face normal)
  *   Gouraud  L = c_r·t·A + S        A, S per vertex, interpolated
  *   Phong    L = c_r·t·A + S        A, S per sample from the interpolated normal
- * with A = r_a I_a + r_d Σ I max(0, n·l), S = c_p r_s Σ I max(0, n·h)^α (h = (l+v)/|l+v|),
- * t the texture's RGB (1 without texture). Two-sided materials light the side the viewer sees:
- * where a triangle shows its back ((p̄ − ē)·n⃗ > 0 for its face normal n⃗, seed 7.2) every normal
- * it shades with is flipped. The triangle decides, not the interpolated normal, which can point
- * away from the viewer near a silhouette and would light the wrong side. */
+ * with A = r_a I_a + r_d Σ I d, S = c_p r_s Σ I s (d, s: the one reflection model of
+ * reflect_model.h, shared with the ray tracer: no highlight where n·l <= 0), t the texture's RGB (1
+ * without texture). Two-sided materials light the side the viewer sees: where a triangle shows its
+ * back ((p̄ − ē)·n⃗ > 0 for its face normal n⃗, seed 7.2) every normal it shades with is flipped. The
+ * triangle decides, not the interpolated normal, which can point away from the viewer near a
+ * silhouette and would light the wrong side. */
 #ifndef CASTELJAU_RENDER_PIPE_H
 #define CASTELJAU_RENDER_PIPE_H
 
@@ -59,6 +60,7 @@ typedef struct cj_rmat {
     float spec[3]; /* c_p r_s */
     float kd, alpha, opacity;
     int model, two_sided, tex; /* tex: sampler index or −1 */
+    int spec_model;            /* cj_specular_model */
     int used;
 } cj_rmat;
 

@@ -91,6 +91,7 @@ static void set_material(cj_rmat *r, const cj_material *m, int lit, int any_ambi
     r->spec[2] = (float)(m->specular.b * m->ks);
     r->kd = (float)m->kd;
     r->alpha = (float)m->alpha;
+    r->spec_model = (int)m->specular_model;
     r->opacity = (float)m->opacity;
     r->model = lit ? 1 + (int)m->shading : CJ_RM_UNLIT;
     r->two_sided = m->two_sided != 0;

@@ -1,6 +1,7 @@
 /* Deferred shading from the visibility buffer (seed 8-10): the Phong reflectance, flat /
  * Gouraud / Phong interpolation and textures, in one loop per kernel (render_pipe.h). */
 #include "render_pipe.h"
+#include "reflect_model.h"
 
 #include "error_internal.h"
 
@@ -27,7 +28,8 @@ static inline void normalize3f(float a[3]) {
     }
 }
 
-/* A = r_a I_a + r_d Σ I max(0, n·l),  S = c_p r_s Σ I max(0, n·h)^α at world point p.
+/* A = r_a I_a + r_d Σ I d,  S = c_p r_s Σ I s at world point p, with d and s the diffuse and
+ * specular terms of the one reflection model (reflect_model.h).
  * Inlined into the Phong kernels; cj_rlight_eval is the same for the per-triangle and
  * per-vertex set-up. */
 CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
@@ -66,15 +68,11 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
                 f = ct >= L->cos_cut ? powf(ct, L->spot_exp) : 0.0f;
             }
         }
-        float nl = dot3f(n, l);
-        if (nl > 0.0f)
-            for (int k = 0; k < 3; ++k) sum_d[k] += f * L->I[k] * nl;
-        float h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
-        normalize3f(h);
-        float nh = dot3f(n, h);
-        if (nh > 0.0f || m->alpha == 0.0f) { /* else max(0, n·h)^α = 0 exactly */
-            float sp = powf(nh > 0.0f ? nh : 0.0f, m->alpha);
-            for (int k = 0; k < 3; ++k) sum_s[k] += f * L->I[k] * sp;
+        float d, sp;
+        cj_reflect_terms_f(n, l, v, m->alpha, m->spec_model, &d, &sp);
+        for (int k = 0; k < 3; ++k) {
+            sum_d[k] += f * L->I[k] * d;
+            sum_s[k] += f * L->I[k] * sp;
         }
     }
     for (int k = 0; k < 3; ++k) {

@@ -4,6 +4,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "trace_shade.h"
 
+#include "reflect_model.h"
+
 #include <math.h>
 #include <string.h>
 #include <time.h>
@@ -124,7 +126,8 @@ static cj_vec3 reflect(cj_vec3 d, cj_vec3 n) {
     return cj_v3_sub(d, cj_v3_scale(n, 2.0 * cj_v3_dot(d, n)));
 }
 
-/* Local Phong at the hit with shadow rays; n faces the viewer (against d). */
+/* The local reflection model (reflect_model.h, the rasterizer's too) at the hit with shadow
+ * rays; n faces the viewer (against d). */
 static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, cj_vec3 n, cj_vec3 d,
                           cj_rgb cr, int depth) {
     const tr_lights *L = sh->lights;
@@ -190,12 +193,12 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
         }
         double I[3] = {lt->color.r * lt->intensity * f, lt->color.g * lt->intensity * f,
                        lt->color.b * lt->intensity * f};
-        cj_vec3 hv = cj_v3_normalize(cj_v3_add(l, v));
-        double nh = cj_v3_dot(n, hv);
-        double sp = pow(nh > 0.0 ? nh : 0.0, m->alpha);
-        out.r += cr.r * m->kd * I[0] * nl + m->specular.r * m->ks * I[0] * sp;
-        out.g += cr.g * m->kd * I[1] * nl + m->specular.g * m->ks * I[1] * sp;
-        out.b += cr.b * m->kd * I[2] * nl + m->specular.b * m->ks * I[2] * sp;
+        const double na[3] = {n.x, n.y, n.z}, la[3] = {l.x, l.y, l.z}, va[3] = {v.x, v.y, v.z};
+        double dt, sp;
+        cj_reflect_terms_d(na, la, va, m->alpha, (int)m->specular_model, &dt, &sp);
+        out.r += cr.r * m->kd * I[0] * dt + m->specular.r * m->ks * I[0] * sp;
+        out.g += cr.g * m->kd * I[1] * dt + m->specular.g * m->ks * I[1] * sp;
+        out.b += cr.b * m->kd * I[2] * dt + m->specular.b * m->ks * I[2] * sp;
     }
     return out;
 }

@@ -211,6 +211,9 @@ cj_status cj_scene_check_material_(const cj_material *m, size_t ntextures, const
     TRY(ge(p, "glossiness", m->glossiness, 0.0));
     TRY(rgb(p, "emission", m->emission, -1.0));
     TRY(flag(p, "receives_shadows", m->receives_shadows));
+    if ((int)m->specular_model < 0 || m->specular_model > CJ_SPEC_PHONG)
+        return cj_fail(CJ_ERR_RANGE, "%s.specular_model %d is not a specular model", p,
+                       (int)m->specular_model);
     return CJ_OK;
 }
 

@@ -319,11 +319,27 @@ cj_status cj_json_read_textures_(jctx *c, const cJSON *arr) {
     return CJ_OK;
 }
 
-static const char *const MATERIAL_KEYS[] = {
-    "name",       "color",     "specular",         "ka",      "kd",     "ks",           "alpha",
-    "shading",    "two_sided", "texture",          "opacity", "mirror", "transmission", "ior",
-    "glossiness", "emission",  "receives_shadows", NULL};
+static const char *const MATERIAL_KEYS[] = {"name",
+                                            "color",
+                                            "specular",
+                                            "ka",
+                                            "kd",
+                                            "ks",
+                                            "alpha",
+                                            "shading",
+                                            "two_sided",
+                                            "texture",
+                                            "opacity",
+                                            "mirror",
+                                            "transmission",
+                                            "ior",
+                                            "glossiness",
+                                            "emission",
+                                            "receives_shadows",
+                                            "specular_model",
+                                            NULL};
 static const char *const SHADINGS[] = {"flat", "gouraud", "phong", NULL};
+static const char *const SPECULAR_MODELS[] = {"blinn", "phong", NULL}; /* cj_specular_model */
 
 /* A material object (named = 1: an entry of "materials"); *index receives its scene index. */
 cj_status cj_json_read_material_(jctx *c, const cJSON *obj, const char *p, int named, int *index) {
@@ -362,6 +378,9 @@ cj_status cj_json_read_material_(jctx *c, const cJSON *obj, const char *p, int n
     TRY(cj_json_num_(c, obj, p, "glossiness", R_GE, 0, 0, &m.glossiness));
     TRY(cj_json_rgb_(c, obj, p, "emission", -1, &m.emission));
     TRY(cj_json_bool_(c, obj, p, "receives_shadows", &m.receives_shadows));
+    int spec = (int)m.specular_model;
+    TRY(cj_json_enum_(c, obj, p, "specular_model", SPECULAR_MODELS, &spec));
+    m.specular_model = (cj_specular_model)spec;
     cj_status st = cj_scene_check_material_(&m, cj_scene_texture_count(c->scene), p);
     if (!st) st = cj_scene_add_material(c->scene, &m, index);
     if (st) return cj_json_relabel_(c, obj, st);

@@ -284,6 +284,7 @@ static void write_material(emitter *e, const cj_scene *s, int i) {
     num(e, "glossiness", m->glossiness);
     rgb(e, "emission", m->emission);
     boolean(e, "receives_shadows", m->receives_shadows);
+    string(e, "specular_model", m->specular_model == CJ_SPEC_PHONG ? "phong" : "blinn");
     close_c(e, '}');
 }
 

@@ -11,9 +11,10 @@
  * inverse transpose), under a top-level SAH BVH of their world boxes. Curves are not traced.
  *
  * SHADING (Whitted). At a hit, with n the surface normal turned to the side the ray comes from:
- *   local = c_r (r_a I_a + r_d Σ_visible I max(0, n·l)) + c_p r_s Σ_visible I max(0, n·h)^α
- *           + emission
- * (the rasterizer's Phong model, h the half vector, c_r the colour times the texture), where a
+ *   local = c_r (r_a I_a + r_d Σ_visible I max(0, n·l)) + c_p r_s Σ_visible I s + emission
+ * (the rasterizer's model, evaluated by the same code: s is the material's specular lobe,
+ * Blinn's max(0, n·h)^α or Phong's max(0, m·v)^α, and 0 where n·l <= 0; c_r the colour times
+ * the texture; docs/light.md), where a
  * light is "visible" unless a shadow ray finds an occluder: an occluded light (or one behind
  * the surface, n·l <= 0) contributes only its ambient part. Then
  *   L = (1 − r_t) [o local + (1 − o) L_through] + r_m L_reflected + r_t L_refracted

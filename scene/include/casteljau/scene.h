@@ -163,10 +163,20 @@ cj_texture cj_texture_default(cj_texture_kind kind);
 
 typedef enum cj_shading { CJ_SHADE_FLAT = 0, CJ_SHADE_GOURAUD, CJ_SHADE_PHONG } cj_shading;
 
+/* The specular lobe of the local reflection model (docs/light.md; both renderers evaluate it
+ * through one definition, raster/src/reflect_model.h). With n the unit normal, l the unit
+ * direction to the light, v the unit direction to the viewer, and only where n·l > 0 (a light
+ * behind the surface gives no highlight):
+ *   CJ_SPEC_BLINN  s = max(0, n·h)^α, h = (l + v)/|l + v|   (Blinn's half vector; the default,
+ *                  the model every scene written before the choice existed was drawn with)
+ *   CJ_SPEC_PHONG  s = max(0, m·v)^α, m = 2(n·l)n − l       (the seed's mirror form) */
+typedef enum cj_specular_model { CJ_SPEC_BLINN = 0, CJ_SPEC_PHONG } cj_specular_model;
+
 typedef struct cj_material {
-    /* Phong (seed 8): L = c_r (r_a I_a + r_d Σ I max(0, n·l)) + c_p r_s Σ I max(0, n·h)^α
+    /* Phong (seed 8): L = c_r (r_a I_a + r_d Σ I max(0, n·l)) + c_p r_s Σ_{n·l>0} I s
      * where c_r is the diffuse colour (times the texture when there is one), c_p the specular
-     * colour; the ray tracer reads the same fields. */
+     * colour and s the specular lobe named by specular_model (Blinn by default); the ray
+     * tracer reads the same fields and evaluates the same formula. */
     cj_rgb color;    /* c_r, linear, each in [0, 1] */
     cj_rgb specular; /* c_p, linear, each in [0, 1] */
     double ka;       /* r_a >= 0 */
@@ -184,6 +194,7 @@ typedef struct cj_material {
     double glossiness;    /* Phong-lobe exponent of glossy reflection; 0 = perfect mirror */
     cj_rgb emission;      /* emitted radiance (area lights drawn as objects), linear */
     int receives_shadows; /* 1 (default): shadow rays are cast from this material's hits */
+    cj_specular_model specular_model; /* the specular lobe s (default CJ_SPEC_BLINN) */
 } cj_material;
 
 /* Grey plastic: colour 0.8, specular 1, r_a 0.1, r_d 0.7, r_s 0.3, α 32, Phong shading,
