@@ -4,8 +4,9 @@
  * material and a light changed, a node hidden and shown again, spp changed, the size changed);
  * its stage report says what it reused (tessellation cache hits and misses, BVHs reused and
  * built, pool, buffers and image reused); a cancelled frame leaves it usable; bad options are
- * refused; its scene mesh is the one-shot call's. Scenes: the trace demo (teapot, floor, mirror and glass spheres) and the feature
- * scene of the rasterizer tests (textures, transparency, overlays, curves). */
+ * refused; its scene mesh is the one-shot call's. Scenes: the trace demo (teapot, floor, mirror and
+ * glass spheres) and the feature scene of the rasterizer tests (textures, transparency, overlays,
+ * curves). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
