@@ -10,6 +10,7 @@
  *  - rasterizer and tracer differ per pixel by at most AGREE_TOL at every pixel whose 3 × 3
  *    neighbourhood is covered in both images (silhouette pixels are sampled differently: a
  *    tessellated outline against the exact one);
+ *  - the same lamps in radiometric units (1/r², the normalised BRDF of reflect_model.h);
  *  - the JSON reader reads "specular_model" and the writer writes it back. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -27,11 +28,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#define W          96
-#define H          96
+#define W 96
+#define H 96
+/* Tolerances as fractions of the brightest closed-form pixel of the scene: */
 #define RASTER_TOL 4e-3 /* the rasterizer against the closed form (tessellated normals, float) */
 #define AGREE_TOL  4e-3 /* rasterizer against tracer, interior pixels */
-#define TRACE_TOL  1e-6 /* the tracer against the closed form (exact sphere, double) */
+#define TRACE_TOL  1e-6 /* the tracer against the closed form (exact sphere; a float image) */
 
 static const double PI = 3.14159265358979323846;
 
@@ -47,6 +49,7 @@ typedef struct scene_def {
     double ia[3]; /* ambient colour × intensity */
     double cr[3], cp[3], ka, kd, ks, alpha;
     cj_specular_model model;
+    int radiometric; /* 1: 1/r², BRDF r_d c_r/π + r_s c_p N(α) s */
     int nlights;
     light_def lights[3];
 } scene_def;
@@ -67,6 +70,7 @@ static cj_scene *build(const scene_def *d) {
     st.height = H;
     st.spp = 1;
     st.tol_px = 0.05;
+    st.light_model = d->radiometric ? CJ_LIGHT_RADIOMETRIC : CJ_LIGHT_LEGACY;
     assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
     cj_material m = cj_material_default();
     m.color = cj_rgb_make(d->cr[0], d->cr[1], d->cr[2]);
@@ -139,13 +143,14 @@ static int closed_form(const scene_def *d, const cj_scene *s, int x, int y, doub
             for (int k = 0; k < 3; ++k) l[k] = -L->dir[k];
         } else {
             for (int k = 0; k < 3; ++k) l[k] = L->pos[k] - p[k];
+            if (d->radiometric) f = 1.0 / dot(l, l);
         }
         unit(l);
         if (L->kind == CJ_LIGHT_SPOT) {
             double a[3] = {L->dir[0], L->dir[1], L->dir[2]};
             unit(a);
             double ct = -dot(a, l);
-            f = ct >= cos(L->cut) ? pow(ct, L->expo) : 0.0;
+            f = ct >= cos(L->cut) ? f * pow(ct, L->expo) : 0.0;
         }
         double nl = dot(n, l);
         if (nl < *nl_min) *nl_min = nl;
@@ -160,9 +165,13 @@ static int closed_form(const scene_def *d, const cj_scene *s, int x, int y, doub
             unit(h);
             c2 = dot(n, h);
         }
-        double sp = pow(c2 > 0.0 ? c2 : 0.0, d->alpha);
+        double sp = pow(c2 > 0.0 ? c2 : 0.0, d->alpha), kd = d->kd, ks = d->ks;
+        if (d->radiometric) {
+            kd /= PI;
+            ks *= d->model == CJ_SPEC_PHONG ? (d->alpha + 2) / (2 * PI) : (d->alpha + 8) / (8 * PI);
+        }
         for (int k = 0; k < 3; ++k)
-            out[k] += f * L->I[k] * (d->cr[k] * d->kd * nl + d->cp[k] * d->ks * sp);
+            out[k] += f * L->I[k] * (d->cr[k] * kd * nl + d->cp[k] * ks * sp);
     }
     return 1;
 }
@@ -184,6 +193,7 @@ static void check_scene(const scene_def *d, const char *name) {
     assert_int_equal(cj_render_raster(s, &o, CJ_IMAGE_IDS, NULL, &ri, NULL), CJ_OK);
     assert_int_equal(cj_render_trace(s, &o, CJ_IMAGE_IDS, NULL, &ti, NULL), CJ_OK);
     double worst_r = 0, worst_t = 0, worst_rt = 0, worst_dark = 0;
+    double peak = 0;
     int hits = 0, dark = 0, interior = 0;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
@@ -194,6 +204,8 @@ static void check_scene(const scene_def *d, const char *name) {
             int inside = covered(ri, x, y) && covered(ti, x, y);
             if (hit) {
                 ++hits;
+                for (int k = 0; k < 3; ++k)
+                    if (ref[k] > peak) peak = ref[k];
                 assert_int_not_equal(ti->ids[i], 0);
                 for (int k = 0; k < 3; ++k) {
                     double e = fabs(tp[k] - ref[k]);
@@ -224,10 +236,12 @@ static void check_scene(const scene_def *d, const char *name) {
                 }
             }
         }
-    printf("%s: %d sphere pixels (%d interior, %d beyond the terminator): |trace - closed form| "
-           "<= %.2e (tol %.0e), |render - closed form| <= %.2e (tol %.0e), |render - trace| <= "
-           "%.2e (tol %.0e), beyond the terminator |x - ambient| <= %.2e\n",
-           name, hits, interior, dark, worst_t, TRACE_TOL, worst_r, RASTER_TOL, worst_rt,
+    worst_r /= peak, worst_t /= peak, worst_rt /= peak, worst_dark /= peak;
+    printf("%s: %d sphere pixels (%d interior, %d beyond the terminator), brightest %.4f; as "
+           "fractions of it: |trace - closed form| <= %.2e (tol %.0e), |render - closed form| <= "
+           "%.2e (tol %.0e), |render - trace| <= %.2e (tol %.0e), beyond the terminator |x - "
+           "ambient| <= %.2e\n",
+           name, hits, interior, dark, peak, worst_t, TRACE_TOL, worst_r, RASTER_TOL, worst_rt,
            AGREE_TOL, worst_dark);
     assert_true(hits > W * H / 3);
     assert_true(interior > hits / 2);
@@ -350,11 +364,26 @@ static void test_json_specular_model(void **state) {
     assert_non_null(strstr(cj_last_error(), "specular_model"));
 }
 
+/* The lamps in radiometric units: intensities in W/sr at a few units, falling off as 1/r². */
+static void test_lamps_radiometric(void **state) {
+    (void)state;
+    for (int model = 0; model < 2; ++model) {
+        scene_def d = lamps_scene(model ? CJ_SPEC_PHONG : CJ_SPEC_BLINN);
+        d.radiometric = 1;
+        for (int k = 0; k < 3; ++k) {
+            d.lights[0].I[k] *= 30.0;
+            d.lights[1].I[k] *= 20.0;
+        }
+        check_scene(&d,
+                    model ? "radiometric point + spot, phong" : "radiometric point + spot, blinn");
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_terminator_blinn), cmocka_unit_test(test_terminator_phong),
-        cmocka_unit_test(test_lamps_blinn),      cmocka_unit_test(test_lamps_phong),
-        cmocka_unit_test(test_json_specular_model),
+        cmocka_unit_test(test_terminator_blinn),  cmocka_unit_test(test_terminator_phong),
+        cmocka_unit_test(test_lamps_blinn),       cmocka_unit_test(test_lamps_phong),
+        cmocka_unit_test(test_lamps_radiometric), cmocka_unit_test(test_json_specular_model),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -57,4 +57,69 @@ CJ_REFLECT_DEFINE(d, double, sqrt, pow)
 
 #undef CJ_REFLECT_DEFINE
 
+/* RADIOMETRIC LIGHT (cj_light_model CJ_LIGHT_RADIOMETRIC): the material is the BRDF
+ *   f_r = r_d c_r / π + r_s c_p N(α) s
+ * and a light adds f_r E. N(α) makes the lobe a reflectance rather than a strength:
+ *   CJ_SPEC_PHONG  N = (α + 2) / (2π): the directional albedo of the lobe, ∫ N s cos θ dω,
+ *                  is exactly 1 at normal incidence (∫ cos^(α+1) θ dω = 2π/(α+2)) and less
+ *                  at any other (the lobe is cut by the horizon and weighted by a smaller cos);
+ *   CJ_SPEC_BLINN  N = (α + 8) / (8π): the usual approximate normalisation of the half-vector
+ *                  lobe (not exact; issue 21's energy test of the BRDF abstraction is left).
+ * The diffuse coefficient and this factor multiply r_d and c_p r_s once per material. */
+static inline double cj_reflect_lobe_norm(int model, double alpha) {
+    const double pi = 3.14159265358979323846;
+    return model == CJ_SPEC_PHONG ? (alpha + 2.0) / (2.0 * pi) : (alpha + 8.0) / (8.0 * pi);
+}
+
+/* The irradiance at point p with unit normal n from a Lambertian polygon of radiance 1 (the
+ * integral of cos θ cos θ′ / r² over its area), by Lambert's formula
+ *   E = 1/2 |Σ_i Θ_i (γ_i · n)|,  Θ_i the angle edge i subtends at p, γ_i the unit normal of
+ *   the plane through p and edge i,
+ * after clipping the polygon to the half space in front of the surface (n·(x − p) > 0), the
+ * part the point can see. One-sided emitter: 0 when p lies behind it (on the side opposite
+ * to the unit normal nl). nv <= 8 vertices in order (convex). Multiply by the radiance L_e. */
+static inline double cj_reflect_polygon_irradiance(const double p[3], const double n[3],
+                                                   const double (*v)[3], int nv,
+                                                   const double nl[3]) {
+    double side = 0.0;
+    for (int k = 0; k < 3; ++k) side += (p[k] - v[0][k]) * nl[k];
+    if (!(side > 0.0)) return 0.0;
+    /* clip against the surface's tangent plane (Sutherland-Hodgman: one plane, at most one
+     * more vertex than the input) */
+    double c[9][3];
+    int nc = 0;
+    for (int i = 0; i < nv; ++i) {
+        const double *a = v[i], *b = v[(i + 1) % nv];
+        double da = 0.0, db = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            da += (a[k] - p[k]) * n[k];
+            db += (b[k] - p[k]) * n[k];
+        }
+        if (da > 0.0)
+            for (int k = 0; k < 3; ++k) c[nc][k] = a[k] - p[k];
+        if (da > 0.0) ++nc;
+        if ((da > 0.0) != (db > 0.0)) {
+            double t = da / (da - db);
+            for (int k = 0; k < 3; ++k) c[nc][k] = a[k] + t * (b[k] - a[k]) - p[k];
+            ++nc;
+        }
+    }
+    if (nc < 3) return 0.0;
+    double sum = 0.0;
+    for (int i = 0; i < nc; ++i) {
+        const double *a = c[i], *b = c[(i + 1) % nc];
+        double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        double lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+        if (!(la > 0.0) || !(lb > 0.0)) continue;
+        double x[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                       a[0] * b[1] - a[1] * b[0]};
+        double lx = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        if (!(lx > 0.0)) continue;
+        double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        double theta = atan2(lx, ab); /* accurate for small angles, unlike acos */
+        sum += theta * (x[0] * n[0] + x[1] * n[1] + x[2] * n[2]) / lx;
+    }
+    return 0.5 * fabs(sum);
+}
+
 #endif

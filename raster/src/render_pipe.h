@@ -52,6 +52,11 @@ typedef struct cj_rlight {
     int spot;
     float axis[3]; /* spot: unit direction the light travels */
     float cos_cut, spot_exp;
+    int falloff; /* radiometric point and spot: I is an intensity, divided by r² */
+    /* radiometric area light (I = L_e): the diffuse term takes the polygon's exact irradiance
+     * (reflect_model.h), the specular one its centre pos as a point of intensity L_e A cos θ′ */
+    int area;
+    double corner[4][3], normal[3], size; /* size: the area A */
 } cj_rlight;
 
 typedef struct cj_rmat {

@@ -2,6 +2,8 @@
  * records in the stage report the stages its findings decide (render_frame.h). */
 #include "render_frame.h"
 
+#include "reflect_model.h"
+
 #include "error_internal.h"
 
 #include <math.h>
@@ -11,6 +13,7 @@ const char *const cj_rmodel_name[CJ_RM_COUNT] = {"unlit", "flat", "gouraud", "ph
 
 static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rfeatures *f) {
     size_t n = cj_scene_light_count(scene);
+    const int radiometric = cj_scene_settings_get(scene)->light_model == CJ_LIGHT_RADIOMETRIC;
     Ia[0] = Ia[1] = Ia[2] = 0.0f;
     for (size_t i = 0; i < n; ++i) {
         const cj_light *L = cj_scene_light(scene, (int)i);
@@ -38,6 +41,22 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
             r->l[0] = (float)l.x;
             r->l[1] = (float)l.y;
             r->l[2] = (float)l.z;
+        } else if (radiometric && L->kind == CJ_LIGHT_AREA) {
+            cj_vec3 nrm = cj_v3_cross(L->edge_u, L->edge_v);
+            const cj_vec3 q[4] = {L->position, cj_v3_add(L->position, L->edge_u),
+                                  cj_v3_add(cj_v3_add(L->position, L->edge_u), L->edge_v),
+                                  cj_v3_add(L->position, L->edge_v)};
+            r->area = 1;
+            r->size = cj_v3_norm(nrm);
+            nrm = cj_v3_normalize(nrm);
+            r->normal[0] = nrm.x;
+            r->normal[1] = nrm.y;
+            r->normal[2] = nrm.z;
+            for (int j = 0; j < 4; ++j) {
+                r->corner[j][0] = q[j].x;
+                r->corner[j][1] = q[j].y;
+                r->corner[j][2] = q[j].z;
+            }
         } else if (L->kind == CJ_LIGHT_SPOT) {
             cj_vec3 a = cj_v3_normalize(L->direction);
             r->spot = 1;
@@ -47,6 +66,7 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
             r->cos_cut = (float)cos(L->spot_angle);
             r->spot_exp = (float)L->spot_exponent;
         }
+        r->falloff = radiometric && (L->kind == CJ_LIGHT_POINT || L->kind == CJ_LIGHT_SPOT);
     }
     f->lit = c->nlights > 0;
 }
@@ -79,17 +99,21 @@ static void scan_scene(const cj_rscene *rs, cj_rctx *c, cj_rfeatures *f) {
     }
 }
 
+/* radiometric: the material is the BRDF r_d c_r / π + r_s c_p N(α) s (reflect_model.h). */
 static void set_material(cj_rmat *r, const cj_material *m, int lit, int any_ambient,
-                         const float Ia[3]) {
+                         const float Ia[3], int radiometric) {
+    const double pi = 3.14159265358979323846;
+    const double dn = radiometric ? 1.0 / pi : 1.0,
+                 sn = radiometric ? cj_reflect_lobe_norm((int)m->specular_model, m->alpha) : 1.0;
     memset(r, 0, sizeof *r);
     r->cr[0] = (float)m->color.r;
     r->cr[1] = (float)m->color.g;
     r->cr[2] = (float)m->color.b;
     for (int k = 0; k < 3; ++k) r->amb[k] = (lit || any_ambient) ? (float)m->ka * Ia[k] : 1.0f;
-    r->spec[0] = (float)(m->specular.r * m->ks);
-    r->spec[1] = (float)(m->specular.g * m->ks);
-    r->spec[2] = (float)(m->specular.b * m->ks);
-    r->kd = (float)m->kd;
+    r->spec[0] = (float)(m->specular.r * m->ks * sn);
+    r->spec[1] = (float)(m->specular.g * m->ks * sn);
+    r->spec[2] = (float)(m->specular.b * m->ks * sn);
+    r->kd = (float)(m->kd * dn);
     r->alpha = (float)m->alpha;
     r->spec_model = (int)m->specular_model;
     r->opacity = (float)m->opacity;
@@ -115,7 +139,8 @@ cj_status cj_rframe_materials(cj_rframe *F) {
     for (int m = 0; m <= c->nmat; ++m) {
         cj_material def = cj_material_default();
         set_material(&c->mats[m], m < c->nmat ? cj_scene_material(scene, m) : &def, f->lit,
-                     f->any_ambient, F->Ia);
+                     f->any_ambient, F->Ia,
+                     cj_scene_settings_get(scene)->light_model == CJ_LIGHT_RADIOMETRIC);
     }
     scan_scene(F->rs, c, f);
     const int normals_overlay = (F->rs->features & CJ_RF_NORMALS_OVERLAY) != 0;

@@ -54,6 +54,26 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
     for (int i = 0; i < c->nlights; ++i) {
         const cj_rlight *L = &c->lights[i];
         float l[3], f = 1.0f;
+        if (L->area) {
+            /* diffuse: the exact irradiance of the polygon; specular: its centre (render_pipe.h) */
+            const double nd[3] = {n[0], n[1], n[2]};
+            const float e = (float)cj_reflect_polygon_irradiance(p, nd, L->corner, 4, L->normal);
+            double to[3] = {L->pos[0] - p[0], L->pos[1] - p[1], L->pos[2] - p[2]};
+            double r2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2];
+            double ct = -(to[0] * L->normal[0] + to[1] * L->normal[1] + to[2] * L->normal[2]);
+            float fs = ct > 0.0 && r2 > 0.0 ? (float)(L->size * ct / (sqrt(r2) * r2)) : 0.0f;
+            l[0] = (float)to[0];
+            l[1] = (float)to[1];
+            l[2] = (float)to[2];
+            normalize3f(l);
+            float d, sp;
+            cj_reflect_terms_f(n, l, v, m->alpha, m->spec_model, &d, &sp);
+            for (int k = 0; k < 3; ++k) {
+                sum_d[k] += e * L->I[k];
+                sum_s[k] += fs * L->I[k] * sp;
+            }
+            continue;
+        }
         if (L->directional) {
             l[0] = L->l[0];
             l[1] = L->l[1];
@@ -62,10 +82,14 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
             l[0] = (float)(L->pos[0] - p[0]);
             l[1] = (float)(L->pos[1] - p[1]);
             l[2] = (float)(L->pos[2] - p[2]);
+            if (L->falloff) {
+                double dx = L->pos[0] - p[0], dy = L->pos[1] - p[1], dz = L->pos[2] - p[2];
+                f = (float)(1.0 / (dx * dx + dy * dy + dz * dz));
+            }
             normalize3f(l);
             if (L->spot) {
                 float ct = -dot3f(L->axis, l);
-                f = ct >= L->cos_cut ? powf(ct, L->spot_exp) : 0.0f;
+                f = ct >= L->cos_cut ? f * powf(ct, L->spot_exp) : 0.0f;
             }
         }
         float d, sp;

@@ -248,6 +248,7 @@ static cj_status resolve(const cj_renderer *r, const cj_scene *scene, trace_sett
 static cj_status gather_lights(const cj_scene *scene, tr_lights *lights) {
     memset(lights, 0, sizeof *lights);
     lights->unlit = cj_scene_light_count(scene) == 0;
+    lights->radiometric = cj_scene_settings_get(scene)->light_model == CJ_LIGHT_RADIOMETRIC;
     for (size_t i = 0; i < cj_scene_light_count(scene); i++) {
         const cj_light *l = cj_scene_light(scene, (int)i);
         if (l->kind == CJ_LIGHT_AMBIENT) {

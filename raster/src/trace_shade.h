@@ -18,8 +18,10 @@ double tr_rand(tr_rng *r);
 uint32_t tr_permute(uint32_t i, uint32_t n, uint64_t key);
 
 typedef struct tr_lights {
-    int unlit; /* the scene has no light at all: colour shown flat, as the rasterizer does */
-    cj_rgb ia; /* Σ ambient colour × intensity */
+    int unlit;       /* the scene has no light at all: colour shown flat, as the rasterizer does */
+    cj_rgb ia;       /* Σ ambient colour × intensity */
+    int radiometric; /* cj_light_model CJ_LIGHT_RADIOMETRIC: 1/r², area lights of radiance,
+                        BRDFs (reflect_model.h) */
     int count;
     const cj_light *light[TR_MAX_LIGHTS];
 } tr_lights;

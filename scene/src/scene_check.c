@@ -122,6 +122,9 @@ cj_status cj_scene_check_settings_(const cj_scene_settings *s, const char *p) {
     TRY(gt(p, "tol_px", s->tol_px, 0.0));
     TRY(rgb(p, "background", s->background, -1.0));
     if (s->max_depth < 0) return cj_fail(CJ_ERR_RANGE, "%s.max_depth must be >= 0", p);
+    if ((int)s->light_model < 0 || s->light_model > CJ_LIGHT_RADIOMETRIC)
+        return cj_fail(CJ_ERR_RANGE, "%s.light_model %d is not a light model", p,
+                       (int)s->light_model);
     return CJ_OK;
 }
 

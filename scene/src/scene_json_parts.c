@@ -105,8 +105,9 @@ cj_status cj_json_read_camera_(jctx *c, const cJSON *obj) {
     return CJ_OK;
 }
 
-static const char *const SETTINGS_KEYS[] = {"width",      "height",    "spp",  "tol_px",
-                                            "background", "max_depth", "seed", NULL};
+static const char *const SETTINGS_KEYS[] = {
+    "width", "height", "spp", "tol_px", "background", "max_depth", "seed", "light_model", NULL};
+static const char *const LIGHT_MODELS[] = {"legacy", "radiometric", NULL}; /* cj_light_model */
 
 cj_status cj_json_read_settings_(jctx *c, const cJSON *obj) {
     const char *p = "settings";
@@ -124,6 +125,9 @@ cj_status cj_json_read_settings_(jctx *c, const cJSON *obj) {
         return cj_json_fail_(c, cJSON_GetObjectItemCaseSensitive(obj, "seed"), 0, CJ_ERR_PARSE,
                              "settings.seed must be an integer");
     s.seed = (uint64_t)seed;
+    int lm = (int)s.light_model;
+    TRY(cj_json_enum_(c, obj, p, "light_model", LIGHT_MODELS, &lm));
+    s.light_model = (cj_light_model)lm;
     cj_status st = cj_scene_set_settings(c->scene, &s);
     return st ? cj_json_relabel_(c, obj, st) : CJ_OK;
 }

@@ -170,6 +170,7 @@ static void write_settings(emitter *e, const cj_scene_settings *s) {
     rgb(e, "background", s->background);
     integer(e, "max_depth", s->max_depth);
     integer(e, "seed", (long long)s->seed);
+    string(e, "light_model", s->light_model == CJ_LIGHT_RADIOMETRIC ? "radiometric" : "legacy");
     close_c(e, '}');
 }
 

@@ -3,3 +3,8 @@
 if(TARGET cj::raster)
   cj_add_test(test_light_agree SOURCES test_light_agree.c LIBS cj::raster cj::scene)
 endif()
+# Radiometric lights against closed forms: inverse square, directional irradiance, a rectangular
+# emitter's form factor (both renderers), one-sided emitters, legacy unchanged.
+if(TARGET cj::raster)
+  cj_add_test(test_light_radiometric SOURCES test_light_radiometric.c LIBS cj::raster cj::scene)
+endif()

@@ -126,6 +126,31 @@ typedef struct cj_light {
     int casts_shadows; /* ray tracer: 1 = shadow rays are cast for this light (default 1) */
 } cj_light;
 
+/* WHAT A LIGHT'S colour × intensity MEANS depends on the scene's light model
+ * (cj_scene_settings.light_model; docs/light.md):
+ *   CJ_LIGHT_LEGACY (the default, every scene written before the choice existed): I is a
+ *     non-physical strength; no light falls off with distance; an area light is seen by the
+ *     rasterizer as a point light at its centre and by the tracer as the mean of point lights
+ *     over its surface; materials reflect with the Phong model of cj_material.
+ *   CJ_LIGHT_RADIOMETRIC (seed 12): lights have units and materials are BRDFs.
+ *     ambient      I_a is a radiance [W m⁻² sr⁻¹] arriving from every direction; a surface
+ *                  reflects r_a c_r I_a (its ambient albedo times it);
+ *     point        I is a radiant intensity [W sr⁻¹]: irradiance I cos θ / r² at distance r;
+ *     spot         the same, times the cone's falloff (cos ψ)^spot_exponent inside spot_angle;
+ *     directional  I is the irradiance [W m⁻²] on a surface facing the light: E = I cos θ;
+ *     area         I is the radiance L_e of a Lambertian emitter [W m⁻² sr⁻¹] on the side its
+ *                  normal edge_u × edge_v points to (none on the other side): irradiance
+ *                  ∫ L_e cos θ cos θ′ / r² dA over the parallelogram. The tracer samples it by
+ *                  area (pdf 1/A, stratified); the rasterizer takes the exact irradiance of the
+ *                  polygon for the diffuse term (Lambert's formula) and its centre as a point of
+ *                  intensity L_e A cos θ′ for the specular one.
+ *   The reflected radiance is then Σ f_r E with the material's BRDF
+ *     f_r = r_d c_r / π + r_s c_p N(α) s
+ *   (s the specular lobe of cj_specular_model, N(α) its normalisation, reflect_model.h).
+ * Emissive materials (cj_material.emission, a radiance) are seen by camera and secondary rays
+ * in both models. */
+typedef enum cj_light_model { CJ_LIGHT_LEGACY = 0, CJ_LIGHT_RADIOMETRIC } cj_light_model;
+
 /* A white point light of intensity 1 at (5, 5, 5), casting shadows. */
 cj_light cj_light_default(cj_light_kind kind);
 
@@ -316,12 +341,13 @@ typedef struct cj_node {
 /* ---- render settings stored with the scene (CLI flags override them) ---------------------- */
 
 typedef struct cj_scene_settings {
-    int width, height; /* image size, 1..CJ_FRAMEBUFFER_MAX_SIDE (default 640 × 480) */
-    int spp;           /* samples per pixel: rasterizer 1, 4 or 16; ray tracer any >= 1 */
-    double tol_px;     /* screen-space tessellation tolerance in pixels (default 0.25) */
-    cj_rgb background; /* linear (default black) */
-    int max_depth;     /* ray tracer recursion depth (default 5) */
-    uint64_t seed;     /* random sampling seed (default 1) */
+    int width, height;          /* image size, 1..CJ_FRAMEBUFFER_MAX_SIDE (default 640 × 480) */
+    int spp;                    /* samples per pixel: rasterizer 1, 4 or 16; ray tracer any >= 1 */
+    double tol_px;              /* screen-space tessellation tolerance in pixels (default 0.25) */
+    cj_rgb background;          /* linear (default black) */
+    int max_depth;              /* ray tracer recursion depth (default 5) */
+    uint64_t seed;              /* random sampling seed (default 1) */
+    cj_light_model light_model; /* what light intensities mean (default CJ_LIGHT_LEGACY) */
 } cj_scene_settings;
 
 cj_scene_settings cj_scene_settings_default(void);
