@@ -11,12 +11,14 @@
 static const char trace_usage[] =
     "usage: casteljau trace (SCENE.json | --demo) -o OUT.png|OUT.exr [--width W --height H]\n"
     "                       [--spp N] [--max-depth D] [--seed S] [--threads N] [--signature]\n"
-    "                       [--indirect N]\n"
+    "                       [--indirect N] [--exr-half]\n"
     "                       [--stage-report]\n"
     "  SCENE.json      a scene file (the same files `casteljau render` reads)\n"
     "  --demo          built-in scene: a mirror sphere, a glass sphere and the Utah teapot\n"
     "                  (its Bezier patches traced directly) on a checkered floor\n"
-    "  -o              PNG (8-bit sRGB) or EXR (linear float)\n"
+    "  -o              PNG (8-bit sRGB) or EXR (linear 32-bit float; no infinite value is\n"
+    "                  ever written)\n"
+    "  --exr-half      store the EXR as half floats (a value above 65504 is refused)\n"
     "  --width/height  image size (default: the scene's settings)\n"
     "  --spp           samples per pixel, any N >= 1 (stratified; area lights and glossy\n"
     "                  materials are sampled only when N > 1)\n"
@@ -55,7 +57,7 @@ int cmd_trace(int argc, char **argv) {
                                    {"--seed", NULL, 1}, {"--indirect", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, trace_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
-    cli_scene_args a = {NULL, NULL, 0, 0};
+    cli_scene_args a = {NULL, NULL, 0, 0, 0};
     const char *v;
     int signature = 0;
     long n;

@@ -8,3 +8,8 @@ endif()
 if(TARGET cj::raster)
   cj_add_test(test_light_radiometric SOURCES test_light_radiometric.c LIBS cj::raster cj::scene)
 endif()
+# EXR output: 32-bit float by default, half on request, no infinity ever written.
+if(CJ_WITH_OIIO AND TARGET cj::viz)
+  pkg_check_modules(CJ_LIGHT_OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
+  cj_add_test(test_light_exr SOURCES test_light_exr.cpp LIBS cj::viz PkgConfig::CJ_LIGHT_OIIO)
+endif()
