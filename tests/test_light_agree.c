@@ -10,7 +10,9 @@
  *  - rasterizer and tracer differ per pixel by at most AGREE_TOL at every pixel whose 3 × 3
  *    neighbourhood is covered in both images (silhouette pixels are sampled differently: a
  *    tessellated outline against the exact one);
- *  - the same lamps in radiometric units (1/r², the normalised BRDF of reflect_model.h);
+ *  - the same lamps in radiometric units (1/r², Lambert's 1/π, the normalised Phong lobe
+ *    (α+2)/(2π) cos^α and the Blinn lobe (α+1)/(8π) cos^α θ_h / ((l·h) max(n·l, n·v)), each
+ *    times n·l);
  *  - the JSON reader reads "specular_model" and the writer writes it back. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -155,7 +157,7 @@ static int closed_form(const scene_def *d, const cj_scene *s, int x, int y, doub
         double nl = dot(n, l);
         if (nl < *nl_min) *nl_min = nl;
         if (nl <= 0.0) continue; /* the light is behind the surface: nothing at all */
-        double c2;
+        double c2, lh = 0.0;
         if (d->model == CJ_SPEC_PHONG) {
             double m[3];
             for (int k = 0; k < 3; ++k) m[k] = 2.0 * nl * n[k] - l[k];
@@ -164,14 +166,19 @@ static int closed_form(const scene_def *d, const cj_scene *s, int x, int y, doub
             double h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
             unit(h);
             c2 = dot(n, h);
+            lh = dot(l, h);
         }
-        double sp = pow(c2 > 0.0 ? c2 : 0.0, d->alpha), kd = d->kd, ks = d->ks;
-        if (d->radiometric) {
-            kd /= PI;
-            ks *= d->model == CJ_SPEC_PHONG ? (d->alpha + 2) / (2 * PI) : (d->alpha + 8) / (8 * PI);
+        double sp = pow(c2 > 0.0 ? c2 : 0.0, d->alpha), df = nl;
+        if (d->radiometric) { /* BRDF × n·l: Lambert 1/π, normalised Phong, Blinn (A-S) */
+            df = nl / PI;
+            double nv = dot(n, v);
+            sp *= d->model == CJ_SPEC_PHONG
+                      ? (d->alpha + 2) / (2 * PI) * nl
+                      : (d->alpha + 1) / (8 * PI * lh * (nv > nl ? nv : nl)) * nl;
         }
+        const double kd = d->kd, ks = d->ks;
         for (int k = 0; k < 3; ++k)
-            out[k] += f * L->I[k] * (d->cr[k] * kd * nl + d->cp[k] * ks * sp);
+            out[k] += f * L->I[k] * (d->cr[k] * kd * df + d->cp[k] * ks * sp);
     }
     return 1;
 }

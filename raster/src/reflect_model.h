@@ -26,9 +26,10 @@
 #include <math.h>
 
 #define CJ_REFLECT_DEFINE(SUF, T, SQRT, POW)                                                       \
-    /* d and s of one light (see above); n, l, v unit vectors. */                                  \
+    /* d and s of one light (see above); n, l, v unit vectors; radiometric: the BRDF terms         \
+     * times n·l (below). */                                                                      \
     static inline void cj_reflect_terms_##SUF(const T n[3], const T l[3], const T v[3], T alpha,   \
-                                              int model, T *d, T *s) {                             \
+                                              int model, int radiometric, T *d, T *s) {            \
         const T nl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];                                      \
         if (!(nl > (T)0)) {                                                                        \
             *d = (T)0;                                                                             \
@@ -36,13 +37,13 @@
             return;                                                                                \
         }                                                                                          \
         *d = nl;                                                                                   \
-        T c;                                                                                       \
+        T c, hl = (T)0;                                                                            \
         if (model == CJ_SPEC_PHONG) {                                                              \
             c = (T)0;                                                                              \
             for (int k = 0; k < 3; ++k) c += ((T)2 * nl * n[k] - l[k]) * v[k];                     \
         } else {                                                                                   \
             T h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};                                      \
-            T hl = SQRT(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);                                  \
+            hl = SQRT(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);                                    \
             /* l = −v: every half vector is as good as none; the lobe is at its rim */           \
             c = hl > (T)0 ? (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) / hl : (T)0;                 \
         }                                                                                          \
@@ -50,6 +51,17 @@
             *s = POW(c, alpha);                                                                    \
         else                                                                                       \
             *s = alpha == (T)0 ? (T)1 : (T)0; /* max(0, c)^0 = 1 */                                \
+        if (radiometric) {                                                                         \
+            const T pi = (T)3.14159265358979323846;                                                \
+            *d = nl / pi;                                                                          \
+            if (model == CJ_SPEC_PHONG) {                                                          \
+                *s *= (alpha + (T)2) / ((T)2 * pi) * nl;                                           \
+            } else {                                                                               \
+                const T nv = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];                              \
+                const T lh = hl / (T)2, mx = nv > nl ? nv : nl;                                    \
+                *s = lh > (T)0 ? *s * (alpha + (T)1) / ((T)8 * pi * lh * mx) * nl : (T)0;          \
+            }                                                                                      \
+        }                                                                                          \
     }
 
 CJ_REFLECT_DEFINE(f, float, sqrtf, powf)
@@ -58,19 +70,19 @@ CJ_REFLECT_DEFINE(d, double, sqrt, pow)
 #undef CJ_REFLECT_DEFINE
 
 /* RADIOMETRIC LIGHT (cj_light_model CJ_LIGHT_RADIOMETRIC): the material is the BRDF
- *   f_r = r_d c_r / π + r_s c_p N(α) s
- * and a light adds f_r E. N(α) makes the lobe a reflectance rather than a strength:
- *   CJ_SPEC_PHONG  N = (α + 2) / (2π): the directional albedo of the lobe, ∫ N s cos θ dω,
- *                  is exactly 1 at normal incidence (∫ cos^(α+1) θ dω = 2π/(α+2)) and less
- *                  at any other (the lobe is cut by the horizon and weighted by a smaller cos);
- *   CJ_SPEC_BLINN  N = (α + 8) / (8π): the usual approximate normalisation of the half-vector
- *                  lobe (not exact; issue 21's energy test of the BRDF abstraction is left).
- * The diffuse coefficient and this factor multiply r_d and c_p r_s once per material. */
-static inline double cj_reflect_lobe_norm(int model, double alpha) {
-    const double pi = 3.14159265358979323846;
-    return model == CJ_SPEC_PHONG ? (alpha + 2.0) / (2.0 * pi) : (alpha + 8.0) / (8.0 * pi);
-}
-
+ *   f_r = r_d c_r / π + r_s c_p f_s,
+ * and a light of irradiance E = I cos θ (/ r²) adds f_r E; the terms above then return
+ * d = cos θ / π and s = f_s cos θ (cos θ = n·l), so the caller's formula c_r r_d I d + c_p r_s I s
+ * is the same in both models. The specular lobes are energy-conserving BRDFs:
+ *   CJ_SPEC_PHONG  f_s = (α + 2)/(2π) max(0, m·v)^α: its directional albedo ∫ f_s cos θ dω is
+ *                  exactly 1 at normal incidence (∫ cos^(α+1) θ dω = 2π/(α+2)) and less at any
+ *                  other (the lobe is cut by the horizon and weighted by a smaller cos);
+ *   CJ_SPEC_BLINN  f_s = (α + 1)/(8π) max(0, n·h)^α / ((l·h) max(n·l, n·v)) (the half-vector
+ *                  lobe with Ashikhmin and Shirley's denominator): sampling h with density
+ *                  (α + 1)/(2π) (n·h)^α and reflecting v about it gives wi with pdf
+ *                  (α+1)/(2π) (n·h)^α / (4 v·h), so f_s cos θ / pdf = n·l / max(n·l, n·v) <= 1
+ *                  and the albedo is at most 1 for every α and every view.
+ * The same lobes are the BRDFs of brdf.h (the path tracer's materials). */
 /* The irradiance at point p with unit normal n from a Lambertian polygon of radiance 1 (the
  * integral of cos θ cos θ′ / r² over its area), by Lambert's formula
  *   E = 1/2 |Σ_i Θ_i (γ_i · n)|,  Θ_i the angle edge i subtends at p, γ_i the unit normal of

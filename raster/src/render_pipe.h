@@ -112,6 +112,7 @@ typedef struct cj_rctx {
     int *obj_mat; /* object -> index into mats */
     cj_rlight *lights;
     int nlights;
+    int radiometric; /* cj_light_model CJ_LIGHT_RADIOMETRIC (reflect_model.h) */
     cj_tex_sampler *samplers;
     int nsamplers;
     float bg[3];

@@ -14,6 +14,7 @@ const char *const cj_rmodel_name[CJ_RM_COUNT] = {"unlit", "flat", "gouraud", "ph
 static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rfeatures *f) {
     size_t n = cj_scene_light_count(scene);
     const int radiometric = cj_scene_settings_get(scene)->light_model == CJ_LIGHT_RADIOMETRIC;
+    c->radiometric = radiometric;
     Ia[0] = Ia[1] = Ia[2] = 0.0f;
     for (size_t i = 0; i < n; ++i) {
         const cj_light *L = cj_scene_light(scene, (int)i);
@@ -99,21 +100,17 @@ static void scan_scene(const cj_rscene *rs, cj_rctx *c, cj_rfeatures *f) {
     }
 }
 
-/* radiometric: the material is the BRDF r_d c_r / π + r_s c_p N(α) s (reflect_model.h). */
 static void set_material(cj_rmat *r, const cj_material *m, int lit, int any_ambient,
-                         const float Ia[3], int radiometric) {
-    const double pi = 3.14159265358979323846;
-    const double dn = radiometric ? 1.0 / pi : 1.0,
-                 sn = radiometric ? cj_reflect_lobe_norm((int)m->specular_model, m->alpha) : 1.0;
+                         const float Ia[3]) {
     memset(r, 0, sizeof *r);
     r->cr[0] = (float)m->color.r;
     r->cr[1] = (float)m->color.g;
     r->cr[2] = (float)m->color.b;
     for (int k = 0; k < 3; ++k) r->amb[k] = (lit || any_ambient) ? (float)m->ka * Ia[k] : 1.0f;
-    r->spec[0] = (float)(m->specular.r * m->ks * sn);
-    r->spec[1] = (float)(m->specular.g * m->ks * sn);
-    r->spec[2] = (float)(m->specular.b * m->ks * sn);
-    r->kd = (float)(m->kd * dn);
+    r->spec[0] = (float)(m->specular.r * m->ks);
+    r->spec[1] = (float)(m->specular.g * m->ks);
+    r->spec[2] = (float)(m->specular.b * m->ks);
+    r->kd = (float)m->kd;
     r->alpha = (float)m->alpha;
     r->spec_model = (int)m->specular_model;
     r->opacity = (float)m->opacity;
@@ -139,8 +136,7 @@ cj_status cj_rframe_materials(cj_rframe *F) {
     for (int m = 0; m <= c->nmat; ++m) {
         cj_material def = cj_material_default();
         set_material(&c->mats[m], m < c->nmat ? cj_scene_material(scene, m) : &def, f->lit,
-                     f->any_ambient, F->Ia,
-                     cj_scene_settings_get(scene)->light_model == CJ_LIGHT_RADIOMETRIC);
+                     f->any_ambient, F->Ia);
     }
     scan_scene(F->rs, c, f);
     const int normals_overlay = (F->rs->features & CJ_RF_NORMALS_OVERLAY) != 0;

@@ -57,7 +57,9 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
         if (L->area) {
             /* diffuse: the exact irradiance of the polygon; specular: its centre (render_pipe.h) */
             const double nd[3] = {n[0], n[1], n[2]};
-            const float e = (float)cj_reflect_polygon_irradiance(p, nd, L->corner, 4, L->normal);
+            /* the Lambertian BRDF 1/π times the irradiance */
+            const float e = (float)(cj_reflect_polygon_irradiance(p, nd, L->corner, 4, L->normal) /
+                                    3.14159265358979323846);
             double to[3] = {L->pos[0] - p[0], L->pos[1] - p[1], L->pos[2] - p[2]};
             double r2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2];
             double ct = -(to[0] * L->normal[0] + to[1] * L->normal[1] + to[2] * L->normal[2]);
@@ -67,7 +69,7 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
             l[2] = (float)to[2];
             normalize3f(l);
             float d, sp;
-            cj_reflect_terms_f(n, l, v, m->alpha, m->spec_model, &d, &sp);
+            cj_reflect_terms_f(n, l, v, m->alpha, m->spec_model, c->radiometric, &d, &sp);
             for (int k = 0; k < 3; ++k) {
                 sum_d[k] += e * L->I[k];
                 sum_s[k] += fs * L->I[k] * sp;
@@ -93,7 +95,7 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
             }
         }
         float d, sp;
-        cj_reflect_terms_f(n, l, v, m->alpha, m->spec_model, &d, &sp);
+        cj_reflect_terms_f(n, l, v, m->alpha, m->spec_model, c->radiometric, &d, &sp);
         for (int k = 0; k < 3; ++k) {
             sum_d[k] += f * L->I[k] * d;
             sum_s[k] += f * L->I[k] * sp;

@@ -135,11 +135,7 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
     cj_rgb out =
         cj_rgb_make(cr.r * m->ka * L->ia.r, cr.g * m->ka * L->ia.g, cr.b * m->ka * L->ia.b);
     cj_vec3 v = cj_v3_scale(d, -1.0);
-    /* radiometric: the BRDF r_d c_r / π + r_s c_p N(α) s (reflect_model.h) */
-    const double kdn = L->radiometric ? m->kd / PI : m->kd,
-                 ksn = L->radiometric
-                           ? m->ks * cj_reflect_lobe_norm((int)m->specular_model, m->alpha)
-                           : m->ks;
+    const double kdn = m->kd, ksn = m->ks;
     for (int i = 0; i < L->count; i++) {
         const cj_light *lt = L->light[i];
         cj_vec3 lp = lt->position;
@@ -212,7 +208,7 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
                        lt->color.b * lt->intensity * f};
         const double na[3] = {n.x, n.y, n.z}, la[3] = {l.x, l.y, l.z}, va[3] = {v.x, v.y, v.z};
         double dt, sp;
-        cj_reflect_terms_d(na, la, va, m->alpha, (int)m->specular_model, &dt, &sp);
+        cj_reflect_terms_d(na, la, va, m->alpha, (int)m->specular_model, L->radiometric, &dt, &sp);
         dt *= kdn;
         sp *= ksn;
         out.r += cr.r * I[0] * dt + m->specular.r * I[0] * sp;

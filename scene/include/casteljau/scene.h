@@ -145,8 +145,10 @@ typedef struct cj_light {
  *                  polygon for the diffuse term (Lambert's formula) and its centre as a point of
  *                  intensity L_e A cos θ′ for the specular one.
  *   The reflected radiance is then Σ f_r E with the material's BRDF
- *     f_r = r_d c_r / π + r_s c_p N(α) s
- *   (s the specular lobe of cj_specular_model, N(α) its normalisation, reflect_model.h).
+ *     f_r = r_d c_r / π + r_s c_p f_s
+ *   (f_s the energy-conserving form of the specular lobe of cj_specular_model:
+ *   (α+2)/(2π) max(0, m·v)^α for Phong, (α+1)/(8π) max(0, n·h)^α / ((l·h) max(n·l, n·v)) for
+ *   Blinn; raster/src/reflect_model.h, docs/light.md).
  * Emissive materials (cj_material.emission, a radiance) are seen by camera and secondary rays
  * in both models. */
 typedef enum cj_light_model { CJ_LIGHT_LEGACY = 0, CJ_LIGHT_RADIOMETRIC } cj_light_model;
