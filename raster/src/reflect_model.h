@@ -50,7 +50,8 @@
         if (c > (T)0)                                                                              \
             *s = POW(c, alpha);                                                                    \
         else                                                                                       \
-            *s = alpha == (T)0 ? (T)1 : (T)0; /* max(0, c)^0 = 1 */                                \
+            /* legacy: max(0, c)^0 = 1; radiometric: the lobe is the half space c > 0 */           \
+            *s = alpha == (T)0 && !radiometric ? (T)1 : (T)0;                                      \
         if (radiometric) {                                                                         \
             const T pi = (T)3.14159265358979323846;                                                \
             *d = nl / pi;                                                                          \

@@ -13,3 +13,8 @@ if(CJ_WITH_OIIO AND TARGET cj::viz)
   pkg_check_modules(CJ_LIGHT_OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
   cj_add_test(test_light_exr SOURCES test_light_exr.cpp LIBS cj::viz PkgConfig::CJ_LIGHT_OIIO)
 endif()
+# BRDFs (raster/src/brdf.h, private): Fresnel closed forms, energy conservation, sampling.
+if(TARGET cj::raster)
+  cj_add_test(test_light_brdf SOURCES test_light_brdf.c LIBS cj::raster)
+  target_include_directories(test_light_brdf PRIVATE ${PROJECT_SOURCE_DIR}/raster/src)
+endif()
