@@ -17,7 +17,7 @@ typedef struct tr_job {
     const cj_camera *cam;
     cj_xform3 clip;
     cj_render_image *img;
-    int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random, indirect;
+    int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random, indirect, integrator;
     uint64_t seed;
     cj_rgb bg;
     tr_shade *shade; /* per worker */
@@ -63,7 +63,9 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
         med.ior[0] = 1.0;
         med.top = 0;
         int hit = 0;
-        cj_rgb c = tr_trace(sh, &ray, TR_PRIMARY, 0, med, &hit);
+        cj_rgb c = sh->integrator == CJ_INTEGRATOR_PATH
+                       ? tr_path(sh, &ray, &hit)
+                       : tr_trace(sh, &ray, TR_PRIMARY, 0, med, &hit);
         acc[0] += c.r;
         acc[1] += c.g;
         acc[2] += c.b;
@@ -97,6 +99,7 @@ static void shade_init(const tr_job *j, tr_counts *c, tr_shade *sh) {
     sh->strata = j->strata;
     sh->random = j->random;
     sh->indirect = j->indirect;
+    sh->integrator = j->integrator;
 }
 
 /* One tile: a task of the renderer's scheduler (render_pool.h). */
@@ -115,7 +118,7 @@ static const char *const ray_stage[TR_KINDS] = {"primary_rays",      "shadow_ray
 /* The stages the scene's lights and materials decide, recorded with their reasons before any
  * ray is cast (a ray stage is marked as run afterwards, when rays of its kind were cast). */
 static void decide_stages(cj_stage_report *r, const cj_scene *scene, int spp, int indirect,
-                          unsigned planes) {
+                          unsigned planes, int integrator) {
     cj_stage_report_stage(r, "build_bvh"); /* the report's order */
     int shadow_lights = 0, receivers = 0, mirrors = -1, refr = -1, through = -1, tex = -1;
     int area = -1, glossy = -1, diffuse = -1;
@@ -158,7 +161,10 @@ static void decide_stages(cj_stage_report *r, const cj_scene *scene, int spp, in
         cj_stage_report_set(r, ray_stage[TR_THROUGH], 0, "material %d has opacity < 1", through);
     else
         cj_stage_report_set(r, ray_stage[TR_THROUGH], 0, "every material is opaque");
-    if (indirect == 0)
+    if (integrator == CJ_INTEGRATOR_PATH)
+        cj_stage_report_set(r, ray_stage[TR_INDIRECT], 0,
+                            "path tracer: BRDF-sampled bounces, Russian roulette, max depth");
+    else if (indirect == 0)
         cj_stage_report_set(r, ray_stage[TR_INDIRECT], 0,
                             "indirect_samples 0: no diffuse interreflection");
     else if (diffuse < 0)
@@ -295,7 +301,7 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
         if (img->depth)
             for (size_t i = 0; i < n; i++) img->depth[i] = 1.0f;
     }
-    decide_stages(R, scene, set.spp, set.indirect, planes);
+    decide_stages(R, scene, set.spp, set.indirect, planes, r->opt.trace.integrator);
     tr_scene ts;
     size_t bvh_reused = 0, bvh_built = 0;
     double t0 = cj_render_now();
@@ -325,6 +331,7 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     j.random = r->opt.trace.random_sampling != 0;
     j.max_depth = set.max_depth;
     j.indirect = set.indirect;
+    j.integrator = r->opt.trace.integrator;
     j.seed = r->opt.render.use_seed ? r->opt.render.seed : cj_scene_settings_get(scene)->seed;
     j.bg = cj_scene_settings_get(scene)->background;
     j.tile = set.tile;

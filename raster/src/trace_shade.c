@@ -72,7 +72,7 @@ int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit) {
     return got;
 }
 
-static int occluded(tr_shade *sh, const cj_ray *ray) {
+int tr_occluded(tr_shade *sh, const cj_ray *ray) {
     double t0 = now();
     int got = tr_any(sh->s, ray, sh->c);
     sh->c->seconds[TR_SHADOW] += now() - t0;
@@ -202,7 +202,7 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
                 sr.tmax = 1.0;
             }
             sr.tmin = 0.0;
-            if (occluded(sh, &sr)) continue;
+            if (tr_occluded(sh, &sr)) continue;
         }
         double I[3] = {lt->color.r * lt->intensity * f, lt->color.g * lt->intensity * f,
                        lt->color.b * lt->intensity * f};

@@ -18,3 +18,8 @@ if(TARGET cj::raster)
   cj_add_test(test_light_brdf SOURCES test_light_brdf.c LIBS cj::raster)
   target_include_directories(test_light_brdf PRIVATE ${PROJECT_SOURCE_DIR}/raster/src)
 endif()
+# The path tracer: furnace, NEE + MIS against the form factor, emitters seen by camera rays,
+# RMSE against spp, thread invariance.
+if(TARGET cj::raster)
+  cj_add_test(test_light_path SOURCES test_light_path.c LIBS cj::raster cj::scene)
+endif()

@@ -80,10 +80,27 @@ typedef struct cj_trace_options {
                                stratified over the N) each add kd c_r L_in / N to the local term,
                                L_in traced with depth + 1 but casting no further indirect rays.
                                Counted in the stage "indirect_rays". */
+    int integrator;         /* CJ_INTEGRATOR_WHITTED (0, the default) or CJ_INTEGRATOR_PATH */
 } cj_trace_options;
 
+/* CJ_INTEGRATOR_WHITTED: the shading described above. CJ_INTEGRATOR_PATH: a path tracer
+ * (docs/light.md): the rendering equation by random walks with next-event estimation to every
+ * light, multiple importance sampling (power heuristic) between area-light and BRDF samples,
+ * Russian roulette from the fourth bounce (survival q = the largest throughput channel, capped
+ * at 0.95, weight 1/q) and max_depth as a hard cap. Lights are read radiometrically (scene.h)
+ * and materials as the BSDF mixture r_t dielectric + r_m mirror + (1 − r_t − r_m) (r_d c_r/π +
+ * r_s c_p f_s); area lights are seen by camera rays and emission is added where a path meets
+ * it; ambient light is the radiance of the environment (added to the background). Bounces are
+ * counted as indirect_rays, next-event rays as shadow_rays; indirect_samples is ignored.
+ * Bit-identical for any thread count, like the Whitted tracer. */
+typedef enum cj_trace_integrator {
+    CJ_INTEGRATOR_WHITTED = 0,
+    CJ_INTEGRATOR_PATH
+} cj_trace_integrator;
+
 /* cj_render_trace with trace options (NULL: defaults); same status codes, and CJ_ERR_RANGE
- * for a patch_tolerance that is not 0 and not in (0, 1] or indirect_samples outside 0..4096. */
+ * for a patch_tolerance that is not 0 and not in (0, 1], indirect_samples outside 0..4096 or
+ * an integrator that is not a cj_trace_integrator. */
 cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt,
                              const cj_trace_options *topt, unsigned planes,
                              const cj_allocator *alloc, cj_render_image **out,
