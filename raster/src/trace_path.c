@@ -13,9 +13,10 @@
  * wherever a path meets it; emissive materials are not sampled as lights. Ambient light is
  * environment radiance: a path that leaves the scene gathers background + Σ I_a.
  *
- * RAYS: camera rays count as primary_rays, bounces as indirect_rays, next-event rays as
- * shadow_rays. Random numbers come from the per-sample counter-based generator, so the image
- * is bit-identical for any thread count. */
+ * RAYS: camera rays count as primary_rays, diffuse and glossy bounces as indirect_rays,
+ * mirror and Fresnel reflections as reflection_rays, refractions as refraction_rays,
+ * next-event rays as shadow_rays. Random numbers come from the per-sample counter-based generator,
+ * so the image is bit-identical for any thread count. */
 #include "trace_shade.h"
 
 #include "brdf.h"
@@ -152,10 +153,10 @@ cj_rgb tr_path(tr_shade *sh, const cj_ray *camera_ray, int *hit_any) {
     cj_rgb out = cj_rgb_make(0, 0, 0), T = cj_rgb_make(1, 1, 1);
     cj_ray ray = *camera_ray;
     double prev_pdf = 0.0;
-    int prev_delta = 1;
+    int prev_delta = 1, kind = TR_PRIMARY;
     for (int depth = 0;; ++depth) {
         cj_hit h;
-        int got = tr_cast(sh, depth == 0 ? TR_PRIMARY : TR_INDIRECT, &ray, &h);
+        int got = tr_cast(sh, kind, &ray, &h);
         double tl = 0.0, cl = 0.0;
         int li = hit_area_light(L, &ray, got ? h.t : INFINITY, &tl, &cl);
         if (li >= 0) { /* an emitter seen directly or reached by a BRDF sample */
@@ -211,6 +212,7 @@ cj_rgb tr_path(tr_shade *sh, const cj_ray *camera_ray, int *hit_any) {
             if (!cj_brdf_sample_dir(&b, wo, 0.0, 0.0, tr_rand(&sh->rng), &smp)) break;
             dir = to_world(&fr, smp.wi);
             prev_delta = 1;
+            kind = smp.wi[2] * wo[2] > 0.0 ? TR_REFLECT : TR_REFRACT;
         } else {
             fr.n = n;
             cj_frame_from_axis(fr.n, &fr.a, &fr.b);
@@ -222,6 +224,7 @@ cj_rgb tr_path(tr_shade *sh, const cj_ray *camera_ray, int *hit_any) {
                 if (!cj_brdf_sample_dir(&b, wo, 0.0, 0.0, 0.0, &smp)) break;
                 T = cj_rgb_make(T.r * m->specular.r, T.g * m->specular.g, T.b * m->specular.b);
                 prev_delta = 1;
+                kind = TR_REFLECT;
             } else {
                 pt_local loc;
                 loc.kd = cj_rgb_make(m->kd * cr.r, m->kd * cr.g, m->kd * cr.b);
@@ -251,6 +254,7 @@ cj_rgb tr_path(tr_shade *sh, const cj_ray *camera_ray, int *hit_any) {
                 T = cj_rgb_make(T.r * f.r * c, T.g * f.g * c, T.b * f.b * c);
                 prev_pdf = pdf;
                 prev_delta = 0;
+                kind = TR_INDIRECT;
             }
             dir = to_world(&fr, smp.wi);
         }

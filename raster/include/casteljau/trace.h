@@ -90,8 +90,10 @@ typedef struct cj_trace_options {
  * at 0.95, weight 1/q) and max_depth as a hard cap. Lights are read radiometrically (scene.h)
  * and materials as the BSDF mixture r_t dielectric + r_m mirror + (1 − r_t − r_m) (r_d c_r/π +
  * r_s c_p f_s); area lights are seen by camera rays and emission is added where a path meets
- * it; ambient light is the radiance of the environment (added to the background). Bounces are
- * counted as indirect_rays, next-event rays as shadow_rays; indirect_samples is ignored.
+ * it; ambient light is the radiance of the environment (added to the background). Diffuse
+ * and glossy bounces are counted as indirect_rays, mirror and Fresnel reflections as
+ * reflection_rays, refractions as refraction_rays, next-event rays as shadow_rays;
+ * indirect_samples is ignored.
  * Bit-identical for any thread count, like the Whitted tracer. */
 typedef enum cj_trace_integrator {
     CJ_INTEGRATOR_WHITTED = 0,
