@@ -56,7 +56,25 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
             }
         }
         cj_ray ray;
-        if (cj_camera_ray(j->cam, j->w, j->h, px, py, &ray.org, &ray.dir) != CJ_OK) continue;
+        if (j->cam->aperture > 0.0) { /* thin lens: a lens point per sample, stratified */
+            double lu = tr_rand(&sh->rng), lv = tr_rand(&sh->rng);
+            if (j->spp > 1 && !j->random) {
+                uint32_t ns = (uint32_t)j->spp, k = (uint32_t)j->strata;
+                uint32_t si =
+                    (tr_permute((uint32_t)s, ns, sh->perm_key ^ 0x2545f4914f6cdd1dull) + sh->perm) %
+                    ns;
+                if (k * k == ns) {
+                    lu = ((si % k) + lu) / k;
+                    lv = ((si / k) + lv) / k;
+                } else {
+                    lu = (si + lu) / ns;
+                }
+            }
+            if (cj_camera_lens_ray(j->cam, j->w, j->h, px, py, lu, lv, &ray.org, &ray.dir) != CJ_OK)
+                continue;
+        } else if (cj_camera_ray(j->cam, j->w, j->h, px, py, &ray.org, &ray.dir) != CJ_OK) {
+            continue;
+        }
         ray.tmin = 0.0;
         ray.tmax = INFINITY;
         tr_medium med;

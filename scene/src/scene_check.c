@@ -109,6 +109,12 @@ cj_status cj_scene_check_camera_(const cj_camera *c, const char *p) {
     } else {
         return cj_fail(CJ_ERR_RANGE, "%s.projection %d is not a projection", p, (int)c->projection);
     }
+    TRY(ge(p, "aperture", c->aperture, 0.0));
+    if (c->aperture > 0.0) {
+        TRY(gt(p, "focus_distance", c->focus_distance, 0.0));
+        if (c->projection != CJ_PROJ_PERSPECTIVE)
+            return cj_fail(CJ_ERR_RANGE, "%s.aperture needs a perspective camera", p);
+    }
     /* Whatever else the camera model itself needs (its frame), in its own words. */
     return relabel(cj_camera_check(c), p);
 }

@@ -50,6 +50,8 @@ static const char *const CAMERA_KEYS[] = {"eye",
                                           "focal_length_mm",
                                           "sensor_height_mm",
                                           "ortho_height",
+                                          "aperture",
+                                          "focus_distance",
                                           NULL};
 
 cj_status cj_json_read_camera_(jctx *c, const cJSON *obj) {
@@ -99,6 +101,8 @@ cj_status cj_json_read_camera_(jctx *c, const cJSON *obj) {
                              CJ_ERR_PARSE, "camera.sensor_height_mm needs focal_length_mm");
     }
     TRY(cj_json_num_(c, obj, p, "ortho_height", R_GT, 0, 0, &cam.ortho_height));
+    TRY(cj_json_num_(c, obj, p, "aperture", R_GE, 0, 0, &cam.aperture));
+    TRY(cj_json_num_(c, obj, p, "focus_distance", R_GT, 0, 0, &cam.focus_distance));
     cj_status st = cj_scene_check_camera_(&cam, p);
     if (!st) st = cj_scene_set_camera(c->scene, &cam);
     if (st) return cj_json_relabel_(c, obj, st);

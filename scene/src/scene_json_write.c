@@ -158,6 +158,10 @@ static void write_camera(emitter *e, const cj_camera *c) {
     string(e, "projection", c->projection == CJ_PROJ_PERSPECTIVE ? "perspective" : "orthographic");
     angle(e, "fov", c->fov_y);
     if (c->ortho_height > 0) num(e, "ortho_height", c->ortho_height);
+    if (c->aperture > 0) {
+        num(e, "aperture", c->aperture);
+        num(e, "focus_distance", c->focus_distance);
+    }
     close_c(e, '}');
 }
 

@@ -23,3 +23,7 @@ endif()
 if(TARGET cj::raster)
   cj_add_test(test_light_path SOURCES test_light_path.c LIBS cj::raster cj::scene)
 endif()
+# The thin lens: circle of confusion against its formula.
+if(TARGET cj::raster)
+  cj_add_test(test_light_lens SOURCES test_light_lens.c LIBS cj::raster cj::scene)
+endif()

@@ -71,6 +71,13 @@ typedef struct cj_camera {
     cj_projection projection;
     double fov_y;        /* perspective: full vertical field of view, radians, in (0, pi) */
     double ortho_height; /* orthographic: height of the view volume in world units, > 0 */
+    /* Thin lens (seed 6.1; the ray tracer only, the rasterizer is a pinhole): the lens
+     * diameter A in world units (0, the default: a pinhole) and the distance F from the eye to
+     * the plane in focus, along the gaze (> 0 when A > 0; perspective cameras only). A point
+     * at distance d along the gaze is blurred into a disk of diameter A |d − F| / d on the
+     * plane in focus (the circle of confusion). */
+    double aperture;
+    double focus_distance;
 } cj_camera;
 
 /* A camera at (0, 0, 5) looking at the origin, up +y, 45° vertical field of view,
@@ -103,6 +110,13 @@ cj_status cj_camera_world_to_clip(const cj_camera *cam, double aspect, cj_xform3
  * centre (same camera model). */
 cj_status cj_camera_ray(const cj_camera *cam, int width, int height, double px, double py,
                         cj_vec3 *origin, cj_vec3 *dir);
+
+/* The thin-lens ray through image point (px, py) and lens point (lu, lv) in [0, 1)²: the
+ * lens point e + r (cos φ u + sin φ v) with r = (A/2) √lu, φ = 2π lv (uniform on the lens
+ * disk), aimed at where the pinhole ray through (px, py) meets the plane in focus (distance F
+ * along the gaze). A pinhole camera (aperture 0) gives cj_camera_ray's ray. Same status codes. */
+cj_status cj_camera_lens_ray(const cj_camera *cam, int width, int height, double px, double py,
+                             double lu, double lv, cj_vec3 *origin, cj_vec3 *dir);
 
 /* ---- lights (seed 8) -------------------------------------------------------------------- */
 

@@ -26,6 +26,8 @@
  *     "fov_deg": 40,               full vertical field of view (or "fov_rad"), or
  *                                  "focal_length_mm": 50 with "sensor_height_mm" (24)
  *     "ortho_height": 4            orthographic: height of the view volume
+ *     "aperture": 0.1,             thin lens (ray tracer): lens diameter (0: pinhole) and
+ *     "focus_distance": 8          the distance of the plane in focus along the gaze
  *   },
  *   "settings": {"width": 640, "height": 480, "spp": 4, "tol_px": 0.25,
  *                "background": [0, 0, 0], "max_depth": 5, "seed": 1,
