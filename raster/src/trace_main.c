@@ -3,6 +3,8 @@
  * report. */
 #include "trace_shade.h"
 
+#include "pixel_filter.h"
+
 #include "error_internal.h"
 #include "render_internal.h"
 #include "render_progress.h"
@@ -18,6 +20,8 @@ typedef struct tr_job {
     cj_xform3 clip;
     cj_render_image *img;
     int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random, indirect, integrator;
+    cj_pixel_filter filter; /* not box only when spp > 1 */
+    double filter_r;
     uint64_t seed;
     cj_rgb bg;
     tr_shade *shade; /* per worker */
@@ -32,7 +36,7 @@ static float pseudodepth(const cj_xform3 *m, cj_vec3 p) {
 
 static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
     size_t pix = (size_t)y * (size_t)j->w + (size_t)x;
-    double acc[3] = {0, 0, 0};
+    double acc[3] = {0, 0, 0}, wsum = 0.0, wcov = 0.0;
     int covered = 0;
     uint64_t pkey = tr_mix(j->seed ^ tr_mix((uint64_t)pix));
     sh->perm = (uint32_t)(pkey >> 40);
@@ -54,6 +58,15 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
                 px = x + (s + tr_rand(&sh->rng)) / j->spp;
                 py = y + tr_rand(&sh->rng);
             }
+        }
+        double fw = 1.0;
+        if (j->filter != CJ_FILTER_BOX) { /* the pixel's samples spread over the support */
+            const double dx = (2.0 * (px - x) - 1.0) * j->filter_r,
+                         dy = (2.0 * (py - y) - 1.0) * j->filter_r;
+            px = x + 0.5 + dx;
+            py = y + 0.5 + dy;
+            fw = cj_pixel_filter_eval(j->filter, j->filter_r, dx) *
+                 cj_pixel_filter_eval(j->filter, j->filter_r, dy);
         }
         cj_ray ray;
         if (j->cam->aperture > 0.0) { /* thin lens: a lens point per sample, stratified */
@@ -84,14 +97,29 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
         cj_rgb c = sh->integrator == CJ_INTEGRATOR_PATH
                        ? tr_path(sh, &ray, &hit)
                        : tr_trace(sh, &ray, TR_PRIMARY, 0, med, &hit);
+        if (j->filter != CJ_FILTER_BOX) {
+            acc[0] += fw * c.r;
+            acc[1] += fw * c.g;
+            acc[2] += fw * c.b;
+            wsum += fw;
+            wcov += fw * hit;
+            continue;
+        }
         acc[0] += c.r;
         acc[1] += c.g;
         acc[2] += c.b;
         covered += hit;
     }
     float *o = j->img->rgba + 4 * pix;
-    for (int k = 0; k < 3; k++) o[k] = (float)(acc[k] / j->spp);
-    o[3] = (float)covered / (float)j->spp;
+    if (j->filter != CJ_FILTER_BOX) { /* the weighted mean Σ f L / Σ f */
+        const double inv = wsum != 0.0 ? 1.0 / wsum : 0.0;
+        for (int k = 0; k < 3; k++) o[k] = (float)(acc[k] * inv);
+        double a = wcov * inv;
+        o[3] = (float)(a < 0.0 ? 0.0 : (a > 1.0 ? 1.0 : a));
+    } else {
+        for (int k = 0; k < 3; k++) o[k] = (float)(acc[k] / j->spp);
+        o[3] = (float)covered / (float)j->spp;
+    }
     if (j->img->ids || j->img->depth) {
         cj_ray ray;
         cj_hit h;
@@ -350,6 +378,8 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     j.max_depth = set.max_depth;
     j.indirect = set.indirect;
     j.integrator = r->opt.trace.integrator;
+    j.filter = set.spp > 1 ? cj_scene_settings_get(scene)->filter : CJ_FILTER_BOX;
+    j.filter_r = cj_pixel_filter_radius(j.filter, cj_scene_settings_get(scene)->filter_radius);
     j.seed = r->opt.render.use_seed ? r->opt.render.seed : cj_scene_settings_get(scene)->seed;
     j.bg = cj_scene_settings_get(scene)->background;
     j.tile = set.tile;

@@ -131,6 +131,9 @@ cj_status cj_scene_check_settings_(const cj_scene_settings *s, const char *p) {
     if ((int)s->light_model < 0 || s->light_model > CJ_LIGHT_RADIOMETRIC)
         return cj_fail(CJ_ERR_RANGE, "%s.light_model %d is not a light model", p,
                        (int)s->light_model);
+    if ((int)s->filter < 0 || s->filter > CJ_FILTER_MITCHELL)
+        return cj_fail(CJ_ERR_RANGE, "%s.filter %d is not a pixel filter", p, (int)s->filter);
+    TRY(ge(p, "filter_radius", s->filter_radius, 0.0));
     return CJ_OK;
 }
 

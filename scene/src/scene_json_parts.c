@@ -109,8 +109,9 @@ cj_status cj_json_read_camera_(jctx *c, const cJSON *obj) {
     return CJ_OK;
 }
 
-static const char *const SETTINGS_KEYS[] = {
-    "width", "height", "spp", "tol_px", "background", "max_depth", "seed", "light_model", NULL};
+static const char *const SETTINGS_KEYS[] = {"width",      "height",        "spp",  "tol_px",
+                                            "background", "max_depth",     "seed", "light_model",
+                                            "filter",     "filter_radius", NULL};
 static const char *const LIGHT_MODELS[] = {"legacy", "radiometric", NULL}; /* cj_light_model */
 
 cj_status cj_json_read_settings_(jctx *c, const cJSON *obj) {
@@ -132,6 +133,11 @@ cj_status cj_json_read_settings_(jctx *c, const cJSON *obj) {
     int lm = (int)s.light_model;
     TRY(cj_json_enum_(c, obj, p, "light_model", LIGHT_MODELS, &lm));
     s.light_model = (cj_light_model)lm;
+    static const char *const FILTERS[] = {"box", "tent", "gaussian", "mitchell", NULL};
+    int fk = (int)s.filter;
+    TRY(cj_json_enum_(c, obj, p, "filter", FILTERS, &fk));
+    s.filter = (cj_pixel_filter)fk;
+    TRY(cj_json_num_(c, obj, p, "filter_radius", R_GE, 0, 0, &s.filter_radius));
     cj_status st = cj_scene_set_settings(c->scene, &s);
     return st ? cj_json_relabel_(c, obj, st) : CJ_OK;
 }

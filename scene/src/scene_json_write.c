@@ -175,6 +175,9 @@ static void write_settings(emitter *e, const cj_scene_settings *s) {
     integer(e, "max_depth", s->max_depth);
     integer(e, "seed", (long long)s->seed);
     string(e, "light_model", s->light_model == CJ_LIGHT_RADIOMETRIC ? "radiometric" : "legacy");
+    static const char *const FILTERS[] = {"box", "tent", "gaussian", "mitchell"};
+    string(e, "filter", FILTERS[s->filter]);
+    num(e, "filter_radius", s->filter_radius);
     close_c(e, '}');
 }
 

@@ -27,3 +27,7 @@ endif()
 if(TARGET cj::raster)
   cj_add_test(test_light_lens SOURCES test_light_lens.c LIBS cj::raster cj::scene)
 endif()
+# Pixel reconstruction filters: edge responses against the filters' definitions.
+if(TARGET cj::raster)
+  cj_add_test(test_light_filter SOURCES test_light_filter.c LIBS cj::raster cj::scene)
+endif()

@@ -356,6 +356,21 @@ typedef struct cj_node {
 
 /* ---- render settings stored with the scene (CLI flags override them) ---------------------- */
 
+/* The ray tracer's pixel reconstruction filter (docs/light.md), separable f(dx) f(dy) over
+ * |dx|, |dy| < r pixels from the pixel centre, the pixel the weighted mean Σ f L / Σ f of its
+ * samples (spread over the filter's support). r = filter_radius, or when 0 the default below.
+ *   BOX       f = 1                                   (default r 0.5: the pixel itself)
+ *   TENT      f = 1 − |x|/r                           (default r 1)
+ *   GAUSSIAN  f = exp(−x²/2σ²) − exp(−r²/2σ²), σ = r/3 (default r 1.5)
+ *   MITCHELL  Mitchell–Netravali, B = C = 1/3, of t = 2|x|/r (default r 2; negative lobes)
+ * The rasterizer always box-filters its samples. */
+typedef enum cj_pixel_filter {
+    CJ_FILTER_BOX = 0,
+    CJ_FILTER_TENT,
+    CJ_FILTER_GAUSSIAN,
+    CJ_FILTER_MITCHELL
+} cj_pixel_filter;
+
 typedef struct cj_scene_settings {
     int width, height;          /* image size, 1..CJ_FRAMEBUFFER_MAX_SIDE (default 640 × 480) */
     int spp;                    /* samples per pixel: rasterizer 1, 4 or 16; ray tracer any >= 1 */
@@ -364,6 +379,8 @@ typedef struct cj_scene_settings {
     int max_depth;              /* ray tracer recursion depth (default 5) */
     uint64_t seed;              /* random sampling seed (default 1) */
     cj_light_model light_model; /* what light intensities mean (default CJ_LIGHT_LEGACY) */
+    cj_pixel_filter filter;     /* ray tracer, spp > 1 (default CJ_FILTER_BOX) */
+    double filter_radius;       /* pixels, >= 0; 0: the filter's default */
 } cj_scene_settings;
 
 cj_scene_settings cj_scene_settings_default(void);

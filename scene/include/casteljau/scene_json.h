@@ -31,7 +31,9 @@
  *   },
  *   "settings": {"width": 640, "height": 480, "spp": 4, "tol_px": 0.25,
  *                "background": [0, 0, 0], "max_depth": 5, "seed": 1,
- *                "light_model": "legacy"},   or "radiometric": what intensities mean
+ *                "light_model": "legacy",    or "radiometric": what intensities mean
+ *                "filter": "box", "filter_radius": 0},  ray tracer: box | tent | gaussian |
+ *                                  mitchell, radius in pixels (0: the filter's default)
  *                                  (cj_light_model in casteljau/scene.h, docs/light.md)
  *   "lights": [
  *     {"type": "ambient", "color": [1, 1, 1], "intensity": 0.2},
