@@ -4,6 +4,8 @@
  *     casteljau intersect curves.json | casteljau plot - -o out.png
  * draws the curves with their intersections marked; --text prints one line per answer. */
 #include "cli.h"
+#include "cli_guard.h"
+#include "file_internal.h"
 
 #include "casteljau/bezier.h"
 #include "casteljau/intersect.h"
@@ -70,8 +72,15 @@ typedef struct qcurve {
 } qcurve;
 
 static char *read_all(const char *cmd, const char *path, int *rc) {
-    FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
     char q[160];
+    if (strcmp(path, "-")) { /* a file: regular, capped, logged as an input (file_internal.h) */
+        char *data = NULL;
+        size_t size = 0;
+        const cj_status st = cj_file_read_all(path, QUERY_MAX_BYTES, "document", &data, &size);
+        if (st) *rc = cli_fail_status(cmd, st, "%s", cj_last_error());
+        return st ? NULL : data;
+    }
+    FILE *f = stdin;
     if (!f) {
         *rc = cli_fail(cmd, "cannot open '%s'", cli_quote(path, q, sizeof q));
         return NULL;

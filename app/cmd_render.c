@@ -10,11 +10,13 @@
 static const char render_usage[] =
     "usage: casteljau render (SCENE.json | --demo) -o OUT.png|OUT.exr [--width W --height H]\n"
     "                        [--spp 1|4|16] [--tol-px T] [--threads N] [--stage-report]\n"
+    "                        [--exr-half]\n"
     "  SCENE.json      a scene file (see scene/include/casteljau/scene_json.h); image textures\n"
     "                  are read relative to its folder\n"
     "  --demo          the built-in scene: the lit, textured Utah teapot with its control net\n"
-    "  -o              PNG (8-bit sRGB) or EXR (linear half float), the picture composited over\n"
-    "                  the scene's background (opaque)\n"
+    "  -o              PNG (8-bit sRGB) or EXR (linear 32-bit float), the picture composited over\n"
+    "                  the scene's background (opaque); no infinite value is ever written\n"
+    "  --exr-half      store the EXR as half floats (a value above 65504 is refused)\n"
     "  --width/height  image size (default: the scene's settings)\n"
     "  --spp           samples per pixel (supersampling, box-filtered)\n"
     "  --tol-px        screen-space tessellation tolerance in pixels (default 0.25)\n"
@@ -34,7 +36,7 @@ int cmd_render(int argc, char **argv) {
     static const cli_opt opts[] = {CLI_SCENE_OPTIONS, {"--spp", NULL, 1}, {"--tol-px", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, render_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
-    cli_scene_args a = {NULL, NULL, 0, 0};
+    cli_scene_args a = {NULL, NULL, 0, 0, 0};
     const char *v;
     long n;
     cj_render_options opt = cj_render_options_default();

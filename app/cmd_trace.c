@@ -12,12 +12,14 @@
 static const char trace_usage[] =
     "usage: casteljau trace (SCENE.json | --demo) -o OUT.png|OUT.exr [--width W --height H]\n"
     "                       [--spp N] [--max-depth D] [--seed S] [--threads N] [--signature]\n"
-    "                       [--indirect N]\n"
+    "                       [--indirect N] [--integrator whitted|path] [--exr-half]\n"
     "                       [--stage-report]\n"
     "  SCENE.json      a scene file (the same files `casteljau render` reads)\n"
     "  --demo          built-in scene: a mirror sphere, a glass sphere and the Utah teapot\n"
     "                  (its Bezier patches traced directly) on a checkered floor\n"
-    "  -o              PNG (8-bit sRGB) or EXR (linear float)\n"
+    "  -o              PNG (8-bit sRGB) or EXR (linear 32-bit float; no infinite value is\n"
+    "                  ever written)\n"
+    "  --exr-half      store the EXR as half floats (a value above 65504 is refused)\n"
     "  --width/height  image size (default: the scene's settings)\n"
     "  --spp           samples per pixel, any N >= 1 (stratified; area lights and glossy\n"
     "                  materials are sampled only when N > 1)\n"
@@ -26,6 +28,9 @@ static const char trace_usage[] =
     "  --threads       worker threads (default: one per core)\n"
     "  --indirect      one-bounce diffuse interreflection: N cosine-weighted rays per diffuse\n"
     "                  hit (default 0: off)\n"
+    "  --integrator    whitted (default): local shading, mirror and refraction rays; path: a\n"
+    "                  path tracer (next-event estimation, MIS, Russian roulette; lights read\n"
+    "                  radiometrically; docs/light.md)\n"
     "  --signature     write the scene signature image instead: each object id its colour\n"
     "  --stage-report  print the stage report (JSON) on stdout\n";
 
@@ -50,13 +55,14 @@ static void id_colour(uint32_t id, float c[3]) {
 
 int cmd_trace(int argc, char **argv) {
     const char *cmd = "trace";
-    enum { O_SIGNATURE = CLI_SO_COUNT, O_SPP, O_DEPTH, O_SEED, O_INDIRECT };
-    static const cli_opt opts[] = {CLI_SCENE_OPTIONS,   {"--signature", NULL, 0},
-                                   {"--spp", NULL, 1},  {"--max-depth", NULL, 1},
-                                   {"--seed", NULL, 1}, {"--indirect", NULL, 1}};
+    enum { O_SIGNATURE = CLI_SO_COUNT, O_SPP, O_DEPTH, O_SEED, O_INDIRECT, O_INTEGRATOR };
+    static const cli_opt opts[] = {CLI_SCENE_OPTIONS,        {"--signature", NULL, 0},
+                                   {"--spp", NULL, 1},       {"--max-depth", NULL, 1},
+                                   {"--seed", NULL, 1},      {"--indirect", NULL, 1},
+                                   {"--integrator", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, trace_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
-    cli_scene_args a = {NULL, NULL, 0, 0};
+    cli_scene_args a = {NULL, NULL, 0, 0, 0};
     const char *v;
     int signature = 0;
     long n;
@@ -93,6 +99,14 @@ int cmd_trace(int argc, char **argv) {
             if (cli_parse_int(v, 0, 4096, &n))
                 return cli_fail(cmd, "--indirect '%s' is not an integer in 0..4096", v);
             topt.indirect_samples = (int)n;
+            break;
+        case O_INTEGRATOR:
+            if (!strcmp(v, "whitted"))
+                topt.integrator = CJ_INTEGRATOR_WHITTED;
+            else if (!strcmp(v, "path"))
+                topt.integrator = CJ_INTEGRATOR_PATH;
+            else
+                return cli_fail(cmd, "--integrator '%s' is neither whitted nor path", v);
             break;
         default: /* the scene file and the options render and trace share */
             if (cli_scene_arg(cmd, k, v, &a, &opt)) return CLI_EXIT_USAGE;

@@ -73,7 +73,8 @@ int cli_write_render(const char *cmd, const char *out, int exr, const cj_render_
             memcpy(px + 4 * i, img->rgba + 4 * i, 3 * sizeof(float));
             px[4 * i + 3] = 1.0f;
         }
-        st = cj_image_write_float(out, img->width, img->height, px, 0);
+        st = cj_image_write_float_ex(out, img->width, img->height, px, 0,
+                                     exr == 2 ? (unsigned)CJ_IMAGE_FLOAT_HALF : 0u);
         free(px);
     } else {
         uint8_t *px = malloc(n * 4);
@@ -113,6 +114,9 @@ int cli_scene_arg(const char *cmd, int k, const char *v, cli_scene_args *a,
                             k == CLI_SO_WIDTH ? "--width" : "--height", v);
         *(k == CLI_SO_WIDTH ? &opt->width : &opt->height) = (int)n;
         break;
+    case CLI_SO_EXR_HALF:
+        a->exr_half = 1;
+        break;
     default: /* CLI_SO_THREADS */
         if (cli_parse_int(v, 1, 1024, &n))
             return cli_fail(cmd, "--threads '%s' is not an integer in 1..1024", v);
@@ -130,6 +134,7 @@ int cli_open_scene(const char *cmd, const cli_scene_args *a, cli_demo_scene_fn m
     if (!a->out) return cli_fail(cmd, "no output file: give -o OUT.png or -o OUT.exr");
     int rc = cli_render_output(cmd, a->out, exr);
     if (rc) return rc;
+    if (*exr && a->exr_half) *exr = 2; /* cli_write_render: half floats */
     *scene = NULL;
     if (!a->demo) {
         rc = cli_load_scene(cmd, a->scene_path, scene);

@@ -11,12 +11,13 @@
  * *out. On failure prints one line (file:line: JSON path ...) and returns CLI_EXIT_USAGE. */
 int cli_load_scene(const char *cmd, const char *path, cj_scene **out);
 
-/* Checks -o before any work: it must end in .png (8-bit sRGB) or .exr (linear half float), in
+/* Checks -o before any work: it must end in .png (8-bit sRGB) or .exr (linear float), in
  * a folder that can be written. Sets *exr; on failure prints one line and returns
  * CLI_EXIT_USAGE. */
 int cli_render_output(const char *cmd, const char *out, int *exr);
 
-/* Writes img opaque (alpha 1): sRGB PNG or linear EXR. Prints a line and returns non-zero on
+/* Writes img opaque (alpha 1): sRGB PNG or linear EXR (exr 1: 32-bit float, 2: half float,
+ * as --exr-half asks; cli_open_scene sets 2). Prints a line and returns non-zero on
  * failure (1 for a failed write, as every writer of the tool). */
 int cli_write_render(const char *cmd, const char *out, int exr, const cj_render_image *img);
 
@@ -28,8 +29,8 @@ typedef cj_status (*cli_demo_scene_fn)(const char *teapot_bpt, const cj_allocato
  * the order of the CLI_SO_* indices; cli_scene_arg takes those and the scene file. */
 #define CLI_SCENE_OPTIONS                                                                          \
     {"--demo", NULL, 0}, {"--stage-report", NULL, 0}, {"--output", "-o", 1}, {"--width", NULL, 1}, \
-        {"--height", NULL, 1}, {                                                                   \
-        "--threads", NULL, 1                                                                       \
+        {"--height", NULL, 1}, {"--threads", NULL, 1}, {                                           \
+        "--exr-half", NULL, 0                                                                      \
     }
 enum {
     CLI_SO_DEMO,
@@ -38,6 +39,7 @@ enum {
     CLI_SO_WIDTH,
     CLI_SO_HEIGHT,
     CLI_SO_THREADS,
+    CLI_SO_EXR_HALF,
     CLI_SO_COUNT /* the command's own options start here */
 };
 
@@ -45,6 +47,7 @@ typedef struct cli_scene_args {
     const char *scene_path; /* SCENE.json, or NULL */
     const char *out;        /* -o */
     int demo, report;       /* --demo, --stage-report */
+    int exr_half;           /* --exr-half: EXR stored as half floats (default 32-bit) */
 } cli_scene_args;
 
 /* Takes the positional argument (the scene file; a second one is an error) or the shared

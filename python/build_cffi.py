@@ -3,7 +3,8 @@
 Run by CMake (python/CMakeLists.txt) as `python3 build_cffi.py OUT.c`; CMake then compiles
 OUT.c against the library's public headers and links the static libraries into the module.
 cffi's API mode is used on purpose: the declarations below are compiled against the real
-headers, so a declaration that drifts from its header is a build error, not a wrong call.
+headers, so a declaration that drifts from its header is an error (at build or first use), not a
+wrong call.
 Only what casteljau/__init__.py uses is declared; `...;` leaves the rest of a struct to the
 compiler.
 """
@@ -62,8 +63,9 @@ typedef enum cj_flatten_method {
 } cj_flatten_method;
 typedef struct cj_flatten_opts {
     cj_flatten_method method; double tol; size_t max_segments;
+    ...;
 } cj_flatten_opts;
-typedef struct cj_flatten_stats { size_t segments; double bound; } cj_flatten_stats;
+typedef struct cj_flatten_stats { size_t segments; double bound; ...; } cj_flatten_stats;
 cj_status cj_flatten_bezier(const cj_bezier *c, const cj_flatten_opts *opts, double *out,
                             size_t cap_points, size_t *npoints, cj_flatten_stats *stats);
 cj_status cj_flatten_rbezier(const cj_rbezier *c, const cj_flatten_opts *opts, double *out,
@@ -87,10 +89,12 @@ void cj_mesh_destroy(cj_mesh *mesh);
 cj_status cj_mesh_weld(cj_mesh *mesh, size_t *dropped);
 typedef struct cj_tess_options {
     double tol; int uniform; int measure; int max_segments;
+    ...;
 } cj_tess_options;
 typedef struct cj_tess_report {
     size_t triangles; size_t vertices; size_t dropped; double bound; double measured;
     int max_nu; int max_nv;
+    ...;
 } cj_tess_report;
 cj_status cj_tessellate_patches(const cj_patch *patches, size_t count,
                                 const cj_tess_options *opt, cj_mesh *mesh,
@@ -106,6 +110,7 @@ typedef enum cj_projection { CJ_PROJ_PERSPECTIVE, CJ_PROJ_ORTHOGRAPHIC } cj_proj
 typedef struct cj_camera {
     cj_vec3 eye; cj_vec3 gaze; cj_vec3 up; double near; double far;
     cj_projection projection; double fov_y; double ortho_height;
+    ...;
 } cj_camera;
 cj_camera cj_camera_default(void);
 typedef enum cj_light_kind {
@@ -130,6 +135,7 @@ typedef struct cj_node { cj_transform local; ...; } cj_node;
 typedef struct cj_scene_settings {
     int width, height; int spp; double tol_px; cj_rgb background; int max_depth;
     uint64_t seed;
+    ...;
 } cj_scene_settings;
 typedef struct cj_scene cj_scene;
 cj_status cj_scene_create(const cj_allocator *alloc, cj_scene **out);

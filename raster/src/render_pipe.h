@@ -9,11 +9,12 @@
  *   flat     L = c_r·t·A + S        A, S per triangle at its centroid (face normal)
  *   Gouraud  L = c_r·t·A + S        A, S per vertex, interpolated
  *   Phong    L = c_r·t·A + S        A, S per sample from the interpolated normal
- * with A = r_a I_a + r_d Σ I max(0, n·l), S = c_p r_s Σ I max(0, n·h)^α (h = (l+v)/|l+v|),
- * t the texture's RGB (1 without texture). Two-sided materials light the side the viewer sees:
- * where a triangle shows its back ((p̄ − ē)·n⃗ > 0 for its face normal n⃗, seed 7.2) every normal
- * it shades with is flipped. The triangle decides, not the interpolated normal, which can point
- * away from the viewer near a silhouette and would light the wrong side. */
+ * with A = r_a I_a + r_d Σ I d, S = c_p r_s Σ I s (d, s: the one reflection model of
+ * reflect_model.h, shared with the ray tracer: no highlight where n·l <= 0), t the texture's RGB (1
+ * without texture). Two-sided materials light the side the viewer sees: where a triangle shows its
+ * back ((p̄ − ē)·n⃗ > 0 for its face normal n⃗, seed 7.2) every normal it shades with is flipped. The
+ * triangle decides, not the interpolated normal, which can point away from the viewer near a
+ * silhouette and would light the wrong side. */
 #ifndef CASTELJAU_RENDER_PIPE_H
 #define CASTELJAU_RENDER_PIPE_H
 
@@ -51,6 +52,11 @@ typedef struct cj_rlight {
     int spot;
     float axis[3]; /* spot: unit direction the light travels */
     float cos_cut, spot_exp;
+    int falloff; /* radiometric point and spot: I is an intensity, divided by r² */
+    /* radiometric area light (I = L_e): the diffuse term takes the polygon's exact irradiance
+     * (reflect_model.h), the specular one its centre pos as a point of intensity L_e A cos θ′ */
+    int area;
+    double corner[4][3], normal[3], size; /* size: the area A */
 } cj_rlight;
 
 typedef struct cj_rmat {
@@ -59,6 +65,7 @@ typedef struct cj_rmat {
     float spec[3]; /* c_p r_s */
     float kd, alpha, opacity;
     int model, two_sided, tex; /* tex: sampler index or −1 */
+    int spec_model;            /* cj_specular_model */
     int used;
 } cj_rmat;
 
@@ -105,6 +112,7 @@ typedef struct cj_rctx {
     int *obj_mat; /* object -> index into mats */
     cj_rlight *lights;
     int nlights;
+    int radiometric; /* cj_light_model CJ_LIGHT_RADIOMETRIC (reflect_model.h) */
     cj_tex_sampler *samplers;
     int nsamplers;
     float bg[3];

@@ -2,6 +2,8 @@
  * records in the stage report the stages its findings decide (render_frame.h). */
 #include "render_frame.h"
 
+#include "reflect_model.h"
+
 #include "error_internal.h"
 
 #include <math.h>
@@ -11,6 +13,8 @@ const char *const cj_rmodel_name[CJ_RM_COUNT] = {"unlit", "flat", "gouraud", "ph
 
 static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rfeatures *f) {
     size_t n = cj_scene_light_count(scene);
+    const int radiometric = cj_scene_settings_get(scene)->light_model == CJ_LIGHT_RADIOMETRIC;
+    c->radiometric = radiometric;
     Ia[0] = Ia[1] = Ia[2] = 0.0f;
     for (size_t i = 0; i < n; ++i) {
         const cj_light *L = cj_scene_light(scene, (int)i);
@@ -38,6 +42,22 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
             r->l[0] = (float)l.x;
             r->l[1] = (float)l.y;
             r->l[2] = (float)l.z;
+        } else if (radiometric && L->kind == CJ_LIGHT_AREA) {
+            cj_vec3 nrm = cj_v3_cross(L->edge_u, L->edge_v);
+            const cj_vec3 q[4] = {L->position, cj_v3_add(L->position, L->edge_u),
+                                  cj_v3_add(cj_v3_add(L->position, L->edge_u), L->edge_v),
+                                  cj_v3_add(L->position, L->edge_v)};
+            r->area = 1;
+            r->size = cj_v3_norm(nrm);
+            nrm = cj_v3_normalize(nrm);
+            r->normal[0] = nrm.x;
+            r->normal[1] = nrm.y;
+            r->normal[2] = nrm.z;
+            for (int j = 0; j < 4; ++j) {
+                r->corner[j][0] = q[j].x;
+                r->corner[j][1] = q[j].y;
+                r->corner[j][2] = q[j].z;
+            }
         } else if (L->kind == CJ_LIGHT_SPOT) {
             cj_vec3 a = cj_v3_normalize(L->direction);
             r->spot = 1;
@@ -47,6 +67,7 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
             r->cos_cut = (float)cos(L->spot_angle);
             r->spot_exp = (float)L->spot_exponent;
         }
+        r->falloff = radiometric && (L->kind == CJ_LIGHT_POINT || L->kind == CJ_LIGHT_SPOT);
     }
     f->lit = c->nlights > 0;
 }
@@ -91,6 +112,7 @@ static void set_material(cj_rmat *r, const cj_material *m, int lit, int any_ambi
     r->spec[2] = (float)(m->specular.b * m->ks);
     r->kd = (float)m->kd;
     r->alpha = (float)m->alpha;
+    r->spec_model = (int)m->specular_model;
     r->opacity = (float)m->opacity;
     r->model = lit ? 1 + (int)m->shading : CJ_RM_UNLIT;
     r->two_sided = m->two_sided != 0;

@@ -1,6 +1,7 @@
 /* Deferred shading from the visibility buffer (seed 8-10): the Phong reflectance, flat /
  * Gouraud / Phong interpolation and textures, in one loop per kernel (render_pipe.h). */
 #include "render_pipe.h"
+#include "reflect_model.h"
 
 #include "error_internal.h"
 
@@ -27,7 +28,8 @@ static inline void normalize3f(float a[3]) {
     }
 }
 
-/* A = r_a I_a + r_d Σ I max(0, n·l),  S = c_p r_s Σ I max(0, n·h)^α at world point p.
+/* A = r_a I_a + r_d Σ I d,  S = c_p r_s Σ I s at world point p, with d and s the diffuse and
+ * specular terms of the one reflection model (reflect_model.h).
  * Inlined into the Phong kernels; cj_rlight_eval is the same for the per-triangle and
  * per-vertex set-up. */
 CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
@@ -52,6 +54,28 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
     for (int i = 0; i < c->nlights; ++i) {
         const cj_rlight *L = &c->lights[i];
         float l[3], f = 1.0f;
+        if (L->area) {
+            /* diffuse: the exact irradiance of the polygon; specular: its centre (render_pipe.h) */
+            const double nd[3] = {n[0], n[1], n[2]};
+            /* the Lambertian BRDF 1/π times the irradiance */
+            const float e = (float)(cj_reflect_polygon_irradiance(p, nd, L->corner, 4, L->normal) /
+                                    3.14159265358979323846);
+            double to[3] = {L->pos[0] - p[0], L->pos[1] - p[1], L->pos[2] - p[2]};
+            double r2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2];
+            double ct = -(to[0] * L->normal[0] + to[1] * L->normal[1] + to[2] * L->normal[2]);
+            float fs = ct > 0.0 && r2 > 0.0 ? (float)(L->size * ct / (sqrt(r2) * r2)) : 0.0f;
+            l[0] = (float)to[0];
+            l[1] = (float)to[1];
+            l[2] = (float)to[2];
+            normalize3f(l);
+            float d, sp;
+            cj_reflect_terms_f(n, l, v, m->alpha, m->spec_model, c->radiometric, &d, &sp);
+            for (int k = 0; k < 3; ++k) {
+                sum_d[k] += e * L->I[k];
+                sum_s[k] += fs * L->I[k] * sp;
+            }
+            continue;
+        }
         if (L->directional) {
             l[0] = L->l[0];
             l[1] = L->l[1];
@@ -60,21 +84,21 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
             l[0] = (float)(L->pos[0] - p[0]);
             l[1] = (float)(L->pos[1] - p[1]);
             l[2] = (float)(L->pos[2] - p[2]);
+            if (L->falloff) {
+                double dx = L->pos[0] - p[0], dy = L->pos[1] - p[1], dz = L->pos[2] - p[2];
+                f = (float)(1.0 / (dx * dx + dy * dy + dz * dz));
+            }
             normalize3f(l);
             if (L->spot) {
                 float ct = -dot3f(L->axis, l);
-                f = ct >= L->cos_cut ? powf(ct, L->spot_exp) : 0.0f;
+                f = ct >= L->cos_cut ? f * powf(ct, L->spot_exp) : 0.0f;
             }
         }
-        float nl = dot3f(n, l);
-        if (nl > 0.0f)
-            for (int k = 0; k < 3; ++k) sum_d[k] += f * L->I[k] * nl;
-        float h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
-        normalize3f(h);
-        float nh = dot3f(n, h);
-        if (nh > 0.0f || m->alpha == 0.0f) { /* else max(0, n·h)^α = 0 exactly */
-            float sp = powf(nh > 0.0f ? nh : 0.0f, m->alpha);
-            for (int k = 0; k < 3; ++k) sum_s[k] += f * L->I[k] * sp;
+        float d, sp;
+        cj_reflect_terms_f(n, l, v, m->alpha, m->spec_model, c->radiometric, &d, &sp);
+        for (int k = 0; k < 3; ++k) {
+            sum_d[k] += f * L->I[k] * d;
+            sum_s[k] += f * L->I[k] * sp;
         }
     }
     for (int k = 0; k < 3; ++k) {

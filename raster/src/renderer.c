@@ -39,6 +39,9 @@ static cj_status check_options(const cj_renderer_options *o) {
     if (o->trace.indirect_samples < 0 || o->trace.indirect_samples > 4096)
         return cj_fail(CJ_ERR_RANGE, "indirect samples %d outside 0..4096",
                        o->trace.indirect_samples);
+    if (o->trace.integrator != CJ_INTEGRATOR_WHITTED && o->trace.integrator != CJ_INTEGRATOR_PATH)
+        return cj_fail(CJ_ERR_RANGE, "integrator %d is neither whitted (0) nor path (1)",
+                       o->trace.integrator);
     return CJ_OK;
 }
 

@@ -3,6 +3,8 @@
  * report. */
 #include "trace_shade.h"
 
+#include "pixel_filter.h"
+
 #include "error_internal.h"
 #include "render_internal.h"
 #include "render_progress.h"
@@ -17,7 +19,9 @@ typedef struct tr_job {
     const cj_camera *cam;
     cj_xform3 clip;
     cj_render_image *img;
-    int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random, indirect;
+    int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random, indirect, integrator;
+    cj_pixel_filter filter; /* not box only when spp > 1 */
+    double filter_r;
     uint64_t seed;
     cj_rgb bg;
     tr_shade *shade; /* per worker */
@@ -32,7 +36,7 @@ static float pseudodepth(const cj_xform3 *m, cj_vec3 p) {
 
 static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
     size_t pix = (size_t)y * (size_t)j->w + (size_t)x;
-    double acc[3] = {0, 0, 0};
+    double acc[3] = {0, 0, 0}, wsum = 0.0, wcov = 0.0;
     int covered = 0;
     uint64_t pkey = tr_mix(j->seed ^ tr_mix((uint64_t)pix));
     sh->perm = (uint32_t)(pkey >> 40);
@@ -55,23 +59,67 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
                 py = y + tr_rand(&sh->rng);
             }
         }
+        double fw = 1.0;
+        if (j->filter != CJ_FILTER_BOX) { /* the pixel's samples spread over the support */
+            const double dx = (2.0 * (px - x) - 1.0) * j->filter_r,
+                         dy = (2.0 * (py - y) - 1.0) * j->filter_r;
+            px = x + 0.5 + dx;
+            py = y + 0.5 + dy;
+            fw = cj_pixel_filter_eval(j->filter, j->filter_r, dx) *
+                 cj_pixel_filter_eval(j->filter, j->filter_r, dy);
+        }
         cj_ray ray;
-        if (cj_camera_ray(j->cam, j->w, j->h, px, py, &ray.org, &ray.dir) != CJ_OK) continue;
+        if (j->cam->aperture > 0.0) { /* thin lens: a lens point per sample, stratified */
+            double lu = tr_rand(&sh->rng), lv = tr_rand(&sh->rng);
+            if (j->spp > 1 && !j->random) {
+                uint32_t ns = (uint32_t)j->spp, k = (uint32_t)j->strata;
+                uint32_t si =
+                    (tr_permute((uint32_t)s, ns, sh->perm_key ^ 0x2545f4914f6cdd1dull) + sh->perm) %
+                    ns;
+                if (k * k == ns) {
+                    lu = ((si % k) + lu) / k;
+                    lv = ((si / k) + lv) / k;
+                } else {
+                    lu = (si + lu) / ns;
+                }
+            }
+            if (cj_camera_lens_ray(j->cam, j->w, j->h, px, py, lu, lv, &ray.org, &ray.dir) != CJ_OK)
+                continue;
+        } else if (cj_camera_ray(j->cam, j->w, j->h, px, py, &ray.org, &ray.dir) != CJ_OK) {
+            continue;
+        }
         ray.tmin = 0.0;
         ray.tmax = INFINITY;
         tr_medium med;
         med.ior[0] = 1.0;
         med.top = 0;
         int hit = 0;
-        cj_rgb c = tr_trace(sh, &ray, TR_PRIMARY, 0, med, &hit);
+        cj_rgb c = sh->integrator == CJ_INTEGRATOR_PATH
+                       ? tr_path(sh, &ray, &hit)
+                       : tr_trace(sh, &ray, TR_PRIMARY, 0, med, &hit);
+        if (j->filter != CJ_FILTER_BOX) {
+            acc[0] += fw * c.r;
+            acc[1] += fw * c.g;
+            acc[2] += fw * c.b;
+            wsum += fw;
+            wcov += fw * hit;
+            continue;
+        }
         acc[0] += c.r;
         acc[1] += c.g;
         acc[2] += c.b;
         covered += hit;
     }
     float *o = j->img->rgba + 4 * pix;
-    for (int k = 0; k < 3; k++) o[k] = (float)(acc[k] / j->spp);
-    o[3] = (float)covered / (float)j->spp;
+    if (j->filter != CJ_FILTER_BOX) { /* the weighted mean Σ f L / Σ f */
+        const double inv = wsum != 0.0 ? 1.0 / wsum : 0.0;
+        for (int k = 0; k < 3; k++) o[k] = (float)(acc[k] * inv);
+        double a = wcov * inv;
+        o[3] = (float)(a < 0.0 ? 0.0 : (a > 1.0 ? 1.0 : a));
+    } else {
+        for (int k = 0; k < 3; k++) o[k] = (float)(acc[k] / j->spp);
+        o[3] = (float)covered / (float)j->spp;
+    }
     if (j->img->ids || j->img->depth) {
         cj_ray ray;
         cj_hit h;
@@ -97,6 +145,7 @@ static void shade_init(const tr_job *j, tr_counts *c, tr_shade *sh) {
     sh->strata = j->strata;
     sh->random = j->random;
     sh->indirect = j->indirect;
+    sh->integrator = j->integrator;
 }
 
 /* One tile: a task of the renderer's scheduler (render_pool.h). */
@@ -115,7 +164,7 @@ static const char *const ray_stage[TR_KINDS] = {"primary_rays",      "shadow_ray
 /* The stages the scene's lights and materials decide, recorded with their reasons before any
  * ray is cast (a ray stage is marked as run afterwards, when rays of its kind were cast). */
 static void decide_stages(cj_stage_report *r, const cj_scene *scene, int spp, int indirect,
-                          unsigned planes) {
+                          unsigned planes, int integrator) {
     cj_stage_report_stage(r, "build_bvh"); /* the report's order */
     int shadow_lights = 0, receivers = 0, mirrors = -1, refr = -1, through = -1, tex = -1;
     int area = -1, glossy = -1, diffuse = -1;
@@ -158,7 +207,10 @@ static void decide_stages(cj_stage_report *r, const cj_scene *scene, int spp, in
         cj_stage_report_set(r, ray_stage[TR_THROUGH], 0, "material %d has opacity < 1", through);
     else
         cj_stage_report_set(r, ray_stage[TR_THROUGH], 0, "every material is opaque");
-    if (indirect == 0)
+    if (integrator == CJ_INTEGRATOR_PATH)
+        cj_stage_report_set(r, ray_stage[TR_INDIRECT], 0,
+                            "path tracer: BRDF-sampled bounces, Russian roulette, max depth");
+    else if (indirect == 0)
         cj_stage_report_set(r, ray_stage[TR_INDIRECT], 0,
                             "indirect_samples 0: no diffuse interreflection");
     else if (diffuse < 0)
@@ -248,6 +300,7 @@ static cj_status resolve(const cj_renderer *r, const cj_scene *scene, trace_sett
 static cj_status gather_lights(const cj_scene *scene, tr_lights *lights) {
     memset(lights, 0, sizeof *lights);
     lights->unlit = cj_scene_light_count(scene) == 0;
+    lights->radiometric = cj_scene_settings_get(scene)->light_model == CJ_LIGHT_RADIOMETRIC;
     for (size_t i = 0; i < cj_scene_light_count(scene); i++) {
         const cj_light *l = cj_scene_light(scene, (int)i);
         if (l->kind == CJ_LIGHT_AMBIENT) {
@@ -294,7 +347,7 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
         if (img->depth)
             for (size_t i = 0; i < n; i++) img->depth[i] = 1.0f;
     }
-    decide_stages(R, scene, set.spp, set.indirect, planes);
+    decide_stages(R, scene, set.spp, set.indirect, planes, r->opt.trace.integrator);
     tr_scene ts;
     size_t bvh_reused = 0, bvh_built = 0;
     double t0 = cj_render_now();
@@ -324,6 +377,9 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     j.random = r->opt.trace.random_sampling != 0;
     j.max_depth = set.max_depth;
     j.indirect = set.indirect;
+    j.integrator = r->opt.trace.integrator;
+    j.filter = set.spp > 1 ? cj_scene_settings_get(scene)->filter : CJ_FILTER_BOX;
+    j.filter_r = cj_pixel_filter_radius(j.filter, cj_scene_settings_get(scene)->filter_radius);
     j.seed = r->opt.render.use_seed ? r->opt.render.seed : cj_scene_settings_get(scene)->seed;
     j.bg = cj_scene_settings_get(scene)->background;
     j.tile = set.tile;

@@ -4,6 +4,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "trace_shade.h"
 
+#include "reflect_model.h"
+
 #include <math.h>
 #include <string.h>
 #include <time.h>
@@ -70,7 +72,7 @@ int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit) {
     return got;
 }
 
-static int occluded(tr_shade *sh, const cj_ray *ray) {
+int tr_occluded(tr_shade *sh, const cj_ray *ray) {
     double t0 = now();
     int got = tr_any(sh->s, ray, sh->c);
     sh->c->seconds[TR_SHADOW] += now() - t0;
@@ -124,7 +126,8 @@ static cj_vec3 reflect(cj_vec3 d, cj_vec3 n) {
     return cj_v3_sub(d, cj_v3_scale(n, 2.0 * cj_v3_dot(d, n)));
 }
 
-/* Local Phong at the hit with shadow rays; n faces the viewer (against d). */
+/* The local reflection model (reflect_model.h, the rasterizer's too) at the hit with shadow
+ * rays; n faces the viewer (against d). */
 static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, cj_vec3 n, cj_vec3 d,
                           cj_rgb cr, int depth) {
     const tr_lights *L = sh->lights;
@@ -132,6 +135,7 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
     cj_rgb out =
         cj_rgb_make(cr.r * m->ka * L->ia.r, cr.g * m->ka * L->ia.g, cr.b * m->ka * L->ia.b);
     cj_vec3 v = cj_v3_scale(d, -1.0);
+    const double kdn = m->kd, ksn = m->ks;
     for (int i = 0; i < L->count; i++) {
         const cj_light *lt = L->light[i];
         cj_vec3 lp = lt->position;
@@ -167,10 +171,22 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
         if (lt->kind == CJ_LIGHT_DIRECTIONAL) {
             l = cj_v3_normalize(cj_v3_scale(lt->direction, -1.0));
         } else {
-            l = cj_v3_normalize(cj_v3_sub(lp, h->p));
+            cj_vec3 to = cj_v3_sub(lp, h->p);
+            double r2 = cj_v3_dot(to, to);
+            l = cj_v3_normalize(to);
+            if (L->radiometric && lt->kind == CJ_LIGHT_AREA) {
+                /* a sample by area (pdf 1/A) of ∫ L_e cos θ cos θ′ / r² dA: L_e A cos θ′ / r²
+                 * times the cos θ of the reflection model; one-sided emitter */
+                cj_vec3 nl = cj_v3_cross(lt->edge_u, lt->edge_v);
+                double A = cj_v3_norm(nl), ct = -cj_v3_dot(nl, l) / A;
+                if (!(ct > 0.0) || !(r2 > 0.0)) continue;
+                f = A * ct / r2;
+            } else if (L->radiometric) {
+                f = 1.0 / r2; /* point and spot: an intensity, inverse-square falloff */
+            }
             if (lt->kind == CJ_LIGHT_SPOT) {
                 double ct = -cj_v3_dot(cj_v3_normalize(lt->direction), l);
-                f = ct >= cos(lt->spot_angle) ? pow(ct, lt->spot_exponent) : 0.0;
+                f = ct >= cos(lt->spot_angle) ? f * pow(ct, lt->spot_exponent) : 0.0;
             }
         }
         double nl = cj_v3_dot(n, l);
@@ -186,16 +202,18 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
                 sr.tmax = 1.0;
             }
             sr.tmin = 0.0;
-            if (occluded(sh, &sr)) continue;
+            if (tr_occluded(sh, &sr)) continue;
         }
         double I[3] = {lt->color.r * lt->intensity * f, lt->color.g * lt->intensity * f,
                        lt->color.b * lt->intensity * f};
-        cj_vec3 hv = cj_v3_normalize(cj_v3_add(l, v));
-        double nh = cj_v3_dot(n, hv);
-        double sp = pow(nh > 0.0 ? nh : 0.0, m->alpha);
-        out.r += cr.r * m->kd * I[0] * nl + m->specular.r * m->ks * I[0] * sp;
-        out.g += cr.g * m->kd * I[1] * nl + m->specular.g * m->ks * I[1] * sp;
-        out.b += cr.b * m->kd * I[2] * nl + m->specular.b * m->ks * I[2] * sp;
+        const double na[3] = {n.x, n.y, n.z}, la[3] = {l.x, l.y, l.z}, va[3] = {v.x, v.y, v.z};
+        double dt, sp;
+        cj_reflect_terms_d(na, la, va, m->alpha, (int)m->specular_model, L->radiometric, &dt, &sp);
+        dt *= kdn;
+        sp *= ksn;
+        out.r += cr.r * I[0] * dt + m->specular.r * I[0] * sp;
+        out.g += cr.g * I[1] * dt + m->specular.g * I[1] * sp;
+        out.b += cr.b * I[2] * dt + m->specular.b * I[2] * sp;
     }
     return out;
 }

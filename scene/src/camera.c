@@ -77,6 +77,16 @@ cj_status cj_camera_check(const cj_camera *cam) {
         return cj_fail(CJ_ERR_ARGUMENT, "camera projection %d is not a cj_projection",
                        (int)cam->projection);
     }
+    if (!isfinite(cam->aperture) || !isfinite(cam->focus_distance))
+        return cj_fail(CJ_ERR_NONFINITE, "camera aperture or focus_distance is not finite");
+    if (cam->aperture < 0.0)
+        return cj_fail(CJ_ERR_RANGE, "camera aperture = %g must be >= 0", cam->aperture);
+    if (cam->aperture > 0.0 && !(cam->focus_distance > 0.0))
+        return cj_fail(CJ_ERR_RANGE, "camera focus_distance = %g must be > 0 with an aperture",
+                       cam->focus_distance);
+    if (cam->aperture > 0.0 && cam->projection != CJ_PROJ_PERSPECTIVE)
+        return cj_fail(CJ_ERR_RANGE, "camera aperture %g needs a perspective camera",
+                       cam->aperture);
     cj_vec3 u, v, w;
     return frame(cam, &u, &v, &w);
 }
@@ -184,5 +194,23 @@ cj_status cj_camera_ray(const cj_camera *cam, int width, int height, double px, 
         *origin = cj_v3_add(cam->eye, off);
         *dir = cj_v3_scale(w, -1.0);
     }
+    return CJ_OK;
+}
+
+cj_status cj_camera_lens_ray(const cj_camera *cam, int width, int height, double px, double py,
+                             double lu, double lv, cj_vec3 *origin, cj_vec3 *dir) {
+    cj_status st = cj_camera_ray(cam, width, height, px, py, origin, dir);
+    if (st != CJ_OK || !(cam->aperture > 0.0)) return st;
+    cj_vec3 u, v, w;
+    st = cj_camera_basis(cam, &u, &v, &w);
+    if (st != CJ_OK) return st;
+    /* the pinhole ray meets the plane in focus at distance F along −w */
+    const double along = -cj_v3_dot(*dir, w);
+    const cj_vec3 focus = cj_v3_add(cam->eye, cj_v3_scale(*dir, cam->focus_distance / along));
+    const double r = 0.5 * cam->aperture * sqrt(lu), phi = 2.0 * 3.14159265358979323846 * lv;
+    *origin =
+        cj_v3_add(cam->eye, cj_v3_add(cj_v3_scale(u, r * cos(phi)), cj_v3_scale(v, r * sin(phi))));
+    const cj_vec3 d = cj_v3_sub(focus, *origin);
+    *dir = cj_v3_scale(d, 1.0 / cj_v3_norm(d));
     return CJ_OK;
 }

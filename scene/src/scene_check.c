@@ -127,6 +127,12 @@ cj_status cj_scene_check_camera_(const cj_camera *c, const char *p) {
     } else {
         return cj_fail(CJ_ERR_RANGE, "%s.projection %d is not a projection", p, (int)c->projection);
     }
+    TRY(ge(p, "aperture", c->aperture, 0.0));
+    if (c->aperture > 0.0) {
+        TRY(gt(p, "focus_distance", c->focus_distance, 0.0));
+        if (c->projection != CJ_PROJ_PERSPECTIVE)
+            return cj_fail(CJ_ERR_RANGE, "%s.aperture needs a perspective camera", p);
+    }
     /* Whatever else the camera model itself needs (its frame), in its own words. */
     return relabel(cj_camera_check(c), p);
 }
@@ -140,6 +146,12 @@ cj_status cj_scene_check_settings_(const cj_scene_settings *s, const char *p) {
     TRY(gt(p, "tol_px", s->tol_px, 0.0));
     TRY(rgb(p, "background", s->background, -1.0));
     if (s->max_depth < 0) return cj_fail(CJ_ERR_RANGE, "%s.max_depth must be >= 0", p);
+    if ((int)s->light_model < 0 || s->light_model > CJ_LIGHT_RADIOMETRIC)
+        return cj_fail(CJ_ERR_RANGE, "%s.light_model %d is not a light model", p,
+                       (int)s->light_model);
+    if ((int)s->filter < 0 || s->filter > CJ_FILTER_MITCHELL)
+        return cj_fail(CJ_ERR_RANGE, "%s.filter %d is not a pixel filter", p, (int)s->filter);
+    TRY(ge(p, "filter_radius", s->filter_radius, 0.0));
     return CJ_OK;
 }
 
@@ -234,6 +246,9 @@ cj_status cj_scene_check_material_(const cj_material *m, size_t ntextures, const
     TRY(ge(p, "glossiness", m->glossiness, 0.0));
     TRY(rgb(p, "emission", m->emission, CJ_SCENE_MAX_RADIANCE));
     TRY(flag(p, "receives_shadows", m->receives_shadows));
+    if ((int)m->specular_model < 0 || m->specular_model > CJ_SPEC_PHONG)
+        return cj_fail(CJ_ERR_RANGE, "%s.specular_model %d is not a specular model", p,
+                       (int)m->specular_model);
     return CJ_OK;
 }
 

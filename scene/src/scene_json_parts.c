@@ -50,6 +50,8 @@ static const char *const CAMERA_KEYS[] = {"eye",
                                           "focal_length_mm",
                                           "sensor_height_mm",
                                           "ortho_height",
+                                          "aperture",
+                                          "focus_distance",
                                           NULL};
 
 cj_status cj_json_read_camera_(jctx *c, const cJSON *obj) {
@@ -99,14 +101,18 @@ cj_status cj_json_read_camera_(jctx *c, const cJSON *obj) {
                              CJ_ERR_PARSE, "camera.sensor_height_mm needs focal_length_mm");
     }
     TRY(cj_json_num_(c, obj, p, "ortho_height", R_GT, 0, 0, &cam.ortho_height));
+    TRY(cj_json_num_(c, obj, p, "aperture", R_GE, 0, 0, &cam.aperture));
+    TRY(cj_json_num_(c, obj, p, "focus_distance", R_GT, 0, 0, &cam.focus_distance));
     cj_status st = cj_scene_check_camera_(&cam, p);
     if (!st) st = cj_scene_set_camera(c->scene, &cam);
     if (st) return cj_json_relabel_(c, obj, st);
     return CJ_OK;
 }
 
-static const char *const SETTINGS_KEYS[] = {"width",      "height",    "spp",  "tol_px",
-                                            "background", "max_depth", "seed", NULL};
+static const char *const SETTINGS_KEYS[] = {"width",      "height",        "spp",  "tol_px",
+                                            "background", "max_depth",     "seed", "light_model",
+                                            "filter",     "filter_radius", NULL};
+static const char *const LIGHT_MODELS[] = {"legacy", "radiometric", NULL}; /* cj_light_model */
 
 cj_status cj_json_read_settings_(jctx *c, const cJSON *obj) {
     const char *p = "settings";
@@ -124,6 +130,14 @@ cj_status cj_json_read_settings_(jctx *c, const cJSON *obj) {
         return cj_json_fail_(c, cJSON_GetObjectItemCaseSensitive(obj, "seed"), 0, CJ_ERR_PARSE,
                              "settings.seed must be an integer");
     s.seed = (uint64_t)seed;
+    int lm = (int)s.light_model;
+    TRY(cj_json_enum_(c, obj, p, "light_model", LIGHT_MODELS, &lm));
+    s.light_model = (cj_light_model)lm;
+    static const char *const FILTERS[] = {"box", "tent", "gaussian", "mitchell", NULL};
+    int fk = (int)s.filter;
+    TRY(cj_json_enum_(c, obj, p, "filter", FILTERS, &fk));
+    s.filter = (cj_pixel_filter)fk;
+    TRY(cj_json_num_(c, obj, p, "filter_radius", R_GE, 0, 0, &s.filter_radius));
     cj_status st = cj_scene_set_settings(c->scene, &s);
     return st ? cj_json_relabel_(c, obj, st) : CJ_OK;
 }
@@ -319,11 +333,27 @@ cj_status cj_json_read_textures_(jctx *c, const cJSON *arr) {
     return CJ_OK;
 }
 
-static const char *const MATERIAL_KEYS[] = {
-    "name",       "color",     "specular",         "ka",      "kd",     "ks",           "alpha",
-    "shading",    "two_sided", "texture",          "opacity", "mirror", "transmission", "ior",
-    "glossiness", "emission",  "receives_shadows", NULL};
+static const char *const MATERIAL_KEYS[] = {"name",
+                                            "color",
+                                            "specular",
+                                            "ka",
+                                            "kd",
+                                            "ks",
+                                            "alpha",
+                                            "shading",
+                                            "two_sided",
+                                            "texture",
+                                            "opacity",
+                                            "mirror",
+                                            "transmission",
+                                            "ior",
+                                            "glossiness",
+                                            "emission",
+                                            "receives_shadows",
+                                            "specular_model",
+                                            NULL};
 static const char *const SHADINGS[] = {"flat", "gouraud", "phong", NULL};
+static const char *const SPECULAR_MODELS[] = {"blinn", "phong", NULL}; /* cj_specular_model */
 
 /* A material object (named = 1: an entry of "materials"); *index receives its scene index. */
 cj_status cj_json_read_material_(jctx *c, const cJSON *obj, const char *p, int named, int *index) {
@@ -362,6 +392,9 @@ cj_status cj_json_read_material_(jctx *c, const cJSON *obj, const char *p, int n
     TRY(cj_json_num_(c, obj, p, "glossiness", R_GE, 0, 0, &m.glossiness));
     TRY(cj_json_rgb_(c, obj, p, "emission", -1, &m.emission));
     TRY(cj_json_bool_(c, obj, p, "receives_shadows", &m.receives_shadows));
+    int spec = (int)m.specular_model;
+    TRY(cj_json_enum_(c, obj, p, "specular_model", SPECULAR_MODELS, &spec));
+    m.specular_model = (cj_specular_model)spec;
     cj_status st = cj_scene_check_material_(&m, cj_scene_texture_count(c->scene), p);
     if (!st) st = cj_scene_add_material(c->scene, &m, index);
     if (st) return cj_json_relabel_(c, obj, st);

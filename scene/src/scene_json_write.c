@@ -158,6 +158,10 @@ static void write_camera(emitter *e, const cj_camera *c) {
     string(e, "projection", c->projection == CJ_PROJ_PERSPECTIVE ? "perspective" : "orthographic");
     angle(e, "fov", c->fov_y);
     if (c->ortho_height > 0) num(e, "ortho_height", c->ortho_height);
+    if (c->aperture > 0) {
+        num(e, "aperture", c->aperture);
+        num(e, "focus_distance", c->focus_distance);
+    }
     close_c(e, '}');
 }
 
@@ -170,6 +174,10 @@ static void write_settings(emitter *e, const cj_scene_settings *s) {
     rgb(e, "background", s->background);
     integer(e, "max_depth", s->max_depth);
     integer(e, "seed", (long long)s->seed);
+    string(e, "light_model", s->light_model == CJ_LIGHT_RADIOMETRIC ? "radiometric" : "legacy");
+    static const char *const FILTERS[] = {"box", "tent", "gaussian", "mitchell"};
+    string(e, "filter", FILTERS[s->filter]);
+    num(e, "filter_radius", s->filter_radius);
     close_c(e, '}');
 }
 
@@ -284,6 +292,7 @@ static void write_material(emitter *e, const cj_scene *s, int i) {
     num(e, "glossiness", m->glossiness);
     rgb(e, "emission", m->emission);
     boolean(e, "receives_shadows", m->receives_shadows);
+    string(e, "specular_model", m->specular_model == CJ_SPEC_PHONG ? "phong" : "blinn");
     close_c(e, '}');
 }
 

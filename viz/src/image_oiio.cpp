@@ -9,6 +9,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -73,9 +74,10 @@ std::string extension_of(const char *name) {
 // Formats that store floating-point samples, and the type they store them in. Anything else
 // holds 8-bit (or integer) samples, which a linear float image must not be squeezed into
 // silently (no transfer curve would be applied).
-bool float_storage(const std::string &format, OIIO::TypeDesc *type) {
+// OpenEXR: 32-bit float unless half was asked for (cj_image_pixels.is_float == 2).
+bool float_storage(const std::string &format, int want_half, OIIO::TypeDesc *type) {
     if (format == "openexr") {
-        *type = OIIO::TypeDesc::HALF;
+        *type = want_half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
         return true;
     }
     if (format == "tiff" || format == "hdr" || format == "pfm" || format == "fits") {
@@ -83,6 +85,40 @@ bool float_storage(const std::string &format, OIIO::TypeDesc *type) {
         return true;
     }
     return false;
+}
+
+// No infinity (or NaN) is ever written: a non-finite sample, or in a half-float file a sample
+// beyond the largest half (65504, which the conversion would turn into infinity), refuses the
+// whole image with the pixel named (x, y from the lower-left corner, as the renderer counts)
+// and what usually causes it. Returns 0 or the status.
+int refuse_infinity(const cj_image_pixels *px, bool half, char *why, std::size_t why_size) {
+    static const char *const channel = "RGBA";
+    const float half_max = 65504.0f;
+    for (int y = 0; y < px->height; ++y) {
+        const float *row =
+            (const float *)((const unsigned char *)px->pixels + (std::size_t)y * px->row_stride);
+        for (int x = 0; x < px->width; ++x)
+            for (int c = 0; c < 4; ++c) {
+                const float v = row[4 * x + c];
+                if (!std::isfinite(v)) {
+                    std::snprintf(why, why_size,
+                                  "pixel (%d, %d) %c is %s: no infinity or NaN is written "
+                                  "(likely a light intensity or emission too large for float, "
+                                  "or a degenerate input upstream)",
+                                  x, y, channel[c], std::isnan(v) ? "NaN" : "infinite");
+                    return CJ_ERR_NONFINITE;
+                }
+                if (half && std::fabs(v) > half_max) {
+                    std::snprintf(why, why_size,
+                                  "pixel (%d, %d) %c = %g exceeds the largest half float (65504) "
+                                  "and would be stored as infinity: write 32-bit float EXR (the "
+                                  "default) or lower the light intensities",
+                                  x, y, channel[c], (double)v);
+                    return CJ_ERR_RANGE;
+                }
+            }
+    }
+    return 0;
 }
 
 // Copies the bottom-up source rows into a top-down buffer of `nch` channels; without alpha the
@@ -130,12 +166,16 @@ int encode(const char *name, const char *tmp_path, const cj_image_pixels *px, un
         const std::string format = out->format_name();
         const int nch = out->supports("alpha") ? 4 : 3;
         OIIO::TypeDesc stored = OIIO::TypeDesc::UINT8;
-        if (px->is_float && !float_storage(format, &stored)) {
+        if (px->is_float && !float_storage(format, px->is_float == 2, &stored)) {
             std::snprintf(why, why_size,
                           "the %s format stores no floating-point samples (use .exr, .tif, "
                           ".hdr or .pfm for a linear float image)",
                           format.c_str());
             return CJ_ERR_ARGUMENT;
+        }
+        if (px->is_float) {
+            const int code = refuse_infinity(px, stored == OIIO::TypeDesc::HALF, why, why_size);
+            if (code) return code;
         }
         OIIO::ImageSpec spec(px->width, px->height, nch, stored);
         if (!px->is_float) spec.attribute("oiio:UnassociatedAlpha", 1);

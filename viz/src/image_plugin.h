@@ -22,7 +22,8 @@ extern "C" {
 
 typedef struct cj_image_pixels {
     int width, height;
-    int is_float;       /* 0: RGBA8 (uint8_t), 1: RGBA float, linear */
+    int is_float;       /* 0: RGBA8 (uint8_t), 1: RGBA float, linear; 2: the same, stored as
+                           half floats where the format offers both (OpenEXR) */
     const void *pixels; /* bottom-up rows */
     size_t row_stride;  /* bytes between rows, > 0 */
 } cj_image_pixels;

@@ -21,6 +21,8 @@
  *     behind them, alpha += a (1 − alpha)); with supersampling, the box-filtered mean of the
  *     samples, so alpha is the pixel's coverage. The id and depth planes hold the pixel's
  *     sample 0 (its centre at 1 spp), before overlay lines.
+ *   - the camera is a pinhole: cj_camera.aperture (the thin lens, depth of field) is read by
+ *     the ray tracer only;
  *   - tessellation for the view: patches (and surfaces of revolution / general cylinders,
  *     converted exactly to rational patches) are tessellated at the object tolerance whose
  *     projection is at most tol_px pixels at the nearest depth of the visible patches (one

@@ -11,9 +11,10 @@
  * inverse transpose), under a top-level SAH BVH of their world boxes. Curves are not traced.
  *
  * SHADING (Whitted). At a hit, with n the surface normal turned to the side the ray comes from:
- *   local = c_r (r_a I_a + r_d Σ_visible I max(0, n·l)) + c_p r_s Σ_visible I max(0, n·h)^α
- *           + emission
- * (the rasterizer's Phong model, h the half vector, c_r the colour times the texture), where a
+ *   local = c_r (r_a I_a + r_d Σ_visible I max(0, n·l)) + c_p r_s Σ_visible I s + emission
+ * (the rasterizer's model, evaluated by the same code: s is the material's specular lobe,
+ * Blinn's max(0, n·h)^α or Phong's max(0, m·v)^α, and 0 where n·l <= 0; c_r the colour times
+ * the texture; docs/light.md), where a
  * light is "visible" unless a shadow ray finds an occluder: an occluded light (or one behind
  * the surface, n·l <= 0) contributes only its ambient part. Then
  *   L = (1 − r_t) [o local + (1 − o) L_through] + r_m L_reflected + r_t L_refracted
@@ -79,10 +80,29 @@ typedef struct cj_trace_options {
                                stratified over the N) each add kd c_r L_in / N to the local term,
                                L_in traced with depth + 1 but casting no further indirect rays.
                                Counted in the stage "indirect_rays". */
+    int integrator;         /* CJ_INTEGRATOR_WHITTED (0, the default) or CJ_INTEGRATOR_PATH */
 } cj_trace_options;
 
+/* CJ_INTEGRATOR_WHITTED: the shading described above. CJ_INTEGRATOR_PATH: a path tracer
+ * (docs/light.md): the rendering equation by random walks with next-event estimation to every
+ * light, multiple importance sampling (power heuristic) between area-light and BRDF samples,
+ * Russian roulette from the fourth bounce (survival q = the largest throughput channel, capped
+ * at 0.95, weight 1/q) and max_depth as a hard cap. Lights are read radiometrically (scene.h)
+ * and materials as the BSDF mixture r_t dielectric + r_m mirror + (1 − r_t − r_m) (r_d c_r/π +
+ * r_s c_p f_s); area lights are seen by camera rays and emission is added where a path meets
+ * it; ambient light is the radiance of the environment (added to the background). Diffuse
+ * and glossy bounces are counted as indirect_rays, mirror and Fresnel reflections as
+ * reflection_rays, refractions as refraction_rays, next-event rays as shadow_rays;
+ * indirect_samples is ignored.
+ * Bit-identical for any thread count, like the Whitted tracer. */
+typedef enum cj_trace_integrator {
+    CJ_INTEGRATOR_WHITTED = 0,
+    CJ_INTEGRATOR_PATH
+} cj_trace_integrator;
+
 /* cj_render_trace with trace options (NULL: defaults); same status codes, and CJ_ERR_RANGE
- * for a patch_tolerance that is not 0 and not in (0, 1] or indirect_samples outside 0..4096. */
+ * for a patch_tolerance that is not 0 and not in (0, 1], indirect_samples outside 0..4096 or
+ * an integrator that is not a cj_trace_integrator. */
 cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt,
                              const cj_trace_options *topt, unsigned planes,
                              const cj_allocator *alloc, cj_render_image **out,

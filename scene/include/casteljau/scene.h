@@ -71,6 +71,13 @@ typedef struct cj_camera {
     cj_projection projection;
     double fov_y;        /* perspective: full vertical field of view, radians, in (0, pi) */
     double ortho_height; /* orthographic: height of the view volume in world units, > 0 */
+    /* Thin lens (seed 6.1; the ray tracer only, the rasterizer is a pinhole): the lens
+     * diameter A in world units (0, the default: a pinhole) and the distance F from the eye to
+     * the plane in focus, along the gaze (> 0 when A > 0; perspective cameras only). A point
+     * at distance d along the gaze is blurred into a disk of diameter A |d − F| / d on the
+     * plane in focus (the circle of confusion). */
+    double aperture;
+    double focus_distance;
 } cj_camera;
 
 /* A camera at (0, 0, 5) looking at the origin, up +y, 45° vertical field of view,
@@ -104,6 +111,13 @@ cj_status cj_camera_world_to_clip(const cj_camera *cam, double aspect, cj_xform3
 cj_status cj_camera_ray(const cj_camera *cam, int width, int height, double px, double py,
                         cj_vec3 *origin, cj_vec3 *dir);
 
+/* The thin-lens ray through image point (px, py) and lens point (lu, lv) in [0, 1)²: the
+ * lens point e + r (cos φ u + sin φ v) with r = (A/2) √lu, φ = 2π lv (uniform on the lens
+ * disk), aimed at where the pinhole ray through (px, py) meets the plane in focus (distance F
+ * along the gaze). A pinhole camera (aperture 0) gives cj_camera_ray's ray. Same status codes. */
+cj_status cj_camera_lens_ray(const cj_camera *cam, int width, int height, double px, double py,
+                             double lu, double lv, cj_vec3 *origin, cj_vec3 *dir);
+
 /* ---- lights (seed 8) -------------------------------------------------------------------- */
 
 typedef enum cj_light_kind {
@@ -125,6 +139,33 @@ typedef struct cj_light {
     cj_vec3 edge_u, edge_v;
     int casts_shadows; /* ray tracer: 1 = shadow rays are cast for this light (default 1) */
 } cj_light;
+
+/* WHAT A LIGHT'S colour × intensity MEANS depends on the scene's light model
+ * (cj_scene_settings.light_model; docs/light.md):
+ *   CJ_LIGHT_LEGACY (the default, every scene written before the choice existed): I is a
+ *     non-physical strength; no light falls off with distance; an area light is seen by the
+ *     rasterizer as a point light at its centre and by the tracer as the mean of point lights
+ *     over its surface; materials reflect with the Phong model of cj_material.
+ *   CJ_LIGHT_RADIOMETRIC (seed 12): lights have units and materials are BRDFs.
+ *     ambient      I_a is a radiance [W m⁻² sr⁻¹] arriving from every direction; a surface
+ *                  reflects r_a c_r I_a (its ambient albedo times it);
+ *     point        I is a radiant intensity [W sr⁻¹]: irradiance I cos θ / r² at distance r;
+ *     spot         the same, times the cone's falloff (cos ψ)^spot_exponent inside spot_angle;
+ *     directional  I is the irradiance [W m⁻²] on a surface facing the light: E = I cos θ;
+ *     area         I is the radiance L_e of a Lambertian emitter [W m⁻² sr⁻¹] on the side its
+ *                  normal edge_u × edge_v points to (none on the other side): irradiance
+ *                  ∫ L_e cos θ cos θ′ / r² dA over the parallelogram. The tracer samples it by
+ *                  area (pdf 1/A, stratified); the rasterizer takes the exact irradiance of the
+ *                  polygon for the diffuse term (Lambert's formula) and its centre as a point of
+ *                  intensity L_e A cos θ′ for the specular one.
+ *   The reflected radiance is then Σ f_r E with the material's BRDF
+ *     f_r = r_d c_r / π + r_s c_p f_s
+ *   (f_s the energy-conserving form of the specular lobe of cj_specular_model:
+ *   (α+2)/(2π) max(0, m·v)^α for Phong, (α+1)/(8π) max(0, n·h)^α / ((l·h) max(n·l, n·v)) for
+ *   Blinn; raster/src/reflect_model.h, docs/light.md).
+ * Emissive materials (cj_material.emission, a radiance) are seen by camera and secondary rays
+ * in both models. */
+typedef enum cj_light_model { CJ_LIGHT_LEGACY = 0, CJ_LIGHT_RADIOMETRIC } cj_light_model;
 
 /* A white point light of intensity 1 at (5, 5, 5), casting shadows. */
 cj_light cj_light_default(cj_light_kind kind);
@@ -163,10 +204,20 @@ cj_texture cj_texture_default(cj_texture_kind kind);
 
 typedef enum cj_shading { CJ_SHADE_FLAT = 0, CJ_SHADE_GOURAUD, CJ_SHADE_PHONG } cj_shading;
 
+/* The specular lobe of the local reflection model (docs/light.md; both renderers evaluate it
+ * through one definition, raster/src/reflect_model.h). With n the unit normal, l the unit
+ * direction to the light, v the unit direction to the viewer, and only where n·l > 0 (a light
+ * behind the surface gives no highlight):
+ *   CJ_SPEC_BLINN  s = max(0, n·h)^α, h = (l + v)/|l + v|   (Blinn's half vector; the default,
+ *                  the model every scene written before the choice existed was drawn with)
+ *   CJ_SPEC_PHONG  s = max(0, m·v)^α, m = 2(n·l)n − l       (the seed's mirror form) */
+typedef enum cj_specular_model { CJ_SPEC_BLINN = 0, CJ_SPEC_PHONG } cj_specular_model;
+
 typedef struct cj_material {
-    /* Phong (seed 8): L = c_r (r_a I_a + r_d Σ I max(0, n·l)) + c_p r_s Σ I max(0, n·h)^α
+    /* Phong (seed 8): L = c_r (r_a I_a + r_d Σ I max(0, n·l)) + c_p r_s Σ_{n·l>0} I s
      * where c_r is the diffuse colour (times the texture when there is one), c_p the specular
-     * colour; the ray tracer reads the same fields. */
+     * colour and s the specular lobe named by specular_model (Blinn by default); the ray
+     * tracer reads the same fields and evaluates the same formula. */
     cj_rgb color;    /* c_r, linear, each in [0, 1] */
     cj_rgb specular; /* c_p, linear, each in [0, 1] */
     double ka;       /* r_a >= 0 */
@@ -184,6 +235,7 @@ typedef struct cj_material {
     double glossiness;    /* Phong-lobe exponent of glossy reflection; 0 = perfect mirror */
     cj_rgb emission;      /* emitted radiance (area lights drawn as objects), linear */
     int receives_shadows; /* 1 (default): shadow rays are cast from this material's hits */
+    cj_specular_model specular_model; /* the specular lobe s (default CJ_SPEC_BLINN) */
 } cj_material;
 
 /* Grey plastic: colour 0.8, specular 1, r_a 0.1, r_d 0.7, r_s 0.3, α 32, Phong shading,
@@ -304,13 +356,31 @@ typedef struct cj_node {
 
 /* ---- render settings stored with the scene (CLI flags override them) ---------------------- */
 
+/* The ray tracer's pixel reconstruction filter (docs/light.md), separable f(dx) f(dy) over
+ * |dx|, |dy| < r pixels from the pixel centre, the pixel the weighted mean Σ f L / Σ f of its
+ * samples (spread over the filter's support). r = filter_radius, or when 0 the default below.
+ *   BOX       f = 1                                   (default r 0.5: the pixel itself)
+ *   TENT      f = 1 − |x|/r                           (default r 1)
+ *   GAUSSIAN  f = exp(−x²/2σ²) − exp(−r²/2σ²), σ = r/3 (default r 1.5)
+ *   MITCHELL  Mitchell–Netravali, B = C = 1/3, of t = 2|x|/r (default r 2; negative lobes)
+ * The rasterizer always box-filters its samples. */
+typedef enum cj_pixel_filter {
+    CJ_FILTER_BOX = 0,
+    CJ_FILTER_TENT,
+    CJ_FILTER_GAUSSIAN,
+    CJ_FILTER_MITCHELL
+} cj_pixel_filter;
+
 typedef struct cj_scene_settings {
-    int width, height; /* image size, 1..CJ_FRAMEBUFFER_MAX_SIDE (default 640 × 480) */
-    int spp;           /* samples per pixel: rasterizer 1, 4 or 16; ray tracer any >= 1 */
-    double tol_px;     /* screen-space tessellation tolerance in pixels (default 0.25) */
-    cj_rgb background; /* linear (default black) */
-    int max_depth;     /* ray tracer recursion depth (default 5) */
-    uint64_t seed;     /* random sampling seed (default 1) */
+    int width, height;          /* image size, 1..CJ_FRAMEBUFFER_MAX_SIDE (default 640 × 480) */
+    int spp;                    /* samples per pixel: rasterizer 1, 4 or 16; ray tracer any >= 1 */
+    double tol_px;              /* screen-space tessellation tolerance in pixels (default 0.25) */
+    cj_rgb background;          /* linear (default black) */
+    int max_depth;              /* ray tracer recursion depth (default 5) */
+    uint64_t seed;              /* random sampling seed (default 1) */
+    cj_light_model light_model; /* what light intensities mean (default CJ_LIGHT_LEGACY) */
+    cj_pixel_filter filter;     /* ray tracer, spp > 1 (default CJ_FILTER_BOX) */
+    double filter_radius;       /* pixels, >= 0; 0: the filter's default */
 } cj_scene_settings;
 
 cj_scene_settings cj_scene_settings_default(void);

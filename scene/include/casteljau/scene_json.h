@@ -26,9 +26,15 @@
  *     "fov_deg": 40,               full vertical field of view (or "fov_rad"), or
  *                                  "focal_length_mm": 50 with "sensor_height_mm" (24)
  *     "ortho_height": 4            orthographic: height of the view volume
+ *     "aperture": 0.1,             thin lens (ray tracer): lens diameter (0: pinhole) and
+ *     "focus_distance": 8          the distance of the plane in focus along the gaze
  *   },
  *   "settings": {"width": 640, "height": 480, "spp": 4, "tol_px": 0.25,
- *                "background": [0, 0, 0], "max_depth": 5, "seed": 1},
+ *                "background": [0, 0, 0], "max_depth": 5, "seed": 1,
+ *                "light_model": "legacy",    or "radiometric": what intensities mean
+ *                "filter": "box", "filter_radius": 0},  ray tracer: box | tent | gaussian |
+ *                                  mitchell, radius in pixels (0: the filter's default)
+ *                                  (cj_light_model in casteljau/scene.h, docs/light.md)
  *   "lights": [
  *     {"type": "ambient", "color": [1, 1, 1], "intensity": 0.2},
  *     {"type": "point", "position": [5, 5, 5], "intensity": 1, "casts_shadows": true},
@@ -47,8 +53,9 @@
  *     {"name": "red", "color": [0.8, 0.1, 0.1], "specular": [1, 1, 1], "ka": 0.1, "kd": 0.7,
  *      "ks": 0.3, "alpha": 32, "shading": "phong", "two_sided": false, "texture": "wood",
  *      "opacity": 1, "mirror": 0, "transmission": 0, "ior": 1.5, "glossiness": 0,
- *      "emission": [0, 0, 0], "receives_shadows": true}
- *   ],                             shading: flat | gouraud | phong; texture: a texture's name
+ *      "emission": [0, 0, 0], "receives_shadows": true, "specular_model": "blinn"}
+ *   ],                             shading: flat | gouraud | phong; texture: a texture's name;
+ *                                  specular_model: blinn (default) | phong (the mirror form)
  *   "geometries": [ {"name": "ball", "type": "sphere", "radius": 1} ],
  *                                  optional: geometries shared by name between objects
  *   "objects": [

@@ -53,14 +53,27 @@ cj_status cj_image_write(const char *path, int width, int height, const uint8_t 
 
 /* Writes a width x height linear float RGBA image (bottom-up rows, row_stride in bytes >=
  * 16*width, 0 means exactly 16*width) to a format that stores floating-point samples: .exr
- * (OpenEXR, stored as half floats; alpha is written as given, and OpenEXR's convention is
+ * (OpenEXR, stored as 32-bit floats; alpha is written as given, and OpenEXR's convention is
  * colour premultiplied by alpha), .tif/.tiff, .pfm (32-bit float), .hdr (RGBE; no alpha, the
  * colour is multiplied by alpha). No transfer curve is applied: the values are stored as they
- * are. Same atomic, checked write and the same status codes as cj_image_write; an extension
+ * are. NO INFINITY IS EVER WRITTEN: a sample that is infinite or NaN refuses the whole image
+ * with CJ_ERR_NONFINITE naming the pixel (x, y from the lower-left corner) and the channel.
+ * Same atomic, checked write and the same status codes as cj_image_write; an extension
  * naming an 8-bit-only format (.png, .jpg, ...) is CJ_ERR_ARGUMENT (convert to sRGB 8-bit and
  * call cj_image_write instead). */
 cj_status cj_image_write_float(const char *path, int width, int height, const float *rgba,
                                size_t row_stride);
+
+/* Flags of cj_image_write_float_ex. */
+enum {
+    CJ_IMAGE_FLOAT_HALF = 1u /* OpenEXR: store half floats (16-bit) instead of 32-bit ones */
+};
+
+/* cj_image_write_float with flags (0: the same). With CJ_IMAGE_FLOAT_HALF an EXR is stored as
+ * half floats, and a sample beyond the largest half (65504), which would become infinity, is
+ * CJ_ERR_RANGE naming the pixel (nothing is written); other formats ignore the flag. */
+cj_status cj_image_write_float_ex(const char *path, int width, int height, const float *rgba,
+                                  size_t row_stride, unsigned flags);
 
 /* Checks, before any expensive work, that an image could be written to `path`: the name is not
  * empty or a directory, its extension names a format that can store the pixels (is_float
