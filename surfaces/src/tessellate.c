@@ -50,6 +50,7 @@ static int cmp_side_ref(const void *x, const void *y) {
 typedef struct patch_plan {
     int k[4];
     grid g;
+    tess_density dens;
 } patch_plan;
 
 /* Adaptive planning pass over patches [0, count): each patch's side counts (side_counts in
@@ -58,14 +59,19 @@ typedef struct patch_plan {
  * number of patches planned (< count when patch *planned failed with the returned status). The mesh
  * is left as it was. */
 static cj_status plan_patches(const cj_patch *patches, size_t count, double tol, int cap, ptess *P,
-                              cj_mesh *mesh, patch_plan *plan, side_ref *refs, size_t *planned) {
+                              cj_mesh *mesh, patch_plan *plan, side_ref *refs, size_t *planned,
+                              size_t *builds, size_t *trials) {
     const size_t vs = mesh->vertex_count, ts = mesh->triangle_count;
     cj_status st = CJ_OK;
     size_t q = 0;
     for (; q < count; ++q) {
         cj_tess_setup(P, &patches[q], q, mesh, 0);
         P->planning = 1;
-        st = cj_tess_adaptive_patch(P, tol, cap, q, NULL, NULL, plan[q].k, &plan[q].g);
+        plan[q].dens.valid = 0;
+        st = cj_tess_adaptive_patch(P, tol, cap, q, NULL, NULL, &plan[q].dens, plan[q].k,
+                                    &plan[q].g);
+        *builds += P->builds;
+        *trials += P->trials;
         cj_mesh_truncate(mesh, vs, ts);
         if (st) break;
     }
@@ -143,7 +149,8 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
     cj_status st = CJ_OK, plan_st = CJ_OK;
     size_t todo = count;
     if (adaptive) /* patches after a planning failure are not built */
-        plan_st = plan_patches(patches, count, opt->tol, cap, P, mesh, plan, refs, &todo);
+        plan_st = plan_patches(patches, count, opt->tol, cap, P, mesh, plan, refs, &todo,
+                               &rep.builds, &rep.trials);
     if (plan_st == CJ_ERR_NOMEM) todo = 0;
     for (size_t q = 0; q < todo && !st; ++q) {
         cj_tess_setup(P, &patches[q], q, mesh, opt->measure);
@@ -156,10 +163,13 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
         } else {
             int kused[4];
             grid g = {0, 0, 0};
-            st = cj_tess_adaptive_patch(P, opt->tol, cap, q, plan[q].k, &plan[q].g, kused, &g);
+            st = cj_tess_adaptive_patch(P, opt->tol, cap, q, plan[q].k, &plan[q].g, &plan[q].dens,
+                                        kused, &g);
             nu = g.nu;
             nv = g.nv;
         }
+        rep.builds += P->builds;
+        rep.trials += P->trials;
         if (!st && mesh->triangle_count == tq)
             st = cj_fail(CJ_ERR_DEGENERATE,
                          "patch %zu is degenerate: its surface has no area (every triangle "

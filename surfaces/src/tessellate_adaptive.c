@@ -54,10 +54,13 @@ static void side_counts(const ptess *P, const int ke[4], const int *kfix, int nu
     }
 }
 
-/* Builds grid g with side counts k; *pass receives whether the proven bound is <= tol. The
- * build stays in the mesh (replacing whatever was there after vs, ts). */
+/* Tries grid g with side counts k; *pass receives whether the proven bound is <= tol and
+ * P->tris its triangle count. A polynomial patch's trial is bounds-only (nothing evaluated or
+ * added to the mesh) unless `real`; a rational patch's bound needs its vertices, so its trials
+ * are builds. A build stays in the mesh (replacing whatever was there after vs, ts). */
 static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, grid g,
-                          const int k[4], double tol, size_t q, size_t vs, size_t ts, int *pass) {
+                          const int k[4], double tol, size_t q, size_t vs, size_t ts, int real,
+                          int *pass) {
     static const double flat[CJ_TESS_SLABS]; /* zero density: uniform lines */
     const int nu = g.nu, nv = g.nv;
     double *ub = t_alloc(P->mesh, sizeof(double) * (size_t)(nu + 1));
@@ -68,10 +71,12 @@ static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, gr
     } else {
         equidistribute(g.uni ? flat : rho_u, CJ_TESS_SLABS, nu, ub);
         equidistribute(g.uni ? flat : rho_v, CJ_TESS_SLABS, nv, vb);
-        cj_mesh_truncate(P->mesh, vs, ts);
+        P->bounds_only = !real && !P->rational;
+        if (!P->bounds_only) cj_mesh_truncate(P->mesh, vs, ts);
         P->abort_over = tol; /* a failing build is never kept: stop it early */
         st = cj_tess_build_patch(P, nu, ub, nv, vb, k);
         P->abort_over = 0.0;
+        P->bounds_only = 0;
         *pass = !st && !P->aborted && P->bound <= tol;
     }
     t_free(P->mesh, ub);
@@ -142,7 +147,7 @@ void cj_tess_patch_densities(ptess *P, double tol, double *rho_u, double *rho_v,
  * tried first. The mesh then holds the passing build with the fewest triangles (when planning:
  * some build, to be truncated); *out is that grid. */
 cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const int *kfix,
-                                 const grid *hint, int kout[4], grid *out) {
+                                 const grid *hint, tess_density *dens, int kout[4], grid *out) {
     int ke[4];
     for (int s = 0; s < 4; ++s) {
         ke[s] = P->e[s].collapsed
@@ -154,16 +159,22 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
                            s, cap, tol);
     }
     /* grid densities: see cj_tess_patch_densities */
-    double base_u, base_v;
-    double rho_u[CJ_TESS_SLABS], rho_v[CJ_TESS_SLABS];
-    cj_tess_patch_densities(P, tol, rho_u, rho_v, &base_u, &base_v);
+    if (!dens->valid) {
+        cj_tess_patch_densities(P, tol, dens->rho_u, dens->rho_v, &dens->base_u, &dens->base_v);
+        dens->valid = 1;
+    }
+    const double base_u = dens->base_u, base_v = dens->base_v;
+    const double *rho_u = dens->rho_u, *rho_v = dens->rho_v;
     const size_t vs = P->mesh->vertex_count, ts = P->mesh->triangle_count;
     cj_status st = CJ_OK;
     int k[4];
     if (kfix && hint && hint->nu >= 2 && hint->nv >= 2) {
         int pass = 0;
         side_counts(P, ke, kfix, hint->nu, hint->nv, k);
-        if ((st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, &pass))) return st;
+        if ((st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 0, &pass))) return st;
+        if (pass && !P->rational) /* the bounds-only trial passed: build it once */
+            st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 1, &pass);
+        if (st) return st;
         if (pass) {
             *out = *hint;
             memcpy(kout, k, sizeof k);
@@ -192,8 +203,8 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
         } else {
             const grid g = {nu, nv, 0};
             side_counts(P, ke, kfix, nu, nv, k);
-            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, &pass))) break;
-            const size_t tris = P->mesh->triangle_count - ts;
+            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, 0, &pass))) break;
+            const size_t tris = P->tris;
             if (pass && tris < best_tris) {
                 best_tris = tris;
                 best = g;
@@ -233,8 +244,8 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
             const grid g = {probe, probe, 1};
             int pass;
             side_counts(P, ke, kfix, probe, probe, k);
-            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, &pass))) break;
-            const size_t tris = P->mesh->triangle_count - ts;
+            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, 0, &pass))) break;
+            const size_t tris = P->tris;
             last = g;
             if (pass && tris < best_tris) {
                 best_tris = tris;
@@ -251,10 +262,12 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
         }
     }
     side_counts(P, ke, kfix, best.nu, best.nv, k);
-    /* rebuild the best grid unless it is the last build or only planning (kfix NULL) */
-    if (!st && kfix && (best.nu != last.nu || best.nv != last.nv || best.uni != last.uni)) {
-        int pass; /* deterministic: it passes again */
-        st = try_grid(P, rho_u, rho_v, best, k, tol, q, vs, ts, &pass);
+    /* build the best grid unless only planning (kfix NULL) or (a rational patch) it is the
+     * last build; deterministic: it passes again */
+    if (!st && kfix &&
+        (!P->rational || best.nu != last.nu || best.nv != last.nv || best.uni != last.uni)) {
+        int pass;
+        st = try_grid(P, rho_u, rho_v, best, k, tol, q, vs, ts, 1, &pass);
     }
     *out = best;
     memcpy(kout, k, sizeof k);

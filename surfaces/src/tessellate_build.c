@@ -81,7 +81,42 @@ static void eval_point(const ptess *P, double u, double v, double out[3]) {
         memcpy(out, r, 3 * sizeof(double));
 }
 
+/* The u stage of the tensor de Casteljau (each row of the net at u): one per grid column, shared
+ * by the column's vertices (the same operations as cj_patch_eval_h, in the same order). */
+static void eval_column(const ptess *P, double u, double *col) {
+    const int m = P->m, n = P->n, hd = P->hd;
+    const double s = 1.0 - u;
+    double w[(CJ_PATCH_MAX_DEGREE + 1) * 4];
+    for (int j = 0; j <= n; ++j) {
+        memcpy(w, P->h + (size_t)j * (size_t)(m + 1) * (size_t)hd,
+               sizeof(double) * (size_t)((m + 1) * hd));
+        for (int r = m; r > 0; --r)
+            for (int i = 0; i < r * hd; ++i) w[i] = s * w[i] + u * w[i + hd];
+        memcpy(col + j * hd, w, sizeof(double) * (size_t)hd);
+    }
+}
+
+/* The v stage: the point of a column at v. */
+static void eval_in_column(const ptess *P, const double *col, double v, double out[3]) {
+    const int n = P->n, hd = P->hd;
+    const double s = 1.0 - v;
+    double w[(CJ_PATCH_MAX_DEGREE + 1) * 4];
+    memcpy(w, col, sizeof(double) * (size_t)((n + 1) * hd));
+    for (int r = n; r > 0; --r)
+        for (int i = 0; i < r * hd; ++i) w[i] = s * w[i] + v * w[i + hd];
+    if (hd == 4)
+        for (int c = 0; c < 3; ++c) out[c] = w[c] / w[3];
+    else
+        memcpy(out, w, 3 * sizeof(double));
+}
+
 static cj_status add_vertex(ptess *P, const double pos[3], double u, double v, uint32_t *idx) {
+    if (P->bounds_only) {
+        P->scr_uv[2 * (size_t)P->scr_count] = u;
+        P->scr_uv[2 * (size_t)P->scr_count + 1] = v;
+        *idx = P->scr_count++;
+        return CJ_OK;
+    }
     double nrm[3] = {0.0, 0.0, 0.0};
     const double uv[2] = {u, v};
     if (!P->planning && cj_patch_normal_unchecked(P->p, P->h, P->hd, u, v, nrm, NULL) != CJ_OK)
@@ -93,8 +128,8 @@ static cj_status add_vertex(ptess *P, const double pos[3], double u, double v, u
  * `db` and its measured deviation; degenerate triangles are counted and not added. */
 static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbounds *db) {
     cj_mesh *M = P->mesh;
-    const double *ua = M->uvs + 2 * (size_t)a, *ub = M->uvs + 2 * (size_t)b,
-                 *uc = M->uvs + 2 * (size_t)c;
+    const double *uvs = P->bounds_only ? P->scr_uv : M->uvs;
+    const double *ua = uvs + 2 * (size_t)a, *ub = uvs + 2 * (size_t)b, *uc = uvs + 2 * (size_t)c;
     const double area = (ub[0] - ua[0]) * (uc[1] - ua[1]) - (ub[1] - ua[1]) * (uc[0] - ua[0]);
     if (area < 0.0) {
         uint32_t t = b;
@@ -130,6 +165,10 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
             P->worst_terms[2] = t2;
         }
         if (P->abort_over > 0.0 && P->bound > P->abort_over) P->aborted = 1;
+    }
+    if (P->bounds_only) {
+        ++P->tris;
+        return CJ_OK;
     }
     const double *pa = M->positions + 3 * (size_t)a, *pb = M->positions + 3 * (size_t)b,
                  *pc = M->positions + 3 * (size_t)c;
@@ -176,6 +215,7 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         ++P->dropped;
         return CJ_OK;
     }
+    ++P->tris;
     return cj_mesh_add_triangle(M, a, b, c, P->id);
 }
 
@@ -217,12 +257,24 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
     P->measured = 0.0;
     P->dropped = 0;
     P->aborted = 0;
+    P->tris = 0;
     P->worst_terms[0] = P->worst_terms[1] = P->worst_terms[2] = 0.0;
+    assert(!P->bounds_only || !P->rational);
+    if (P->bounds_only)
+        ++P->trials;
+    else
+        ++P->builds;
     const size_t nouter = (size_t)(k[0] + k[1] + k[2] + k[3] + 4);
     const size_t ngrid = (size_t)(nu + 1) * (size_t)(nv + 1);
     const size_t nmax = (size_t)(nu > nv ? nu : nv) + 1;
+    const size_t ncol = P->bounds_only ? 0 : (size_t)(P->n + 1) * (size_t)P->hd;
     uint32_t *buf = t_alloc(P->mesh, sizeof(uint32_t) * (nouter + ngrid + nmax));
-    double *tbuf = t_alloc(P->mesh, sizeof(double) * (nouter + nmax));
+    /* doubles: side parameters, inner parameters, then (bounds_only) the vertices' (u,v) or
+     * (a build) one column of the grid evaluation */
+    double *tbuf = t_alloc(
+        P->mesh, sizeof(double) * (nouter + nmax + (P->bounds_only ? 2 * (nouter + ngrid) : ncol)));
+    P->scr_uv = tbuf ? tbuf + nouter + nmax : NULL;
+    P->scr_count = 0;
     if (!buf || !tbuf) {
         st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %d", (int)P->id);
         goto done;
@@ -263,8 +315,8 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
         o[s][0] = first[s];
         o[s][k[s]] = last[s];
         for (int a = 1; a < k[s]; ++a) {
-            double pos[3];
-            edge_point(&P->e[s], P->rational, a, k[s], pos);
+            double pos[3] = {0.0, 0.0, 0.0};
+            if (!P->bounds_only) edge_point(&P->e[s], P->rational, a, k[s], pos);
             const double t = tout[s][a];
             double u, v;
             switch (s) {
@@ -284,11 +336,26 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
             if ((st = add_vertex(P, pos, u, v, &o[s][a]))) goto done;
         }
     }
+    /* grid vertices column by column (the u stage shared), stored row by row as before */
+    double *col = tbuf + nouter + nmax;
     for (int j = 1; j < nv; ++j)
         for (int i = 1; i < nu; ++i) {
-            double pos[3];
-            eval_point(P, ub[i], vb[j], pos);
+            const double pos[3] = {0.0, 0.0, 0.0};
             if ((st = add_vertex(P, pos, ub[i], vb[j], &g[j * (nu + 1) + i]))) goto done;
+        }
+    if (!P->bounds_only)
+        for (int i = 1; i < nu; ++i) {
+            eval_column(P, ub[i], col);
+            for (int j = 1; j < nv; ++j) {
+                double *pos = P->mesh->positions + 3 * (size_t)g[j * (nu + 1) + i];
+                eval_in_column(P, col, vb[j], pos);
+                if (!isfinite(pos[0]) || !isfinite(pos[1]) || !isfinite(pos[2])) {
+                    st = cj_fail(CJ_ERR_NONFINITE,
+                                 "patch %d: vertex at (%.17g, %.17g) is not finite", (int)P->id,
+                                 ub[i], vb[j]);
+                    goto done;
+                }
+            }
         }
     int j0 = 0, j1 = nv, i0 = 0, i1 = nu; /* the block of regular cells */
     if (regular) {
@@ -322,18 +389,20 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
         j1 = nv - 1;
         i1 = nu - 1;
     }
-    for (int j = j0; j < j1; ++j)
+    for (int j = j0; j < j1; ++j) {
+        if (!P->rational) cj_tess_strip_restrict(P, vb[j], vb[j + 1], &P->strip);
         for (int i = i0; i < i1; ++i) {
             dbounds cb = {0.0, 0.0, 0.0};
             if (P->rational)
                 cj_tess_load_cell(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
             else
-                cb = cj_tess_strip_bounds(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
+                cb = cj_tess_cell_bounds(P, &P->strip, ub[i], ub[i + 1]);
             const uint32_t A = g[j * (nu + 1) + i], B = g[j * (nu + 1) + i + 1],
                            C = g[(j + 1) * (nu + 1) + i + 1], D = g[(j + 1) * (nu + 1) + i];
             if ((st = add_tri(P, A, B, C, &cb))) goto done;
             if ((st = add_tri(P, A, C, D, &cb)) || P->aborted) goto done;
         }
+    }
 done:
     t_free(P->mesh, buf);
     t_free(P->mesh, tbuf);
@@ -373,4 +442,5 @@ void cj_tess_setup(ptess *P, const cj_patch *p, size_t q, cj_mesh *mesh, int mea
         P->suberr_w = g * hw;
     }
     for (int s = 0; s < 4; ++s) cj_tess_edge_setup(p, s, &P->e[s]);
+    if (!P->rational) cj_tess_diff_setup(P);
 }

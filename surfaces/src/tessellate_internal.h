@@ -32,6 +32,14 @@ static inline void t_free(const cj_mesh *mesh, void *ptr) {
     cj_allocator_free(&mesh->alloc_, ptr);
 }
 
+/* Difference nets of a polynomial patch restricted in v to a strip [v0,v1] (tess_bounds_poly.c):
+ * a cell of the strip restricts them in u only. */
+#define CJ_TESS_DNET_MAX ((CJ_PATCH_MAX_DEGREE + 1) * (CJ_PATCH_MAX_DEGREE + 1) * 3)
+typedef struct tess_strip {
+    double v0, v1;
+    double uu[CJ_TESS_DNET_MAX], uv[CJ_TESS_DNET_MAX], vv[CJ_TESS_DNET_MAX];
+} tess_strip;
+
 typedef struct edge_info {
     int degree, collapsed, reversed;
     double pts[(CJ_PATCH_MAX_DEGREE + 1) * 3]; /* canonical order */
@@ -45,6 +53,10 @@ typedef struct ptess {
     int hd, m, n;
     int rational;
     double evalerr;
+    /* polynomial patches: difference nets (tess_bounds_poly.c) and the additive rounding of a
+     * restricted coefficient's norm */
+    double duu[CJ_TESS_DNET_MAX], duv[CJ_TESS_DNET_MAX], dvv[CJ_TESS_DNET_MAX];
+    double err_uu, err_uv, err_vv;
     /* rational patches (see cj_tess_rational_tri_bound) */
     double suberr_x, suberr_w; /* rounding of a sub-net coefficient */
     double verterr;            /* rounding of a vertex (3D norm) */
@@ -55,7 +67,16 @@ typedef struct ptess {
     edge_info e[4];
     cj_mesh *mesh;
     int measure;
-    int planning;      /* builds only for their bound and size: no normals */
+    int planning;    /* builds only for their bound and size: no normals */
+    int bounds_only; /* polynomial: a trial that computes the bound and triangle count only:
+                      * no positions, nothing added to the mesh (uvs in scr_uv) */
+    double *scr_uv;  /* bounds_only: the (u,v) of the trial's vertices */
+    uint32_t scr_count;
+    size_t tris;       /* triangles of the last build (bounds_only: including those a real
+                        * build would drop) */
+    size_t builds;     /* mesh builds of this patch (bounds-only trials not counted) */
+    size_t trials;     /* bounds-only trials of this patch */
+    tess_strip strip;  /* scratch of the cell loop */
     double abort_over; /* > 0: stop a build as soon as its bound exceeds this (it fails) */
     int aborted;       /* the last build stopped early */
     /* results of one build */
@@ -74,11 +95,18 @@ static inline int same_pos(const double *a, const double *b) {
     return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
 }
 
-/* ---- tessellate_bounds.c -------------------------------------------------------------- */
+/* ---- tess_bounds_poly.c --------------------------------------------------------------- */
 
-/* Sub-net bounds over [u0,u1]x[v0,v1], rescaled to the patch's parameters (polynomial
- * patches; rational ones: cj_tess_rational_tri_bound). */
+/* Forms the difference nets of the set-up polynomial patch (once per patch). */
+void cj_tess_diff_setup(ptess *P);
+/* Bounds over [u0,u1]x[v0,v1] in the patch's parameters (polynomial patches; rational ones:
+ * cj_tess_rational_tri_bound). */
 dbounds cj_tess_strip_bounds(const ptess *P, double u0, double u1, double v0, double v1);
+/* The same in two steps: restrict to the strip [v0,v1] once, then to each cell [u0,u1] of it. */
+void cj_tess_strip_restrict(const ptess *P, double v0, double v1, tess_strip *s);
+dbounds cj_tess_cell_bounds(const ptess *P, const tess_strip *s, double u0, double u1);
+
+/* ---- tessellate_bounds.c -------------------------------------------------------------- */
 /* Homogeneous rational bound of a box from its homogeneous sub-net (see the RATIONAL BOUND
  * in tessellate_bounds.c). */
 void cj_tess_homog_bounds(const ptess *P, const double *sub, double out[4]);
@@ -110,8 +138,16 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
  * of the search's starting grid for tol. */
 void cj_tess_patch_densities(ptess *P, double tol, double *rho_u, double *rho_v, double *base_u,
                              double *base_v);
-/* Adaptive choice of the grid of one patch (see tessellate_adaptive.c). */
+/* A patch's grid densities and starting counts for one tol (cj_tess_patch_densities), kept
+ * from its planning to its build (valid != 0). */
+typedef struct tess_density {
+    double rho_u[CJ_TESS_SLABS], rho_v[CJ_TESS_SLABS], base_u, base_v;
+    int valid;
+} tess_density;
+
+/* Adaptive choice of the grid of one patch (see tessellate_adaptive.c). dens: computed when
+ * not valid, reused when valid (the same patch and tol). */
 cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const int *kfix,
-                                 const grid *hint, int kout[4], grid *out);
+                                 const grid *hint, tess_density *dens, int kout[4], grid *out);
 
 #endif

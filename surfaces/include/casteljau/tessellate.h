@@ -112,6 +112,9 @@ typedef struct cj_tess_report {
     double bound;       /* proven max distance from the patches to the mesh */
     double measured;    /* measured max deviation (-1 when opt->measure == 0) */
     int max_nu, max_nv; /* largest grid used by a patch */
+    size_t builds;      /* patch meshes built (planning and final; 1 per patch when planned
+                         * bounds meet tol as built: see ADAPTIVE CHOICE) */
+    size_t trials;      /* bounds-only trials of grids (no mesh built) */
 } cj_tess_report;
 
 /* Tessellates `count` patches into `mesh` (appending; triangle_patch = patch index). Vertices
