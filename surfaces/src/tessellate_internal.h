@@ -150,4 +150,27 @@ typedef struct tess_density {
 cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const int *kfix,
                                  const grid *hint, tess_density *dens, int kout[4], grid *out);
 
+/* ---- tessellate.c: the steps of adaptive tessellation (shared with tess_cache.c) ---- */
+
+/* What planning decides for one patch at one tol: a function of the patch and tol alone. */
+typedef struct tess_plan {
+    int k[4]; /* requested side counts */
+    grid g;   /* planned grid */
+    tess_density dens;
+} tess_plan;
+
+/* Plans patch p (index q for messages); mesh is scratch (left as it was). Adds the builds and
+ * bounds-only trials made to *builds, *trials. */
+cj_status cj_tess_plan_patch(ptess *P, const cj_patch *p, size_t q, double tol, int cap,
+                             cj_mesh *mesh, tess_plan *plan, size_t *builds, size_t *trials);
+/* k[4 q + s] (requested counts in, shared counts out): every side shared by several patches
+ * (identical canonical control points) gets the largest count requested for it. */
+cj_status cj_tess_share_counts(const cj_patch *patches, size_t count, int *k,
+                               const cj_allocator *alloc);
+/* Builds planned patch p with side counts k, appending its mesh piece (triangle_patch q) to
+ * mesh; on failure the mesh is as before. *used receives the grid; P holds bound, dropped. */
+cj_status cj_tess_build_planned(ptess *P, const cj_patch *p, size_t q, double tol, int cap,
+                                int measure, const int k[4], tess_plan *plan, cj_mesh *mesh,
+                                grid *used, size_t *builds, size_t *trials);
+
 #endif

@@ -1,0 +1,4 @@
+# Incremental tessellation (issue 19): the cache against one-shot tessellation after random
+# edit sequences (bit-identical meshes, incremental work, no cracks).
+cj_add_test(test_tess_cache SOURCES test_tess_cache.c LIBS cj::surfaces)
+target_compile_definitions(test_tess_cache PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
