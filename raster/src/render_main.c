@@ -403,7 +403,12 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
     cj_stage_add_value(s, "tol_px", tol_px);
     cj_stage_add_value(s, "bound_px", b.patch_bound_px);
     cj_stage_add_value(s, "patches_culled", (double)b.patches_culled);
-    if (o.cache) cj_stage_add_value(s, "cache_hits", (double)b.cache_hits);
+    if (o.cache) {
+        cj_stage_add_value(s, "patches_planned", (double)b.patches_planned);
+        cj_stage_add_value(s, "patches_built", (double)b.patches_built);
+        cj_stage_add_value(s, "patches_reused", (double)b.patches_reused);
+        cj_stage_add_value(s, "cache_hits", (double)b.cache_hits);
+    }
     s = stage(R, "tessellate_surfaces", f.surfaces,
               f.surfaces ? "the scene has analytic surfaces" : "no analytic surfaces", "objects", 0,
               "triangles", b.surface_tris, b.sec_surfaces);
