@@ -82,35 +82,81 @@ static void eval_point(const ptess *P, double u, double v, double out[3]) {
 }
 
 /* The u stage of the tensor de Casteljau (each row of the net at u): one per grid column, shared
- * by the column's vertices (the same operations as cj_patch_eval_h, in the same order). */
-static void eval_column(const ptess *P, double u, double *col) {
+ * by the column's vertices (the same operations as cj_patch_eval_h, in the same order). A
+ * polynomial patch's column also gets the u-derivative of each row, m (w1 - w0) from the last
+ * level (dcol, n+1 points): S_u along the column. */
+static void eval_column(const ptess *P, double u, double *col, double *dcol) {
     const int m = P->m, n = P->n, hd = P->hd;
     const double s = 1.0 - u;
     double w[(CJ_PATCH_MAX_DEGREE + 1) * 4];
     for (int j = 0; j <= n; ++j) {
         memcpy(w, P->h + (size_t)j * (size_t)(m + 1) * (size_t)hd,
                sizeof(double) * (size_t)((m + 1) * hd));
-        for (int r = m; r > 0; --r)
+        for (int r = m; r > 0; --r) {
+            if (r == 1 && hd == 3)
+                for (int c = 0; c < 3; ++c) dcol[3 * j + c] = (double)m * (w[3 + c] - w[c]);
             for (int i = 0; i < r * hd; ++i) w[i] = s * w[i] + u * w[i + hd];
+        }
+        if (m == 0 && hd == 3)
+            for (int c = 0; c < 3; ++c) dcol[3 * j + c] = 0.0;
         memcpy(col + j * hd, w, sizeof(double) * (size_t)hd);
     }
 }
 
-/* The v stage: the point of a column at v. */
-static void eval_in_column(const ptess *P, const double *col, double v, double out[3]) {
+/* The v stage: the point of a column at v; for a polynomial patch also S_v (n (w1 - w0) from
+ * the last level) into dv. */
+static void eval_in_column(const ptess *P, const double *col, double v, double out[3],
+                           double dv[3]) {
     const int n = P->n, hd = P->hd;
     const double s = 1.0 - v;
     double w[(CJ_PATCH_MAX_DEGREE + 1) * 4];
     memcpy(w, col, sizeof(double) * (size_t)((n + 1) * hd));
-    for (int r = n; r > 0; --r)
+    if (n == 0 && hd == 3) dv[0] = dv[1] = dv[2] = 0.0;
+    for (int r = n; r > 0; --r) {
+        if (r == 1 && hd == 3)
+            for (int c = 0; c < 3; ++c) dv[c] = (double)n * (w[3 + c] - w[c]);
         for (int i = 0; i < r * hd; ++i) w[i] = s * w[i] + v * w[i + hd];
+    }
     if (hd == 4)
         for (int c = 0; c < 3; ++c) out[c] = w[c] / w[3];
     else
         memcpy(out, w, 3 * sizeof(double));
 }
 
-static cj_status add_vertex(ptess *P, const double pos[3], double u, double v, uint32_t *idx) {
+/* S_u of a polynomial patch at v along a column (its dcol). */
+static void eval_du(const ptess *P, const double *dcol, double v, double du[3]) {
+    const int n = P->n;
+    const double s = 1.0 - v;
+    double w[(CJ_PATCH_MAX_DEGREE + 1) * 3];
+    memcpy(w, dcol, sizeof(double) * (size_t)((n + 1) * 3));
+    for (int r = n; r > 0; --r)
+        for (int i = 0; i < r * 3; ++i) w[i] = s * w[i] + v * w[i + 3];
+    memcpy(du, w, 3 * sizeof(double));
+}
+
+/* The unit normal at a grid vertex: S_u x S_v normalised where it is well conditioned (the
+ * regular case of cj_patch_normal_unchecked, same test), else cj_patch_normal_unchecked. */
+static void grid_normal(const ptess *P, const double su[3], const double sv[3], double u, double v,
+                        double nrm[3]) {
+    if (P->hd == 3) {
+        const double c[3] = {su[1] * sv[2] - su[2] * sv[1], su[2] * sv[0] - su[0] * sv[2],
+                             su[0] * sv[1] - su[1] * sv[0]};
+        const double cn = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        const double nu = sqrt(su[0] * su[0] + su[1] * su[1] + su[2] * su[2]);
+        const double nv = sqrt(sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]);
+        if (cn > 64.0 * U_ROUND * nu * nv && cn > 0.0 && isfinite(cn)) {
+            for (int k = 0; k < 3; ++k) nrm[k] = c[k] / cn;
+            return;
+        }
+    }
+    if (cj_patch_normal_unchecked(P->p, P->h, P->hd, u, v, nrm, NULL) != CJ_OK)
+        nrm[0] = nrm[1] = nrm[2] = 0.0; /* a patch collapsed to a curve: no normal */
+}
+
+/* Adds a vertex; its normal is computed unless planning or `later` (grid vertices: computed
+ * with their position). */
+static cj_status add_vertex(ptess *P, const double pos[3], double u, double v, int later,
+                            uint32_t *idx) {
     if (P->bounds_only) {
         P->scr_uv[2 * (size_t)P->scr_count] = u;
         P->scr_uv[2 * (size_t)P->scr_count + 1] = v;
@@ -119,7 +165,8 @@ static cj_status add_vertex(ptess *P, const double pos[3], double u, double v, u
     }
     double nrm[3] = {0.0, 0.0, 0.0};
     const double uv[2] = {u, v};
-    if (!P->planning && cj_patch_normal_unchecked(P->p, P->h, P->hd, u, v, nrm, NULL) != CJ_OK)
+    if (!P->planning && !later &&
+        cj_patch_normal_unchecked(P->p, P->h, P->hd, u, v, nrm, NULL) != CJ_OK)
         nrm[0] = nrm[1] = nrm[2] = 0.0; /* a patch collapsed to a curve: no normal */
     return cj_mesh_add_vertex(P->mesh, pos, nrm, uv, idx);
 }
@@ -139,7 +186,9 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         ub = uc;
         uc = tu;
     }
-    if (P->rational) {
+    if (P->bound_known) {
+        /* the bound of these triangles is known (tessellate_adaptive.c, try_grid) */
+    } else if (P->rational) {
         double bnd = cj_tess_rational_tri_bound(P, ua, ub, uc, M->positions + 3 * (size_t)a,
                                                 M->positions + 3 * (size_t)b,
                                                 M->positions + 3 * (size_t)c, db != NULL, P->bound);
@@ -267,7 +316,7 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
     const size_t nouter = (size_t)(k[0] + k[1] + k[2] + k[3] + 4);
     const size_t ngrid = (size_t)(nu + 1) * (size_t)(nv + 1);
     const size_t nmax = (size_t)(nu > nv ? nu : nv) + 1;
-    const size_t ncol = P->bounds_only ? 0 : (size_t)(P->n + 1) * (size_t)P->hd;
+    const size_t ncol = P->bounds_only ? 0 : (size_t)(P->n + 1) * (size_t)(P->hd + 3);
     uint32_t *buf = t_alloc(P->mesh, sizeof(uint32_t) * (nouter + ngrid + nmax));
     /* doubles: side parameters, inner parameters, then (bounds_only) the vertices' (u,v) or
      * (a build) one column of the grid evaluation */
@@ -306,10 +355,10 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
     /* corners: the control points themselves */
     const int m1 = m + 1;
     uint32_t c00, c10, c11, c01;
-    if ((st = add_vertex(P, P->p->pts, 0.0, 0.0, &c00))) goto done;
-    if ((st = add_vertex(P, P->p->pts + 3 * m, 1.0, 0.0, &c10))) goto done;
-    if ((st = add_vertex(P, P->p->pts + 3 * (n * m1 + m), 1.0, 1.0, &c11))) goto done;
-    if ((st = add_vertex(P, P->p->pts + 3 * (n * m1), 0.0, 1.0, &c01))) goto done;
+    if ((st = add_vertex(P, P->p->pts, 0.0, 0.0, 0, &c00))) goto done;
+    if ((st = add_vertex(P, P->p->pts + 3 * m, 1.0, 0.0, 0, &c10))) goto done;
+    if ((st = add_vertex(P, P->p->pts + 3 * (n * m1 + m), 1.0, 1.0, 0, &c11))) goto done;
+    if ((st = add_vertex(P, P->p->pts + 3 * (n * m1), 0.0, 1.0, 0, &c01))) goto done;
     const uint32_t first[4] = {c00, c10, c01, c00}, last[4] = {c10, c11, c11, c01};
     for (int s = 0; s < 4; ++s) {
         o[s][0] = first[s];
@@ -333,22 +382,27 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
                 u = 0.0, v = t;
                 break;
             }
-            if ((st = add_vertex(P, pos, u, v, &o[s][a]))) goto done;
+            if ((st = add_vertex(P, pos, u, v, 0, &o[s][a]))) goto done;
         }
     }
     /* grid vertices column by column (the u stage shared), stored row by row as before */
-    double *col = tbuf + nouter + nmax;
+    double *col = tbuf + nouter + nmax, *dcol = col + (size_t)(P->n + 1) * (size_t)P->hd;
     for (int j = 1; j < nv; ++j)
         for (int i = 1; i < nu; ++i) {
             const double pos[3] = {0.0, 0.0, 0.0};
-            if ((st = add_vertex(P, pos, ub[i], vb[j], &g[j * (nu + 1) + i]))) goto done;
+            if ((st = add_vertex(P, pos, ub[i], vb[j], 1, &g[j * (nu + 1) + i]))) goto done;
         }
     if (!P->bounds_only)
         for (int i = 1; i < nu; ++i) {
-            eval_column(P, ub[i], col);
+            eval_column(P, ub[i], col, dcol);
             for (int j = 1; j < nv; ++j) {
-                double *pos = P->mesh->positions + 3 * (size_t)g[j * (nu + 1) + i];
-                eval_in_column(P, col, vb[j], pos);
+                const size_t vi = (size_t)g[j * (nu + 1) + i];
+                double *pos = P->mesh->positions + 3 * vi, su[3], sv[3];
+                eval_in_column(P, col, vb[j], pos, sv);
+                if (!P->planning) {
+                    if (P->hd == 3) eval_du(P, dcol, vb[j], su);
+                    grid_normal(P, su, sv, ub[i], vb[j], P->mesh->normals + 3 * vi);
+                }
                 if (!isfinite(pos[0]) || !isfinite(pos[1]) || !isfinite(pos[2])) {
                     st = cj_fail(CJ_ERR_NONFINITE,
                                  "patch %d: vertex at (%.17g, %.17g) is not finite", (int)P->id,
@@ -390,12 +444,13 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
         i1 = nu - 1;
     }
     for (int j = j0; j < j1; ++j) {
-        if (!P->rational) cj_tess_strip_restrict(P, vb[j], vb[j + 1], &P->strip);
+        const int cells = !P->bound_known; /* cell bounds needed */
+        if (cells && !P->rational) cj_tess_strip_restrict(P, vb[j], vb[j + 1], &P->strip);
         for (int i = i0; i < i1; ++i) {
             dbounds cb = {0.0, 0.0, 0.0};
-            if (P->rational)
+            if (cells && P->rational)
                 cj_tess_load_cell(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
-            else
+            else if (cells)
                 cb = cj_tess_cell_bounds(P, &P->strip, ub[i], ub[i + 1]);
             const uint32_t A = g[j * (nu + 1) + i], B = g[j * (nu + 1) + i + 1],
                            C = g[(j + 1) * (nu + 1) + i + 1], D = g[(j + 1) * (nu + 1) + i];

@@ -70,6 +70,7 @@ typedef struct ptess {
     int planning;    /* builds only for their bound and size: no normals */
     int bounds_only; /* polynomial: a trial that computes the bound and triangle count only:
                       * no positions, nothing added to the mesh (uvs in scr_uv) */
+    int bound_known; /* a build whose bound a bounds-only trial computed: add_tri skips it */
     double *scr_uv;  /* bounds_only: the (u,v) of the trial's vertices */
     uint32_t scr_count;
     size_t tris;       /* triangles of the last build (bounds_only: including those a real
