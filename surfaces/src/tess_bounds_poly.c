@@ -148,8 +148,156 @@ dbounds cj_tess_cell_bounds(const ptess *P, const tess_strip *s, double u0, doub
     return b;
 }
 
+/* Restricts the net d of (deg_u+1) x (deg_v+1) points (3D) to [u0,u1] in u, into out. */
+static void restrict_u(const double *d, int deg_u, int deg_v, double u0, double u1, double *out) {
+    const int cnt = (deg_u + 1) * (deg_v + 1);
+    memcpy(out, d, sizeof(double) * 3 * (size_t)cnt);
+    for (int j = 0; j <= deg_v; ++j) restrict_curve(out + 3 * j * (deg_u + 1), deg_u, 3, u0, u1);
+}
+
+void cj_tess_ustrip_restrict(const ptess *P, double u0, double u1, tess_strip *s) {
+    const int m = P->m, n = P->n;
+    s->v0 = u0; /* the strip's range, here in u */
+    s->v1 = u1;
+    if (m >= 2) restrict_u(P->duu, m - 2, n, u0, u1, s->uu);
+    if (m >= 1 && n >= 1) restrict_u(P->duv, m - 1, n - 1, u0, u1, s->uv);
+    if (n >= 2) restrict_u(P->dvv, m, n - 2, u0, u1, s->vv);
+}
+
+/* max norm of the u-strip net (cols) x (deg_v+1) restricted to [v0,v1] in v. */
+static double vcell_norm(const double *d, int cols, int deg_v, double v0, double v1) {
+    double w[(CJ_PATCH_MAX_DEGREE + 1) * (CJ_PATCH_MAX_DEGREE + 1) * 3];
+    const int cnt = cols * (deg_v + 1);
+    memcpy(w, d, sizeof(double) * 3 * (size_t)cnt);
+    for (int i = 0; i < cols; ++i) restrict_curve(w + 3 * i, deg_v, 3 * (size_t)cols, v0, v1);
+    return max_norm(w, cnt);
+}
+
+dbounds cj_tess_ucell_bounds(const ptess *P, const tess_strip *s, double v0, double v1) {
+    const int m = P->m, n = P->n;
+    const double inf = 1.0 + 4.0 * U_ROUND;
+    dbounds b = {0.0, 0.0, 0.0};
+    if (m >= 2)
+        b.uu = (vcell_norm(s->uu, m - 1, n, v0, v1) + P->err_uu) * inf * (double)(m * (m - 1));
+    if (m >= 1 && n >= 1)
+        b.uv = (vcell_norm(s->uv, m, n - 1, v0, v1) + P->err_uv) * inf * (double)(m * n);
+    if (n >= 2)
+        b.vv = (vcell_norm(s->vv, m + 1, n - 2, v0, v1) + P->err_vv) * inf * (double)(n * (n - 1));
+    return b;
+}
+
 dbounds cj_tess_strip_bounds(const ptess *P, double u0, double u1, double v0, double v1) {
     tess_strip s;
     cj_tess_strip_restrict(P, v0, v1, &s);
     return cj_tess_cell_bounds(P, &s, u0, u1);
+}
+
+/* ---- walking a strip cell by cell (u degree <= 3, v degree <= 3: bicubic, biquadratic and
+ * lower) ----------------------------------------------------------------------------------- *
+ * WHY. Along a strip the cells [u_i, u_{i+1}] share their grid lines. The restriction of a row
+ * curve p (degree d <= 3, in u) to [a,b] has the coefficients given by its blossom,
+ *     d = 1: p(a), p(b);   d = 2: p(a), B(a,b), p(b);   d = 3: p(a), B(a,a,b), B(a,b,b), p(b),
+ * and de Casteljau at a line t gives p(t) and the last level's points Q0(t) = B(t,..,t,0),
+ * Q1(t) = B(t,..,t,1), from which B(a,b) = (1-b) Q0(a) + b Q1(a) (d = 2) and
+ * B(a,a,b) = (1-b) Q0(a) + b Q1(a), B(a,b,b) = (1-a) Q0(b) + a Q1(b) (d = 3). So each grid line
+ * is evaluated once per strip (cj_tess_line) and a cell costs one or two lerps per row
+ * (cj_tess_cell_walk) instead of two de Casteljau splits. Every coefficient is still a chain of
+ * at most d convex combinations after the strip's restriction in v (<= 2n levels), within the
+ * gamma(8(m + n) + 8) rounding term of the difference nets: the bound is the one proven above,
+ * evaluated on the same coefficients (up to rounding). */
+
+static inline void lerp3(const double *x, const double *y, double t, double *out) {
+    const double s = 1.0 - t;
+    out[0] = s * x[0] + t * y[0];
+    out[1] = s * x[1] + t * y[1];
+    out[2] = s * x[2] + t * y[2];
+}
+
+static inline double norm3(const double *x) {
+    return sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+}
+
+int cj_tess_walkable(const ptess *P) {
+    return !P->rational && P->m <= 3 && P->n <= 3;
+}
+
+/* One net (rows of `cols` points, degree cols-1 <= 3) at line t. */
+static void line_net(const double *net, int cols, int rows, double t, double (*pt)[3][3],
+                     double *nrm) {
+    double mx = 0.0;
+    for (int j = 0; j < rows; ++j) {
+        const double *p = net + 3 * j * cols;
+        double(*o)[3] = pt[j];
+        switch (cols - 1) {
+        case 0:
+            memcpy(o[0], p, 3 * sizeof(double));
+            break;
+        case 1:
+            lerp3(p, p + 3, t, o[0]);
+            break;
+        case 2:
+            lerp3(p, p + 3, t, o[1]);
+            lerp3(p + 3, p + 6, t, o[2]);
+            lerp3(o[1], o[2], t, o[0]);
+            break;
+        default: {
+            double l[3][3];
+            lerp3(p, p + 3, t, l[0]);
+            lerp3(p + 3, p + 6, t, l[1]);
+            lerp3(p + 6, p + 9, t, l[2]);
+            lerp3(l[0], l[1], t, o[1]);
+            lerp3(l[1], l[2], t, o[2]);
+            lerp3(o[1], o[2], t, o[0]);
+        }
+        }
+        mx = fmax(mx, norm3(o[0]));
+    }
+    *nrm = mx;
+}
+
+void cj_tess_line(const ptess *P, const tess_strip *s, double t, tess_line *L) {
+    const int m = P->m, n = P->n;
+    L->t = t;
+    L->nrm[0] = L->nrm[1] = L->nrm[2] = 0.0;
+    if (m >= 2) line_net(s->uu, m - 1, n + 1, t, L->pt[0], &L->nrm[0]);
+    if (m >= 1 && n >= 1) line_net(s->uv, m, n, t, L->pt[1], &L->nrm[1]);
+    if (n >= 2) line_net(s->vv, m + 1, n - 1, t, L->pt[2], &L->nrm[2]);
+}
+
+/* Largest norm among the interior coefficients of one net's rows over [A->t, B->t]. */
+static double cell_interior(const double (*pa)[3][3], const double (*pb)[3][3], int deg, int rows,
+                            double a, double b) {
+    double mx = 0.0, c[3];
+    if (deg < 2) return 0.0;
+    for (int j = 0; j < rows; ++j) {
+        lerp3(pa[j][1], pa[j][2], b, c); /* B(a,b) or B(a,a,b) */
+        mx = fmax(mx, norm3(c));
+        if (deg == 3) {
+            lerp3(pb[j][1], pb[j][2], a, c); /* B(a,b,b) */
+            mx = fmax(mx, norm3(c));
+        }
+    }
+    return mx;
+}
+
+dbounds cj_tess_cell_walk(const ptess *P, const tess_line *A, const tess_line *B) {
+    const int m = P->m, n = P->n;
+    const double inf = 1.0 + 4.0 * U_ROUND, a = A->t, b = B->t;
+    dbounds r = {0.0, 0.0, 0.0};
+    if (m >= 2) {
+        const double x =
+            fmax(fmax(A->nrm[0], B->nrm[0]), cell_interior(A->pt[0], B->pt[0], m - 2, n + 1, a, b));
+        r.uu = (x + P->err_uu) * inf * (double)(m * (m - 1));
+    }
+    if (m >= 1 && n >= 1) {
+        const double x =
+            fmax(fmax(A->nrm[1], B->nrm[1]), cell_interior(A->pt[1], B->pt[1], m - 1, n, a, b));
+        r.uv = (x + P->err_uv) * inf * (double)(m * n);
+    }
+    if (n >= 2) {
+        const double x =
+            fmax(fmax(A->nrm[2], B->nrm[2]), cell_interior(A->pt[2], B->pt[2], m, n - 1, a, b));
+        r.vv = (x + P->err_vv) * inf * (double)(n * (n - 1));
+    }
+    return r;
 }

@@ -201,8 +201,14 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         const double du = u1 - u0, dv = v1 - v0;
         dbounds local;
         if (!db) { /* bounds over the triangle's own (u,v) box */
-            local = (du > 0.0 && dv > 0.0) ? cj_tess_strip_bounds(P, u0, u1, v0, v1)
-                                           : cj_tess_strip_bounds(P, 0.0, 1.0, 0.0, 1.0);
+            if (!(du > 0.0 && dv > 0.0))
+                local = P->whole;
+            else if (P->zip_dir == 0 && v0 == P->zip.v0 && v1 == P->zip.v1)
+                local = cj_tess_cell_bounds(P, &P->zip, u0, u1); /* the box spans the strip */
+            else if (P->zip_dir == 1 && u0 == P->zip.v0 && u1 == P->zip.v1)
+                local = cj_tess_ucell_bounds(P, &P->zip, v0, v1);
+            else
+                local = cj_tess_strip_bounds(P, u0, u1, v0, v1);
             db = &local;
         }
         const double t0 = db->uu * du * du, t1 = 2.0 * db->uv * du * dv, t2 = db->vv * dv * dv;
@@ -274,6 +280,21 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
 static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, const uint32_t *in,
                         const double *tin, int L, const dbounds *db) {
     int a = 0, b = 0;
+    if (!P->rational && !P->bound_known) { /* every triangle spans the ring's strip */
+        const int s = P->zip_dir;          /* set by the caller: the side */
+        if (s == 0)
+            cj_tess_strip_restrict(P, 0.0, P->zip_t, &P->zip);
+        else if (s == 2)
+            cj_tess_strip_restrict(P, P->zip_t, 1.0, &P->zip);
+        else if (s == 3)
+            cj_tess_ustrip_restrict(P, 0.0, P->zip_t, &P->zip);
+        else
+            cj_tess_ustrip_restrict(P, P->zip_t, 1.0, &P->zip);
+        P->zip_dir = (s & 1) ? 1 : 0;
+    } else {
+        P->zip_dir = -1;
+    }
+    cj_status st = CJ_OK;
     while (a < k || b < L) {
         int adv_outer;
         if (a == k)
@@ -282,7 +303,6 @@ static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, 
             adv_outer = 1;
         else
             adv_outer = tout[a] + tout[a + 1] < tin[b] + tin[b + 1];
-        cj_status st;
         if (adv_outer) {
             st = add_tri(P, o[a], o[a + 1], in[b], db);
             ++a;
@@ -290,9 +310,10 @@ static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, 
             st = add_tri(P, o[a], in[b + 1], in[b], db);
             ++b;
         }
-        if (st || P->aborted) return st;
+        if (st || P->aborted) break;
     }
-    return CJ_OK;
+    P->zip_dir = -1;
+    return st;
 }
 
 /* One build of a patch: interior breakpoints ub[0..nu] (ub[0] = 0, ub[nu] = 1) and
@@ -428,16 +449,20 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
             inner[i - 1] = g[1 * (nu + 1) + i];
             tin[i - 1] = ub[i];
         }
+        P->zip_dir = 0, P->zip_t = vb[1];
         if ((st = zipper(P, o[0], tout[0], k[0], inner, tin, L, NULL)) || P->aborted) goto done;
         for (int i = 1; i < nu; ++i) inner[i - 1] = g[(nv - 1) * (nu + 1) + i];
+        P->zip_dir = 2, P->zip_t = vb[nv - 1];
         if ((st = zipper(P, o[2], tout[2], k[2], inner, tin, L, NULL)) || P->aborted) goto done;
         L = nv - 2;
         for (int j = 1; j < nv; ++j) {
             inner[j - 1] = g[j * (nu + 1) + 1];
             tin[j - 1] = vb[j];
         }
+        P->zip_dir = 3, P->zip_t = ub[1];
         if ((st = zipper(P, o[3], tout[3], k[3], inner, tin, L, NULL)) || P->aborted) goto done;
         for (int j = 1; j < nv; ++j) inner[j - 1] = g[j * (nu + 1) + nu - 1];
+        P->zip_dir = 1, P->zip_t = ub[nu - 1];
         if ((st = zipper(P, o[1], tout[1], k[1], inner, tin, L, NULL)) || P->aborted) goto done;
         j0 = i0 = 1;
         j1 = nv - 1;
@@ -445,13 +470,20 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
     }
     for (int j = j0; j < j1; ++j) {
         const int cells = !P->bound_known; /* cell bounds needed */
+        const int walk = cells && cj_tess_walkable(P);
         if (cells && !P->rational) cj_tess_strip_restrict(P, vb[j], vb[j + 1], &P->strip);
+        if (walk) cj_tess_line(P, &P->strip, ub[i0], &P->lines[0]);
         for (int i = i0; i < i1; ++i) {
             dbounds cb = {0.0, 0.0, 0.0};
-            if (cells && P->rational)
+            if (cells && P->rational) {
                 cj_tess_load_cell(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
-            else if (cells)
+            } else if (walk) { /* the line at ub[i] was computed for the previous cell */
+                tess_line *A = &P->lines[(i - i0) & 1], *B = &P->lines[(i - i0 + 1) & 1];
+                cj_tess_line(P, &P->strip, ub[i + 1], B);
+                cb = cj_tess_cell_walk(P, A, B);
+            } else if (cells) {
                 cb = cj_tess_cell_bounds(P, &P->strip, ub[i], ub[i + 1]);
+            }
             const uint32_t A = g[j * (nu + 1) + i], B = g[j * (nu + 1) + i + 1],
                            C = g[(j + 1) * (nu + 1) + i + 1], D = g[(j + 1) * (nu + 1) + i];
             if ((st = add_tri(P, A, B, C, &cb))) goto done;
@@ -497,5 +529,9 @@ void cj_tess_setup(ptess *P, const cj_patch *p, size_t q, cj_mesh *mesh, int mea
         P->suberr_w = g * hw;
     }
     for (int s = 0; s < 4; ++s) cj_tess_edge_setup(p, s, &P->e[s]);
-    if (!P->rational) cj_tess_diff_setup(P);
+    P->zip_dir = -1;
+    if (!P->rational) {
+        cj_tess_diff_setup(P);
+        P->whole = cj_tess_strip_bounds(P, 0.0, 1.0, 0.0, 1.0);
+    }
 }

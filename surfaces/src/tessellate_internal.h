@@ -40,6 +40,14 @@ typedef struct tess_strip {
     double uu[CJ_TESS_DNET_MAX], uv[CJ_TESS_DNET_MAX], vv[CJ_TESS_DNET_MAX];
 } tess_strip;
 
+/* One grid line of a strip (u degree <= 3, v degree <= 3): per difference net and row, the row's
+ * value at t and its last de Casteljau level (tess_bounds_poly.c, walking a strip). */
+typedef struct tess_line {
+    double t;
+    double pt[3][4][3][3]; /* [net uu, uv, vv][row][value, Q0, Q1][xyz] */
+    double nrm[3];         /* per net: the largest value norm over the rows */
+} tess_line;
+
 typedef struct edge_info {
     int degree, collapsed, reversed;
     double pts[(CJ_PATCH_MAX_DEGREE + 1) * 3]; /* canonical order */
@@ -73,11 +81,18 @@ typedef struct ptess {
     int bound_known; /* a build whose bound a bounds-only trial computed: add_tri skips it */
     double *scr_uv;  /* bounds_only: the (u,v) of the trial's vertices */
     uint32_t scr_count;
-    size_t tris;       /* triangles of the last build (bounds_only: including those a real
-                        * build would drop) */
-    size_t builds;     /* mesh builds of this patch (bounds-only trials not counted) */
-    size_t trials;     /* bounds-only trials of this patch */
-    tess_strip strip;  /* scratch of the cell loop */
+    size_t tris;      /* triangles of the last build (bounds_only: including those a real
+                       * build would drop) */
+    size_t builds;    /* mesh builds of this patch (bounds-only trials not counted) */
+    size_t trials;    /* bounds-only trials of this patch */
+    tess_strip strip; /* scratch of the cell loop */
+    /* polynomial zippers: the strip all triangles of the current zipper span (zip_dir 0: its v
+     * range, 1: its u range; -1: none), restricted once; whole: bounds over the patch */
+    tess_line lines[2]; /* walking the current strip */
+    int zip_dir;
+    double zip_t; /* the strip's inner end (a grid line) */
+    tess_strip zip;
+    dbounds whole;
     double abort_over; /* > 0: stop a build as soon as its bound exceeds this (it fails) */
     int aborted;       /* the last build stopped early */
     /* results of one build */
@@ -106,6 +121,15 @@ dbounds cj_tess_strip_bounds(const ptess *P, double u0, double u1, double v0, do
 /* The same in two steps: restrict to the strip [v0,v1] once, then to each cell [u0,u1] of it. */
 void cj_tess_strip_restrict(const ptess *P, double v0, double v1, tess_strip *s);
 dbounds cj_tess_cell_bounds(const ptess *P, const tess_strip *s, double u0, double u1);
+/* Walking a strip (polynomial, degrees <= 3): the line data at t, then a cell's bounds from its
+ * two lines. */
+int cj_tess_walkable(const ptess *P);
+void cj_tess_line(const ptess *P, const tess_strip *s, double t, tess_line *L);
+dbounds cj_tess_cell_walk(const ptess *P, const tess_line *A, const tess_line *B);
+/* The same with the roles swapped: a strip [u0,u1] in u (s->v0, s->v1 hold u0, u1), then the
+ * cells [v0,v1] of it (the zippers of the sides u = 0 and u = 1). */
+void cj_tess_ustrip_restrict(const ptess *P, double u0, double u1, tess_strip *s);
+dbounds cj_tess_ucell_bounds(const ptess *P, const tess_strip *s, double v0, double v1);
 
 /* ---- tessellate_bounds.c -------------------------------------------------------------- */
 /* Homogeneous rational bound of a box from its homogeneous sub-net (see the RATIONAL BOUND
