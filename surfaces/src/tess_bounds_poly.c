@@ -206,6 +206,11 @@ dbounds cj_tess_strip_bounds(const ptess *P, double u0, double u1, double v0, do
  * gamma(8(m + n) + 8) rounding term of the difference nets: the bound is the one proven above,
  * evaluated on the same coefficients (up to rounding). */
 
+/* max of two finite values, inline (fmax is a library call) */
+static inline double maxd(double x, double y) {
+    return x > y ? x : y;
+}
+
 static inline void lerp3(const double *x, const double *y, double t, double *out) {
     const double s = 1.0 - t;
     out[0] = s * x[0] + t * y[0];
@@ -221,47 +226,72 @@ int cj_tess_walkable(const ptess *P) {
     return !P->rational && P->m <= 3 && P->n <= 3;
 }
 
-/* One net (rows of `cols` points, degree cols-1 <= 3) at line t. */
-static void line_net(const double *net, int cols, int rows, double t, double (*pt)[3][3],
-                     double *nrm) {
+/* One net at line t: `count` curves of degree deg <= 3, point k of curve c at
+ * net + 3 (c cstride + k pstride). */
+static void line_net(const double *net, int deg, int count, int pstride, int cstride, double t,
+                     double (*pt)[3][3], double *nrm) {
     double mx = 0.0;
-    for (int j = 0; j < rows; ++j) {
-        const double *p = net + 3 * j * cols;
-        double(*o)[3] = pt[j];
-        switch (cols - 1) {
+    for (int c = 0; c < count; ++c) {
+        const double *p0 = net + 3 * c * cstride, *p1 = p0 + 3 * pstride, *p2 = p1 + 3 * pstride,
+                     *p3 = p2 + 3 * pstride;
+        double(*o)[3] = pt[c];
+        switch (deg) {
         case 0:
-            memcpy(o[0], p, 3 * sizeof(double));
+            memcpy(o[0], p0, 3 * sizeof(double));
             break;
         case 1:
-            lerp3(p, p + 3, t, o[0]);
+            lerp3(p0, p1, t, o[0]);
             break;
         case 2:
-            lerp3(p, p + 3, t, o[1]);
-            lerp3(p + 3, p + 6, t, o[2]);
+            lerp3(p0, p1, t, o[1]);
+            lerp3(p1, p2, t, o[2]);
             lerp3(o[1], o[2], t, o[0]);
             break;
         default: {
             double l[3][3];
-            lerp3(p, p + 3, t, l[0]);
-            lerp3(p + 3, p + 6, t, l[1]);
-            lerp3(p + 6, p + 9, t, l[2]);
+            lerp3(p0, p1, t, l[0]);
+            lerp3(p1, p2, t, l[1]);
+            lerp3(p2, p3, t, l[2]);
             lerp3(l[0], l[1], t, o[1]);
             lerp3(l[1], l[2], t, o[2]);
             lerp3(o[1], o[2], t, o[0]);
         }
         }
-        mx = fmax(mx, norm3(o[0]));
+        mx = maxd(mx, norm3(o[0]));
     }
     *nrm = mx;
 }
 
-void cj_tess_line(const ptess *P, const tess_strip *s, double t, tess_line *L) {
+/* Line t of a strip walked in u (dir 0: a v-strip, rows are curves in u) or in v (dir 1: a
+ * u-strip, columns are curves in v). Net uu has m-1 columns and n+1 rows, uv m and n, vv m+1
+ * and n-1. */
+static void line_dir(const ptess *P, const tess_strip *s, double t, int dir, tess_line *L) {
     const int m = P->m, n = P->n;
+    const int cols[3] = {m - 1, m, m + 1}, rows[3] = {n + 1, n, n - 1};
+    const double *net[3] = {s->uu, s->uv, s->vv};
+    const int have[3] = {m >= 2, m >= 1 && n >= 1, n >= 2};
     L->t = t;
-    L->nrm[0] = L->nrm[1] = L->nrm[2] = 0.0;
-    if (m >= 2) line_net(s->uu, m - 1, n + 1, t, L->pt[0], &L->nrm[0]);
-    if (m >= 1 && n >= 1) line_net(s->uv, m, n, t, L->pt[1], &L->nrm[1]);
-    if (n >= 2) line_net(s->vv, m + 1, n - 1, t, L->pt[2], &L->nrm[2]);
+    for (int k = 0; k < 3; ++k) {
+        L->nrm[k] = 0.0;
+        L->deg[k] = dir ? rows[k] - 1 : cols[k] - 1;
+        L->count[k] = dir ? cols[k] : rows[k];
+        if (!have[k]) {
+            L->deg[k] = -1;
+            continue;
+        }
+        if (dir)
+            line_net(net[k], rows[k] - 1, cols[k], cols[k], 1, t, L->pt[k], &L->nrm[k]);
+        else
+            line_net(net[k], cols[k] - 1, rows[k], 1, cols[k], t, L->pt[k], &L->nrm[k]);
+    }
+}
+
+void cj_tess_line(const ptess *P, const tess_strip *s, double t, tess_line *L) {
+    line_dir(P, s, t, 0, L);
+}
+
+void cj_tess_uline(const ptess *P, const tess_strip *s, double t, tess_line *L) {
+    line_dir(P, s, t, 1, L);
 }
 
 /* Largest norm among the interior coefficients of one net's rows over [A->t, B->t]. */
@@ -271,10 +301,10 @@ static double cell_interior(const double (*pa)[3][3], const double (*pb)[3][3], 
     if (deg < 2) return 0.0;
     for (int j = 0; j < rows; ++j) {
         lerp3(pa[j][1], pa[j][2], b, c); /* B(a,b) or B(a,a,b) */
-        mx = fmax(mx, norm3(c));
+        mx = maxd(mx, norm3(c));
         if (deg == 3) {
             lerp3(pb[j][1], pb[j][2], a, c); /* B(a,b,b) */
-            mx = fmax(mx, norm3(c));
+            mx = maxd(mx, norm3(c));
         }
     }
     return mx;
@@ -283,21 +313,15 @@ static double cell_interior(const double (*pa)[3][3], const double (*pb)[3][3], 
 dbounds cj_tess_cell_walk(const ptess *P, const tess_line *A, const tess_line *B) {
     const int m = P->m, n = P->n;
     const double inf = 1.0 + 4.0 * U_ROUND, a = A->t, b = B->t;
-    dbounds r = {0.0, 0.0, 0.0};
-    if (m >= 2) {
-        const double x =
-            fmax(fmax(A->nrm[0], B->nrm[0]), cell_interior(A->pt[0], B->pt[0], m - 2, n + 1, a, b));
-        r.uu = (x + P->err_uu) * inf * (double)(m * (m - 1));
+    const double err[3] = {P->err_uu, P->err_uv, P->err_vv};
+    const double scale[3] = {(double)(m * (m - 1)), (double)(m * n), (double)(n * (n - 1))};
+    double r[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < 3; ++k) {
+        if (A->deg[k] < 0) continue;
+        const double x = maxd(maxd(A->nrm[k], B->nrm[k]),
+                              cell_interior(A->pt[k], B->pt[k], A->deg[k], A->count[k], a, b));
+        r[k] = (x + err[k]) * inf * scale[k];
     }
-    if (m >= 1 && n >= 1) {
-        const double x =
-            fmax(fmax(A->nrm[1], B->nrm[1]), cell_interior(A->pt[1], B->pt[1], m - 1, n, a, b));
-        r.uv = (x + P->err_uv) * inf * (double)(m * n);
-    }
-    if (n >= 2) {
-        const double x =
-            fmax(fmax(A->nrm[2], B->nrm[2]), cell_interior(A->pt[2], B->pt[2], m, n - 1, a, b));
-        r.vv = (x + P->err_vv) * inf * (double)(n * (n - 1));
-    }
-    return r;
+    const dbounds out = {r[0], r[1], r[2]};
+    return out;
 }

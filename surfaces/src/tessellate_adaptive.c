@@ -173,6 +173,7 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
                            s, cap, tol);
     }
     /* grid densities: see cj_tess_patch_densities */
+    if (!kfix) dens->known_valid = 0;
     if (!dens->valid) {
         cj_tess_patch_densities(P, tol, dens->rho_u, dens->rho_v, &dens->base_u, &dens->base_v);
         dens->valid = 1;
@@ -185,11 +186,18 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
     if (kfix && hint && hint->nu >= 2 && hint->nv >= 2) {
         int pass = 0;
         side_counts(P, ke, kfix, hint->nu, hint->nv, k);
-        if ((st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 0, NULL, &pass))) return st;
-        if (pass && !P->rational) { /* the bounds-only trial passed: build it once */
-            const double known[4] = {P->bound, P->worst_terms[0], P->worst_terms[1],
-                                     P->worst_terms[2]};
-            st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 1, known, &pass);
+        if (dens->known_valid && memcmp(k, dens->known_k, sizeof k) == 0) {
+            /* the planned grid with the planned counts (no neighbour raised one): planning's
+             * passing trial computed this build's bound */
+            st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 1, dens->known, &pass);
+        } else {
+            if ((st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 0, NULL, &pass)))
+                return st;
+            if (pass && !P->rational) { /* the bounds-only trial passed: build it once */
+                const double known[4] = {P->bound, P->worst_terms[0], P->worst_terms[1],
+                                         P->worst_terms[2]};
+                st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 1, known, &pass);
+            }
         }
         if (st) return st;
         if (pass) {
@@ -295,6 +303,11 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
         int pass;
         st = try_grid(P, rho_u, rho_v, best, k, tol, q, vs, ts, 1, P->rational ? NULL : best_known,
                       &pass);
+    }
+    if (!st && !kfix && !P->rational && best.nu) { /* for the build of this plan */
+        memcpy(dens->known, best_known, sizeof best_known);
+        memcpy(dens->known_k, k, sizeof k);
+        dens->known_valid = 1;
     }
     *out = best;
     memcpy(kout, k, sizeof k);

@@ -171,6 +171,45 @@ static cj_status add_vertex(ptess *P, const double pos[3], double u, double v, i
     return cj_mesh_add_vertex(P->mesh, pos, nrm, uv, idx);
 }
 
+/* Index of t among the zipper walk's breakpoints, or -1. */
+static int zip_find(const ptess *P, double t) {
+    int lo = 0, hi = P->zip_n - 1;
+    while (lo <= hi) {
+        const int mid = (lo + hi) / 2;
+        if (P->zip_bp[mid] == t) return mid;
+        if (P->zip_bp[mid] < t)
+            lo = mid + 1;
+        else
+            hi = mid - 1;
+    }
+    return -1;
+}
+
+/* Bounds over a zipper triangle's box from the walk of its ring: the largest interval bounds
+ * over the intervals the box covers (each bounds its derivative on its piece; the pieces cover
+ * the box). 0 when the box does not span the ring's strip (then computed directly). */
+static int zip_walk_bounds(const ptess *P, double u0, double u1, double v0, double v1,
+                           dbounds *out) {
+    double a = u0, b = u1;
+    if (P->zip_dir == 0) {
+        if (!(v0 == P->zip.v0 && v1 == P->zip.v1)) return 0;
+    } else {
+        if (!(u0 == P->zip.v0 && u1 == P->zip.v1)) return 0;
+        a = v0;
+        b = v1;
+    }
+    const int i = zip_find(P, a), j = zip_find(P, b);
+    if (i < 0 || j <= i) return 0;
+    dbounds r = P->zip_iv[i];
+    for (int x = i + 1; x < j; ++x) {
+        r.uu = fmax(r.uu, P->zip_iv[x].uu);
+        r.uv = fmax(r.uv, P->zip_iv[x].uv);
+        r.vv = fmax(r.vv, P->zip_iv[x].vv);
+    }
+    *out = r;
+    return 1;
+}
+
 /* Adds triangle (a,b,c) (reordered CCW in (u,v)), accounting its bound with strip bounds
  * `db` and its measured deviation; degenerate triangles are counted and not added. */
 static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbounds *db) {
@@ -203,6 +242,8 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         if (!db) { /* bounds over the triangle's own (u,v) box */
             if (!(du > 0.0 && dv > 0.0))
                 local = P->whole;
+            else if (P->zip_n > 0 && zip_walk_bounds(P, u0, u1, v0, v1, &local))
+                ; /* the intervals of the ring's walk that the box covers */
             else if (P->zip_dir == 0 && v0 == P->zip.v0 && v1 == P->zip.v1)
                 local = cj_tess_cell_bounds(P, &P->zip, u0, u1); /* the box spans the strip */
             else if (P->zip_dir == 1 && u0 == P->zip.v0 && u1 == P->zip.v1)
@@ -280,6 +321,9 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
 static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, const uint32_t *in,
                         const double *tin, int L, const dbounds *db) {
     int a = 0, b = 0;
+    double *bp = NULL;
+    dbounds *iv = NULL;
+    P->zip_n = 0;
     if (!P->rational && !P->bound_known) { /* every triangle spans the ring's strip */
         const int s = P->zip_dir;          /* set by the caller: the side */
         if (s == 0)
@@ -291,6 +335,32 @@ static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, 
         else
             cj_tess_ustrip_restrict(P, P->zip_t, 1.0, &P->zip);
         P->zip_dir = (s & 1) ? 1 : 0;
+        if (cj_tess_walkable(P)) { /* walk the merged breakpoints of the ring once */
+            const size_t cap = (size_t)k + (size_t)L + 2;
+            bp = t_alloc(P->mesh, sizeof(double) * cap);
+            iv = t_alloc(P->mesh, sizeof(dbounds) * cap);
+            if (!bp || !iv) {
+                t_free(P->mesh, bp);
+                t_free(P->mesh, iv);
+                return cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %d", (int)P->id);
+            }
+            int nb = 0, x = 0, y = 0;
+            while (x <= k || y <= L) { /* merge, dropping repeats */
+                const double t = y > L || (x <= k && tout[x] <= tin[y]) ? tout[x++] : tin[y++];
+                if (nb == 0 || t > bp[nb - 1]) bp[nb++] = t;
+            }
+            for (int c = 0; c < nb; ++c) {
+                tess_line *A = &P->lines[c & 1];
+                if (P->zip_dir == 0)
+                    cj_tess_line(P, &P->zip, bp[c], A);
+                else
+                    cj_tess_uline(P, &P->zip, bp[c], A);
+                if (c > 0) iv[c - 1] = cj_tess_cell_walk(P, &P->lines[(c - 1) & 1], A);
+            }
+            P->zip_n = nb;
+            P->zip_bp = bp;
+            P->zip_iv = iv;
+        }
     } else {
         P->zip_dir = -1;
     }
@@ -313,6 +383,9 @@ static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, 
         if (st || P->aborted) break;
     }
     P->zip_dir = -1;
+    P->zip_n = 0;
+    t_free(P->mesh, bp);
+    t_free(P->mesh, iv);
     return st;
 }
 
@@ -498,7 +571,7 @@ done:
 
 /* Per-patch state for one patch (everything but the results of a build). */
 void cj_tess_setup(ptess *P, const cj_patch *p, size_t q, cj_mesh *mesh, int measure) {
-    memset(P, 0, sizeof *P);
+    memset(P, 0, offsetof(ptess, h)); /* the large arrays are written before they are read */
     P->p = p;
     P->id = (int32_t)q;
     P->m = p->deg_u;

@@ -46,6 +46,7 @@ typedef struct tess_line {
     double t;
     double pt[3][4][3][3]; /* [net uu, uv, vv][row][value, Q0, Q1][xyz] */
     double nrm[3];         /* per net: the largest value norm over the rows */
+    int deg[3], count[3];  /* per net: degree and number of the curves walked (deg -1: none) */
 } tess_line;
 
 typedef struct edge_info {
@@ -57,22 +58,15 @@ typedef struct edge_info {
 typedef struct ptess {
     const cj_patch *p;
     int32_t id;
-    double h[CJ_PATCH_NET_MAX];
     int hd, m, n;
     int rational;
     double evalerr;
-    /* polynomial patches: difference nets (tess_bounds_poly.c) and the additive rounding of a
-     * restricted coefficient's norm */
-    double duu[CJ_TESS_DNET_MAX], duv[CJ_TESS_DNET_MAX], dvv[CJ_TESS_DNET_MAX];
-    double err_uu, err_uv, err_vv;
+    double err_uu, err_uv, err_vv; /* polynomial: rounding of a restricted difference norm */
     /* rational patches (see cj_tess_rational_tri_bound) */
     double suberr_x, suberr_w; /* rounding of a sub-net coefficient */
     double verterr;            /* rounding of a vertex (3D norm) */
     double cellbox[4];         /* the grid cell whose sub-net is in cellnet */
     double cellq[4];           /* cj_tess_homog_bounds of that cell */
-    double cellnet[CJ_PATCH_NET_MAX], trinet[CJ_PATCH_NET_MAX];
-    double fnet[(CJ_PATCH_MAX_DEGREE + 2) * (CJ_PATCH_MAX_DEGREE + 2) * 3]; /* F's net */
-    edge_info e[4];
     cj_mesh *mesh;
     int measure;
     int planning;    /* builds only for their bound and size: no normals */
@@ -81,24 +75,36 @@ typedef struct ptess {
     int bound_known; /* a build whose bound a bounds-only trial computed: add_tri skips it */
     double *scr_uv;  /* bounds_only: the (u,v) of the trial's vertices */
     uint32_t scr_count;
-    size_t tris;      /* triangles of the last build (bounds_only: including those a real
-                       * build would drop) */
-    size_t builds;    /* mesh builds of this patch (bounds-only trials not counted) */
-    size_t trials;    /* bounds-only trials of this patch */
-    tess_strip strip; /* scratch of the cell loop */
+    size_t tris;   /* triangles of the last build (bounds_only: including those a real
+                    * build would drop) */
+    size_t builds; /* mesh builds of this patch (bounds-only trials not counted) */
+    size_t trials; /* bounds-only trials of this patch */
     /* polynomial zippers: the strip all triangles of the current zipper span (zip_dir 0: its v
-     * range, 1: its u range; -1: none), restricted once; whole: bounds over the patch */
-    tess_line lines[2]; /* walking the current strip */
+     * range, 1: its u range; -1: none) with its inner end zip_t (a grid line), restricted once
+     * into zip; the walk of its breakpoints (outer and inner parameters merged, zip_n of them)
+     * and the bounds of the intervals between them */
     int zip_dir;
-    double zip_t; /* the strip's inner end (a grid line) */
-    tess_strip zip;
-    dbounds whole;
+    double zip_t;
+    int zip_n;
+    const double *zip_bp;
+    const dbounds *zip_iv;
+    dbounds whole;     /* polynomial: bounds over the whole patch */
     double abort_over; /* > 0: stop a build as soon as its bound exceeds this (it fails) */
     int aborted;       /* the last build stopped early */
     /* results of one build */
     double bound, measured;
     double worst_terms[3]; /* uu, uv, vv contributions of the worst triangle */
     size_t dropped;
+    /* ---- large arrays, written before they are read (cj_tess_setup does not clear them) */
+    double h[CJ_PATCH_NET_MAX];
+    edge_info e[4];
+    /* polynomial patches: difference nets (tess_bounds_poly.c) */
+    double duu[CJ_TESS_DNET_MAX], duv[CJ_TESS_DNET_MAX], dvv[CJ_TESS_DNET_MAX];
+    double cellnet[CJ_PATCH_NET_MAX], trinet[CJ_PATCH_NET_MAX];
+    double fnet[(CJ_PATCH_MAX_DEGREE + 2) * (CJ_PATCH_MAX_DEGREE + 2) * 3]; /* F's net */
+    tess_strip strip;   /* scratch of the cell loop */
+    tess_line lines[2]; /* walking the current strip */
+    tess_strip zip;
 } ptess;
 
 /* A candidate grid: nu x nv cells, lines equidistributing the slab densities or (uni)
@@ -125,6 +131,8 @@ dbounds cj_tess_cell_bounds(const ptess *P, const tess_strip *s, double u0, doub
  * two lines. */
 int cj_tess_walkable(const ptess *P);
 void cj_tess_line(const ptess *P, const tess_strip *s, double t, tess_line *L);
+/* The same for a u-strip (cj_tess_ustrip_restrict) walked in v. */
+void cj_tess_uline(const ptess *P, const tess_strip *s, double t, tess_line *L);
 dbounds cj_tess_cell_walk(const ptess *P, const tess_line *A, const tess_line *B);
 /* The same with the roles swapped: a strip [u0,u1] in u (s->v0, s->v1 hold u0, u1), then the
  * cells [v0,v1] of it (the zippers of the sides u = 0 and u = 1). */
@@ -168,6 +176,11 @@ void cj_tess_patch_densities(ptess *P, double tol, double *rho_u, double *rho_v,
 typedef struct tess_density {
     double rho_u[CJ_TESS_SLABS], rho_v[CJ_TESS_SLABS], base_u, base_v;
     int valid;
+    /* polynomial patches: the bound (and worst terms) of the planned grid with the planned
+     * side counts known_k, from planning's passing trial */
+    int known_valid;
+    int known_k[4];
+    double known[4];
 } tess_density;
 
 /* Adaptive choice of the grid of one patch (see tessellate_adaptive.c). dens: computed when
