@@ -11,9 +11,9 @@
  *   one MODEL adaptive TOL    one adaptive tessellation of MODEL (teapot, sphere, torus)
  *   one MODEL uniform TOL     the uniform one with the smallest K whose proven bound <= TOL
  *   ratio                 the adaptive / uniform table (times; triangles; K) for the three
- *   drag                  the incremental cache (casteljau/tess_cache.h): one interior control
- *                         point of the teapot moved per frame, then a shared corner moved with
- *                         its coincident copies: plans and pieces redone per frame, ms
+ *   drag [0|1]            the incremental cache (casteljau/tess_cache.h): one interior control
+ *                         point of the teapot moved per frame (0), then a shared corner moved
+ *                         with its coincident copies (1): plans and pieces redone per frame, ms
  * Built against the library before issue 19 (CJ_BENCH_OLD: no cache, no builds count) it gives
  * the "before" figures of the same calls. */
 #define _POSIX_C_SOURCE 199309L
@@ -222,7 +222,9 @@ int main(int argc, char **argv) {
         /* interior point 5 of patch 0; corner 0 of patch 0 (shared by its neighbours) */
         static const int which[2] = {5, 0};
         static const char *what[2] = {"interior point", "shared corner"};
+        const int only = argc > 2 ? atoi(argv[2]) : -1; /* drag 0 | drag 1: one case */
         for (int c = 0; c < 2; ++c) {
+            if (only >= 0 && c != only) continue;
             double t[REPS];
             size_t planned = 0, built = 0, reused = 0;
             double at[3];
@@ -257,7 +259,7 @@ int main(int argc, char **argv) {
 #endif
     } else {
         fprintf(stderr, "usage: bench_tess_live cold | one MODEL adaptive|uniform TOL | ratio | "
-                        "drag\n");
+                        "drag [0|1]\n");
         return 2;
     }
     cj_mesh_destroy(mesh);

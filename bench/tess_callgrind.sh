@@ -16,6 +16,7 @@ for m in "teapot 0.0010335430324191963" "sphere 1e-4" "torus 2.5e-4"; do
     u=$(count "$B" one "$1" uniform "$2")
     echo "$1 tol $2: adaptive $a, uniform $u instructions, ratio $(awk "BEGIN {printf \"%.3f\", $a / $u}")"
 done
-if "$B" drag >/dev/null 2>&1; then
-    echo "drag (first frame of each case, see bench_tess_live drag): $(count "$B" drag) instructions for both cases"
+if "$B" drag 0 >/dev/null 2>&1; then
+    echo "drag an interior control point, one frame: $(count "$B" drag 0) instructions"
+    echo "drag a shared corner (with its copies), one frame: $(count "$B" drag 1) instructions"
 fi
