@@ -139,6 +139,20 @@ dbounds cj_tess_cell_walk(const ptess *P, const tess_line *A, const tess_line *B
 void cj_tess_ustrip_restrict(const ptess *P, double u0, double u1, tess_strip *s);
 dbounds cj_tess_ucell_bounds(const ptess *P, const tess_strip *s, double v0, double v1);
 
+/* ---- tess_grid_eval.c ------------------------------------------------------------------ */
+
+/* The u stage at u (col: n+1 points of dimension hd) and, polynomial patches, the rows'
+ * u-derivatives (dcol: n+1 3D points). */
+void cj_tess_eval_column(const ptess *P, double u, double *col, double *dcol);
+/* The point of a column at v (out) and, polynomial patches, S_v (dv). */
+void cj_tess_eval_in_column(const ptess *P, const double *col, double v, double out[3],
+                            double dv[3]);
+/* S_u at v along a column (polynomial patches). */
+void cj_tess_eval_du(const ptess *P, const double *dcol, double v, double du[3]);
+/* The unit normal at a grid vertex from S_u, S_v (polynomial), else cj_patch_normal_unchecked. */
+void cj_tess_grid_normal(const ptess *P, const double su[3], const double sv[3], double u, double v,
+                         double nrm[3]);
+
 /* ---- tessellate_bounds.c -------------------------------------------------------------- */
 /* Homogeneous rational bound of a box from its homogeneous sub-net (see the RATIONAL BOUND
  * in tessellate_bounds.c). */
