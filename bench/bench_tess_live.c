@@ -3,7 +3,8 @@
  * models (a unit sphere of 8 biquadratic octants, a torus R = 2, r = 0.5 of 16 pieces).
  * Each mode prints medians of wall time over repetitions; for instruction counts run it under
  *     valgrind --tool=callgrind --collect-atstart=no <bench> <mode> ...
- * which counts only the measured call (CALLGRIND_TOGGLE_COLLECT around the first repetition):
+ * which counts only the measured call (CALLGRIND_TOGGLE_COLLECT around the first repetition; under
+ * valgrind the other repetitions are skipped):
  * bench/tess_callgrind.sh runs every row that way.
  * Modes:
  *   cold                  one cj_tessellate_patches of the teapot at TEAPOT_TOL: triangles,
@@ -28,6 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <valgrind/callgrind.h>
+#include <valgrind/valgrind.h>
 #include "bench_clock.h"
 
 #ifndef CJ_TEAPOT_PATH
@@ -119,7 +121,8 @@ static double median(double *t, int n) {
 static double timed(const model *M, const cj_tess_options *opt, cj_mesh *mesh,
                     cj_tess_report *rep) {
     double t[REPS];
-    for (int r = 0; r < REPS; ++r) {
+    const int reps = RUNNING_ON_VALGRIND ? 1 : REPS; /* under callgrind: the counted run only */
+    for (int r = 0; r < reps; ++r) {
         cj_mesh_clear(mesh);
         const double t0 = cj_bench_wall();
         if (r == 0) CALLGRIND_TOGGLE_COLLECT;
@@ -131,7 +134,7 @@ static double timed(const model *M, const cj_tess_options *opt, cj_mesh *mesh,
             exit(1);
         }
     }
-    return median(t, REPS);
+    return median(t, reps);
 }
 
 /* Smallest K whose uniform K x K tessellation has a proven bound <= tol. */
