@@ -309,14 +309,18 @@ cj_status cj_rbuild_scene(const cj_rscene *rs, const cj_rview *view, double tol_
         cj_mesh_clear(tmp);
         double ts = cj_render_now(), bound = 0.0;
         int skip = 0, hit = 0;
+        cj_tess_cache_stats work = {0, 0, 0, 0};
         st = cj_render_geometry_mesh(g, o, view, tol_px, cache, tmp, &o->tol_obj, &bound,
                                      &o->grid_nu, &o->grid_nv, &out->patches_in,
-                                     &out->patches_culled, &skip, &hit);
+                                     &out->patches_culled, &skip, &hit, &work);
         out->cache_hits += (size_t)hit;
         if (!skip && !hit &&
             (g->kind == CJ_GEOM_PATCHES || g->kind == CJ_GEOM_REVOLUTION ||
              g->kind == CJ_GEOM_GEN_CYLINDER))
             ++out->cache_misses;
+        out->patches_planned += work.planned;
+        out->patches_built += work.built;
+        out->patches_reused += work.pieces_reused;
         double te = cj_render_now();
         int is_patch = g->kind == CJ_GEOM_PATCHES || g->kind == CJ_GEOM_REVOLUTION ||
                        g->kind == CJ_GEOM_GEN_CYLINDER;

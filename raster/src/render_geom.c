@@ -346,7 +346,8 @@ static cj_status choose_grid(const cj_rsurf *si, double tol, int *nu, int *nv, d
 static cj_status patches_mesh(const cj_patch *pt, size_t n, const cj_robject *o,
                               const cj_rview *view, double tol_px, cj_render_cache *cache,
                               cj_mesh *mesh, double *tol_obj, double *bound, size_t *patches,
-                              size_t *culled, int *skip, int *hit, const cj_allocator *alloc) {
+                              size_t *culled, int *skip, int *hit, cj_tess_cache_stats *cache_work,
+                              const cj_allocator *alloc) {
     cj_patch *vis = cj_ralloc(alloc, sizeof(cj_patch) * (n ? n : 1));
     if (!vis) return cj_fail(CJ_ERR_NOMEM, "patch list of %zu", n);
     size_t nv = 0;
@@ -372,18 +373,6 @@ static cj_status patches_mesh(const cj_patch *pt, size_t n, const cj_robject *o,
     cj_tess_options opt;
     memset(&opt, 0, sizeof opt);
     opt.tol = cj_rview_world_tol(view, dmin, tol_px) / o->sigma;
-    uint64_t key = 0;
-    if (cache) {
-        double tu, bo;
-        key = cj_rcache_key(vis, nv);
-        if (cj_rcache_lookup(cache, o->node, key, opt.tol, mesh, &tu, &bo)) {
-            cj_rfree(alloc, vis);
-            *hit = 1;
-            *tol_obj = tu;
-            *bound = cj_rview_pixels(view, dmin, bo * o->sigma);
-            return CJ_OK;
-        }
-    }
     cj_tess_report rep;
     /* a patch set reaching the near plane can need more than the per-patch cap: relax the
      * tolerance 4x at a time (the bound reported is the one reached, then above tol_px) */
@@ -391,14 +380,25 @@ static cj_status patches_mesh(const cj_patch *pt, size_t n, const cj_robject *o,
     size_t v0 = mesh->vertex_count, t0 = mesh->triangle_count;
     cj_status st;
     for (int attempt = 0;; ++attempt) {
-        st = cj_tessellate_patches(vis, nv, &opt, mesh, &rep);
+        if (cache) { /* incremental, within the tolerance band (render_cache.c) */
+            cj_tess_cache_stats w;
+            st = cj_rcache_tessellate(cache, o->node, vis, nv, &opt, mesh, &rep, &w);
+            if (!st) {
+                *hit = w.planned == 0 && w.built == 0;
+                cache_work->planned += w.planned;
+                cache_work->plans_reused += w.plans_reused;
+                cache_work->built += w.built;
+                cache_work->pieces_reused += w.pieces_reused;
+            }
+        } else {
+            st = cj_tessellate_patches(vis, nv, &opt, mesh, &rep);
+        }
         if (st != CJ_ERR_CAP || attempt == 12) break;
         cj_mesh_truncate(mesh, v0, t0);
         opt.tol *= 4.0;
     }
     cj_rfree(alloc, vis);
     if (st) return st;
-    if (cache) cj_rcache_store(cache, o->node, key, opt.tol, rep.bound, mesh);
     *tol_obj = opt.tol;
     /* the bound in pixels at the nearest depth (every patch was held to that tolerance) */
     *bound = cj_rview_pixels(view, dmin, rep.bound * o->sigma);
@@ -408,7 +408,8 @@ static cj_status patches_mesh(const cj_patch *pt, size_t n, const cj_robject *o,
 cj_status cj_render_geometry_mesh(const cj_geometry *g, const cj_robject *o, const cj_rview *view,
                                   double tol_px, cj_render_cache *cache, cj_mesh *mesh,
                                   double *tol_obj, double *bound, int *nu, int *nv, size_t *patches,
-                                  size_t *culled, int *skip, int *cache_hit) {
+                                  size_t *culled, int *skip, int *cache_hit,
+                                  cj_tess_cache_stats *cache_work) {
     *skip = 0;
     *cache_hit = 0;
     *bound = 0.0;
@@ -417,7 +418,7 @@ cj_status cj_render_geometry_mesh(const cj_geometry *g, const cj_robject *o, con
     switch (g->kind) {
     case CJ_GEOM_PATCHES:
         return patches_mesh(g->u.patches.patches, g->u.patches.count, o, view, tol_px, cache, mesh,
-                            tol_obj, bound, patches, culled, skip, cache_hit, &a);
+                            tol_obj, bound, patches, culled, skip, cache_hit, cache_work, &a);
     case CJ_GEOM_REVOLUTION:
     case CJ_GEOM_GEN_CYLINDER: {
         cj_patch *pt = NULL;
@@ -426,7 +427,7 @@ cj_status cj_render_geometry_mesh(const cj_geometry *g, const cj_robject *o, con
         cj_status st = cj_render_geometry_patches(g, &a, &pt, &n, &pts, &w);
         if (!st)
             st = patches_mesh(pt, n, o, view, tol_px, cache, mesh, tol_obj, bound, patches, culled,
-                              skip, cache_hit, &a);
+                              skip, cache_hit, cache_work, &a);
         cj_rfree(&a, pt);
         cj_rfree(&a, pts);
         cj_rfree(&a, w);

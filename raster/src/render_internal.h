@@ -28,6 +28,7 @@
 #include "casteljau/scene.h"
 #include "casteljau/stage_report.h"
 #include "casteljau/status.h"
+#include "casteljau/tess_cache.h"
 #include <stddef.h>
 #include <stdint.h>
 
@@ -90,6 +91,8 @@ typedef struct cj_rbuild {
     size_t patches_in, patches_culled, patch_tris, surface_tris, mesh_tris, culled_back;
     size_t cache_hits;   /* patch objects whose tessellation came from the cache */
     size_t cache_misses; /* patch objects tessellated (in view, not found in the cache) */
+    /* patches (through the cache) planned, built, and whose mesh piece was reused */
+    size_t patches_planned, patches_built, patches_reused;
     double patch_bound_px, surface_bound_px; /* proven bounds in pixels (0 when none) */
     double tol_px;
     double sec_patches, sec_surfaces, sec_meshes, sec_transform, sec_cull;
@@ -117,15 +120,16 @@ cj_status cj_rbuild_add_tri(cj_rbuild *b, uint32_t a, uint32_t c, uint32_t d, ui
 cj_status cj_render_geometry_mesh(const cj_geometry *g, const cj_robject *o, const cj_rview *view,
                                   double tol_px, cj_render_cache *cache, cj_mesh *mesh,
                                   double *tol_obj, double *bound, int *nu, int *nv, size_t *patches,
-                                  size_t *culled, int *skip, int *cache_hit);
+                                  size_t *culled, int *skip, int *cache_hit,
+                                  cj_tess_cache_stats *cache_work);
 
-/* render_cache.c: the key of a patch list (its bytes), lookup (appends the cached mesh to
- * `mesh` on a hit: same node and key, cached tol <= tol <= 2 cached tol) and store. */
-uint64_t cj_rcache_key(const cj_patch *p, size_t n);
-int cj_rcache_lookup(cj_render_cache *c, int node, uint64_t key, double tol, cj_mesh *mesh,
-                     double *tol_used, double *bound);
-void cj_rcache_store(cj_render_cache *c, int node, uint64_t key, double tol, double bound,
-                     const cj_mesh *mesh);
+/* render_cache.c: tessellates `count` patches of node `node` through its incremental cache
+ * (appending to mesh), at opt->tol or, when that lies within [cached tol, 2 cached tol], at the
+ * cached tol (opt->tol is set to the tolerance used). stats: the update's plans and pieces
+ * reused / redone. Status: those of cj_tess_cache_update, CJ_ERR_NOMEM. */
+cj_status cj_rcache_tessellate(cj_render_cache *c, int node, const cj_patch *patches, size_t count,
+                               cj_tess_options *opt, cj_mesh *mesh, cj_tess_report *rep,
+                               cj_tess_cache_stats *stats);
 
 /* A geometry of kind REVOLUTION or GEN_CYLINDER as exact rational Bézier patches (render_geom.c).
  * pts/w receive the control points and weights (caller frees with alloc), patches the views. */

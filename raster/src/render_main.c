@@ -186,6 +186,9 @@ static cj_status build_triangles(cj_rframe *F) {
     cj_stage_add_value(s, "bound_px", b->patch_bound_px);
     cj_stage_add_value(s, "patches_culled", (double)b->patches_culled);
     if (cache) {
+        cj_stage_add_value(s, "patches_planned", (double)b->patches_planned);
+        cj_stage_add_value(s, "patches_built", (double)b->patches_built);
+        cj_stage_add_value(s, "patches_reused", (double)b->patches_reused);
         cj_stage_add_value(s, "cache_misses", (double)b->cache_misses);
         cj_stage_add_value(s, "cache_hits", (double)b->cache_hits);
     }

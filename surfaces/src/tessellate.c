@@ -47,31 +47,28 @@ static int cmp_side_ref(const void *x, const void *y) {
     return a->slot < b->slot ? -1 : (a->slot > b->slot ? 1 : 0);
 }
 
-typedef struct patch_plan {
-    int k[4];
-    grid g;
-} patch_plan;
-
-/* Adaptive planning pass over patches [0, count): each patch's side counts (side_counts in
- * tessellate_adaptive.c, of its best build) and grid; then every side shared by several patches
- * (identical canonical control points) gets the largest count any of them asked for. Returns the
- * number of patches planned (< count when patch *planned failed with the returned status). The mesh
- * is left as it was. */
-static cj_status plan_patches(const cj_patch *patches, size_t count, double tol, int cap, ptess *P,
-                              cj_mesh *mesh, patch_plan *plan, side_ref *refs, size_t *planned) {
+cj_status cj_tess_plan_patch(ptess *P, const cj_patch *p, size_t q, double tol, int cap,
+                             cj_mesh *mesh, tess_plan *plan, size_t *builds, size_t *trials) {
     const size_t vs = mesh->vertex_count, ts = mesh->triangle_count;
-    cj_status st = CJ_OK;
-    size_t q = 0;
-    for (; q < count; ++q) {
-        cj_tess_setup(P, &patches[q], q, mesh, 0);
-        P->planning = 1;
-        st = cj_tess_adaptive_patch(P, tol, cap, q, NULL, NULL, plan[q].k, &plan[q].g);
-        cj_mesh_truncate(mesh, vs, ts);
-        if (st) break;
-    }
-    *planned = q;
+    cj_tess_setup(P, p, q, mesh, 0);
+    P->planning = 1;
+    plan->dens.valid = 0;
+    const cj_status st =
+        cj_tess_adaptive_patch(P, tol, cap, q, NULL, NULL, &plan->dens, plan->k, &plan->g);
+    *builds += P->builds;
+    *trials += P->trials;
+    cj_mesh_truncate(mesh, vs, ts);
+    return st;
+}
+
+cj_status cj_tess_share_counts(const cj_patch *patches, size_t count, int *k,
+                               const cj_allocator *alloc) {
+    if (count == 0) return CJ_OK;
+    if (count > SIZE_MAX / (4 * sizeof(side_ref))) return cj_fail(CJ_ERR_NOMEM, "out of memory");
+    side_ref *refs = cj_allocator_alloc(alloc, sizeof *refs * 4 * count);
+    if (!refs) return cj_fail(CJ_ERR_NOMEM, "out of memory sharing %zu patches' sides", count);
     size_t nr = 0;
-    for (size_t i = 0; i < q; ++i)
+    for (size_t i = 0; i < count; ++i)
         for (int s = 0; s < 4; ++s) {
             edge_info e;
             cj_tess_edge_setup(&patches[i], s, &e);
@@ -86,15 +83,34 @@ static cj_status plan_patches(const cj_patch *patches, size_t count, double tol,
     qsort(refs, nr, sizeof *refs, cmp_side_ref);
     for (size_t a = 0; a < nr;) {
         size_t b = a + 1;
-        int kmax = plan[refs[a].slot / 4].k[refs[a].slot % 4];
+        int kmax = k[refs[a].slot];
         while (b < nr && cmp_side_points(&refs[a], &refs[b]) == 0) {
-            const int kb = plan[refs[b].slot / 4].k[refs[b].slot % 4];
-            if (kb > kmax) kmax = kb;
+            if (k[refs[b].slot] > kmax) kmax = k[refs[b].slot];
             ++b;
         }
-        for (size_t c = a; c < b; ++c) plan[refs[c].slot / 4].k[refs[c].slot % 4] = kmax;
+        for (size_t c = a; c < b; ++c) k[refs[c].slot] = kmax;
         a = b;
     }
+    cj_allocator_free(alloc, refs);
+    return CJ_OK;
+}
+
+cj_status cj_tess_build_planned(ptess *P, const cj_patch *p, size_t q, double tol, int cap,
+                                int measure, const int k[4], tess_plan *plan, cj_mesh *mesh,
+                                grid *used, size_t *builds, size_t *trials) {
+    cj_tess_setup(P, p, q, mesh, measure);
+    const size_t vq = mesh->vertex_count, tq = mesh->triangle_count;
+    int kused[4];
+    *used = (grid){0, 0, 0};
+    cj_status st = cj_tess_adaptive_patch(P, tol, cap, q, k, &plan->g, &plan->dens, kused, used);
+    *builds += P->builds;
+    *trials += P->trials;
+    if (!st && mesh->triangle_count == tq)
+        st = cj_fail(CJ_ERR_DEGENERATE,
+                     "patch %zu is degenerate: its surface has no area (every triangle "
+                     "collapses to a point or a curve)",
+                     q);
+    if (st) cj_mesh_truncate(mesh, vq, tq); /* no partial or failing build of this patch stays */
     return st;
 }
 
@@ -127,14 +143,14 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
     const int adaptive = opt->uniform == 0;
     ptess *P = t_alloc(mesh, sizeof *P);
     double *br = adaptive ? NULL : t_alloc(mesh, sizeof(double) * (size_t)(opt->uniform + 1));
-    const int fits = count <= SIZE_MAX / (4 * sizeof(side_ref)); /* sizes below cannot wrap */
-    patch_plan *plan = adaptive && count && fits ? t_alloc(mesh, sizeof *plan * count) : NULL;
-    side_ref *refs = adaptive && count && fits ? t_alloc(mesh, sizeof *refs * 4 * count) : NULL;
-    if (!P || (!adaptive && !br) || (adaptive && count && (!plan || !refs))) {
+    const int fits = count <= SIZE_MAX / (4 * sizeof(tess_plan)); /* sizes below cannot wrap */
+    tess_plan *plan = adaptive && count && fits ? t_alloc(mesh, sizeof *plan * count) : NULL;
+    int *kshared = adaptive && count && fits ? t_alloc(mesh, sizeof(int) * 4 * count) : NULL;
+    if (!P || (!adaptive && !br) || (adaptive && count && (!plan || !kshared))) {
         t_free(mesh, P);
         t_free(mesh, br);
         t_free(mesh, plan);
-        t_free(mesh, refs);
+        t_free(mesh, kshared);
         return cj_fail(CJ_ERR_NOMEM, "out of memory");
     }
     if (br)
@@ -142,44 +158,54 @@ cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_
     const size_t v_start = mesh->vertex_count, t_start = mesh->triangle_count;
     cj_status st = CJ_OK, plan_st = CJ_OK;
     size_t todo = count;
-    if (adaptive) /* patches after a planning failure are not built */
-        plan_st = plan_patches(patches, count, opt->tol, cap, P, mesh, plan, refs, &todo);
-    if (plan_st == CJ_ERR_NOMEM) todo = 0;
+    if (adaptive) { /* patches after a planning failure are not built */
+        size_t q = 0;
+        for (; q < count; ++q) {
+            plan_st = cj_tess_plan_patch(P, &patches[q], q, opt->tol, cap, mesh, &plan[q],
+                                         &rep.builds, &rep.trials);
+            if (plan_st) break;
+            memcpy(kshared + 4 * q, plan[q].k, sizeof plan[q].k);
+        }
+        todo = q;
+        if (plan_st == CJ_ERR_NOMEM) todo = 0;
+        const cj_status sh = cj_tess_share_counts(patches, todo, kshared, &mesh->alloc_);
+        if (sh) {
+            plan_st = sh;
+            todo = 0;
+        }
+    }
     for (size_t q = 0; q < todo && !st; ++q) {
-        cj_tess_setup(P, &patches[q], q, mesh, opt->measure);
-        const size_t vq = mesh->vertex_count, tq = mesh->triangle_count;
-        int nu = 0, nv = 0;
+        grid g = {0, 0, 0};
         if (!adaptive) {
+            cj_tess_setup(P, &patches[q], q, mesh, opt->measure);
+            const size_t vq = mesh->vertex_count, tq = mesh->triangle_count;
             const int k[4] = {opt->uniform, opt->uniform, opt->uniform, opt->uniform};
-            nu = nv = opt->uniform;
-            st = cj_tess_build_patch(P, nu, br, nv, br, k);
+            g.nu = g.nv = opt->uniform;
+            st = cj_tess_build_patch(P, g.nu, br, g.nv, br, k);
+            rep.builds += P->builds;
+            if (!st && mesh->triangle_count == tq)
+                st = cj_fail(CJ_ERR_DEGENERATE,
+                             "patch %zu is degenerate: its surface has no area (every triangle "
+                             "collapses to a point or a curve)",
+                             q);
+            if (st) cj_mesh_truncate(mesh, vq, tq);
         } else {
-            int kused[4];
-            grid g = {0, 0, 0};
-            st = cj_tess_adaptive_patch(P, opt->tol, cap, q, plan[q].k, &plan[q].g, kused, &g);
-            nu = g.nu;
-            nv = g.nv;
+            st = cj_tess_build_planned(P, &patches[q], q, opt->tol, cap, opt->measure,
+                                       kshared + 4 * q, &plan[q], mesh, &g, &rep.builds,
+                                       &rep.trials);
         }
-        if (!st && mesh->triangle_count == tq)
-            st = cj_fail(CJ_ERR_DEGENERATE,
-                         "patch %zu is degenerate: its surface has no area (every triangle "
-                         "collapses to a point or a curve)",
-                         q);
-        if (st) { /* no partial or failing build of this patch stays */
-            cj_mesh_truncate(mesh, vq, tq);
-            break;
-        }
+        if (st) break;
         rep.bound = fmax(rep.bound, P->bound);
         if (opt->measure > 0 && P->measured > rep.measured) rep.measured = P->measured;
         rep.dropped += P->dropped;
-        if (nu > rep.max_nu) rep.max_nu = nu;
-        if (nv > rep.max_nv) rep.max_nv = nv;
+        if (g.nu > rep.max_nu) rep.max_nu = g.nu;
+        if (g.nv > rep.max_nv) rep.max_nv = g.nv;
     }
     if (!st) st = plan_st;
     t_free(mesh, P);
     t_free(mesh, br);
     t_free(mesh, plan);
-    t_free(mesh, refs);
+    t_free(mesh, kshared);
     rep.vertices = mesh->vertex_count - v_start;
     rep.triangles = mesh->triangle_count - t_start;
     if (report) *report = rep;

@@ -54,10 +54,13 @@ static void side_counts(const ptess *P, const int ke[4], const int *kfix, int nu
     }
 }
 
-/* Builds grid g with side counts k; *pass receives whether the proven bound is <= tol. The
- * build stays in the mesh (replacing whatever was there after vs, ts). */
+/* Tries grid g with side counts k; *pass receives whether the proven bound is <= tol and
+ * P->tris its triangle count. A polynomial patch's trial is bounds-only (nothing evaluated or
+ * added to the mesh) unless `real`; a rational patch's bound needs its vertices, so its trials
+ * are builds. A build stays in the mesh (replacing whatever was there after vs, ts). */
 static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, grid g,
-                          const int k[4], double tol, size_t q, size_t vs, size_t ts, int *pass) {
+                          const int k[4], double tol, size_t q, size_t vs, size_t ts, int real,
+                          const double *known, int *pass) {
     static const double flat[CJ_TESS_SLABS]; /* zero density: uniform lines */
     const int nu = g.nu, nv = g.nv;
     double *ub = t_alloc(P->mesh, sizeof(double) * (size_t)(nu + 1));
@@ -68,15 +71,31 @@ static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, gr
     } else {
         equidistribute(g.uni ? flat : rho_u, CJ_TESS_SLABS, nu, ub);
         equidistribute(g.uni ? flat : rho_v, CJ_TESS_SLABS, nv, vb);
-        cj_mesh_truncate(P->mesh, vs, ts);
+        P->bounds_only = !real && !P->rational;
+        /* the build of a grid whose bounds-only trial passed: the same triangles, hence the
+         * same bound (known[0], worst terms known[1..3]); not recomputed */
+        P->bound_known = known != NULL && !P->rational;
+        if (!P->bounds_only) cj_mesh_truncate(P->mesh, vs, ts);
         P->abort_over = tol; /* a failing build is never kept: stop it early */
         st = cj_tess_build_patch(P, nu, ub, nv, vb, k);
         P->abort_over = 0.0;
+        P->bounds_only = 0;
+        if (P->bound_known) {
+            P->bound = known[0];
+            memcpy(P->worst_terms, known + 1, 3 * sizeof(double));
+            P->bound_known = 0;
+        }
         *pass = !st && !P->aborted && P->bound <= tol;
     }
     t_free(P->mesh, ub);
     t_free(P->mesh, vb);
     return st;
+}
+
+/* The bound of the last (bounds-only, passing) trial, for building the same grid later. */
+static void keep_known(const ptess *P, double known[4]) {
+    known[0] = P->bound;
+    memcpy(known + 1, P->worst_terms, 3 * sizeof(double));
 }
 
 /* Grid densities of the set-up patch: sqrt of the second-derivative bound on CJ_TESS_SLABS slabs
@@ -142,7 +161,7 @@ void cj_tess_patch_densities(ptess *P, double tol, double *rho_u, double *rho_v,
  * tried first. The mesh then holds the passing build with the fewest triangles (when planning:
  * some build, to be truncated); *out is that grid. */
 cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const int *kfix,
-                                 const grid *hint, int kout[4], grid *out) {
+                                 const grid *hint, tess_density *dens, int kout[4], grid *out) {
     int ke[4];
     for (int s = 0; s < 4; ++s) {
         ke[s] = P->e[s].collapsed
@@ -154,16 +173,33 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
                            s, cap, tol);
     }
     /* grid densities: see cj_tess_patch_densities */
-    double base_u, base_v;
-    double rho_u[CJ_TESS_SLABS], rho_v[CJ_TESS_SLABS];
-    cj_tess_patch_densities(P, tol, rho_u, rho_v, &base_u, &base_v);
+    if (!kfix) dens->known_valid = 0;
+    if (!dens->valid) {
+        cj_tess_patch_densities(P, tol, dens->rho_u, dens->rho_v, &dens->base_u, &dens->base_v);
+        dens->valid = 1;
+    }
+    const double base_u = dens->base_u, base_v = dens->base_v;
+    const double *rho_u = dens->rho_u, *rho_v = dens->rho_v;
     const size_t vs = P->mesh->vertex_count, ts = P->mesh->triangle_count;
     cj_status st = CJ_OK;
     int k[4];
     if (kfix && hint && hint->nu >= 2 && hint->nv >= 2) {
         int pass = 0;
         side_counts(P, ke, kfix, hint->nu, hint->nv, k);
-        if ((st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, &pass))) return st;
+        if (dens->known_valid && memcmp(k, dens->known_k, sizeof k) == 0) {
+            /* the planned grid with the planned counts (no neighbour raised one): planning's
+             * passing trial computed this build's bound */
+            st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 1, dens->known, &pass);
+        } else {
+            if ((st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 0, NULL, &pass)))
+                return st;
+            if (pass && !P->rational) { /* the bounds-only trial passed: build it once */
+                const double known[4] = {P->bound, P->worst_terms[0], P->worst_terms[1],
+                                         P->worst_terms[2]};
+                st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 1, known, &pass);
+            }
+        }
+        if (st) return st;
         if (pass) {
             *out = *hint;
             memcpy(kout, k, sizeof k);
@@ -173,7 +209,9 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
     double lo = 0.0, hi = 0.0, s = 1.0;
     grid best = {0, 0, 0}, last = {-1, -1, 0};
     size_t best_tris = (size_t)-1;
+    double best_known[4] = {0.0, 0.0, 0.0, 0.0};
     int last_pass = 0;
+    double last_bound = 0.0;
     for (int iter = 0; iter < 60; ++iter) {
         int nu = (int)fmin(ceil(s * base_u), (double)cap + 1.0);
         int nv = (int)fmin(ceil(s * base_v), (double)cap + 1.0);
@@ -189,31 +227,37 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
         int pass;
         if (nu == last.nu && nv == last.nv) {
             pass = last_pass;
+            if (lo > 0.0 && hi > 0.0) break; /* the bracket no longer changes the grid */
         } else {
             const grid g = {nu, nv, 0};
             side_counts(P, ke, kfix, nu, nv, k);
-            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, &pass))) break;
-            const size_t tris = P->mesh->triangle_count - ts;
+            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, 0, NULL, &pass))) break;
+            const size_t tris = P->tris;
             if (pass && tris < best_tris) {
                 best_tris = tris;
                 best = g;
+                keep_known(P, best_known);
             }
             last = g;
             last_pass = pass;
+            last_bound = P->bound;
         }
         if (pass)
             hi = s;
         else
             lo = s;
-        if (hi == 0.0)
-            s *= 1.5; /* no passing scale yet */
-        else if (lo == 0.0 && iter < 8)
-            s *= 0.6; /* passing: look for a smaller scale */
-        else if (hi - lo > 0.03 * hi)
+        /* the bound is about evalerr + C / s^2: the scale where it would meet tol (a failing
+         * trial stops at its first triangle over tol, so its bound only says "at least") */
+        const double excess = last_bound - P->evalerr, room = tol - P->evalerr;
+        const double pred = room > 0.0 && excess > 0.0 ? s * sqrt(excess / room) : 2.0 * s;
+        if (hi == 0.0) /* no passing scale yet: grow to the prediction, at least 5% */
+            s = fmax(1.05 * s, 1.02 * pred);
+        else if (lo == 0.0 && iter < 8 && pred < 0.97 * hi) /* passing: shrink towards it */
+            s = fmax(1.01 * pred, 0.6 * hi);
+        else if (lo > 0.0 && hi - lo > 0.03 * hi)
             s = 0.5 * (lo + hi);
         else
-            break;
-        if (lo == 0.0 && iter >= 8) lo = s; /* stop shrinking */
+            break; /* within 3% of the predicted or bracketed smallest passing scale */
     }
     if (!st && best.nu == 0)
         st = cj_fail(CJ_ERR_CAP, "patch %zu: no grid met tolerance %.3g", q, tol);
@@ -233,12 +277,13 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
             const grid g = {probe, probe, 1};
             int pass;
             side_counts(P, ke, kfix, probe, probe, k);
-            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, &pass))) break;
-            const size_t tris = P->mesh->triangle_count - ts;
+            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, 0, NULL, &pass))) break;
+            const size_t tris = P->tris;
             last = g;
             if (pass && tris < best_tris) {
                 best_tris = tris;
                 best = g;
+                keep_known(P, best_known);
             }
             if (!pass) {
                 if (probe == khi) break; /* no uniform grid that small passes */
@@ -251,10 +296,18 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
         }
     }
     side_counts(P, ke, kfix, best.nu, best.nv, k);
-    /* rebuild the best grid unless it is the last build or only planning (kfix NULL) */
-    if (!st && kfix && (best.nu != last.nu || best.nv != last.nv || best.uni != last.uni)) {
-        int pass; /* deterministic: it passes again */
-        st = try_grid(P, rho_u, rho_v, best, k, tol, q, vs, ts, &pass);
+    /* build the best grid unless only planning (kfix NULL) or (a rational patch) it is the
+     * last build; deterministic: it passes again */
+    if (!st && kfix &&
+        (!P->rational || best.nu != last.nu || best.nv != last.nv || best.uni != last.uni)) {
+        int pass;
+        st = try_grid(P, rho_u, rho_v, best, k, tol, q, vs, ts, 1, P->rational ? NULL : best_known,
+                      &pass);
+    }
+    if (!st && !kfix && !P->rational && best.nu) { /* for the build of this plan */
+        memcpy(dens->known, best_known, sizeof best_known);
+        memcpy(dens->known_k, k, sizeof k);
+        dens->known_valid = 1;
     }
     *out = best;
     memcpy(kout, k, sizeof k);

@@ -83,24 +83,6 @@ int cj_tess_edge_segments(const double *pts, int degree, double tol, int cap) {
     return k < 1.0 ? 1 : (int)k;
 }
 
-/* Sub-net bounds over [u0,u1]x[v0,v1], rescaled to the patch's parameters (polynomial
- * patches; rational ones: cj_tess_rational_tri_bound). */
-dbounds cj_tess_strip_bounds(const ptess *P, double u0, double u1, double v0, double v1) {
-    assert(!P->rational);
-    double sub[CJ_PATCH_NET_MAX];
-    cj_patch_sub_h(P->h, P->hd, P->m, P->n, u0, u1, v0, v1, sub);
-    dbounds b = net_bounds(sub, 3, P->m, P->n);
-    const double wu = u1 - u0, wv = v1 - v0;
-    b.uu /= wu * wu;
-    b.uv /= wu * wv;
-    b.vv /= wv * wv;
-    /* the divisions round: inflate */
-    b.uu *= 1.0 + 4.0 * U_ROUND;
-    b.uv *= 1.0 + 4.0 * U_ROUND;
-    b.vv *= 1.0 + 4.0 * U_ROUND;
-    return b;
-}
-
 /* Homogeneous rational bound (see RATIONAL BOUND, (Q)) of a box from its homogeneous sub-net:
  * out[0..2] = effective second-derivative bounds (M_Y + R M_w) / wlo in the box's local
  * coordinates, out[3] = the constant rounding term 2 (sqrt(3) eY + R ew) / wlo. */

@@ -81,20 +81,69 @@ static void eval_point(const ptess *P, double u, double v, double out[3]) {
         memcpy(out, r, 3 * sizeof(double));
 }
 
-static cj_status add_vertex(ptess *P, const double pos[3], double u, double v, uint32_t *idx) {
+/* Adds a vertex; its normal is computed unless planning or `later` (grid vertices: computed
+ * with their position). */
+static cj_status add_vertex(ptess *P, const double pos[3], double u, double v, int later,
+                            uint32_t *idx) {
+    if (P->bounds_only) {
+        P->scr_uv[2 * (size_t)P->scr_count] = u;
+        P->scr_uv[2 * (size_t)P->scr_count + 1] = v;
+        *idx = P->scr_count++;
+        return CJ_OK;
+    }
     double nrm[3] = {0.0, 0.0, 0.0};
     const double uv[2] = {u, v};
-    if (!P->planning && cj_patch_normal_unchecked(P->p, P->h, P->hd, u, v, nrm, NULL) != CJ_OK)
+    if (!P->planning && !later &&
+        cj_patch_normal_unchecked(P->p, P->h, P->hd, u, v, nrm, NULL) != CJ_OK)
         nrm[0] = nrm[1] = nrm[2] = 0.0; /* a patch collapsed to a curve: no normal */
     return cj_mesh_add_vertex(P->mesh, pos, nrm, uv, idx);
+}
+
+/* Index of t among the zipper walk's breakpoints, or -1. */
+static int zip_find(const ptess *P, double t) {
+    int lo = 0, hi = P->zip_n - 1;
+    while (lo <= hi) {
+        const int mid = (lo + hi) / 2;
+        if (P->zip_bp[mid] == t) return mid;
+        if (P->zip_bp[mid] < t)
+            lo = mid + 1;
+        else
+            hi = mid - 1;
+    }
+    return -1;
+}
+
+/* Bounds over a zipper triangle's box from the walk of its ring: the largest interval bounds
+ * over the intervals the box covers (each bounds its derivative on its piece; the pieces cover
+ * the box). 0 when the box does not span the ring's strip (then computed directly). */
+static int zip_walk_bounds(const ptess *P, double u0, double u1, double v0, double v1,
+                           dbounds *out) {
+    double a = u0, b = u1;
+    if (P->zip_dir == 0) {
+        if (!(v0 == P->zip.v0 && v1 == P->zip.v1)) return 0;
+    } else {
+        if (!(u0 == P->zip.v0 && u1 == P->zip.v1)) return 0;
+        a = v0;
+        b = v1;
+    }
+    const int i = zip_find(P, a), j = zip_find(P, b);
+    if (i < 0 || j <= i) return 0;
+    dbounds r = P->zip_iv[i];
+    for (int x = i + 1; x < j; ++x) {
+        r.uu = fmax(r.uu, P->zip_iv[x].uu);
+        r.uv = fmax(r.uv, P->zip_iv[x].uv);
+        r.vv = fmax(r.vv, P->zip_iv[x].vv);
+    }
+    *out = r;
+    return 1;
 }
 
 /* Adds triangle (a,b,c) (reordered CCW in (u,v)), accounting its bound with strip bounds
  * `db` and its measured deviation; degenerate triangles are counted and not added. */
 static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbounds *db) {
     cj_mesh *M = P->mesh;
-    const double *ua = M->uvs + 2 * (size_t)a, *ub = M->uvs + 2 * (size_t)b,
-                 *uc = M->uvs + 2 * (size_t)c;
+    const double *uvs = P->bounds_only ? P->scr_uv : M->uvs;
+    const double *ua = uvs + 2 * (size_t)a, *ub = uvs + 2 * (size_t)b, *uc = uvs + 2 * (size_t)c;
     const double area = (ub[0] - ua[0]) * (uc[1] - ua[1]) - (ub[1] - ua[1]) * (uc[0] - ua[0]);
     if (area < 0.0) {
         uint32_t t = b;
@@ -104,7 +153,9 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         ub = uc;
         uc = tu;
     }
-    if (P->rational) {
+    if (P->bound_known) {
+        /* the bound of these triangles is known (tessellate_adaptive.c, try_grid) */
+    } else if (P->rational) {
         double bnd = cj_tess_rational_tri_bound(P, ua, ub, uc, M->positions + 3 * (size_t)a,
                                                 M->positions + 3 * (size_t)b,
                                                 M->positions + 3 * (size_t)c, db != NULL, P->bound);
@@ -117,8 +168,16 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         const double du = u1 - u0, dv = v1 - v0;
         dbounds local;
         if (!db) { /* bounds over the triangle's own (u,v) box */
-            local = (du > 0.0 && dv > 0.0) ? cj_tess_strip_bounds(P, u0, u1, v0, v1)
-                                           : cj_tess_strip_bounds(P, 0.0, 1.0, 0.0, 1.0);
+            if (!(du > 0.0 && dv > 0.0))
+                local = P->whole;
+            else if (P->zip_n > 0 && zip_walk_bounds(P, u0, u1, v0, v1, &local))
+                ; /* the intervals of the ring's walk that the box covers */
+            else if (P->zip_dir == 0 && v0 == P->zip.v0 && v1 == P->zip.v1)
+                local = cj_tess_cell_bounds(P, &P->zip, u0, u1); /* the box spans the strip */
+            else if (P->zip_dir == 1 && u0 == P->zip.v0 && u1 == P->zip.v1)
+                local = cj_tess_ucell_bounds(P, &P->zip, v0, v1);
+            else
+                local = cj_tess_strip_bounds(P, u0, u1, v0, v1);
             db = &local;
         }
         const double t0 = db->uu * du * du, t1 = 2.0 * db->uv * du * dv, t2 = db->vv * dv * dv;
@@ -130,6 +189,10 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
             P->worst_terms[2] = t2;
         }
         if (P->abort_over > 0.0 && P->bound > P->abort_over) P->aborted = 1;
+    }
+    if (P->bounds_only) {
+        ++P->tris;
+        return CJ_OK;
     }
     const double *pa = M->positions + 3 * (size_t)a, *pb = M->positions + 3 * (size_t)b,
                  *pc = M->positions + 3 * (size_t)c;
@@ -176,6 +239,7 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         ++P->dropped;
         return CJ_OK;
     }
+    ++P->tris;
     return cj_mesh_add_triangle(M, a, b, c, P->id);
 }
 
@@ -185,6 +249,50 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
 static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, const uint32_t *in,
                         const double *tin, int L, const dbounds *db) {
     int a = 0, b = 0;
+    double *bp = NULL;
+    dbounds *iv = NULL;
+    P->zip_n = 0;
+    if (!P->rational && !P->bound_known) { /* every triangle spans the ring's strip */
+        const int s = P->zip_dir;          /* set by the caller: the side */
+        if (s == 0)
+            cj_tess_strip_restrict(P, 0.0, P->zip_t, &P->zip);
+        else if (s == 2)
+            cj_tess_strip_restrict(P, P->zip_t, 1.0, &P->zip);
+        else if (s == 3)
+            cj_tess_ustrip_restrict(P, 0.0, P->zip_t, &P->zip);
+        else
+            cj_tess_ustrip_restrict(P, P->zip_t, 1.0, &P->zip);
+        P->zip_dir = (s & 1) ? 1 : 0;
+        if (cj_tess_walkable(P)) { /* walk the merged breakpoints of the ring once */
+            const size_t cap = (size_t)k + (size_t)L + 2;
+            bp = t_alloc(P->mesh, sizeof(double) * cap);
+            iv = t_alloc(P->mesh, sizeof(dbounds) * cap);
+            if (!bp || !iv) {
+                t_free(P->mesh, bp);
+                t_free(P->mesh, iv);
+                return cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %d", (int)P->id);
+            }
+            int nb = 0, x = 0, y = 0;
+            while (x <= k || y <= L) { /* merge, dropping repeats */
+                const double t = y > L || (x <= k && tout[x] <= tin[y]) ? tout[x++] : tin[y++];
+                if (nb == 0 || t > bp[nb - 1]) bp[nb++] = t;
+            }
+            for (int c = 0; c < nb; ++c) {
+                tess_line *A = &P->lines[c & 1];
+                if (P->zip_dir == 0)
+                    cj_tess_line(P, &P->zip, bp[c], A);
+                else
+                    cj_tess_uline(P, &P->zip, bp[c], A);
+                if (c > 0) iv[c - 1] = cj_tess_cell_walk(P, &P->lines[(c - 1) & 1], A);
+            }
+            P->zip_n = nb;
+            P->zip_bp = bp;
+            P->zip_iv = iv;
+        }
+    } else {
+        P->zip_dir = -1;
+    }
+    cj_status st = CJ_OK;
     while (a < k || b < L) {
         int adv_outer;
         if (a == k)
@@ -193,7 +301,6 @@ static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, 
             adv_outer = 1;
         else
             adv_outer = tout[a] + tout[a + 1] < tin[b] + tin[b + 1];
-        cj_status st;
         if (adv_outer) {
             st = add_tri(P, o[a], o[a + 1], in[b], db);
             ++a;
@@ -201,9 +308,13 @@ static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, 
             st = add_tri(P, o[a], in[b + 1], in[b], db);
             ++b;
         }
-        if (st || P->aborted) return st;
+        if (st || P->aborted) break;
     }
-    return CJ_OK;
+    P->zip_dir = -1;
+    P->zip_n = 0;
+    t_free(P->mesh, bp);
+    t_free(P->mesh, iv);
+    return st;
 }
 
 /* One build of a patch: interior breakpoints ub[0..nu] (ub[0] = 0, ub[nu] = 1) and
@@ -217,12 +328,24 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
     P->measured = 0.0;
     P->dropped = 0;
     P->aborted = 0;
+    P->tris = 0;
     P->worst_terms[0] = P->worst_terms[1] = P->worst_terms[2] = 0.0;
+    assert(!P->bounds_only || !P->rational);
+    if (P->bounds_only)
+        ++P->trials;
+    else
+        ++P->builds;
     const size_t nouter = (size_t)(k[0] + k[1] + k[2] + k[3] + 4);
     const size_t ngrid = (size_t)(nu + 1) * (size_t)(nv + 1);
     const size_t nmax = (size_t)(nu > nv ? nu : nv) + 1;
+    const size_t ncol = P->bounds_only ? 0 : (size_t)(P->n + 1) * (size_t)(P->hd + 3);
     uint32_t *buf = t_alloc(P->mesh, sizeof(uint32_t) * (nouter + ngrid + nmax));
-    double *tbuf = t_alloc(P->mesh, sizeof(double) * (nouter + nmax));
+    /* doubles: side parameters, inner parameters, then (bounds_only) the vertices' (u,v) or
+     * (a build) one column of the grid evaluation */
+    double *tbuf = t_alloc(
+        P->mesh, sizeof(double) * (nouter + nmax + (P->bounds_only ? 2 * (nouter + ngrid) : ncol)));
+    P->scr_uv = tbuf ? tbuf + nouter + nmax : NULL;
+    P->scr_count = 0;
     if (!buf || !tbuf) {
         st = cj_fail(CJ_ERR_NOMEM, "out of memory tessellating patch %d", (int)P->id);
         goto done;
@@ -254,17 +377,17 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
     /* corners: the control points themselves */
     const int m1 = m + 1;
     uint32_t c00, c10, c11, c01;
-    if ((st = add_vertex(P, P->p->pts, 0.0, 0.0, &c00))) goto done;
-    if ((st = add_vertex(P, P->p->pts + 3 * m, 1.0, 0.0, &c10))) goto done;
-    if ((st = add_vertex(P, P->p->pts + 3 * (n * m1 + m), 1.0, 1.0, &c11))) goto done;
-    if ((st = add_vertex(P, P->p->pts + 3 * (n * m1), 0.0, 1.0, &c01))) goto done;
+    if ((st = add_vertex(P, P->p->pts, 0.0, 0.0, 0, &c00))) goto done;
+    if ((st = add_vertex(P, P->p->pts + 3 * m, 1.0, 0.0, 0, &c10))) goto done;
+    if ((st = add_vertex(P, P->p->pts + 3 * (n * m1 + m), 1.0, 1.0, 0, &c11))) goto done;
+    if ((st = add_vertex(P, P->p->pts + 3 * (n * m1), 0.0, 1.0, 0, &c01))) goto done;
     const uint32_t first[4] = {c00, c10, c01, c00}, last[4] = {c10, c11, c11, c01};
     for (int s = 0; s < 4; ++s) {
         o[s][0] = first[s];
         o[s][k[s]] = last[s];
         for (int a = 1; a < k[s]; ++a) {
-            double pos[3];
-            edge_point(&P->e[s], P->rational, a, k[s], pos);
+            double pos[3] = {0.0, 0.0, 0.0};
+            if (!P->bounds_only) edge_point(&P->e[s], P->rational, a, k[s], pos);
             const double t = tout[s][a];
             double u, v;
             switch (s) {
@@ -281,14 +404,34 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
                 u = 0.0, v = t;
                 break;
             }
-            if ((st = add_vertex(P, pos, u, v, &o[s][a]))) goto done;
+            if ((st = add_vertex(P, pos, u, v, 0, &o[s][a]))) goto done;
         }
     }
+    /* grid vertices column by column (the u stage shared), stored row by row as before */
+    double *col = tbuf + nouter + nmax, *dcol = col + (size_t)(P->n + 1) * (size_t)P->hd;
     for (int j = 1; j < nv; ++j)
         for (int i = 1; i < nu; ++i) {
-            double pos[3];
-            eval_point(P, ub[i], vb[j], pos);
-            if ((st = add_vertex(P, pos, ub[i], vb[j], &g[j * (nu + 1) + i]))) goto done;
+            const double pos[3] = {0.0, 0.0, 0.0};
+            if ((st = add_vertex(P, pos, ub[i], vb[j], 1, &g[j * (nu + 1) + i]))) goto done;
+        }
+    if (!P->bounds_only)
+        for (int i = 1; i < nu; ++i) {
+            cj_tess_eval_column(P, ub[i], col, dcol);
+            for (int j = 1; j < nv; ++j) {
+                const size_t vi = (size_t)g[j * (nu + 1) + i];
+                double *pos = P->mesh->positions + 3 * vi, su[3], sv[3];
+                cj_tess_eval_in_column(P, col, vb[j], pos, sv);
+                if (!P->planning) {
+                    if (P->hd == 3) cj_tess_eval_du(P, dcol, vb[j], su);
+                    cj_tess_grid_normal(P, su, sv, ub[i], vb[j], P->mesh->normals + 3 * vi);
+                }
+                if (!isfinite(pos[0]) || !isfinite(pos[1]) || !isfinite(pos[2])) {
+                    st = cj_fail(CJ_ERR_NONFINITE,
+                                 "patch %d: vertex at (%.17g, %.17g) is not finite", (int)P->id,
+                                 ub[i], vb[j]);
+                    goto done;
+                }
+            }
         }
     int j0 = 0, j1 = nv, i0 = 0, i1 = nu; /* the block of regular cells */
     if (regular) {
@@ -307,33 +450,47 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
             inner[i - 1] = g[1 * (nu + 1) + i];
             tin[i - 1] = ub[i];
         }
+        P->zip_dir = 0, P->zip_t = vb[1];
         if ((st = zipper(P, o[0], tout[0], k[0], inner, tin, L, NULL)) || P->aborted) goto done;
         for (int i = 1; i < nu; ++i) inner[i - 1] = g[(nv - 1) * (nu + 1) + i];
+        P->zip_dir = 2, P->zip_t = vb[nv - 1];
         if ((st = zipper(P, o[2], tout[2], k[2], inner, tin, L, NULL)) || P->aborted) goto done;
         L = nv - 2;
         for (int j = 1; j < nv; ++j) {
             inner[j - 1] = g[j * (nu + 1) + 1];
             tin[j - 1] = vb[j];
         }
+        P->zip_dir = 3, P->zip_t = ub[1];
         if ((st = zipper(P, o[3], tout[3], k[3], inner, tin, L, NULL)) || P->aborted) goto done;
         for (int j = 1; j < nv; ++j) inner[j - 1] = g[j * (nu + 1) + nu - 1];
+        P->zip_dir = 1, P->zip_t = ub[nu - 1];
         if ((st = zipper(P, o[1], tout[1], k[1], inner, tin, L, NULL)) || P->aborted) goto done;
         j0 = i0 = 1;
         j1 = nv - 1;
         i1 = nu - 1;
     }
-    for (int j = j0; j < j1; ++j)
+    for (int j = j0; j < j1; ++j) {
+        const int cells = !P->bound_known; /* cell bounds needed */
+        const int walk = cells && cj_tess_walkable(P);
+        if (cells && !P->rational) cj_tess_strip_restrict(P, vb[j], vb[j + 1], &P->strip);
+        if (walk) cj_tess_line(P, &P->strip, ub[i0], &P->lines[0]);
         for (int i = i0; i < i1; ++i) {
             dbounds cb = {0.0, 0.0, 0.0};
-            if (P->rational)
+            if (cells && P->rational) {
                 cj_tess_load_cell(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
-            else
-                cb = cj_tess_strip_bounds(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
+            } else if (walk) { /* the line at ub[i] was computed for the previous cell */
+                tess_line *A = &P->lines[(i - i0) & 1], *B = &P->lines[(i - i0 + 1) & 1];
+                cj_tess_line(P, &P->strip, ub[i + 1], B);
+                cb = cj_tess_cell_walk(P, A, B);
+            } else if (cells) {
+                cb = cj_tess_cell_bounds(P, &P->strip, ub[i], ub[i + 1]);
+            }
             const uint32_t A = g[j * (nu + 1) + i], B = g[j * (nu + 1) + i + 1],
                            C = g[(j + 1) * (nu + 1) + i + 1], D = g[(j + 1) * (nu + 1) + i];
             if ((st = add_tri(P, A, B, C, &cb))) goto done;
             if ((st = add_tri(P, A, C, D, &cb)) || P->aborted) goto done;
         }
+    }
 done:
     t_free(P->mesh, buf);
     t_free(P->mesh, tbuf);
@@ -342,7 +499,7 @@ done:
 
 /* Per-patch state for one patch (everything but the results of a build). */
 void cj_tess_setup(ptess *P, const cj_patch *p, size_t q, cj_mesh *mesh, int measure) {
-    memset(P, 0, sizeof *P);
+    memset(P, 0, offsetof(ptess, h)); /* the large arrays are written before they are read */
     P->p = p;
     P->id = (int32_t)q;
     P->m = p->deg_u;
@@ -373,4 +530,9 @@ void cj_tess_setup(ptess *P, const cj_patch *p, size_t q, cj_mesh *mesh, int mea
         P->suberr_w = g * hw;
     }
     for (int s = 0; s < 4; ++s) cj_tess_edge_setup(p, s, &P->e[s]);
+    P->zip_dir = -1;
+    if (!P->rational) {
+        cj_tess_diff_setup(P);
+        P->whole = cj_tess_strip_bounds(P, 0.0, 1.0, 0.0, 1.0);
+    }
 }

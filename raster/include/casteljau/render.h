@@ -119,14 +119,18 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
                            cj_stage_report *report);
 
 /* A TESSELLATION CACHE for repeated renders (animation, a viewer, the bench): per object node,
- * the object-space tessellation of its visible patches and the tolerance it was built for. A
- * render given the cache (cj_render_options.cache) reuses a node's mesh when the same patches
- * (control points and weights bit for bit, same patches in view) need an object tolerance
- * between the cached one and twice it, so the proven bound still holds (the mesh is at most
- * 2x finer than needed); otherwise it tessellates and replaces the entry. Transforms may change
+ * an incremental per-patch tessellation (casteljau/tess_cache.h) and the object tolerance it
+ * was made at. A render given the cache (cj_render_options.cache) keeps a node's tolerance while
+ * the tolerance the frame needs stays between the cached one and twice it, so the proven bound
+ * still holds (the mesh is at most 2x finer than needed) and a moving camera does not
+ * re-tessellate; otherwise the node re-tessellates at the needed tolerance. Either way only the
+ * patches whose control points (and weights) changed are re-planned, and only they and the
+ * neighbours whose shared side changed are rebuilt; the rest is reused. Transforms may change
  * freely (the mesh is in object space). The image is the same as without a cache whenever the
- * cached tolerance equals the needed one (e.g. a still camera). Not thread-safe: one cache per
- * renderer thread. The stage report's tessellate_patches gives cache_hits. */
+ * cached tolerance equals the needed one (e.g. a still camera, after any edits). Not
+ * thread-safe: one cache per renderer thread. The stage report's tessellate_patches gives
+ * patches_planned, patches_built, patches_reused and cache_hits (patch objects with nothing
+ * re-planned or rebuilt). */
 typedef struct cj_render_cache cj_render_cache;
 cj_status cj_render_cache_create(const cj_allocator *alloc, cj_render_cache **out);
 void cj_render_cache_destroy(cj_render_cache *cache);

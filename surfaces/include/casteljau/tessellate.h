@@ -24,11 +24,15 @@
  * where Muu >= |S_uu|, Muv >= |S_uv|, Mvv >= |S_vv| on the region. Since Σλ_i(u_i-u)² <= du²/4
  * (du = the triangle's extent in u) and likewise in v (Cauchy-Schwarz for the mixed term):
  *     |S(x) - L(x)| <= (Muu du² + 2 Muv du dv + Mvv dv²) / 8.
- * The M's come from the control net of the sub-patch over the triangle's own (u,v) box (zipper
- * triangles) or over its grid cell (convex hull property of the derivative patches):
+ * The M's come from the control net over the triangle's grid cell (or, zipper triangles, over
+ * the pieces of its own (u,v) box between consecutive side and grid parameters), by the convex
+ * hull property of the derivative patches:
  *     Muu = m(m-1) max |Δ²_u b_ij|,  Muv = m n max |Δ_u Δ_v b_ij|,  Mvv = n(n-1) max |Δ²_v b_ij|,
- * rescaled to the patch's parameters, inflated for the rounding of the differences, plus the
- * rounding error of evaluating the vertices (gamma(3(m+n)+4) max|b|, twice). Since S(x) lies
+ * over the box's sub-net in the patch's parameters; computed as the restrictions to the box of
+ * the whole net's difference nets (differencing commutes with restriction; see
+ * tess_bounds_poly.c and docs/tessellation.md), inflated for the rounding of the differences
+ * and restrictions, plus the rounding error of evaluating the vertices (gamma(3(m+n)+4)
+ * max|b|, twice). Since S(x) lies
  * within that distance of the point L(x) of the mesh, it bounds the distance surface -> mesh.
  * RATIONAL PATCHES. S = X / w with X (3D) and w > 0 the polynomial patches of the homogeneous
  * net (w_ij b_ij, w_ij). Each triangle's bound is the smaller of two proven bounds, each on the
@@ -60,9 +64,13 @@
  * ADAPTIVE CHOICE. Interior: a tensor grid of nu x nv cells whose lines equidistribute the
  * density sqrt(max(Muu, Muv)) along u (sqrt(max(Mvv, Muv)) along v), the bounds taken on 16
  * slabs per direction (1D-optimal spacing for a second-order error); nu and nv scale together,
- * and the scale is the smallest (growing, then bisection to 3%) for which the per-triangle
- * bound above is <= tol. Uniform K x K grids with fewer triangles are then tried (smallest
- * passing K by bisection) and the build with the fewest triangles wins.
+ * and the scale is the smallest (predicted from the bound's 1/s^2 law, then bracketed to 3%)
+ * for which the per-triangle bound above is <= tol. Uniform K x K grids with fewer triangles
+ * are then tried (smallest passing K by bisection) and the grid with the fewest triangles wins.
+ * Polynomial patches try grids BOUNDS-ONLY (the triangles enumerated and bounded, no vertex
+ * evaluated, nothing added to the mesh; report->trials) and build only the grid kept, once,
+ * with the bound its trial computed; rational patches try grids by building them (their bound
+ * needs the vertices). report->builds counts the meshes built.
  * Edge counts, in two passes over all patches. (1) Planning: each patch runs the search above
  * with every non-collapsed side at k = max(k_flat, grid count along that side), where k_flat
  * is the smallest k with d(d-1) max|Δ²b| / (8 k²) <= tol/4 (the chord error bound of the edge
@@ -74,7 +82,8 @@
  * those counts, trying its planned grid first (it passes unless a neighbour raised a count
  * and the new zipper misses tol, in which case the search reruns with the counts fixed, which
  * succeeds on a fine enough grid since k >= k_flat). The bound is always that of the build
- * kept.
+ * kept. Planning and building one patch are functions of that patch (and its four counts) and
+ * tol alone: casteljau/tess_cache.h reuses them between calls.
  * UNIFORM MODE: K x K cells and K segments on every edge (seed 5.9), same bound.
  * MEMORY: the mesh grows through its allocator; temporaries (index grids, one per patch build)
  * also come from the mesh's allocator.
@@ -112,6 +121,9 @@ typedef struct cj_tess_report {
     double bound;       /* proven max distance from the patches to the mesh */
     double measured;    /* measured max deviation (-1 when opt->measure == 0) */
     int max_nu, max_nv; /* largest grid used by a patch */
+    size_t builds;      /* patch meshes built (planning and final; 1 per patch when planned
+                         * bounds meet tol as built: see ADAPTIVE CHOICE) */
+    size_t trials;      /* bounds-only trials of grids (no mesh built) */
 } cj_tess_report;
 
 /* Tessellates `count` patches into `mesh` (appending; triangle_patch = patch index). Vertices
@@ -122,7 +134,7 @@ typedef struct cj_tess_report {
  * in adaptive mode, negative counts), CJ_ERR_NONFINITE (tol), CJ_ERR_CAP (a patch needs more
  * than max_segments per direction: the mesh holds the patches before the first one that
  * failed and report describes them), CJ_ERR_NOMEM. Adaptive mode plans every patch before
- * building any (see ADAPTIVE CHOICE); each trial build stops at its first triangle whose bound
+ * building any (see ADAPTIVE CHOICE); each trial stops at its first triangle whose bound
  * exceeds tol. A degenerate patch, whose every triangle collapses (all control points equal,
  * a degree-(0,0) patch), is CJ_ERR_DEGENERATE naming it: never an empty mesh called success. */
 cj_status cj_tessellate_patches(const cj_patch *patches, size_t count, const cj_tess_options *opt,

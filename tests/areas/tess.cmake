@@ -1,0 +1,8 @@
+# Incremental tessellation (issue 19): the cache against one-shot tessellation after random
+# edit sequences (bit-identical meshes, incremental work, no cracks).
+cj_add_test(test_tess_cache SOURCES test_tess_cache.c LIBS cj::surfaces)
+target_compile_definitions(test_tess_cache PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+# The renderer's cache: cached renders after control-point edits == one-shot renders.
+cj_add_test(test_render_tess_cache SOURCES test_render_tess_cache.c LIBS cj::raster cj::scene)
+target_include_directories(test_render_tess_cache PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+target_compile_definitions(test_render_tess_cache PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
