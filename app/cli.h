@@ -36,7 +36,9 @@ const char *cli_quote(const char *s, char *out, size_t out_size);
  * "--opt=value" are the same; "--" ends the options (everything after it is positional); an
  * argument that reads as a number ("-0.5", "-1e3") is positional, so negative parameters
  * need no "--". "--help"/"-h" prints the command's usage and "--version" the version (the
- * command then exits 0). An option not in the table is reported as unknown, by name. */
+ * command then exits 0). "--quiet"/"-q" sets cli_quiet (cli_progress.h: no progress line, no
+ * summary) and is otherwise skipped. An option not in the table is reported as unknown, by
+ * name. */
 typedef struct cli_opt {
     const char *name;  /* "--points" */
     const char *alias; /* "-o", or NULL */

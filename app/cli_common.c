@@ -1,5 +1,6 @@
 #define _POSIX_C_SOURCE 200809L /* readlink */
 #include "cli.h"
+#include "cli_progress.h"
 
 #include <errno.h>
 #include <math.h>
@@ -128,6 +129,10 @@ int cli_next(cli_parser *p, const char **value) {
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
         fputs(p->usage, stdout);
         return CLI_EXIT_OK;
+    }
+    if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) { /* every command: see cli_progress.h */
+        cli_quiet = 1;
+        return cli_next(p, value);
     }
     if (!strcmp(a, "--version")) {
         printf("%s\n", cli_version());

@@ -18,3 +18,9 @@ target_include_directories(test_render_shading PRIVATE ${CMAKE_CURRENT_SOURCE_DI
 # Progress reports and cancellation through cj_render_options.progress, both back ends.
 cj_add_test(test_render_progress SOURCES test_render_progress.c LIBS cj::raster cj::scene)
 target_include_directories(test_render_progress PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+# Progress on a terminal, the summary line, --quiet, the large-work notice and Ctrl-C (issue 25).
+if(CJ_WITH_OIIO AND TARGET cj::viz)
+  cj_add_test(test_cli_progress SOURCES test_cli_progress.c)
+  target_compile_definitions(test_cli_progress PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")
+  add_dependencies(test_cli_progress casteljau)
+endif()
