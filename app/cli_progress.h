@@ -10,7 +10,7 @@
 
 #include <stdint.h>
 
-/* Set by --quiet / -q (the shared parser, app/cli_common.c): no progress, no summary, no
+/* Set by --quiet (the shared parser, app/cli_common.c): no progress, no summary, no
  * "large work" notice. Errors and other warnings still print. */
 extern int cli_quiet;
 

@@ -21,7 +21,6 @@ static const char render_usage[] =
     "  --tol-px        screen-space tessellation tolerance in pixels (default 0.25)\n"
     "  --threads       worker threads (default: one per core); the image does not depend on it\n"
     "  --stage-report  print the pipeline's stage report (JSON) on stdout\n"
-    "  --quiet, -q     no progress line and no summary on a terminal's stderr\n"
     "  On a terminal, stderr shows the progress (tiles done, time left) and a summary line;\n"
     "  Ctrl-C stops the render cleanly (no image written, exit status 130).\n";
 

@@ -46,7 +46,8 @@ static const char usage_text[] =
     "  writes DIR/index.html with PNG charts, DIR/summary.md and DIR/data.tsv.\n"
     "  --quick         a few points per chart (seconds; what the test suite builds)\n"
     "  --no-callgrind  no instruction counts (valgrind is used when installed)\n"
-    "  --quiet, -q     no progress line and no summary on a terminal's stderr\n";
+    "  --workload SPEC N  run N units of one measured workload and exit (what the report runs\n"
+    "                  under callgrind; SPEC as eval:M:DEG, see app/report.h)\n";
 
 const char *report_g3(char *buf, double v) {
     if (isfinite(v))

@@ -26,7 +26,6 @@ static const char trace_usage[] =
     "                  hit (default 0: off)\n"
     "  --signature     write the scene signature image instead: each object id its colour\n"
     "  --stage-report  print the stage report (JSON) on stdout\n"
-    "  --quiet, -q     no progress line and no summary on a terminal's stderr\n"
     "  On a terminal, stderr shows the progress (tiles done, time left) and a summary line;\n"
     "  Ctrl-C stops the trace cleanly (no image written, exit status 130).\n";
 

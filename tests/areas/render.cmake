@@ -24,3 +24,10 @@ if(CJ_WITH_OIIO AND TARGET cj::viz)
   target_compile_definitions(test_cli_progress PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")
   add_dependencies(test_cli_progress casteljau)
 endif()
+# Options of every command: -h alone, "did you mean", usage completeness, the animate example.
+if(CJ_WITH_OIIO AND TARGET cj::viz)
+  cj_add_test(test_cli_options SOURCES test_cli_options.c)
+  target_compile_definitions(test_cli_options PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+    CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
+  add_dependencies(test_cli_options casteljau)
+endif()
