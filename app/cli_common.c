@@ -95,6 +95,7 @@ const char *cli_version(void) {
 
 void cli_parser_init(cli_parser *p, const char *cmd, const char *usage, int argc, char **argv,
                      const cli_opt *opts, size_t nopts) {
+    cli_started = cli_now();
     p->cmd = cmd;
     p->usage = usage;
     p->argc = argc;

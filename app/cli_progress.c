@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 int cli_quiet = 0;
+double cli_started = 0.0;
 
 static volatile sig_atomic_t interrupted = 0;
 static struct sigaction previous_sigint;
@@ -126,7 +127,7 @@ void cli_summary(const char *cmd, const char *what, const char *path, const char
     char size[32] = "", el[32];
     struct stat st;
     if (path && stat(path, &st) == 0) put_size(size, sizeof size, (double)st.st_size);
-    put_duration(el, sizeof el, cli_now() - t0);
+    put_duration(el, sizeof el, cli_now() - (t0 < 0 ? cli_started : t0));
     const int paren = (detail && detail[0]) || size[0];
     fflush(stdout);
     fprintf(stderr, "casteljau %s: wrote %s%s%s%s%s%s in %s\n", cmd, what, paren ? " (" : "",

@@ -14,6 +14,9 @@
  * "large work" notice. Errors and other warnings still print. */
 extern int cli_quiet;
 
+/* When the command started (set by cli_parser_init), on the cli_now clock. */
+extern double cli_started;
+
 /* Seconds on the monotonic clock (for the summary's time). */
 double cli_now(void);
 
@@ -51,7 +54,8 @@ void cli_progress_end(cli_progress *p);
 
 /* The summary, on a terminal and not --quiet: "casteljau CMD: wrote WHAT (SIZE) in T s", where
  * SIZE is the size of the file `path` (omitted when path is NULL or cannot be read) and
- * `detail` (may be NULL) is added before it, e.g. "640 x 480". */
+ * `detail` (may be NULL) is added before it, e.g. "640 x 480"; T is the time since t0, or
+ * since the command started (cli_started) when t0 < 0. */
 void cli_summary(const char *cmd, const char *what, const char *path, const char *detail,
                  double t0);
 

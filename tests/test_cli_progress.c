@@ -1,6 +1,7 @@
 /* How long work shows itself (app/cli_progress.h), run as child processes of `casteljau`:
  * with stderr on a pseudo-terminal, render and trace draw a progress line (percent of tiles,
- * elapsed, time left) and end with a summary line (file, size, time); --quiet and a stderr that
+ * elapsed, time left) and end with a summary line (file, size, time), as tessellate does; --quiet
+ * and a stderr that
  * is not a terminal show none of it (stderr stays empty). Very large work is announced up
  * front, and Ctrl-C (SIGINT) during it stops cleanly: exit status 130, no image written. */
 #define _XOPEN_SOURCE 700 /* posix_openpt, grantpt, unlockpt, ptsname, mkdtemp */
@@ -144,6 +145,29 @@ int main(void) {
               c.err);
         printf("%s with stderr on a pipe: stderr empty, the image written\n", cmd);
         remove(png);
+    }
+
+    /* a command without progress (short work) still ends with the summary, on a terminal only */
+    {
+        char obj[128], want[256];
+        snprintf(obj, sizeof obj, "%s/t.obj", dir);
+        snprintf(want, sizeof want, "casteljau tessellate: wrote %s (", obj);
+        const char *args[] = {CJ_CLI, "tessellate", "--teapot", "-o", obj, NULL};
+        for (int tty = 1; tty >= 0; --tty) {
+            child c;
+            start(&c, args, tty);
+            int rc = finish(&c);
+            CHECK(rc == 0, "tessellate: exit %d", rc);
+            if (tty)
+                CHECK(strstr(c.err, want) && strstr(c.err, " triangles, "),
+                      "tessellate on a pty: no summary '%s...': '%s'", want, c.err);
+            else
+                CHECK(c.len == 0, "tessellate on a pipe: stderr '%s'", c.err);
+            remove(obj);
+        }
+        printf("tessellate: the summary '%s... triangles, SIZE) in T s' on a terminal, nothing on "
+               "a pipe\n",
+               want);
     }
 
     /* 2000 x 2000 x 1 spp x (1 + 24 indirect) rays = 1e8: announced; Ctrl-C stops it. */
