@@ -1,9 +1,9 @@
 /* How long work shows itself (app/cli_progress.h), run as child processes of `casteljau`:
  * with stderr on a pseudo-terminal, render and trace draw a progress line (percent of tiles,
- * elapsed, time left) and end with a summary line (file, size, time), as tessellate does; --quiet
- * and a stderr that
- * is not a terminal show none of it (stderr stays empty). Very large work is announced up
- * front, and Ctrl-C (SIGINT) during it stops cleanly: exit status 130, no image written. */
+ * elapsed, time left) and end with a summary line (file, size, time), as tessellate does;
+ * --quiet and a stderr that is not a terminal show none of it (stderr stays empty). Very large
+ * work is announced up front, and Ctrl-C (SIGINT) during it stops cleanly: exit status 130, no
+ * image written. */
 #define _XOPEN_SOURCE 700 /* posix_openpt, grantpt, unlockpt, ptsname, mkdtemp */
 #include <errno.h>
 #include <fcntl.h>
