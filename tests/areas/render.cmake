@@ -31,3 +31,6 @@ if(CJ_WITH_OIIO AND TARGET cj::viz)
     CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
   add_dependencies(test_cli_options casteljau)
 endif()
+# The bash completion against the built tool (commands, each command's options).
+add_test(NAME test_bash_completion COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/completion_check.sh
+  ${PROJECT_SOURCE_DIR}/app/casteljau.bash-completion $<TARGET_FILE:casteljau>)
