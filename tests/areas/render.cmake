@@ -18,19 +18,3 @@ target_include_directories(test_render_shading PRIVATE ${CMAKE_CURRENT_SOURCE_DI
 # Progress reports and cancellation through cj_render_options.progress, both back ends.
 cj_add_test(test_render_progress SOURCES test_render_progress.c LIBS cj::raster cj::scene)
 target_include_directories(test_render_progress PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
-# Progress on a terminal, the summary line, --quiet, the large-work notice and Ctrl-C (issue 25).
-if(CJ_WITH_OIIO AND TARGET cj::viz)
-  cj_add_test(test_cli_progress SOURCES test_cli_progress.c)
-  target_compile_definitions(test_cli_progress PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")
-  add_dependencies(test_cli_progress casteljau)
-endif()
-# Options of every command: -h alone, "did you mean", usage completeness, the animate example.
-if(CJ_WITH_OIIO AND TARGET cj::viz)
-  cj_add_test(test_cli_options SOURCES test_cli_options.c)
-  target_compile_definitions(test_cli_options PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
-    CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")
-  add_dependencies(test_cli_options casteljau)
-endif()
-# The bash completion against the built tool (commands, each command's options).
-add_test(NAME test_bash_completion COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/completion_check.sh
-  ${PROJECT_SOURCE_DIR}/app/casteljau.bash-completion $<TARGET_FILE:casteljau>)
