@@ -68,7 +68,8 @@ int cli_finish_render(const char *cmd, const char *out, int exr, cj_render_image
 
 /* One draw of render and trace with a renderer made from ro, as a command shows it
  * (cli_progress.h): a warning first when the work is very large (width x height x samples,
- * times `ray_factor` rays per sample), the progress line on a terminal, Ctrl-C stopping it.
+ * times `ray_factor` rays per sample) and when the scene has no lights (unless only object ids
+ * are asked for), the progress line on a terminal, Ctrl-C stopping it.
  * On success returns 0 with *img set (the caller writes it). On failure prints one line and
  * returns the exit status: CLI_EXIT_USAGE for a scene the library rejects, 130 after Ctrl-C
  * (nothing written). */

@@ -1,4 +1,5 @@
-/* The draw of render and trace as the user sees it: a large-work warning, progress, Ctrl-C. */
+/* The draw of render and trace as the user sees it: warnings first (very large work, a scene
+ * without lights), progress, Ctrl-C. */
 #include "cli.h"
 #include "cli_progress.h"
 #include "scene_cli.h"
@@ -28,6 +29,11 @@ int cli_draw_scene(const char *cmd, const char *name, cj_renderer_options ro, co
                  (double)w * (double)h * 16.0 * 1e-9);
         cli_warn_large(cmd, what);
     }
+    if (cj_scene_light_count(scene) == 0 && !(planes & CJ_IMAGE_IDS))
+        cli_warn(cmd,
+                 "%s has no lights (not even ambient): only emissive surfaces will show; add "
+                 "a \"lights\" entry",
+                 name);
     cli_progress pr;
     cli_progress_begin(&pr, cmd, "tiles");
     cli_progress_note(&pr, "preparing (scene, tessellation, image buffers)");

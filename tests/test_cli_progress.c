@@ -170,6 +170,38 @@ int main(void) {
                want);
     }
 
+    /* a scene without lights renders (dark), with one warning, on a pipe too */
+    {
+        char scene[128];
+        snprintf(scene, sizeof scene, "%s/dark.json", dir);
+        FILE *f = fopen(scene, "w");
+        if (!f) return 1;
+        fputs("{\"camera\": {\"eye\": [0, 0, 5], \"look_at\": [0, 0, 0], \"up\": [0, 1, 0]},\n"
+              " \"materials\": [{\"name\": \"m\", \"color\": [0.5, 0.5, 0.5]}],\n"
+              " \"objects\": [{\"name\": \"ball\", \"material\": \"m\",\n"
+              "   \"geometry\": {\"type\": \"sphere\", \"radius\": 1}}]}\n",
+              f);
+        fclose(f);
+        const char *args[] = {CJ_CLI,    "render", scene,      "-o", png,
+                              "--width", "64",     "--height", "48", NULL};
+        child c;
+        start(&c, args, 0);
+        int rc = finish(&c);
+        CHECK(rc == 0 && exists(png), "render of a scene without lights: exit %d: '%s'", rc, c.err);
+        CHECK(strstr(c.err, "warning: ") && strstr(c.err, "has no lights") &&
+                  strchr(c.err, '\n') == c.err + c.len - 1,
+              "no lights: not one warning line: '%s'", c.err);
+        const char *with_lights[] = {CJ_CLI,    "render", "--demo",   "-o", png,
+                                     "--width", "64",     "--height", "48", NULL};
+        start(&c, with_lights, 0);
+        rc = finish(&c);
+        CHECK(rc == 0 && c.len == 0, "the demo (lit): stderr '%s'", c.err);
+        printf("a scene without lights: rendered with one warning line (on a pipe too); the lit "
+               "demo: none\n");
+        remove(png);
+        remove(scene);
+    }
+
     /* 2000 x 2000 x 1 spp x (1 + 24 indirect) rays = 1e8: announced; Ctrl-C stops it. */
     {
         child c;
