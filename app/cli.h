@@ -35,8 +35,12 @@ const char *cli_quote(const char *s, char *out, size_t out_size);
  * Options may come in any order and between positional arguments; "--opt value" and
  * "--opt=value" are the same; "--" ends the options (everything after it is positional); an
  * argument that reads as a number ("-0.5", "-1e3") is positional, so negative parameters
- * need no "--". "--help"/"-h" prints the command's usage and "--version" the version (the
- * command then exits 0). An option not in the table is reported as unknown, by name. */
+ * need no "--". "--help" (anywhere) or "-h" (only as the one argument: elsewhere it is an
+ * error, never a silent exit) prints the command's usage and "--version" the version (the
+ * command then exits 0). "--quiet" sets cli_quiet (cli_progress.h: no progress line, no
+ * summary) and is otherwise skipped; "--list-options" prints every option the command takes,
+ * one per line (for shell completion), and exits 0. An option not in the table is reported as
+ * unknown, by name, with the nearest known option when one is near (cli_suggest). */
 typedef struct cli_opt {
     const char *name;  /* "--points" */
     const char *alias; /* "-o", or NULL */
@@ -64,6 +68,11 @@ void cli_parser_init(cli_parser *p, const char *cmd, const char *usage, int argc
 /* The next argument: the index in opts of an option (its value in *value when it takes one,
  * else *value = NULL), or one of the CLI_* codes above. */
 int cli_next(cli_parser *p, const char **value);
+
+/* The option of the table (or --help, --version, --quiet) nearest to typed[0..len) when it is
+ * near enough to be a slip (at most 2 edits or a cut-short name, e.g. "--sp" -> "--spp"), else
+ * NULL. Used by cli_next for its "did you mean" message. */
+const char *cli_suggest(const char *typed, size_t len, const cli_opt *opts, size_t nopts);
 
 /* cli_next for the loop of a command, the control codes handled: returns 1 while there is an
  * argument, with *k its index in opts or CLI_POSITIONAL and *value as cli_next; returns 0 when

@@ -1,5 +1,6 @@
 #define _POSIX_C_SOURCE 200809L /* readlink */
 #include "cli.h"
+#include "cli_progress.h"
 
 #include <errno.h>
 #include <math.h>
@@ -94,6 +95,7 @@ const char *cli_version(void) {
 
 void cli_parser_init(cli_parser *p, const char *cmd, const char *usage, int argc, char **argv,
                      const cli_opt *opts, size_t nopts) {
+    cli_started = cli_now();
     p->cmd = cmd;
     p->usage = usage;
     p->argc = argc;
@@ -125,9 +127,35 @@ int cli_next(cli_parser *p, const char **value) {
     const char *eq = a[1] == '-' ? strchr(a, '=') : NULL;
     const size_t len = eq ? (size_t)(eq - a) : strlen(a);
     char q[160];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+    /* -h is help only as the command's one argument: elsewhere it is a slip (for --height, in
+     * "--width 640 -h 480") and must not print help and exit 0 without doing the work */
+    if (!strcmp(a, "--help") || (!strcmp(a, "-h") && p->argc == 2)) {
         fputs(p->usage, stdout);
+        int has_output = 0;
+        for (size_t k = 0; k < p->nopts; ++k) has_output |= !strcmp(p->opts[k].name, "--output");
+        printf("Every command also takes --help (or -h alone), --version, --quiet (no\n"
+               "progress line and no summary on a terminal) and --list-options (its options, one\n"
+               "per line)%s.\n",
+               has_output ? "; -o is short for --output" : "");
         return CLI_EXIT_OK;
+    }
+    if (!strcmp(a, "-h")) {
+        cli_fail(p->cmd,
+                 "'-h' means help only on its own ('casteljau %s -h'); among other "
+                 "arguments write --help%s",
+                 p->cmd, cli_suggest("--height", 8, p->opts, p->nopts) ? " (or --height H)" : "");
+        return CLI_BAD;
+    }
+    if (!strcmp(a, "--list-options")) { /* for shell completion and the usage test */
+        for (size_t k = 0; k < p->nopts; ++k)
+            printf("%s\n%s%s", p->opts[k].name, p->opts[k].alias ? p->opts[k].alias : "",
+                   p->opts[k].alias ? "\n" : "");
+        fputs("--help\n--quiet\n--version\n", stdout);
+        return CLI_EXIT_OK;
+    }
+    if (!strcmp(a, "--quiet")) { /* every command: see cli_progress.h */
+        cli_quiet = 1;
+        return cli_next(p, value);
     }
     if (!strcmp(a, "--version")) {
         printf("%s\n", cli_version());
@@ -159,9 +187,52 @@ int cli_next(cli_parser *p, const char **value) {
     }
     char name[96];
     snprintf(name, sizeof name, "%.*s", (int)(len < 80 ? len : 80), a);
-    cli_fail(p->cmd, "unknown option '%s' (try 'casteljau %s --help')",
-             cli_quote(name, q, sizeof q), p->cmd);
+    const char *near = cli_suggest(a, len, p->opts, p->nopts);
+    if (near)
+        cli_fail(p->cmd, "unknown option '%s': did you mean '%s'? (see 'casteljau %s --help')",
+                 cli_quote(name, q, sizeof q), near, p->cmd);
+    else
+        cli_fail(p->cmd, "unknown option '%s' (try 'casteljau %s --help')",
+                 cli_quote(name, q, sizeof q), p->cmd);
     return CLI_BAD;
+}
+
+/* Edit distance (insertions, deletions, substitutions, swaps of neighbours) between a[0..na)
+ * and b[0..nb), both at most 63 characters (longer: a large number). */
+static size_t edit_distance(const char *a, size_t na, const char *b, size_t nb) {
+    enum { MAXLEN = 64 };
+    if (na >= MAXLEN || nb >= MAXLEN) return (size_t)-1 / 2;
+    size_t d[MAXLEN][MAXLEN];
+    for (size_t i = 0; i <= na; ++i) d[i][0] = i;
+    for (size_t j = 0; j <= nb; ++j) d[0][j] = j;
+    for (size_t i = 1; i <= na; ++i)
+        for (size_t j = 1; j <= nb; ++j) {
+            size_t best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+            if (d[i - 1][j] + 1 < best) best = d[i - 1][j] + 1;
+            if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+                d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
+        }
+    return d[na][nb];
+}
+
+const char *cli_suggest(const char *typed, size_t len, const cli_opt *opts, size_t nopts) {
+    static const char *const everywhere[] = {"--help", "--version", "--quiet"};
+    const char *best = NULL;
+    size_t best_d = (size_t)-1;
+    for (size_t k = 0; k < nopts + 3; ++k) {
+        const char *name = k < nopts ? opts[k].name : everywhere[k - nopts];
+        const size_t n = strlen(name);
+        size_t dist = edit_distance(typed, len, name, n);
+        /* a cut-short name ("--wid" for "--width") is as near as one slip */
+        if (len >= 4 && len < n && !strncmp(typed, name, len) && dist > 1) dist = 1;
+        /* near: at most 2 edits, and at most a third of the name after "--" (so "--x" suggests
+         * nothing) */
+        if (dist <= 2 && 3 * dist <= n - 2 && dist < best_d) best = name, best_d = dist;
+    }
+    return best;
 }
 
 int cli_next_arg(cli_parser *p, int *k, const char **value, int *status) {

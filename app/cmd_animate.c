@@ -38,17 +38,21 @@ static const char animate_usage[] =
     "                      f in A..B that is a multiple of K (--checkpoint-every K) and for B\n"
     "  --no-render         simulate and write checkpoints only (no images)\n"
     "  --stage-report      print the last frame's stage reports (animation, renderer) as JSON\n"
-    "  --quiet             no progress bar on stderr\n"
-    "Splitting a long animation over processes: run once with --no-render --checkpoint-every K\n"
-    "--checkpoint-out ckpt_%04d.bin, then render each range A..A+K-1 from ckpt_<A>.bin, e.g.\n"
-    "  seq 0 48 192 | parallel casteljau animate a.json -o f_%04d.png --frames {}:\\$(({}+47))\n"
-    "      --checkpoint-in ckpt_\\$(printf %04d {}).bin\n"
+    "  --quiet             no progress line and no summary on a terminal's stderr\n"
+    "Splitting a long animation over processes: save the simulation state every K frames once,\n"
+    "then render each range A..A+K-1 from the state of frame A, e.g. with K = 48 (GNU parallel;\n"
+    "both commands copy and paste into a POSIX shell):\n"
+    "  casteljau animate a.json --frames 0:239 --no-render --checkpoint-every 48 \\\n"
+    "      --checkpoint-out 'ckpt_%04d.bin'\n"
+    "  seq 0 48 192 | parallel 'casteljau animate a.json -o f_%04d.png \\\n"
+    "      --frames {}:$(({} + 47)) --checkpoint-in ckpt_$(printf %04d {}).bin'\n"
     "(or one Slurm array task per range). A range rendered from a checkpoint is bit-identical\n"
     "to the same frames of one long run.\n";
 
 #if defined(CJ_HAVE_PLOT)
 
 #include "anim_gif.h"
+#include "cli_progress.h"
 #include "anim_video.h"
 #include "cli_guard.h"
 #include "error_internal.h"
@@ -152,16 +156,6 @@ static int save_checkpoint(const char *cmd, const cj_anim_doc *doc, const char *
     return 0;
 }
 
-static void progress(long done, long total, int quiet) {
-    if (quiet || !isatty(2)) return;
-    const int w = 40, k = total ? (int)(w * done / total) : w;
-    fprintf(stderr, "\r[");
-    for (int i = 0; i < w; ++i) fputc(i < k ? '#' : ' ', stderr);
-    fprintf(stderr, "] %ld/%ld frames", done, total);
-    if (done == total) fputc('\n', stderr);
-    fflush(stderr);
-}
-
 /* What each frame's renderer reused (the tessellation cache, or the tracer's BVHs). */
 typedef struct reuse_row {
     long frame;
@@ -211,49 +205,68 @@ int cmd_animate(int argc, char **argv) {
     anim_sinks sinks = {NULL, NULL, NULL, NULL, 1.0, ANIM_VIDEO_QUALITY_DEFAULT};
     long fa = -1, fb = -1, every = 0;
     double fps = 0;
-    int no_render = 0, report = 0, quiet = 0, trace = 0;
+    int no_render = 0, report = 0, trace = 0;
     cj_render_options opt = cj_render_options_default();
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(animate_usage, stdout);
-            return 0;
-        }
-        if (!strcmp(a, "--no-render")) {
-            no_render = 1;
-            continue;
-        }
-        if (!strcmp(a, "--stage-report")) {
-            report = 1;
-            continue;
-        }
-        if (!strcmp(a, "--quiet")) {
-            quiet = 1;
-            continue;
-        }
-        if (!strcmp(a, "--trace")) {
-            trace = 1;
-            continue;
-        }
-        if (a[0] != '-' || a[1] == '\0') {
-            if (doc_path) return cli_fail(cmd, "more than one animation ('%s', '%s')", doc_path, a);
-            doc_path = a;
-            continue;
-        }
-        if (i + 1 >= argc) return cli_fail(cmd, "option '%s' needs a value (or is unknown)", a);
-        const char *v = argv[++i];
+    enum {
+        O_NO_RENDER,
+        O_REPORT,
+        O_TRACE,
+        O_OUT,
+        O_GIF,
+        O_QUALITY,
+        O_DITHER,
+        O_FRAMES,
+        O_FPS,
+        O_WIDTH,
+        O_HEIGHT,
+        O_SPP,
+        O_THREADS,
+        O_CK_IN,
+        O_CK_OUT,
+        O_CK_EVERY
+    };
+    static const cli_opt opts[] = {
+        {"--no-render", NULL, 0},       {"--stage-report", NULL, 0},  {"--trace", NULL, 0},
+        {"--output", "-o", 1},          {"--gif", NULL, 1},           {"--quality", NULL, 1},
+        {"--dither", NULL, 1},          {"--frames", NULL, 1},        {"--fps", NULL, 1},
+        {"--width", NULL, 1},           {"--height", NULL, 1},        {"--spp", NULL, 1},
+        {"--threads", NULL, 1},         {"--checkpoint-in", NULL, 1}, {"--checkpoint-out", NULL, 1},
+        {"--checkpoint-every", NULL, 1}};
+    cli_parser ps;
+    cli_parser_init(&ps, cmd, animate_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
+    const char *v;
+    int k, status;
+    while (cli_next_arg(&ps, &k, &v, &status)) {
         long lv;
-        if (!strcmp(a, "-o")) {
+        switch (k) {
+        case CLI_POSITIONAL:
+            if (doc_path) return cli_fail(cmd, "more than one animation ('%s', '%s')", doc_path, v);
+            doc_path = v;
+            break;
+        case O_NO_RENDER:
+            no_render = 1;
+            break;
+        case O_REPORT:
+            report = 1;
+            break;
+        case O_TRACE:
+            trace = 1;
+            break;
+        case O_OUT:
             out = v;
-        } else if (!strcmp(a, "--gif")) {
+            break;
+        case O_GIF:
             gif_path = v;
-        } else if (!strcmp(a, "--quality")) {
+            break;
+        case O_QUALITY:
             if (cli_parse_int(v, 1, 100, &sinks.quality))
                 return cli_fail(cmd, "--quality '%s' is not an integer in 1..100", v);
-        } else if (!strcmp(a, "--dither")) {
+            break;
+        case O_DITHER:
             if (cli_parse_double(v, &sinks.dither) || !(sinks.dither >= 0 && sinks.dither <= 1))
                 return cli_fail(cmd, "--dither '%s' must be a number in [0, 1]", v);
-        } else if (!strcmp(a, "--frames")) {
+            break;
+        case O_FRAMES: {
             const char *colon = strchr(v, ':');
             char first[32];
             if (!colon || (size_t)(colon - v) >= sizeof first)
@@ -263,33 +276,42 @@ int cmd_animate(int argc, char **argv) {
             if (cli_parse_int(first, 0, 10000000, &fa) ||
                 cli_parse_int(colon + 1, 0, 10000000, &fb) || fb < fa)
                 return cli_fail(cmd, "--frames '%s' must be A:B with 0 <= A <= B", v);
-        } else if (!strcmp(a, "--fps")) {
+            break;
+        }
+        case O_FPS:
             if (cli_parse_double(v, &fps) || !(fps >= CJ_ANIM_MIN_FPS && fps <= CJ_ANIM_MAX_FPS))
                 return cli_fail(cmd, "--fps '%s' must be a number in [%g, %g]", v, CJ_ANIM_MIN_FPS,
                                 CJ_ANIM_MAX_FPS);
-        } else if (!strcmp(a, "--width") || !strcmp(a, "--height")) {
+            break;
+        case O_WIDTH:
+        case O_HEIGHT:
             if (cli_parse_int(v, 1, 32768, &lv))
-                return cli_fail(cmd, "%s '%s' is not an integer in 1..32768", a, v);
-            *(a[2] == 'w' ? &opt.width : &opt.height) = (int)lv;
-        } else if (!strcmp(a, "--spp")) {
+                return cli_fail(cmd, "%s '%s' is not an integer in 1..32768", opts[k].name, v);
+            *(k == O_WIDTH ? &opt.width : &opt.height) = (int)lv;
+            break;
+        case O_SPP:
             if (cli_parse_int(v, 1, 16, &lv) || (lv != 1 && lv != 4 && lv != 16))
                 return cli_fail(cmd, "--spp '%s' must be 1, 4 or 16", v);
             opt.spp = (int)lv;
-        } else if (!strcmp(a, "--threads")) {
+            break;
+        case O_THREADS:
             if (cli_parse_int(v, 1, 1024, &lv))
                 return cli_fail(cmd, "--threads '%s' is not an integer in 1..1024", v);
             opt.threads = (int)lv;
-        } else if (!strcmp(a, "--checkpoint-in")) {
+            break;
+        case O_CK_IN:
             ck_in = v;
-        } else if (!strcmp(a, "--checkpoint-out")) {
+            break;
+        case O_CK_OUT:
             ck_out = v;
-        } else if (!strcmp(a, "--checkpoint-every")) {
+            break;
+        case O_CK_EVERY:
             if (cli_parse_int(v, 1, 10000000, &every))
                 return cli_fail(cmd, "--checkpoint-every '%s' is not a positive integer", v);
-        } else {
-            return cli_fail(cmd, "unknown option '%s' (try --help)", a);
+            break;
         }
     }
+    if (status >= 0) return status;
     if (!doc_path) return cli_fail(cmd, "no animation: give ANIM.json (try --help)");
     if (out && anim_video_is_film(out)) { /* -o film.mp4: one film instead of PNGs */
         sinks.film_path = out;
@@ -319,6 +341,10 @@ int cmd_animate(int argc, char **argv) {
     const cj_status load_st = cj_anim_doc_load(doc_path, &doc);
     if (load_st) return cli_fail_status(cmd, load_st, "%s", cj_last_error());
     int rc = 0;
+    const double t0 = cli_now();
+    long written = 0;
+    cli_progress pr; /* by frame, on a terminal; Ctrl-C stops after the frame being drawn */
+    cli_progress_begin(&pr, cmd, "frames");
     cj_scene *scene = NULL;
     char *snapshot = NULL;
     /* one renderer for the whole animation: unchanged patches keep their tessellation (or BVH),
@@ -461,7 +487,13 @@ int cmd_animate(int argc, char **argv) {
         }
         if (!rc && ck_out && (f == fb || (every && f % every == 0)))
             rc = save_checkpoint(cmd, doc, ck_out, f);
-        progress(f - fa + 1, fb - fa + 1, quiet);
+        if (!rc && !no_render) ++written;
+        if (cli_progress_label(&pr, (uint64_t)(f - fa + 1), (uint64_t)(fb - fa + 1), NULL) && !rc &&
+            f < fb) {
+            cli_error(cmd, "stopped by Ctrl-C after frame %ld (frames %ld..%ld done)", f, fa, f);
+            rc = 130;
+            break;
+        }
         if (!rc && report && f == fb) {
             cj_stage_report_json(&anim_rep, stdout);
             fputc('\n', stdout);
@@ -473,6 +505,7 @@ int cmd_animate(int argc, char **argv) {
         }
     }
 done:
+    cli_progress_end(&pr);
     cj_render_image_destroy(img);
     cj_renderer_destroy(ren);
     free(reuse.rows);
@@ -487,6 +520,17 @@ done:
         char why[256];
         if (anim_video_close(sinks.film, why, (int)sizeof why) && !rc)
             rc = cli_error(cmd, "%s: %s", sinks.film_path, why);
+    }
+    if (!rc && (!no_render || ck_out)) {
+        char what[4200], detail[64];
+        const char *file = sinks.film_path ? sinks.film_path : gif_path;
+        snprintf(detail, sizeof detail, "%ld frame%s", written, written == 1 ? "" : "s");
+        if (file)
+            snprintf(what, sizeof what, "%s%s%s", file, out && file ? " and " : "",
+                     out && file ? out : "");
+        else
+            snprintf(what, sizeof what, "%s", out ? out : "checkpoints");
+        cli_summary(cmd, what, file, no_render ? NULL : detail, t0);
     }
     cj_scene_destroy(scene);
     cj_anim_doc_destroy(doc);

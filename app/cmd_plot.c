@@ -27,6 +27,8 @@ static const char plot_usage[] =
     "  --width, --height  image size in pixels, 64..8192 (default: the document's, else\n"
     "                800 x 600; the demo is 1500 x 900)\n"
     "Options may come in any order, as --opt value or --opt=value.\n"
+    "Colours: \"#rgb\", \"#rrggbb\", \"#rrggbbaa\" or a CSS name (\"red\", \"navy\", \"grey\",\n"
+    "\"orange\", \"transparent\", ...; any case).\n"
     "Limits per document: 64 MiB of JSON, 64 panels, 10000 items, 1000000 points, titles of\n"
     "1024 bytes, implicit curves of 2e9 (grid+1)^2 x terms in all.\n"
     "Output: the image file, written atomically (complete or not at all), and one line\n"

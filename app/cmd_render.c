@@ -10,7 +10,7 @@
 static const char render_usage[] =
     "usage: casteljau render (SCENE.json | --demo) -o OUT.png|OUT.exr [--width W --height H]\n"
     "                        [--spp 1|4|16] [--tol-px T] [--threads N] [--stage-report]\n"
-    "                        [--exr-half]\n"
+    "                        [--exr-half] [--quiet]\n"
     "  SCENE.json      a scene file (see scene/include/casteljau/scene_json.h); image textures\n"
     "                  are read relative to its folder\n"
     "  --demo          the built-in scene: the lit, textured Utah teapot with its control net\n"
@@ -21,10 +21,13 @@ static const char render_usage[] =
     "  --spp           samples per pixel (supersampling, box-filtered)\n"
     "  --tol-px        screen-space tessellation tolerance in pixels (default 0.25)\n"
     "  --threads       worker threads (default: one per core); the image does not depend on it\n"
-    "  --stage-report  print the pipeline's stage report (JSON) on stdout\n";
+    "  --stage-report  print the pipeline's stage report (JSON) on stdout\n"
+    "  On a terminal, stderr shows the progress (tiles done, time left) and a summary line;\n"
+    "  Ctrl-C stops the render cleanly (no image written, exit status 130).\n";
 
 #if defined(CJ_HAVE_PLOT) /* the tool was built with viz/ (OpenImageIO), raster/ and scene/ */
 
+#include "cli_progress.h"
 #include "scene_cli.h"
 
 #include "casteljau/render.h"
@@ -65,13 +68,12 @@ int cmd_render(int argc, char **argv) {
     cj_stage_report rep;
     cj_renderer_options ro = cj_renderer_options_default();
     ro.render = opt;
-    cj_renderer *r = NULL;
-    cj_status st = cj_renderer_create(&ro, NULL, &r);
-    if (!st) st = cj_renderer_draw(r, scene, CJ_BACKEND_RASTER, 0, &img, &rep);
-    cj_renderer_destroy(r);
+    const double t0 = cli_now();
+    rc = cli_draw_scene(cmd, a.scene_path ? a.scene_path : "demo", ro, scene, CJ_BACKEND_RASTER, 0,
+                        1.0, &img, &rep);
     cj_scene_destroy(scene);
-    if (st) return cli_fail(cmd, "%s: %s", a.scene_path ? a.scene_path : "demo", cj_last_error());
-    return cli_finish_render(cmd, a.out, exr, img, a.report ? &rep : NULL);
+    if (rc) return rc;
+    return cli_finish_render(cmd, a.out, exr, img, a.report ? &rep : NULL, t0);
 }
 
 #else

@@ -22,6 +22,7 @@
 #include "cli.h"
 
 #ifdef CJ_HAVE_REPORT
+#include "cli_progress.h"
 #include "report.h"
 #include "file_internal.h"
 
@@ -38,14 +39,16 @@
 #include <unistd.h>
 
 static const char usage_text[] =
-    "usage: casteljau report -o DIR [--quick] [--no-callgrind]\n"
+    "usage: casteljau report -o DIR [--quick] [--no-callgrind] [--quiet]\n"
     "  Measures error against cost for curve evaluation (4 methods x degrees x condition\n"
     "  numbers, error against an MPFR oracle), flattening (3 methods x tolerances) and\n"
     "  tessellation (teapot, uniform vs adaptive x tolerances), arc length, interpolation\n"
     "  (Chebyshev vs equispaced), implicit contouring and the ODE integrators, and\n"
     "  writes DIR/index.html with PNG charts, DIR/summary.md and DIR/data.tsv.\n"
     "  --quick         a few points per chart (seconds; what the test suite builds)\n"
-    "  --no-callgrind  no instruction counts (valgrind is used when installed)\n";
+    "  --no-callgrind  no instruction counts (valgrind is used when installed)\n"
+    "  --workload SPEC N  run N units of one measured workload and exit (what the report runs\n"
+    "                  under callgrind; SPEC as eval:M:DEG, see app/report.h)\n";
 
 const char *report_g3(char *buf, double v) {
     if (isfinite(v))
@@ -240,15 +243,29 @@ int cmd_report(int argc, char **argv) {
             r.quick ? "quick" : "full", when);
     fprintf(r.tsv, "section\tmethod\tparam\tcond\terr_max\terr_mean\tbound\tns\tspread_pct\t"
                    "instr\textra\tpareto\n");
-    int status = report_eval(&r);
-    if (!status) status = report_flatten(&r);
-    if (!status) status = report_tess(&r);
-    if (!status) status = report_arclen(&r);
-    if (!status) status = report_interp(&r);
-    if (!status) status = report_contour(&r);
-    if (!status) status = report_ode(&r);
-    if (!status) status = report_render(&r);
-    if (!status) status = report_trace(&r);
+    static const struct {
+        const char *name;
+        int (*run)(report *);
+    } sections[] = {{"evaluation", report_eval},
+                    {"flattening", report_flatten},
+                    {"tessellation", report_tess},
+                    {"arc length", report_arclen},
+                    {"interpolation", report_interp},
+                    {"contouring", report_contour},
+                    {"ODE", report_ode},
+                    {"rasterizer", report_render},
+                    {"ray tracer", report_trace}};
+    const uint64_t nsections = sizeof sections / sizeof sections[0];
+    cli_progress pr; /* by section: their costs differ, so the time left is a rough guide */
+    cli_progress_begin(&pr, "report", "sections");
+    int status = 0;
+    for (uint64_t i = 0; i < nsections && !status; ++i) {
+        if (cli_progress_label(&pr, i, nsections, sections[i].name))
+            status = cli_error("report", "stopped by Ctrl-C; the report is incomplete");
+        else
+            status = sections[i].run(&r);
+    }
+    cli_progress_end(&pr);
     if (!status && r.cg_fail[0]) { /* no instruction counts: say why, here and on stderr */
         snprintf(r.note, sizeof r.note,
                  "No instruction counts: %s. Run that workload by hand (casteljau report "
@@ -274,6 +291,11 @@ int cmd_report(int argc, char **argv) {
         }
     }
     if (!status) printf("wrote %s/index.html, summary.md, data.tsv\n", r.dir);
+    if (!status) {
+        char what[4200];
+        snprintf(what, sizeof what, "%s/index.html", r.dir);
+        cli_summary("report", what, what, "with summary.md, data.tsv and charts", pr.t0);
+    }
     return status;
 }
 

@@ -4,6 +4,7 @@
 #define _DEFAULT_SOURCE /* readlink */
 #include "cli.h"
 #include "cli_guard.h"
+#include "cli_progress.h"
 
 #include "mesh_vtu.h"
 #include "weights.h"
@@ -314,6 +315,9 @@ int cmd_tessellate(int argc, char **argv) {
             printf("\nmeasured ");
             cli_print_double(rep.measured);
             printf("\n");
+            char detail[64];
+            snprintf(detail, sizeof detail, "%zu triangles", rep.triangles);
+            cli_summary(cmd, out, out, detail, -1.0);
         }
     }
     cj_mesh_destroy(mesh);

@@ -13,7 +13,7 @@ static const char trace_usage[] =
     "usage: casteljau trace (SCENE.json | --demo) -o OUT.png|OUT.exr [--width W --height H]\n"
     "                       [--spp N] [--max-depth D] [--seed S] [--threads N] [--signature]\n"
     "                       [--indirect N] [--integrator whitted|path] [--exr-half]\n"
-    "                       [--stage-report]\n"
+    "                       [--stage-report] [--quiet]\n"
     "  SCENE.json      a scene file (the same files `casteljau render` reads)\n"
     "  --demo          built-in scene: a mirror sphere, a glass sphere and the Utah teapot\n"
     "                  (its Bezier patches traced directly) on a checkered floor\n"
@@ -32,10 +32,13 @@ static const char trace_usage[] =
     "                  path tracer (next-event estimation, MIS, Russian roulette; lights read\n"
     "                  radiometrically; docs/light.md)\n"
     "  --signature     write the scene signature image instead: each object id its colour\n"
-    "  --stage-report  print the stage report (JSON) on stdout\n";
+    "  --stage-report  print the stage report (JSON) on stdout\n"
+    "  On a terminal, stderr shows the progress (tiles done, time left) and a summary line;\n"
+    "  Ctrl-C stops the trace cleanly (no image written, exit status 130).\n";
 
 #if defined(CJ_HAVE_PLOT)
 
+#include "cli_progress.h"
 #include "scene_cli.h"
 
 #include "casteljau/renderer.h"
@@ -129,18 +132,16 @@ int cmd_trace(int argc, char **argv) {
     cj_renderer_options ro = cj_renderer_options_default();
     ro.render = opt;
     ro.trace = topt;
-    cj_renderer *r = NULL;
-    cj_status st = cj_renderer_create(&ro, NULL, &r);
-    if (!st)
-        st = cj_renderer_draw(r, scene, CJ_BACKEND_TRACE, signature ? CJ_IMAGE_IDS : 0, &img, &rep);
-    cj_renderer_destroy(r);
+    const double t0 = cli_now();
+    rc = cli_draw_scene(cmd, a.scene_path ? a.scene_path : "demo", ro, scene, CJ_BACKEND_TRACE,
+                        signature ? CJ_IMAGE_IDS : 0, 1.0 + topt.indirect_samples, &img, &rep);
     cj_scene_destroy(scene);
-    if (st) return cli_fail(cmd, "%s: %s", a.scene_path ? a.scene_path : "demo", cj_last_error());
+    if (rc) return rc;
     if (signature) { /* each object id its own colour; the background black */
         size_t npx = (size_t)img->width * (size_t)img->height;
         for (size_t i = 0; i < npx; ++i) id_colour(img->ids[i], img->rgba + 4 * i);
     }
-    return cli_finish_render(cmd, a.out, exr, img, a.report ? &rep : NULL);
+    return cli_finish_render(cmd, a.out, exr, img, a.report ? &rep : NULL, t0);
 }
 
 #else

@@ -55,13 +55,45 @@ static int hexval(char ch) {
     return -1;
 }
 
+/* The CSS basic colour names (and a few common extended ones), for plots written by hand. */
+static const struct {
+    const char *name;
+    uint32_t rgba;
+} named_colours[] = {{"black", 0x000000ff},   {"white", 0xffffffff},      {"red", 0xff0000ff},
+                     {"green", 0x008000ff},   {"blue", 0x0000ffff},       {"yellow", 0xffff00ff},
+                     {"cyan", 0x00ffffff},    {"aqua", 0x00ffffff},       {"magenta", 0xff00ffff},
+                     {"fuchsia", 0xff00ffff}, {"gray", 0x808080ff},       {"grey", 0x808080ff},
+                     {"silver", 0xc0c0c0ff},  {"maroon", 0x800000ff},     {"olive", 0x808000ff},
+                     {"lime", 0x00ff00ff},    {"teal", 0x008080ff},       {"navy", 0x000080ff},
+                     {"purple", 0x800080ff},  {"orange", 0xffa500ff},     {"brown", 0xa52a2aff},
+                     {"pink", 0xffc0cbff},    {"transparent", 0x00000000}};
+
+static int same_name(const char *a, const char *b) { /* ASCII, ignoring case */
+    for (; *a && *b; ++a, ++b) {
+        char x = *a >= 'A' && *a <= 'Z' ? (char)(*a - 'A' + 'a') : *a;
+        if (x != *b) return 0;
+    }
+    return *a == *b;
+}
+
 int pj_parse_color(pj_ctx *c, const cJSON *v, const char *path, cj_rgba *out) {
     const char *s = cJSON_IsString(v) ? v->valuestring : NULL;
+    for (size_t k = 0; s && k < sizeof named_colours / sizeof named_colours[0]; ++k)
+        if (same_name(s, named_colours[k].name)) {
+            const uint32_t x = named_colours[k].rgba;
+            *out =
+                cj_rgba_make((uint8_t)(x >> 24), (uint8_t)(x >> 16), (uint8_t)(x >> 8), (uint8_t)x);
+            return 0;
+        }
     size_t n = s ? strlen(s) : 0;
     int digits[8];
     int ok = s && s[0] == '#' && (n == 4 || n == 7 || n == 9);
     for (size_t i = 1; ok && i < n; ++i) ok = (digits[i - 1] = hexval(s[i])) >= 0;
-    if (!ok) return pj_fail(c, "%s is not a colour \"#rgb\", \"#rrggbb\" or \"#rrggbbaa\"", path);
+    if (!ok)
+        return pj_fail(c,
+                       "%s is not a colour \"#rgb\", \"#rrggbb\", \"#rrggbbaa\" or a name (black, "
+                       "white, red, green, blue, yellow, cyan, magenta, gray, orange, ...)",
+                       path);
     if (n == 4) {
         *out = cj_rgba_make((uint8_t)(17 * digits[0]), (uint8_t)(17 * digits[1]),
                             (uint8_t)(17 * digits[2]), 255);

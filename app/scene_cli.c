@@ -1,6 +1,7 @@
 /* What the scene-drawing commands share (scene_cli.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "scene_cli.h"
+#include "cli_progress.h"
 
 #include "cli.h"
 #include "cli_guard.h"
@@ -159,10 +160,13 @@ int cli_open_scene(const char *cmd, const cli_scene_args *a, cli_demo_scene_fn m
 }
 
 int cli_finish_render(const char *cmd, const char *out, int exr, cj_render_image *img,
-                      const cj_stage_report *report) {
+                      const cj_stage_report *report, double t0) {
     const int rc = cli_write_render(cmd, out, exr, img);
+    char size[48];
+    snprintf(size, sizeof size, "%d x %d", img->width, img->height);
     cj_render_image_destroy(img);
     if (rc) return rc;
+    cli_summary(cmd, out, out, size, t0);
     if (report && cj_stage_report_json(report, stdout))
         return cli_error(cmd, "%s", cj_last_error());
     return 0;

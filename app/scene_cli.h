@@ -5,6 +5,7 @@
 #define CASTELJAU_APP_SCENE_CLI_H
 
 #include "casteljau/render.h"
+#include "casteljau/renderer.h"
 #include "casteljau/scene.h"
 
 /* Loads a JSON scene and its image textures (resolved against the scene file's folder) into
@@ -62,9 +63,21 @@ int cli_scene_arg(const char *cmd, int k, const char *v, cli_scene_args *a, cj_r
 int cli_open_scene(const char *cmd, const cli_scene_args *a, cli_demo_scene_fn make_demo, int *exr,
                    cj_scene **scene);
 
-/* The end of render and trace: writes img (cli_write_render), destroys it, then prints the
- * stage report as JSON on stdout when report is not NULL. Returns the command's exit status. */
+/* The end of render and trace: writes img (cli_write_render), prints the summary line
+ * (cli_summary: file, size, time since t0, on a terminal), destroys img, then prints the stage
+ * report as JSON on stdout when report is not NULL. Returns the command's exit status. */
 int cli_finish_render(const char *cmd, const char *out, int exr, cj_render_image *img,
-                      const cj_stage_report *report);
+                      const cj_stage_report *report, double t0);
+
+/* One draw of render and trace with a renderer made from ro, as a command shows it
+ * (cli_progress.h): a warning first when the work is very large (width x height x samples,
+ * times `ray_factor` rays per sample) and when the scene has no lights (unless only object ids
+ * are asked for), the progress line on a terminal, Ctrl-C stopping it.
+ * On success returns 0 with *img set (the caller writes it). On failure prints one line and
+ * returns the exit status: CLI_EXIT_USAGE for a scene the library rejects, 130 after Ctrl-C
+ * (nothing written). */
+int cli_draw_scene(const char *cmd, const char *name, cj_renderer_options ro, const cj_scene *scene,
+                   cj_backend backend, unsigned planes, double ray_factor, cj_render_image **img,
+                   cj_stage_report *rep);
 
 #endif

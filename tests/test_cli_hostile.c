@@ -119,8 +119,8 @@ static int setup(void **state) {
     snprintf(dir, sizeof dir, "/tmp/cj_test_hostile_XXXXXX");
     assert_non_null(mkdtemp(dir));
     sh("cp -r '%s/textures' '%s/teapot.json' '%s/anim_particles.json' '%s/anim_cloth.json' "
-       "'%s/anim_cloth_scene.json' .",
-       CJ_SCENES, CJ_SCENES, CJ_SCENES, CJ_SCENES, CJ_SCENES);
+       "'%s/anim_cloth_scene.json' '%s/anim_particles_scene.json' .",
+       CJ_SCENES, CJ_SCENES, CJ_SCENES, CJ_SCENES, CJ_SCENES, CJ_SCENES);
     /* a small scene for render and trace, with placeholders for the hostile values */
     put("base.json",
         "{\"camera\": {\"eye\": [0, 2, 6], \"look_at\": [0, 0, 0], \"up\": [0, 1, 0]},\n"

@@ -38,7 +38,7 @@ static const bad_case bad_cases[] = {
     {"{\"items\": [{\"type\": \"bezier\"}]}", "items[0]: a bezier needs \"points\""},
     {"{\"items\": [{\"type\": \"bezier\", \"colour\": \"#fff\", \"points\": [[0,0],[1,1]]}]}",
      "items[0]: unknown field 'colour'"},
-    {"{\"items\": [{\"type\": \"bezier\", \"color\": \"blue\", \"points\": [[0,0],[1,1]]}]}",
+    {"{\"items\": [{\"type\": \"bezier\", \"color\": \"bleu\", \"points\": [[0,0],[1,1]]}]}",
      "items[0].color is not a colour"},
     {"{\"items\": [{\"type\": \"bezier\", \"color\": \"#12345\", \"points\": [[0,0],[1,1]]}]}",
      "items[0].color is not a colour"},
@@ -124,6 +124,35 @@ static void test_bad_documents(void **state) {
     printf("test_plot_json: %zu bad documents refused, each message naming the JSON path\n", n);
 }
 
+/* Colours by name (CSS basic names, any case) as well as "#rrggbb". */
+static void test_named_colours(void **state) {
+    (void)state;
+    static const struct {
+        const char *name;
+        uint8_t r, g, b, a;
+    } cases[] = {{"red", 255, 0, 0, 255},
+                 {"Navy", 0, 0, 128, 255},
+                 {"GREY", 128, 128, 128, 255},
+                 {"orange", 255, 165, 0, 255},
+                 {"transparent", 0, 0, 0, 0}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        char json[256], why[512] = "";
+        snprintf(json, sizeof json,
+                 "{\"background\": \"%s\", \"items\": [{\"type\": \"points\", "
+                 "\"points\": [[0,0],[1,1]]}]}",
+                 cases[i].name);
+        plot_doc doc;
+        assert_int_equal(plot_json_parse(json, &doc, why, sizeof why), 0);
+        assert_int_equal(doc.background.r, cases[i].r);
+        assert_int_equal(doc.background.g, cases[i].g);
+        assert_int_equal(doc.background.b, cases[i].b);
+        assert_int_equal(doc.background.a, cases[i].a);
+        plot_doc_free(&doc);
+    }
+    printf("test_plot_json: named colours (red, Navy, GREY, orange, transparent) give their "
+           "CSS values; 'bleu' is refused naming the accepted forms\n");
+}
+
 static void test_good_documents(void **state) {
     (void)state;
     const char *single =
@@ -176,6 +205,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bad_documents),
         cmocka_unit_test(test_good_documents),
+        cmocka_unit_test(test_named_colours),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

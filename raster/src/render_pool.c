@@ -70,8 +70,8 @@ static void *pool_main(void *arg) {
 
 int cj_rpool_plan(int threads, int ntasks) {
     if (threads <= 0) {
-        const long n = sysconf(_SC_NPROCESSORS_ONLN);
-        threads = n > 0 ? (int)(n < 256 ? n : 256) : 1;
+        const int n = cj_cpu_count();
+        threads = n < 256 ? n : 256;
     }
     if (threads > 256) threads = 256;
     if (threads > ntasks) threads = ntasks;

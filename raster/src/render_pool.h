@@ -28,9 +28,15 @@ cj_status cj_rpool_create(int threads, const cj_allocator *alloc, cj_rpool **out
 void cj_rpool_destroy(cj_rpool *pool);
 /* The workers the pool has (the caller included). */
 int cj_rpool_threads(const cj_rpool *pool);
-/* The workers a run of `ntasks` tasks asked for with `threads` (0 = one per core) uses: never
- * more than the tasks, never more than 256, at least 1. */
+/* The workers a run of `ntasks` tasks asked for with `threads` (0 = one per core this process
+ * may use, cj_cpu_count) uses: never more than the tasks, never more than 256, at least 1. */
 int cj_rpool_plan(int threads, int ntasks);
+/* The cores this process may use (cpu_count.c): the online CPUs, cut to the affinity mask
+ * (sched_getaffinity) and to the cgroup v2 quota (/sys/fs/cgroup/cpu.max); at least 1. */
+int cj_cpu_count(void);
+/* The CPUs a cgroup v2 cpu.max line allows, rounded up ("150000 100000" -> 2), or 0 for "max"
+ * (no limit) and for text that is not a quota. */
+int cj_cpu_quota_parse(const char *text);
 /* Runs tasks 0..ntasks-1 on min(use, cj_rpool_threads(pool)) workers and returns when every
  * started task has finished. progress may be NULL. Returns 1 when the gate was cancelled. */
 int cj_rpool_run(cj_rpool *pool, int ntasks, int use, cj_rpool_fn fn, void *user,
