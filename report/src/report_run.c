@@ -1,0 +1,118 @@
+/* casteljau report: the page (index.html, summary.md, data.tsv) and the order of its sections.
+ * The command's front (app/cmd_report.c) parses the options and calls report_run.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "report.h"
+
+#include "casteljau/status.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+/* valgrind cannot run a program built with AddressSanitizer */
+#if defined(__SANITIZE_ADDRESS__)
+#define CJ_REPORT_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CJ_REPORT_ASAN 1
+#endif
+#endif
+
+static int has_quote(const char *s) {
+    return strchr(s, '\'') != NULL;
+}
+
+int report_run(report *r) {
+    if (!r->dir) return report_fail("no output folder: give -o DIR");
+    if (mkdir(r->dir, 0777) != 0 && errno != EEXIST)
+        return report_error("cannot create %s: %s", r->dir, strerror(errno));
+    /* the tool itself, for the callgrind runs (argv[0] here is the command name) */
+    static char self[4096];
+    const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (len <= 0)
+        r->callgrind = 0;
+    else
+        self[len] = 0;
+    r->self = self;
+    if (r->callgrind && (has_quote(r->dir) || has_quote(r->self) ||
+                         system("valgrind --version >/dev/null 2>&1") != 0))
+        r->callgrind = 0;
+#ifdef CJ_REPORT_ASAN
+    if (r->callgrind) {
+        r->callgrind = 0;
+        snprintf(r->note, sizeof r->note,
+                 "No instruction counts: this build has AddressSanitizer, whose shadow memory "
+                 "valgrind cannot run.");
+    }
+#endif
+    char path[4096];
+    snprintf(path, sizeof path, "%s/index.html", r->dir);
+    r->html = fopen(path, "w");
+    snprintf(path, sizeof path, "%s/summary.md", r->dir);
+    r->md = fopen(path, "w");
+    snprintf(path, sizeof path, "%s/data.tsv", r->dir);
+    r->tsv = fopen(path, "w");
+    if (!r->html || !r->md || !r->tsv) {
+        if (r->html) fclose(r->html);
+        if (r->md) fclose(r->md);
+        if (r->tsv) fclose(r->tsv);
+        return report_error("cannot write into %s: %s", r->dir, strerror(errno));
+    }
+    if (cj_font_open(NULL, &r->font) != CJ_OK) {
+        report_warn("no font (%s): charts without text", cj_last_error());
+        r->font = NULL;
+    }
+    time_t now = time(NULL);
+    char when[64];
+    strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", gmtime(&now));
+    fprintf(r->html,
+            "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>casteljau: the price "
+            "list</title>\n<style>body{font-family:sans-serif;max-width:980px;margin:auto}"
+            "table{border-collapse:collapse;font-size:13px}td,th{border:1px solid #ccc;"
+            "padding:2px 6px;text-align:right}td.l{text-align:left}tr.dom{color:#888}</style>"
+            "</head><body>\n<h1>casteljau: what accuracy costs</h1>\n<p>Measured on this machine "
+            "at %s (%s report). Every figure was measured when this page was built. Times: median "
+            "of interleaved repeated runs, spread = (max &minus; min) / median. Instructions: "
+            "valgrind --tool=callgrind, difference of an N- and a 2N-unit run.</p>\n",
+            when, r->quick ? "quick" : "full");
+    fprintf(r->md, "# casteljau: what accuracy costs (%s report, %s)\n\n",
+            r->quick ? "quick" : "full", when);
+    fprintf(r->tsv, "section\tmethod\tparam\tcond\terr_max\terr_mean\tbound\tns\tspread_pct\t"
+                    "instr\textra\tpareto\n");
+    int status = report_eval(r);
+    if (!status) status = report_flatten(r);
+    if (!status) status = report_tess(r);
+    if (!status) status = report_arclen(r);
+    if (!status) status = report_interp(r);
+    if (!status) status = report_contour(r);
+    if (!status) status = report_ode(r);
+    if (!status) status = report_render(r);
+    if (!status) status = report_trace(r);
+    if (!status && r->cg_fail[0]) { /* no instruction counts: say why, here and on stderr */
+        snprintf(r->note, sizeof r->note,
+                 "No instruction counts: %s. Run that workload by hand (casteljau report "
+                 "--workload SPEC 10 under valgrind --tool=callgrind) to see valgrind's message; "
+                 "an instruction set valgrind cannot decode (AVX-512) needs a build without it.",
+                 r->cg_fail);
+        fprintf(stderr, "casteljau report: warning: %s; the report has no instruction counts\n",
+                r->cg_fail);
+    }
+    if (!status && r->note[0]) {
+        fprintf(r->html, "<h2>Reproducibility</h2>\n<p>%s</p>\n", r->note);
+        fprintf(r->md, "%s\n", r->note);
+    }
+    fprintf(r->html, "</body></html>\n");
+    const int bad = ferror(r->html) | ferror(r->md) | ferror(r->tsv);
+    fclose(r->html);
+    fclose(r->md);
+    fclose(r->tsv);
+    cj_font_close(r->font);
+    if (!status && bad) status = report_error("writing into %s failed", r->dir);
+    if (!status) printf("wrote %s/index.html, summary.md, data.tsv\n", r->dir);
+    return status;
+}
