@@ -4,6 +4,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
+#include "clock_internal.h"
+
 #include "casteljau/framebuffer.h"
 #include "casteljau/image_io.h"
 #include "casteljau/status.h"
@@ -12,7 +14,6 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 static report_host host;
 
@@ -65,9 +66,7 @@ const char *report_g3(char *buf, double v) {
 }
 
 double report_now_ns(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return 1e9 * (double)ts.tv_sec + (double)ts.tv_nsec;
+    return 1e9 * cj_clock_seconds();
 }
 
 static int cmp_double(const void *a, const void *b) {

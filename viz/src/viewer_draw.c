@@ -13,6 +13,7 @@
 #include "casteljau/scene_textures.h"
 #include "casteljau/trace.h"
 #include "error_internal.h"
+#include "clock_internal.h"
 
 #include <cJSON.h>
 
@@ -20,7 +21,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 static int ends_with(const char *s, const char *ext) {
     const size_t a = strlen(s), b = strlen(ext);
@@ -204,12 +204,6 @@ cj_status cj_viewer_save(cj_viewer *v, const char *path) {
     return cj_vdoc_save_json(v->doc, &v->view, &v->disp, path);
 }
 
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* 2D: the plot of the document, drawn here (it takes milliseconds). */
 static cj_status render_2d(cj_viewer *v) {
     cj_plot *plot = NULL;
@@ -241,9 +235,9 @@ void cj_viewer_tick(cj_viewer *v) {
 cj_status cj_viewer_draw(cj_viewer *v) {
     cj_status st = CJ_OK;
     if (!v->mode3d && v->dirty) {
-        const double t0 = now_s();
+        const double t0 = cj_clock_seconds();
         st = render_2d(v);
-        v->render_s = now_s() - t0;
+        v->render_s = cj_clock_seconds() - t0;
         v->dirty = 0;
         if (st) snprintf(v->msg, sizeof v->msg, "render failed: %s", cj_last_error());
     }
