@@ -1,18 +1,21 @@
 /* Animated GIF through giflib (file format, NETSCAPE2.0 loop block), per-frame palettes and
- * dithered remapping through libimagequant. */
+ * dithered remapping through libimagequant. The bytes go through the atomic writer
+ * (file_internal.h): an old GIF is replaced only by a complete new one, and an interrupted run
+ * leaves no temporary behind. */
 #include "anim_gif.h"
 
-#include <fcntl.h>
+#include "file_internal.h"
+
 #include <gif_lib.h>
 #include <libimagequant.h>
 #include <stdio.h>
-#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 struct anim_gif {
     GifFileType *f;
+    cj_atomic_file out;
     int w, h, delay;
     float dither;
     uint8_t *rgba; /* the frame top-down, as GIF and libimagequant want it */
@@ -25,15 +28,25 @@ int anim_gif_is_gif(const char *path) {
     return n > 4 && !strcasecmp(path + n - 4, ".gif");
 }
 
+/* giflib's reason when it has one (a write error of ours has none: the stream says it). */
+static void reason(char *why, int size, const char *what, int code) {
+    const char *s = code ? GifErrorString(code) : NULL;
+    if (s)
+        snprintf(why, (size_t)size, "%s (%s)", what, s);
+    else
+        snprintf(why, (size_t)size, "%s", what);
+}
+
+static int put_bytes(GifFileType *f, const GifByteType *bytes, int n) {
+    FILE *fp = f->UserData;
+    return (int)fwrite(bytes, 1, (size_t)n, fp);
+}
+
 static void free_gif(anim_gif *g) {
     if (g->liq) liq_attr_destroy(g->liq);
     free(g->rgba);
     free(g->idx);
     free(g);
-}
-
-static void reason(char *why, int size, const char *what, int code) {
-    snprintf(why, (size_t)size, "%s (%s)", what, GifErrorString(code) ? GifErrorString(code) : "?");
 }
 
 anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, double dither,
@@ -52,21 +65,27 @@ anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, d
     g->rgba = malloc(4 * n);
     g->idx = malloc(n);
     g->liq = liq_attr_create();
-    /* open() ourselves: giflib would create the file readable by its owner only */
-    const int fd =
-        (g->rgba && g->idx && g->liq) ? open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666) : -1;
-    g->f = fd >= 0 ? EGifOpenFileHandle(fd, &err) : NULL;
-    if (fd >= 0 && !g->f) close(fd);
+    if (!g->rgba || !g->idx || !g->liq) {
+        snprintf(why, (size_t)why_size, "out of memory for %d x %d GIF frames", width, height);
+        free_gif(g);
+        return NULL;
+    }
+    if (cj_atomic_open(&g->out, path)) {
+        snprintf(why, (size_t)why_size, "%s", cj_last_error());
+        free_gif(g);
+        return NULL;
+    }
+    g->f = EGifOpen(g->out.fp, put_bytes, &err);
     if (!g->f) {
-        reason(why, why_size, "cannot create the GIF", err);
+        reason(why, why_size, "giflib cannot start the GIF", err);
+        cj_atomic_abandon(&g->out);
         free_gif(g);
         return NULL;
     }
     EGifSetGifVersion(g->f, true);
     if (EGifPutScreenDesc(g->f, width, height, 8, 0, NULL) == GIF_ERROR) {
         reason(why, why_size, "GIF screen descriptor", g->f->Error);
-        EGifCloseFile(g->f, &err);
-        free_gif(g);
+        anim_gif_abandon(g);
         return NULL;
     }
     /* loop forever: NETSCAPE2.0 application extension, sub-block {1, 0, 0} */
@@ -77,8 +96,7 @@ anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, d
         EGifPutExtensionBlock(g->f, 3, loop) == GIF_ERROR ||
         EGifPutExtensionTrailer(g->f) == GIF_ERROR) {
         reason(why, why_size, "GIF loop block", g->f->Error);
-        EGifCloseFile(g->f, &err);
-        free_gif(g);
+        anim_gif_abandon(g);
         return NULL;
     }
     return g;
@@ -133,11 +151,24 @@ int anim_gif_add(anim_gif *g, const uint8_t *rgba, char *why, int why_size) {
 
 int anim_gif_close(anim_gif *g, char *why, int why_size) {
     int err = 0;
-    const int rc = EGifCloseFile(g->f, &err);
-    free_gif(g);
+    const int rc = EGifCloseFile(g->f, &err); /* writes the trailer; our stream stays open */
+    int bad = 0;
     if (rc == GIF_ERROR) {
-        reason(why, why_size, "closing the GIF failed", err);
-        return -1;
+        reason(why, why_size, "finishing the GIF failed", err);
+        cj_atomic_abandon(&g->out);
+        bad = 1;
+    } else if (cj_atomic_commit(&g->out)) {
+        snprintf(why, (size_t)why_size, "%s", cj_last_error());
+        bad = 1;
     }
-    return 0;
+    free_gif(g);
+    return bad ? -1 : 0;
+}
+
+void anim_gif_abandon(anim_gif *g) {
+    if (!g) return;
+    int err = 0;
+    EGifCloseFile(g->f, &err);
+    cj_atomic_abandon(&g->out);
+    free_gif(g);
 }

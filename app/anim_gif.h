@@ -19,7 +19,10 @@ anim_gif *anim_gif_open(const char *path, int width, int height, int delay_cs, d
                         char *why, int why_size);
 /* Appends a frame of RGBA8 pixels, rows BOTTOM-UP (as the renderer's images). 0 on success. */
 int anim_gif_add(anim_gif *g, const uint8_t *rgba, char *why, int why_size);
-/* Finishes the file. 0 on success. */
+/* Finishes the file: written to a temporary beside `path`, renamed onto it only when every byte
+ * reached the disk. 0 on success; on failure `path` keeps its old content. Frees g. */
 int anim_gif_close(anim_gif *g, char *why, int why_size);
+/* Drops the GIF (after a failure elsewhere): the temporary is removed, `path` untouched. */
+void anim_gif_abandon(anim_gif *g);
 
 #endif

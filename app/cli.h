@@ -116,5 +116,8 @@ int cmd_animate(int argc, char **argv);
 int cmd_view(int argc, char **argv);
 int cmd_report(int argc, char **argv);
 int cmd_fit(int argc, char **argv);
+int cmd_intersect(int argc, char **argv);
+int cmd_nearest(int argc, char **argv);
+int cmd_offset(int argc, char **argv);
 
 #endif

@@ -3,6 +3,7 @@
  * (file:line: path ...), no frame written, exit status 2. Frames are a pure function of the frame
  * number and the simulation state, so any range renders the same pixels anywhere: checkpoints
  * carry the simulation state between processes. */
+#define _POSIX_C_SOURCE 200809L /* open_memstream, fmemopen */
 #include "cli.h"
 
 #include <stdio.h>
@@ -49,6 +50,9 @@ static const char animate_usage[] =
 
 #include "anim_gif.h"
 #include "anim_video.h"
+#include "cli_guard.h"
+#include "error_internal.h"
+#include "file_internal.h"
 #include "scene_cli.h"
 #include "casteljau/anim_json.h"
 #include "casteljau/image_io.h"
@@ -58,6 +62,7 @@ static const char animate_usage[] =
 #include "casteljau/scene_json.h"
 #include "casteljau/scene_textures.h"
 
+#include <stdio.h>
 #include <unistd.h>
 
 /* A printf pattern with exactly one integer conversion (%d, %0Nd, %Nd) and no other '%'
@@ -79,14 +84,7 @@ static int pattern_ok(const char *p) {
 }
 
 static void frame_name(const char *pattern, long frame, char *out, size_t size) {
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wformat-nonliteral"
-#endif
-    snprintf(out, size, pattern, (int)frame);
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+    cli_frame_name(pattern, frame, out, size);
 }
 
 /* Where the frames go besides PNGs: a GIF and a film, each opened at the first frame. */
@@ -115,12 +113,13 @@ static int write_frame(const char *cmd, const char *out, anim_sinks *sinks, doub
     }
     char why[256];
     if (gif_path && !*gif) {
-        const int delay = (int)(100.0 / fps + 0.5);
-        *gif = anim_gif_open(gif_path, img->width, img->height, delay < 2 ? 2 : delay,
-                             sinks->dither, why, (int)sizeof why);
+        const double cs = 100.0 / fps + 0.5; /* GIF delays are 16-bit hundredths */
+        const int delay = cs > 65535.0 ? 65535 : cs < 2.0 ? 2 : (int)cs;
+        *gif = anim_gif_open(gif_path, img->width, img->height, delay, sinks->dither, why,
+                             (int)sizeof why);
         if (!*gif) {
             free(px);
-            return cli_error(cmd, "%s: %s", gif_path, why);
+            return cli_error(cmd, "%s", why);
         }
     }
     if (gif_path && anim_gif_add(*gif, px, why, (int)sizeof why)) {
@@ -143,11 +142,13 @@ static int save_checkpoint(const char *cmd, const cj_anim_doc *doc, const char *
                            long frame) {
     char path[4096];
     frame_name(pattern, frame, path, sizeof path);
-    FILE *f = fopen(path, "wb");
-    if (!f) return cli_error(cmd, "%s: cannot create the checkpoint", path);
-    cj_status st = cj_anim_doc_save_state(doc, f);
-    if (fclose(f) != 0 && !st) st = CJ_ERR_IO;
-    if (st) return cli_error(cmd, "%s: writing the checkpoint failed", path);
+    cj_atomic_file f;
+    if (cj_atomic_open(&f, path)) return cli_error(cmd, "checkpoint: %s", cj_last_error());
+    if (cj_anim_doc_save_state(doc, f.fp)) {
+        cj_atomic_abandon(&f);
+        return cli_error(cmd, "%s: %s", path, cj_last_error());
+    }
+    if (cj_atomic_commit(&f)) return cli_error(cmd, "checkpoint: %s", cj_last_error());
     return 0;
 }
 
@@ -263,8 +264,9 @@ int cmd_animate(int argc, char **argv) {
                 cli_parse_int(colon + 1, 0, 10000000, &fb) || fb < fa)
                 return cli_fail(cmd, "--frames '%s' must be A:B with 0 <= A <= B", v);
         } else if (!strcmp(a, "--fps")) {
-            if (cli_parse_double(v, &fps) || !(fps > 0) || fps > 10000)
-                return cli_fail(cmd, "--fps '%s' must be a number in (0, 10000]", v);
+            if (cli_parse_double(v, &fps) || !(fps >= CJ_ANIM_MIN_FPS && fps <= CJ_ANIM_MAX_FPS))
+                return cli_fail(cmd, "--fps '%s' must be a number in [%g, %g]", v, CJ_ANIM_MIN_FPS,
+                                CJ_ANIM_MAX_FPS);
         } else if (!strcmp(a, "--width") || !strcmp(a, "--height")) {
             if (cli_parse_int(v, 1, 32768, &lv))
                 return cli_fail(cmd, "%s '%s' is not an integer in 1..32768", a, v);
@@ -304,24 +306,47 @@ int cmd_animate(int argc, char **argv) {
     if (no_render && gif_path) return cli_fail(cmd, "--gif needs rendering (drop --no-render)");
     if (out && !pattern_ok(out))
         return cli_fail(cmd, "output pattern '%s' must hold exactly one %%d (e.g. %%04d)", out);
+    if (out && !cli_has_ext(out, ".png"))
+        return cli_fail(cmd, "output pattern '%s' must end in .png (the frames are PNG images)",
+                        out);
+    if (gif_path && !cli_has_ext(gif_path, ".gif"))
+        return cli_fail(cmd, "--gif '%s' must end in .gif", gif_path);
     if (ck_out && !pattern_ok(ck_out))
         return cli_fail(cmd, "checkpoint pattern '%s' must hold exactly one %%d", ck_out);
     if (every && !ck_out) return cli_fail(cmd, "--checkpoint-every needs --checkpoint-out");
 
     cj_anim_doc *doc = NULL;
-    if (cj_anim_doc_load(doc_path, &doc)) return cli_fail(cmd, "%s", cj_last_error());
-    if (fps > 0) doc->fps = fps;
-    if (fa < 0) {
-        fa = doc->frame_first;
-        fb = doc->frame_last;
-    }
+    const cj_status load_st = cj_anim_doc_load(doc_path, &doc);
+    if (load_st) return cli_fail_status(cmd, load_st, "%s", cj_last_error());
     int rc = 0;
     cj_scene *scene = NULL;
+    char *snapshot = NULL;
     /* one renderer for the whole animation: unchanged patches keep their tessellation (or BVH),
      * the threads, tile buffers and the image live from the first frame to the last */
     cj_renderer *ren = NULL;
     cj_render_image *img = NULL;
     reuse_log reuse = {NULL, 0, 0};
+    if (fps > 0 && cj_anim_doc_set_fps(doc, fps, "--fps")) {
+        rc = cli_fail(cmd, "%s", cj_last_error());
+        goto done;
+    }
+    if (fa < 0) {
+        fa = doc->frame_first;
+        fb = doc->frame_last;
+    }
+    /* Every destination is checked before any work (as render does). */
+    char name[4096];
+    for (int end = 0; out && end < 2 && !rc; ++end) {
+        frame_name(out, end ? fb : fa, name, sizeof name);
+        rc = cli_check_output(cmd, "frame", name);
+    }
+    if (!rc && gif_path) rc = cli_check_output(cmd, "GIF", gif_path);
+    if (!rc && sinks.film_path) rc = cli_check_output(cmd, "film", sinks.film_path);
+    for (int end = 0; ck_out && end < 2 && !rc; ++end) {
+        frame_name(ck_out, end ? fb : fa, name, sizeof name);
+        rc = cli_check_output(cmd, "checkpoint", name);
+    }
+    if (rc) goto done;
     if (!no_render) {
         cj_renderer_options ro = cj_renderer_options_default();
         ro.render = opt;
@@ -340,11 +365,20 @@ int cmd_animate(int argc, char **argv) {
         goto done;
     }
     if (ck_in) {
-        FILE *f = fopen(ck_in, "rb");
-        cj_status st = f ? cj_anim_doc_load_state(doc, f) : CJ_ERR_IO;
-        if (f) fclose(f);
+        char *bytes = NULL;
+        size_t len = 0;
+        cj_status st = cj_file_read_all(ck_in, CJ_FILE_MAX_BYTES, "checkpoint", &bytes, &len);
         if (st) {
-            rc = cli_fail(cmd, "%s: %s", ck_in, f ? cj_last_error() : "cannot open");
+            rc = cli_fail_status(cmd, st, "%s", cj_last_error());
+            goto done;
+        }
+        FILE *f = len ? fmemopen(bytes, len, "rb") : NULL;
+        st = f ? cj_anim_doc_load_state(doc, f) : CJ_ERR_PARSE;
+        if (f) fclose(f);
+        free(bytes);
+        if (st) {
+            rc = cli_fail_status(cmd, st, "%s: %s", ck_in,
+                                 len ? cj_last_error() : "empty, not a checkpoint");
             goto done;
         }
         if (doc->sim_frame > fa) {
@@ -353,6 +387,13 @@ int cmd_animate(int argc, char **argv) {
             goto done;
         }
     }
+    /* Every input is read now (document, scene, its textures and geometry files, checkpoint):
+     * no output may be one of them. */
+    if ((out && (rc = cli_guard_pattern(cmd, "-o", out, fa, fb))) ||
+        (ck_out && (rc = cli_guard_pattern(cmd, "--checkpoint-out", ck_out, fa, fb))) ||
+        (gif_path && (rc = cli_guard_output(cmd, "--gif", gif_path))) ||
+        (sinks.film_path && (rc = cli_guard_output(cmd, "-o", sinks.film_path))))
+        goto done;
     /* Validate every frame's pose before writing anything: posing depends on t alone. */
     for (long f = fa; f <= fb; ++f) {
         cj_status st = cj_anim_pose(scene, doc->anim, (double)f / doc->fps, NULL);
@@ -360,6 +401,40 @@ int cmd_animate(int argc, char **argv) {
         if (st) {
             rc = cli_fail(cmd, "%s: frame %ld (t = %g s): %s", doc_path, f, (double)f / doc->fps,
                           cj_last_error());
+            goto done;
+        }
+    }
+    /* A simulation that blows up can only be found by simulating: run it over the range first
+     * (from a snapshot of the state, restored after), so that a failure leaves no frame. */
+    if (!no_render && (doc->cloth || doc->particles)) {
+        size_t snap_len = 0;
+        FILE *ms = open_memstream(&snapshot, &snap_len);
+        cj_status st = ms ? cj_anim_doc_save_state(doc, ms) : CJ_ERR_NOMEM;
+        if (ms && fclose(ms) != 0 && !st) st = CJ_ERR_NOMEM;
+        if (st) {
+            rc = cli_error(cmd, "no memory for a snapshot of the simulation");
+            goto done;
+        }
+        long f = fa;
+        for (; f <= fb && !st; ++f) {
+            st = cj_anim_doc_frame(doc, scene, f, NULL);
+            if (st) break;
+            if ((st = cj_scene_check(scene))) {
+                char msg[512];
+                snprintf(msg, sizeof msg, "%s", cj_last_error());
+                st = cj_fail(st, "%s: frame %ld: the simulation left the scene's limits: %s",
+                             doc_path, f, msg);
+            }
+        }
+        if (st) {
+            rc = cli_fail_status(cmd, st, "%s", cj_last_error());
+            goto done;
+        }
+        FILE *rs = fmemopen(snapshot, snap_len, "rb");
+        st = rs ? cj_anim_doc_load_state(doc, rs) : CJ_ERR_NOMEM;
+        if (rs) fclose(rs);
+        if (st) {
+            rc = cli_error(cmd, "restoring the simulation snapshot failed: %s", cj_last_error());
             goto done;
         }
     }
@@ -381,7 +456,6 @@ int cmd_animate(int argc, char **argv) {
                 rc = cli_error(cmd, "out of memory for the frame report");
                 break;
             }
-            char name[4096];
             if (out) frame_name(out, f, name, sizeof name);
             rc = write_frame(cmd, out ? name : NULL, &sinks, doc->fps, img);
         }
@@ -402,10 +476,12 @@ done:
     cj_render_image_destroy(img);
     cj_renderer_destroy(ren);
     free(reuse.rows);
-    if (sinks.gif) {
-        char why[256];
-        if (anim_gif_close(sinks.gif, why, (int)sizeof why) && !rc)
-            rc = cli_error(cmd, "%s: %s", gif_path, why);
+    free(snapshot);
+    if (sinks.gif && rc) {
+        anim_gif_abandon(sinks.gif); /* an old GIF stays as it was */
+    } else if (sinks.gif) {
+        char why[512];
+        if (anim_gif_close(sinks.gif, why, (int)sizeof why)) rc = cli_error(cmd, "%s", why);
     }
     if (sinks.film) {
         char why[256];

@@ -1,7 +1,7 @@
 /* casteljau fit: a B-spline through (or near) points read from a file or standard input. */
 #include "bspline_json.h"
 #include "cli.h"
-#include "cli_file.h"
+#include "file_internal.h"
 
 #include "casteljau/bspline.h"
 #include "casteljau/bspline_fit.h"
@@ -152,15 +152,14 @@ static int fit_grid(const double *data, int n, int dim, int nu, int nv, int degr
         rc = cli_fail("fit", "%s", cj_last_error());
     } else {
         const cj_bspline_surface s = {degree, degree, nu, nv, P, NULL, ku, kv};
-        char why[256];
         if (output) {
-            cli_file f;
-            if (cli_file_open(&f, output, why, sizeof why)) {
-                rc = cli_error("fit", "%s", why);
+            cj_atomic_file f;
+            if (cj_atomic_open(&f, output)) {
+                rc = cli_error("fit", "%s", cj_last_error());
             } else {
                 surface_json_write(f.fp, &s);
                 fputc('\n', f.fp);
-                if (cli_file_commit(&f, why, sizeof why)) rc = cli_error("fit", "%s", why);
+                if (cj_atomic_commit(&f)) rc = cli_error("fit", "%s", cj_last_error());
             }
         } else {
             surface_json_write(stdout, &s);
@@ -299,13 +298,13 @@ int cmd_fit(int argc, char **argv) {
              degree, m, tol < 0.0 ? "interpolation residual" : "max deviation", dev);
     const cj_bspline c = cj_bspline_view(degree, dim, m, P, NULL, U);
     if (output) {
-        cli_file f;
-        if (cli_file_open(&f, output, why, sizeof why)) {
-            rc = cli_error("fit", "%s", why);
+        cj_atomic_file f;
+        if (cj_atomic_open(&f, output)) {
+            rc = cli_error("fit", "%s", cj_last_error());
             goto done;
         }
         write_doc(f.fp, &c, data, n, title);
-        if (cli_file_commit(&f, why, sizeof why)) rc = cli_error("fit", "%s", why);
+        if (cj_atomic_commit(&f)) rc = cli_error("fit", "%s", cj_last_error());
     } else {
         write_doc(stdout, &c, data, n, title);
         if (fflush(stdout) != 0 || ferror(stdout)) rc = cli_error("fit", "cannot write the output");

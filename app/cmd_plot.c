@@ -53,6 +53,8 @@ int cmd_plot(int argc, char **argv) {
 
 #include "casteljau/image_io.h"
 #include "casteljau/text.h"
+#include "cli_guard.h"
+#include "file_internal.h"
 
 /* The gallery: the same JSON format users write, so the demo also exercises the parser. */
 static const char demo_json[] =
@@ -101,11 +103,21 @@ static const char demo_json[] =
     "]}";
 
 static char *read_file(const char *path, char *why, size_t why_size) {
-    FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
-    if (!f) {
-        snprintf(why, why_size, "cannot open '%s'", path);
-        return NULL;
+    if (strcmp(path, "-")) {
+        char *text = NULL;
+        size_t len = 0;
+        if (cj_file_read_all(path, PLOT_JSON_MAX_BYTES, "plot document", &text, &len)) {
+            snprintf(why, why_size, "%s", cj_last_error());
+            return NULL;
+        }
+        if (strlen(text) != len) {
+            snprintf(why, why_size, "'%s' contains a NUL byte: not a JSON text file", path);
+            free(text);
+            return NULL;
+        }
+        return text;
     }
+    FILE *f = stdin;
     size_t cap = 1 << 16, n = 0;
     char *buf = malloc(cap);
     while (buf) {
@@ -196,6 +208,10 @@ int cmd_plot(int argc, char **argv) {
 
     char *text = NULL;
     if (!demo && !(text = read_file(input, why, sizeof why))) return cli_fail("plot", "%s", why);
+    if (cli_guard_output("plot", "-o", output)) {
+        free(text);
+        return CLI_EXIT_USAGE;
+    }
     plot_doc doc;
     int rc = plot_json_parse(demo ? demo_json : text, &doc, why, sizeof why);
     free(text);

@@ -3,6 +3,7 @@
  * deviation. The mesh size is predicted before any work and refused above --max-triangles. */
 #define _DEFAULT_SOURCE /* readlink */
 #include "cli.h"
+#include "cli_guard.h"
 
 #include "mesh_vtu.h"
 #include "weights.h"
@@ -170,12 +171,14 @@ int cmd_tessellate(int argc, char **argv) {
     size_t count;
     double size = 0.0;
     int rc = 0;
+    if ((rc = cli_check_output(cmd, "output", out))) return rc;
     if (teapot || bpt) {
         cj_status st = teapot ? load_teapot(&set) : cj_patchset_load_bpt(bpt, NULL, &set);
         if (st)
             return st == CJ_ERR_NOMEM
                        ? cli_error(cmd, "%s", cj_last_error())
                        : cli_fail(cmd, "%s: %s", teapot ? "teapot data" : "--bpt", cj_last_error());
+        if ((rc = cli_guard_output(cmd, "-o", out))) goto done;
         patches = set->patches;
         count = set->count;
         double lo[3], hi[3];
@@ -286,9 +289,13 @@ int cmd_tessellate(int argc, char **argv) {
                       "%s: the mesh would exceed --max-triangles %ld (predicted about %.3g "
                       "triangles); give a larger --tol or raise --max-triangles",
                       cj_last_error(), max_triangles, predicted);
-    else if (st)
+    else if (st) /* name where the patches came from: a degenerate patch is in that file */
         rc = st == CJ_ERR_NOMEM ? cli_error(cmd, "%s", cj_last_error())
-                                : cli_fail(cmd, "%s", cj_last_error());
+                                : cli_fail(cmd, "%s: %s",
+                                           teapot ? "teapot data"
+                                           : bpt  ? bpt
+                                                  : "--patch",
+                                           cj_last_error());
     else if (rep.triangles > (size_t)max_triangles)
         rc = cli_fail(cmd,
                       "the mesh has %zu triangles, above --max-triangles %ld (predicted %.3g): "

@@ -4,6 +4,7 @@
  * their time) as JSON on stdout. */
 #include "cli.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -80,9 +81,10 @@ int cmd_trace(int argc, char **argv) {
             break;
         case O_SEED: {
             char *end;
+            errno = 0;
             unsigned long long sd = strtoull(v, &end, 10);
-            if (end == v || *end || v[0] == '-')
-                return cli_fail(cmd, "--seed '%s' is not a non-negative integer", v);
+            if (end == v || *end || v[0] == '-' || v[0] == '+' || errno == ERANGE)
+                return cli_fail(cmd, "--seed '%s' is not an integer in 0..18446744073709551615", v);
             opt.use_seed = 1;
             opt.seed = (uint64_t)sd;
             break;

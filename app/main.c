@@ -1,5 +1,6 @@
 /* casteljau: the command-line front end. Each sub-command lives in its own cmd_*.c file. */
 #include "cli.h"
+#include "file_internal.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -24,6 +25,9 @@ static const command commands[] = {
      "render an animation (keyframes, paths, cloth) as numbered PNG frames"},
     {"report", cmd_report, "measure accuracy against cost; HTML page with our charts (-o DIR)"},
     {"view", cmd_view, "interactive viewer and control-point editor (GLFW window, replay)"},
+    {"intersect", cmd_intersect, "certified intersections of the curves of a plot JSON document"},
+    {"nearest", cmd_nearest, "certified nearest point on the curves of a plot JSON document"},
+    {"offset", cmd_offset, "offset curves of a plot JSON document, proven within a tolerance"},
 };
 
 static void usage(FILE *f) {
@@ -36,6 +40,8 @@ static void usage(FILE *f) {
 }
 
 int main(int argc, char **argv) {
+    /* Temporary files of the atomic writers are removed on Ctrl-C and SIGTERM. */
+    cj_temp_install_signal_cleanup();
     if (argc < 2) {
         usage(stderr);
         return CLI_EXIT_USAGE;

@@ -3,7 +3,7 @@
  * here rather than through VTK so that the tool does not load VTK's libraries. */
 #include "mesh_vtu.h"
 
-#include "cli_file.h"
+#include "file_internal.h"
 
 #include <inttypes.h>
 #include <stdio.h>
@@ -24,8 +24,11 @@ static void put_array(FILE *f, const char *type, const char *name, int comps, co
 }
 
 int mesh_write_vtu(const cj_mesh *m, const char *path, char *why, size_t why_size) {
-    cli_file out;
-    if (cli_file_open(&out, path, why, why_size)) return -1;
+    cj_atomic_file out;
+    if (cj_atomic_open(&out, path)) {
+        snprintf(why, why_size, "%s", cj_last_error());
+        return -1;
+    }
     FILE *f = out.fp;
     fprintf(f,
             "<?xml version=\"1.0\"?>\n"
@@ -56,5 +59,9 @@ int mesh_write_vtu(const cj_mesh *m, const char *path, char *why, size_t why_siz
     for (size_t t = 0; t < m->triangle_count; ++t) fprintf(f, "          5\n");
     fprintf(f, "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
                "</VTKFile>\n");
-    return cli_file_commit(&out, why, why_size);
+    if (cj_atomic_commit(&out)) {
+        snprintf(why, why_size, "%s", cj_last_error());
+        return -1;
+    }
+    return 0;
 }

@@ -3,12 +3,14 @@
 #include "scene_cli.h"
 
 #include "cli.h"
+#include "cli_guard.h"
 
 #include "casteljau/image_io.h"
 #include "casteljau/scene_json.h"
 #include "casteljau/scene_textures.h"
 
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,7 +39,7 @@ int cli_load_scene(const char *cmd, const char *path, cj_scene **out) {
     if (!st) st = cj_scene_load_textures(scene, dir_of(path, dir, sizeof dir));
     if (st) {
         cj_scene_destroy(scene);
-        return cli_fail(cmd, "%s", cj_last_error());
+        return cli_fail_status(cmd, st, "%s", cj_last_error());
     }
     *out = scene;
     return 0;
@@ -54,6 +56,15 @@ int cli_render_output(const char *cmd, const char *out, int *exr) {
 int cli_write_render(const char *cmd, const char *out, int exr, const cj_render_image *img) {
     size_t n = (size_t)img->width * (size_t)img->height;
     cj_status st;
+    /* Radiance that overflowed is a property of the input (the scene checks bound lights and
+     * emission, so this is a last guard): no image with inf or NaN pixels is written. */
+    for (size_t i = 0; i < 4 * n; ++i)
+        if (!isfinite(img->rgba[i]))
+            return cli_fail(cmd,
+                            "pixel (%zu, %zu) channel %zu is %s: the scene's radiance overflows "
+                            "(lower light intensities or emission); nothing written to '%s'",
+                            (i / 4) % (size_t)img->width, (i / 4) / (size_t)img->width, i % 4,
+                            isnan(img->rgba[i]) ? "NaN" : "infinite", out);
     if (exr) {
         float *px = malloc(n * 4 * sizeof(float));
         if (!px)
@@ -120,9 +131,26 @@ int cli_open_scene(const char *cmd, const cli_scene_args *a, cli_demo_scene_fn m
     int rc = cli_render_output(cmd, a->out, exr);
     if (rc) return rc;
     *scene = NULL;
-    if (!a->demo) return cli_load_scene(cmd, a->scene_path, scene);
+    if (!a->demo) {
+        rc = cli_load_scene(cmd, a->scene_path, scene);
+        /* The scene and every file it named (textures, .bpt, OBJ) are read now: the output must
+         * be none of them. */
+        if (!rc) rc = cli_guard_output(cmd, "output", a->out);
+        /* One validation for both renderers (cj_scene_check), before any work. */
+        if (!rc && cj_scene_check(*scene))
+            rc = cli_fail(cmd, "%s: %s", a->scene_path, cj_last_error());
+        if (rc) {
+            cj_scene_destroy(*scene);
+            *scene = NULL;
+        }
+        return rc;
+    }
     if (make_demo(cli_teapot_path(), NULL, scene)) return cli_fail(cmd, "%s", cj_last_error());
-    return 0;
+    if ((rc = cli_guard_output(cmd, "output", a->out))) {
+        cj_scene_destroy(*scene);
+        *scene = NULL;
+    }
+    return rc;
 }
 
 int cli_finish_render(const char *cmd, const char *out, int exr, cj_render_image *img,

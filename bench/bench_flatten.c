@@ -11,14 +11,17 @@
  * form into a preallocated buffer.
  * Goals (measured, not asserted): near-optimal <= 1.10x, uniform <= 1.3x, deviation <= tol.
  *
- * Peer table (issue 13; with cairo when built with it, see bench/areas/flatten.cmake): degrees 3
- * and 2, each 10 000 random curves in a 1000 x 1000 box plus hard ones (loop, cusp, near-cusp,
- * inflection; a quadratic turning back on itself), tolerances 0.01, 0.25 and 1; ours
- * (near-optimal and uniform) against cairo_copy_path_flat (cairo_set_tolerance; quadratics as
- * their exact cubic elevation), measured in the same run with the repetitions interleaved,
- * thread CPU time, median of 5. Deviation: the largest distance from the curve to the polyline,
- * sampled at 8 parameters per segment plus 64 (long-double evaluation, distance to the nearest
- * segment of the whole polyline) and refined around the worst sample by golden-section search.
+ * Peer table (issues 13 and 20; with cairo and kurbo when built with them, see
+ * bench/areas/flatten.cmake): degrees 3 and 2, each 10 000 random curves in a 1000 x 1000 box
+ * plus hard ones (loop, cusp, near-cusp, inflection; a quadratic turning back on itself),
+ * tolerances 0.01, 0.25 and 1; ours (near-optimal and uniform) against kurbo 0.7's flatten
+ * (Levien's method; bench/kurbo, a Rust static library) and cairo_copy_path_flat
+ * (cairo_set_tolerance; quadratics as their exact cubic elevation), measured in the same run
+ * with the repetitions interleaved, thread CPU time, median (and range) of 5. Deviation: the
+ * largest distance from the curve to the whole polyline, enclosed to 1e-6 tol by the
+ * branch-and-bound oracle of flatten_oracle.c; a curve counts as over tol only when the
+ * enclosure's lower end is (proven), undecided when it straddles tol.
+ * BENCH_NPEER=<n> takes n random curves instead (quick looks), BENCH_DEGREE=<2|3> one degree.
  * BENCH_PEERS_ONLY=1 prints the peer table alone. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "casteljau/flatten.h"
@@ -30,6 +33,7 @@
 #include <string.h>
 #include <time.h>
 #include "bench_clock.h"
+#include "flatten_oracle.h"
 #ifdef CJ_HAVE_CAIRO
 #include <cairo.h>
 #endif
@@ -200,76 +204,39 @@ static uint64_t splitmix(uint64_t *s) {
 
 /* ---- peer table ----------------------------------------------------------------------------- */
 
-#define NPEER  10000
+#define NPEER 10000
+/* Random curves per degree in the peer table (NPEER, or BENCH_NPEER=<n> for quick looks). */
+static int g_npeer = NPEER;
 #define NHARD  4
 #define NROUND 5
-
-/* Distance from point q to segment a-b (long double). */
-static long double seg_dist(const long double *q, const double *a, const double *b) {
-    const long double abx = (long double)b[0] - a[0], aby = (long double)b[1] - a[1];
-    const long double ab2 = abx * abx + aby * aby;
-    long double u = ab2 > 0 ? ((q[0] - a[0]) * abx + (q[1] - a[1]) * aby) / ab2 : 0;
-    if (u < 0) u = 0;
-    if (u > 1) u = 1;
-    const long double dx = q[0] - (a[0] + u * abx), dy = q[1] - (a[1] + u * aby);
-    return sqrtl(dx * dx + dy * dy);
-}
-
-/* Distance of c(t) from the polyline pts[0..np-1]: the nearest of the segments around *hint (a
- * window that moves along with t), and the full polyline only when that is above `need` (so the
- * exact distance is taken wherever it can matter for the maximum). */
-static long double poly_dist(const curve *c, long double t, const double *pts, size_t np,
-                             size_t *hint, long double need) {
-    long double q[2], best = INFINITY;
-    exact_point(c, t, q);
-    const size_t lo = *hint > 4 ? *hint - 4 : 0, hi = *hint + 8 < np - 1 ? *hint + 8 : np - 1;
-    for (size_t j = lo; j < hi; ++j) {
-        const long double d = seg_dist(q, pts + 2 * j, pts + 2 * j + 2);
-        if (d < best) best = d, *hint = j;
-    }
-    if (best > need)
-        for (size_t j = 0; j + 1 < np; ++j) {
-            const long double d = seg_dist(q, pts + 2 * j, pts + 2 * j + 2);
-            if (d < best) best = d, *hint = j;
-        }
-    return best;
-}
-
-/* Largest distance from the curve to the polyline (see the top), one-sided curve -> polyline. */
-static double peer_deviation(const curve *c, const double *pts, size_t np) {
-    if (np < 2) return INFINITY;
-    const size_t N = 8 * (np - 1) + 64;
-    size_t hint = 0, worst_i = 0;
-    long double worst = 0;
-    for (size_t i = 0; i <= N; ++i) {
-        const long double d = poly_dist(c, (long double)i / N, pts, np, &hint, worst);
-        if (d > worst) worst = d, worst_i = i;
-    }
-    long double lo = worst_i > 0 ? (long double)(worst_i - 1) / N : 0;
-    long double hi = worst_i < N ? (long double)(worst_i + 1) / N : 1;
-    for (int it = 0; it < 50; ++it) {
-        const long double m1 = lo + (hi - lo) * 0.381966L, m2 = hi - (hi - lo) * 0.381966L;
-        size_t h1 = hint, h2 = hint;
-        const long double d1 = poly_dist(c, m1, pts, np, &h1, 0),
-                          d2 = poly_dist(c, m2, pts, np, &h2, 0);
-        if (d1 > worst) worst = d1;
-        if (d2 > worst) worst = d2;
-        if (d1 < d2)
-            lo = m1;
-        else
-            hi = m2;
-    }
-    return (double)worst;
-}
+/* Oracle enclosure width, relative to tol. */
+#define ORACLE_GAP 1e-6
 
 typedef struct peer_out {
-    size_t segs, over;
+    size_t segs, over, undecided;
     double worst;
 } peer_out;
 
-enum { P_NEAR, P_UNIFORM, P_CAIRO, P_COUNT };
+enum { P_NEAR, P_UNIFORM, P_KURBO, P_CAIRO, P_COUNT };
 static const char *const peer_name[P_COUNT] = {"casteljau near-optimal", "casteljau uniform",
-                                               "cairo 1.16 copy_path_flat"};
+                                               "kurbo 0.7 flatten", "cairo 1.16 copy_path_flat"};
+
+#ifdef CJ_HAVE_KURBO
+/* bench/kurbo/lib.rs */
+size_t cj_bench_kurbo_flatten(int n, const double *p, double tol, double *out, size_t cap);
+#endif
+
+/* Whether peer m was built in. */
+static int peer_present(int m) {
+#ifndef CJ_HAVE_KURBO
+    if (m == P_KURBO) return 0;
+#endif
+#ifndef CJ_HAVE_CAIRO
+    if (m == P_CAIRO) return 0;
+#endif
+    (void)m;
+    return 1;
+}
 
 #ifdef CJ_HAVE_CAIRO
 static cairo_t *g_cr;
@@ -303,6 +270,13 @@ static size_t cairo_flat(const curve *c, double *pts, size_t cap) {
 #endif
 
 static size_t run_peer(int m, const curve *c, double tol, double *buf, size_t cap) {
+    if (m == P_KURBO) {
+#ifdef CJ_HAVE_KURBO
+        return cj_bench_kurbo_flatten(c->n, c->p, tol, buf, cap);
+#else
+        return 0;
+#endif
+    }
     if (m == P_CAIRO) {
 #ifdef CJ_HAVE_CAIRO
         return cairo_flat(c, buf, cap);
@@ -319,11 +293,8 @@ static size_t run_peer(int m, const curve *c, double tol, double *buf, size_t ca
 
 static void peer_table(const curve *set, const double *I, int n, double *buf, size_t cap) {
     const double tols[3] = {0.01, 0.25, 1.0};
-    const int count = NPEER + NHARD;
-    int nm = P_COUNT;
-#ifndef CJ_HAVE_CAIRO
-    nm = P_CAIRO;
-#else
+    const int count = g_npeer + NHARD;
+#ifdef CJ_HAVE_CAIRO
     cairo_surface_t *sf = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
     g_cr = cairo_create(sf);
 #endif
@@ -335,34 +306,53 @@ static void peer_table(const curve *set, const double *I, int n, double *buf, si
         double opt = 0;
         for (int i = 0; i < count; ++i) opt += I[i] / sqrt(8 * tol);
         peer_out po[P_COUNT];
-        for (int m = 0; m < nm; ++m) {
-            po[m] = (peer_out){0, 0, 0};
+        for (int m = 0; m < P_COUNT; ++m) {
+            po[m] = (peer_out){0, 0, 0, 0};
+            if (!peer_present(m)) continue;
             for (int i = 0; i < count; ++i) {
                 const size_t np = run_peer(m, &set[i], tol, buf, cap);
-                if (np > cap) abort();
-                const double dev = peer_deviation(&set[i], buf, np);
+                if (np > cap || np < 2) abort();
+                const cj_oracle_dev dev =
+                    cj_oracle_curve_polyline(set[i].n, set[i].p, buf, np, ORACLE_GAP, tol);
                 po[m].segs += np - 1;
-                if (dev > tol) po[m].over++;
-                if (dev / tol > po[m].worst) po[m].worst = dev / tol;
+                if (dev.lo > tol)
+                    po[m].over++;
+                else if (dev.hi > tol)
+                    po[m].undecided++;
+                if (dev.lo / tol > po[m].worst) po[m].worst = dev.lo / tol;
             }
         }
         double tm[P_COUNT][NROUND];
         for (int r = 0; r < NROUND; ++r)
-            for (int m = 0; m < nm; ++m) {
+            for (int m = 0; m < P_COUNT; ++m) {
+                if (!peer_present(m)) continue;
                 const double t0 = cj_bench_thread_cpu();
                 for (int i = 0; i < count; ++i) run_peer(m, &set[i], tol, buf, cap);
                 tm[m][r] = (cj_bench_thread_cpu() - t0) / count * 1e6;
             }
-        double med[P_COUNT];
-        for (int m = 0; m < nm; ++m) med[m] = cj_bench_median(tm[m], NROUND);
-        for (int m = 0; m < nm; ++m) {
-            printf("| %d | %g | %s | %zu | %.3f | %.3f | %.4f | %zu | %.2f |", n, tol, peer_name[m],
-                   po[m].segs, (double)po[m].segs / (double)po[P_NEAR].segs, po[m].segs / opt,
-                   po[m].worst, po[m].over, med[m]);
-            if (nm == P_COUNT)
-                printf(" %.2f |\n", med[m] / med[P_CAIRO]);
-            else
-                printf(" - |\n");
+        double med[P_COUNT], lo[P_COUNT], hi[P_COUNT];
+        for (int m = 0; m < P_COUNT; ++m) {
+            if (!peer_present(m)) continue;
+            med[m] = cj_bench_median(tm[m], NROUND);
+            lo[m] = hi[m] = tm[m][0];
+            for (int r = 1; r < NROUND; ++r) {
+                lo[m] = fmin(lo[m], tm[m][r]);
+                hi[m] = fmax(hi[m], tm[m][r]);
+            }
+        }
+        for (int m = 0; m < P_COUNT; ++m) {
+            if (!peer_present(m)) continue;
+            printf("| %d | %g | %s | %zu | %.3f | %.3f | %.4f | %zu | %zu | %.2f (%.2f-%.2f) |", n,
+                   tol, peer_name[m], po[m].segs, (double)po[m].segs / (double)po[P_NEAR].segs,
+                   po[m].segs / opt, po[m].worst, po[m].over, po[m].undecided, med[m], lo[m],
+                   hi[m]);
+            for (int q = P_KURBO; q <= P_CAIRO; ++q) {
+                if (peer_present(q))
+                    printf(" %.2f |", med[m] / med[q]);
+                else
+                    printf(" - |");
+            }
+            printf("\n");
         }
     }
 #ifdef CJ_HAVE_CAIRO
@@ -372,6 +362,8 @@ static void peer_table(const curve *set, const double *I, int n, double *buf, si
 }
 
 static void peers(void) {
+    const char *np_env = getenv("BENCH_NPEER");
+    if (np_env && atoi(np_env) > 0 && atoi(np_env) < NPEER) g_npeer = atoi(np_env);
     static curve set[NPEER + NHARD];
     static double I[NPEER + NHARD];
     size_t cap = 1 << 16;
@@ -379,12 +371,19 @@ static void peers(void) {
     if (!buf) abort();
     printf("\n## Peers: %d random curves in a 1000 x 1000 box plus %d hard ones per degree, "
            "same run, thread CPU, median of %d interleaved rounds\n\n",
-           NPEER, NHARD, NROUND);
-    printf("deviation = largest sampled+refined distance curve -> polyline; optimum = "
-           "Σ ∫sqrt(|κ|/(8 tol)) ds; time/cairo < 1: faster than cairo\n\n");
+           g_npeer, NHARD, NROUND);
+    printf("deviation = largest distance curve -> polyline, enclosed by the branch-and-bound "
+           "oracle of bench/flatten_oracle.c to within %g tol; over tol: proven over (the "
+           "oracle's lower end > tol); undecided: the enclosure straddles tol; optimum = "
+           "Σ ∫sqrt(|κ|/(8 tol)) ds; µs/curve: median (min-max) of the rounds; time ÷ peer < 1: "
+           "faster than the peer\n\n",
+           ORACLE_GAP);
     printf("| degree | tol | method | segments | seg ÷ ours | seg/opt | worst dev ÷ tol | curves "
-           "over tol | µs/curve | time ÷ cairo |\n|---|---|---|---|---|---|---|---|---|---|\n");
+           "over tol | undecided | µs/curve | time ÷ kurbo | time ÷ cairo "
+           "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    const char *only = getenv("BENCH_DEGREE");
     for (int n = 3; n >= 2; --n) {
+        if (only && atoi(only) != n) continue;
         uint64_t s = 20261123 + (uint64_t)n;
         if (n == 3) {
             set[0] = (curve){3, {0, 0, 1000, 600, -400, 600, 1000, 0}, {0}, 0}; /* loop */
@@ -397,13 +396,13 @@ static void peers(void) {
             set[2] = (curve){2, {0, 0, 500, 1000, 1000, 0}, {0}, 0};
             set[3] = (curve){2, {0, 0, 1000, 0, 1000, 1000}, {0}, 0};
         }
-        for (int i = NHARD; i < NPEER + NHARD; ++i) {
+        for (int i = NHARD; i < g_npeer + NHARD; ++i) {
             set[i].n = n;
             set[i].rational = 0;
             for (int k = 0; k < 2 * (n + 1); ++k)
                 set[i].p[k] = (double)(splitmix(&s) >> 11) * 0x1p-53 * 1000;
         }
-        for (int i = 0; i < NPEER + NHARD; ++i) I[i] = sqrt_kappa_integral(&set[i]);
+        for (int i = 0; i < g_npeer + NHARD; ++i) I[i] = sqrt_kappa_integral(&set[i]);
         peer_table(set, I, n, buf, cap);
     }
     free(buf);

@@ -11,6 +11,7 @@ libglfw3-dev xdotool valgrind"
 PKGS="$PKGS python3-cffi python3-numpy python3-pytest"
 PKGS="$PKGS libimagequant-dev libavformat-dev libavcodec-dev libswscale-dev poppler-utils libexpat1-dev"
 PKGS="$PKGS libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev"
+PKGS="$PKGS cargo librust-kurbo-dev"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

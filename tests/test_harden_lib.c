@@ -2,14 +2,20 @@
  * interpolation intervals), contouring refuses tolerances doubles cannot resolve, the
  * tessellation size predictor (exact for uniform grids, close for adaptive ones), degenerate
  * patches refused instead of an empty mesh, plot titles capped, and plots of data spanning the
- * whole double range refused cleanly (a NaN tick count was converted to int before). */
+ * whole double range refused cleanly (a NaN tick count was converted to int before).
+ * Issue 24: the one whole-file reader (devices, pipes and folders refused unread, its cap held to
+ * the byte, inputs logged by inode), the one atomic writer (abandon, commit, a SIGTERM removes
+ * the temporary) and particle emission bounded per step. */
+#define _DEFAULT_SOURCE /* mkdtemp, mkfifo, link */
 #include "casteljau/bezier.h"
 #include "casteljau/catmull_rom.h"
 #include "casteljau/implicit.h"
 #include "casteljau/interp.h"
 #include "casteljau/patchset.h"
 #include "casteljau/plot.h"
+#include "casteljau/particles.h"
 #include "casteljau/tessellate.h"
+#include "file_internal.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -21,6 +27,12 @@
 #include <string.h>
 
 #include <cmocka.h>
+
+#include <dirent.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 static void test_overflow_is_range(void **state) {
     (void)state;
@@ -152,6 +164,137 @@ static void test_plot_limits(void **state) {
            CJ_PLOT_MAX_TITLE);
 }
 
+/* ---- issue 24: the one reader, the one writer, bounded emission ---------------------------- */
+
+static void write_text(const char *path, const char *text) {
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
+static int temporaries_in(const char *dir) {
+    DIR *d = opendir(dir);
+    assert_non_null(d);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));) n += strstr(e->d_name, ".tmp-") != NULL;
+    closedir(d);
+    return n;
+}
+
+static void test_file_reader(void **state) {
+    (void)state;
+    char dir[] = "/tmp/cj_test_reader_XXXXXX", path[128], link_path[128], fifo[128];
+    assert_non_null(mkdtemp(dir));
+    char *data = NULL;
+    size_t n = 0;
+    /* devices and pipes are refused before one byte is read (a FIFO without a writer would
+     * block an ordinary open; /dev/zero would never end) */
+    assert_int_equal(cj_file_read_all("/dev/zero", 1 << 20, "input", &data, &n), CJ_ERR_ARGUMENT);
+    assert_non_null(strstr(cj_last_error(), "not a regular file"));
+    snprintf(fifo, sizeof fifo, "%s/fifo", dir);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    assert_int_equal(cj_file_read_all(fifo, 1 << 20, "input", &data, &n), CJ_ERR_ARGUMENT);
+    assert_non_null(strstr(cj_last_error(), "a pipe"));
+    assert_int_equal(cj_file_read_all(dir, 1 << 20, "input", &data, &n), CJ_ERR_ARGUMENT);
+    /* the cap: exactly max_bytes is read, one more byte refused */
+    snprintf(path, sizeof path, "%s/ten", dir);
+    write_text(path, "0123456789");
+    assert_int_equal(cj_file_read_all(path, 9, "input", &data, &n), CJ_ERR_RANGE);
+    assert_int_equal(cj_file_read_all(path, 10, "input", &data, &n), CJ_OK);
+    assert_int_equal(n, 10);
+    assert_int_equal(data[10], '\0');
+    free(data);
+    /* the log of inputs knows the file under any name (a hard link) */
+    snprintf(link_path, sizeof link_path, "%s/other_name", dir);
+    assert_int_equal(link(path, link_path), 0);
+    assert_non_null(cj_file_input_named(link_path));
+    assert_string_equal(cj_file_input_named(link_path), path);
+    assert_null(cj_file_input_named(fifo));
+    unlink(link_path);
+    unlink(path);
+    unlink(fifo);
+    rmdir(dir);
+    printf("test_harden_lib: the whole-file reader refuses /dev/zero, a FIFO and a folder without "
+           "reading, holds its cap to the byte, and logs inputs by device and inode\n");
+}
+
+static void test_atomic_writer(void **state) {
+    (void)state;
+    char dir[] = "/tmp/cj_test_atomic_XXXXXX", path[128];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/out.txt", dir);
+    write_text(path, "old");
+    cj_atomic_file f;
+    assert_int_equal(cj_atomic_open(&f, path), CJ_OK);
+    fputs("abandoned", f.fp);
+    cj_atomic_abandon(&f);
+    char *data = NULL;
+    size_t n = 0;
+    assert_int_equal(cj_file_read_all(path, 100, "output", &data, &n), CJ_OK);
+    assert_string_equal(data, "old");
+    free(data);
+    assert_int_equal(temporaries_in(dir), 0);
+    assert_int_equal(cj_atomic_open(&f, path), CJ_OK);
+    fputs("new", f.fp);
+    assert_int_equal(cj_atomic_commit(&f), CJ_OK);
+    assert_int_equal(cj_file_read_all(path, 100, "output", &data, &n), CJ_OK);
+    assert_string_equal(data, "new");
+    free(data);
+    /* SIGTERM while a temporary exists: the handler removes it, the process dies of the signal,
+     * the destination keeps its content */
+    const pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        cj_temp_install_signal_cleanup();
+        cj_atomic_file g;
+        if (cj_atomic_open(&g, path)) _exit(3);
+        fputs("half written", g.fp);
+        fflush(g.fp);
+        raise(SIGTERM);
+        _exit(4);
+    }
+    int status = 0;
+    assert_int_equal(waitpid(child, &status, 0), child);
+    assert_true(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+    assert_int_equal(temporaries_in(dir), 0);
+    assert_int_equal(cj_file_read_all(path, 100, "output", &data, &n), CJ_OK);
+    assert_string_equal(data, "new");
+    free(data);
+    /* a destination in a missing folder is found by the up-front check */
+    assert_int_equal(cj_file_check_output("/nonexistent-cj/x.gif", "GIF"), CJ_ERR_IO);
+    assert_int_equal(cj_file_check_output(dir, "GIF"), CJ_ERR_ARGUMENT);
+    unlink(path);
+    rmdir(dir);
+    printf("test_harden_lib: the atomic writer keeps the old file on abandon, replaces it on "
+           "commit, and a SIGTERM removes its temporary\n");
+}
+
+static void test_emission_bounded(void **state) {
+    (void)state;
+    cj_emitter e = cj_emitter_default();
+    e.rate = 1e18;
+    cj_particles_desc d;
+    memset(&d, 0, sizeof d);
+    d.capacity = 10;
+    d.emitter_count = 1;
+    d.emitters = &e;
+    cj_particles *p = NULL;
+    assert_int_equal(cj_particles_create(&d, NULL, &p), CJ_OK);
+    /* 1e16 particles in one step: refused at once, not spun through */
+    assert_int_equal(cj_particles_step(p, 0.01, NULL), CJ_ERR_RANGE);
+    assert_non_null(strstr(cj_last_error(), "emitter 0"));
+    assert_int_equal(cj_particles_count(p), 0);
+    cj_particles_destroy(p);
+    e.rate = 100;
+    assert_int_equal(cj_particles_create(&d, NULL, &p), CJ_OK);
+    assert_int_equal(cj_particles_step(p, 0.05, NULL), CJ_OK);
+    assert_int_equal(cj_particles_count(p), 5);
+    cj_particles_destroy(p);
+    printf("test_harden_lib: an emitter of 1e18 particles/s is refused per step (CJ_ERR_RANGE, "
+           "nothing emitted); 100/s for 0.05 s emits 5\n");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_overflow_is_range),
@@ -159,6 +302,9 @@ int main(void) {
         cmocka_unit_test(test_tessellation_prediction),
         cmocka_unit_test(test_degenerate_patches),
         cmocka_unit_test(test_plot_limits),
+        cmocka_unit_test(test_file_reader),
+        cmocka_unit_test(test_atomic_writer),
+        cmocka_unit_test(test_emission_bounded),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

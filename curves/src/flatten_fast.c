@@ -27,9 +27,15 @@
  *    sqrt(max|e|^2 + O^2) bounds the distance; where that does not certify the piece, the
  *    general bounds (a)-(d) on its de Casteljau subcurve do.
  *
- * Segment lengths are chosen as in the general method: grown from the previous step until the
- * deviation lies in [0.95, 1] tol (secant on sqrt(deviation), which is linear in the step
- * on curved pieces), so the spacing follows ∫ sqrt(|κ|/(8 tol)) ds.
+ * The common case needs no square root: max |t(1-t)(A(1-t) + B t)| <= max(|A|, |B|)/4, exact
+ * when A = B, is compared in squares with tol^2 |v|^2 first; the exact maximum is taken only
+ * where that does not certify the piece.
+ *
+ * Segment placement (below): all break points are placed up front at equal steps of a
+ * closed-form estimate of ∫ sqrt(|κ|) ds (the parabola model), aiming at FAST_TARGET tol per
+ * segment, so the spacing follows ∫ sqrt(|κ|/(8 tol)) ds; each segment is then certified as
+ * above, and the few the bound rejects (the h^2 law undershoots near inflections) are shortened
+ * until certified, the walk resuming from there towards the next planned point.
  *
  * Rounding: the break points and derivatives come from one de Casteljau triangle on the scaled
  * control points (|coordinates| < 1): each is within ~3n u of the exact value relative to the
@@ -56,7 +62,8 @@ typedef struct fpt {
 } fpt;
 
 /* Point and first derivative at t (one de Casteljau triangle). */
-static inline void eval_pd(const double *p, int n, double t, fpt *o) {
+static inline __attribute__((always_inline)) void eval_pd(const double *p, int n, double t,
+                                                          fpt *o) {
     const double s = 1.0 - t;
     if (n == 3) {
         const double ax0 = s * p[0] + t * p[2], ay0 = s * p[1] + t * p[3];
@@ -118,9 +125,12 @@ static __attribute__((noinline)) double general_dev(const fast_ctx *cx, double a
     return D * cx->down;
 }
 
-/* Deviation bound (scaled units) of the piece [a,b] between the break points P (at a) and Q (at
- * b). Returns +INFINITY only on overflow. */
-static double piece_dev(const fast_ctx *cx, double a, double b, const fpt *P, const fpt *Q) {
+/* Square of a deviation bound (scaled units) of the piece [a,b] between the break points P (at
+ * a) and Q (at b). Squares and one division instead of square roots: the common case costs
+ * no root at all. Squaring and the division add a few u relative to the deviation, which is at
+ * most about the curve's size, so inside the slack. Returns +INFINITY only on overflow. */
+static inline __attribute__((always_inline)) double
+piece_dev2(const fast_ctx *cx, double a, double b, const fpt *P, const fpt *Q) {
     const double h = b - a, k = h / (double)cx->n;
     const double vx = Q->x - P->x, vy = Q->y - P->y;
     const double L2 = vx * vx + vy * vy;
@@ -138,18 +148,32 @@ static double piece_dev(const fast_ctx *cx, double a, double b, const fpt *P, co
     } else {
         A = B = 2.0 * c1;
     }
-    if (!(L2 > 0.0)) return general_dev(cx, a, b);
-    const double E = hump_max(A, B) / sqrt(L2);
-    if (dmin >= 0.0 && dmax <= L2) return E;
+    if (!(L2 > 0.0)) {
+        const double g = general_dev(cx, a, b);
+        return g * g;
+    }
+    const double margin = 16.0 * CJ_UNIT_ROUNDOFF * (fabs(A) + fabs(B));
+    const int inside = dmin >= 0.0 && dmax <= L2;
+    if (inside) {
+        /* max |t(1-t)(A(1-t) + B t)| <= max(|A|, |B|) / 4: exact when A = B (an arc symmetric
+         * about its chord), and enough for most pieces; the exact maximum otherwise. */
+        const double aA = fabs(A), aB = fabs(B);
+        const double M = 0.25 * (aA > aB ? aA : aB) + margin;
+        const double D2 = M * M / L2;
+        if (D2 <= cx->tol_s * cx->tol_s) return D2;
+    }
+    const double E = hump_max(A, B);
+    const double E2 = E * E / L2;
+    if (inside || E2 > cx->tol_s * cx->tol_s) return E2;
     /* Some control point projects beyond an end of the chord. E, the largest distance from the
      * chord's line, is a lower bound; the projection parameter is a polynomial with Bernstein
      * coefficients d_i / L2, so the curve reaches at most O = max(-dmin, dmax - L2) / |v| past
      * an end, and sqrt(E^2 + O^2) bounds the distance to the segment. */
-    if (E > cx->tol_s) return E;
-    const double O = fmax(-dmin, dmax - L2) / sqrt(L2);
-    const double EO = sqrt(E * E + O * O) + 4.0 * CJ_UNIT_ROUNDOFF * (E + O);
-    if (EO <= cx->tol_s) return EO;
-    return general_dev(cx, a, b);
+    const double O = -dmin > dmax - L2 ? -dmin : dmax - L2;
+    const double EO2 = (E * E + O * O) / L2 * (1.0 + 16.0 * CJ_UNIT_ROUNDOFF);
+    if (EO2 <= cx->tol_s * cx->tol_s) return EO2;
+    const double g = general_dev(cx, a, b);
+    return g * g;
 }
 
 static inline void end_point(const fast_ctx *cx, fpt *o) {
@@ -161,96 +185,311 @@ static inline void end_point(const fast_ctx *cx, fpt *o) {
     o->dy = (double)n * (p[2 * n + 1] - p[2 * n - 1]);
 }
 
-cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *em, double *bound) {
+/* ---- placement: the integral of sqrt|κ| by the parabola model ------------------------------
+ *
+ * A quadratic q(u) = p0 (1-u)^2 + 2 p1 u (1-u) + p2 u^2 with d01 = p1 - p0, d12 = p2 - p1,
+ * g = d01 - d12 and W = d01 x d12 has q' = 2 (d01 - u g), q' x q'' = 4 W (constant), and the
+ * component of q'/2 across g is the constant |W|/|g|. With x = (u |g|^2 - d01.g) / |W| (a
+ * linear coordinate along the parabola's axis, 0 at its vertex),
+ *     |q'| = 2 (|W|/|g|) sqrt(1 + x^2),
+ *     sqrt(κ) ds = sqrt(|q' x q''|) |q'|^(-1/2) du = sqrt(2) |W| |g|^(-3/2) (1 + x^2)^(-1/4) dx,
+ * so ∫ sqrt(κ) ds over [u0, u1] is sqrt(2) |W| |g|^(-3/2) (F(x1) - F(x0)) with
+ * F(x) = ∫_0^x (1 + s^2)^(-1/4) ds (odd; F ~ x near 0, ~ 2 sqrt(x) far out). F and its inverse
+ * are replaced by closed forms of the right shape at both ends, fitted on [1e-3, 1e4]:
+ *     F(x) ~ x / (1 - r^(1/4)/2 + (r + x^2)^(1/4)/2), r = 2.2     (derivative within -3.2/+1.2 %)
+ *     F^-1(a) ~ a (1 - k + sqrt(k^2 + a^2/16)),        k = 0.38    (derivative within -0.04/+0.5 %)
+ * The points are placed at equal steps of the (approximate) integral; nothing about the
+ * guarantee rests on these estimates: every segment is certified afterwards, and the few that
+ * fail are split. A cubic is cut into a few equal parameter pieces, each modelled by the
+ * quadratic with its end points and the midpoint-matching inner control point
+ * (b0 + b3)/2 + h (c'(a) - c'(b))/4 (the parameter correspondence is linear). */
+
+#define FAST_F_R       2.2
+#define FAST_F_K       0.38
+#define FAST_MAX_QUADS 16
+/* Share of the tolerance a model quadratic may miss its piece of the cubic by. */
+#define FAST_QUAD_TOL 0.3
+/* Segments are placed for this share of the tolerance (their estimated deviation): a little
+ * below 1 so that the estimate's spread rarely fails the certificate. */
+#define FAST_TARGET 0.90
+
+static inline double approx_f_inv(double a) {
+    return a * (1.0 - FAST_F_K + sqrt(FAST_F_K * FAST_F_K + a * a * (1.0 / 16.0)));
+}
+
+/* The exact inverse of approx_f_inv (to 2e-4 relative): the closed form for F as a start,
+ * then one Newton step on approx_f_inv. Placing points by approx_f_inv between end values from
+ * this keeps the parabola's ends where they are. */
+static inline double approx_f(double x) {
+    const double c = 1.0 - 0.5 * sqrt(sqrt(FAST_F_R));
+    double a = x / (c + 0.5 * sqrt(sqrt(FAST_F_R + x * x)));
+    for (int it = 0; it < 1; ++it) {
+        const double r = sqrt(FAST_F_K * FAST_F_K + a * a * (1.0 / 16.0));
+        const double y = a * (1.0 - FAST_F_K + r);
+        const double dy = 1.0 - FAST_F_K + r + a * a * (1.0 / 16.0) / r;
+        a -= (y - x) / dy;
+    }
+    return a;
+}
+
+typedef struct fast_quad {
+    double t0, dt;  /* cubic parameters: t = t0 + u dt */
+    double val;     /* ∫ sqrt(κ) ds of the model (scaled units) */
+    double inv_val; /* 1 / val (0 when val is) */
+    double a0, da;  /* F(x0), F(x1) - F(x0) */
+    double y0, ysc; /* F^-1(a0), 1 / (F^-1(a1) - F^-1(a0)) */
+} fast_quad;
+
+/* The model parabola through P (at t0) and Q (at t0 + dt). */
+static void quad_params(const fpt *P, const fpt *Q, int n, double t0, double dt, fast_quad *q) {
+    q->t0 = t0;
+    q->dt = dt;
+    double d01x, d01y, d12x, d12y;
+    if (n == 3) {
+        const double mx = 0.5 * (P->x + Q->x) + 0.25 * dt * (P->dx - Q->dx);
+        const double my = 0.5 * (P->y + Q->y) + 0.25 * dt * (P->dy - Q->dy);
+        d01x = mx - P->x, d01y = my - P->y;
+        d12x = Q->x - mx, d12y = Q->y - my;
+    } else {
+        d01x = 0.5 * P->dx, d01y = 0.5 * P->dy;
+        d12x = 0.5 * Q->dx, d12y = 0.5 * Q->dy;
+    }
+    const double gx = d01x - d12x, gy = d01y - d12y;
+    const double W = fabs(d01x * d12y - d01y * d12x);
+    const double g2 = gx * gx + gy * gy;
+    q->val = 0.0;
+    q->inv_val = 0.0;
+    q->a0 = 0.0, q->da = 0.0, q->y0 = 0.0, q->ysc = 0.0;
+    if (!(W > 0.0) || !(g2 > 0.0)) return;
+    const double x0 = -(d01x * gx + d01y * gy) / W, x1 = -(d12x * gx + d12y * gy) / W;
+    const double a0 = approx_f(x0), a1 = approx_f(x1);
+    const double gn = sqrt(g2);
+    const double val = 1.4142135623730951 * W / (gn * sqrt(gn)) * (a1 - a0);
+    const double y0 = approx_f_inv(a0), y1 = approx_f_inv(a1);
+    if (!(val > 0.0) || !isfinite(val) || !(y1 > y0)) return;
+    q->val = val;
+    q->inv_val = 1.0 / val;
+    q->a0 = a0, q->da = a1 - a0;
+    q->y0 = y0, q->ysc = 1.0 / (y1 - y0);
+}
+
+/* Parameter on the cubic where the model's integral reaches share s in [0,1] of q's. */
+static inline double quad_t(const fast_quad *q, double s) {
+    const double u = (approx_f_inv(q->a0 + s * q->da) - q->y0) * q->ysc;
+    return q->t0 + (u < 0.0 ? 0.0 : (u > 1.0 ? 1.0 : u)) * q->dt;
+}
+
+/* ---- certification ------------------------------------------------------------------------ */
+
+typedef struct fast_run {
     fast_ctx cx;
-    cx.fc = fc;
-    cx.p = fc->hom;
-    cx.n = fc->n;
-    cx.down = ldexp(1.0, -fc->escale);
-    const double up = ldexp(1.0, fc->escale);
-    cx.tol_eff = tol_eff;
-    cx.accept_lo = 0.95 * tol_eff;
-    cx.tol_s = tol_eff * cx.down;
-    cx.lo_s = cx.accept_lo * cx.down;
-    const double target = 0.975 * cx.tol_s, starget = sqrt(target);
+    cj_fl_emitter *em;
+    double up;
+    double worst2; /* square of the largest certified deviation (scaled units) */
+} fast_run;
+
+static inline cj_status emit_break(fast_run *fr, double b, const fpt *Q) {
+    cj_fl_emitter *e = fr->em;
+    double pt[2];
+    if (b < 1.0 && !e->sink && !e->skip_equal && e->count < e->max_points) {
+        /* inner points into a buffer: cj_fl_emit's work without its checks for the first point
+         * of a sequence piece and without tracking the last point (the end point, emitted
+         * below, sets it) */
+        if (e->out && e->count < e->cap_points) {
+            e->out[2 * e->count] = Q->x * fr->up;
+            e->out[2 * e->count + 1] = Q->y * fr->up;
+        }
+        e->count++;
+        return CJ_OK;
+    }
+    if (b == 1.0) {
+        cj_fl_end(fr->cx.fc, fr->cx.n, pt);
+    } else {
+        pt[0] = Q->x * fr->up;
+        pt[1] = Q->y * fr->up;
+    }
+    if (cj_fl_emit(e, pt, b)) return cj_fl_cap_fail(e, "near-optimal");
+    return CJ_OK;
+}
+
+#define FAST_MAX_SPLIT_DEPTH 64
+
+/* Certifies [a,b] (break points P, Q) and emits Q; a piece the bound rejects is cut into equal
+ * parts (as many as the model h^2 scaling of its deviation asks for, at least 2), each
+ * certified in turn. */
+static cj_status certify(fast_run *fr, double a, const fpt *P, double b, const fpt *Q, int depth) {
+    const double D2 = piece_dev2(&fr->cx, a, b, P, Q);
+    if (D2 <= fr->cx.tol_s * fr->cx.tol_s) {
+        if (D2 > fr->worst2) fr->worst2 = D2;
+        return emit_break(fr, b, Q);
+    }
+    const double D = sqrt(D2);
+    if (!isfinite(D))
+        return cj_fail(CJ_ERR_RANGE, "flatness bound overflows: coordinates too large");
+    double k = ceil(sqrt(D / (FAST_TARGET * fr->cx.tol_s)));
+    if (!(k >= 2.0)) k = 2.0;
+    if (k > 16.0) k = 16.0;
+    const int parts = (int)k;
+    if (depth >= FAST_MAX_SPLIT_DEPTH || !(a + (b - a) / k > a))
+        return cj_fail(CJ_ERR_RANGE,
+                       "tolerance %.3g cannot be reached in double precision near t = %.17g",
+                       fr->cx.tol_eff, a);
+    fpt L = *P;
+    double ta = a;
+    for (int i = 1; i <= parts; ++i) {
+        fpt R;
+        const double tb = i == parts ? b : a + (b - a) * (double)i / k;
+        if (i == parts)
+            R = *Q;
+        else
+            eval_pd(fr->cx.p, fr->cx.n, tb, &R);
+        const cj_status st = certify(fr, ta, &L, tb, &R, depth + 1);
+        if (st) return st;
+        L = R;
+        ta = tb;
+    }
+    return CJ_OK;
+}
+
+/* The planned break points: equal steps of the model's integral over the quadratics. */
+typedef struct fast_plan {
+    const fast_quad *qs;
+    int nq;
+    double step;
+    size_t m;      /* planned segments */
+    int qi;        /* quadratic of the last target */
+    double qstart; /* integral before quadratic qi */
+} fast_plan;
+
+/* Planned point j (1 <= j; m and later are the end, 1.0). Called with increasing j. */
+static inline double plan_next(fast_plan *pl, size_t j) {
+    if (j >= pl->m) return 1.0;
+    const double target = pl->step * (double)j;
+    while (pl->qi < pl->nq - 1 && target >= pl->qstart + pl->qs[pl->qi].val)
+        pl->qstart += pl->qs[pl->qi++].val;
+    const fast_quad *q = &pl->qs[pl->qi];
+    if (!(q->val > 0.0)) return q->t0 + q->dt;
+    double s = (target - pl->qstart) * q->inv_val;
+    if (s > 1.0) s = 1.0;
+    const double t = quad_t(q, s);
+    return t < 1.0 ? t : 1.0;
+}
+
+#define FAST_REPAIR_TRIES 6
+
+/* [a, b] failed with squared bound D2: the model underestimated the deviation there (near
+ * inflections the h^2 law of the sqrt(κ) integral undershoots by up to ~15 %). The segment is
+ * shortened (deviation ~ h^2.5 between the arc's h^2 and an inflection's h^3) until it is
+ * certified, and emitted; the caller resumes from its end towards the next planned point. After
+ * FAST_REPAIR_TRIES the piece is cut into certified equal parts instead (cusps). */
+static cj_status repair(fast_run *fr, double *pa, fpt *P, double b, const fpt *Q, double D2) {
+    const fast_ctx *cx = &fr->cx;
+    const double a = *pa, goal2 = 0.96 * 0.96 * cx->tol_s * cx->tol_s;
+    double h = b - a;
+    for (int it = 0; it < FAST_REPAIR_TRIES; ++it) {
+        double f = pow(goal2 / D2, 0.2);
+        if (!(f <= 0.97)) f = 0.97;
+        if (f < 0.1) f = 0.1;
+        h *= f;
+        const double bn = a + h;
+        if (!(bn > a)) break;
+        fpt R;
+        eval_pd(cx->p, cx->n, bn, &R);
+        D2 = piece_dev2(cx, a, bn, P, &R);
+        if (D2 <= cx->tol_s * cx->tol_s) {
+            if (D2 > fr->worst2) fr->worst2 = D2;
+            const cj_status st = emit_break(fr, bn, &R);
+            if (st) return st;
+            *pa = bn;
+            *P = R;
+            return CJ_OK;
+        }
+    }
+    const cj_status st = certify(fr, a, P, b, Q, 0);
+    if (st) return st;
+    *pa = b;
+    *P = *Q;
+    return CJ_OK;
+}
+
+cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *em, double *bound) {
+    fast_run fr;
+    fast_ctx *cx = &fr.cx;
+    cx->fc = fc;
+    cx->p = fc->hom;
+    cx->n = fc->n;
+    cx->down = ldexp(1.0, -fc->escale);
+    fr.up = ldexp(1.0, fc->escale);
+    fr.em = em;
+    fr.worst2 = 0.0;
+    cx->tol_eff = tol_eff;
+    cx->accept_lo = 0.95 * tol_eff;
+    cx->tol_s = tol_eff * cx->down;
+    cx->lo_s = cx->accept_lo * cx->down;
     double pt[2];
     cj_fl_end(fc, 0, pt);
     if (cj_fl_emit(em, pt, 0.0)) return cj_fl_cap_fail(em, "near-optimal");
-    const double K = cj_fl_wang_coefficient(fc);
-    if (!isfinite(K))
-        return cj_fail(CJ_ERR_RANGE, "flatness bound overflows: coordinates too large");
-    double h = K > 0.0 ? 1.5 / sqrt(K / tol_eff) : 1.0;
-    if (h > 1.0) h = 1.0;
-    double a = 0.0, hprev = 0.0, worst = 0.0;
-    fpt P;
-    eval_pd(cx.p, cx.n, 0.0, &P);
-    while (a < 1.0) {
-        const double hmax = 1.0 - a;
-        if (h > hmax) h = hmax;
-        double lo = 0.0, Dlo = 0.0, hi = 0.0, Dhi = 0.0, blo = 0.0;
-        int have_lo = 0, have_hi = 0;
-        double hacc, Dacc, bacc;
-        fpt Q, Qlo = P, Qacc;
-        for (int it = 0;; ++it) {
-            const double b = h >= hmax ? 1.0 : a + h;
-            if (!(b > a))
-                return cj_fail(CJ_ERR_RANGE,
-                               "tolerance %.3g cannot be reached in double precision near "
-                               "t = %.17g",
-                               tol_eff, a);
-            if (b == 1.0)
-                end_point(&cx, &Q);
-            else
-                eval_pd(cx.p, cx.n, b, &Q);
-            const double D = piece_dev(&cx, a, b, &P, &Q);
-            if (!isfinite(D))
-                return cj_fail(CJ_ERR_RANGE, "flatness bound overflows: coordinates too large");
-            if (D <= cx.tol_s) {
-                if (b == 1.0 || D >= cx.lo_s) {
-                    hacc = h, Dacc = D, bacc = b, Qacc = Q;
-                    break;
-                }
-                lo = h, Dlo = D, blo = b, have_lo = 1, Qlo = Q;
-            } else {
-                hi = h, Dhi = D, have_hi = 1;
-            }
-            if (have_lo && (it >= 40 || (have_hi && hi - lo <= 1e-3 * lo))) {
-                hacc = lo, Dacc = Dlo, bacc = blo, Qacc = Qlo;
-                break;
-            }
-            double hn;
-            if (have_lo && have_hi) {
-                /* secant on sqrt(D), linear in h on curved pieces; kept inside the bracket */
-                const double sl = sqrt(Dlo), sh = sqrt(Dhi);
-                hn = sh > sl ? lo + (hi - lo) * (starget - sl) / (sh - sl) : 0.5 * (lo + hi);
-                const double mar = 0.05 * (hi - lo);
-                if (!(hn > lo + mar && hn < hi - mar)) hn = 0.5 * (lo + hi);
-            } else if (have_lo) {
-                hn = D > 0.0 ? h * starget / sqrt(D) : 4.0 * h;
-                if (hn < 1.02 * h) hn = 1.02 * h;
-                if (hn > 4.0 * h) hn = 4.0 * h;
-            } else {
-                hn = h * starget / sqrt(D);
-                if (!(hn <= 0.9 * h)) hn = 0.9 * h;
-                if (hn < 0.05 * h) hn = 0.05 * h;
-            }
-            h = hn < hmax ? hn : hmax;
-        }
-        if (Dacc > worst) worst = Dacc;
-        if (bacc == 1.0) {
-            cj_fl_end(fc, fc->n, pt);
-        } else {
-            pt[0] = Qacc.x * up;
-            pt[1] = Qacc.y * up;
-        }
-        if (cj_fl_emit(em, pt, bacc)) return cj_fl_cap_fail(em, "near-optimal");
-        a = bacc;
-        P = Qacc;
-        double hn = Dacc > 0.0 && bacc < 1.0 ? hacc * fmin(1.5, sqrt(target / Dacc)) : hacc;
-        if (hprev > 0.0) hn *= fmax(0.7, fmin(1.4, hacc / hprev));
-        hprev = hacc;
-        h = hn;
+    const double *p = cx->p;
+    /* The model: nq equal parameter pieces, as many as the cubic's third difference asks for
+     * (a quadratic models a piece with error ~ |Δ^3 b| h^3 / 20; the pieces need not be within
+     * the tolerance, only close enough for the curvature estimate). */
+    int nq = 1;
+    if (cx->n == 3) {
+        const double ex = p[6] - 3.0 * p[4] + 3.0 * p[2] - p[0];
+        const double ey = p[7] - 3.0 * p[5] + 3.0 * p[3] - p[1];
+        const double e = sqrt(ex * ex + ey * ey) * (1.0 / 20.0);
+        const double r = cbrt(e / (FAST_QUAD_TOL * cx->tol_s));
+        nq = r < 1.0 ? 1 : (r < FAST_MAX_QUADS ? (int)ceil(r) : FAST_MAX_QUADS);
     }
-    *bound = worst * up + fc->slack;
+    fast_quad qs[FAST_MAX_QUADS];
+    fpt brk[FAST_MAX_QUADS + 1];
+    double total = 0.0;
+    eval_pd(p, cx->n, 0.0, &brk[0]);
+    for (int i = 1; i <= nq; ++i) {
+        if (i == nq)
+            end_point(cx, &brk[i]);
+        else
+            eval_pd(p, cx->n, (double)i / nq, &brk[i]);
+        quad_params(&brk[i - 1], &brk[i], cx->n, (double)(i - 1) / nq, 1.0 / nq, &qs[i - 1]);
+        total += qs[i - 1].val;
+    }
+    /* ∫ sqrt(κ) ds = m sqrt(8 dev) for m equal segments of deviation dev */
+    const double per = sqrt(8.0 * FAST_TARGET * cx->tol_s);
+    double mf = ceil(total / per);
+    if (!(mf >= 1.0)) mf = 1.0;
+    if (!(mf <= (double)em->max_points)) return cj_fl_cap_fail(em, "near-optimal");
+    const size_t m = (size_t)mf;
+    fast_plan pl = {qs, nq, total / mf, m, 0, 0.0};
+    double a = 0.0, prev = 0.0;
+    fpt P = brk[0];
+    size_t j = 1;
+    double bj = plan_next(&pl, j);
+    while (a < 1.0) {
+        /* the next planned point at least half a planned step ahead (later ones when a
+         * repair below moved the start forward) */
+        while (bj < 1.0 && !(bj - a >= 0.5 * (bj - prev))) {
+            prev = bj;
+            bj = plan_next(&pl, ++j);
+        }
+        fpt Q;
+        if (bj == 1.0)
+            Q = brk[nq];
+        else
+            eval_pd(p, cx->n, bj, &Q);
+        const double D2 = piece_dev2(cx, a, bj, &P, &Q);
+        if (D2 <= cx->tol_s * cx->tol_s) {
+            if (D2 > fr.worst2) fr.worst2 = D2;
+            const cj_status st = emit_break(&fr, bj, &Q);
+            if (st) return st;
+            a = bj;
+            P = Q;
+            prev = bj;
+            bj = plan_next(&pl, ++j);
+            continue;
+        }
+        const cj_status st = repair(&fr, &a, &P, bj, &Q, D2);
+        if (st) return st;
+    }
+    *bound = sqrt(fr.worst2) * fr.up + fc->slack;
     return CJ_OK;
 }

@@ -4,6 +4,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
+#include "file_internal.h"
+
 #include "casteljau/status.h"
 
 #include <errno.h>
@@ -29,8 +31,13 @@ static int has_quote(const char *s) {
 
 int report_run(report *r) {
     if (!r->dir) return report_fail("no output folder: give -o DIR");
+    /* The destination is checked before any work (exit 2, as every command does): the folder
+     * can be made, and it takes new files. */
     if (mkdir(r->dir, 0777) != 0 && errno != EEXIST)
-        return report_error("cannot create %s: %s", r->dir, strerror(errno));
+        return report_fail("cannot create %s: %s", r->dir, strerror(errno));
+    char probe[4096];
+    snprintf(probe, sizeof probe, "%s/index.html", r->dir);
+    if (cj_file_check_output(probe, "report")) return report_fail("%s", cj_last_error());
     /* the tool itself, for the callgrind runs (argv[0] here is the command name) */
     static char self[4096];
     const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
@@ -50,19 +57,22 @@ int report_run(report *r) {
                  "valgrind cannot run.");
     }
 #endif
-    char path[4096];
-    snprintf(path, sizeof path, "%s/index.html", r->dir);
-    r->html = fopen(path, "w");
-    snprintf(path, sizeof path, "%s/summary.md", r->dir);
-    r->md = fopen(path, "w");
-    snprintf(path, sizeof path, "%s/data.tsv", r->dir);
-    r->tsv = fopen(path, "w");
-    if (!r->html || !r->md || !r->tsv) {
-        if (r->html) fclose(r->html);
-        if (r->md) fclose(r->md);
-        if (r->tsv) fclose(r->tsv);
-        return report_error("cannot write into %s: %s", r->dir, strerror(errno));
+    /* The three files through the atomic writer: each is complete or keeps its old content,
+     * and "wrote ..." is printed only when all three reached the disk. */
+    static const char *const names[3] = {"index.html", "summary.md", "data.tsv"};
+    cj_atomic_file files[3];
+    for (int i = 0; i < 3; ++i) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", r->dir, names[i]);
+        if (cj_atomic_open(&files[i], path)) {
+            const int rc = report_error("%s", cj_last_error());
+            for (int j = 0; j < i; ++j) cj_atomic_abandon(&files[j]);
+            return rc;
+        }
     }
+    r->html = files[0].fp;
+    r->md = files[1].fp;
+    r->tsv = files[2].fp;
     if (cj_font_open(NULL, &r->font) != CJ_OK) {
         report_warn("no font (%s): charts without text", cj_last_error());
         r->font = NULL;
@@ -107,12 +117,16 @@ int report_run(report *r) {
         fprintf(r->md, "%s\n", r->note);
     }
     fprintf(r->html, "</body></html>\n");
-    const int bad = ferror(r->html) | ferror(r->md) | ferror(r->tsv);
-    fclose(r->html);
-    fclose(r->md);
-    fclose(r->tsv);
     cj_font_close(r->font);
-    if (!status && bad) status = report_error("writing into %s failed", r->dir);
+    for (int i = 0; i < 3; ++i) {
+        if (status) {
+            cj_atomic_abandon(&files[i]);
+        } else if (cj_atomic_commit(&files[i])) {
+            status = report_error("%s", cj_last_error());
+            for (int j = i + 1; j < 3; ++j) cj_atomic_abandon(&files[j]);
+            break;
+        }
+    }
     if (!status) printf("wrote %s/index.html, summary.md, data.tsv\n", r->dir);
     return status;
 }

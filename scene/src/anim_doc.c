@@ -6,6 +6,7 @@
 
 #include <assert.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -194,6 +195,14 @@ cj_status cj_anim_doc_attach(cj_anim_doc *doc, cj_scene *scene) {
     return cj_fail(st, "%s: %s", doc->source, msg);
 }
 
+static int finite_state(const cj_springs *cloth) {
+    const size_t n = 3 * cj_springs_count(cloth);
+    const double *x = cj_springs_positions(cloth), *v = cj_springs_velocities(cloth);
+    for (size_t i = 0; i < n; ++i)
+        if (!(fabs(x[i]) <= CJ_SCENE_MAX_COORD) || !isfinite(v[i])) return 0;
+    return 1;
+}
+
 cj_status cj_anim_doc_frame(cj_anim_doc *doc, cj_scene *scene, long frame,
                             cj_stage_report *report) {
     assert(doc && scene);
@@ -215,6 +224,14 @@ cj_status cj_anim_doc_frame(cj_anim_doc *doc, cj_scene *scene, long frame,
                 cj_springs_stats st1;
                 cj_status st = cj_springs_step(doc->cloth, doc->cloth_integrator, h, &st1);
                 if (st != CJ_OK && st != CJ_ERR_CAP) return st;
+                if (!finite_state(doc->cloth))
+                    return cj_fail(
+                        CJ_ERR_NONFINITE,
+                        "%s: the cloth blew up (positions beyond +-1e9 or not finite) in frame "
+                        "%ld: its step 1/(fps * cloth.steps_per_frame) = %g s is too "
+                        "long for cloth.stiffness; raise cloth.steps_per_frame or use "
+                        "\"integrator\": \"implicit_euler\"",
+                        doc->source, doc->sim_frame + 1, h);
                 sum.seconds_forces += st1.seconds_forces;
                 sum.seconds_solve += st1.seconds_solve;
                 sum.seconds_collide += st1.seconds_collide;
@@ -228,7 +245,12 @@ cj_status cj_anim_doc_frame(cj_anim_doc *doc, cj_scene *scene, long frame,
             for (int s = 0; s < doc->particle_steps; ++s) {
                 cj_particles_stats p1;
                 cj_status st = cj_particles_step(doc->particles, h, &p1);
-                if (st != CJ_OK) return st;
+                if (st != CJ_OK) {
+                    char msg[400];
+                    snprintf(msg, sizeof msg, "%s", cj_last_error());
+                    return cj_fail(st, "%s: particles, frame %ld: %s", doc->source,
+                                   doc->sim_frame + 1, msg);
+                }
                 psum.emitted += p1.emitted;
                 psum.dropped += p1.dropped;
                 psum.died += p1.died;
@@ -310,7 +332,12 @@ cj_status cj_anim_doc_load_state(cj_anim_doc *doc, FILE *f) {
         !get_u64(f, &n))
         return cj_fail(CJ_ERR_PARSE, "not an animation checkpoint (magic CJANIM01)");
     const size_t want = doc->cloth ? cj_springs_count(doc->cloth) * 3 : 0;
-    if (n != want || frame > 100000000)
+    if (frame > 10000000)
+        return cj_fail(CJ_ERR_PARSE,
+                       "checkpoint of frame %llu, beyond the last frame an animation can have "
+                       "(10000000): a damaged or foreign file",
+                       (unsigned long long)frame);
+    if (n != want)
         return cj_fail(CJ_ERR_PARSE,
                        "checkpoint of another animation (%llu cloth coordinates, "
                        "this one has %zu)",
@@ -325,6 +352,13 @@ cj_status cj_anim_doc_load_state(cj_anim_doc *doc, FILE *f) {
         }
         memcpy(&buf[i], &u, sizeof u);
     }
+    for (size_t i = 0; i < 2 * want; ++i)
+        if (!isfinite(buf[i])) {
+            const char *what = isnan(buf[i]) ? "NaN" : "infinite";
+            free(buf);
+            return cj_fail(CJ_ERR_PARSE, "cloth vertex %zu: %s coordinate %zu is %s",
+                           (i % want) / 3, i < want ? "position" : "velocity", i % 3, what);
+        }
     uint64_t has_p = 0;
     if (!get_u64(f, &has_p) || has_p != (doc->particles ? 1u : 0u)) {
         free(buf);

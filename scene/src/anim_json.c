@@ -5,6 +5,8 @@
 #include "casteljau/catmull_rom.h"
 #include "anim_json_internal.h"
 #include "error_internal.h"
+#include "file_internal.h"
+#include "json_depth_internal.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -223,12 +225,13 @@ static cj_status read_cloth(actx *c, cj_anim_doc *doc, const cJSON *cj,
     if (kj && (st = aj_nums(c, kj, "cloth.stiffness", 3, k, 3, NULL))) return st;
     const cJSON *cc = cJSON_GetObjectItemCaseSensitive(cj, "color");
     if (cc && (st = aj_nums(c, cc, "cloth.color", 3, col, 3, NULL))) return st;
-    if ((st = aj_vec3(c, cj, "cloth", "corner", corner)) ||
-        (st = aj_vec3(c, cj, "cloth", "edge_u", eu)) ||
-        (st = aj_vec3(c, cj, "cloth", "edge_v", ev)) ||
+    if ((st = aj_vec3_in(c, cj, "cloth", "corner", CJ_ANIM_MAX_COORD, corner)) ||
+        (st = aj_vec3_in(c, cj, "cloth", "edge_u", CJ_ANIM_MAX_COORD, eu)) ||
+        (st = aj_vec3_in(c, cj, "cloth", "edge_v", CJ_ANIM_MAX_COORD, ev)) ||
         (st = aj_num(c, cj, "cloth", "mass", 0, &mass)) ||
         (st = aj_num(c, cj, "cloth", "damping", 0, &damping)) ||
-        (st = aj_num(c, cj, "cloth", "steps_per_frame", 1, &spf)) ||
+        (st = aj_num_in(c, cj, "cloth", "steps_per_frame", 1, CJ_ANIM_MAX_STEPS_PER_FRAME, 1,
+                        &spf)) ||
         (st = aj_pick(c, cj, "cloth", "integrator", INTEGRATORS, &integ)))
         return st;
     const cJSON *nm = cJSON_GetObjectItemCaseSensitive(cj, "name");
@@ -240,7 +243,13 @@ static cj_status read_cloth(actx *c, cj_anim_doc *doc, const cJSON *cj,
     const cJSON *pj = cJSON_GetObjectItemCaseSensitive(cj, "pinned");
     if (pj && (st = aj_nums(c, pj, "cloth.pinned", 0, pins, 64, &npins))) return st;
     int ipins[64];
-    for (size_t i = 0; i < npins; ++i) ipins[i] = (int)pins[i];
+    for (size_t i = 0; i < npins; ++i) {
+        if (!(pins[i] >= 0 && pins[i] < grid[0] * grid[1]) || pins[i] != floor(pins[i]))
+            return aj_jfail(c, pj, CJ_ERR_RANGE,
+                            "cloth.pinned[%zu] = %g is not a vertex index in 0..%g", i, pins[i],
+                            grid[0] * grid[1] - 1);
+        ipins[i] = (int)pins[i];
+    }
     st = cj_springs_create_cloth((int)grid[0], (int)grid[1], corner, eu, ev, mass, k[0], k[1], k[2],
                                  damping, ipins, npins, extra, NULL, &doc->cloth);
     if (st) {
@@ -285,15 +294,17 @@ static cj_status read_emitter(actx *c, const cJSON *e, const char *path, cj_emit
                                     "jitter_radius", "start",     "stop",     NULL};
     *out = cj_emitter_default();
     cj_status st;
-    if ((st = aj_keys(c, e, path, K)) || (st = aj_vec3(c, e, path, "position", out->position)) ||
-        (st = aj_vec3(c, e, path, "direction", out->direction)) ||
+    if ((st = aj_keys(c, e, path, K)) ||
+        (st = aj_vec3_in(c, e, path, "position", CJ_ANIM_MAX_COORD, out->position)) ||
+        (st = aj_vec3_in(c, e, path, "direction", CJ_ANIM_MAX_COORD, out->direction)) ||
         (st = aj_num(c, e, path, "spread", 0, &out->spread)) ||
-        (st = aj_num(c, e, path, "speed", 0, &out->speed)) ||
+        (st = aj_num_in(c, e, path, "speed", 0, CJ_ANIM_MAX_SPEED, 0, &out->speed)) ||
         (st = aj_num(c, e, path, "speed_jitter", 0, &out->speed_jitter)) ||
-        (st = aj_num(c, e, path, "rate", 0, &out->rate)) ||
-        (st = aj_num(c, e, path, "lifetime", 0, &out->lifetime)) ||
+        (st = aj_num_in(c, e, path, "rate", 0, CJ_ANIM_MAX_EMIT_RATE, 0, &out->rate)) ||
+        (st = aj_num_in(c, e, path, "lifetime", 0, CJ_ANIM_MAX_LIFETIME, 0, &out->lifetime)) ||
         (st = aj_num(c, e, path, "lifetime_jitter", 0, &out->lifetime_jitter)) ||
-        (st = aj_num(c, e, path, "jitter_radius", 0, &out->jitter_radius)) ||
+        (st = aj_num_in(c, e, path, "jitter_radius", 0, CJ_ANIM_MAX_COORD, 0,
+                        &out->jitter_radius)) ||
         (st = aj_num(c, e, path, "start", 0, &out->start)) ||
         (st = aj_num(c, e, path, "stop", 0, &out->stop)))
         return st;
@@ -312,11 +323,13 @@ static cj_status read_particles(actx *c, cj_anim_doc *doc, const cJSON *pj) {
     double cap = 200, seed = 1, spf = 1, col[3] = {1, 0.8, 0.2};
     doc->particle_radius = 0.04;
     if ((st = aj_num(c, pj, "particles", "capacity", 1, &cap)) ||
-        (st = aj_num(c, pj, "particles", "seed", 0, &seed)) ||
+        (st = aj_num_in(c, pj, "particles", "seed", 0, 9007199254740992.0, 1, &seed)) ||
         (st = aj_num(c, pj, "particles", "restitution", 0, &d->restitution)) ||
-        (st = aj_vec3(c, pj, "particles", "wind", d->wind)) ||
-        (st = aj_num(c, pj, "particles", "steps_per_frame", 1, &spf)) ||
-        (st = aj_num(c, pj, "particles", "radius", 0, &doc->particle_radius)))
+        (st = aj_vec3_in(c, pj, "particles", "wind", CJ_ANIM_MAX_SPEED, d->wind)) ||
+        (st = aj_num_in(c, pj, "particles", "steps_per_frame", 1, CJ_ANIM_MAX_STEPS_PER_FRAME, 1,
+                        &spf)) ||
+        (st = aj_num_in(c, pj, "particles", "radius", 0, CJ_ANIM_MAX_COORD, 0,
+                        &doc->particle_radius)))
         return st;
     if (cap > 5000 || cap != floor(cap))
         return aj_jfail(c, cJSON_GetObjectItemCaseSensitive(pj, "capacity"), CJ_ERR_RANGE,
@@ -356,6 +369,7 @@ static cj_status read_particles(actx *c, cj_anim_doc *doc, const cJSON *pj) {
         snprintf(path, sizeof path, "particles.emitters[%zu]", i);
         if (i >= 16) return aj_jfail(c, e, CJ_ERR_PARSE, "at most 16 emitters");
         if ((st = read_emitter(c, e, path, &doc->emitters[i]))) return st;
+        doc->emitter_lines[i] = aj_line(c, e);
     }
     d->capacity = (size_t)cap;
     d->seed = (uint64_t)seed;
@@ -390,10 +404,10 @@ static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
             snprintf(doc->scene_path, sizeof doc->scene_path, "%s/%s", c->base_dir,
                      sc->valuestring);
     }
-    if ((st = aj_num(c, root, "document", "fps", -1e300, &doc->fps))) return st;
-    if (!(doc->fps > 0.0) || doc->fps > 10000)
-        return aj_jfail(c, cJSON_GetObjectItemCaseSensitive(root, "fps"), CJ_ERR_RANGE,
-                        "fps must be in (0, 10000]");
+    if ((st =
+             aj_num_in(c, root, "document", "fps", CJ_ANIM_MIN_FPS, CJ_ANIM_MAX_FPS, 0, &doc->fps)))
+        return st;
+    doc->fps_line = aj_line(c, cJSON_GetObjectItemCaseSensitive(root, "fps"));
     const cJSON *fr = cJSON_GetObjectItemCaseSensitive(root, "frames");
     if (fr) {
         double f[2];
@@ -420,8 +434,8 @@ static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
     cj_plane_collider pl[8];
     memset(sph, 0, sizeof sph);
     memset(pl, 0, sizeof pl);
-    if ((st = aj_vec3(c, root, "document", "gravity", extra.gravity)) ||
-        (st = aj_num(c, root, "document", "drag", 0, &extra.drag)))
+    if ((st = aj_vec3_in(c, root, "document", "gravity", CJ_ANIM_MAX_GRAVITY, extra.gravity)) ||
+        (st = aj_num_in(c, root, "document", "drag", 0, 1e6, 0, &extra.drag)))
         return st;
     const cJSON *co = cJSON_GetObjectItemCaseSensitive(root, "colliders");
     if (co && (st = read_colliders(c, co, sph, &extra.sphere_count, pl, &extra.plane_count)))
@@ -441,6 +455,25 @@ static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
     doc->pdesc.plane_count = extra.plane_count;
     const cJSON *pj = cJSON_GetObjectItemCaseSensitive(root, "particles");
     if (pj && (st = read_particles(c, doc, pj))) return st;
+    return cj_anim_doc_set_fps(doc, doc->fps, NULL);
+}
+
+cj_status cj_anim_doc_set_fps(cj_anim_doc *doc, double fps, const char *origin) {
+    if (!(fps >= CJ_ANIM_MIN_FPS && fps <= CJ_ANIM_MAX_FPS))
+        return cj_fail(CJ_ERR_RANGE, "%s %g must be in [%g, %g]", origin ? origin : "fps", fps,
+                       CJ_ANIM_MIN_FPS, CJ_ANIM_MAX_FPS);
+    const int spf = doc->particle_steps > 0 ? doc->particle_steps : 1;
+    for (size_t i = 0; doc->has_particles && i < doc->pdesc.emitter_count; ++i) {
+        const double per_step = doc->emitters[i].rate / (fps * spf);
+        if (per_step > CJ_ANIM_MAX_EMIT_PER_STEP)
+            return cj_fail(CJ_ERR_RANGE,
+                           "%s:%d: particles.emitters[%zu].rate %g at %s %g and "
+                           "particles.steps_per_frame %d emits %g particles per step (at most "
+                           "%g: lower the rate, raise fps or steps_per_frame)",
+                           doc->source, doc->emitter_lines[i], i, doc->emitters[i].rate,
+                           origin ? origin : "fps", fps, spf, per_step, CJ_ANIM_MAX_EMIT_PER_STEP);
+    }
+    doc->fps = fps;
     return CJ_OK;
 }
 
@@ -455,6 +488,11 @@ cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base
         const char *at = cJSON_GetErrorPtr();
         int line = 1;
         for (const char *s = text; at && s < at && *s; ++s) line += *s == '\n';
+        if (cj_json_depth_at_(text, at) >= CJSON_NESTING_LIMIT)
+            return cj_fail(CJ_ERR_PARSE,
+                           "%s:%d: JSON nested deeper than %d levels (the reader's "
+                           "limit)",
+                           c.name, line, CJSON_NESTING_LIMIT);
         return cj_fail(CJ_ERR_PARSE, "%s:%d: JSON syntax error", c.name, line);
     }
     aj_lines(&c, text, root);
@@ -485,32 +523,14 @@ cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base
 }
 
 cj_status cj_anim_doc_load(const char *path, cj_anim_doc **out) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return cj_fail(CJ_ERR_IO, "%s: cannot open", path);
     char *buf = NULL;
-    size_t n = 0, cap = 0;
-    for (;;) {
-        if (n + 4096 + 1 > cap) {
-            cap = cap ? 2 * cap : 65536;
-            char *b = realloc(buf, cap);
-            if (!b) {
-                free(buf);
-                fclose(f);
-                return cj_fail(CJ_ERR_NOMEM, "%s: no memory", path);
-            }
-            buf = b;
-        }
-        const size_t r = fread(buf + n, 1, 4096, f);
-        n += r;
-        if (r < 4096) break;
-    }
-    const int err = ferror(f);
-    fclose(f);
-    if (err) {
+    size_t n = 0;
+    cj_status rs = cj_file_read_all(path, CJ_FILE_MAX_BYTES, "animation document", &buf, &n);
+    if (rs) return rs;
+    if (strlen(buf) != n) {
         free(buf);
-        return cj_fail(CJ_ERR_IO, "%s: read error", path);
+        return cj_fail(CJ_ERR_PARSE, "%s: the file contains a NUL byte (not JSON text)", path);
     }
-    buf[n] = 0;
     char dir[1024];
     snprintf(dir, sizeof dir, "%s", path);
     char *slash = strrchr(dir, '/');

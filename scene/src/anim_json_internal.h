@@ -33,6 +33,14 @@ cj_status aj_keys(const actx *c, const cJSON *obj, const char *path, const char 
 /* An optional finite number >= lo (missing: *out unchanged). */
 cj_status aj_num(const actx *c, const cJSON *obj, const char *path, const char *key, double lo,
                  double *out);
+/* An optional finite number in [lo, hi], an integer when `integer` (missing: unchanged). Every
+ * simulation parameter is read through it, so that no value implies unbounded work or a
+ * float-to-int conversion out of range. */
+cj_status aj_num_in(const actx *c, const cJSON *obj, const char *path, const char *key, double lo,
+                    double hi, int integer, double *out);
+/* An optional vector of 3 finite numbers whose length is at most bound. */
+cj_status aj_vec3_in(const actx *c, const cJSON *obj, const char *path, const char *key,
+                     double bound, double *out);
 /* An array of exactly len numbers (len 0: up to cap) into v; *count (may be NULL) its length. */
 cj_status aj_nums(const actx *c, const cJSON *n, const char *path, int len, double *v, size_t cap,
                   size_t *count);

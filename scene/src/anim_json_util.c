@@ -3,6 +3,7 @@
 #include "anim_json_internal.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,8 +23,9 @@ static void push_scan(actx *c, int line) {
 
 static const char *scan_value(actx *c, const char *s, int *line, int depth);
 
+/* Whitespace as cJSON reads it: every byte from 1 to 32 (so "\x12" between values too). */
 static const char *skip_ws(const char *s, int *line) {
-    while (*s == ' ' || *s == '\t' || *s == '\n' || *s == '\r') {
+    while (*s && (unsigned char)*s <= 32) {
         if (*s == '\n') ++*line;
         ++s;
     }
@@ -36,10 +38,29 @@ static const char *skip_string(const char *s) {
     return *s ? s + 1 : s;
 }
 
+/* Skips one whole value (deeper than the scan records), counting its lines. */
+static const char *skip_value(const char *s, int *line) {
+    int depth = 0;
+    do {
+        if (*s == '"') {
+            s = skip_string(s);
+            continue;
+        }
+        if (*s == '{' || *s == '[') ++depth;
+        if (*s == '}' || *s == ']') --depth;
+        if (*s == '\n') ++*line;
+        if (*s) ++s;
+    } while (*s && depth > 0);
+    return s;
+}
+
 static const char *scan_value(actx *c, const char *s, int *line, int depth) {
     s = skip_ws(s, line);
     push_scan(c, *line);
-    if (depth > 200) return s;
+    /* cJSON accepted the text, so it is nested at most CJSON_NESTING_LIMIT deep; the guard only
+     * keeps a scan of any other text finite (it must consume the value, or the caller's loop
+     * would never advance). */
+    if (depth > CJSON_NESTING_LIMIT) return skip_value(s, line);
     if (*s == '{' || *s == '[') {
         const char close = *s == '{' ? '}' : ']';
         const int obj = *s == '{';
@@ -58,10 +79,10 @@ static const char *scan_value(actx *c, const char *s, int *line, int depth) {
         }
     }
     if (*s == '"') return skip_string(s);
-    while (*s && *s != ',' && *s != '}' && *s != ']' && *s != ' ' && *s != '\n' && *s != '\t' &&
-           *s != '\r')
-        ++s;
-    return s;
+    const char *start = s;
+    while (*s && *s != ',' && *s != '}' && *s != ']' && (unsigned char)*s > 32) ++s;
+    /* always move on (a stray closing bracket), so that no caller's loop can stall */
+    return s == start && *s ? s + 1 : s;
 }
 
 static void pair_nodes(actx *c, const cJSON *n, size_t *k) {
@@ -80,10 +101,42 @@ static void pair_nodes(actx *c, const cJSON *n, size_t *k) {
     for (const cJSON *ch = n->child; ch; ch = ch->next) pair_nodes(c, ch, k);
 }
 
+/* Lines are looked up by node for every channel and emitter: the table is sorted by node
+ * address once (aj_lines), so that each lookup is a binary search, not a walk through every
+ * value of the document (quadratic for a document of many channels). */
+typedef struct node_line {
+    const cJSON *node;
+    int line;
+} node_line;
+
+static int by_node(const void *a, const void *b) {
+    const uintptr_t x = (uintptr_t)((const node_line *)a)->node,
+                    y = (uintptr_t)((const node_line *)b)->node;
+    return x < y ? -1 : x > y;
+}
+
+static void sort_lines(actx *c) {
+    node_line *t = malloc(sizeof *t * (c->n ? c->n : 1));
+    if (!t) {
+        c->n = 0; /* no lines rather than a slow lookup */
+        return;
+    }
+    for (size_t i = 0; i < c->n; ++i) t[i] = (node_line){c->nodes[i], c->lines[i]};
+    qsort(t, c->n, sizeof *t, by_node);
+    for (size_t i = 0; i < c->n; ++i) c->nodes[i] = t[i].node, c->lines[i] = t[i].line;
+    free(t);
+}
+
 static int line_of(const actx *c, const cJSON *n) {
-    for (size_t i = 0; i < c->n; ++i)
-        if (c->nodes[i] == n) return c->lines[i];
-    return 0;
+    size_t lo = 0, hi = c->n;
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if ((uintptr_t)c->nodes[mid] < (uintptr_t)n)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < c->n && c->nodes[lo] == n ? c->lines[lo] : 0;
 }
 
 int aj_line(const actx *c, const cJSON *n) {
@@ -138,6 +191,33 @@ cj_status aj_num(const actx *c, const cJSON *obj, const char *path, const char *
     if (n->valuedouble < lo)
         return aj_jfail(c, n, CJ_ERR_RANGE, "%s.%s must be >= %g", path, key, lo);
     *out = n->valuedouble;
+    return CJ_OK;
+}
+
+cj_status aj_num_in(const actx *c, const cJSON *obj, const char *path, const char *key, double lo,
+                    double hi, int integer, double *out) {
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!n) return CJ_OK;
+    if (!cJSON_IsNumber(n) || !isfinite(n->valuedouble))
+        return aj_jfail(c, n, CJ_ERR_PARSE, "%s.%s must be a finite number", path, key);
+    const double v = n->valuedouble;
+    if (!(v >= lo && v <= hi) || (integer && v != floor(v)))
+        return aj_jfail(c, n, CJ_ERR_RANGE, "%s.%s = %g must be %s in [%g, %g]", path, key, v,
+                        integer ? "an integer" : "a number", lo, hi);
+    *out = v;
+    return CJ_OK;
+}
+
+cj_status aj_vec3_in(const actx *c, const cJSON *obj, const char *path, const char *key,
+                     double bound, double *out) {
+    double v[3] = {out[0], out[1], out[2]};
+    cj_status st = aj_vec3(c, obj, path, key, v);
+    if (st) return st;
+    const double len = hypot(hypot(v[0], v[1]), v[2]); /* no overflow for 1e200 */
+    if (!(len <= bound))
+        return aj_jfail(c, cJSON_GetObjectItemCaseSensitive(obj, key), CJ_ERR_RANGE,
+                        "%s.%s has length %g, over the limit of %g", path, key, len, bound);
+    memcpy(out, v, sizeof v);
     return CJ_OK;
 }
 
@@ -227,4 +307,5 @@ void aj_lines(actx *c, const char *text, const cJSON *root) {
     scan_value(c, text, &line, 0);
     size_t k = 0;
     pair_nodes(c, root, &k);
+    sort_lines(c);
 }

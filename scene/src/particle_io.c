@@ -6,6 +6,7 @@
 #include "particle_internal.h"
 
 #include <assert.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -76,6 +77,11 @@ cj_status cj_particles_load(cj_particles *p, FILE *f) {
                        (unsigned long long)count, (unsigned long long)cap);
     for (int k = 0; k < 4; ++k)
         if (!get_u64(f, &rng[k])) return cj_fail(CJ_ERR_PARSE, "particle checkpoint truncated");
+    /* xoshiro256's one fixed point: from it every draw is 0 and the emitter's rejection
+     * sampling would never end (found by fuzz_checkpoint) */
+    if (!(rng[0] | rng[1] | rng[2] | rng[3]))
+        return cj_fail(CJ_ERR_PARSE, "particle checkpoint: the random generator's state is all "
+                                     "zero, a state it never reaches");
     /* read everything into scratch first so a truncated file changes nothing */
     const size_t nd = (size_t)ne + 8 * (size_t)count;
     double *buf = malloc(sizeof(double) * (nd ? nd : 1));
@@ -86,6 +92,32 @@ cj_status cj_particles_load(cj_particles *p, FILE *f) {
             return cj_fail(CJ_ERR_PARSE, "particle checkpoint truncated at value %zu of %zu", i,
                            nd);
         }
+    const char *bad = NULL;
+    size_t which = 0;
+    if (!(t >= 0.0 && t < HUGE_VAL)) bad = "time";
+    for (size_t j = 0; !bad && j < ne; ++j)
+        if (!(buf[j] >= 0.0 && buf[j] < 1.0)) bad = "emitter fraction (emit_acc)", which = j;
+    for (size_t i = 0; !bad && i < count; ++i) {
+        const double *r = buf + ne + 8 * i;
+        which = i;
+        if (!(isfinite(r[0]) && isfinite(r[1]) && isfinite(r[2])))
+            bad = "position";
+        else if (!(isfinite(r[3]) && isfinite(r[4]) && isfinite(r[5])))
+            bad = "velocity";
+        else if (!(r[6] >= 0.0 && r[6] < HUGE_VAL))
+            bad = "age";
+        else if (!(r[7] > 0.0 && r[7] < HUGE_VAL))
+            bad = "life";
+    }
+    if (bad) {
+        free(buf);
+        if (!strcmp(bad, "time"))
+            return cj_fail(CJ_ERR_PARSE, "particle checkpoint: time %g is not finite and >= 0", t);
+        return cj_fail(CJ_ERR_PARSE,
+                       "particle checkpoint: %s %zu: %s is NaN, infinite or out of its "
+                       "range",
+                       strchr(bad, '(') ? "emitter" : "particle", which, bad);
+    }
     memcpy(p->emit_acc, buf, sizeof(double) * (size_t)ne);
     const double *q = buf + ne;
     for (size_t i = 0; i < count; ++i, q += 8) {

@@ -325,15 +325,27 @@ cj_status cj_particles_step(cj_particles *p, double h, cj_particles_stats *stats
     cj_particles_stats st;
     memset(&st, 0, sizeof st);
     double t0 = cj_clock_seconds();
+    /* Bounded work whatever the rate, step or restored state: a step in which one emitter
+     * would emit more than CJ_PARTICLES_MAX_EMIT_PER_STEP particles is refused, not looped over,
+     * and refused before any emitter has changed anything. */
+    for (size_t j = 0; j < p->d.emitter_count; ++j) {
+        const cj_emitter *e = &p->emitters[j];
+        const int active = p->t >= e->start && (e->stop <= e->start || p->t < e->stop);
+        const double acc = p->emit_acc[j] + (active ? e->rate * h : 0.0);
+        if (!(acc < CJ_PARTICLES_MAX_EMIT_PER_STEP + 1.0))
+            return cj_fail(CJ_ERR_RANGE,
+                           "emitter %zu would emit %g particles in one step of %g s (at most "
+                           "%g: lower its rate or shorten the step)",
+                           j, acc, h, CJ_PARTICLES_MAX_EMIT_PER_STEP);
+    }
     for (size_t j = 0; j < p->d.emitter_count; ++j) {
         const cj_emitter *e = &p->emitters[j];
         const int active = p->t >= e->start && (e->stop <= e->start || p->t < e->stop);
         if (!active) continue;
-        p->emit_acc[j] += e->rate * h;
-        while (p->emit_acc[j] >= 1.0) {
-            p->emit_acc[j] -= 1.0;
-            spawn(p, e, &st);
-        }
+        const double acc = p->emit_acc[j] + e->rate * h;
+        const long n = (long)floor(acc);
+        p->emit_acc[j] = acc - (double)n;
+        for (long k = 0; k < n; ++k) spawn(p, e, &st);
     }
     double t1 = cj_clock_seconds();
     st.seconds_emit = t1 - t0;

@@ -41,11 +41,29 @@ static cj_status in01(const char *path, const char *field, double v) {
     return CJ_OK;
 }
 
+/* Coordinates, lengths and directions: finite and within CJ_SCENE_MAX_COORD, so that no
+ * product a renderer forms (squares, clip coordinates, float radiance) overflows. */
+static cj_status coord(const char *path, const char *field, int k, double v) {
+    if (!isfinite(v)) {
+        if (k < 0) return cj_fail(CJ_ERR_NONFINITE, "%s.%s is not finite", path, field);
+        return cj_fail(CJ_ERR_NONFINITE, "%s.%s[%d] is not finite", path, field, k);
+    }
+    if (!(fabs(v) <= CJ_SCENE_MAX_COORD)) {
+        if (k < 0)
+            return cj_fail(CJ_ERR_RANGE, "%s.%s = %g is beyond the limit of +-%g", path, field, v,
+                           CJ_SCENE_MAX_COORD);
+        return cj_fail(CJ_ERR_RANGE, "%s.%s[%d] = %g is beyond the limit of +-%g", path, field, k,
+                       v, CJ_SCENE_MAX_COORD);
+    }
+    return CJ_OK;
+}
+
 static cj_status vec(const char *path, const char *field, cj_vec3 v) {
     const double c[3] = {v.x, v.y, v.z};
-    for (int k = 0; k < 3; ++k)
-        if (!isfinite(c[k]))
-            return cj_fail(CJ_ERR_NONFINITE, "%s.%s[%d] is not finite", path, field, k);
+    for (int k = 0; k < 3; ++k) {
+        cj_status st = coord(path, field, k, c[k]);
+        if (st) return st;
+    }
     return CJ_OK;
 }
 
@@ -130,6 +148,11 @@ cj_status cj_scene_check_light_(const cj_light *l, const char *p) {
         return cj_fail(CJ_ERR_RANGE, "%s.kind %d is not a light kind", p, (int)l->kind);
     TRY(rgb(p, "color", l->color, -1.0));
     TRY(ge(p, "intensity", l->intensity, 0.0));
+    if (!(l->intensity * fmax(l->color.r, fmax(l->color.g, l->color.b)) <= CJ_SCENE_MAX_RADIANCE))
+        return cj_fail(CJ_ERR_RANGE,
+                       "%s.intensity %g (times its colour) is over the limit of %g: radiance "
+                       "would overflow",
+                       p, l->intensity, CJ_SCENE_MAX_RADIANCE);
     TRY(flag(p, "casts_shadows", l->casts_shadows));
     switch (l->kind) {
     case CJ_LIGHT_AMBIENT:
@@ -209,7 +232,7 @@ cj_status cj_scene_check_material_(const cj_material *m, size_t ntextures, const
     TRY(in01(p, "transmission", m->transmission));
     TRY(ge(p, "ior", m->ior, 1.0));
     TRY(ge(p, "glossiness", m->glossiness, 0.0));
-    TRY(rgb(p, "emission", m->emission, -1.0));
+    TRY(rgb(p, "emission", m->emission, CJ_SCENE_MAX_RADIANCE));
     TRY(flag(p, "receives_shadows", m->receives_shadows));
     return CJ_OK;
 }
@@ -219,8 +242,42 @@ static cj_status check_points(const char *p, const char *field, const double *pt
     if (!pts) return cj_fail(CJ_ERR_ARGUMENT, "%s.%s is missing", p, field);
     for (size_t i = 0; i < count; ++i)
         for (int k = 0; k < dim; ++k)
-            if (!isfinite(pts[i * (size_t)dim + (size_t)k]))
-                return cj_fail(CJ_ERR_NONFINITE, "%s.%s[%zu][%d] is not finite", p, field, i, k);
+            if (!(fabs(pts[i * (size_t)dim + (size_t)k]) <= CJ_SCENE_MAX_COORD)) {
+                const double v = pts[i * (size_t)dim + (size_t)k];
+                if (!isfinite(v))
+                    return cj_fail(CJ_ERR_NONFINITE, "%s.%s[%zu][%d] is not finite", p, field, i,
+                                   k);
+                return cj_fail(CJ_ERR_RANGE, "%s.%s[%zu][%d] = %g is beyond the limit of +-%g", p,
+                               field, i, k, v, CJ_SCENE_MAX_COORD);
+            }
+    return CJ_OK;
+}
+
+/* A control net whose points all lie on one line (or coincide) spans no area: the patch has
+ * none either. The rasterizer's tessellator would find it; the tracer would not, so both are
+ * told here. */
+static cj_status check_net_area(const char *p, const cj_patch *q) {
+    const size_t n = cj_patch_point_count(q);
+    const double *a = q->pts;
+    double far = 0.0, d[3] = {0, 0, 0};
+    for (size_t i = 1; i < n; ++i) {
+        const double e[3] = {q->pts[3 * i] - a[0], q->pts[3 * i + 1] - a[1],
+                             q->pts[3 * i + 2] - a[2]};
+        const double l = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+        if (l > far) far = l, memcpy(d, e, sizeof d);
+    }
+    double best = 0.0;
+    for (size_t i = 1; far > 0.0 && i < n; ++i) {
+        const double e[3] = {q->pts[3 * i] - a[0], q->pts[3 * i + 1] - a[1],
+                             q->pts[3 * i + 2] - a[2]};
+        const double c[3] = {d[1] * e[2] - d[2] * e[1], d[2] * e[0] - d[0] * e[2],
+                             d[0] * e[1] - d[1] * e[0]};
+        best = fmax(best, sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
+    }
+    if (!(best > 1e-12 * far * far))
+        return cj_fail(CJ_ERR_DEGENERATE,
+                       "%s is degenerate: its control points %s, so the surface has no area", p,
+                       far > 0.0 ? "lie on one line" : "all coincide");
     return CJ_OK;
 }
 
@@ -351,12 +408,14 @@ cj_status cj_scene_check_geometry_(const cj_geometry *g, const char *p) {
             snprintf(sub, sizeof sub, "%s.patches[%zu]", p, i);
             TRY(check_points(sub, "points", q->pts, cj_patch_point_count(q), 3));
             TRY(check_weights(sub, q->weights, cj_patch_point_count(q)));
+            TRY(check_net_area(sub, q));
         }
         return CJ_OK;
     case CJ_GEOM_QUADRIC:
         return check_quadric(&g->u.quadric, p);
     case CJ_GEOM_SPHERE:
         TRY(vec(p, "center", g->u.sphere.center));
+        TRY(coord(p, "radius", -1, g->u.sphere.radius));
         return gt(p, "radius", g->u.sphere.radius, 0.0);
     case CJ_GEOM_TORUS: {
         cj_torus t;

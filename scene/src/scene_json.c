@@ -3,6 +3,8 @@
  * it, so it is valid JSON) and records the line of every value in document order; a node's
  * position in a pre-order walk of the cJSON tree is its index in that list. */
 #include "scene_json_internal.h"
+#include "file_internal.h"
+#include "json_depth_internal.h"
 
 #include <assert.h>
 #include <errno.h>
@@ -531,6 +533,10 @@ cj_status cj_scene_parse_json_ex(const char *text, const char *name, const char 
             else
                 col++;
         }
+        if (cj_json_depth_at_(text, end) >= CJSON_NESTING_LIMIT)
+            return cj_fail(CJ_ERR_PARSE,
+                           "%s:%d:%d: JSON nested deeper than %d levels (the reader's limit)", name,
+                           line, col, CJSON_NESTING_LIMIT);
         return cj_fail(CJ_ERR_PARSE, "%s:%d:%d: JSON syntax error (line %d, column %d)", name, line,
                        col, line, col);
     }
@@ -563,33 +569,10 @@ cj_status cj_scene_parse_json(const char *text, const char *name, const char *ba
 cj_status cj_scene_load_json_ex(const char *path, const cj_scene_json_options *options,
                                 const cj_allocator *alloc, cj_scene **out) {
     assert(path && out);
-    FILE *f = fopen(path, "rb");
-    if (!f) return cj_fail(CJ_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
     char *text = NULL;
-    size_t len = 0, cap = 0;
-    for (;;) {
-        if (len + 4096 + 1 > cap) {
-            size_t nc = cap ? 2 * cap : 65536;
-            char *d = realloc(text, nc);
-            if (!d) {
-                free(text);
-                fclose(f);
-                return cj_fail(CJ_ERR_NOMEM, "out of memory reading '%s'", path);
-            }
-            text = d;
-            cap = nc;
-        }
-        size_t got = fread(text + len, 1, cap - len - 1, f);
-        len += got;
-        if (got == 0) break;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(text);
-        return cj_fail(CJ_ERR_IO, "cannot read '%s'", path);
-    }
-    text[len] = '\0';
+    size_t len = 0;
+    cj_status rs = cj_file_read_all(path, CJ_FILE_MAX_BYTES, "scene", &text, &len);
+    if (rs) return rs;
     if (strlen(text) != len) {
         free(text);
         return cj_fail(CJ_ERR_PARSE, "%s: the file contains a NUL byte (not JSON text)", path);

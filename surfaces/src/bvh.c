@@ -1,6 +1,8 @@
 /* Bounding volume hierarchy: binned SAH build, closest/any-hit traversal (see bvh.h). */
 #include "casteljau/bvh.h"
 #include "aabb_internal.h"
+#include "bvh_internal.h"
+#include "ray_triangle_internal.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
 
@@ -203,12 +205,18 @@ cj_status cj_bvh_build(const cj_aabb *boxes, size_t count, const cj_allocator *a
     b->sah_cost = cost_sum / root_area;
     cj_allocator_free(&a, cen);
     cj_allocator_free(&a, stack);
+    const cj_status wst = cj_bvh4_build(b);
+    if (wst) {
+        cj_bvh_destroy(b);
+        return wst;
+    }
     *out = b;
     return CJ_OK;
 }
 
 void cj_bvh_destroy(cj_bvh *bvh) {
     if (!bvh) return;
+    cj_bvh4_destroy(bvh);
     cj_allocator a = bvh->alloc_;
     cj_allocator_free(&a, bvh->nodes);
     cj_allocator_free(&a, bvh->prims);
@@ -218,49 +226,69 @@ void cj_bvh_destroy(cj_bvh *bvh) {
 
 /* ---- traversal ------------------------------------------------------------------------- */
 
-typedef struct entry {
-    uint32_t node;
-    double t0;
-} entry;
-
 static cj_vec3 inverse_dir(cj_vec3 d) {
     return cj_v3(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
 }
 
-/* Shared traversal; `any` stops at the first hit. tri != NULL: built-in triangles. */
+#define WIDE_STACK (4 * STACK)
+
+typedef struct wentry {
+    int32_t ref; /* >= 0: wide node; < 0: binary leaf ~ref */
+    double t0;
+} wentry;
+
+/* Shared traversal of the wide tree; `any` stops at the first hit. tri != NULL: built-in
+ * triangles. */
 static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, void *user,
                     cj_hit *hit, int any, cj_bvh_trav_stats *stats) {
     cj_ray ray = *ray0;
-    cj_vec3 inv = inverse_dir(ray.dir);
+    const cj_bvh4 *w = bvh->wide_;
+    cj_bvh4_ray r4;
+    const cj_vec3 inv = inverse_dir(ray.dir);
     const double oc[3] = {ray.org.x, ray.org.y, ray.org.z}, ic[3] = {inv.x, inv.y, inv.z};
+    for (int k = 0; k < 3; k++) {
+        for (int i = 0; i < 4; i++) r4.o[k][i] = oc[k], r4.id[k][i] = ic[k];
+        r4.neg[k] = signbit(ic[k]) != 0;
+    }
     cj_ray_tri_pre pre;
     if (bvh->tri) cj_ray_triangle_prepare(&ray, &pre);
-    entry st[STACK];
+    wentry st[WIDE_STACK];
     int sp = 0, found = 0;
-    double t0;
-    uint64_t nodes = 1, prims = 0;
-    if (!cj_aabb_slab(&bvh->nodes[0].box, oc, ic, ray.tmin, ray.tmax, &t0, NULL)) {
-        if (stats) stats->nodes += nodes;
-        return 0;
-    }
-    st[sp++] = (entry){0, t0};
+    uint32_t best = 0; /* built-in triangles: the closest so far, its t, edge values and sum */
+    double best_t = 0.0, best_e[3] = {0.0, 0.0, 0.0}, best_det = 1.0;
+    uint64_t nodes = 0, prims = 0;
+    st[sp++] = (wentry){0, ray.tmin};
     cj_hit h;
     while (sp > 0) {
-        entry e = st[--sp];
+        const wentry e = st[--sp];
         if (e.t0 > ray.tmax) continue;
-        const cj_bvh_node *nd = &bvh->nodes[e.node];
-        if (nd->count) {
+        if (e.ref < 0) {
+            const cj_bvh_node *nd = &bvh->nodes[~e.ref];
             for (uint32_t i = nd->first; i < nd->first + nd->count; i++) {
                 uint32_t prim = bvh->prims[i];
                 int got;
                 prims++;
                 if (bvh->tri) {
+                    /* the test alone; the hit record is filled once, for the closest */
                     const double *v = bvh->tri + 9 * (size_t)i;
-                    got = cj_ray_triangle_pre(&ray, &pre, cj_v3(v[0], v[1], v[2]),
-                                              cj_v3(v[3], v[4], v[5]), cj_v3(v[6], v[7], v[8]), &h);
-                } else {
-                    got = fn(user, prim, &ray, &h);
+                    double t, ev[3], det;
+                    if (!cj_tri_core(&ray, &pre, cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]),
+                                     cj_v3(v[6], v[7], v[8]), &t, ev, &det))
+                        continue;
+                    found = 1;
+                    if (any) {
+                        if (stats) {
+                            stats->nodes += nodes;
+                            stats->prims += prims;
+                        }
+                        return 1;
+                    }
+                    best = i, best_t = t, best_det = det;
+                    memcpy(best_e, ev, sizeof ev);
+                    ray.tmax = t;
+                    continue;
                 }
+                got = fn(user, prim, &ray, &h);
                 if (got && h.t >= ray.tmin && h.t <= ray.tmax) {
                     found = 1;
                     if (any) {
@@ -277,29 +305,34 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
             }
             continue;
         }
-        const cj_bvh_node *l = &bvh->nodes[nd->first], *r = &bvh->nodes[nd->first + 1];
-        double l0, r0;
-        int hl = cj_aabb_slab(&l->box, oc, ic, ray.tmin, ray.tmax, &l0, NULL);
-        int hr = cj_aabb_slab(&r->box, oc, ic, ray.tmin, ray.tmax, &r0, NULL);
-        nodes += 2;
-        if (sp + 2 > STACK) continue; /* cannot happen: depth is bounded by the build */
-        if (hl && hr) {
-            if (l0 <= r0) {
-                st[sp++] = (entry){nd->first + 1, r0};
-                st[sp++] = (entry){nd->first, l0};
-            } else {
-                st[sp++] = (entry){nd->first, l0};
-                st[sp++] = (entry){nd->first + 1, r0};
+        const cj_bvh4_node *wn = &w->nodes[e.ref];
+        double t0[4];
+        int mask = cj_bvh4_slab(wn, &r4, ray.tmin, ray.tmax, t0);
+        nodes += (uint64_t)wn->count;
+        if (!mask) continue;
+        if (sp + 4 > WIDE_STACK) continue; /* cannot happen: depth is bounded by the build */
+        /* push the met children farthest first, so the nearest is visited next */
+        const int base = sp;
+        for (; mask; mask &= mask - 1) {
+            const int i = __builtin_ctz((unsigned)mask);
+            const wentry c = {wn->child[i], t0[i]};
+            int j = sp++;
+            while (j > base && st[j - 1].t0 < c.t0) {
+                st[j] = st[j - 1];
+                j--;
             }
-        } else if (hl) {
-            st[sp++] = (entry){nd->first, l0};
-        } else if (hr) {
-            st[sp++] = (entry){nd->first + 1, r0};
+            st[j] = c;
         }
     }
     if (stats) {
         stats->nodes += nodes;
         stats->prims += prims;
+    }
+    if (found && bvh->tri) {
+        const double *v = bvh->tri + 9 * (size_t)best;
+        cj_tri_fill(cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]), cj_v3(v[6], v[7], v[8]),
+                    best_t, best_e, best_det, hit);
+        hit->prim = bvh->prims[best];
     }
     return found;
 }

@@ -3,6 +3,7 @@
 #include "casteljau/mesh.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
+#include "file_internal.h"
 
 #include <assert.h>
 #include <errno.h>
@@ -298,44 +299,6 @@ cj_status cj_mesh_topology_compute(const cj_mesh *m, cj_mesh_topology *out) {
 
 /* ---- export -------------------------------------------------------------------------- */
 
-static cj_status open_tmp(const char *path, char **tmp, FILE **f, const char *mode) {
-    size_t len = strlen(path);
-    *tmp = malloc(len + 5);
-    if (!*tmp) return cj_fail(CJ_ERR_NOMEM, "out of memory");
-    memcpy(*tmp, path, len);
-    memcpy(*tmp + len, ".tmp", 5);
-    *f = fopen(*tmp, mode);
-    if (!*f) {
-        cj_status st = cj_fail(CJ_ERR_IO, "cannot write '%s': %s", *tmp, strerror(errno));
-        free(*tmp);
-        *tmp = NULL;
-        return st;
-    }
-    return CJ_OK;
-}
-
-static cj_status close_tmp(const char *path, char *tmp, FILE *f, int write_failed) {
-    int bad = write_failed || ferror(f);
-    /* A full disk may only show at the flush, or (delayed allocation) at fsync: check both
-     * before the rename replaces anything. */
-    if (!bad && (fflush(f) != 0 || fsync(fileno(f)) != 0)) bad = 1;
-    if (fclose(f) != 0) bad = 1;
-    if (bad) {
-        remove(tmp);
-        free(tmp);
-        return cj_fail(CJ_ERR_IO, "writing '%s' failed", path);
-    }
-    if (rename(tmp, path) != 0) {
-        cj_status st =
-            cj_fail(CJ_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, path, strerror(errno));
-        remove(tmp);
-        free(tmp);
-        return st;
-    }
-    free(tmp);
-    return CJ_OK;
-}
-
 cj_status cj_mesh_write_obj(const cj_mesh *m, const char *path) {
     assert(m != NULL && path != NULL);
     const size_t n = m->vertex_count;
@@ -346,14 +309,14 @@ cj_status cj_mesh_write_obj(const cj_mesh *m, const char *path) {
         free(vid);
         return cj_fail(CJ_ERR_NOMEM, "out of memory writing '%s'", path);
     }
-    char *tmp;
-    FILE *f;
-    cj_status st = open_tmp(path, &tmp, &f, "w");
+    cj_atomic_file out;
+    cj_status st = cj_atomic_open(&out, path);
     if (st) {
         free(rep);
         free(vid);
         return st;
     }
+    FILE *f = out.fp;
     fprintf(f, "# casteljau mesh: %zu vertices, %zu triangles\n", n, m->triangle_count);
     size_t nv = 0;
     for (size_t i = 0; i < n; ++i)
@@ -382,7 +345,7 @@ cj_status cj_mesh_write_obj(const cj_mesh *m, const char *path) {
     }
     free(rep);
     free(vid);
-    return close_tmp(path, tmp, f, 0);
+    return cj_atomic_commit(&out);
 }
 
 static void put_le(FILE *f, const void *src, size_t bytes) {
@@ -402,10 +365,10 @@ static void put_le(FILE *f, const void *src, size_t bytes) {
 
 cj_status cj_mesh_write_ply(const cj_mesh *m, const char *path, int binary) {
     assert(m != NULL && path != NULL);
-    char *tmp;
-    FILE *f;
-    cj_status st = open_tmp(path, &tmp, &f, binary ? "wb" : "w");
+    cj_atomic_file out;
+    cj_status st = cj_atomic_open(&out, path);
     if (st) return st;
+    FILE *f = out.fp;
     fprintf(f,
             "ply\nformat %s 1.0\ncomment casteljau mesh\nelement vertex %zu\n"
             "property double x\nproperty double y\nproperty double z\n"
@@ -434,7 +397,7 @@ cj_status cj_mesh_write_ply(const cj_mesh *m, const char *path, int binary) {
             fprintf(f, "3 %u %u %u\n", v[0], v[1], v[2]);
         }
     }
-    return close_tmp(path, tmp, f, 0);
+    return cj_atomic_commit(&out);
 }
 
 static int ends_with(const char *s, const char *suffix) {

@@ -3,6 +3,7 @@
 #include "casteljau/mesh_read.h"
 
 #include "error_internal.h"
+#include "file_internal.h"
 #include "mesh_read_internal.h"
 
 #include <assert.h>
@@ -13,32 +14,7 @@
 #include <string.h>
 
 cj_status cj_mesh_slurp_(const char *path, char **text, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return cj_fail(CJ_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
-    size_t cap = 65536, n = 0;
-    char *buf = malloc(cap);
-    for (;;) {
-        if (!buf) {
-            fclose(f);
-            return cj_fail(CJ_ERR_NOMEM, "out of memory reading '%s'", path);
-        }
-        n += fread(buf + n, 1, cap - n - 1, f);
-        if (n + 1 < cap) break;
-        char *d = realloc(buf, 2 * cap);
-        if (!d) free(buf);
-        buf = d;
-        cap *= 2;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        return cj_fail(CJ_ERR_IO, "cannot read '%s'", path);
-    }
-    buf[n] = '\0';
-    *text = buf;
-    *len = n;
-    return CJ_OK;
+    return cj_file_read_all(path, CJ_FILE_MAX_BYTES, "mesh", text, len);
 }
 
 void cj_mesh_compute_normals(cj_mesh *m) {

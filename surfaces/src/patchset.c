@@ -2,6 +2,7 @@
 #include "casteljau/patchset.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
+#include "file_internal.h"
 
 #include <assert.h>
 #include <errno.h>
@@ -164,36 +165,10 @@ cj_status cj_patchset_parse_bpt(const char *text, const char *name, const cj_all
 
 cj_status cj_patchset_load_bpt(const char *path, const cj_allocator *alloc, cj_patchset **out) {
     assert(path != NULL && out != NULL);
-    FILE *f = fopen(path, "rb");
-    if (!f) return cj_fail(CJ_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
-    size_t cap = 4096, len = 0;
-    char *buf = malloc(cap);
-    if (!buf) {
-        fclose(f);
-        return cj_fail(CJ_ERR_NOMEM, "out of memory reading '%s'", path);
-    }
-    for (;;) {
-        if (len + 1 >= cap) {
-            char *nb = realloc(buf, cap * 2);
-            if (!nb) {
-                free(buf);
-                fclose(f);
-                return cj_fail(CJ_ERR_NOMEM, "out of memory reading '%s'", path);
-            }
-            buf = nb;
-            cap *= 2;
-        }
-        size_t r = fread(buf + len, 1, cap - 1 - len, f);
-        len += r;
-        if (r == 0) break;
-    }
-    int err = ferror(f);
-    fclose(f);
-    if (err) {
-        free(buf);
-        return cj_fail(CJ_ERR_IO, "error reading '%s'", path);
-    }
-    buf[len] = '\0';
+    char *buf = NULL;
+    size_t len = 0;
+    cj_status rs = cj_file_read_all(path, CJ_FILE_MAX_BYTES, "patch file", &buf, &len);
+    if (rs) return rs;
     if (strlen(buf) != len) {
         free(buf);
         return cj_fail(CJ_ERR_PARSE, "'%s' contains a NUL byte (not a text file)", path);

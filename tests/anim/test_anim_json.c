@@ -134,7 +134,8 @@ static void test_errors(void **state) {
     expect("{\"channels\": [{\"target\": \"camera.eye\",\n \"times\": [0, 1],\n"
            " \"values\": [[0, 0, 0]]}]}",
            CJ_ERR_PARSE, "bad.json:3: channels[0].values has 1 entries");
-    expect("{\"fps\": 0}", CJ_ERR_RANGE, "bad.json:1: fps must be in (0, 10000]");
+    expect("{\"fps\": 0}", CJ_ERR_RANGE,
+           "bad.json:1: document.fps = 0 must be a number in [0.001, 10000]");
     expect("{\"frames\": [5, 2]}", CJ_ERR_RANGE, "frames must be [first, last]");
     expect("{\"channels\": [{\"target\": \"camera.eye\", \"path\": {\"points\": [[0, 0, 0], "
            "[1, 0, 0]]},\n \"duration\": 0}]}",

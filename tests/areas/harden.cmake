@@ -37,7 +37,9 @@ set_tests_properties(test_build_tree_package PROPERTIES TIMEOUT 300)
 # Library side: CJ_ERR_RANGE on overflow, contour tolerance floor, tessellation size prediction,
 # degenerate patches, plot title cap and tick computation over the whole double range.
 if(TARGET cj::raster)
-  cj_add_test(test_harden_lib SOURCES test_harden_lib.c LIBS cj::surfaces cj::raster m)
+  cj_add_test(test_harden_lib SOURCES test_harden_lib.c LIBS cj::surfaces cj::raster cj::scene m)
+  # issue 24: the shared reader and atomic writer (curves/src/file_internal.h)
+  target_include_directories(test_harden_lib PRIVATE ${PROJECT_SOURCE_DIR}/curves/src)
   target_compile_definitions(test_harden_lib PRIVATE
     CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
 endif()
@@ -47,3 +49,17 @@ add_test(NAME test_installed_tool COMMAND ${CMAKE_COMMAND}
   -DCJ_LIBDIR=${CMAKE_INSTALL_LIBDIR} -DCJ_CONFIG=$<CONFIG>
   -P ${CMAKE_CURRENT_SOURCE_DIR}/installed_tool.cmake)
 set_tests_properties(test_installed_tool PROPERTIES TIMEOUT 300 RESOURCE_LOCK cj_install)
+# Issue 24, hostile input to the newer parts (test_cli_hostile.c, two halves): devices and huge
+# images refused, simulation parameters bounded before the first frame, checkpoints checked,
+# render and trace validate alike, outputs that are inputs refused, destinations checked first,
+# interrupted GIFs leave nothing, and the exit-code contract of every command.
+if(TARGET cj::scene AND CJ_WITH_OIIO)
+  foreach(g 1 2)
+    set(t test_cli_hostile_${g})
+    cj_add_test(${t} SOURCES test_cli_hostile.c)
+    target_compile_definitions(${t} PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+      CJ_SCENES="${PROJECT_SOURCE_DIR}/scenes" CJ_HOSTILE_GROUP=${g})
+    add_dependencies(${t} casteljau)
+    set_tests_properties(${t} PROPERTIES TIMEOUT 600)
+  endforeach()
+endif()

@@ -7,6 +7,7 @@
 #include "casteljau/image_io.h"
 
 #include "error_internal.h"
+#include "file_internal.h"
 #include "image_plugin.h"
 
 #include <assert.h>
@@ -117,33 +118,6 @@ const char *cj_image_backend(void) {
 
 /* ---- the atomic write ----------------------------------------------------------------- */
 
-static unsigned tmp_counter;
-
-/* Creates a fresh file ".<base>.tmp-<pid>-<n>" beside `path`; returns its descriptor and name
- * (malloc'd) or -1 with errno set. */
-static int create_temp_beside(const char *path, char **tmp_out) {
-    const char *slash = strrchr(path, '/');
-    const size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
-    const char *base = path + dir_len;
-    const size_t need = strlen(path) + 64;
-    char *tmp = malloc(need);
-    if (!tmp) return -1;
-    for (int attempt = 0; attempt < 100; ++attempt) {
-        unsigned n = __atomic_fetch_add(&tmp_counter, 1u, __ATOMIC_RELAXED);
-        snprintf(tmp, need, "%.*s.%s.tmp-%ld-%u", (int)dir_len, path, base, (long)getpid(), n);
-        int fd = open(tmp, O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0666);
-        if (fd >= 0) {
-            *tmp_out = tmp;
-            return fd;
-        }
-        if (errno != EEXIST) break;
-    }
-    int e = errno;
-    free(tmp);
-    errno = e;
-    return -1;
-}
-
 static int write_all(int fd, const unsigned char *p, size_t n) {
     while (n > 0) {
         ssize_t k = write(fd, p, n);
@@ -199,7 +173,8 @@ static cj_status write_image(const char *path, const char *force_ext, const cj_i
     if (st) return st;
     if (!*path) return cj_fail(CJ_ERR_ARGUMENT, "the image file name is empty");
     char *tmp = NULL;
-    int fd = create_temp_beside(path, &tmp);
+    int slot = -1;
+    int fd = cj_temp_create_beside(path, &tmp, &slot);
     if (fd < 0)
         return cj_fail(CJ_ERR_IO, "cannot create a temporary file beside '%s': %s", path,
                        strerror(errno));
@@ -248,10 +223,12 @@ static cj_status write_image(const char *path, const char *force_ext, const cj_i
     }
     if (code != CJ_OK) {
         unlink(tmp);
+        cj_temp_release(slot);
         free(tmp);
         if (code == CJ_ERR_ARGUMENT) stage = "cannot choose a format for";
         return cj_fail((cj_status)code, "%s '%s': %s", stage, path, why);
     }
+    cj_temp_release(slot);
     free(tmp);
     sync_directory_of(path);
     return CJ_OK;
@@ -301,7 +278,8 @@ cj_status cj_image_check_destination(const char *path, int is_float) {
     cj_status st = get_plugin(&p);
     if (st) return st;
     char *tmp = NULL;
-    int fd = create_temp_beside(path, &tmp);
+    int slot = -1;
+    int fd = cj_temp_create_beside(path, &tmp, &slot);
     if (fd < 0)
         return cj_fail(CJ_ERR_IO, "cannot create files beside '%s': %s", path, strerror(errno));
     close(fd);
@@ -313,6 +291,7 @@ cj_status cj_image_check_destination(const char *path, int is_float) {
     int code = p->encode(path, tmp, &px, &bytes, &size, why, sizeof why);
     free(bytes);
     unlink(tmp);
+    cj_temp_release(slot);
     free(tmp);
     if (code != CJ_OK) return cj_fail((cj_status)code, "image file '%s': %s", path, why);
     return CJ_OK;
@@ -322,6 +301,8 @@ cj_status cj_image_read(const char *path, int *width, int *height, uint8_t **rgb
     assert(path && width && height && rgba);
     const cj_image_plugin *p = NULL;
     cj_status st = get_plugin(&p);
+    if (st) return st;
+    st = cj_file_check_input(path, CJ_IMAGE_MAX_FILE_BYTES, "image");
     if (st) return st;
     char why[512] = "";
     int w = 0, h = 0;

@@ -3,6 +3,7 @@
 // Nothing here throws across the C boundary.
 #include "image_plugin.h"
 
+#include "casteljau/image_io.h"
 #include "casteljau/status.h"
 
 #include <OpenImageIO/filesystem.h>
@@ -11,15 +12,51 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <unistd.h>
 #include <exception>
 #include <string>
 #include <vector>
 
 namespace {
 
+// One line: OpenImageIO joins the messages of a failure with newlines.
 void say(char *why, std::size_t n, const std::string &s) {
-    std::snprintf(why, n, "%s", s.empty() ? "unknown OpenImageIO error" : s.c_str());
+    std::string line = s.empty() ? "unknown OpenImageIO error" : s;
+    while (!line.empty() && line.back() == '\n') line.pop_back();
+    for (std::size_t at; (at = line.find('\n')) != std::string::npos;) line.replace(at, 1, "; ");
+    std::snprintf(why, n, "%s", line.c_str());
 }
+
+// While it lives, whatever the decoders print on stderr (libpng's "libpng error: ..." lines)
+// goes to a temporary file instead, so that the tool prints one line of its own. Reading
+// happens before the renderers start their threads, so no other thread's output is caught.
+class stderr_capture {
+  public:
+    stderr_capture() {
+        std::fflush(stderr);
+        tmp_ = std::tmpfile();
+        saved_ = tmp_ ? dup(2) : -1;
+        if (saved_ >= 0 && dup2(fileno(tmp_), 2) < 0) {
+            close(saved_);
+            saved_ = -1;
+        }
+    }
+    ~stderr_capture() {
+        restore();
+        if (tmp_) std::fclose(tmp_);
+    }
+    void restore() {
+        if (saved_ < 0) return;
+        std::fflush(stderr);
+        dup2(saved_, 2);
+        close(saved_);
+        saved_ = -1;
+    }
+
+  private:
+    std::FILE *tmp_ = nullptr;
+    int saved_ = -1;
+};
 
 // The extension of the last path component, lower case, without the dot ("" if none).
 std::string extension_of(const char *name) {
@@ -190,6 +227,7 @@ int read_rgba8(const char *path, int *width, int *height, uint8_t **rgba, char *
         // Ask for the stored (unassociated) alpha, so that a round trip is exact.
         OIIO::ImageSpec config;
         config.attribute("oiio:UnassociatedAlpha", 1);
+        stderr_capture quiet;
         auto in = OIIO::ImageInput::open(path, &config);
         if (!in) {
             std::string e = OIIO::geterror();
@@ -202,6 +240,16 @@ int read_rgba8(const char *path, int *width, int *height, uint8_t **rgba, char *
             in->close();
             std::snprintf(why, why_size, "no pixels (%d x %d x %d)", w, h, nc);
             return CJ_ERR_IO;
+        }
+        // The header's claim, checked before decoding: a small file can declare a huge image.
+        if (w > CJ_IMAGE_MAX_SIDE || h > CJ_IMAGE_MAX_SIDE ||
+            (long long)w * h > CJ_IMAGE_MAX_PIXELS || nc > 64) {
+            in->close();
+            std::snprintf(why, why_size,
+                          "%d x %d pixels (%d channels) is over the limit of %d pixels a side "
+                          "and %lld pixels in all",
+                          w, h, nc, CJ_IMAGE_MAX_SIDE, (long long)CJ_IMAGE_MAX_PIXELS);
+            return CJ_ERR_RANGE;
         }
         std::vector<uint8_t> raw((std::size_t)w * h * nc);
         if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, raw.data())) {

@@ -13,6 +13,7 @@
 #include "casteljau/scene_textures.h"
 #include "casteljau/trace.h"
 #include "error_internal.h"
+#include "file_internal.h"
 #include "clock_internal.h"
 
 #include <cJSON.h>
@@ -29,13 +30,9 @@ static int ends_with(const char *s, const char *ext) {
 
 /* A plot document has "items" (or "panels") at the top; a scene has not. */
 static int is_plot_json(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return 0;
-    char *buf = malloc(1 << 20);
-    size_t n = buf ? fread(buf, 1, (1 << 20) - 1, f) : 0;
-    fclose(f);
-    if (!buf) return 0;
-    buf[n] = '\0';
+    char *buf = NULL;
+    size_t n = 0;
+    if (cj_file_read_all(path, CJ_FILE_MAX_BYTES, "document", &buf, &n)) return 0;
     cJSON *root = cJSON_Parse(buf);
     free(buf);
     const int yes = root && (cJSON_GetObjectItemCaseSensitive(root, "items") ||
@@ -46,13 +43,9 @@ static int is_plot_json(const char *path) {
 
 /* An animation document names its scene at the top ("scene": "file.json"). */
 static int is_anim_json(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return 0;
-    char *buf = malloc(1 << 20);
-    size_t n = buf ? fread(buf, 1, (1 << 20) - 1, f) : 0;
-    fclose(f);
-    if (!buf) return 0;
-    buf[n] = '\0';
+    char *buf = NULL;
+    size_t n = 0;
+    if (cj_file_read_all(path, CJ_FILE_MAX_BYTES, "document", &buf, &n)) return 0;
     cJSON *root = cJSON_Parse(buf);
     free(buf);
     const int yes = cJSON_IsString(cJSON_GetObjectItemCaseSensitive(root, "scene"));

@@ -6,6 +6,7 @@
 #include "casteljau/viewer_model.h"
 
 #include "error_internal.h"
+#include "file_internal.h"
 
 #include <cJSON.h>
 
@@ -181,28 +182,6 @@ cj_status cj_vdoc_save_json(const cj_vdoc *doc, const cj_vview *v, const cj_vdoc
 
 /* ---- reading --------------------------------------------------------------------------- */
 
-static char *slurp(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n - 1, f);
-        if (ferror(f) || feof(f)) break;
-        char *nb = realloc(buf, cap *= 2);
-        if (!nb) free(buf);
-        buf = nb;
-    }
-    int bad = !buf || ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        return NULL;
-    }
-    buf[n] = '\0';
-    return buf;
-}
-
 typedef struct rd {
     const char *path;
 } rd;
@@ -353,8 +332,10 @@ static cj_status read_item(const rd *r, const cJSON *it, size_t idx, cj_vdoc *do
 
 cj_status cj_vdoc_load_json(const char *path, cj_vdoc **out, cj_vview *v, cj_vdoc_display *disp) {
     rd r = {path};
-    char *text = slurp(path);
-    if (!text) return cj_fail(CJ_ERR_IO, "%s: cannot read: %s", path, strerror(errno));
+    char *text = NULL;
+    size_t len = 0;
+    cj_status rs = cj_file_read_all(path, CJ_FILE_MAX_BYTES, "viewer document", &text, &len);
+    if (rs) return rs;
     cJSON *root = cJSON_Parse(text);
     free(text);
     if (!root) return cj_fail(CJ_ERR_PARSE, "%s: not a JSON document (syntax error)", path);

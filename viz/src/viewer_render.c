@@ -4,6 +4,7 @@
 #include "viewer_render.h"
 
 #include "casteljau/render.h"
+#include "casteljau/renderer.h"
 #include "casteljau/trace.h"
 #include "error_internal.h"
 #include "clock_internal.h"
@@ -39,7 +40,10 @@ struct cj_vrender {
     /* set by the window's thread, read by the progress callback */
     atomic_int cancel;
     atomic_uint_fast64_t tiles_done, tiles_total;
-    /* the render thread's own */
+    /* the render thread's own: one renderer for the viewer's lifetime (its pool, tile buffers,
+     * BVHs and image live across frames and passes), and the tessellation cache it is given */
+    cj_renderer *ren;
+    cj_render_image *img;
     cj_render_cache *cache;
     int cache_exact; /* every entry was made for the view `cache_view` at its tolerance */
     uint64_t cache_view;
@@ -129,17 +133,18 @@ static uint64_t view_key(const cj_scene *s) {
     return h;
 }
 
-/* THE ONE PLACE where the viewer calls the library's renderers: pass `pass` of a job into
- * frame f (when the renderer object of issue 19 lands, this becomes a call to it). The
- * rasterizer keeps a tessellation cache for the viewer's lifetime; a drag may reuse meshes
- * within their tolerance band, while a still view is drawn exactly as `casteljau render` draws
- * it: from a cache whose every entry was made for this very view, else from a fresh one. */
+/* THE ONE PLACE where the viewer calls the library's renderer: pass `pass` of a job into
+ * frame f, through the viewer's one cj_renderer (casteljau/renderer.h). The rasterizer keeps a
+ * tessellation cache for the viewer's lifetime; a drag may reuse meshes within their tolerance
+ * band, while a still view is drawn exactly as `casteljau render` draws it: from a cache whose
+ * every entry was made for this very view, else from a fresh one. */
 static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f) {
     cj_render_options ro = cj_render_options_default();
     ro.threads = r->threads;
     ro.progress = on_progress;
     ro.progress_user = r;
     cj_render_image *img = NULL;
+    cj_renderer_options rop = cj_renderer_options_default();
     cj_stage_report rep;
     cj_status st;
     int scale = 1;
@@ -152,7 +157,9 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
         /* about the same work per tile at every spp, so a cancel lands within one tile's time;
          * any tile size gives the same image */
         ro.tile_size = ro.spp >= 16 ? 8 : ro.spp >= 4 ? 16 : 32;
-        st = cj_render_trace(job->scene, &ro, 0, NULL, &img, &rep);
+        rop.render = ro;
+        st = cj_renderer_set_options(r->ren, &rop);
+        if (!st) st = cj_renderer_draw(r->ren, job->scene, CJ_BACKEND_TRACE, 0, &r->img, &rep);
     } else {
         const uint64_t key = view_key(job->scene);
         cj_render_cache *fresh = NULL;
@@ -168,7 +175,11 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
         } else if (!cj_render_cache_create(NULL, &fresh)) {
             ro.cache = fresh;
         }
-        st = cj_render_raster(job->scene, &ro, CJ_IMAGE_DEPTH, NULL, &img, &rep);
+        rop.render = ro;
+        st = cj_renderer_set_options(r->ren, &rop);
+        if (!st)
+            st = cj_renderer_draw(r->ren, job->scene, CJ_BACKEND_RASTER, CJ_IMAGE_DEPTH, &r->img,
+                                  &rep);
         if (fresh && !st) {
             cj_render_cache_destroy(r->cache);
             r->cache = fresh;
@@ -181,6 +192,7 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
         }
     }
     if (st) return st;
+    img = r->img;
     f->seconds = cj_clock_seconds() - t0;
     f->spp = ro.spp ? ro.spp : cj_scene_settings_get(job->scene)->spp;
     f->tol_px = ro.tol_px > 0 ? ro.tol_px : cj_scene_settings_get(job->scene)->tol_px;
@@ -199,7 +211,6 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
     }
     for (size_t i = 0; i < w * h; ++i) f->rgba8[4 * i + 3] = 255;
     if (img->depth && f->depth) memcpy(f->depth, img->depth, w * h * sizeof *f->depth);
-    cj_render_image_destroy(img);
     f->triangles = 0;
     f->bound_px = 0;
     for (int i = 0; i < rep.count; ++i) {
@@ -288,6 +299,7 @@ cj_status cj_vrender_create(int width, int height, int threads, FILE *timeline, 
     atomic_init(&r->tiles_total, 0);
     const size_t n = (size_t)width * (size_t)height;
     cj_status st = cj_render_cache_create(NULL, &r->cache);
+    if (!st) st = cj_renderer_create(NULL, NULL, &r->ren);
     for (int i = 0; i < 3 && !st; ++i) {
         r->frames[i].rgba8 = malloc(4 * n);
         r->frames[i].depth = malloc(n * sizeof(float));
@@ -320,6 +332,8 @@ void cj_vrender_destroy(cj_vrender *r) {
         free(r->frames[i].rgba8);
         free(r->frames[i].depth);
     }
+    cj_render_image_destroy(r->img);
+    cj_renderer_destroy(r->ren);
     cj_render_cache_destroy(r->cache);
     pthread_mutex_destroy(&r->lock);
     pthread_mutex_destroy(&r->log_lock);

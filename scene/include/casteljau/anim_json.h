@@ -6,7 +6,7 @@
  *
  * {
  *   "scene": "teapot.json",        the scene file, relative to this document's folder
- *   "fps": 24,                     frames per second (> 0; default 24)
+ *   "fps": 24,                     frames per second (in [0.001, 10000]; default 24)
  *   "frames": [0, 95],             the default frame range (first <= last, >= 0)
  *   "channels": [
  *     {"target": "nodes[\"pot\"].rotation", "type": "quaternion",      vector | quaternion | euler
@@ -71,6 +71,25 @@
 extern "C" {
 #endif
 
+/* Bounds on the simulation parameters of a document, checked when it is read (each refusal
+ * names the file, line and JSON path), so that no document implies unbounded work or a number
+ * that overflows: steps per frame (cloth and particles), the length of "gravity" (m/s^2), an
+ * emitter's "rate" (particles per second), "speed", "lifetime" and "jitter_radius", lengths of
+ * positions and edges, and the particles emitted by one emitter in one step
+ * (rate / (fps * steps_per_frame)), which also bounds an --fps given later
+ * (cj_anim_doc_set_fps). A blow-up of the simulation itself (an explicit-Euler cloth whose
+ * springs are too stiff for its step) can only be found by simulating: cj_anim_doc_frame then
+ * fails with CJ_ERR_NONFINITE naming the part, the field to change and the frame. */
+#define CJ_ANIM_MAX_STEPS_PER_FRAME 1000
+#define CJ_ANIM_MAX_GRAVITY         1e4
+#define CJ_ANIM_MAX_EMIT_RATE       1e6
+#define CJ_ANIM_MAX_SPEED           1e6
+#define CJ_ANIM_MAX_LIFETIME        1e6
+#define CJ_ANIM_MAX_COORD           1e9
+#define CJ_ANIM_MAX_EMIT_PER_STEP   1e4
+#define CJ_ANIM_MIN_FPS             1e-3
+#define CJ_ANIM_MAX_FPS             1e4
+
 typedef struct cj_anim_doc {
     char scene_path[1024]; /* resolved; "" if the document names none */
     char source[256];      /* the document's name in messages (its path) */
@@ -111,12 +130,20 @@ typedef struct cj_anim_doc {
     double cloth_corner[3], cloth_eu[3], cloth_ev[3], cloth_mass, cloth_k[3], cloth_damping;
     int cloth_pins[64];
     size_t cloth_pin_count;
+    int emitter_lines[16]; /* the line of each emitter (for messages after reading) */
+    int fps_line;          /* the line of "fps", 0 if absent */
 } cj_anim_doc;
 
 cj_status cj_anim_doc_load(const char *path, cj_anim_doc **out);
 cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base_dir,
                             cj_anim_doc **out);
 void cj_anim_doc_destroy(cj_anim_doc *doc);
+
+/* Sets the frame rate after checking it and the work it implies: fps in [CJ_ANIM_MIN_FPS,
+ * CJ_ANIM_MAX_FPS], and for every emitter rate / (fps * particles.steps_per_frame) at most
+ * CJ_ANIM_MAX_EMIT_PER_STEP. `origin` names where fps comes from in messages ("--fps"); NULL
+ * for the document's own. CJ_ERR_RANGE naming the emitter's path and line; doc unchanged. */
+cj_status cj_anim_doc_set_fps(cj_anim_doc *doc, double fps, const char *origin);
 
 /* Adds the cloth's mesh node (if any) to the scene and binds the channels (errors name the
  * document, and for a channel its line and path). Call once, before posing. */

@@ -129,6 +129,11 @@ cj_status cj_particles_create(const cj_particles_desc *desc, const cj_allocator 
                               cj_particles **out);
 void cj_particles_destroy(cj_particles *p);
 
+/* Advances by h seconds (> 0, finite). An emitter that would emit more than
+ * CJ_PARTICLES_MAX_EMIT_PER_STEP particles in this step (rate * h plus the fraction carried
+ * over) makes the step fail with CJ_ERR_RANGE naming it, before anything changes: the work of
+ * a step is bounded whatever the rate and step. */
+#define CJ_PARTICLES_MAX_EMIT_PER_STEP 1e6
 cj_status cj_particles_step(cj_particles *p, double h, cj_particles_stats *stats);
 
 /* Live particles and their arrays (count × 3 positions, velocities; count ages and lifetimes),
@@ -145,6 +150,11 @@ uint64_t cj_particles_steps(const cj_particles *p);
 cj_status cj_particles_add(cj_particles *p, const double x[3], const double v[3], double lifetime);
 
 cj_status cj_particles_save(const cj_particles *p, FILE *f);
+/* Restores a state saved by cj_particles_save. Every value is checked before anything changes:
+ * time finite and >= 0, each emitter's carried fraction in [0, 1), positions and velocities
+ * finite, ages >= 0 and lifetimes > 0 (finite), a random state that is not all zero; a
+ * violation is CJ_ERR_PARSE naming the value
+ * ("particle 3: velocity is NaN"). Truncated or foreign checkpoints are CJ_ERR_PARSE too. */
 cj_status cj_particles_load(cj_particles *p, FILE *f);
 
 #ifdef __cplusplus

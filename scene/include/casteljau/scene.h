@@ -373,7 +373,15 @@ const char *cj_scene_texture_source(const cj_scene *scene, int index);
 cj_status cj_scene_node_world(const cj_scene *scene, int index, cj_xform3 *out);
 
 /* Validates the whole scene (every field of every part); the message names the part
- * ("materials[2].alpha must be >= 0"). Renderers call it first. */
+ * ("materials[2].alpha must be >= 0"). Renderers call it first: the rasterizer and the ray
+ * tracer accept exactly the same scenes. Beyond finiteness it bounds what would overflow
+ * later: every coordinate, length, direction and scale within +-CJ_SCENE_MAX_COORD (an eye,
+ * a radius or an OBJ vertex at 1e308 is refused by name, not found as an inf clip coordinate
+ * or a "parallel up vector"), light intensity times colour and material emission at most
+ * CJ_SCENE_MAX_RADIANCE (radiance is float), and Bezier patches whose control points all lie
+ * on one line (no area: CJ_ERR_DEGENERATE). */
+#define CJ_SCENE_MAX_COORD    1e9
+#define CJ_SCENE_MAX_RADIANCE 1e9
 cj_status cj_scene_check(const cj_scene *scene);
 
 #ifdef __cplusplus

@@ -9,9 +9,14 @@
  * tree is stored flat (children of an inner node adjacent); the primitive order is the
  * permutation `prims` (leaf k holds prims[first .. first+count-1]). Build is O(n log n).
  *
- * TRAVERSAL. Closest hit visits the nearer child first and skips boxes beyond the best hit so
- * far (boxes tested with the rounding-safe slab test of ray.h), so a ray costs O(log n) box
- * tests on well-distributed scenes; any hit (shadow rays) stops at the first hit.
+ * TRAVERSAL. The binary tree is collapsed into a 4-wide one (each wide node takes a node's
+ * children, then the children of its largest inner child, up to 4; the boxes are the same
+ * double boxes). One visit tests the ray against the 4 child boxes at once (AVX when the
+ * build targets it), with the rounding-safe slab test of ray.h lane by lane, so exactly the
+ * boxes the binary walk would enter are entered; closest hit visits the met children nearest
+ * first and skips boxes beyond the best hit so far, so a ray costs O(log n) box tests on
+ * well-distributed scenes; any hit (shadow rays) stops at the first hit. Statistics count the
+ * boxes tested (the used slots of each visited wide node).
  *
  * Primitives are intersected by a callback, or by the built-in watertight triangle test of
  * cj_bvh_mesh_* (vertex positions copied in tree order, so a leaf reads contiguous memory).
@@ -50,6 +55,7 @@ typedef struct cj_bvh {
     double *tri;
     /* private */
     cj_allocator alloc_;
+    void *wide_; /* the 4-wide form traversal walks (bvh_wide.c) */
 } cj_bvh;
 
 /* Builds a BVH over `count` boxes (empty boxes are allowed and never hit). alloc may be NULL. */

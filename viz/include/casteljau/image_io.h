@@ -85,8 +85,18 @@ cj_status cj_image_write_png(const char *path, int width, int height, const uint
  * buffer of 4*width*height bytes, bottom-up rows. Gray images are replicated into R, G, B;
  * images without alpha get alpha 255; channels beyond four are ignored; other bit depths are
  * converted to 8 bits by OpenImageIO. Free the buffer with cj_image_free().
+ * Hostile files cost little: `path` must be a regular file (not /dev/zero, a pipe or a folder)
+ * of at most CJ_IMAGE_MAX_FILE_BYTES, and the dimensions in its header are checked against
+ * CJ_IMAGE_MAX_SIDE and CJ_IMAGE_MAX_PIXELS before any pixel is decoded (a 249 kB PNG may
+ * claim 16000 x 16000 pixels: 1 GB decoded). Messages of the image library (libpng's
+ * warnings, OpenImageIO's errors) are captured into cj_last_error(), never printed.
  * Returns CJ_OK, or CJ_ERR_IO (missing or unreadable file, decoder error; the message names
- * the path), CJ_ERR_NOMEM, CJ_ERR_UNSUPPORTED (no plug-in). Outputs are untouched on failure. */
+ * the path), CJ_ERR_ARGUMENT (not a regular file), CJ_ERR_RANGE (file or dimensions over the
+ * caps; the message gives both), CJ_ERR_NOMEM, CJ_ERR_UNSUPPORTED (no plug-in). Outputs are
+ * untouched on failure. */
+#define CJ_IMAGE_MAX_FILE_BYTES ((size_t)256 << 20)
+#define CJ_IMAGE_MAX_SIDE       32768
+#define CJ_IMAGE_MAX_PIXELS     ((long long)1 << 26) /* 8192 x 8192: 256 MiB as RGBA8 */
 cj_status cj_image_read(const char *path, int *width, int *height, uint8_t **rgba);
 
 /* Frees a buffer returned by cj_image_read (NULL is allowed). */

@@ -1,0 +1,235 @@
+/* The pair search of the certified intersections: separating axes, Krawczyk's test, the
+ * tables of roots and contact leaves (the method is described in intersect.c). */
+#include "intersect_internal.h"
+
+#include "casteljau/bezier.h"
+#include "casteljau/nearest.h"
+#include "error_internal.h"
+
+#include <assert.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Empties the tables without touching their (large) storage. */
+void cj_isect_run_reset(run *R) {
+    R->qa = R->qb = NULL;
+    R->tol = R->ext_a = R->ext_b = 0.0;
+    R->max_boxes = 0;
+    R->ca = NULL;
+    R->self = R->line = R->capped = 0;
+    R->boxes = 0;
+    R->nroots = R->nleaves = R->noverlaps = 0;
+}
+
+/* ---- proofs ----------------------------------------------------------------------------- */
+
+/* min and max of v . x over the boxes of a piece, outward rounded. */
+static void project(const double lo[][2], const double hi[][2], int n, const double v[2],
+                    double *pmin, double *pmax) {
+    double mn = INFINITY, mx = -INFINITY;
+    for (int i = 0; i <= n; ++i) {
+        /* the smallest and largest of v . x over the box, each product and the sum widened */
+        double a0 = v[0] >= 0 ? v[0] * lo[i][0] : v[0] * hi[i][0];
+        double a1 = v[1] >= 0 ? v[1] * lo[i][1] : v[1] * hi[i][1];
+        double b0 = v[0] >= 0 ? v[0] * hi[i][0] : v[0] * lo[i][0];
+        double b1 = v[1] >= 0 ? v[1] * hi[i][1] : v[1] * lo[i][1];
+        double l = cj_down(cj_down(a0) + cj_down(a1)), h = cj_up(cj_up(b0) + cj_up(b1));
+        if (isnan(l) || isnan(h)) l = -INFINITY, h = INFINITY;
+        mn = l < mn ? l : mn;
+        mx = h > mx ? h : mx;
+    }
+    *pmin = mn;
+    *pmax = mx;
+}
+
+/* 1 if the hulls of the two pieces are proven disjoint. */
+static int separated(const cj_qpiece *pa, const cj_qpiece *pb) {
+    double alo[CJ_QUERY_MAXN + 1][2], ahi[CJ_QUERY_MAXN + 1][2];
+    double blo[CJ_QUERY_MAXN + 1][2], bhi[CJ_QUERY_MAXN + 1][2];
+    cj_qpiece_boxes(pa, alo, ahi);
+    cj_qpiece_boxes(pb, blo, bhi);
+    double axes[4][2] = {{1, 0}, {0, 1}, {0, 0}, {0, 0}};
+    int na = pa->n, nb = pb->n;
+    axes[2][0] = -(alo[na][1] - alo[0][1]);
+    axes[2][1] = alo[na][0] - alo[0][0];
+    axes[3][0] = -(blo[nb][1] - blo[0][1]);
+    axes[3][1] = blo[nb][0] - blo[0][0];
+    for (int k = 0; k < 4; ++k) {
+        if (!isfinite(axes[k][0]) || !isfinite(axes[k][1])) continue;
+        if (axes[k][0] == 0.0 && axes[k][1] == 0.0) continue;
+        double amin, amax, bmin, bmax;
+        project((const double(*)[2])alo, (const double(*)[2])ahi, na, axes[k], &amin, &amax);
+        project((const double(*)[2])blo, (const double(*)[2])bhi, nb, axes[k], &bmin, &bmax);
+        if (amax < bmin || bmax < amin) return 1;
+    }
+    return 0;
+}
+
+/* Krawczyk's operator for F(s,t) = a(s) - b(t) over X: -1 if K misses X (no zero in X), 1 if K
+ * lies in the interior of X (exactly one zero in X, and it lies in K), 0 otherwise. */
+int cj_isect_krawczyk(const cj_qctx *qa, const cj_qctx *qb, const cj_ivl X[2], cj_ivl K[2]) {
+    double m[2] = {cj_imid(X[0]), cj_imid(X[1])};
+    cj_ivl pa[2], pb[2], da[2], db[2], tmp[2];
+    if (!cj_qctx_eval(qa, X[0], tmp, da) || !cj_qctx_eval(qb, X[1], tmp, db)) return 0;
+    if (!cj_qctx_eval(qa, cj_iv(m[0]), pa, NULL) || !cj_qctx_eval(qb, cj_iv(m[1]), pb, NULL))
+        return 0;
+    cj_ivl F[2] = {cj_isub(pa[0], pb[0]), cj_isub(pa[1], pb[1])};
+    cj_ivl J[2][2] = {{da[0], cj_ineg(db[0])}, {da[1], cj_ineg(db[1])}};
+    double Jm[2][2];
+    for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) Jm[r][c] = cj_imid(J[r][c]);
+    double det = Jm[0][0] * Jm[1][1] - Jm[0][1] * Jm[1][0];
+    if (!(fabs(det) > 0.0) || !isfinite(det)) return 0;
+    double Y[2][2] = {{Jm[1][1] / det, -Jm[0][1] / det}, {-Jm[1][0] / det, Jm[0][0] / det}};
+    for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c)
+            if (!isfinite(Y[r][c])) return 0;
+    for (int r = 0; r < 2; ++r) {
+        cj_ivl acc = cj_isub(cj_iv(m[r]),
+                             cj_iadd(cj_imul(cj_iv(Y[r][0]), F[0]), cj_imul(cj_iv(Y[r][1]), F[1])));
+        for (int c = 0; c < 2; ++c) {
+            cj_ivl yj = cj_iadd(cj_imul(cj_iv(Y[r][0]), J[0][c]), cj_imul(cj_iv(Y[r][1]), J[1][c]));
+            cj_ivl M = cj_isub(cj_iv(r == c ? 1.0 : 0.0), yj);
+            acc = cj_iadd(acc, cj_imul(M, cj_isub(X[c], cj_iv(m[c]))));
+        }
+        K[r] = acc;
+    }
+    for (int r = 0; r < 2; ++r) {
+        if (!cj_ifinite(K[r])) return 0;
+        if (K[r].hi < X[r].lo || K[r].lo > X[r].hi) return -1;
+    }
+    for (int r = 0; r < 2; ++r)
+        if (!(K[r].lo > X[r].lo && K[r].hi < X[r].hi)) return 0;
+    return 1;
+}
+
+/* Shrinks an enclosure of a zero already proven unique: K <- K(X) ∩ X while it narrows. */
+static void refine(const cj_qctx *qa, const cj_qctx *qb, cj_ivl X[2]) {
+    for (int it = 0; it < 12; ++it) {
+        cj_ivl K[2];
+        int r = cj_isect_krawczyk(qa, qb, X, K);
+        if (r < 0) return; /* cannot happen for a box holding the zero; keep what we have */
+        double before = cj_iwidth(X[0]) + cj_iwidth(X[1]);
+        for (int k = 0; k < 2; ++k) {
+            X[k].lo = fmax(X[k].lo, K[k].lo);
+            X[k].hi = fmin(X[k].hi, K[k].hi);
+        }
+        if (cj_iwidth(X[0]) + cj_iwidth(X[1]) >= before) return;
+    }
+}
+
+/* Records a zero proven unique in U with enclosure K, unless it is outside the domain or the
+ * same zero as one recorded before (its enclosure inside the other's uniqueness box). Returns 0
+ * if the zero lies outside the domain (so not in the box being examined either). */
+int cj_isect_record(run *R, cj_ivl K[2], const cj_ivl U[2]) {
+    int at_end = 0;
+    for (int k = 0; k < 2; ++k) {
+        if (k == 1 && R->line) continue;
+        if (K[k].hi < 0.0 || K[k].lo > 1.0) return 0;
+        if (K[k].lo <= 0.0 || K[k].hi >= 1.0) {
+            at_end = 1;
+            K[k].lo = fmax(K[k].lo, 0.0);
+            K[k].hi = fmin(K[k].hi, 1.0);
+        }
+    }
+    if (R->self && K[0].hi >= K[1].lo) { /* must be s < t: the diagonal is no intersection */
+        if (K[0].lo >= K[1].hi) return 0;
+    }
+    for (int i = 0; i < R->nroots; ++i) {
+        root *o = &R->roots[i];
+        if (inside(K, o->U) || inside(o->K, U)) {
+            for (int k = 0; k < 2; ++k) {
+                o->K[k].lo = fmax(o->K[k].lo, K[k].lo);
+                o->K[k].hi = fmin(o->K[k].hi, K[k].hi);
+            }
+            o->at_end |= at_end;
+            return 1;
+        }
+    }
+    if (R->nroots == MAX_ROOTS) {
+        R->capped = 1;
+        return 1;
+    }
+    root *r = &R->roots[R->nroots++];
+    r->K[0] = K[0];
+    r->K[1] = K[1];
+    r->U[0] = U[0];
+    r->U[1] = U[1];
+    r->at_end = at_end;
+    return 1;
+}
+
+void cj_isect_add_leaf(run *R, cj_ivl S, cj_ivl T, double size, int exact) {
+    if (R->nleaves == MAX_LEAVES) {
+        R->capped = 1;
+        return;
+    }
+    leaf *l = &R->leaves[R->nleaves++];
+    l->B[0] = S;
+    l->B[1] = T;
+    l->size = size;
+    l->exact = exact;
+}
+
+double cj_isect_extent(const cj_qpiece *p) {
+    double lo[2], hi[2];
+    cj_qpiece_bbox(p, lo, hi);
+    return fmax(hi[0] - lo[0], hi[1] - lo[1]);
+}
+
+/* Tries to settle the box S x T by Krawczyk on the box enlarged by an eighth on each side:
+ * -1 no zero in S x T, 1 its one zero recorded, 0 undecided. */
+static int settle(run *R, cj_ivl S, cj_ivl T) {
+    double ws = cj_iwidth(S) / 8, wt = cj_iwidth(T) / 8;
+    cj_ivl U[2] = {cj_iv2(S.lo - ws, S.hi + ws), cj_iv2(T.lo - wt, T.hi + wt)};
+    cj_ivl K[2];
+    int r = cj_isect_krawczyk(R->qa, R->qb, U, K);
+    if (r < 0) return -1;
+    if (r == 0) return 0;
+    cj_ivl X[2] = {K[0], K[1]};
+    refine(R->qa, R->qb, X);
+    cj_ivl box[2] = {S, T};
+    if (!meets(X, box)) return -1; /* the one zero of U lies outside S x T */
+    if (!cj_isect_record(R, X, U)) return -1;
+    return 1;
+}
+
+static int in_overlap(const run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
+    cj_ivl B[2] = {cj_iv2(pa->a, pa->b), cj_iv2(pb->a, pb->b)};
+    for (int i = 0; i < R->noverlaps; ++i)
+        if (inside(B, R->overlap[i])) return 1;
+    return 0;
+}
+
+void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
+    if (R->capped) return;
+    if (++R->boxes > R->max_boxes) {
+        R->capped = 1;
+        return;
+    }
+    if (in_overlap(R, pa, pb)) return;
+    if (separated(pa, pb)) return;
+    cj_ivl S = cj_iv2(pa->a, pa->b), T = cj_iv2(pb->a, pb->b);
+    double ea = cj_isect_extent(pa), eb = cj_isect_extent(pb);
+    /* Krawczyk needs the derivative enclosures to be narrow: try it once the pieces are small
+     * against the curves (cheap exclusion does the coarse work). */
+    if ((ea <= R->ext_a * KRAWCZYK_SIZE || pa->n <= 1) &&
+        (eb <= R->ext_b * KRAWCZYK_SIZE || pb->n <= 1) && settle(R, S, T) != 0)
+        return;
+    int can_a = ea > R->tol && pa->b - pa->a > MIN_WIDTH;
+    int can_b = eb > R->tol && pb->b - pb->a > MIN_WIDTH;
+    if (!can_a && !can_b) {
+        cj_isect_add_leaf(R, S, T, fmax(ea, eb), 0);
+        return;
+    }
+    cj_qpiece h[2];
+    if (can_a && (!can_b || ea >= eb)) {
+        cj_qpiece_halve(pa, R->qa->hmag, &h[0], &h[1]);
+        cj_isect_pair(R, &h[0], pb);
+        cj_isect_pair(R, &h[1], pb);
+    } else {
+        cj_qpiece_halve(pb, R->qb->hmag, &h[0], &h[1]);
+        cj_isect_pair(R, pa, &h[0]);
+        cj_isect_pair(R, pa, &h[1]);
+    }
+}

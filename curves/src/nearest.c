@@ -1,0 +1,226 @@
+/* Certified nearest point on a plane curve: branch and bound over exact halvings (nearest.h). */
+#include "query_internal.h"
+
+#include "casteljau/bezier.h"
+#include "casteljau/nearest.h"
+#include "casteljau/rational.h"
+#include "error_internal.h"
+
+#include <assert.h>
+
+#define MIN_WIDTH  0x1p-52
+#define MAX_PIECES 4000000L
+
+typedef struct nrun {
+    const cj_qctx *q;
+    const cj_bezier2 *c;
+    double qp[2];
+    double tol;
+    double best, best_t;
+    double lower;
+    long pieces;
+} nrun;
+
+/* Proven upper bound of |c(t) - q|; pt gets the rounded point. */
+static double upper_at(const nrun *N, double t, double pt[2]) {
+    cj_ivl p[2];
+    if (!cj_qctx_eval(N->q, cj_iv(t), p, NULL)) return INFINITY;
+    cj_ivl dx = cj_isub(p[0], cj_iv(N->qp[0])), dy = cj_isub(p[1], cj_iv(N->qp[1]));
+    double mx = cj_imag(dx), my = cj_imag(dy);
+    if (pt) {
+        pt[0] = cj_imid(p[0]);
+        pt[1] = cj_imid(p[1]);
+    }
+    return cj_up(sqrt(cj_up(cj_up(mx * mx) + cj_up(my * my))));
+}
+
+/* Newton on g(t) = (c(t) - q) . c'(t) from t, clamped to [0,1]; returns the polished t. */
+static double polish(const nrun *N, double t) {
+    const cj_bezier2 *c = N->c;
+    for (int it = 0; it < 8; ++it) {
+        double d[6];
+        cj_status st;
+        if (c->weights) {
+            cj_rbezier r = cj_rbezier_view(c->degree, 2, c->pts, c->weights);
+            st = cj_rbezier_eval_derivs(&r, t, 2, d);
+        } else {
+            cj_bezier b = cj_bezier_view(c->degree, 2, c->pts);
+            st = cj_bezier_eval_derivs(&b, t, 2, d);
+        }
+        if (st != CJ_OK) break;
+        double ex = d[0] - N->qp[0], ey = d[1] - N->qp[1];
+        double g = ex * d[2] + ey * d[3];
+        double gp = d[2] * d[2] + d[3] * d[3] + ex * d[4] + ey * d[5];
+        if (!(gp > 0.0)) break;
+        double tn = fmin(1.0, fmax(0.0, t - g / gp));
+        if (!isfinite(tn) || tn == t) break;
+        t = tn;
+    }
+    return t;
+}
+
+static void offer(nrun *N, double t) {
+    double u = upper_at(N, t, NULL);
+    if (u < N->best) {
+        N->best = u;
+        N->best_t = t;
+    }
+}
+
+/* Proven lower bound of |x - q| over the hull of the piece's enclosed control points: the
+ * larger of the distance to their bounding box and the gap along the direction from q to the
+ * nearest point of the chord. */
+static double piece_lower(const nrun *N, const cj_qpiece *p) {
+    double lo[CJ_QUERY_MAXN + 1][2], hi[CJ_QUERY_MAXN + 1][2];
+    cj_qpiece_boxes(p, lo, hi);
+    int n = p->n;
+    double blo[2] = {INFINITY, INFINITY}, bhi[2] = {-INFINITY, -INFINITY};
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 2; ++k) {
+            blo[k] = fmin(blo[k], lo[i][k]);
+            bhi[k] = fmax(bhi[k], hi[i][k]);
+        }
+    double g[2];
+    for (int k = 0; k < 2; ++k) {
+        double below = cj_down(blo[k] - N->qp[k]), above = cj_down(N->qp[k] - bhi[k]);
+        g[k] = fmax(0.0, fmax(below, above));
+    }
+    double box =
+        fmax(0.0, cj_down(sqrt(fmax(0.0, cj_down(cj_down(g[0] * g[0]) + cj_down(g[1] * g[1]))))));
+    /* direction to the nearest point of the chord (midpoints of the end boxes) */
+    double a[2], b[2];
+    for (int k = 0; k < 2; ++k) {
+        a[k] = 0.5 * lo[0][k] + 0.5 * hi[0][k];
+        b[k] = 0.5 * lo[n][k] + 0.5 * hi[n][k];
+    }
+    double ab[2] = {b[0] - a[0], b[1] - a[1]};
+    double len2 = ab[0] * ab[0] + ab[1] * ab[1];
+    double lam = len2 > 0 ? ((N->qp[0] - a[0]) * ab[0] + (N->qp[1] - a[1]) * ab[1]) / len2 : 0.0;
+    lam = fmin(1.0, fmax(0.0, lam));
+    double v[2] = {a[0] + lam * ab[0] - N->qp[0], a[1] + lam * ab[1] - N->qp[1]};
+    double gap = 0.0;
+    if (isfinite(v[0]) && isfinite(v[1]) && (v[0] != 0.0 || v[1] != 0.0)) {
+        double mn = INFINITY;
+        for (int i = 0; i <= n; ++i) {
+            cj_ivl d =
+                cj_iadd(cj_imul(cj_iv(v[0]), cj_isub(cj_iv2(lo[i][0], hi[i][0]), cj_iv(N->qp[0]))),
+                        cj_imul(cj_iv(v[1]), cj_isub(cj_iv2(lo[i][1], hi[i][1]), cj_iv(N->qp[1]))));
+            mn = fmin(mn, d.lo);
+        }
+        if (mn > 0.0) {
+            double vn = cj_up(sqrt(cj_up(cj_up(v[0] * v[0]) + cj_up(v[1] * v[1]))));
+            gap = cj_down(mn / vn);
+        }
+    }
+    return fmax(box, gap);
+}
+
+static void search(nrun *N, const cj_qpiece *p, double lb) {
+    if (!(lb >= 0.0)) lb = 0.0; /* a NaN bound proves nothing */
+    if (++N->pieces > MAX_PIECES || lb >= N->best - N->tol || p->b - p->a <= MIN_WIDTH) {
+        N->lower = fmin(N->lower, lb);
+        return;
+    }
+    double m = 0.5 * (p->a + p->b);
+    double u = upper_at(N, m, NULL);
+    if (u < N->best) {
+        N->best = u;
+        N->best_t = m;
+        offer(N, polish(N, m));
+    }
+    if (lb >= N->best - N->tol) {
+        N->lower = fmin(N->lower, lb);
+        return;
+    }
+    cj_qpiece h[2];
+    cj_qpiece_halve(p, N->q->hmag, &h[0], &h[1]);
+    double l0 = piece_lower(N, &h[0]), l1 = piece_lower(N, &h[1]);
+    if (l0 <= l1) {
+        search(N, &h[0], l0);
+        search(N, &h[1], l1);
+    } else {
+        search(N, &h[1], l1);
+        search(N, &h[0], l0);
+    }
+}
+
+static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol, cj_nearest *out) {
+    cj_qctx ctx;
+    cj_status st = cj_qctx_init(&ctx, c, "curve");
+    if (st != CJ_OK) return st;
+    if (!isfinite(q[0]) || !isfinite(q[1]))
+        return cj_fail(CJ_ERR_NONFINITE, "query point (%g, %g) is not finite", q[0], q[1]);
+    double scale = fmax(ctx.scale, fmax(fabs(q[0]), fabs(q[1])));
+    if (!isfinite(tol)) return cj_fail(CJ_ERR_NONFINITE, "tol is %s", isnan(tol) ? "NaN" : "inf");
+    if (!(tol > 0.0)) return cj_fail(CJ_ERR_ARGUMENT, "tol %g must be > 0", tol);
+    if (tol < scale * 0x1p-40)
+        return cj_fail(CJ_ERR_ARGUMENT,
+                       "tol %g is below what doubles resolve at the scale %g of the curve and "
+                       "the point (the smallest is %g)",
+                       tol, scale, scale * 0x1p-40);
+    nrun N;
+    N.q = &ctx;
+    N.c = c;
+    N.qp[0] = q[0];
+    N.qp[1] = q[1];
+    N.tol = tol;
+    N.best = INFINITY;
+    N.best_t = 0.0;
+    N.lower = INFINITY;
+    N.pieces = 0;
+    /* a good first upper bound: the best of a few samples, polished */
+    int ns = 4 * c->degree + 4;
+    double t0 = 0.0, d0 = INFINITY;
+    for (int i = 0; i <= ns; ++i) { /* plain evaluations pick the start; bounds come later */
+        double t = (double)i / ns, pt[2];
+        cj_status es;
+        if (c->weights) {
+            cj_rbezier r = cj_rbezier_view(c->degree, 2, c->pts, c->weights);
+            es = cj_rbezier_eval(&r, t, pt);
+        } else {
+            cj_bezier b = cj_bezier_view(c->degree, 2, c->pts);
+            es = cj_bezier_eval(&b, CJ_EVAL_DECASTELJAU, t, pt);
+        }
+        double dd = hypot(pt[0] - q[0], pt[1] - q[1]);
+        if (es == CJ_OK && dd < d0) d0 = dd, t0 = t;
+    }
+    offer(&N, t0);
+    offer(&N, polish(&N, t0));
+    cj_qpiece root;
+    cj_qpiece_root(&ctx, &root);
+    search(&N, &root, piece_lower(&N, &root));
+    double lower = fmin(N.lower, N.best);
+    if (!isfinite(N.best))
+        return cj_fail(CJ_ERR_RANGE, "the curve's distance to the point overflows");
+    out->t = N.best_t;
+    upper_at(&N, N.best_t, out->point);
+    out->distance = N.best;
+    out->lower = lower;
+    out->pieces = N.pieces;
+    if (N.pieces > MAX_PIECES)
+        return cj_fail(CJ_ERR_CAP,
+                       "nearest point search hit its cap of %ld pieces; the bounds "
+                       "written are valid but %g apart",
+                       MAX_PIECES, N.best - lower);
+    return CJ_OK;
+}
+
+cj_status cj_nearest_curve(const cj_bezier2 *c, const double q[2], double tol, cj_nearest *out) {
+    assert(c && q && out);
+    double sc = fmax(cj_query_scale(c), fmax(fabs(q[0]), fabs(q[1])));
+    int k = cj_query_scale_exp(sc);
+    if (k == 0) return nearest_impl(c, q, tol, out);
+    /* tiny curves: scaled up by 2^k (exact), so the squared distances stay normal */
+    double pts[2 * (CJ_QUERY_MAX_DEGREE + 1)], qs[2] = {ldexp(q[0], k), ldexp(q[1], k)};
+    cj_bezier2 C = cj_query_scaled(c, k, pts);
+    cj_nearest r;
+    cj_status st = nearest_impl(&C, qs, ldexp(tol, k), &r);
+    if (st != CJ_OK && st != CJ_ERR_CAP) return st;
+    r.point[0] = ldexp(r.point[0], -k);
+    r.point[1] = ldexp(r.point[1], -k);
+    /* scaling down rounds (maybe into subnormals): step the bounds outwards */
+    r.distance = cj_up(ldexp(r.distance, -k));
+    r.lower = fmax(0.0, cj_down(ldexp(r.lower, -k)));
+    *out = r;
+    return st;
+}

@@ -1,0 +1,315 @@
+/* Curve contexts for the certified queries: validation, interval evaluation of a point and its
+ * derivative over a parameter interval, and pieces by exact halving with a tracked error. */
+#include "query_internal.h"
+
+#include "error_internal.h"
+
+#include <assert.h>
+#include <float.h>
+
+cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
+    assert(q && c && what);
+    if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE)
+        return cj_fail(CJ_ERR_DEGREE, "%s: degree %d outside 0..%d", what, c->degree,
+                       CJ_QUERY_MAX_DEGREE);
+    assert(c->pts);
+    int n = c->degree;
+    double scale = 0.0;
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 2; ++k) {
+            double v = c->pts[2 * i + k];
+            if (!isfinite(v))
+                return cj_fail(CJ_ERR_NONFINITE, "%s: control point %d, coordinate %d is %s", what,
+                               i, k, isnan(v) ? "NaN" : "infinite");
+            scale = fmax(scale, fabs(v));
+        }
+    int rational = 0;
+    if (c->weights)
+        for (int i = 0; i <= n; ++i) {
+            double w = c->weights[i];
+            if (!isfinite(w))
+                return cj_fail(CJ_ERR_NONFINITE, "%s: weight %d is %s", what, i,
+                               isnan(w) ? "NaN" : "infinite");
+            if (!(w > 0.0))
+                return cj_fail(CJ_ERR_ARGUMENT, "%s: weight %d is %g, must be > 0", what, i, w);
+            if (w != 1.0) rational = 1;
+        }
+    if (scale > 0x1p500)
+        return cj_fail(CJ_ERR_RANGE,
+                       "%s: coordinates up to %g exceed the range the queries "
+                       "certify (2^500 = 3.3e150)",
+                       what, scale);
+    int distinct = 0;
+    for (int i = 1; i <= n && !distinct; ++i)
+        distinct = c->pts[2 * i] != c->pts[0] || c->pts[2 * i + 1] != c->pts[1];
+    if (!distinct)
+        return cj_fail(CJ_ERR_DEGENERATE,
+                       "%s: all %d control points coincide (a point, not a "
+                       "curve)",
+                       what, n + 1);
+    q->n = n;
+    q->rational = rational;
+    q->scale = scale;
+    for (int i = 0; i <= n; ++i) {
+        cj_ivl w = cj_iv(rational ? c->weights[i] : 1.0);
+        for (int k = 0; k < 2; ++k)
+            q->h[i][k] = rational ? cj_imul(cj_iv(c->pts[2 * i + k]), w) : cj_iv(c->pts[2 * i + k]);
+        q->h[i][2] = w;
+    }
+    for (int k = 0; k < 3; ++k) {
+        q->hmag[k] = 0.0;
+        for (int i = 0; i <= n; ++i) q->hmag[k] = fmax(q->hmag[k], cj_imag(q->h[i][k]));
+    }
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            q->dh[i][k] = cj_imul(cj_iv((double)n), cj_isub(q->h[i + 1][k], q->h[i][k]));
+    for (int i = 0; i + 1 < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            q->ddh[i][k] = cj_imul(cj_iv((double)(n - 1)), cj_isub(q->dh[i + 1][k], q->dh[i][k]));
+    for (int i = 0; i + 2 < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            q->d3h[i][k] = cj_imul(cj_iv((double)(n - 2)), cj_isub(q->ddh[i + 1][k], q->ddh[i][k]));
+    return CJ_OK;
+}
+
+/* de Casteljau in interval arithmetic: Σ c_i B_i^m(t) for every t in T, per coordinate. */
+static void ideval(const cj_ivl (*c)[3], int m, int dims, cj_ivl T, cj_ivl out[3]) {
+    cj_ivl w[CJ_QUERY_MAXN + 1][3];
+    cj_ivl S = cj_isub(cj_iv(1.0), T);
+    for (int i = 0; i <= m; ++i)
+        for (int k = 0; k < dims; ++k) w[i][k] = c[i][k];
+    if (S.lo >= 0.0 && T.lo >= 0.0) { /* t in [0,1]: products with non-negative factors */
+        for (int r = m; r > 0; --r)
+            for (int i = 0; i < r; ++i)
+                for (int k = 0; k < dims; ++k)
+                    w[i][k] = cj_iadd(cj_imul_nonneg(S, w[i][k]), cj_imul_nonneg(T, w[i + 1][k]));
+    } else {
+        for (int r = m; r > 0; --r)
+            for (int i = 0; i < r; ++i)
+                for (int k = 0; k < dims; ++k)
+                    w[i][k] = cj_iadd(cj_imul(S, w[i][k]), cj_imul(T, w[i + 1][k]));
+    }
+    for (int k = 0; k < dims; ++k) out[k] = w[0][k];
+}
+
+int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]) {
+    int n = q->n, dims = q->rational ? 3 : 2;
+    cj_ivl H[3], D[3];
+    ideval((const cj_ivl(*)[3])q->h, n, dims, T, H);
+    if (d) {
+        if (n == 0)
+            D[0] = D[1] = D[2] = cj_iv(0.0);
+        else
+            ideval((const cj_ivl(*)[3])q->dh, n - 1, dims, T, D);
+    }
+    if (!q->rational) {
+        for (int k = 0; k < 2; ++k) {
+            p[k] = H[k];
+            if (d) d[k] = D[k];
+        }
+    } else {
+        cj_ivl W = H[2];
+        if (!(W.lo > 0.0)) return 0;
+        for (int k = 0; k < 2; ++k) {
+            p[k] = cj_idiv(H[k], W);
+            /* c' = (P' - c w') / w: the quotient rule with the enclosure of c itself */
+            if (d) d[k] = cj_idiv(cj_isub(D[k], cj_imul(p[k], D[2])), W);
+        }
+    }
+    for (int k = 0; k < 2; ++k) {
+        if (!cj_ifinite(p[k])) return 0;
+        if (d && !cj_ifinite(d[k])) return 0;
+    }
+    return 1;
+}
+
+int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]) {
+    int n = q->n, dims = q->rational ? 3 : 2;
+    cj_ivl H[3], D[3], DD[3];
+    ideval((const cj_ivl(*)[3])q->h, n, dims, T, H);
+    if (n >= 1)
+        ideval((const cj_ivl(*)[3])q->dh, n - 1, dims, T, D);
+    else
+        D[0] = D[1] = D[2] = cj_iv(0.0);
+    if (n >= 2)
+        ideval((const cj_ivl(*)[3])q->ddh, n - 2, dims, T, DD);
+    else
+        DD[0] = DD[1] = DD[2] = cj_iv(0.0);
+    for (int k = 0; k < 2; ++k) {
+        if (!q->rational) {
+            p[k] = H[k];
+            d[k] = D[k];
+            dd[k] = DD[k];
+            continue;
+        }
+        cj_ivl W = H[2];
+        if (!(W.lo > 0.0)) return 0;
+        p[k] = cj_idiv(H[k], W);
+        d[k] = cj_idiv(cj_isub(D[k], cj_imul(p[k], D[2])), W);
+        /* c'' = (P'' - 2 c' w' - c w'') / w */
+        cj_ivl num = cj_isub(DD[k], cj_imul(cj_iv(2.0), cj_imul(d[k], D[2])));
+        dd[k] = cj_idiv(cj_isub(num, cj_imul(p[k], DD[2])), W);
+    }
+    for (int k = 0; k < 2; ++k)
+        if (!cj_ifinite(p[k]) || !cj_ifinite(d[k]) || !cj_ifinite(dd[k])) return 0;
+    return 1;
+}
+
+int cj_qctx_eval3(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2],
+                  cj_ivl d3[2]) {
+    int n = q->n, dims = q->rational ? 3 : 2;
+    cj_ivl H[3], D[3], DD[3], D3[3];
+    ideval((const cj_ivl(*)[3])q->h, n, dims, T, H);
+    D[0] = D[1] = D[2] = DD[0] = DD[1] = DD[2] = D3[0] = D3[1] = D3[2] = cj_iv(0.0);
+    if (n >= 1) ideval((const cj_ivl(*)[3])q->dh, n - 1, dims, T, D);
+    if (n >= 2) ideval((const cj_ivl(*)[3])q->ddh, n - 2, dims, T, DD);
+    if (n >= 3) ideval((const cj_ivl(*)[3])q->d3h, n - 3, dims, T, D3);
+    for (int k = 0; k < 2; ++k) {
+        if (!q->rational) {
+            p[k] = H[k], d[k] = D[k], dd[k] = DD[k], d3[k] = D3[k];
+            continue;
+        }
+        cj_ivl W = H[2];
+        if (!(W.lo > 0.0)) return 0;
+        p[k] = cj_idiv(H[k], W);
+        d[k] = cj_idiv(cj_isub(D[k], cj_imul(p[k], D[2])), W);
+        cj_ivl num = cj_isub(DD[k], cj_imul(cj_iv(2.0), cj_imul(d[k], D[2])));
+        dd[k] = cj_idiv(cj_isub(num, cj_imul(p[k], DD[2])), W);
+        /* c''' = (P''' - 3 c'' w' - 3 c' w'' - c w''') / w */
+        cj_ivl t3 = cj_isub(D3[k], cj_imul(cj_iv(3.0), cj_imul(dd[k], D[2])));
+        t3 = cj_isub(t3, cj_imul(cj_iv(3.0), cj_imul(d[k], DD[2])));
+        d3[k] = cj_idiv(cj_isub(t3, cj_imul(p[k], D3[2])), W);
+    }
+    for (int k = 0; k < 2; ++k)
+        if (!cj_ifinite(p[k]) || !cj_ifinite(d[k]) || !cj_ifinite(dd[k]) || !cj_ifinite(d3[k]))
+            return 0;
+    return 1;
+}
+
+void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
+    p->n = q->n;
+    p->rational = q->rational;
+    p->a = 0.0;
+    p->b = 1.0;
+    for (int k = 0; k < 3; ++k) {
+        double err = 0.0;
+        for (int i = 0; i <= q->n; ++i) {
+            cj_ivl v = q->h[i][k];
+            double m = cj_imid(v);
+            p->h[i][k] = m;
+            err = fmax(err, fmax(m - v.lo, v.hi - m));
+        }
+        p->err[k] = err > 0.0 ? cj_up(err) : 0.0;
+    }
+}
+
+void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *left, cj_qpiece *right) {
+    int n = p->n;
+    double w[CJ_QUERY_MAXN + 1][3];
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 3; ++k) w[i][k] = p->h[i][k];
+    cj_qpiece L, R;
+    L.n = R.n = n;
+    L.rational = R.rational = p->rational;
+    for (int k = 0; k < 3; ++k) {
+        L.h[0][k] = w[0][k];
+        R.h[n][k] = w[n][k];
+    }
+    for (int r = n; r > 0; --r) {
+        for (int i = 0; i < r; ++i)
+            for (int k = 0; k < 3; ++k) w[i][k] = 0.5 * (w[i][k] + w[i + 1][k]);
+        for (int k = 0; k < 3; ++k) {
+            L.h[n - r + 1][k] = w[0][k];
+            R.h[r - 1][k] = w[r - 1][k];
+        }
+    }
+    /* Each output point went through at most n averagings, each off by at most u times the
+     * largest magnitude (the addition) plus 2^-1075 (the halving, in the subnormal range);
+     * errors of the inputs pass through averages unchanged. A polynomial's weights stay
+     * exactly 1. */
+    double e[3];
+    for (int k = 0; k < 3; ++k) {
+        e[k] = p->err[k] + (double)n * ((mag[k] + p->err[k]) * 0x1p-53 + 0x1p-1074);
+        e[k] *= 1.0 + 0x1p-40;
+    }
+    if (!p->rational) e[2] = 0.0;
+    double m = 0.5 * (p->a + p->b); /* dyadic: exact */
+    L.a = p->a;
+    L.b = m;
+    R.a = m;
+    R.b = p->b;
+    for (int k = 0; k < 3; ++k) L.err[k] = R.err[k] = e[k];
+    *left = L;
+    *right = R;
+}
+
+void cj_qpiece_boxes(const cj_qpiece *p, double lo[][2], double hi[][2]) {
+    const double *e = p->err;
+    for (int i = 0; i <= p->n; ++i) {
+        cj_ivl W = cj_iv2(cj_down(p->h[i][2] - e[2]), cj_up(p->h[i][2] + e[2]));
+        for (int k = 0; k < 2; ++k) {
+            cj_ivl X = cj_iv2(cj_down(p->h[i][k] - e[k]), cj_up(p->h[i][k] + e[k]));
+            if (!p->rational) { /* the weight is exactly 1 in every piece */
+                lo[i][k] = X.lo;
+                hi[i][k] = X.hi;
+                continue;
+            }
+            if (!(W.lo > 0.0)) {
+                lo[i][k] = -INFINITY;
+                hi[i][k] = INFINITY;
+                continue;
+            }
+            cj_ivl r = cj_idiv(X, W);
+            lo[i][k] = r.lo;
+            hi[i][k] = r.hi;
+        }
+    }
+}
+
+void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]) {
+    double blo[CJ_QUERY_MAXN + 1][2], bhi[CJ_QUERY_MAXN + 1][2];
+    cj_qpiece_boxes(p, blo, bhi);
+    for (int k = 0; k < 2; ++k) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+        for (int i = 0; i <= p->n; ++i) {
+            lo[k] = fmin(lo[k], blo[i][k]);
+            hi[k] = fmax(hi[k], bhi[i][k]);
+        }
+    }
+}
+
+void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L) {
+    q->n = 1;
+    q->rational = 0;
+    cj_ivl IL = cj_iv(L);
+    q->hmag[0] = q->hmag[1] = 0.0;
+    q->hmag[2] = 1.0;
+    for (int k = 0; k < 2; ++k) {
+        cj_ivl off = cj_imul(IL, cj_iv(d[k]));
+        q->h[0][k] = cj_isub(cj_iv(p[k]), off);
+        q->h[1][k] = cj_iadd(cj_iv(p[k]), off);
+        q->dh[0][k] = cj_isub(q->h[1][k], q->h[0][k]);
+        q->hmag[k] = fmax(cj_imag(q->h[0][k]), cj_imag(q->h[1][k]));
+    }
+    q->h[0][2] = q->h[1][2] = cj_iv(1.0);
+    q->dh[0][2] = cj_iv(0.0);
+    q->scale = fmax(q->hmag[0], q->hmag[1]);
+}
+
+double cj_query_scale(const cj_bezier2 *c) {
+    double s = 0.0;
+    if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE) return 1.0; /* refused later */
+    for (int i = 0; i < 2 * (c->degree + 1); ++i)
+        if (isfinite(c->pts[i])) s = fmax(s, fabs(c->pts[i]));
+    return s;
+}
+
+int cj_query_scale_exp(double scale) {
+    return scale > 0.0 && scale < 0x1p-200 ? -ilogb(scale) : 0;
+}
+
+cj_bezier2 cj_query_scaled(const cj_bezier2 *c, int k, double *buf) {
+    for (int i = 0; i < 2 * (c->degree + 1); ++i) buf[i] = ldexp(c->pts[i], k);
+    return cj_bezier2_view(c->degree, buf, c->weights);
+}

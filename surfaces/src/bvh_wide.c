@@ -1,0 +1,92 @@
+/* The 4-wide BVH that traversal walks: collapsed from the binary SAH tree, boxes unchanged, and
+ * its 4-box slab test (bvh_internal.h). */
+#include "bvh_internal.h"
+#include "alloc_internal.h"
+#include "error_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+static double box_area(const cj_aabb *b) {
+    const double dx = b->hi[0] - b->lo[0], dy = b->hi[1] - b->lo[1], dz = b->hi[2] - b->lo[2];
+    return dx >= 0.0 && dy >= 0.0 && dz >= 0.0 ? dx * dy + dy * dz + dz * dx : 0.0;
+}
+
+cj_status cj_bvh4_build(cj_bvh *bvh) {
+    cj_allocator *a = &bvh->alloc_;
+    const size_t cap = bvh->node_count; /* each wide node consumes >= 1 binary inner node */
+    cj_bvh4 *w = cj_allocator_alloc(a, sizeof *w);
+    if (!w) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for the wide nodes");
+    w->nodes = cj_allocator_alloc(a, cap * sizeof *w->nodes);
+    uint32_t *todo = cj_allocator_alloc(a, 2 * cap * sizeof *todo);
+    if (!w->nodes || !todo) {
+        cj_allocator_free(a, w->nodes);
+        cj_allocator_free(a, todo);
+        cj_allocator_free(a, w);
+        return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu wide nodes", cap);
+    }
+    /* todo holds pairs (wide node, binary node whose subtree it stands for) */
+    size_t nw = 1, ntodo = 0;
+    todo[ntodo++] = 0;
+    todo[ntodo++] = 0;
+    while (ntodo > 0) {
+        const uint32_t b = todo[--ntodo], wi = todo[--ntodo];
+        uint32_t kids[4];
+        int nk = 0;
+        const cj_bvh_node *bn = &bvh->nodes[b];
+        if (bn->count) {
+            kids[nk++] = b;
+        } else {
+            kids[nk++] = bn->first;
+            kids[nk++] = bn->first + 1;
+        }
+        while (nk < 4) { /* open the inner child with the largest area */
+            int best = -1;
+            double best_area = -1.0;
+            for (int i = 0; i < nk; ++i) {
+                const cj_bvh_node *c = &bvh->nodes[kids[i]];
+                const double ar = box_area(&c->box);
+                if (!c->count && ar > best_area) best = i, best_area = ar;
+            }
+            if (best < 0) break;
+            const uint32_t open = kids[best];
+            kids[best] = bvh->nodes[open].first;
+            kids[nk++] = bvh->nodes[open].first + 1;
+        }
+        cj_bvh4_node *wn = &w->nodes[wi];
+        wn->count = nk;
+        wn->pad_ = 0;
+        for (int i = 0; i < 4; ++i) {
+            for (int k = 0; k < 3; ++k) {
+                wn->lo[k][i] = INFINITY;
+                wn->hi[k][i] = -INFINITY;
+            }
+            wn->child[i] = 0;
+            if (i >= nk) continue;
+            const cj_bvh_node *c = &bvh->nodes[kids[i]];
+            for (int k = 0; k < 3; ++k) {
+                wn->lo[k][i] = c->box.lo[k];
+                wn->hi[k][i] = c->box.hi[k];
+            }
+            if (c->count) {
+                wn->child[i] = ~(int32_t)kids[i];
+            } else {
+                wn->child[i] = (int32_t)nw;
+                todo[ntodo++] = (uint32_t)nw++;
+                todo[ntodo++] = kids[i];
+            }
+        }
+    }
+    w->count = nw;
+    cj_allocator_free(a, todo);
+    bvh->wide_ = w;
+    return CJ_OK;
+}
+
+void cj_bvh4_destroy(cj_bvh *bvh) {
+    cj_bvh4 *w = bvh->wide_;
+    if (!w) return;
+    cj_allocator_free(&bvh->alloc_, w->nodes);
+    cj_allocator_free(&bvh->alloc_, w);
+    bvh->wide_ = NULL;
+}

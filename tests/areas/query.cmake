@@ -1,0 +1,20 @@
+# Issue 23: certified queries of curves (intersections, nearest points) against MPFR and
+# long-double polyline oracles (tests/query/query_oracle.c, independent of the library).
+add_library(cj_query_oracle STATIC ${CMAKE_CURRENT_SOURCE_DIR}/query/query_oracle.c)
+target_link_libraries(cj_query_oracle PUBLIC cj_test_support PkgConfig::CJ_MPFR)
+target_include_directories(cj_query_oracle PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/query)
+cj_warnings(cj_query_oracle)
+cj_add_test(test_intersect SOURCES query/test_intersect.c LIBS cj_query_oracle)
+cj_add_test(test_nearest SOURCES query/test_nearest.c LIBS cj_query_oracle)
+# Contract of `casteljau intersect` / `casteljau nearest`: runs the built tool.
+cj_add_test(test_cli_query SOURCES query/test_cli_query.c)
+target_compile_definitions(test_cli_query PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+  CJ_QUERY_DOC="${PROJECT_SOURCE_DIR}/docs/queries_demo.json"
+  CJ_TMP_DIR="${CMAKE_CURRENT_BINARY_DIR}")
+if(CJ_WITH_OIIO AND TARGET cj::viz)
+  target_compile_definitions(test_cli_query PRIVATE CJ_HAVE_PLOT=1)
+endif()
+add_dependencies(test_cli_query casteljau)
+cj_add_test(test_offset SOURCES query/test_offset.c LIBS cj_query_oracle)
+# Nearest point on Bézier patches (surfaces/): exact 256-bit grid distances against the bound.
+cj_add_test(test_patch_nearest SOURCES query/test_patch_nearest.c LIBS cj::surfaces PkgConfig::CJ_MPFR)
