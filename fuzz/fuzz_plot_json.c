@@ -1,7 +1,7 @@
-/* libFuzzer target: the plot JSON parser (app/plot_json.c), which also contours the implicit
- * items and builds every plot: a document is parsed, rendered into a small framebuffer (no
+/* libFuzzer target: the plot JSON parser (formats/src/plot_json.c), which also contours the
+ * implicit items and builds every plot: a document is parsed, rendered into a small framebuffer (no
  * font: the layout and drawing code without text) and freed. */
-#include "../app/plot_json.h"
+#include "plot_json.h"
 
 #include <stdint.h>
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* Numerical stability of Bézier evaluation against an exact oracle (MPFR, see
- * support/oracle_mpfr.h): every method's error must stay within its published bound, the
+ * oracle/include/oracle_mpfr.h): every method's error must stay within its published bound, the
  * library's computed bounds must hold and not undercut the published ones, and the compensated
  * method's a-posteriori bound must hold and stay informative. Cases: the classic hard
  * polynomial (s-1)(s-3/4)^7 ever closer to its 7-fold root, random curves of degree 20, 40 and

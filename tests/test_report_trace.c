@@ -1,4 +1,4 @@
-/* test_report: the checks of the "trace" section (app/report_trace.c) on the quick report.
+/* test_report: the checks of the "trace" section (report/src/report_trace.c) on the quick report.
  *
  * Samples per pixel (rows "stratified" / "random", param = spp 1, 4, 16): RMSE finite and > 0;
  * the reference's own noise (column bound) well below every measured RMSE, so the figures are

@@ -1,6 +1,7 @@
 /* Plane primitives of seed chapter 2. See casteljau/primitives.h. */
 #include "casteljau/primitives.h"
 #include "error_internal.h"
+#include "eft_internal.h"
 
 #include <assert.h>
 #include <math.h>
@@ -15,12 +16,6 @@ static cj_status finite_vec(cj_vec2 v, const char *what) {
 }
 
 /* ---- exact orientation ------------------------------------------------------------------- */
-
-static void two_sum(double a, double b, double *s, double *e) {
-    double x = a + b, bv = x - a, av = x - bv;
-    *s = x;
-    *e = (a - av) + (b - bv);
-}
 
 /* Sign of (b − a) × (c − a): floating-point filter, then the exact sum of the six products
  * bx cy − bx ay − ax cy − by cx + by ax + ay cx as a nonoverlapping expansion. */
@@ -41,7 +36,7 @@ static int orient(cj_vec2 a, cj_vec2 b, cj_vec2 c) {
             int m = 0;
             for (int i = 0; i < ne; ++i) {
                 double s, err;
-                two_sum(Q, e[i], &s, &err);
+                cj_two_sum(Q, e[i], &s, &err);
                 Q = s;
                 if (err != 0.0) e[m++] = err;
             }

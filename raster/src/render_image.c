@@ -5,6 +5,7 @@
 
 #include "casteljau/framebuffer.h"
 #include "error_internal.h"
+#include "clock_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -35,9 +36,7 @@ void cj_rfree(const cj_allocator *a, void *p) {
 }
 
 double cj_render_now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    return cj_clock_seconds();
 }
 
 double cj_render_thread_cpu(void) {

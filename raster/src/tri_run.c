@@ -9,10 +9,10 @@
 #include "render_internal.h"
 #include "render_pool.h"
 #include "render_progress.h"
+#include "clock_internal.h"
 
 #include <assert.h>
 #include <string.h>
-#include <time.h>
 
 typedef struct worker_buf {
     cj_tri_scratch scratch;
@@ -49,12 +49,6 @@ static void tile_task(void *user, int t, int worker) {
     tile.samples = w->samples;
     cj_tri_render_tile(p, &tile, &w->scratch, r->fn != NULL);
     if (r->fn) r->fn(r->user, &tile);
-}
-
-static double wall(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 int cj_raster_thread_count(const cj_raster_prep *prep, int threads) {
@@ -122,7 +116,7 @@ cj_status cj_raster_run_on(const cj_raster_prep *prep, struct cj_rpool *pool, in
                            struct cj_rprogress *progress, cj_raster_stats *stats,
                            int *buffers_reused) {
     assert(prep && pool && ws);
-    const double t0 = wall();
+    const double t0 = cj_clock_seconds();
     if (threads < 0) return cj_fail(CJ_ERR_RANGE, "raster: thread count %d is negative", threads);
     threads = cj_raster_thread_count(prep, threads);
     if (threads > cj_rpool_threads(pool)) threads = cj_rpool_threads(pool);
@@ -146,7 +140,7 @@ cj_status cj_raster_run_on(const cj_raster_prep *prep, struct cj_rpool *pool, in
         }
         stats->samples_tested = tested;
         stats->samples_written = written;
-        stats->seconds_raster = wall() - t0;
+        stats->seconds_raster = cj_clock_seconds() - t0;
     }
     return CJ_OK;
 }

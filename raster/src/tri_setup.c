@@ -5,12 +5,12 @@
 
 #include "casteljau/framebuffer.h"
 #include "error_internal.h"
+#include "clock_internal.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 /* ---- sample patterns --------------------------------------------------------------------- */
 
@@ -258,12 +258,6 @@ static int list_reserve(setup_list *l, size_t need) {
     return 1;
 }
 
-static double now_seconds(void) {
-    struct timespec ts;
-    timespec_get(&ts, TIME_UTC);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Tile t of the prep intersects triangle s: its bounding box does, and no edge function is
  * negative over the whole tile (tested at the tile corner where it is largest). */
 static int tile_hit(const cj_raster_prep *p, const cj_tri_setup *s, int tx, int ty) {
@@ -346,7 +340,7 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     assert(in && out);
     assert(in->vertex_count == 0 || in->clip);
     assert(in->tri_count == 0 || in->tris);
-    const double t_start = now_seconds();
+    const double t_start = cj_clock_seconds();
     if (in->width < 1 || in->height < 1 || in->width > CJ_FRAMEBUFFER_MAX_SIDE ||
         in->height > CJ_FRAMEBUFFER_MAX_SIDE)
         return cj_fail(CJ_ERR_RANGE, "raster: image size %d x %d outside 1..%d", in->width,
@@ -510,7 +504,7 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
         cj_raster_prep_destroy(p);
         return status;
     }
-    st.seconds_setup = now_seconds() - t_start;
+    st.seconds_setup = cj_clock_seconds() - t_start;
     if (stats) *stats = st;
     *out = p;
     return CJ_OK;

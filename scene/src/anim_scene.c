@@ -2,12 +2,12 @@
 #include "casteljau/anim_scene.h"
 
 #include "error_internal.h"
+#include "clock_internal.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 typedef enum {
     B_NONE = 0,
@@ -355,18 +355,12 @@ cj_status cj_anim_bind(cj_anim *a, cj_scene *scene) {
     return CJ_OK;
 }
 
-static double now_seconds(void) {
-    struct timespec ts;
-    timespec_get(&ts, TIME_UTC);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 cj_status cj_anim_pose(cj_scene *scene, const cj_anim *a, double t, cj_anim_pose_info *info) {
     assert(scene && a);
     if (a->scene != scene)
         return cj_fail(CJ_ERR_ARGUMENT, "animation is not bound to this scene (cj_anim_bind)");
     if (!isfinite(t)) return cj_fail(CJ_ERR_NONFINITE, "pose time %g", t);
-    const double t0 = now_seconds();
+    const double t0 = cj_clock_seconds();
     cj_anim_pose_info inf;
     memset(&inf, 0, sizeof inf);
     cj_camera cam = *cj_scene_camera(scene);
@@ -437,7 +431,7 @@ cj_status cj_anim_pose(cj_scene *scene, const cj_anim *a, double t, cj_anim_pose
             return cj_fail(st, "camera posed at t = %g: %s", t, msg);
         }
     }
-    inf.seconds = now_seconds() - t0;
+    inf.seconds = cj_clock_seconds() - t0;
     if (info) *info = inf;
     return CJ_OK;
 }

@@ -23,10 +23,6 @@ cj_camera cj_camera_default(void) {
     return c;
 }
 
-static int finite3(cj_vec3 v) {
-    return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
-}
-
 /* The frame without validation of the scalar fields; CJ_ERR_DEGENERATE for a zero gaze or an
  * up vector (numerically) parallel to it. */
 static cj_status frame(const cj_camera *cam, cj_vec3 *u, cj_vec3 *v, cj_vec3 *w) {
@@ -49,9 +45,9 @@ static cj_status frame(const cj_camera *cam, cj_vec3 *u, cj_vec3 *v, cj_vec3 *w)
 
 cj_status cj_camera_check(const cj_camera *cam) {
     assert(cam);
-    if (!finite3(cam->eye)) return cj_fail(CJ_ERR_NONFINITE, "camera eye is not finite");
-    if (!finite3(cam->gaze)) return cj_fail(CJ_ERR_NONFINITE, "camera gaze is not finite");
-    if (!finite3(cam->up)) return cj_fail(CJ_ERR_NONFINITE, "camera up is not finite");
+    if (!cj_v3_finite(cam->eye)) return cj_fail(CJ_ERR_NONFINITE, "camera eye is not finite");
+    if (!cj_v3_finite(cam->gaze)) return cj_fail(CJ_ERR_NONFINITE, "camera gaze is not finite");
+    if (!cj_v3_finite(cam->up)) return cj_fail(CJ_ERR_NONFINITE, "camera up is not finite");
     if (!isfinite(cam->near)) return cj_fail(CJ_ERR_NONFINITE, "camera near is not finite");
     if (!isfinite(cam->far)) return cj_fail(CJ_ERR_NONFINITE, "camera far is not finite");
     if (!(cam->near < 0.0))

@@ -2,6 +2,7 @@
  * damping adapted Levenberg–Marquardt style so that every accepted step lowers the residual)
  * or the Jacobian transpose. */
 #include "casteljau/kinematics.h"
+#include "casteljau/vec.h"
 
 #include "error_internal.h"
 
@@ -24,7 +25,7 @@ cj_ik_options cj_ik_defaults(cj_ik_method method) {
 }
 
 static int finite3(const double *v) {
-    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+    return cj_v3_finite(cj_v3(v[0], v[1], v[2]));
 }
 
 cj_status cj_chain_check(const cj_chain *c, const double *q) {

@@ -3,6 +3,7 @@
 
 #include "error_internal.h"
 #include "particle_internal.h"
+#include "clock_internal.h"
 
 #include <assert.h>
 #include <math.h>
@@ -11,12 +12,6 @@
 #include <time.h>
 
 #define CJ_PI 3.14159265358979323846
-
-static double now_seconds(void) {
-    struct timespec ts;
-    timespec_get(&ts, TIME_UTC);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* xoshiro256** seeded by splitmix64 (Blackman and Vigna). */
 static uint64_t rotl(uint64_t x, int k) {
@@ -329,7 +324,7 @@ cj_status cj_particles_step(cj_particles *p, double h, cj_particles_stats *stats
     if (!(h > 0.0) || !isfinite(h)) return cj_fail(CJ_ERR_RANGE, "time step %g must be > 0", h);
     cj_particles_stats st;
     memset(&st, 0, sizeof st);
-    double t0 = now_seconds();
+    double t0 = cj_clock_seconds();
     /* Bounded work whatever the rate, step or restored state: a step in which one emitter
      * would emit more than CJ_PARTICLES_MAX_EMIT_PER_STEP particles is refused, not looped over,
      * and refused before any emitter has changed anything. */
@@ -352,7 +347,7 @@ cj_status cj_particles_step(cj_particles *p, double h, cj_particles_stats *stats
         p->emit_acc[j] = acc - (double)n;
         for (long k = 0; k < n; ++k) spawn(p, e, &st);
     }
-    double t1 = now_seconds();
+    double t1 = cj_clock_seconds();
     st.seconds_emit = t1 - t0;
     const double *g = p->d.gravity, *w = p->d.wind, dr = p->d.drag;
     for (size_t i = 0; i < p->count; ++i)
@@ -373,7 +368,7 @@ cj_status cj_particles_step(cj_particles *p, double h, cj_particles_stats *stats
             p->x[3 * i + k] += h * v[k];
         }
     }
-    double t2 = now_seconds();
+    double t2 = cj_clock_seconds();
     st.seconds_forces = t2 - t1;
     if (p->d.patch_collider_count)
         for (size_t i = 0; i < p->count; ++i)
@@ -382,7 +377,7 @@ cj_status cj_particles_step(cj_particles *p, double h, cj_particles_stats *stats
                                                                     p->acc + 3 * i, p->x + 3 * i,
                                                                     p->v + 3 * i, p->d.restitution);
     if (p->d.plane_count || p->d.sphere_count) st.collisions += collide(p);
-    st.seconds_collide = now_seconds() - t2;
+    st.seconds_collide = cj_clock_seconds() - t2;
     for (size_t i = 0; i < p->count;) {
         p->age[i] += h;
         if (p->age[i] >= p->life[i]) {

@@ -1,21 +1,15 @@
-/* The spring system's backward Euler (Baraff–Witkin, matrix-free PCG), colliders and cloth. */
+/* The spring system's backward Euler (Baraff–Witkin, matrix-free PCG). */
 #include "casteljau/springs.h"
 
 #include "error_internal.h"
 #include "particle_internal.h"
 #include "spring_internal.h"
+#include "clock_internal.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static double now_seconds(void) {
-    struct timespec ts;
-    timespec_get(&ts, TIME_UTC);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Per spring: S = beta I + (alpha − beta) n nᵀ is the spring's block of h C + h² K (with the
  * compressive part clamped), and the rhs uses gamma n nᵀ + beta (I − n nᵀ) = h² K. */
@@ -71,7 +65,7 @@ cj_status cj_springs_implicit_step(cj_springs *s, double h, cj_springs_stats *st
     const size_t dim = (size_t)s->dim, n = s->count * dim;
     double *dv = s->cg, *r = dv + n, *p = r + n, *q = p + n, *z = q + n, *diag = z + n,
            *rhs = diag + n;
-    const double t0 = now_seconds();
+    const double t0 = cj_clock_seconds();
     fill_cache(s, h);
     cj_springs_forces_at(s, s->x, s->v, rhs);
     for (size_t i = 0; i < n; ++i) rhs[i] *= h;
@@ -101,7 +95,7 @@ cj_status cj_springs_implicit_step(cj_springs *s, double h, cj_springs_stats *st
                 rhs[i * dim + k] = 0.0;
                 diag[i * dim + k] = 1.0;
             }
-    const double t1 = now_seconds();
+    const double t1 = cj_clock_seconds();
     /* Preconditioned CG from Δv = 0. */
     double bnorm = 0.0, rz = 0.0;
     for (size_t i = 0; i < n; ++i) {
@@ -147,154 +141,9 @@ cj_status cj_springs_implicit_step(cj_springs *s, double h, cj_springs_stats *st
     stats->cg_iterations = it;
     stats->cg_residual = bnorm > 0.0 ? rn / bnorm : 0.0;
     stats->seconds_forces = t1 - t0;
-    stats->seconds_solve = now_seconds() - t1;
+    stats->seconds_solve = cj_clock_seconds() - t1;
     for (size_t i = 0; i < n; ++i)
         if (!isfinite(s->x[i]) || !isfinite(s->v[i]))
             return cj_fail(CJ_ERR_NONFINITE, "particle %zu: implicit step not finite", i / dim);
-    return st;
-}
-
-/* Moves x to the surface point along the unit normal nrm, removes the inward normal velocity,
- * scales the tangential one. */
-static void resolve(double *x, double *v, size_t dim, const double *nrm, double depth,
-                    double friction) {
-    double vn = 0.0;
-    for (size_t k = 0; k < dim; ++k) {
-        x[k] += depth * nrm[k];
-        vn += v[k] * nrm[k];
-    }
-    for (size_t k = 0; k < dim; ++k) {
-        const double vnk = vn * nrm[k];
-        double vt = v[k] - vnk;
-        vt *= 1.0 - friction;
-        v[k] = (vn < 0.0 ? 0.0 : vnk) + vt;
-    }
-}
-
-size_t cj_springs_collide(cj_springs *s) {
-    const size_t dim = (size_t)s->dim;
-    size_t hits = 0;
-    if (s->npatch && dim == 3)
-        for (size_t i = 0; i < s->count; ++i)
-            if (!s->fixed[i])
-                for (size_t j = 0; j < s->npatch; ++j)
-                    hits += (size_t)cj_patch_collider_resolve_(
-                        s->patch_colliders[j], s->xold + 3 * i, s->x + 3 * i, s->v + 3 * i, 0.0);
-    if (s->nspheres == 0 && s->nplanes == 0) return hits;
-    for (size_t i = 0; i < s->count; ++i) {
-        if (s->fixed[i]) continue;
-        double *x = s->x + i * dim, *v = s->v + i * dim;
-        int hit = 0;
-        for (size_t j = 0; j < s->nspheres; ++j) {
-            const cj_sphere_collider *c = &s->spheres[j];
-            double d[3] = {0, 0, 0}, l2 = 0.0;
-            for (size_t k = 0; k < dim; ++k) {
-                d[k] = x[k] - c->center[k];
-                l2 += d[k] * d[k];
-            }
-            const double l = sqrt(l2);
-            if (l >= c->radius) continue;
-            double nrm[3] = {0, 0, 0};
-            if (l > 0.0)
-                for (size_t k = 0; k < dim; ++k) nrm[k] = d[k] / l;
-            else
-                nrm[dim - 1] = 1.0; /* at the centre: push out along the last axis */
-            /* land exactly on the sphere: recompute the point rather than add a depth */
-            for (size_t k = 0; k < dim; ++k) x[k] = c->center[k] + c->radius * nrm[k];
-            resolve(x, v, dim, nrm, 0.0, c->friction);
-            hit = 1;
-        }
-        for (size_t j = 0; j < s->nplanes; ++j) {
-            const cj_plane_collider *c = &s->planes[j];
-            double nl = 0.0, nrm[3] = {0, 0, 0}, side = 0.0;
-            for (size_t k = 0; k < dim; ++k) nl += c->normal[k] * c->normal[k];
-            nl = sqrt(nl);
-            if (!(nl > 0.0)) continue;
-            for (size_t k = 0; k < dim; ++k) {
-                nrm[k] = c->normal[k] / nl;
-                side += nrm[k] * x[k];
-            }
-            if (side >= c->offset) continue;
-            resolve(x, v, dim, nrm, c->offset - side, c->friction);
-            hit = 1;
-        }
-        hits += (size_t)hit;
-    }
-    return hits;
-}
-
-cj_status cj_springs_create_cloth(int nu, int nv, const double corner[3], const double eu[3],
-                                  const double ev[3], double mass, double k_struct, double k_shear,
-                                  double k_bend, double c, const int *pinned, size_t pinned_count,
-                                  const cj_springs_desc *extra, const cj_allocator *alloc,
-                                  cj_springs **out) {
-    if (nu < 2 || nv < 2 || nu > 4096 || nv > 4096)
-        return cj_fail(CJ_ERR_RANGE, "cloth grid %d x %d: each side must be in 2..4096", nu, nv);
-    if (extra && extra->dim != 3)
-        return cj_fail(CJ_ERR_DIMENSION, "cloth: extra description must be 3D");
-    if (!(mass > 0.0) || !isfinite(mass))
-        return cj_fail(CJ_ERR_RANGE, "cloth mass %g must be finite and > 0", mass);
-    const size_t np = (size_t)nu * (size_t)nv;
-    const size_t maxspr = 8 * np;
-    double *x = malloc(sizeof(double) * 3 * np), *m = malloc(sizeof(double) * np);
-    unsigned char *fixed = calloc(np, 1);
-    cj_spring *spr = malloc(sizeof(cj_spring) * maxspr);
-    cj_status st = CJ_OK;
-    if (!x || !m || !fixed || !spr) {
-        st = cj_fail(CJ_ERR_NOMEM, "cloth: no memory for %zu particles", np);
-        goto done;
-    }
-    for (int j = 0; j < nv; ++j)
-        for (int i = 0; i < nu; ++i) {
-            const size_t id = (size_t)j * (size_t)nu + (size_t)i;
-            const double a = (double)i / (nu - 1), b = (double)j / (nv - 1);
-            for (int k = 0; k < 3; ++k) x[3 * id + k] = corner[k] + a * eu[k] + b * ev[k];
-            m[id] = mass / (double)np;
-        }
-    for (size_t q = 0; q < pinned_count; ++q) {
-        if (pinned[q] < 0 || (size_t)pinned[q] >= np) {
-            st = cj_fail(CJ_ERR_ARGUMENT, "cloth: pinned particle %d of %zu", pinned[q], np);
-            goto done;
-        }
-        fixed[pinned[q]] = 1;
-    }
-    size_t ns = 0;
-    static const int offs[6][3] = {{1, 0, 0},  {0, 1, 0}, {1, 1, 1},
-                                   {-1, 1, 1}, {2, 0, 2}, {0, 2, 2}};
-    for (int j = 0; j < nv; ++j)
-        for (int i = 0; i < nu; ++i)
-            for (int o = 0; o < 6; ++o) {
-                const int i2 = i + offs[o][0], j2 = j + offs[o][1], kind = offs[o][2];
-                const double k = kind == 0 ? k_struct : kind == 1 ? k_shear : k_bend;
-                if (i2 < 0 || i2 >= nu || j2 >= nv || k == 0.0) continue;
-                cj_spring *sp = &spr[ns++];
-                sp->a = j * nu + i;
-                sp->b = j2 * nu + i2;
-                double l2 = 0.0;
-                for (int kk = 0; kk < 3; ++kk) {
-                    const double d = x[3 * (size_t)sp->a + kk] - x[3 * (size_t)sp->b + kk];
-                    l2 += d * d;
-                }
-                sp->rest = sqrt(l2);
-                sp->stiffness = k;
-                sp->damping = c;
-            }
-    cj_springs_desc d;
-    memset(&d, 0, sizeof d);
-    if (extra) d = *extra;
-    d.dim = 3;
-    d.count = np;
-    d.x = x;
-    d.v = NULL;
-    d.mass = m;
-    d.fixed = fixed;
-    d.spring_count = ns;
-    d.springs = spr;
-    st = cj_springs_create(&d, alloc, out);
-done:
-    free(x);
-    free(m);
-    free(fixed);
-    free(spr);
     return st;
 }

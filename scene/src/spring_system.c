@@ -4,18 +4,13 @@
 
 #include "error_internal.h"
 #include "spring_internal.h"
+#include "clock_internal.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-
-static double now_seconds(void) {
-    struct timespec ts;
-    timespec_get(&ts, TIME_UTC);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static cj_status check_desc(const cj_springs_desc *d) {
     if (d->dim < 1 || d->dim > 3)
@@ -193,33 +188,6 @@ cj_status cj_springs_set_state(cj_springs *s, const double *x, const double *v) 
     return CJ_OK;
 }
 
-/* Forces (not accelerations) at (x, v) into f. */
-void cj_springs_forces_at(const cj_springs *s, const double *x, const double *v, double *f) {
-    const size_t dim = (size_t)s->dim;
-    for (size_t i = 0; i < s->count; ++i)
-        for (size_t k = 0; k < dim; ++k)
-            f[i * dim + k] = s->mass[i] * (s->gravity[k] - s->drag * v[i * dim + k]);
-    for (size_t j = 0; j < s->nsprings; ++j) {
-        const cj_spring *sp = &s->springs[j];
-        const size_t a = (size_t)sp->a * dim, b = (size_t)sp->b * dim;
-        double d[3], l2 = 0.0;
-        for (size_t k = 0; k < dim; ++k) {
-            d[k] = x[a + k] - x[b + k];
-            l2 += d[k] * d[k];
-        }
-        const double l = sqrt(l2);
-        if (!(l > 0.0)) continue;
-        double vn = 0.0;
-        for (size_t k = 0; k < dim; ++k) vn += (v[a + k] - v[b + k]) * d[k] / l;
-        const double mag = sp->stiffness * (l - sp->rest) + sp->damping * vn;
-        for (size_t k = 0; k < dim; ++k) {
-            const double fk = -mag * d[k] / l;
-            f[a + k] += fk;
-            f[b + k] -= fk;
-        }
-    }
-}
-
 static void accel_cb(void *user, double t, const double *x, const double *v, double *a) {
     (void)t;
     const cj_springs *s = user;
@@ -261,7 +229,7 @@ cj_status cj_springs_step(cj_springs *s, cj_integrator m, double h, cj_springs_s
     cj_springs_stats local;
     memset(&local, 0, sizeof local);
     cj_status st = CJ_OK;
-    const double t0 = now_seconds();
+    const double t0 = cj_clock_seconds();
     if (s->npatch) memcpy(s->xold, s->x, sizeof(double) * s->count * (size_t)s->dim);
     if (m == CJ_INTEGRATE_IMPLICIT_EULER) {
         st = cj_springs_implicit_step(s, h, &local);
@@ -272,7 +240,7 @@ cj_status cj_springs_step(cj_springs *s, cj_integrator m, double h, cj_springs_s
         sys.accel = accel_cb;
         sys.jacobian = NULL;
         st = cj_ode2_step(&sys, m, s->t, h, s->x, s->v, s->ode_work, NULL, NULL);
-        local.seconds_forces = now_seconds() - t0;
+        local.seconds_forces = cj_clock_seconds() - t0;
     }
     if (st != CJ_OK && st != CJ_ERR_CAP) {
         if (stats) *stats = local;
@@ -286,9 +254,9 @@ cj_status cj_springs_step(cj_springs *s, cj_integrator m, double h, cj_springs_s
         return st;
     }
     s->t += h;
-    const double t1 = now_seconds();
+    const double t1 = cj_clock_seconds();
     local.collisions = cj_springs_collide(s);
-    local.seconds_collide = now_seconds() - t1;
+    local.seconds_collide = cj_clock_seconds() - t1;
     if (stats) *stats = local;
     if (st == CJ_ERR_CAP)
         return cj_fail(CJ_ERR_CAP,

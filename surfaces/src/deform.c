@@ -5,15 +5,11 @@
 #include <assert.h>
 #include <math.h>
 
-static int finite3(cj_vec3 a) {
-    return isfinite(a.x) && isfinite(a.y) && isfinite(a.z);
-}
-
 static cj_status setup_axis(cj_deform *d, const char *what, cj_vec3 origin, cj_vec3 axis) {
-    if (!finite3(origin))
+    if (!cj_v3_finite(origin))
         return cj_fail(CJ_ERR_NONFINITE, "%s: axis origin (%g, %g, %g) is not finite", what,
                        origin.x, origin.y, origin.z);
-    if (!finite3(axis))
+    if (!cj_v3_finite(axis))
         return cj_fail(CJ_ERR_NONFINITE, "%s: axis direction (%g, %g, %g) is not finite", what,
                        axis.x, axis.y, axis.z);
     /* Pre-scale by the largest component so that huge or tiny finite vectors normalise. */
@@ -100,14 +96,14 @@ static cj_vec3 mat_vec(double J[3][3], cj_vec3 v) {
 }
 
 static cj_status check_point(const cj_deform *d, cj_vec3 p, const char *what) {
-    if (!finite3(p))
+    if (!cj_v3_finite(p))
         return cj_fail(CJ_ERR_NONFINITE, "%s: %s (%g, %g, %g) is not finite", kind_name(d), what,
                        p.x, p.y, p.z);
     return CJ_OK;
 }
 
 static cj_status check_result(const cj_deform *d, cj_vec3 p, const char *what) {
-    if (!finite3(p))
+    if (!cj_v3_finite(p))
         return cj_fail(CJ_ERR_NONFINITE, "%s: deformed %s overflowed", kind_name(d), what);
     return CJ_OK;
 }
@@ -228,14 +224,14 @@ cj_status cj_deform_vertices(const cj_deform *d, double *pos, double *nrm, size_
     /* Pass 1: validate and make sure every result is defined; nothing is written. */
     for (size_t i = 0; i < count; ++i) {
         cj_vec3 p = cj_v3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
-        if (!finite3(p))
+        if (!cj_v3_finite(p))
             return cj_fail(CJ_ERR_NONFINITE, "%s: vertex %zu position is not finite", kind_name(d),
                            i);
-        if (!finite3(deform_point(d, p)))
+        if (!cj_v3_finite(deform_point(d, p)))
             return cj_fail(CJ_ERR_NONFINITE, "%s: vertex %zu overflowed", kind_name(d), i);
         if (nrm) {
             cj_vec3 n = cj_v3(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]), m;
-            if (!finite3(n))
+            if (!cj_v3_finite(n))
                 return cj_fail(CJ_ERR_NONFINITE, "%s: vertex %zu normal is not finite",
                                kind_name(d), i);
             if (!(cj_v3_norm(n) > 0.0)) continue; /* unknown normal: stays zero */

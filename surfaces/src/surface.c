@@ -11,10 +11,6 @@ static const char *surf_name(const cj_param_surface *s) {
     return s->name ? s->name : "surface";
 }
 
-static int v3_finite(cj_vec3 a) {
-    return isfinite(a.x) && isfinite(a.y) && isfinite(a.z);
-}
-
 cj_status cj_param_surface_check(const cj_param_surface *s) {
     assert(s);
     if (!s->eval) return cj_fail(CJ_ERR_ARGUMENT, "%s: no evaluation callback", surf_name(s));
@@ -52,7 +48,7 @@ static cj_status eval_checked(const cj_param_surface *s, double u, double v, cj_
                               cj_vec3 *su, cj_vec3 *sv) {
     cj_status st = s->eval(s->data, u, v, p, su, sv);
     if (st != CJ_OK) return st;
-    if (!v3_finite(*p) || !v3_finite(*su) || !v3_finite(*sv))
+    if (!cj_v3_finite(*p) || !cj_v3_finite(*su) || !cj_v3_finite(*sv))
         return cj_fail(CJ_ERR_NONFINITE, "%s: evaluation at (u,v) = (%g, %g) is not finite",
                        surf_name(s), u, v);
     return CJ_OK;
@@ -92,7 +88,7 @@ cj_status cj_surface_normal(const cj_param_surface *s, double u, double v, cj_ve
         cj_vec3 r;
         st = s->normal(s->data, u, v, &r);
         if (st != CJ_OK) return st;
-        if (!v3_finite(r))
+        if (!cj_v3_finite(r))
             return cj_fail(CJ_ERR_NONFINITE, "%s: normal at (u,v) = (%g, %g) is not finite",
                            surf_name(s), u, v);
         *n = r;
@@ -123,14 +119,14 @@ cj_status cj_surface_normal(const cj_param_surface *s, double u, double v, cj_ve
 cj_status cj_implicit_eval(const cj_implicit_surface *s, cj_vec3 x, double *f, cj_vec3 *grad) {
     assert(s && s->eval && f);
     const char *name = s->name ? s->name : "implicit surface";
-    if (!v3_finite(x))
+    if (!cj_v3_finite(x))
         return cj_fail(CJ_ERR_NONFINITE, "%s: point (%g, %g, %g) is not finite", name, x.x, x.y,
                        x.z);
     double F;
     cj_vec3 G;
     cj_status st = s->eval(s->data, x, &F, &G);
     if (st != CJ_OK) return st;
-    if (!isfinite(F) || !v3_finite(G))
+    if (!isfinite(F) || !cj_v3_finite(G))
         return cj_fail(CJ_ERR_NONFINITE, "%s: f or grad f at (%g, %g, %g) is not finite", name, x.x,
                        x.y, x.z);
     *f = F;

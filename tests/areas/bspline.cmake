@@ -17,18 +17,6 @@ if(CJ_WITH_OIIO AND TARGET cj::viz AND TARGET cj::raster)
   target_compile_definitions(test_cli_fit PRIVATE CJ_TEST_HAVE_PLOT=1)
 endif()
 add_dependencies(test_cli_fit casteljau)
-# plot_json.c dispatches the "bspline" item to plot_json_bspline.c: the tests that compile the
-# plot reader from app/ (test_plot_json here, test_chart_json in report.cmake, globbed after this
-# file) need those sources too; deferred to the end of this directory so both targets exist.
-function(cj_bspline_add_plot_sources)
-  foreach(t test_plot_json test_chart_json)
-    if(TARGET ${t})
-      target_sources(${t} PRIVATE ${PROJECT_SOURCE_DIR}/app/plot_json_bspline.c
-        ${PROJECT_SOURCE_DIR}/app/bspline_json.c)
-    endif()
-  endforeach()
-endfunction()
-cmake_language(DEFER CALL cj_bspline_add_plot_sources)
 cj_add_test(test_bspline_surface SOURCES bspline/test_bspline_surface.c
   LIBS cj_test_bspline_oracle cj::surfaces)
 # Scene JSON surfaces, converted to patches at load (the render/trace paths take them as patches).

@@ -7,13 +7,8 @@ if(TARGET casteljau AND CJ_WITH_OIIO)
   target_compile_definitions(test_report PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")
   add_dependencies(test_report casteljau)
 endif()
-# Chart panels of the plot JSON (app/chart_json.c): the parser is tested in-process, like
-# test_plot_json (which compiles app/plot_json.c and now needs its helpers and chart panels).
+# Chart panels of the plot JSON (formats/src/chart_json.c): the parser is tested in-process, like
+# test_plot_json, through the one reader (cj_formats).
 if(TARGET test_plot_json)
-  target_sources(test_plot_json PRIVATE ${PROJECT_SOURCE_DIR}/app/plot_json_util.c
-    ${PROJECT_SOURCE_DIR}/app/chart_json.c)
-  cj_add_test(test_chart_json SOURCES test_chart_json.c ${PROJECT_SOURCE_DIR}/app/plot_json.c
-    ${PROJECT_SOURCE_DIR}/app/plot_json_util.c ${PROJECT_SOURCE_DIR}/app/chart_json.c
-    LIBS cj::raster PkgConfig::CJ_TEST_CJSON)
-  target_include_directories(test_chart_json PRIVATE ${PROJECT_SOURCE_DIR}/app)
+  cj_add_test(test_chart_json SOURCES test_chart_json.c LIBS cj_formats PkgConfig::CJ_TEST_CJSON)
 endif()

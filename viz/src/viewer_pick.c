@@ -5,15 +5,9 @@
  * only the sign of the exact total is looked at. */
 #include "casteljau/viewer_model.h"
 #include "viewer_internal.h"
+#include "eft_internal.h"
 
 #include <math.h>
-
-/* a + b = s + e exactly. */
-static void two_sum(double a, double b, double *s, double *e) {
-    *s = a + b;
-    const double bv = *s - a;
-    *e = (a - (*s - bv)) + (b - bv);
-}
 
 /* a * b = p + e exactly (fma is exact in its last rounding). */
 static void two_prod(double a, double b, double *p, double *e) {
@@ -27,7 +21,7 @@ static int grow(double *e, int n, double x) {
     double q = x;
     for (int i = 0; i < n; ++i) {
         double s, err;
-        two_sum(q, e[i], &s, &err);
+        cj_two_sum(q, e[i], &s, &err);
         if (err != 0.0) e[m++] = err;
         q = s;
     }
@@ -38,7 +32,7 @@ static int grow(double *e, int n, double x) {
 /* Appends ±(a − c)² as exact terms. */
 static int add_square_of_difference(double *e, int n, double a, double c, double sign) {
     double h, l;
-    two_sum(a, -c, &h, &l);
+    cj_two_sum(a, -c, &h, &l);
     const double f[3][2] = {{h, h}, {2.0 * h, l}, {l, l}};
     for (int k = 0; k < 3; ++k) {
         double p, pe;

@@ -7,6 +7,7 @@
 #include "casteljau/renderer.h"
 #include "casteljau/trace.h"
 #include "error_internal.h"
+#include "clock_internal.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -14,7 +15,6 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 const int cj_vtrace_spp[VIEW_TRACE_PASSES] = {1, 1, 4, 16, 64};
 
@@ -49,16 +49,10 @@ struct cj_vrender {
     uint64_t cache_view;
 };
 
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 void cj_vrender_log(cj_vrender *r, const char *fmt, ...) {
     if (!r || !r->timeline) return;
     pthread_mutex_lock(&r->log_lock);
-    fprintf(r->timeline, "%.6f ", now_s());
+    fprintf(r->timeline, "%.6f ", cj_clock_seconds());
     va_list ap;
     va_start(ap, fmt);
     vfprintf(r->timeline, fmt, ap);
@@ -154,7 +148,7 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
     cj_stage_report rep;
     cj_status st;
     int scale = 1;
-    const double t0 = now_s();
+    const double t0 = cj_clock_seconds();
     if (job->trace) {
         scale = cj_vtrace_scale(pass, r->width, r->height);
         ro.spp = cj_vtrace_spp[pass];
@@ -199,7 +193,7 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
     }
     if (st) return st;
     img = r->img;
-    f->seconds = now_s() - t0;
+    f->seconds = cj_clock_seconds() - t0;
     f->spp = ro.spp ? ro.spp : cj_scene_settings_get(job->scene)->spp;
     f->tol_px = ro.tol_px > 0 ? ro.tol_px : cj_scene_settings_get(job->scene)->tol_px;
     /* nearest upscaling of a low-resolution pass; alpha 255 (the window shows opaque pixels) */

@@ -8,6 +8,7 @@
 
 #include "casteljau/image_io.h"
 #include "error_internal.h"
+#include "clock_internal.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GL/gl.h>
@@ -35,12 +36,6 @@ static char glfw_msg[256];
 
 static void on_error(int code, const char *desc) {
     snprintf(glfw_msg, sizeof glfw_msg, "GLFW error 0x%x: %s", code, desc);
-}
-
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static int glfw_mods(GLFWwindow *w) {
@@ -163,7 +158,7 @@ static void record_time(win *g, double dt, double dc) {
  * draws its next pass. Records its wall and process CPU time (render + upload + draw + swap +
  * glFinish). */
 static cj_status frame_sync(win *g, const char *shot) {
-    const double t0 = now_s(), c0 = cpu_s();
+    const double t0 = cj_clock_seconds(), c0 = cpu_s();
     cj_viewer *v = &g->v;
     cj_status st = CJ_OK;
     cj_viewer_tick(v);
@@ -177,7 +172,7 @@ static cj_status frame_sync(win *g, const char *shot) {
     }
     cj_status s2 = present(g, shot);
     if (!st) st = s2;
-    record_time(g, now_s() - t0, cpu_s() - c0);
+    record_time(g, cj_clock_seconds() - t0, cpu_s() - c0);
     return st;
 }
 
@@ -282,9 +277,9 @@ static cj_status run_live(win *g) {
             if (cj_viewer_collect(v) && v->playing && v->shown_gen == v->gen) cj_viewer_tick(v);
         }
         if (!st && (v->dirty || v->redraw)) {
-            const double t0 = now_s(), c0 = cpu_s();
+            const double t0 = cj_clock_seconds(), c0 = cpu_s();
             st = present(g, NULL);
-            record_time(g, now_s() - t0, cpu_s() - c0);
+            record_time(g, cj_clock_seconds() - t0, cpu_s() - c0);
         }
         if (v->quit || (v->mode3d && v->dirty)) continue;
         glfwWaitEvents();

@@ -52,6 +52,11 @@ static inline cj_vec3 cj_v3(double x, double y, double z) {
     cj_vec3 r = {x, y, z};
     return r;
 }
+/* 1 when the three coordinates are finite (no NaN, no infinity): the check every reader of
+ * points, directions and positions makes before using them. */
+static inline int cj_v3_finite(cj_vec3 a) {
+    return isfinite(a.x) && isfinite(a.y) && isfinite(a.z);
+}
 static inline cj_vec3 cj_v3_add(cj_vec3 a, cj_vec3 b) {
     return cj_v3(a.x + b.x, a.y + b.y, a.z + b.z);
 }

@@ -149,8 +149,11 @@ cj_node cj_render_node(int geometry, int material);
 
 /* The built-in demo scene of `casteljau render --demo`: the Utah teapot read from teapot_bpt
  * (data/teapot.bpt), lit by an ambient, a point and a directional light, with a procedural
- * checker and its control net, on a checkered floor; 800 x 600, 4 samples per pixel.
- * Status: errors of cj_patchset_load_bpt (CJ_ERR_IO naming the file), CJ_ERR_NOMEM. */
+ * checker and its control net, on a checkered floor; 800 x 600, 4 samples per pixel. The
+ * scene is scenes/demo_render.json, embedded in the library at build time and read by
+ * cj_scene_parse_json_ex (casteljau/scene_json.h) with teapot_bpt as the teapot's path.
+ * Status: those of cj_scene_parse_json_ex (CJ_ERR_IO naming the .bpt file when it cannot be
+ * read), CJ_ERR_NOMEM. */
 cj_status cj_render_demo_scene(const char *teapot_bpt, const cj_allocator *alloc, cj_scene **out);
 
 #ifdef __cplusplus

@@ -119,7 +119,8 @@ int cj_trace_refract(cj_vec3 d, cj_vec3 n, double n1, double n2, cj_vec3 *t);
 cj_vec3 cj_trace_cosine_sample(cj_vec3 n, double u1, double u2);
 
 /* The built-in demo of `casteljau trace --demo`: the lit Utah teapot (patches, traced
- * directly) on a checkered floor, a mirror sphere and a glass sphere (ior 1.5). */
+ * directly) on a checkered floor, a mirror sphere and a glass sphere (ior 1.5): the scene
+ * scenes/demo_trace.json, embedded at build time (as cj_render_demo_scene; same statuses). */
 cj_status cj_trace_demo_scene(const char *teapot_bpt, const cj_allocator *alloc, cj_scene **out);
 
 #ifdef __cplusplus

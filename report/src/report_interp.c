@@ -16,7 +16,6 @@
 
 #include "casteljau/bezier.h"
 #include "casteljau/interp.h"
-#include "cli.h"
 
 #include <complex.h>
 #include <math.h>
@@ -67,7 +66,7 @@ int report_interp_workload(const char *spec, long n) {
     int m = -1, deg = 0;
     if (sscanf(spec, "interp:%d:%d", &m, &deg) != 2 || m < 0 || m > 1 || deg < 1 ||
         deg > CJ_INTERP_MAX_DEGREE)
-        return cli_fail("report", "bad workload '%s' (interp:0|1:DEGREE)", spec);
+        return report_fail("bad workload '%s' (interp:0|1:DEGREE)", spec);
     double ts[CJ_INTERP_MAX_DEGREE + 1], vals[CJ_INTERP_MAX_DEGREE + 1],
         bez[CJ_INTERP_MAX_DEGREE + 1], cond = 0;
     for (long k = 0; k < n; ++k)
@@ -97,20 +96,20 @@ int report_interp(report *r) {
                 const double t0 = report_now_ns();
                 for (int rep = 0; rep < reps; ++rep)
                     if (fit(m, n, ts, vals, bez, &cond[m][d]))
-                        return cli_error("report", "interpolation: %s", cj_last_error());
+                        return report_error("interpolation: %s", cj_last_error());
                 tm[m][run] = (report_now_ns() - t0) / reps;
             }
         for (int m = 0; m < 2; ++m) {
             ns[m][d] = report_median(tm[m], (size_t)runs, &spread[m][d]);
             if (fit(m, n, ts, vals, bez, &cond[m][d]))
-                return cli_error("report", "interpolation: %s", cj_last_error());
+                return report_error("interpolation: %s", cj_last_error());
             const cj_bezier c = cj_bezier_view(n, 1, bez);
             emax[m][d] = emean[m][d] = 0;
             for (int i = 0; i < NSAMPLE; ++i) {
                 const double u = (double)i / (NSAMPLE - 1), t = 2 * u - 1;
                 double v;
                 if (cj_bezier_eval(&c, CJ_EVAL_DECASTELJAU, u, &v))
-                    return cli_error("report", "interpolation: %s", cj_last_error());
+                    return report_error("interpolation: %s", cj_last_error());
                 const double e = fabs(v - runge(t));
                 emax[m][d] = fmax(emax[m][d], e), emean[m][d] += e / NSAMPLE;
             }
@@ -171,7 +170,7 @@ int report_interp(report *r) {
     fprintf(r->html, "</table>\n");
     fprintf(r->md, "\n");
     cj_chart *c = NULL;
-    if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
+    if (cj_chart_create(NULL, &c)) return report_error("%s", cj_last_error());
     cj_chart_set_title(c,
                        "Interpolating Runge's function: error vs cost (ringed: dominated, degree)");
     cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);

@@ -15,7 +15,6 @@
 #include "report.h"
 
 #include "casteljau/bezier.h"
-#include "cli.h"
 
 #include <complex.h>
 #include <math.h>
@@ -299,8 +298,7 @@ int report_arclen_workload(const char *spec, long n) {
     double p = 0;
     if (sscanf(spec, "arclen:%d:%lf:%d", &m, &p, &set) < 2 || m < 0 || m > 1 || set < 0 ||
         set >= NSET || (m == 0 && !(p >= 1e-15 && p <= 1)) || (m == 1 && !(p >= 1 && p <= 1 << 20)))
-        return cli_fail("report", "bad workload '%s' (arclen:0:TOL[:SET] or arclen:1:N[:SET])",
-                        spec);
+        return report_fail("bad workload '%s' (arclen:0:TOL[:SET] or arclen:1:N[:SET])", spec);
     make_curves();
     volatile double sink = 0;
     for (long k = 0; k < n; ++k) {
@@ -327,7 +325,7 @@ int report_arclen(report *r) {
         double b = 0;
         int panels = 0;
         if (cubic_length(cubics[k], &ref[1][k], &b, &panels))
-            return cli_error("report", "arc length: the oracle failed on cubic %d", k);
+            return report_error("arc length: the oracle failed on cubic %d", k);
         oracle_bound = fmax(oracle_bound, b),
         max_panels = panels > max_panels ? panels : max_panels;
     }
@@ -353,7 +351,7 @@ int report_arclen(report *r) {
                             const cj_bezier c = set_curve(set, k);
                             double L = 0, e = 0;
                             if (one_length(&c, m, prm, &L, &e))
-                                return cli_error("report", "arc length: %s", cj_last_error());
+                                return report_error("arc length: %s", cj_last_error());
                             sink += L;
                         }
                     tm[m][run] = (report_now_ns() - t0) / (double)(reps * NCURVE);
@@ -369,7 +367,7 @@ int report_arclen(report *r) {
                     const cj_bezier c = set_curve(set, k);
                     double L = 0, est = 0;
                     if (one_length(&c, m, prm, &L, &est))
-                        return cli_error("report", "arc length: %s", cj_last_error());
+                        return report_error("arc length: %s", cj_last_error());
                     const double err = (double)fabsl((long double)L - ref[set][k]);
                     e->emax = fmax(e->emax, err), e->emean += err / NCURVE;
                     if (m == 0) e->est = fmax(e->est, est);
@@ -439,7 +437,7 @@ int report_arclen(report *r) {
     fprintf(r->html, "</table>\n");
     fprintf(r->md, "\n");
     cj_chart *c = NULL;
-    if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
+    if (cj_chart_create(NULL, &c)) return report_error("%s", cj_last_error());
     cj_chart_set_title(c, "Arc length: error vs cost (ringed: dominated)");
     cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
     cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "ns per call (median)");
@@ -459,7 +457,7 @@ int report_arclen(report *r) {
             cj_chart_series_opts o = {name, COL[set][m], 1.5, MK[set][m], 5.0};
             if (cj_chart_add_series(c, cost[set] + m * np, y + m * np, (size_t)np, &o)) {
                 cj_chart_destroy(c);
-                return cli_error("report", "chart: %s", cj_last_error());
+                return report_error("chart: %s", cj_last_error());
             }
             for (int p = 0; p < np; ++p)
                 if (dom[set][m * np + p] >= 0) {

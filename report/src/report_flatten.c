@@ -9,7 +9,6 @@
 
 #include "casteljau/bezier.h"
 #include "casteljau/flatten.h"
-#include "cli.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -86,7 +85,7 @@ static double seg_dist(const double *q, const double *a, const double *b) {
 int report_flatten_workload(const char *spec, long n) {
     int m = -1, e = 0;
     if (sscanf(spec, "flatten:%d:%d", &m, &e) != 2 || m < 0 || m >= NMETH || e < 0 || e > 12)
-        return cli_fail("report", "bad workload '%s' (flatten:METHOD0-2:TOLEXP)", spec);
+        return report_fail("bad workload '%s' (flatten:METHOD0-2:TOLEXP)", spec);
     make_curves();
     static double buf[2 * CAPPTS];
     const cj_flatten_opts o = cj_flatten_defaults(METH[m], pow(10.0, -e));
@@ -122,7 +121,7 @@ int report_flatten(report *r) {
                 coll cl = {cpts, cts, 0, CAPPTS};
                 cj_flatten_stats st;
                 if (cj_flatten_bezier_cb(&cv, &o, collect, &cl, &st) || cl.n > CAPPTS)
-                    return cli_error("report", "flatten: %s", cj_last_error());
+                    return report_error("flatten: %s", cj_last_error());
                 total += st.segments;
                 bmax = fmax(bmax, st.bound);
                 for (size_t k = 0; k + 1 < cl.n; ++k)
@@ -213,7 +212,7 @@ int report_flatten(report *r) {
     /* chart 1: measured deviation against ns per curve; chart 2: segments ÷ optimum by tol */
     for (int k = 0; k < 2; ++k) {
         cj_chart *c = NULL;
-        if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
+        if (cj_chart_create(NULL, &c)) return report_error("%s", cj_last_error());
         cj_chart_set_title(c, k ? "Flattening: segments / continuous optimum"
                                 : "Flattening: deviation vs cost (ringed: dominated, tol)");
         cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
@@ -230,7 +229,7 @@ int report_flatten(report *r) {
             cj_chart_series_opts o = {FNAME[m], FCOL[m], 1.5, FMARK[m], 5.0};
             if (cj_chart_add_series(c, x, y, (size_t)nt, &o)) {
                 cj_chart_destroy(c);
-                return cli_error("report", "chart: %s", cj_last_error());
+                return report_error("chart: %s", cj_last_error());
             }
             if (!k)
                 for (int ti = 0; ti < nt; ++ti)

@@ -12,7 +12,6 @@
 #include "report.h"
 
 #include "casteljau/bezier.h"
-#include "cli.h"
 #include "oracle_mpfr.h"
 
 #include <math.h>
@@ -73,7 +72,7 @@ static double time_run(const cj_bezier *c, cj_eval_method m, const double *ts, s
 int report_eval_workload(const char *spec, long n) {
     int m = -1, deg = -1;
     if (sscanf(spec, "eval:%d:%d", &m, &deg) != 2 || m < 0 || m >= NM || deg < 1 || deg > 64)
-        return cli_fail("report", "bad workload '%s' (eval:METHOD0-3:DEGREE)", spec);
+        return report_fail("bad workload '%s' (eval:METHOD0-3:DEGREE)", spec);
     double b[2 * 65], ts[256], out[2 * 256];
     for (int i = 0; i <= deg; ++i) b[2 * i] = cos(i), b[2 * i + 1] = sin(3.0 * i);
     for (int i = 0; i < 256; ++i) ts[i] = (i + 0.5) / 256;
@@ -140,8 +139,7 @@ int report_eval(report *r) {
                 logk += log10(kk);
                 for (int m = 0; m < NM; ++m) {
                     double y = 0;
-                    if (cj_bezier_eval(&c, METHODS[m], t, &y))
-                        return cli_error("report", "eval failed");
+                    if (cj_bezier_eval(&c, METHODS[m], t, &y)) return report_error("eval failed");
                     const double e = cj_oracle_rel_error(y, val) / U;
                     emax[m][d][k] = fmax(emax[m][d][k], e);
                     emean[m][d][k] += e / npts;
@@ -216,7 +214,7 @@ int report_eval(report *r) {
     for (int s = 0; s < 2; ++s) {
         const int k = shown[s];
         cj_chart *c = NULL;
-        if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
+        if (cj_chart_create(NULL, &c)) return report_error("%s", cj_last_error());
         char title[128];
         snprintf(title, sizeof title, "Evaluation, cond ~%.0e: error vs cost (ringed: dominated)",
                  ks[k]);
@@ -230,7 +228,7 @@ int report_eval(report *r) {
             cj_chart_series_opts o = {NAMES[m], COL[m], 1.5, MARK[m], 5.0};
             if (cj_chart_add_series(c, x, y, (size_t)nd, &o)) {
                 cj_chart_destroy(c);
-                return cli_error("report", "chart: %s", cj_last_error());
+                return report_error("chart: %s", cj_last_error());
             }
             /* the bound, dashed-looking as small markers without a line */
             if (METHODS[m] == CJ_EVAL_DECASTELJAU || METHODS[m] == CJ_EVAL_COMPENSATED) {

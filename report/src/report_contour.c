@@ -16,7 +16,6 @@
 #include "report.h"
 
 #include "casteljau/implicit.h"
-#include "cli.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -156,7 +155,7 @@ int report_contour_workload(const char *spec, long n) {
     double tol = 0;
     if (sscanf(spec, "contour:%d:%lf:%d", &g, &tol, &which) < 2 || g < 1 || g > 4096 ||
         !(tol > 0) || which < 0 || which >= NSHAPE)
-        return cli_fail("report", "bad workload '%s' (contour:GRID:TOL[:SHAPE])", spec);
+        return report_fail("bad workload '%s' (contour:GRID:TOL[:SHAPE])", spec);
     cj_implicit_shape shape;
     cj_implicit f;
     if (make_shape(which, &shape, &f)) return 1;
@@ -213,7 +212,7 @@ static int contour_chart(report *r, int which, const int *gs, int ng, const doub
     for (int i = 0; i < n; ++i) err[i] = fmax(dev[i], 1e-17);
     report_pareto((size_t)n, us, err, dom);
     cj_chart *c = NULL;
-    if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
+    if (cj_chart_create(NULL, &c)) return report_error("%s", cj_last_error());
     char title[96];
     snprintf(title, sizeof title, "Contouring %s: deviation vs cost (ringed: dominated, tol)",
              which ? "an ellipse" : "a circle");
@@ -264,8 +263,7 @@ int report_contour(report *r) {
         const int *gs = gsof[which];
         cj_implicit_shape shape;
         cj_implicit f;
-        if (make_shape(which, &shape, &f))
-            return cli_error("report", "contour: %s", cj_last_error());
+        if (make_shape(which, &shape, &f)) return report_error("contour: %s", cj_last_error());
         for (int i = 0; i < ngof[which] * nt; ++i) {
             const cj_contour_options o = {gs[i / nt], gs[i / nt], tols[i % nt], NULL};
             double tm[16];
@@ -273,13 +271,13 @@ int report_contour(report *r) {
                 acc a = {0, which, 0, 0};
                 const double t0 = report_now_ns();
                 if (cj_implicit_contour(&f, box, &o, emit, &a, NULL))
-                    return cli_error("report", "contour: %s", cj_last_error());
+                    return report_error("contour: %s", cj_last_error());
                 tm[run] = (report_now_ns() - t0) / 1e3;
             }
             us[which][i] = report_median(tm, (size_t)runs, &spread[which][i]);
             acc a = {1, which, 0, 0};
             if (cj_implicit_contour(&f, box, &o, emit, &a, NULL))
-                return cli_error("report", "contour: %s", cj_last_error());
+                return report_error("contour: %s", cj_last_error());
             dev[which][i] = a.dev, pts[which][i] = (double)a.pts;
             instr[which][i] = NAN;
         }

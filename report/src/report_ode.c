@@ -9,7 +9,6 @@
 #include "report.h"
 
 #include "casteljau/springs.h"
-#include "cli.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -68,7 +67,7 @@ int report_ode_workload(const char *spec, long n) {
     if (!strcmp(spec, "ode:all")) return report_cells_workload(NM * NN_FULL, n, ode_cell, NULL);
     int m = -1, N = 0;
     if (sscanf(spec, "ode:%d:%d", &m, &N) != 2 || m < 0 || m > 3 || N < 1 || N > 1 << 24)
-        return cli_fail("report", "bad workload '%s' (ode:INTEGRATOR0-3:STEPS)", spec);
+        return report_fail("bad workload '%s' (ode:INTEGRATOR0-3:STEPS)", spec);
     volatile double sink = 0;
     for (long k = 0; k < n; ++k) {
         const double x = run((cj_integrator)m, N, 0);
@@ -85,7 +84,7 @@ int report_ode(report *r) {
     const int nn = r->quick ? 2 : NN_FULL, runs = r->quick ? 3 : 11;
     for (int m = 0; m < NM; ++m)
         if (cj_ode2_work_size(1, (cj_integrator)m) > 64)
-            return cli_error("report", "integrators: work space too large");
+            return report_error("integrators: work space too large");
     double us[NM * 5], spread[NM * 5], err[NM * 5], instr[NM * 5];
     for (int i = 0; i < NM * 5; ++i) instr[i] = NAN;
     for (int i = 0; i < nn; ++i) {
@@ -101,8 +100,7 @@ int report_ode(report *r) {
         for (int m = 0; m < NM; ++m) {
             us[m * nn + i] = report_median(tm[m], (size_t)runs, &spread[m * nn + i]);
             err[m * nn + i] = run((cj_integrator)m, Ns[i], 1);
-            if (!isfinite(err[m * nn + i]))
-                return cli_error("report", "integrators: %s", cj_last_error());
+            if (!isfinite(err[m * nn + i])) return report_error("integrators: %s", cj_last_error());
         }
     }
     /* instructions per integration, every cell in one callgrind run (4 integrations each) */
@@ -144,7 +142,7 @@ int report_ode(report *r) {
     fprintf(r->html, "</table>\n");
     fprintf(r->md, "\n");
     cj_chart *c = NULL;
-    if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
+    if (cj_chart_create(NULL, &c)) return report_error("%s", cj_last_error());
     cj_chart_set_title(c, "Damped oscillator: error vs cost (ringed: dominated, N)");
     cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
     cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "µs per integration (median)");

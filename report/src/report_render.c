@@ -17,7 +17,6 @@
 
 #include "casteljau/image_io.h"
 #include "casteljau/render.h"
-#include "cli.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -110,15 +109,14 @@ int report_render_workload(const char *spec, long n) {
     int spp = 0, all = !strcmp(spec, "render:all");
     if (!all && (sscanf(spec, "render:%lf:%d", &tol, &spp) != 2 || !(tol >= 1e-3 && tol <= 100) ||
                  (spp != 1 && spp != 4 && spp != 16)))
-        return cli_fail("report", "bad workload '%s' (render:TOL:SPP, SPP 1, 4 or 16; render:all)",
-                        spec);
+        return report_fail("bad workload '%s' (render:TOL:SPP, SPP 1, 4 or 16; render:all)", spec);
     cj_scene *s = NULL;
-    if (cj_render_demo_scene(cli_teapot_path(), NULL, &s))
-        return cli_error("report", "%s", cj_last_error());
+    if (cj_render_demo_scene(report_teapot_path(), NULL, &s))
+        return report_error("%s", cj_last_error());
     const int rc =
         all ? report_cells_workload(NT_MAX * NS_MAX, n, render_cell, s) : frames(s, tol, spp, n);
     cj_scene_destroy(s);
-    return rc ? cli_error("report", "%s", cj_last_error()) : 0;
+    return rc ? report_error("%s", cj_last_error()) : 0;
 }
 
 /* render_pictures.png: the reference | the coarsest choice at 1 spp | where they differ (red
@@ -127,7 +125,7 @@ static int pictures(report *r, int w, int h, const uint8_t *ref, const uint8_t *
                     double tol) {
     const int W3 = 3 * w;
     uint8_t *pic = malloc((size_t)W3 * (size_t)h * 4);
-    if (!pic) return cli_error("report", "render: out of memory");
+    if (!pic) return report_error("render: out of memory");
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const uint8_t *a = ref + 4 * ((size_t)y * (size_t)w + (size_t)x),
@@ -151,7 +149,7 @@ static int pictures(report *r, int w, int h, const uint8_t *ref, const uint8_t *
     snprintf(path, sizeof path, "%s/render_pictures.png", r->dir);
     const cj_status st = cj_image_write(path, W3, h, pic, 0);
     free(pic);
-    if (st) return cli_error("report", "render_pictures.png: %s", cj_last_error());
+    if (st) return report_error("render_pictures.png: %s", cj_last_error());
     fprintf(r->html,
             "<p><img src=\"render_pictures.png\" width=\"%d\" height=\"%d\" alt=\"reference, "
             "tol %g px at 1 spp, differing pixels\"><br>Left: the reference. Middle: tol_px = %g "
@@ -172,7 +170,7 @@ int report_render(report *r) {
     const double ref_tol = r->quick ? 0.1 : 0.02; /* quick: 2.5x below its finest */
     const size_t npx = (size_t)w * (size_t)h;
     cj_scene *s = NULL;
-    if (cj_render_demo_scene(cli_teapot_path(), NULL, &s)) {
+    if (cj_render_demo_scene(report_teapot_path(), NULL, &s)) {
         fprintf(r->html, "<h2>Renderer</h2><p>Skipped: no teapot.bpt (%s).</p>\n", cj_last_error());
         return 0;
     }
@@ -239,7 +237,7 @@ int report_render(report *r) {
         if (same[k] != ref) free(same[k]);
     if (st) {
         free(ref), free(coarse);
-        return cli_error("report", "render: %s", oom ? "out of memory" : cj_last_error());
+        return report_error("render: %s", oom ? "out of memory" : cj_last_error());
     }
     for (int i = 0; i < nt * ns; ++i) {
         ms[i] = report_median(tm[i], (size_t)runs, &spread[i]);
@@ -309,7 +307,7 @@ int report_render(report *r) {
     /* error against cost; no differing pixel at all is drawn at half a pixel's share */
     const double floor_pct = 50.0 / (double)npx;
     cj_chart *c = NULL;
-    int rc = cj_chart_create(NULL, &c) ? cli_error("report", "%s", cj_last_error()) : 0;
+    int rc = cj_chart_create(NULL, &c) ? report_error("%s", cj_last_error()) : 0;
     if (!rc) {
         cj_chart_set_title(c,
                            "Renderer: differing pixels vs ms per frame (ringed: dominated, tol)");
@@ -336,7 +334,7 @@ int report_render(report *r) {
         cj_chart_destroy(c), c = NULL;
     }
     /* where the time goes: frame and tessellation ms against tol_px */
-    if (!rc && cj_chart_create(NULL, &c)) rc = cli_error("report", "%s", cj_last_error());
+    if (!rc && cj_chart_create(NULL, &c)) rc = report_error("%s", cj_last_error());
     if (!rc) {
         cj_chart_set_title(c, "Renderer: ms per frame and tessellation vs tol_px (triangles)");
         cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);

@@ -1,13 +1,21 @@
-/* Private to `casteljau report` (issue 12, the price list): the page being written and the
- * helpers every section shares (timing, Pareto fronts, charts to PNG, table rows). */
-#ifndef CASTELJAU_APP_REPORT_H
-#define CASTELJAU_APP_REPORT_H
+/* The report module (report/, internal to the tool; issue 12, the price list): the page being
+ * written, the entry points the `report` command calls (report_run, report_workload) and the
+ * helpers every section shares (timing, Pareto fronts, charts to PNG, table rows), which live in
+ * report_util.c so that the sections never call back into the page runner or the command. */
+#ifndef CASTELJAU_REPORT_H
+#define CASTELJAU_REPORT_H
 
 #include "casteljau/chart.h"
 #include "casteljau/text.h"
 
 #include <stddef.h>
 #include <stdio.h>
+
+#if defined(__GNUC__)
+#define REPORT_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define REPORT_PRINTF(a, b)
+#endif
 
 typedef struct report {
     const char *dir;   /* output folder */
@@ -20,6 +28,37 @@ typedef struct report {
     char note[1024];   /* the callgrind repeatability line, or why there are no counts */
     char cg_fail[256]; /* why the first failed callgrind run failed ("" while none has) */
 } report;
+
+/* Exit statuses of the tool: bad input (as the command's usage errors), and failure. */
+#define REPORT_EXIT_USAGE   2
+#define REPORT_EXIT_FAILURE 1
+
+/* What the front (app/cmd_report.c) lends the module: the path of data/teapot.bpt as the tool
+ * finds it (the renderer and tracer sections' scene) and the printer of one message line
+ * (prefix "" or "warning: ", then the message); say NULL prints "casteljau report: ..." on
+ * stderr. Set once before report_run or report_workload; the struct is copied. */
+typedef struct report_host {
+    const char *teapot_path;
+    void (*say)(const char *prefix, const char *msg);
+    /* NULL, or called before section i of n ("evaluation", ...) starts; nonzero stops the
+     * report there (an interrupted run: nothing is written) */
+    int (*section)(unsigned i, unsigned n, const char *name);
+} report_host;
+void report_host_set(const report_host *host);
+/* Tells the host that section i of n starts; nonzero: stop (see report_host.section). */
+int report_section_start(unsigned i, unsigned n, const char *name);
+/* The teapot's path lent by the host ("data/teapot.bpt" when none was). */
+const char *report_teapot_path(void);
+/* Prints the message through the host and returns REPORT_EXIT_USAGE (bad input: a workload
+ * spec, a missing -o) or REPORT_EXIT_FAILURE (anything else); report_warn prints a warning. */
+int report_fail(const char *fmt, ...) REPORT_PRINTF(1, 2);
+int report_error(const char *fmt, ...) REPORT_PRINTF(1, 2);
+void report_warn(const char *fmt, ...) REPORT_PRINTF(1, 2);
+
+/* Writes the whole page into r->dir (created if missing): index.html, summary.md, data.tsv and
+ * the charts; r->dir, r->quick and r->callgrind are read, the rest is filled in. Returns 0, or
+ * an exit status after a message. */
+int report_run(report *r);
 
 /* v as "%.3g" in buf (at least 32 bytes), or "—" when v is not finite (no such figure). */
 const char *report_g3(char *buf, double v);

@@ -22,7 +22,6 @@
 #include "casteljau/patchset.h"
 #include "casteljau/rational.h"
 #include "casteljau/tessellate.h"
-#include "cli.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -113,9 +112,7 @@ static cj_status build_model(int which, surf *s) {
 static cj_status load_surface(int which, surf *s) {
     if (which) return build_model(which, s);
     s->set = NULL;
-    if (cj_patchset_load_bpt(CJ_TEAPOT_SOURCE, NULL, &s->set) &&
-        cj_patchset_load_bpt(CJ_TEAPOT_INSTALLED, NULL, &s->set))
-        return CJ_ERR_IO;
+    if (cj_patchset_load_bpt(report_teapot_path(), NULL, &s->set)) return CJ_ERR_IO;
     s->patches = s->set->patches, s->count = s->set->count;
     double lo[3], hi[3];
     cj_patchset_bbox(s->set, lo, hi, &s->size);
@@ -165,13 +162,12 @@ int report_tess_workload(const char *spec, long n) {
     double rel = 0;
     const int got = sscanf(spec, "tess:%d:%lf:%d", &K, &rel, &which);
     if (got < 2 || K < 0 || K > 1024 || !(rel > 0 && rel < 1) || which < 0 || which >= NSURF)
-        return cli_fail("report", "bad workload '%s' (tess:K:RELTOL[:SURFACE], K = 0 adaptive)",
-                        spec);
+        return report_fail("bad workload '%s' (tess:K:RELTOL[:SURFACE], K = 0 adaptive)", spec);
     static surf s;
     cj_mesh *mesh = NULL;
     if (load_surface(which, &s) || cj_mesh_create(NULL, &mesh)) {
         cj_patchset_destroy(s.set);
-        return cli_error("report", "%s", cj_last_error());
+        return report_error("%s", cj_last_error());
     }
     int rc = 0;
     for (long k = 0; k < n && !rc; ++k) {
@@ -238,7 +234,7 @@ static int measure_surface(report *r, int which, const surf *s, cj_mesh *mesh, c
                            ? NAN
                            : report_callgrind(r, spec, CG_UNITS[which], NULL);
         }
-        if (st) return cli_error("report", "tessellation (%s): %s", SNAME[which], cj_last_error());
+        if (st) return report_error("tessellation (%s): %s", SNAME[which], cj_last_error());
     }
     return 0;
 }
@@ -251,14 +247,13 @@ int report_tess(report *r) {
     int nts[NSURF], have[NSURF];
     const double *relsof[NSURF];
     cj_mesh *mesh = NULL;
-    if (cj_mesh_create(NULL, &mesh)) return cli_error("report", "%s", cj_last_error());
+    if (cj_mesh_create(NULL, &mesh)) return report_error("%s", cj_last_error());
     int status = 0;
     for (int s = 0; s < NSURF && !status; ++s) {
         relsof[s] = r->quick ? (s ? REL_QUICK_Q : REL_QUICK) : REL_FULL;
         nts[s] = r->quick ? (s ? 1 : 2) : NTOL;
         have[s] = !load_surface(s, &S[s]);
-        if (!have[s] && s)
-            status = cli_error("report", "tessellation: %s: %s", SNAME[s], cj_last_error());
+        if (!have[s] && s) status = report_error("tessellation: %s: %s", SNAME[s], cj_last_error());
         if (have[s] && !status)
             status = measure_surface(r, s, &S[s], mesh, relsof[s], nts[s], C[s]);
     }
@@ -340,7 +335,7 @@ int report_tess(report *r) {
     /* one chart: deviation relative to the size against µs per patch; a colour per surface,
      * a marker per method (uniform: squares, adaptive: circles) */
     cj_chart *c = NULL;
-    if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
+    if (cj_chart_create(NULL, &c)) return report_error("%s", cj_last_error());
     cj_chart_set_title(c, "Tessellation: deviation vs cost (ringed: dominated, tol/size)");
     cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
     cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "µs per patch (median)");
@@ -364,7 +359,7 @@ int report_tess(report *r) {
                                       5.0};
             if (cj_chart_add_series(c, cost[s] + m * nt, y + m * nt, (size_t)nt, &o)) {
                 cj_chart_destroy(c);
-                return cli_error("report", "chart: %s", cj_last_error());
+                return report_error("chart: %s", cj_last_error());
             }
             for (int t = 0; t < nt; ++t)
                 if (dom[s][m * nt + t] >= 0) {

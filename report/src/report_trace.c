@@ -28,7 +28,6 @@
 #include "casteljau/render.h"
 #include "casteljau/scene.h"
 #include "casteljau/trace.h"
-#include "cli.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -170,29 +169,28 @@ int report_trace_workload(const char *spec, long n) {
     char kind[16] = "";
     int v = 0;
     if (sscanf(spec, "trace:%15[a-z]:%d", kind, &v) != 2)
-        return cli_fail("report",
-                        "bad workload '%s' (trace:stratified|random:SPP, "
-                        "trace:patch:TOLEXP)",
-                        spec);
+        return report_fail("bad workload '%s' (trace:stratified|random:SPP, "
+                           "trace:patch:TOLEXP)",
+                           spec);
     cell c = {1, 0, 0};
     cj_scene *sc = NULL;
     cj_status st;
     if (!strcmp(kind, "patch") && v >= 1 && v <= 10) {
         c.ptol = pow(10.0, -v);
-        st = cj_trace_demo_scene(cli_teapot_path(), NULL, &sc);
+        st = cj_trace_demo_scene(report_teapot_path(), NULL, &sc);
     } else if ((!strcmp(kind, "stratified") || !strcmp(kind, "random")) && v >= 1 && v <= 4096) {
         c.spp = v, c.random = kind[0] == 'r';
         st = soft_scene(&sc);
     } else
-        return cli_fail("report", "bad workload '%s'", spec);
-    if (st) return cli_error("report", "trace workload: %s", cj_last_error());
+        return report_fail("bad workload '%s'", spec);
+    if (st) return report_error("trace workload: %s", cj_last_error());
     for (long k = 0; k < n && !st; ++k) {
         cj_render_image *img = NULL;
         st = frame(sc, WL_W, WL_H, &c, 1, SEED_IMG, &img, NULL);
         cj_render_image_destroy(img);
     }
     cj_scene_destroy(sc);
-    return st ? cli_error("report", "trace workload: %s", cj_last_error()) : 0;
+    return st ? report_error("trace workload: %s", cj_last_error()) : 0;
 }
 
 /* Part 1: spp x sampling against RMSE. */
@@ -202,7 +200,7 @@ static int trace_spp(report *r) {
     const int W = r->quick ? 32 : WL_W, H = r->quick ? 24 : WL_H, REF = r->quick ? 512 : 4096;
     const size_t np = (size_t)W * H;
     cj_scene *sc = NULL;
-    if (soft_scene(&sc)) return cli_error("report", "trace: %s", cj_last_error());
+    if (soft_scene(&sc)) return report_error("trace: %s", cj_last_error());
     /* the reference: two independent renders A and B on all cores, averaged, random-sampled
      * (an estimator unlike the stratified rows it judges) */
     cj_render_image *ra = NULL, *rb = NULL;
@@ -212,14 +210,14 @@ static int trace_spp(report *r) {
         frame(sc, W, H, &rc, 0, SEED_REF_B, &rb, NULL)) {
         cj_render_image_destroy(ra);
         cj_scene_destroy(sc);
-        return cli_error("report", "trace reference: %s", cj_last_error());
+        return report_error("trace reference: %s", cj_last_error());
     }
     const double ref_s = (report_now_ns() - t0) / 1e9;
     double *ref = malloc(np * 4 * sizeof *ref), *half = malloc(np * 4 * sizeof *half);
     if (!ref || !half) {
         free(ref), free(half);
         cj_render_image_destroy(ra), cj_render_image_destroy(rb), cj_scene_destroy(sc);
-        return cli_error("report", "trace: out of memory");
+        return report_error("trace: out of memory");
     }
     for (size_t i = 0; i < 4 * np; ++i) {
         ref[i] = 0.5 * ((double)ra->rgba[i] + rb->rgba[i]);
@@ -238,7 +236,7 @@ static int trace_spp(report *r) {
             frame(sc, W, H, &sc2, 0, SEED_REF_B, &rb, NULL)) {
             cj_render_image_destroy(ra);
             free(ref), free(half), cj_scene_destroy(sc);
-            return cli_error("report", "trace reference: %s", cj_last_error());
+            return report_error("trace reference: %s", cj_last_error());
         }
         for (size_t i = 0; i < 4 * np; ++i) half[i] = rb->rgba[i];
         strat_pair = rmse(ra->rgba, half, np);
@@ -255,7 +253,7 @@ static int trace_spp(report *r) {
             cj_render_image *img = NULL;
             if (frame(sc, W, H, &cells[k], 0, SEED_IMG, &img, NULL)) {
                 free(ref), cj_scene_destroy(sc);
-                return cli_error("report", "trace: %s", cj_last_error());
+                return report_error("trace: %s", cj_last_error());
             }
             err[k] = rmse(img->rgba, ref, np);
             corr[k] = sqrt(fmax(0.0, err[k] * err[k] - sigma_ref * sigma_ref));
@@ -269,7 +267,7 @@ static int trace_spp(report *r) {
     for (int k = 0; k < nc; ++k) tc[k] = cells[(k % 2) * ns + k / 2];
     if (time_cells(sc, W, H, tc, nc, runs, r->quick ? 2.0 : 40.0, tms, tsp)) {
         cj_scene_destroy(sc);
-        return cli_error("report", "trace: %s", cj_last_error());
+        return report_error("trace: %s", cj_last_error());
     }
     for (int k = 0; k < nc; ++k)
         ms[(k % 2) * ns + k / 2] = tms[k], spread[(k % 2) * ns + k / 2] = tsp[k];
@@ -344,7 +342,7 @@ static int trace_spp(report *r) {
     fprintf(r->md, "\n");
 
     cj_chart *c = NULL;
-    if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
+    if (cj_chart_create(NULL, &c)) return report_error("%s", cj_last_error());
     cj_chart_set_title(c, "Ray tracer: RMSE vs ms per frame (ringed: dominated, spp)");
     cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
     cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "ms per frame, 1 thread (median)");
@@ -386,8 +384,8 @@ static int trace_tol(report *r) {
     const int W = r->quick ? 32 : WL_W, H = r->quick ? 24 : WL_H;
     const size_t np = (size_t)W * H;
     cj_scene *sc = NULL;
-    if (cj_trace_demo_scene(cli_teapot_path(), NULL, &sc))
-        return cli_error("report", "trace demo: %s", cj_last_error());
+    if (cj_trace_demo_scene(report_teapot_path(), NULL, &sc))
+        return report_error("trace demo: %s", cj_last_error());
     cell cells[NTOL];
     double err[NTOL], ms[NTOL], spread[NTOL], instr[NTOL], maxerr[NTOL], ndiff[NTOL], rays[NTOL];
     cj_render_image *ri = NULL;
@@ -395,7 +393,7 @@ static int trace_tol(report *r) {
     double *ref = malloc(np * 4 * sizeof *ref);
     if (!ref || frame(sc, W, H, &rc, 0, SEED_IMG, &ri, NULL)) {
         free(ref), cj_scene_destroy(sc);
-        return cli_error("report", "trace demo: %s", cj_last_error());
+        return report_error("trace demo: %s", cj_last_error());
     }
     for (size_t i = 0; i < 4 * np; ++i) ref[i] = ri->rgba[i];
     cj_render_image_destroy(ri);
@@ -405,7 +403,7 @@ static int trace_tol(report *r) {
         cj_stage_report rep;
         if (frame(sc, W, H, &cells[i], 0, SEED_IMG, &img, &rep)) {
             free(ref), cj_scene_destroy(sc);
-            return cli_error("report", "trace demo: %s", cj_last_error());
+            return report_error("trace demo: %s", cj_last_error());
         }
         err[i] = rmse(img->rgba, ref, np);
         size_t nd = 0;
@@ -428,7 +426,7 @@ static int trace_tol(report *r) {
     free(ref);
     if (time_cells(sc, W, H, cells, nt, runs, r->quick ? 2.0 : 40.0, ms, spread)) {
         cj_scene_destroy(sc);
-        return cli_error("report", "trace demo: %s", cj_last_error());
+        return report_error("trace demo: %s", cj_last_error());
     }
     cj_scene_destroy(sc);
     for (int i = 0; i < nt; ++i) {
@@ -487,7 +485,7 @@ static int trace_tol(report *r) {
     fprintf(r->html, "</table>\n");
     fprintf(r->md, "\n");
     cj_chart *c = NULL;
-    if (cj_chart_create(NULL, &c)) return cli_error("report", "%s", cj_last_error());
+    if (cj_chart_create(NULL, &c)) return report_error("%s", cj_last_error());
     cj_chart_set_title(c, "Teapot patches: RMSE vs cost, labelled with the tolerance");
     cj_chart_set_legend(c, CJ_LEGEND_OUTSIDE);
     cj_chart_set_axis(c, 0, CJ_CHART_LOG10, "ms per frame, 1 thread (median)");

@@ -1,4 +1,5 @@
-/* Private to the casteljau tool: the JSON plot description (format documented in plot_json.c
+/* The plot document (formats/, library cj_formats; read by `casteljau plot`, the tests and the
+ * fuzzer): the JSON plot description (format documented in plot_json.c
  * and the README) parsed with cJSON into cj_plot objects. */
 #ifndef CASTELJAU_APP_PLOT_JSON_H
 #define CASTELJAU_APP_PLOT_JSON_H
