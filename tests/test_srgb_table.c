@@ -69,6 +69,29 @@ static size_t check_values(const float *values, size_t count) {
     return bad;
 }
 
+/* Alpha stays linear: the oracle is lrintf of the clamped value times 255 (ties to even). */
+static size_t check_alpha(const float *values, size_t count) {
+    size_t bad = 0;
+    for (size_t at = 0; at < count; at += 1024) {
+        int width = count - at < 1024 ? (int)(count - at) : 1024;
+        cj_render_image *img = NULL;
+        assert_int_equal(cj_render_image_create(width, 1, 0, NULL, &img), CJ_OK);
+        for (int i = 0; i < width; ++i) img->rgba[4 * i + 3] = values[at + (size_t)i];
+        uint8_t px[4 * 1024];
+        assert_int_equal(cj_render_image_to_srgb8(img, px, 0), CJ_OK);
+        for (int i = 0; i < width; ++i) {
+            float a = values[at + (size_t)i];
+            a = a < 0.0f ? 0.0f : a > 1.0f ? 1.0f : a;
+            uint8_t want = (uint8_t)lrintf(a * 255.0f);
+            if (px[4 * i + 3] != want && bad++ < 5)
+                printf("  ALPHA MISMATCH a = %.9g: got %u, want %u\n",
+                       (double)values[at + (size_t)i], px[4 * i + 3], want);
+        }
+        cj_render_image_destroy(img);
+    }
+    return bad;
+}
+
 static void test_same_bytes(void **state) {
     (void)state;
     for (int k = 0; k < 255; ++k) {
@@ -145,14 +168,35 @@ static void test_same_bytes(void **state) {
            bad);
     assert_int_equal(bad, 0);
 
-    /* NaN is still an error naming the pixel. */
+    /* Alpha: the same sets, and the floats within three steps of every tie (k + 1/2)/255. */
+    size_t abad = check_alpha(steps, 255 * 5) + check_alpha(edges, 2 * (0x3F800000u >> 16)) +
+                  check_alpha(special, sizeof special / sizeof special[0]) +
+                  check_alpha(sample, RANDOM);
+    static float ties[255 * 7];
+    n = 0;
+    for (int k = 0; k < 255; ++k) {
+        float t = (float)((k + 0.5) / 255.0);
+        float lo = nextafterf(nextafterf(nextafterf(t, 0.0f), 0.0f), 0.0f);
+        for (int i = 0; i < 7; ++i, lo = nextafterf(lo, 2.0f)) ties[n++] = lo;
+    }
+    abad += check_alpha(ties, n);
+    printf("alpha: the sets above and %zu floats around the 255 rounding ties, %zu mismatches\n", n,
+           abad);
+    assert_int_equal(abad, 0);
+
+    /* NaN is still an error naming the pixel, and the pixels before it are written. */
     cj_render_image *img = NULL;
     assert_int_equal(cj_render_image_create(2, 1, 0, NULL, &img), CJ_OK);
+    img->rgba[0] = img->rgba[1] = img->rgba[2] = img->rgba[3] = 1.0f;
     img->rgba[5] = NAN;
-    uint8_t px[8];
+    uint8_t px[8] = {0};
+    assert_int_equal(cj_render_image_to_srgb8(img, px, 0), CJ_ERR_NONFINITE);
+    for (int c = 0; c < 4; ++c) assert_int_equal(px[c], 255);
+    img->rgba[5] = 0.5f;
+    img->rgba[7] = NAN; /* alpha */
     assert_int_equal(cj_render_image_to_srgb8(img, px, 0), CJ_ERR_NONFINITE);
     cj_render_image_destroy(img);
-    printf("NaN channel: CJ_ERR_NONFINITE\n");
+    printf("NaN colour or alpha channel: CJ_ERR_NONFINITE, the pixels before it written\n");
 }
 
 int main(void) {

@@ -125,8 +125,12 @@ static void srgb_table_build(srgb_table *t) {
     }
 }
 
-static inline uint8_t srgb_code(const srgb_table *t, float x) {
-    if (!(x > 0.0f)) return 0;
+/* A NaN takes the first branch and sets *nan. */
+static inline uint8_t srgb_code(const srgb_table *t, float x, int *nan) {
+    if (!(x > 0.0f)) {
+        *nan |= x != x;
+        return 0;
+    }
     if (x >= 1.0f) return 255;
     uint32_t bits;
     memcpy(&bits, &x, sizeof bits);
@@ -139,19 +143,26 @@ cj_status cj_render_image_to_srgb8(const cj_render_image *img, uint8_t *rgba8, s
     srgb_table th;
     srgb_table_build(&th);
     if (stride == 0) stride = (size_t)img->width * 4;
+    const size_t row = (size_t)img->width * 4;
     for (int y = 0; y < img->height; ++y) {
-        const float *src = img->rgba + (size_t)y * (size_t)img->width * 4;
+        const float *src = img->rgba + (size_t)y * row;
         uint8_t *dst = rgba8 + (size_t)y * stride;
         for (int x = 0; x < img->width; ++x) {
-            for (int c = 0; c < 4; ++c)
-                if (src[4 * x + c] != src[4 * x + c])
-                    return cj_fail(CJ_ERR_NONFINITE, "pixel (%d, %d) channel %d is NaN", x, y, c);
-            dst[4 * x + 0] = srgb_code(&th, src[4 * x + 0]);
-            dst[4 * x + 1] = srgb_code(&th, src[4 * x + 1]);
-            dst[4 * x + 2] = srgb_code(&th, src[4 * x + 2]);
-            float a = src[4 * x + 3];
-            a = a < 0.0f ? 0.0f : a > 1.0f ? 1.0f : a;
-            dst[4 * x + 3] = (uint8_t)lrintf(a * 255.0f);
+            int nan = 0;
+            dst[4 * x + 0] = srgb_code(&th, src[4 * x + 0], &nan);
+            dst[4 * x + 1] = srgb_code(&th, src[4 * x + 1], &nan);
+            dst[4 * x + 2] = srgb_code(&th, src[4 * x + 2], &nan);
+            const float a_in = src[4 * x + 3];
+            nan |= a_in != a_in;
+            const float a = a_in > 0.0f ? (a_in < 1.0f ? a_in : 1.0f) : 0.0f; /* NaN: 0 */
+            /* round to nearest, ties to even (what lrintf does in the default rounding mode):
+             * adding 2^23 leaves no fraction bits for a value in [0, 255] */
+            dst[4 * x + 3] = (uint8_t)(int)((a * 255.0f + 0x1p23f) - 0x1p23f);
+            if (nan) /* the NaN pixel's bytes are left unspecified */
+                for (int c = 0; c < 4; ++c)
+                    if (src[4 * x + c] != src[4 * x + c])
+                        return cj_fail(CJ_ERR_NONFINITE, "pixel (%d, %d) channel %d is NaN", x, y,
+                                       c);
         }
     }
     return CJ_OK;
