@@ -25,11 +25,21 @@
 
 #include <math.h>
 
+/* Always inlined: the rasterizer calls the float instance once per light per sample, and
+ * inlined into its kernel the model and light-model branches are decided once per frame. The
+ * arithmetic is the same either way (no contraction: -ffp-contract=off). */
+#if defined(__GNUC__)
+#define CJ_REFLECT_INLINE static inline __attribute__((always_inline))
+#else
+#define CJ_REFLECT_INLINE static inline
+#endif
+
 #define CJ_REFLECT_DEFINE(SUF, T, SQRT, POW)                                                       \
     /* d and s of one light (see above); n, l, v unit vectors; radiometric: the BRDF terms         \
      * times n·l (below). */                                                                      \
-    static inline void cj_reflect_terms_##SUF(const T n[3], const T l[3], const T v[3], T alpha,   \
-                                              int model, int radiometric, T *d, T *s) {            \
+    CJ_REFLECT_INLINE void cj_reflect_terms_##SUF(const T n[3], const T l[3], const T v[3],        \
+                                                  T alpha, int model, int radiometric, T *d,       \
+                                                  T *s) {                                          \
         const T nl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];                                      \
         if (!(nl > (T)0)) {                                                                        \
             *d = (T)0;                                                                             \

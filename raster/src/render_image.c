@@ -97,41 +97,71 @@ static double srgb_decode(double y) {
     return y <= 0.04045 ? y / 12.92 : pow((y + 0.055) / 1.055, 2.4);
 }
 
-/* Rounding to the nearest code is a threshold search: code k is chosen when the linear value
- * lies between the decodes of (k - 1/2)/255 and (k + 1/2)/255, which is exact up to the
- * rounding of those 255 thresholds (computed per call, in double: no shared state) and avoids a
- * pow per channel. */
-static uint8_t srgb_code(const float *threshold, float x) {
-    if (!(x > 0.0f)) return 0;
-    if (x >= 1.0f) return 255;
-    int lo = 0, hi = 255; /* answer in [lo, hi]: number of thresholds <= x */
-    while (lo < hi) {
-        int mid = (lo + hi) / 2;
-        if (threshold[mid] <= x)
-            lo = mid + 1;
-        else
-            hi = mid;
+/* Rounding to the nearest code is a threshold count: code k is the number of the 255
+ * thresholds decode((j + 1/2)/255) (rounded to float) that are <= x. That is exact up to the
+ * rounding of those thresholds and avoids a pow per channel. The count is found by table: for a
+ * positive float the bit pattern orders like the value, so the top 16 bits of x (sign, exponent
+ * and 7 mantissa bits) name a bucket whose first code is tabulated, and the few thresholds
+ * inside the bucket (at most two) are stepped over by comparing bit patterns; a sentinel of +Inf
+ * ends the step. Both tables are built per call (about 16 k steps: no shared state). */
+enum { SRGB_BUCKETS = (0x3F800000u >> 16) }; /* buckets of the floats in [0, 1) */
+
+typedef struct srgb_table {
+    uint32_t threshold[256];          /* bit patterns, ascending; [255] = +Inf sentinel */
+    uint8_t first_code[SRGB_BUCKETS]; /* thresholds below the bucket's first float */
+} srgb_table;
+
+static void srgb_table_build(srgb_table *t) {
+    for (int k = 0; k < 255; ++k) {
+        float th = (float)srgb_decode((k + 0.5) / 255.0);
+        memcpy(&t->threshold[k], &th, sizeof th);
     }
-    return (uint8_t)lo;
+    t->threshold[255] = 0x7F800000u;
+    unsigned k = 0;
+    for (uint32_t b = 0; b < SRGB_BUCKETS; ++b) {
+        while (k < 255 && t->threshold[k] < (b << 16)) ++k;
+        t->first_code[b] = (uint8_t)k;
+    }
+}
+
+/* A NaN takes the first branch and sets *nan. */
+static inline uint8_t srgb_code(const srgb_table *t, float x, int *nan) {
+    if (!(x > 0.0f)) {
+        *nan |= x != x;
+        return 0;
+    }
+    if (x >= 1.0f) return 255;
+    uint32_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    unsigned k = t->first_code[bits >> 16];
+    while (t->threshold[k] <= bits) ++k;
+    return (uint8_t)k;
 }
 
 cj_status cj_render_image_to_srgb8(const cj_render_image *img, uint8_t *rgba8, size_t stride) {
-    float th[255];
-    for (int k = 0; k < 255; ++k) th[k] = (float)srgb_decode((k + 0.5) / 255.0);
+    srgb_table th;
+    srgb_table_build(&th);
     if (stride == 0) stride = (size_t)img->width * 4;
+    const size_t row = (size_t)img->width * 4;
     for (int y = 0; y < img->height; ++y) {
-        const float *src = img->rgba + (size_t)y * (size_t)img->width * 4;
+        const float *src = img->rgba + (size_t)y * row;
         uint8_t *dst = rgba8 + (size_t)y * stride;
         for (int x = 0; x < img->width; ++x) {
-            for (int c = 0; c < 4; ++c)
-                if (src[4 * x + c] != src[4 * x + c])
-                    return cj_fail(CJ_ERR_NONFINITE, "pixel (%d, %d) channel %d is NaN", x, y, c);
-            dst[4 * x + 0] = srgb_code(th, src[4 * x + 0]);
-            dst[4 * x + 1] = srgb_code(th, src[4 * x + 1]);
-            dst[4 * x + 2] = srgb_code(th, src[4 * x + 2]);
-            float a = src[4 * x + 3];
-            a = a < 0.0f ? 0.0f : a > 1.0f ? 1.0f : a;
-            dst[4 * x + 3] = (uint8_t)lrintf(a * 255.0f);
+            int nan = 0;
+            dst[4 * x + 0] = srgb_code(&th, src[4 * x + 0], &nan);
+            dst[4 * x + 1] = srgb_code(&th, src[4 * x + 1], &nan);
+            dst[4 * x + 2] = srgb_code(&th, src[4 * x + 2], &nan);
+            const float a_in = src[4 * x + 3];
+            nan |= a_in != a_in;
+            const float a = a_in > 0.0f ? (a_in < 1.0f ? a_in : 1.0f) : 0.0f; /* NaN: 0 */
+            /* round to nearest, ties to even (what lrintf does in the default rounding mode):
+             * adding 2^23 leaves no fraction bits for a value in [0, 255] */
+            dst[4 * x + 3] = (uint8_t)(int)((a * 255.0f + 0x1p23f) - 0x1p23f);
+            if (nan) /* the NaN pixel's bytes are left unspecified */
+                for (int c = 0; c < 4; ++c)
+                    if (src[4 * x + c] != src[4 * x + c])
+                        return cj_fail(CJ_ERR_NONFINITE, "pixel (%d, %d) channel %d is NaN", x, y,
+                                       c);
         }
     }
     return CJ_OK;
