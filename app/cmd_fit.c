@@ -247,6 +247,9 @@ int cmd_fit(int argc, char **argv) {
         return cli_fail("fit", "--degree %d exceeds %d for a surface", degree, CJ_PATCH_MAX_DEGREE);
     if (!input && isatty(0))
         return cli_fail("fit", "no points (give a file, or pipe them on standard input)");
+    /* a points file is checked as every input is (regular, capped, logged as an input) */
+    if (input && cj_file_check_input(input, (size_t)1 << 28, "points file"))
+        return cli_fail("fit", "%s", cj_last_error());
     FILE *in = input ? fopen(input, "r") : stdin;
     if (!in) {
         char q[160];

@@ -2,6 +2,7 @@
 #include "eval_bspline.h"
 #include "bspline_json.h"
 #include "cli.h"
+#include "file_internal.h"
 
 #include "casteljau/bspline.h"
 
@@ -13,37 +14,15 @@
 
 #define EVAL_MAX_BYTES ((size_t)256 << 20)
 
-static char *slurp(const char *path, char *why, size_t n) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        char q[160];
-        snprintf(why, n, "--curve: cannot open '%s'", cli_quote(path, q, sizeof q));
-        return NULL;
-    }
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        len += fread(buf + len, 1, cap - len - 1, f);
-        if (ferror(f) || len > EVAL_MAX_BYTES) {
-            snprintf(why, n, "--curve: cannot read '%s'%s", path,
-                     len > EVAL_MAX_BYTES ? " (larger than 256 MiB)" : "");
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        if (feof(f)) break;
-        if (len + 1 < cap) continue;
-        char *nb = realloc(buf, cap * 2);
-        if (!nb) {
-            free(buf);
-            snprintf(why, n, "--curve: out of memory reading '%s'", path);
-        }
-        buf = nb;
-        cap *= 2;
-    }
-    fclose(f);
-    if (buf) buf[len] = '\0';
-    return buf;
+/* The curve document through the shared reader (file_internal.h: regular files only, at most
+ * EVAL_MAX_BYTES, logged as an input). NULL with the reason in why; *nomem for memory. */
+static char *slurp(const char *path, char *why, size_t n, int *nomem) {
+    char *data = NULL;
+    size_t size = 0;
+    const cj_status st = cj_file_read_all(path, EVAL_MAX_BYTES, "--curve", &data, &size);
+    *nomem = st == CJ_ERR_NOMEM;
+    if (st) snprintf(why, n, "%s", cj_last_error());
+    return st ? NULL : data;
 }
 
 int eval_bspline_run(const char *path, int derivative, int want_bound, char **targs, int ntargs) {
@@ -51,10 +30,9 @@ int eval_bspline_run(const char *path, int derivative, int want_bound, char **ta
         return cli_fail("eval", "--derivative %d exceeds %d for a B-spline", derivative,
                         CJ_BSPLINE_MAX_DERIV);
     char why[512] = "";
-    char *text = slurp(path, why, sizeof why);
-    if (!text)
-        return why[0] == '-' && strstr(why, "memory") ? cli_error("eval", "%s", why)
-                                                      : cli_fail("eval", "%s", why);
+    int nomem = 0;
+    char *text = slurp(path, why, sizeof why, &nomem);
+    if (!text) return nomem ? cli_error("eval", "%s", why) : cli_fail("eval", "%s", why);
     cJSON *doc = cJSON_Parse(text);
     free(text);
     if (!doc) return cli_fail("eval", "--curve: '%s' is not valid JSON", path);

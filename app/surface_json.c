@@ -1,6 +1,8 @@
 /* B-spline / NURBS surfaces in the tool's JSON. See surface_json.h. */
 #include "surface_json.h"
 
+#include "file_internal.h"
+
 #include <cJSON.h>
 #include <math.h>
 #include <stdarg.h>
@@ -18,7 +20,16 @@ static int fail(char *why, size_t n, const char *fmt, ...) {
 }
 
 static char *slurp(const char *path, char *why, size_t n, int *nomem) {
-    FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
+    if (strcmp(path, "-")) { /* a file: the shared reader (regular, capped, logged as an input) */
+        char *data = NULL;
+        size_t size = 0;
+        const cj_status st =
+            cj_file_read_all(path, SURFACE_JSON_MAX_BYTES, "surface document", &data, &size);
+        *nomem = st == CJ_ERR_NOMEM;
+        if (st) fail(why, n, "%s", cj_last_error());
+        return st ? NULL : data;
+    }
+    FILE *f = stdin;
     if (!f) {
         fail(why, n, "cannot open '%s'", path);
         return NULL;

@@ -167,9 +167,18 @@ static void test_devices_and_pipes(void **state) {
     expect(&r, 2, "a checkpoint naming /dev/zero", "animate", NULL, "not a regular file", NULL);
     r = tool("plot /dev/zero -o o.png");
     expect(&r, 2, "plot /dev/zero", "plot", NULL, "not a regular file", NULL);
+    r = tool("eval --curve /dev/zero 0.5");
+    expect(&r, 2, "eval --curve /dev/zero", "eval", NULL, "not a regular file", NULL);
+    r = tool("tessellate --surface /dev/zero -o o.obj");
+    expect(&r, 2, "tessellate --surface /dev/zero", "tessellate", NULL, "not a regular file", NULL);
+    r = tool("fit fifo.json");
+    expect(&r, 2, "fit on a FIFO", "fit", NULL, "a pipe", NULL);
+    r = tool("intersect /dev/zero");
+    expect(&r, 2, "intersect /dev/zero", "intersect", NULL, "not a regular file", NULL);
     if (exists("o.png") || exists("o.obj") || exists("f0.png")) fail_msg("an output was written");
     printf("test_cli_hostile: /dev/zero, /dev/urandom and a FIFO as scene, animation, .bpt, OBJ, "
-           "texture, checkpoint and plot are refused at once (exit 2, one line)\n");
+           "texture, checkpoint, plot, B-spline curve and surface, points and query documents "
+           "are refused at once (exit 2, one line)\n");
 }
 
 /* A PNG of width x height whose pixel data is cut short: only the header is real. */

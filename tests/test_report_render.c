@@ -1,5 +1,5 @@
-/* test_report: the checks of the "render" section (report/src/report_render.c): the rasterizer on the
- * demo teapot, tol_px x spp against a 16-spp reference at a tighter tolerance. Per row: the
+/* test_report: the checks of the "render" section (report/src/report_render.c): the rasterizer on
+ * the demo teapot, tol_px x spp against a 16-spp reference at a tighter tolerance. Per row: the
  * fields parse, the differing share is a percentage, the proven bound is within the tolerance
  * asked for (the demo's camera keeps the teapot far from the near plane, so the pipeline never
  * has to coarsen), the triangle count is plausible, instructions are absent (quick) or
