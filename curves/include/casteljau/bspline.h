@@ -217,7 +217,9 @@ cj_status cj_bspline_elevate_count(const cj_bspline *c, int r, int *npts_out);
 /* Degree elevation by r >= 0 (p + r <= CJ_BSPLINE_MAX_DEGREE): split into Bézier pieces,
  * elevate each exactly (cj_bezier_elevate), join them and remove the p − m_j extra copies of
  * every interior knot again (exactly removable in exact arithmetic; *error, may be NULL,
- * receives the bound of the removals, a few rounding units of the coordinates). An unclamped
+ * receives the bound of the removals: a few rounding units of the coordinates per removal,
+ * times wmax/wmin for a NURBS curve, whose removals divide homogeneous differences by the
+ * smallest weight). An unclamped
  * input comes out clamped over the same domain (the same curve there). Degree 0 is
  * CJ_ERR_DEGREE and a jump (interior multiplicity p+1) CJ_ERR_ARGUMENT. Outputs sized by
  * cj_bspline_elevate_count: out_pts[npts_out*dim], out_w[npts_out] (NURBS), out_knots
