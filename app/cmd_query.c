@@ -111,6 +111,13 @@ static char *read_all(const char *cmd, const char *path, int *rc) {
 }
 
 /* The bezier items of one panel's "items" array. Returns the count, or -1 with a message. */
+static void free_curves(qcurve *cv, int nc) {
+    for (int i = 0; i < nc; ++i) {
+        free(cv[i].pts);
+        free(cv[i].w);
+    }
+}
+
 static int read_curves(const char *cmd, const cJSON *items, const char *where, qcurve *cv,
                        int *rc) {
     int nc = 0, idx = 0;
@@ -119,7 +126,7 @@ static int read_curves(const char *cmd, const cJSON *items, const char *where, q
         if (!cJSON_IsString(t) || strcmp(t->valuestring, "bezier")) continue;
         if (nc == QUERY_MAX_CURVES) {
             *rc = cli_fail(cmd, "%sitems: more than %d bezier items", where, QUERY_MAX_CURVES);
-            return -1;
+            goto fail;
         }
         const cJSON *pv = cJSON_GetObjectItemCaseSensitive(it, "points");
         const cJSON *wv = cJSON_GetObjectItemCaseSensitive(it, "weights");
@@ -127,12 +134,12 @@ static int read_curves(const char *cmd, const cJSON *items, const char *where, q
         if (n < 1 || n > CJ_QUERY_MAX_DEGREE + 1) {
             *rc = cli_fail(cmd, "%sitems[%d].points: need 1 to %d points (degree <= %d)", where,
                            idx, CJ_QUERY_MAX_DEGREE + 1, CJ_QUERY_MAX_DEGREE);
-            return -1;
+            goto fail;
         }
         if (wv && (!cJSON_IsArray(wv) || cJSON_GetArraySize(wv) != n)) {
             *rc =
                 cli_fail(cmd, "%sitems[%d].weights: need one weight per point (%d)", where, idx, n);
-            return -1;
+            goto fail;
         }
         qcurve *c = &cv[nc];
         c->item = idx;
@@ -143,7 +150,7 @@ static int read_curves(const char *cmd, const cJSON *items, const char *where, q
             free(c->pts);
             free(c->w);
             *rc = cli_error(cmd, "out of memory");
-            return -1;
+            goto fail;
         }
         ++nc;
         int i = 0;
@@ -153,7 +160,7 @@ static int read_curves(const char *cmd, const cJSON *items, const char *where, q
                 !cJSON_IsNumber(y)) {
                 *rc =
                     cli_fail(cmd, "%sitems[%d].points[%d] is not a pair of numbers", where, idx, i);
-                return -1;
+                goto fail;
             }
             c->pts[2 * i] = x->valuedouble;
             c->pts[2 * i + 1] = y->valuedouble;
@@ -162,19 +169,15 @@ static int read_curves(const char *cmd, const cJSON *items, const char *where, q
         for (const cJSON *p = wv ? wv->child : NULL; p; p = p->next, ++i) {
             if (!cJSON_IsNumber(p)) {
                 *rc = cli_fail(cmd, "%sitems[%d].weights[%d] is not a number", where, idx, i);
-                return -1;
+                goto fail;
             }
             c->w[i] = p->valuedouble;
         }
     }
     return nc;
-}
-
-static void free_curves(qcurve *cv, int nc) {
-    for (int i = 0; i < nc; ++i) {
-        free(cv[i].pts);
-        free(cv[i].w);
-    }
+fail: /* the caller sees only -1: the curves read before the bad item are freed here */
+    free_curves(cv, nc);
+    return -1;
 }
 
 /* Size of a panel: max |coordinate| of its curves (and extra points), at least tiny. */
