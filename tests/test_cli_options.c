@@ -6,6 +6,8 @@
 #define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include "cli_run.h"
 
+#include "check.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,17 +20,6 @@
 #ifndef CJ_SCENES_DIR
 #define CJ_SCENES_DIR "scenes"
 #endif
-
-static int failures = 0;
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            ++failures;                                                                            \
-            fprintf(stderr, "FAILED %s:%d: %s: ", __FILE__, __LINE__, #cond);                      \
-            fprintf(stderr, __VA_ARGS__);                                                          \
-            fputc('\n', stderr);                                                                   \
-        }                                                                                          \
-    } while (0)
 
 /* Runs `casteljau args...` (NULL-terminated, at most 30). */
 static void run(cj_cli_result *r, const char *const *args) {
@@ -246,6 +237,5 @@ int main(void) {
     test_suggestions();
     test_usage_complete();
     test_animate_example(dir);
-    if (failures) fprintf(stderr, "%d check(s) failed\n", failures);
-    return failures ? 1 : 0;
+    return cj_check_exit();
 }

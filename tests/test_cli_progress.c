@@ -5,6 +5,8 @@
  * work is announced up front, and Ctrl-C (SIGINT) during it stops cleanly: exit status 130, no
  * image written. */
 #define _XOPEN_SOURCE 700 /* posix_openpt, grantpt, unlockpt, ptsname, mkdtemp */
+#include "check.h"
+
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -19,17 +21,6 @@
 #ifndef CJ_CLI
 #define CJ_CLI "casteljau"
 #endif
-
-static int failures = 0;
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            ++failures;                                                                            \
-            fprintf(stderr, "FAILED %s:%d: %s: ", __FILE__, __LINE__, #cond);                      \
-            fprintf(stderr, __VA_ARGS__);                                                          \
-            fputc('\n', stderr);                                                                   \
-        }                                                                                          \
-    } while (0)
 
 typedef struct child {
     pid_t pid;
@@ -223,6 +214,5 @@ int main(void) {
         remove(png);
     }
     rmdir(dir);
-    if (failures) fprintf(stderr, "%d check(s) failed\n", failures);
-    return failures ? 1 : 0;
+    return cj_check_exit();
 }

@@ -4,20 +4,11 @@
 #define _GNU_SOURCE /* sched_setaffinity, CPU_SET */
 #include "render_pool.h"
 
+#include "check.h"
+
 #include <sched.h>
 #include <stdio.h>
 #include <unistd.h>
-
-static int failures = 0;
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            ++failures;                                                                            \
-            fprintf(stderr, "FAILED %s:%d: %s: ", __FILE__, __LINE__, #cond);                      \
-            fprintf(stderr, __VA_ARGS__);                                                          \
-            fputc('\n', stderr);                                                                   \
-        }                                                                                          \
-    } while (0)
 
 int main(void) {
     static const struct {
@@ -57,6 +48,5 @@ int main(void) {
     CHECK(cj_rpool_plan(3, 1000) == 3, "an explicit thread count is kept");
     printf("pinned to CPU %d: cj_cpu_count 1, the default pool plan 1 worker (explicit 3 kept)\n",
            first);
-    if (failures) fprintf(stderr, "%d check(s) failed\n", failures);
-    return failures ? 1 : 0;
+    return cj_check_exit();
 }
