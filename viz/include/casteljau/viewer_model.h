@@ -25,6 +25,7 @@
 #ifndef CASTELJAU_VIEWER_MODEL_H
 #define CASTELJAU_VIEWER_MODEL_H
 
+#include "casteljau/bspline.h"
 #include "casteljau/catmull_rom.h"
 #include "casteljau/framebuffer.h"
 #include "casteljau/plot.h"
@@ -38,20 +39,25 @@ extern "C" {
 typedef enum cj_vcurve_kind {
     CJ_VCURVE_BEZIER = 0, /* polynomial Bézier, count-1 = degree */
     CJ_VCURVE_RATIONAL,   /* rational Bézier, one weight > 0 per point */
-    CJ_VCURVE_SPLINE      /* interpolating spline through the points (spline.kind) */
+    CJ_VCURVE_SPLINE,     /* interpolating spline through the points (spline.kind) */
+    CJ_VCURVE_BSPLINE     /* B-spline (weights NULL) or NURBS: degree, count + degree + 1 knots */
 } cj_vcurve_kind;
 
-/* One curve. Coordinates are point-major (x, y); weights only for CJ_VCURVE_RATIONAL. */
+/* One curve. Coordinates are point-major (x, y); weights for CJ_VCURVE_RATIONAL, and for a
+ * CJ_VCURVE_BSPLINE that is a NURBS. */
 typedef struct cj_vcurve {
     cj_vcurve_kind kind;
     size_t count;
-    double *pts;     /* 2*count */
-    double *weights; /* count, or NULL */
+    double *pts;         /* 2*count */
+    double *weights;     /* count, or NULL */
+    int degree;          /* CJ_VCURVE_BSPLINE: the degree p (other kinds: unused) */
+    double *knot_vector; /* CJ_VCURVE_BSPLINE: count + degree + 1 knots (bspline.h); else NULL */
     cj_spline_options spline;
     /* plot style (casteljau/plot.h) */
     cj_rgba color;
     double width;
-    int control_polygon, control_points, hull, normals, knots;
+    int control_polygon, control_points, hull, normals;
+    int knots; /* knot markers (splines: the points passed through; B-splines: the domain knots) */
     size_t nframes;
     double frames_t[CJ_PLOT_MAX_FRAMES];
 } cj_vcurve;
@@ -96,20 +102,37 @@ cj_status cj_vdoc_remove_curve(cj_vdoc *doc, size_t ci);
 cj_status cj_vdoc_move_point(cj_vdoc *doc, size_t ci, size_t i, double x, double y);
 void cj_vdoc_begin_drag(cj_vdoc *doc);
 void cj_vdoc_end_drag(cj_vdoc *doc);
-/* Sets the weight of point i of a rational curve (w > 0, finite). */
+/* Sets the weight of point i of a rational curve or a B-spline (w > 0, finite); a polynomial
+ * B-spline becomes a NURBS with every other weight 1. */
 cj_status cj_vdoc_set_weight(cj_vdoc *doc, size_t ci, size_t i, double w);
 /* Inserts a point before index i (i = count appends) at (x, y), weight 1 for rational
- * curves. The curve's degree grows by one (Bézier) or it passes through one more point. */
+ * curves. The curve's degree grows by one (Bézier) or it passes through one more point.
+ * B-splines: CJ_ERR_ARGUMENT (their knots fix the count: insert a knot instead). */
 cj_status cj_vdoc_insert_point(cj_vdoc *doc, size_t ci, size_t i, double x, double y);
-/* Deletes point i (a Bézier keeps at least 1 point, a spline at least 2). */
+/* Deletes point i (a Bézier keeps at least 1 point, a spline at least 2). B-splines:
+ * CJ_ERR_ARGUMENT. */
 cj_status cj_vdoc_delete_point(cj_vdoc *doc, size_t ci, size_t i);
 /* Degree elevation by one (cj_bezier_elevate; rational curves in homogeneous form): the same
- * curve with one more control point. Splines: CJ_ERR_ARGUMENT. */
+ * curve with one more control point. Splines and B-splines: CJ_ERR_ARGUMENT. */
 cj_status cj_vdoc_elevate(cj_vdoc *doc, size_t ci);
 /* Splits a Bézier / rational curve at t in [0, 1] (cj_bezier_split / cj_rbezier_split): curve
  * ci becomes the piece on [0, t] and the piece on [t, 1] is inserted after it with the same
- * style. Splines: CJ_ERR_ARGUMENT. */
+ * style. Splines and B-splines: CJ_ERR_ARGUMENT. */
 cj_status cj_vdoc_split(cj_vdoc *doc, size_t ci, double t);
+
+/* Inserts the knot u once into B-spline curve ci (Boehm, cj_bspline_insert_knot): one more
+ * control point, the same curve (up to rounding: the new points are convex combinations of
+ * old ones). CJ_ERR_ARGUMENT if the curve is not a B-spline, and what cj_bspline_insert_knot
+ * reports (u outside the domain, a multiplicity above the degree). */
+cj_status cj_vdoc_insert_knot(cj_vdoc *doc, size_t ci, double u);
+
+/* The B-spline view of a CJ_VCURVE_BSPLINE curve (dimension 2). */
+cj_bspline cj_vcurve_bspline(const cj_vcurve *c);
+
+/* The parameter range of the knot spans control point i of a B-spline influences (its basis
+ * function's support [u_i, u_{i+p+1}] clipped to the domain): moving the point changes the
+ * curve there and nowhere else. CJ_ERR_ARGUMENT if c is not a B-spline or i is out of range. */
+cj_status cj_vcurve_support(const cj_vcurve *c, size_t i, double *u0, double *u1);
 
 /* Sets the plot style of curve ci (colour, width, control polygon/points, hull, normals, knots,
  * frames) to style's; the points stay. */
