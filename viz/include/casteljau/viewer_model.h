@@ -159,6 +159,58 @@ int cj_vdoc_pick(const cj_vdoc *doc, const cj_vview *v, double px, double py, do
 /* Exact comparison of ax² + ay² with bx² + by² (-1, 0, +1), for finite doubles. */
 int cj_vpick_compare(double ax, double ay, double bx, double by);
 
+/* ---- queries: snapping and intersections (casteljau/nearest.h, casteljau/intersect.h) ----- */
+
+/* A curve as Bézier pieces: piece j has degree `degree`, control points pts[j*(degree+1)*2 ..]
+ * and (rational pieces) weights w[j*(degree+1) ..] (w NULL: polynomial), and covers the
+ * curve's own parameter range [breaks[j], breaks[j+1]]: [0, 1] for a Bézier or rational curve
+ * (one piece), the knot spans for a B-spline (cj_bspline_to_bezier), [j, j+1] for segment j of
+ * a spline. */
+typedef struct cj_vpieces {
+    int n, degree;
+    double *pts, *w, *breaks;
+} cj_vpieces;
+cj_status cj_vcurve_pieces(const cj_vcurve *c, cj_vpieces *out);
+void cj_vpieces_free(cj_vpieces *p);
+
+/* The certified nearest point of the document's curves to a point q (data units). */
+typedef struct cj_vsnap {
+    long curve;      /* the curve it lies on; -1 when no curve could be queried */
+    double u;        /* its parameter on that curve (the curve's own, as cj_vpieces) */
+    double point[2]; /* the nearest point found, c(u) rounded to doubles */
+    double distance; /* proven upper bound of |c(u) - q| */
+    double lower;    /* proven lower bound of the distance from q to every curve queried */
+    double on_curve; /* proven upper bound of the distance from `point` to the curve */
+    long pieces;     /* work: pieces examined by the branch and bound */
+} cj_vsnap;
+
+/* Nearest point of every curve except curve `skip` (-1: none) to q, each Bézier piece through
+ * cj_nearest_curve (a global minimum, not a local Newton root): distance - lower <= tol, so no
+ * point of those curves is nearer to q than distance - tol. Pieces that are single points (a
+ * degenerate piece) are skipped. tol: data units, raised to 2^-40 times the scale when below
+ * what doubles resolve. CJ_ERR_EMPTY if no curve could be queried; errors of the queries. */
+cj_status cj_vdoc_snap(const cj_vdoc *doc, const double q[2], long skip, double tol, cj_vsnap *out);
+
+/* The same for one curve (out->curve is 0). */
+cj_status cj_vcurve_nearest(const cj_vcurve *c, const double q[2], double tol, cj_vsnap *out);
+
+/* One intersection of two different curves of the document (cj_intersect_curves on each pair
+ * of their pieces): the point, its kind and the two curves and parameters. */
+typedef struct cj_vmark {
+    double point[2];
+    int kind; /* cj_isect_kind */
+    size_t a, b;
+    double ua, ub;
+} cj_vmark;
+
+/* Every intersection between pieces of different curves, at tolerance tol (data units, as in
+ * intersect.h; raised to 2^-39 times the scale when below what doubles resolve). A crossing at
+ * the joint of two pieces (at_end) is kept once: one within 4 tol of a mark of the same two
+ * curves is dropped. *out (malloc'ed, free() it; NULL when none) and *count. Pairs whose query
+ * fails (a degenerate piece, CJ_ERR_CAP) are left out and counted in *failed (may be NULL). */
+cj_status cj_vdoc_intersections(const cj_vdoc *doc, double tol, cj_vmark **out, size_t *count,
+                                size_t *failed);
+
 /* ---- files ------------------------------------------------------------------------------ */
 
 /* Display state saved with the document (so the plot file shows what the viewer showed). */
