@@ -191,8 +191,11 @@ static void test_snap_drag(void) {
     const cj_vcurve *line = cj_vdoc_curve(d, 2);
     double target[2];
     const cj_bspline b = cj_vcurve_bspline(cj_vdoc_curve(d, 0));
-    cj_bspline_eval(&b, 0.5, target);
-    target[0] += 0.06;
+    double dv[4];
+    cj_bspline_eval_derivs(&b, 0.5, 1, dv);
+    const double len = hypot(dv[2], dv[3]);
+    target[0] = dv[0] - 0.06 * dv[3] / len; /* 6 px off the curve along its normal */
+    target[1] = dv[1] + 0.06 * dv[2] / len;
     int x0, y0, x1, y1;
     window_xy(&v, line->pts + 2, &x0, &y0);
     window_xy(&v, target, &x1, &y1);
@@ -225,8 +228,9 @@ static void test_snap_drag(void) {
           hypot(p[0] - plain[0], p[1] - plain[1]));
     printf("snap (P) with a real drag: the line's end point dropped 6 px beside the B-spline is "
            "saved at (%.17g, %.17g), on the B-spline at u = %.9g: certified distance %.2g, "
-           "oracle |p - c(u)| = %.2g (%.1f ulps)\n",
-           p[0], p[1], s.u, s.distance, hypot(ex, ey), hypot(ex, ey) / ulp);
+           "oracle |p - c(u)| = %.2g (%.1f ulps); %.3g units from where a plain drag leaves it\n",
+           p[0], p[1], s.u, s.distance, hypot(ex, ey), hypot(ex, ey) / ulp,
+           hypot(p[0] - plain[0], p[1] - plain[1]));
     cj_vdoc_destroy(d);
     cj_vdoc_destroy(e);
 }
