@@ -1,5 +1,7 @@
 /* Curve documents of the viewer as plot JSON files (the format of `casteljau plot`, read by
- * app/plot_json.c): written atomically with every number round-tripping, read back with cJSON.
+ * formats/): written atomically with every number round-tripping, read back with cJSON; the
+ * "bspline" items through the formats/ B-spline reader and writer (bspline_json.h) that
+ * `casteljau plot`, `fit` and `eval --curve` use.
  * Also the plot the viewer draws, built with the same calls the plot reader makes for the
  * written file, so the two pictures are the same pixels. */
 #define _POSIX_C_SOURCE 200809L

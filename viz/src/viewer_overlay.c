@@ -231,8 +231,10 @@ static void overlay_queries(cj_viewer *v, panel *p) {
         for (size_t i = 0; i < v->nmarks; ++i) {
             double q[2];
             cj_vview_to_px(&v->view, v->marks[i].point[0], v->marks[i].point[1], q);
-            cj_raster_line_aa(v->screen, q[0] - 5, q[1] - 5, q[0] + 5, q[1] + 5, mk);
-            cj_raster_line_aa(v->screen, q[0] - 5, q[1] + 5, q[0] + 5, q[1] - 5, mk);
+            for (int k = 0; k < 2; ++k) { /* two pixels wide, to stand out over the curves */
+                cj_raster_line_aa(v->screen, q[0] - 6 + k, q[1] - 6, q[0] + 6 + k, q[1] + 6, mk);
+                cj_raster_line_aa(v->screen, q[0] - 6 + k, q[1] + 6, q[0] + 6 + k, q[1] - 6, mk);
+            }
             kinds[v->marks[i].kind % 3]++;
         }
         add(p, "T: %zu intersections (%zu crossings, %zu contacts, %zu overlaps)%s", v->nmarks,
@@ -254,8 +256,7 @@ static void overlay_queries(cj_viewer *v, panel *p) {
         v->snap.lower, v->snap.on_curve);
 }
 
-static void overlay_2d(cj_viewer *v, panel *p) {
-    overlay_queries(v, p);
+static void overlay_curve(cj_viewer *v, panel *p) {
     const cj_vcurve *c = v->disp.curve >= 0 ? cj_vdoc_curve(v->doc, (size_t)v->disp.curve) : NULL;
     if (!c) return;
     if (c->kind == CJ_VCURVE_BSPLINE) {
@@ -312,6 +313,12 @@ static void overlay_2d(cj_viewer *v, panel *p) {
     free(px);
     add(p, "flattening: tol %.2f px -> %zu segments,", CJ_PLOT_FLATTEN_TOL, fs.segments);
     add(p, "  proven bound %.3f px", fs.bound);
+}
+
+/* The selected curve's lines and marks, then the snap and intersection marks over them. */
+static void overlay_2d(cj_viewer *v, panel *p) {
+    overlay_curve(v, p);
+    overlay_queries(v, p);
 }
 
 /* The control points of the nodes whose control net is shown (and the selected one always):

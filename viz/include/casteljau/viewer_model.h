@@ -1,9 +1,10 @@
 /* casteljau: the editor model of `casteljau view` for 2D curves, usable without a window.
  *
  * A cj_vdoc is a list of 2D curves (Bézier of any degree, rational Bézier, interpolating
- * splines of the Catmull-Rom kinds) with their plot styles, plus a COMMAND LOG: every edit is
- * recorded with the exact curves it replaced and produced, so undo and redo restore geometry
- * bit for bit. Edits made after an undo drop the undone commands (the usual linear history).
+ * splines of the Catmull-Rom kinds, B-splines and NURBS of any degree and knot vector) with their
+ * plot styles, plus a COMMAND LOG: every edit is recorded with the exact curves it replaced and
+ * produced, so undo and redo restore geometry bit for bit. Edits made after an undo drop the undone
+ * commands (the usual linear history).
  *
  * The picture is the plot of casteljau/plot.h drawn with an explicit view box, no axes, no
  * title and no margin, so that data -> pixel is the known affine map of cj_vview (the same
@@ -224,14 +225,16 @@ typedef struct cj_vdoc_display {
 
 /* Writes the document as a plot JSON file (the format of `casteljau plot`): width, height,
  * background, "axes": false, "margin": 0, the view, and one item per curve ("bezier" with
- * weights for rational curves, "catmull-rom"), every number with 17 significant digits so it
- * reads back bit-identical. Atomic: a temporary file beside `path`, flushed, synced and
- * renamed; on failure an existing file is kept. CJ_ERR_IO naming the path, CJ_ERR_NOMEM.
- * Kochanek–Bartels splines have no plot JSON form: CJ_ERR_UNSUPPORTED. */
+ * weights for rational curves, "catmull-rom", "bspline" written by the formats/ B-spline writer
+ * of `casteljau fit` with the plot's drawing options), every number with 17 significant digits so
+ * it reads back bit-identical. Atomic: a temporary file beside `path`, flushed, synced and renamed;
+ * on failure an existing file is kept. CJ_ERR_IO naming the path, CJ_ERR_NOMEM. Kochanek–Bartels
+ * splines have no plot JSON form: CJ_ERR_UNSUPPORTED. */
 cj_status cj_vdoc_save_json(const cj_vdoc *doc, const cj_vview *v, const cj_vdoc_display *disp,
                             const char *path);
 
-/* Reads a plot JSON file of one plot (no "panels") whose items are "bezier" or "catmull-rom"
+/* Reads a plot JSON file of one plot (no "panels") whose items are "bezier", "catmull-rom" or
+ * "bspline" (the latter through the formats/ reader that `casteljau plot` uses)
  * into a new document (empty log), its view (the file's "view", else fitted with a 10 %
  * border; width/height from the file, else 800 × 600) and display state. CJ_ERR_IO (cannot
  * read), CJ_ERR_PARSE (syntax, a missing or ill-typed field, an item kind the editor cannot
