@@ -221,6 +221,29 @@ static void overlay_bspline(cj_viewer *v, panel *p, const cj_vcurve *c) {
             c->weights ? c->weights[i] : 1.0);
     }
     add(p, "I inserts a knot at the cursor's parameter");
+    /* the plot flattens each Bézier piece in pixels: the same stats, summed over the pieces */
+    cj_vpieces pc;
+    if (cj_vcurve_pieces(c, &pc)) return;
+    const size_t per = (size_t)pc.degree + 1;
+    for (size_t i = 0; i < (size_t)pc.n * per; ++i)
+        cj_vview_to_px(&v->view, pc.pts[2 * i], pc.pts[2 * i + 1], pc.pts + 2 * i);
+    cj_flatten_opts fo = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, CJ_PLOT_FLATTEN_TOL);
+    size_t segments = 0, np = 0;
+    double bound = 0;
+    for (int j = 0; j < pc.n; ++j) {
+        cj_flatten_stats fs = {0, 0};
+        const cj_bezier pb = cj_bezier_view(pc.degree, 2, pc.pts + (size_t)j * per * 2);
+        const cj_rbezier rb =
+            cj_rbezier_view(pc.degree, 2, pb.pts, pc.w ? pc.w + (size_t)j * per : NULL);
+        if (pc.w ? cj_flatten_rbezier(&rb, &fo, NULL, 0, &np, &fs)
+                 : cj_flatten_bezier(&pb, &fo, NULL, 0, &np, &fs))
+            break;
+        segments += fs.segments;
+        bound = fmax(bound, fs.bound);
+    }
+    add(p, "flattening: %d Bezier pieces, tol %.2f px -> %zu segments, proven bound %.3f px", pc.n,
+        CJ_PLOT_FLATTEN_TOL, segments, bound);
+    cj_vpieces_free(&pc);
 }
 
 /* Snap point and intersection marks, for every curve. */
@@ -247,6 +270,8 @@ static void overlay_queries(cj_viewer *v, panel *p) {
     }
     double q[2];
     cj_vview_to_px(&v->view, v->snap.point[0], v->snap.point[1], q);
+    if (v->drag == VIEW_DRAG_NONE) /* from the cursor to the point it snaps to */
+        cj_raster_line_aa(v->screen, v->cx, v->cy, q[0], q[1], cj_rgba_make(200, 0, 120, 120));
     ring(v->screen, q[0], q[1], 5.0, mk);
     cj_raster_line_aa(v->screen, q[0] - 8, q[1], q[0] + 8, q[1], mk);
     cj_raster_line_aa(v->screen, q[0], q[1] - 8, q[0], q[1] + 8, mk);
