@@ -218,6 +218,9 @@ static void test_snap_drag(void) {
     const double ex = cj_obsp_abs_error(&o, 0, s.u, p[0], &mag);
     const double ey = cj_obsp_abs_error(&o, 1, s.u, p[1], &mag);
     CHECK(hypot(ex, ey) <= 4 * ulp, "oracle: %g from c(%.17g)", hypot(ex, ey), s.u);
+    /* nearest.h's distance bounds |c(u) - p| at its u: the oracle must agree */
+    CHECK(hypot(ex, ey) <= s.distance * (1 + 4 * DBL_EPSILON), "oracle %g above the certified %g",
+          hypot(ex, ey), s.distance);
     /* where a plain drag leaves it: its pixel position plus the cursor's displacement */
     double q[2], plain[2];
     cj_vview_to_px(&v, line->pts[2], line->pts[3], q);
