@@ -504,6 +504,7 @@ cj_status cj_vdoc_split(cj_vdoc *doc, size_t ci, double t) {
 }
 
 cj_status cj_vdoc_insert_knot(cj_vdoc *doc, size_t ci, double u) {
+    assert(doc);
     cj_status st = need_curve(doc, ci);
     if (st) return st;
     const cj_vcurve *src = &doc->curves[ci];

@@ -8,6 +8,7 @@
 #include "casteljau/nearest.h"
 #include "error_internal.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +35,7 @@ static cj_status pieces_alloc(cj_vpieces *p, int n, int degree, int rational) {
 }
 
 cj_status cj_vcurve_pieces(const cj_vcurve *c, cj_vpieces *out) {
+    assert(c && out);
     memset(out, 0, sizeof *out);
     cj_status st;
     if (c->kind == CJ_VCURVE_BSPLINE) {
@@ -138,6 +140,7 @@ static const cj_vsnap no_snap = {-1, 0, {0, 0}, INFINITY, INFINITY, INFINITY, 0}
 
 cj_status cj_vdoc_snap(const cj_vdoc *doc, const double q[2], long skip, double tol,
                        cj_vsnap *out) {
+    assert(doc && q && out);
     cj_vsnap best = no_snap;
     cj_vpieces bp = {0, 0, NULL, NULL, NULL};
     int bj = -1;
@@ -148,6 +151,7 @@ cj_status cj_vdoc_snap(const cj_vdoc *doc, const double q[2], long skip, double 
 }
 
 cj_status cj_vcurve_nearest(const cj_vcurve *c, const double q[2], double tol, cj_vsnap *out) {
+    assert(c && q && out);
     cj_vsnap best = no_snap;
     cj_vpieces bp = {0, 0, NULL, NULL, NULL};
     int bj = -1;
@@ -177,6 +181,7 @@ static int near_mark(const cj_vmark *m, size_t n, size_t a, size_t b, const doub
 
 cj_status cj_vdoc_intersections(const cj_vdoc *doc, double tol, cj_vmark **out, size_t *count,
                                 size_t *failed) {
+    assert(doc && out && count);
     const size_t nc = cj_vdoc_curve_count(doc);
     cj_vmark *marks = NULL;
     size_t n = 0, cap = 0, bad = 0;

@@ -188,7 +188,7 @@ typedef struct cj_vsnap {
 /* Nearest point of every curve except curve `skip` (-1: none) to q, each Bézier piece through
  * cj_nearest_curve (a global minimum, not a local Newton root): distance - lower <= tol, so no
  * point of those curves is nearer to q than distance - tol. Pieces that are single points (a
- * degenerate piece) are skipped. tol: data units, raised to 2^-40 times the scale when below
+ * degenerate piece) are skipped. tol: data units, raised to 2^-39 times the scale when below
  * what doubles resolve. CJ_ERR_EMPTY if no curve could be queried; errors of the queries. */
 cj_status cj_vdoc_snap(const cj_vdoc *doc, const double q[2], long skip, double tol, cj_vsnap *out);
 
