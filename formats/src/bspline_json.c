@@ -170,8 +170,13 @@ const cJSON *bsp_json_find(const cJSON *doc, char *path, size_t n) {
 }
 
 void bsp_json_write(FILE *f, const cj_bspline *c, const char *indent) {
-    fprintf(f, "%s{\"type\": \"bspline\", \"degree\": %d,\n%s \"knots\": [", indent, c->degree,
-            indent);
+    bsp_json_write_styled(f, c, indent, NULL);
+}
+
+void bsp_json_write_styled(FILE *f, const cj_bspline *c, const char *indent, const char *fields) {
+    fprintf(f, "%s{\"type\": \"bspline\", \"degree\": %d,\n", indent, c->degree);
+    if (fields && *fields) fprintf(f, "%s %s,\n", indent, fields);
+    fprintf(f, "%s \"knots\": [", indent);
     const int nk = c->npts + c->degree + 1;
     for (int i = 0; i < nk; ++i) fprintf(f, "%s%.17g", i ? ", " : "", c->knots[i]);
     fprintf(f, "],\n");

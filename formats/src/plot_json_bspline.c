@@ -2,15 +2,10 @@
  * with its control polygon and markers at the knots. Fields (bspline_json.h): degree, points,
  * knots (optional), weights (optional); drawing: color, width (2.5), control_polygon (true),
  * control_points (true), knot_markers (true: a disc on the curve at every distinct knot of the
- * domain, so the pieces can be told apart). */
+ * domain, so the pieces can be told apart), drawn by cj_plot_add_bspline (the viewer draws its
+ * B-splines through the same call). */
 #include "bspline_json.h"
 #include "plot_json_internal.h"
-
-#include "casteljau/rational.h"
-
-#include <math.h>
-#include <stdlib.h>
-#include <string.h>
 
 int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color) {
     static const char *const extra[] = {"color",          "width",        "control_polygon",
@@ -38,46 +33,14 @@ int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot
         r = pj_fail(c, "%s.points: a plotted B-spline needs 2D points, not %d coordinates", path,
                     b.dim);
     const cj_bspline s = bsp_json_view(&b);
-    int np = 0;
-    if (!r && cj_bspline_bezier_count(&s, &np)) r = pj_lib_fail(c, path);
     c->points += (size_t)b.npts;
-    const int per = b.degree + 1;
-    double *bp = NULL, *bw = NULL, *br = NULL, *kp = NULL;
-    if (!r) {
-        bp = malloc(sizeof(double) * (size_t)np * (size_t)per * 2);
-        bw = b.weights ? malloc(sizeof(double) * (size_t)np * (size_t)per) : NULL;
-        br = malloc(sizeof(double) * ((size_t)np + 1));
-        kp = malloc(sizeof(double) * ((size_t)np + 1) * 2);
-        if (!bp || !br || !kp || (b.weights && !bw)) r = pj_fail(c, "%s: out of memory", path);
-    }
-    if (!r && cj_bspline_to_bezier(&s, bp, bw, br, np, NULL)) r = pj_lib_fail(c, path);
-    cj_plot_bezier_opts o = cj_plot_bezier_defaults();
+    cj_plot_bspline_opts o = cj_plot_bspline_defaults();
     o.color = color;
     o.width = width;
-    o.control_polygon = 0;
-    o.control_points = 0;
-    for (int j = 0; j < np && !r; ++j) {
-        const cj_bezier pb = cj_bezier_view(b.degree, 2, bp + (size_t)j * (size_t)per * 2);
-        const cj_rbezier rb = cj_rbezier_view(b.degree, 2, bp + (size_t)j * (size_t)per * 2,
-                                              bw ? bw + (size_t)j * (size_t)per : NULL);
-        if (bw ? cj_plot_add_rbezier(plot, &rb, &o) : cj_plot_add_bezier(plot, &pb, &o))
-            r = pj_lib_fail(c, path);
-    }
-    const cj_rgba grey = {150, 150, 150, 255};
-    if (!r && (polygon || points) && b.npts >= 2 &&
-        cj_plot_add_polyline(plot, b.pts, (size_t)b.npts, 0, polygon ? grey : (cj_rgba){0, 0, 0, 0},
-                             1.0, points))
-        r = pj_lib_fail(c, path);
-    if (!r && knots) {
-        for (int j = 0; j <= np && !r; ++j)
-            if (cj_bspline_eval(&s, br[j], kp + 2 * j)) r = pj_lib_fail(c, path);
-        if (!r && cj_plot_add_points(plot, kp, (size_t)np + 1, color, 3.5))
-            r = pj_lib_fail(c, path);
-    }
-    free(bp);
-    free(bw);
-    free(br);
-    free(kp);
+    o.control_polygon = polygon;
+    o.control_points = points;
+    o.knot_markers = knots;
+    if (!r && cj_plot_add_bspline(plot, &s, &o)) r = pj_lib_fail(c, path);
     bsp_json_free(&b);
     return r ? -1 : 0;
 }

@@ -34,6 +34,11 @@ typedef struct cj_viewer {
     long sel_point; /* selected point of curve disp.curve, or -1 */
     int comb;       /* curvature comb (overlay) */
     cj_eval_method method;
+    int snap_on;     /* P: the cursor (and a dragged point) snaps to the nearest curve */
+    cj_vsnap snap;   /* the last snap (snap.curve < 0: none) */
+    int isect_on;    /* T: intersections between curves marked */
+    cj_vmark *marks; /* those intersections (recomputed with the picture) */
+    size_t nmarks, isect_failed;
     /* 3D */
     cj_vscene *vs;
     long sel3;               /* selected control point, or -1 */

@@ -169,6 +169,10 @@ cj_status cj_viewer_load(cj_viewer *v) {
 
 void cj_viewer_unload(cj_viewer *v) {
     cj_vdoc_destroy(v->doc);
+    free(v->marks);
+    v->marks = NULL;
+    v->nmarks = 0;
+    v->snap.curve = -1;
     cj_vscene_destroy(v->vs);
     free(v->depth);
     if (v->anim) cj_anim_doc_destroy(v->anim);

@@ -58,6 +58,13 @@ cj_status cj_viewer_draw(cj_viewer *v) {
         v->render_s = cj_clock_seconds() - t0;
         v->dirty = 0;
         if (st) snprintf(v->msg, sizeof v->msg, "render failed: %s", cj_last_error());
+        free(v->marks);
+        v->marks = NULL;
+        v->nmarks = v->isect_failed = 0;
+        /* intersections at a thousandth of a pixel */
+        if (v->isect_on && cj_vdoc_intersections(v->doc, 1e-3 / cj_vview_scale(&v->view), &v->marks,
+                                                 &v->nmarks, &v->isect_failed))
+            snprintf(v->msg, sizeof v->msg, "intersections: %s", cj_last_error());
     }
     v->redraw = 0;
     for (int y = 0; y < v->height; ++y)

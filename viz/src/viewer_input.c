@@ -23,7 +23,10 @@ static const char *const help_2d[] = {
     "K  curvature comb    H  convex hull    M  evaluation method (error bound at t)",
     "I  insert a point after the selected one    A  append a point at the cursor",
     "Del/X  delete the selected point    E  elevate degree    S  split at t",
-    "W / shift+W  weight x1.25 / /1.25 (rational curves)",
+    "W / shift+W  weight x1.25 / /1.25 (rational curves, B-splines: NURBS)",
+    "B-splines: I  insert a knot at the cursor's parameter (the curve stays)",
+    "P  snap to the nearest curve point (certified); drag a point onto a curve",
+    "T  intersections between curves (certified marks)",
     "ctrl+Z  undo    ctrl+Y or ctrl+shift+Z  redo    ctrl+S  save    F5  reload",
     "O  text overlay on/off    F1  this help    Esc/Q  quit",
     NULL};
@@ -97,6 +100,40 @@ static void undo_redo(cj_viewer *v, int redo) {
     say(v, redo ? "redo" : "undo", st);
 }
 
+/* The snap tolerance: a thousandth of a pixel, in data units. */
+static double snap_tol(const cj_viewer *v) {
+    return 1e-3 / cj_vview_scale(&v->view);
+}
+
+/* With snapping on: the certified nearest curve point to the cursor (shown in the overlay). */
+static void snap_cursor(cj_viewer *v) {
+    double q[2];
+    cj_vview_from_px(&v->view, v->cx, v->cy, q);
+    v->snap.curve = -1;
+    cj_status st = cj_vdoc_snap(v->doc, q, -1, snap_tol(v), &v->snap);
+    if (st) {
+        v->snap.curve = -1;
+        say(v, "snap", st);
+    }
+    v->redraw = 1;
+}
+
+/* B-splines: one knot at the parameter of the curve point nearest to the cursor. */
+static void insert_knot_at_cursor(cj_viewer *v, size_t ci) {
+    double q[2];
+    cj_vsnap near;
+    cj_vview_from_px(&v->view, v->cx, v->cy, q);
+    cj_status st = cj_vcurve_nearest(cj_vdoc_curve(v->doc, ci), q, snap_tol(v), &near);
+    if (!st) st = cj_vdoc_insert_knot(v->doc, ci, near.u);
+    if (!st) v->sel_point = -1;
+    if (!st) {
+        snprintf(v->msg, sizeof v->msg, "inserted the knot %.6g (the curve is unchanged)", near.u);
+        v->dirty = 1;
+    } else {
+        say(v, "insert a knot", st);
+    }
+}
+
 static void key_2d(cj_viewer *v, int key, int mods) {
     const cj_vcurve *c = sel_curve(v);
     const size_t ci = (size_t)v->disp.curve;
@@ -134,6 +171,16 @@ static void key_2d(cj_viewer *v, int key, int mods) {
         cj_vview_fit(&v->view, v->doc, 0.1);
         v->dirty = 1;
         return;
+    case GLFW_KEY_P:
+        v->snap_on = !v->snap_on;
+        v->snap.curve = -1;
+        if (v->snap_on) snap_cursor(v);
+        snprintf(v->msg, sizeof v->msg, "snapping %s", v->snap_on ? "on" : "off");
+        return;
+    case GLFW_KEY_T:
+        v->isect_on = !v->isect_on;
+        v->dirty = 1; /* recomputed with the picture */
+        return;
     default:
         break;
     }
@@ -160,7 +207,9 @@ static void key_2d(cj_viewer *v, int key, int mods) {
         }
         break;
     case GLFW_KEY_I:
-        if (v->sel_point >= 0) {
+        if (c->kind == CJ_VCURVE_BSPLINE) {
+            insert_knot_at_cursor(v, ci);
+        } else if (v->sel_point >= 0) {
             const size_t i = (size_t)v->sel_point, n = c->count;
             const double *p = c->pts + 2 * i;
             double q[2];
@@ -184,8 +233,8 @@ static void key_2d(cj_viewer *v, int key, int mods) {
         break;
     }
     case GLFW_KEY_W:
-        if (v->sel_point >= 0 && c->weights) {
-            const double w = c->weights[v->sel_point];
+        if (v->sel_point >= 0 && (c->weights || c->kind == CJ_VCURVE_BSPLINE)) {
+            const double w = c->weights ? c->weights[v->sel_point] : 1.0;
             say(v, "weight",
                 cj_vdoc_set_weight(v->doc, ci, (size_t)v->sel_point,
                                    (mods & VIEW_MOD_SHIFT) ? w / 1.25 : w * 1.25));
@@ -310,7 +359,7 @@ void cj_viewer_key(cj_viewer *v, int key, int mods) {
 /* The parameter of the selected curve whose point is nearest to the cursor (2049 samples). */
 static void t_at_cursor(cj_viewer *v) {
     const cj_vcurve *c = sel_curve(v);
-    if (!c || c->kind == CJ_VCURVE_SPLINE) return;
+    if (!c || c->kind >= CJ_VCURVE_SPLINE) return;
     double best = INFINITY, bt = v->disp.t;
     for (int i = 0; i <= 2048; ++i) {
         const double t = i / 2048.0;
@@ -390,7 +439,10 @@ void cj_viewer_cursor(cj_viewer *v, double x, double y, int mods) {
     const double lx = v->cx, ly = v->cy;
     v->cx = x + 0.5;
     v->cy = v->height - y - 0.5;
-    if (v->drag == VIEW_DRAG_NONE) return;
+    if (v->drag == VIEW_DRAG_NONE) {
+        if (v->snap_on && !v->mode3d) snap_cursor(v);
+        return;
+    }
     v->dirty = 1;
     cj_status st = CJ_OK;
     if (v->mode3d) {
@@ -408,6 +460,11 @@ void cj_viewer_cursor(cj_viewer *v, double x, double y, int mods) {
         /* The point's pixel position at the press, plus the cursor's displacement since. */
         double q[2];
         cj_vview_from_px(&v->view, v->dpx0 + (v->cx - v->px0), v->dpy0 + (v->cy - v->py0), q);
+        if (v->snap_on) { /* onto the nearest point of another curve */
+            v->snap.curve = -1;
+            if (!cj_vdoc_snap(v->doc, q, v->disp.curve, snap_tol(v), &v->snap))
+                q[0] = v->snap.point[0], q[1] = v->snap.point[1];
+        }
         st = cj_vdoc_move_point(v->doc, (size_t)v->disp.curve, (size_t)v->sel_point, q[0], q[1]);
     } else if (v->drag == VIEW_DRAG_T) {
         t_at_cursor(v);

@@ -11,6 +11,7 @@
 #include "viewer_internal.h"
 
 #include <assert.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -97,39 +98,73 @@ void cj_vview_fit(cj_vview *v, const cj_vdoc *doc, double border) {
 static void curve_free(cj_vcurve *c) {
     free(c->pts);
     free(c->weights);
-    c->pts = c->weights = NULL;
+    free(c->knot_vector);
+    c->pts = c->weights = c->knot_vector = NULL;
+}
+
+static size_t knot_count(const cj_vcurve *c) {
+    return c->kind == CJ_VCURVE_BSPLINE ? c->count + (size_t)c->degree + 1 : 0;
+}
+
+cj_bspline cj_vcurve_bspline(const cj_vcurve *c) {
+    return cj_bspline_view(c->degree, 2, (int)c->count, c->pts, c->weights, c->knot_vector);
+}
+
+cj_status cj_vcurve_support(const cj_vcurve *c, size_t i, double *u0, double *u1) {
+    if (c->kind != CJ_VCURVE_BSPLINE || i >= c->count)
+        return cj_fail(CJ_ERR_ARGUMENT,
+                       "viewer: point %zu of a curve that is not a B-spline of "
+                       "more points",
+                       i);
+    const size_t p = (size_t)c->degree;
+    *u0 = fmax(c->knot_vector[i], c->knot_vector[p]);
+    *u1 = fmin(c->knot_vector[i + p + 1], c->knot_vector[c->count]);
+    return CJ_OK;
 }
 
 static cj_status curve_copy(const cj_vcurve *src, cj_vcurve *dst) {
     *dst = *src;
     dst->pts = malloc((src->count ? src->count : 1) * 2 * sizeof(double));
-    dst->weights = NULL;
+    dst->weights = dst->knot_vector = NULL;
     if (src->weights) dst->weights = malloc((src->count ? src->count : 1) * sizeof(double));
-    if (!dst->pts || (src->weights && !dst->weights)) {
+    if (src->knot_vector) dst->knot_vector = malloc((knot_count(src) + 1) * sizeof(double));
+    if (!dst->pts || (src->weights && !dst->weights) || (src->knot_vector && !dst->knot_vector)) {
         curve_free(dst);
         return cj_fail(CJ_ERR_NOMEM, "viewer: out of memory copying a curve of %zu points",
                        src->count);
     }
     memcpy(dst->pts, src->pts, src->count * 2 * sizeof(double));
     if (src->weights) memcpy(dst->weights, src->weights, src->count * sizeof(double));
+    if (src->knot_vector)
+        memcpy(dst->knot_vector, src->knot_vector, knot_count(src) * sizeof(double));
     return CJ_OK;
 }
 
 static cj_status curve_check(const cj_vcurve *c) {
     const size_t min = c->kind == CJ_VCURVE_SPLINE ? 2 : 1;
-    if (c->kind > CJ_VCURVE_SPLINE)
+    if (c->kind > CJ_VCURVE_BSPLINE)
         return cj_fail(CJ_ERR_ARGUMENT, "viewer: unknown curve kind %d", (int)c->kind);
+    if (c->kind == CJ_VCURVE_BSPLINE) {
+        if (!c->knot_vector) return cj_fail(CJ_ERR_ARGUMENT, "viewer: a B-spline needs knots");
+        if (c->count > (size_t)INT_MAX / 2)
+            return cj_fail(CJ_ERR_RANGE, "viewer: a B-spline of %zu points", c->count);
+        const cj_bspline b = cj_vcurve_bspline(c);
+        cj_status st = cj_bspline_check(&b);
+        if (st) return st;
+    } else if (c->knot_vector) {
+        return cj_fail(CJ_ERR_ARGUMENT, "viewer: only B-splines have knots");
+    }
     if (c->count < min)
         return cj_fail(CJ_ERR_RANGE, "viewer: a %s needs at least %zu points, not %zu",
                        c->kind == CJ_VCURVE_SPLINE ? "spline" : "Bezier curve", min, c->count);
-    if (c->kind != CJ_VCURVE_SPLINE && c->count > (size_t)CJ_BEZIER_MAX_DEGREE + 1)
+    if (c->kind < CJ_VCURVE_SPLINE && c->count > (size_t)CJ_BEZIER_MAX_DEGREE + 1)
         return cj_fail(CJ_ERR_RANGE, "viewer: %zu points: the degree is at most %d", c->count,
                        CJ_BEZIER_MAX_DEGREE);
     for (size_t i = 0; i < 2 * c->count; ++i)
         if (!isfinite(c->pts[i]))
             return cj_fail(CJ_ERR_NONFINITE, "viewer: point %zu has a non-finite coordinate",
                            i / 2);
-    if (c->kind == CJ_VCURVE_RATIONAL) {
+    if (c->kind == CJ_VCURVE_RATIONAL || (c->kind == CJ_VCURVE_BSPLINE && c->weights)) {
         if (!c->weights) return cj_fail(CJ_ERR_ARGUMENT, "viewer: a rational curve needs weights");
         for (size_t i = 0; i < c->count; ++i)
             if (!(c->weights[i] > 0.0) || !isfinite(c->weights[i]))
@@ -324,22 +359,38 @@ static cj_status work_copy(const cj_vdoc *doc, size_t ci, size_t extra, cj_vcurv
     *out = *c;
     out->pts = calloc(big.count * 2, sizeof(double));
     out->weights = c->weights ? calloc(big.count, sizeof(double)) : NULL;
-    if (!out->pts || (c->weights && !out->weights)) {
+    out->knot_vector = c->knot_vector ? calloc(knot_count(&big), sizeof(double)) : NULL;
+    if (!out->pts || (c->weights && !out->weights) || (c->knot_vector && !out->knot_vector)) {
         curve_free(out);
         return cj_fail(CJ_ERR_NOMEM, "viewer: out of memory editing curve %zu", ci);
     }
     memcpy(out->pts, c->pts, c->count * 2 * sizeof(double));
     if (c->weights) memcpy(out->weights, c->weights, c->count * sizeof(double));
+    if (c->knot_vector) memcpy(out->knot_vector, c->knot_vector, knot_count(c) * sizeof(double));
     return CJ_OK;
+}
+
+static cj_status not_bspline(const cj_vdoc *doc, size_t ci, const char *what) {
+    if (doc->curves[ci].kind != CJ_VCURVE_BSPLINE) return CJ_OK;
+    return cj_fail(CJ_ERR_ARGUMENT,
+                   "viewer: curve %zu is a B-spline: %s does not apply (insert a knot)", ci, what);
 }
 
 cj_status cj_vdoc_set_weight(cj_vdoc *doc, size_t ci, size_t i, double w) {
     cj_status st = need_point(doc, ci, i);
     if (st) return st;
-    if (doc->curves[ci].kind != CJ_VCURVE_RATIONAL)
+    const cj_vcurve *src = &doc->curves[ci];
+    if (src->kind != CJ_VCURVE_RATIONAL && src->kind != CJ_VCURVE_BSPLINE)
         return cj_fail(CJ_ERR_ARGUMENT, "viewer: curve %zu is not rational: it has no weights", ci);
     cj_vcurve c;
     if ((st = work_copy(doc, ci, 0, &c))) return st;
+    if (!c.weights) { /* a polynomial B-spline becomes a NURBS */
+        if (!(c.weights = malloc(c.count * sizeof(double)))) {
+            curve_free(&c);
+            return cj_fail(CJ_ERR_NOMEM, "viewer: out of memory for weights");
+        }
+        for (size_t k = 0; k < c.count; ++k) c.weights[k] = 1.0;
+    }
     c.weights[i] = w;
     st = replace(doc, ci, 1, &c, 1);
     curve_free(&c);
@@ -349,6 +400,7 @@ cj_status cj_vdoc_set_weight(cj_vdoc *doc, size_t ci, size_t i, double w) {
 cj_status cj_vdoc_insert_point(cj_vdoc *doc, size_t ci, size_t i, double x, double y) {
     cj_status st = need_curve(doc, ci);
     if (st) return st;
+    if ((st = not_bspline(doc, ci, "inserting a control point"))) return st;
     const size_t n = doc->curves[ci].count;
     if (i > n) return cj_fail(CJ_ERR_ARGUMENT, "viewer: insert at %zu past the end (%zu)", i, n);
     cj_vcurve c;
@@ -368,6 +420,7 @@ cj_status cj_vdoc_insert_point(cj_vdoc *doc, size_t ci, size_t i, double x, doub
 cj_status cj_vdoc_delete_point(cj_vdoc *doc, size_t ci, size_t i) {
     cj_status st = need_point(doc, ci, i);
     if (st) return st;
+    if ((st = not_bspline(doc, ci, "deleting a control point"))) return st;
     cj_vcurve c;
     if ((st = work_copy(doc, ci, 0, &c))) return st;
     const size_t n = c.count;
@@ -385,6 +438,7 @@ cj_status cj_vdoc_elevate(cj_vdoc *doc, size_t ci) {
     const cj_vcurve *src = &doc->curves[ci];
     if (src->kind == CJ_VCURVE_SPLINE)
         return cj_fail(CJ_ERR_ARGUMENT, "viewer: curve %zu is a spline: it has no degree", ci);
+    if ((st = not_bspline(doc, ci, "Bezier degree elevation"))) return st;
     const size_t n = src->count;
     if (n > (size_t)CJ_BEZIER_MAX_DEGREE)
         return cj_fail(CJ_ERR_RANGE, "viewer: curve %zu already has degree %d", ci,
@@ -426,6 +480,7 @@ cj_status cj_vdoc_split(cj_vdoc *doc, size_t ci, double t) {
     const cj_vcurve *src = &doc->curves[ci];
     if (src->kind == CJ_VCURVE_SPLINE)
         return cj_fail(CJ_ERR_ARGUMENT, "viewer: curve %zu is a spline: split a Bezier curve", ci);
+    if ((st = not_bspline(doc, ci, "splitting at t"))) return st;
     if (!(t >= 0.0 && t <= 1.0))
         return cj_fail(CJ_ERR_RANGE, "viewer: split parameter %g is not in [0, 1]", t);
     cj_vcurve two[2];
@@ -445,6 +500,23 @@ cj_status cj_vdoc_split(cj_vdoc *doc, size_t ci, double t) {
     if (!st) st = replace(doc, ci, 1, two, 2);
     curve_free(&two[0]);
     curve_free(&two[1]);
+    return st;
+}
+
+cj_status cj_vdoc_insert_knot(cj_vdoc *doc, size_t ci, double u) {
+    assert(doc);
+    cj_status st = need_curve(doc, ci);
+    if (st) return st;
+    const cj_vcurve *src = &doc->curves[ci];
+    if (src->kind != CJ_VCURVE_BSPLINE)
+        return cj_fail(CJ_ERR_ARGUMENT, "viewer: curve %zu is not a B-spline: it has no knots", ci);
+    cj_vcurve c;
+    if ((st = work_copy(doc, ci, 1, &c))) return st;
+    const cj_bspline b = cj_vcurve_bspline(src);
+    st = cj_bspline_insert_knot(&b, u, 1, c.pts, c.weights, c.knot_vector);
+    c.count = src->count + 1;
+    if (!st) st = replace(doc, ci, 1, &c, 1);
+    curve_free(&c);
     return st;
 }
 

@@ -1,10 +1,13 @@
 /* Curve documents of the viewer as plot JSON files (the format of `casteljau plot`, read by
- * app/plot_json.c): written atomically with every number round-tripping, read back with cJSON.
+ * formats/): written atomically with every number round-tripping, read back with cJSON; the
+ * "bspline" items through the formats/ B-spline reader and writer (bspline_json.h) that
+ * `casteljau plot`, `fit` and `eval --curve` use.
  * Also the plot the viewer draws, built with the same calls the plot reader makes for the
  * written file, so the two pictures are the same pixels. */
 #define _POSIX_C_SOURCE 200809L
 #include "casteljau/viewer_model.h"
 
+#include "bspline_json.h"
 #include "error_internal.h"
 #include "file_internal.h"
 
@@ -21,6 +24,16 @@
 /* ---- the plot -------------------------------------------------------------------------- */
 
 static cj_status add_item(cj_plot *plot, const cj_vcurve *c, const cj_vdoc_display *d, int sel) {
+    if (c->kind == CJ_VCURVE_BSPLINE) {
+        cj_plot_bspline_opts bo = cj_plot_bspline_defaults();
+        bo.color = c->color;
+        bo.width = c->width;
+        bo.control_polygon = c->control_polygon;
+        bo.control_points = c->control_points;
+        bo.knot_markers = c->knots;
+        const cj_bspline b = cj_vcurve_bspline(c);
+        return cj_plot_add_bspline(plot, &b, &bo);
+    }
     if (c->kind == CJ_VCURVE_SPLINE)
         return cj_plot_add_spline(plot, c->pts, c->count, &c->spline, c->color, c->width, c->knots);
     cj_plot_bezier_opts o = cj_plot_bezier_defaults();
@@ -79,6 +92,18 @@ static void put_points(FILE *f, const double *p, size_t n) {
 }
 
 static void put_curve(FILE *f, const cj_vcurve *c, const cj_vdoc_display *d, int sel) {
+    if (c->kind == CJ_VCURVE_BSPLINE) { /* the formats/ writer of `casteljau fit` */
+        char style[256];
+        snprintf(style, sizeof style,
+                 "\"width\": %.17g, \"control_polygon\": %s, \"control_points\": %s, "
+                 "\"knot_markers\": %s, \"color\": \"#%02x%02x%02x%02x\"",
+                 c->width, c->control_polygon ? "true" : "false",
+                 c->control_points ? "true" : "false", c->knots ? "true" : "false", c->color.r,
+                 c->color.g, c->color.b, c->color.a);
+        const cj_bspline b = cj_vcurve_bspline(c);
+        bsp_json_write_styled(f, &b, "    ", style);
+        return;
+    }
     if (c->kind == CJ_VCURVE_SPLINE) {
         static const char *const kinds[] = {"uniform", "centripetal", "chordal"};
         fprintf(f,
@@ -244,6 +269,48 @@ static cj_status read_points(const rd *r, const cJSON *a, const char *where, dou
     return CJ_OK;
 }
 
+static const cj_rgba palette[] = {{0x1f, 0x77, 0xb4, 255}, {0xff, 0x7f, 0x0e, 255},
+                                  {0x2c, 0xa0, 0x2c, 255}, {0xd6, 0x27, 0x28, 255},
+                                  {0x94, 0x67, 0xbd, 255}, {0x8c, 0x56, 0x4b, 255},
+                                  {0xe3, 0x77, 0xc2, 255}, {0x17, 0xbe, 0xcf, 255}};
+
+/* A "bspline" item, read by the formats/ reader of `casteljau plot` and `eval --curve`; the
+ * drawing options are the plot's (plot_json_bspline.c). */
+static cj_status read_bspline(const rd *r, const cJSON *it, size_t idx, const char *where,
+                              cj_vdoc *doc) {
+    static const char *const extra[] = {"color",          "width",        "control_polygon",
+                                        "control_points", "knot_markers", NULL};
+    bsp_json b;
+    char why[400];
+    if (bsp_json_parse(it, where, extra, (size_t)1 << 20, &b, why, sizeof why))
+        return cj_fail(CJ_ERR_PARSE, "%s: %s", r->path, why);
+    cj_status st = CJ_OK;
+    if (b.dim != 2)
+        st = cj_fail(CJ_ERR_PARSE,
+                     "%s: %s.points: the editor edits 2D B-splines, not %d coordinates", r->path,
+                     where, b.dim);
+    cj_vcurve c = cj_vcurve_init(CJ_VCURVE_BSPLINE, (size_t)b.npts, b.pts, b.weights);
+    c.degree = b.degree;
+    c.knot_vector = b.knots;
+    c.color = palette[idx % 8];
+    const cj_plot_bspline_opts d = cj_plot_bspline_defaults();
+    c.width = d.width;
+    c.control_polygon = d.control_polygon;
+    c.control_points = d.control_points;
+    c.knots = d.knot_markers;
+    const cJSON *col = cJSON_GetObjectItemCaseSensitive(it, "color");
+    int e = col ? parse_color(col, &c.color) : 0;
+    e |= get_num(it, "width", &c.width);
+    e |= get_bool(it, "control_polygon", &c.control_polygon);
+    e |= get_bool(it, "control_points", &c.control_points);
+    e |= get_bool(it, "knot_markers", &c.knots);
+    if (!st && e) st = bad(r, where, "has a drawing option of the wrong type or value");
+    if (!st && (st = cj_vdoc_add_curve(doc, &c)))
+        st = cj_fail(st, "%s: %s: %s", r->path, where, cj_last_error());
+    bsp_json_free(&b);
+    return st;
+}
+
 static cj_status read_item(const rd *r, const cJSON *it, size_t idx, cj_vdoc *doc,
                            cj_vdoc_display *disp) {
     char where[64];
@@ -251,9 +318,10 @@ static cj_status read_item(const rd *r, const cJSON *it, size_t idx, cj_vdoc *do
     const cJSON *type = cJSON_GetObjectItemCaseSensitive(it, "type");
     if (!cJSON_IsString(type)) return bad(r, where, "has no \"type\" string");
     const int spline = !strcmp(type->valuestring, "catmull-rom");
+    if (!strcmp(type->valuestring, "bspline")) return read_bspline(r, it, idx, where, doc);
     if (!spline && strcmp(type->valuestring, "bezier"))
         return cj_fail(CJ_ERR_PARSE,
-                       "%s: %s is a '%s' item; the editor edits bezier and "
+                       "%s: %s is a '%s' item; the editor edits bezier, bspline and "
                        "catmull-rom items only",
                        r->path, where, type->valuestring);
     double *pts = NULL, *w = NULL;
@@ -263,10 +331,6 @@ static cj_status read_item(const rd *r, const cJSON *it, size_t idx, cj_vdoc *do
     cj_status st = read_points(r, cJSON_GetObjectItemCaseSensitive(it, "points"), pw, &pts, &n);
     if (st) return st;
     cj_vcurve c = cj_vcurve_init(spline ? CJ_VCURVE_SPLINE : CJ_VCURVE_BEZIER, n, pts, NULL);
-    static const cj_rgba palette[] = {{0x1f, 0x77, 0xb4, 255}, {0xff, 0x7f, 0x0e, 255},
-                                      {0x2c, 0xa0, 0x2c, 255}, {0xd6, 0x27, 0x28, 255},
-                                      {0x94, 0x67, 0xbd, 255}, {0x8c, 0x56, 0x4b, 255},
-                                      {0xe3, 0x77, 0xc2, 255}, {0x17, 0xbe, 0xcf, 255}};
     c.color = palette[idx % 8]; /* the plot reader's default colours */
     const cJSON *col = cJSON_GetObjectItemCaseSensitive(it, "color");
     int e = col ? parse_color(col, &c.color) : 0;

@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { PANEL_LINES = 12 };
+enum { PANEL_LINES = 18 };
 #define TEXT_PX 12.5
 #define LINE_PX 15.0
 #define PAD_PX  6.0
@@ -139,6 +139,12 @@ static size_t curve_samples(const cj_viewer *v, double *xy, size_t cap) {
             } else if (c->kind == CJ_VCURVE_BEZIER) {
                 cj_bezier b = cj_bezier_view(deg, 2, c->pts);
                 if (cj_bezier_eval(&b, CJ_EVAL_DECASTELJAU, i / 64.0, p)) continue;
+            } else if (c->kind == CJ_VCURVE_BSPLINE) {
+                const cj_bspline b = cj_vcurve_bspline(c);
+                double u0, u1;
+                if (cj_bspline_domain(&b, &u0, &u1) ||
+                    cj_bspline_eval(&b, u0 + (u1 - u0) * (i / 64.0), p))
+                    continue;
             } else { /* a spline passes through its points: sample its polygon */
                 if (c->count < 2) continue;
                 const double s = i / 64.0 * (double)(c->count - 1);
@@ -163,9 +169,125 @@ static long covered(const double *xy, size_t n, double x0, double y0, double w, 
     return c;
 }
 
-static void overlay_2d(cj_viewer *v, panel *p) {
+/* The curve on [u0, u1] (a B-spline's own parameter) drawn wide and translucent over it: the
+ * part of the curve a move of the selected point changes (local control). */
+static void local_span(cj_viewer *v, const cj_vcurve *c, double u0, double u1) {
+    const cj_bspline b = cj_vcurve_bspline(c);
+    const cj_rgba col = cj_rgba_make(255, 200, 0, 110);
+    double prev[2] = {0, 0};
+    for (int i = 0; i <= 128; ++i) {
+        double p[2], q[2];
+        if (cj_bspline_eval(&b, i == 128 ? u1 : u0 + (u1 - u0) * (i / 128.0), p)) return;
+        cj_vview_to_px(&v->view, p[0], p[1], q);
+        for (int k = -3; i && k <= 3; ++k) /* a band about 7 px wide */
+            cj_raster_line_aa(v->screen, prev[0], prev[1] + k, q[0], q[1] + k, col);
+        prev[0] = q[0], prev[1] = q[1];
+    }
+}
+
+/* B-spline lines of the panel: degree, spans, knots, and the selected point's local control. */
+static void overlay_bspline(cj_viewer *v, panel *p, const cj_vcurve *c) {
+    const cj_bspline b = cj_vcurve_bspline(c);
+    int spans = 0;
+    double a = 0, z = 0;
+    (void)cj_bspline_bezier_count(&b, &spans);
+    (void)cj_bspline_domain(&b, &a, &z);
+    add(p, "curve %ld/%zu: %s, degree %d, %zu points, %d spans on [%.4g, %.4g]", v->disp.curve + 1,
+        cj_vdoc_curve_count(v->doc), c->weights ? "NURBS" : "B-spline", c->degree, c->count, spans,
+        a, z);
+    char kn[200];
+    int at = snprintf(kn, sizeof kn, "knots:");
+    const size_t nk = c->count + (size_t)c->degree + 1;
+    for (size_t i = 0; i < nk && at < (int)sizeof kn - 16; ++i)
+        at += snprintf(kn + at, sizeof kn - (size_t)at, " %.4g", c->knot_vector[i]);
+    if (at >= (int)sizeof kn - 16) snprintf(kn + sizeof kn - 16, 16, " ...");
+    add(p, "%s", kn);
+    if (v->sel_point >= 0 && (size_t)v->sel_point < c->count) {
+        const size_t i = (size_t)v->sel_point;
+        double u0, u1, q[2];
+        const double *pt = c->pts + 2 * i;
+        if (!cj_vcurve_support(c, i, &u0, &u1)) {
+            local_span(v, c, u0, u1);
+            int in = 0; /* spans of the domain inside the support */
+            for (size_t k = (size_t)c->degree; k < c->count; ++k)
+                in += c->knot_vector[k] < c->knot_vector[k + 1] && c->knot_vector[k] >= u0 &&
+                      c->knot_vector[k + 1] <= u1;
+            add(p, "point %zu moves the curve on [%.4g, %.4g] only: %d of %d spans", i, u0, u1, in,
+                spans);
+        }
+        cj_vview_to_px(&v->view, pt[0], pt[1], q);
+        ring(v->screen, q[0], q[1], 9.0, cj_rgba_make(230, 30, 30, 255));
+        add(p, "point %zu: (%.6g, %.6g), weight %.6g (W / shift+W)", i, pt[0], pt[1],
+            c->weights ? c->weights[i] : 1.0);
+    }
+    add(p, "I inserts a knot at the cursor's parameter");
+    /* the plot flattens each Bézier piece in pixels: the same stats, summed over the pieces */
+    cj_vpieces pc;
+    if (cj_vcurve_pieces(c, &pc)) return;
+    const size_t per = (size_t)pc.degree + 1;
+    for (size_t i = 0; i < (size_t)pc.n * per; ++i)
+        cj_vview_to_px(&v->view, pc.pts[2 * i], pc.pts[2 * i + 1], pc.pts + 2 * i);
+    cj_flatten_opts fo = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, CJ_PLOT_FLATTEN_TOL);
+    size_t segments = 0, np = 0;
+    double bound = 0;
+    for (int j = 0; j < pc.n; ++j) {
+        cj_flatten_stats fs = {0, 0};
+        const cj_bezier pb = cj_bezier_view(pc.degree, 2, pc.pts + (size_t)j * per * 2);
+        const cj_rbezier rb =
+            cj_rbezier_view(pc.degree, 2, pb.pts, pc.w ? pc.w + (size_t)j * per : NULL);
+        if (pc.w ? cj_flatten_rbezier(&rb, &fo, NULL, 0, &np, &fs)
+                 : cj_flatten_bezier(&pb, &fo, NULL, 0, &np, &fs))
+            break;
+        segments += fs.segments;
+        bound = fmax(bound, fs.bound);
+    }
+    add(p, "flattening: %d Bezier pieces, tol %.2f px -> %zu segments, proven bound %.3f px", pc.n,
+        CJ_PLOT_FLATTEN_TOL, segments, bound);
+    cj_vpieces_free(&pc);
+}
+
+/* Snap point and intersection marks, for every curve. */
+static void overlay_queries(cj_viewer *v, panel *p) {
+    const cj_rgba mk = cj_rgba_make(200, 0, 120, 255);
+    if (v->isect_on) {
+        size_t kinds[3] = {0, 0, 0};
+        for (size_t i = 0; i < v->nmarks; ++i) {
+            double q[2];
+            cj_vview_to_px(&v->view, v->marks[i].point[0], v->marks[i].point[1], q);
+            for (int k = 0; k < 2; ++k) { /* two pixels wide, to stand out over the curves */
+                cj_raster_line_aa(v->screen, q[0] - 6 + k, q[1] - 6, q[0] + 6 + k, q[1] + 6, mk);
+                cj_raster_line_aa(v->screen, q[0] - 6 + k, q[1] + 6, q[0] + 6 + k, q[1] - 6, mk);
+            }
+            kinds[v->marks[i].kind % 3]++;
+        }
+        add(p, "T: %zu intersections (%zu crossings, %zu contacts, %zu overlaps)%s", v->nmarks,
+            kinds[0], kinds[1], kinds[2], v->isect_failed ? " | some pairs failed" : "");
+    }
+    if (!v->snap_on) return;
+    if (v->snap.curve < 0) {
+        add(p, "P: snapping on (no curve point found)");
+        return;
+    }
+    double q[2];
+    cj_vview_to_px(&v->view, v->snap.point[0], v->snap.point[1], q);
+    if (v->drag == VIEW_DRAG_NONE) /* from the cursor to the point it snaps to */
+        cj_raster_line_aa(v->screen, v->cx, v->cy, q[0], q[1], cj_rgba_make(200, 0, 120, 120));
+    ring(v->screen, q[0], q[1], 5.0, mk);
+    cj_raster_line_aa(v->screen, q[0] - 8, q[1], q[0] + 8, q[1], mk);
+    cj_raster_line_aa(v->screen, q[0], q[1] - 8, q[0], q[1] + 8, mk);
+    add(p, "P: snap to curve %ld at u = %.9g: (%.9g, %.9g)", v->snap.curve + 1, v->snap.u,
+        v->snap.point[0], v->snap.point[1]);
+    add(p, "   distance <= %.6g, >= %.6g (certified); on the curve within %.2g", v->snap.distance,
+        v->snap.lower, v->snap.on_curve);
+}
+
+static void overlay_curve(cj_viewer *v, panel *p) {
     const cj_vcurve *c = v->disp.curve >= 0 ? cj_vdoc_curve(v->doc, (size_t)v->disp.curve) : NULL;
     if (!c) return;
+    if (c->kind == CJ_VCURVE_BSPLINE) {
+        overlay_bspline(v, p, c);
+        return;
+    }
     static const char *const kinds[] = {"Bezier", "rational Bezier", "spline"};
     char dg[32] = "";
     if (c->kind != CJ_VCURVE_SPLINE) snprintf(dg, sizeof dg, ", degree %zu", c->count - 1);
@@ -216,6 +338,12 @@ static void overlay_2d(cj_viewer *v, panel *p) {
     free(px);
     add(p, "flattening: tol %.2f px -> %zu segments,", CJ_PLOT_FLATTEN_TOL, fs.segments);
     add(p, "  proven bound %.3f px", fs.bound);
+}
+
+/* The selected curve's lines and marks, then the snap and intersection marks over them. */
+static void overlay_2d(cj_viewer *v, panel *p) {
+    overlay_curve(v, p);
+    overlay_queries(v, p);
 }
 
 /* The control points of the nodes whose control net is shown (and the selected one always):

@@ -23,6 +23,7 @@
 #define CASTELJAU_PLOT_H
 
 #include "casteljau/bezier.h"
+#include "casteljau/bspline.h"
 #include "casteljau/catmull_rom.h"
 #include "casteljau/framebuffer.h"
 #include "casteljau/implicit.h"
@@ -94,6 +95,27 @@ cj_status cj_plot_add_bezier(cj_plot *plot, const cj_bezier *c, const cj_plot_be
  * ((1-t) w_i b_i + t w_{i+1} b_{i+1}) / ((1-t) w_i + t w_{i+1}), and a frame is skipped where
  * c'(t) = 0. Statuses: those of cj_rbezier_check, then as cj_plot_add_bezier. */
 cj_status cj_plot_add_rbezier(cj_plot *plot, const cj_rbezier *c, const cj_plot_bezier_opts *opts);
+
+/* Drawing options of a B-spline / NURBS curve (cj_plot_add_bspline). */
+typedef struct cj_plot_bspline_opts {
+    cj_rgba color;       /* the curve and its knot markers */
+    double width;        /* stroke width in pixels, (0, CJ_PLOT_MAX_WIDTH] */
+    int control_polygon; /* the control polygon (thin, grey) */
+    int control_points;  /* a dot at each control point */
+    int knot_markers;    /* a disc (radius 3.5 px) on the curve at every distinct domain knot */
+} cj_plot_bspline_opts;
+
+/* Defaults: colour #1f77b4, width 2.5, control polygon, points and knot markers on. */
+cj_plot_bspline_opts cj_plot_bspline_defaults(void);
+
+/* A 2D B-spline or NURBS curve (casteljau/bspline.h), drawn as its Bézier pieces
+ * (cj_bspline_to_bezier, each added as cj_plot_add_bezier / cj_plot_add_rbezier with the
+ * options' colour and width), then its control polygon/points (cj_plot_add_polyline), then the
+ * knot markers (cj_plot_add_points at c(t) for every piece break). The plot JSON's "bspline"
+ * item and the viewer both draw through this. Statuses: CJ_ERR_ARGUMENT (not 2D), those of
+ * cj_bspline_check / cj_bspline_to_bezier / cj_bspline_eval, CJ_ERR_RANGE (width),
+ * CJ_ERR_NOMEM. */
+cj_status cj_plot_add_bspline(cj_plot *plot, const cj_bspline *c, const cj_plot_bspline_opts *opts);
 
 /* An interpolating spline through npts 2D points (cj_catmull_rom with sopts, NULL = classic
  * uniform Catmull-Rom κ = 0.5); show_knots draws the points it passes through as markers.

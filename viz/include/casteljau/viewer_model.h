@@ -1,9 +1,10 @@
 /* casteljau: the editor model of `casteljau view` for 2D curves, usable without a window.
  *
  * A cj_vdoc is a list of 2D curves (Bézier of any degree, rational Bézier, interpolating
- * splines of the Catmull-Rom kinds) with their plot styles, plus a COMMAND LOG: every edit is
- * recorded with the exact curves it replaced and produced, so undo and redo restore geometry
- * bit for bit. Edits made after an undo drop the undone commands (the usual linear history).
+ * splines of the Catmull-Rom kinds, B-splines and NURBS of any degree and knot vector) with their
+ * plot styles, plus a COMMAND LOG: every edit is recorded with the exact curves it replaced and
+ * produced, so undo and redo restore geometry bit for bit. Edits made after an undo drop the undone
+ * commands (the usual linear history).
  *
  * The picture is the plot of casteljau/plot.h drawn with an explicit view box, no axes, no
  * title and no margin, so that data -> pixel is the known affine map of cj_vview (the same
@@ -25,6 +26,7 @@
 #ifndef CASTELJAU_VIEWER_MODEL_H
 #define CASTELJAU_VIEWER_MODEL_H
 
+#include "casteljau/bspline.h"
 #include "casteljau/catmull_rom.h"
 #include "casteljau/framebuffer.h"
 #include "casteljau/plot.h"
@@ -38,20 +40,25 @@ extern "C" {
 typedef enum cj_vcurve_kind {
     CJ_VCURVE_BEZIER = 0, /* polynomial Bézier, count-1 = degree */
     CJ_VCURVE_RATIONAL,   /* rational Bézier, one weight > 0 per point */
-    CJ_VCURVE_SPLINE      /* interpolating spline through the points (spline.kind) */
+    CJ_VCURVE_SPLINE,     /* interpolating spline through the points (spline.kind) */
+    CJ_VCURVE_BSPLINE     /* B-spline (weights NULL) or NURBS: degree, count + degree + 1 knots */
 } cj_vcurve_kind;
 
-/* One curve. Coordinates are point-major (x, y); weights only for CJ_VCURVE_RATIONAL. */
+/* One curve. Coordinates are point-major (x, y); weights for CJ_VCURVE_RATIONAL, and for a
+ * CJ_VCURVE_BSPLINE that is a NURBS. */
 typedef struct cj_vcurve {
     cj_vcurve_kind kind;
     size_t count;
-    double *pts;     /* 2*count */
-    double *weights; /* count, or NULL */
+    double *pts;         /* 2*count */
+    double *weights;     /* count, or NULL */
+    int degree;          /* CJ_VCURVE_BSPLINE: the degree p (other kinds: unused) */
+    double *knot_vector; /* CJ_VCURVE_BSPLINE: count + degree + 1 knots (bspline.h); else NULL */
     cj_spline_options spline;
     /* plot style (casteljau/plot.h) */
     cj_rgba color;
     double width;
-    int control_polygon, control_points, hull, normals, knots;
+    int control_polygon, control_points, hull, normals;
+    int knots; /* knot markers (splines: the points passed through; B-splines: the domain knots) */
     size_t nframes;
     double frames_t[CJ_PLOT_MAX_FRAMES];
 } cj_vcurve;
@@ -96,20 +103,37 @@ cj_status cj_vdoc_remove_curve(cj_vdoc *doc, size_t ci);
 cj_status cj_vdoc_move_point(cj_vdoc *doc, size_t ci, size_t i, double x, double y);
 void cj_vdoc_begin_drag(cj_vdoc *doc);
 void cj_vdoc_end_drag(cj_vdoc *doc);
-/* Sets the weight of point i of a rational curve (w > 0, finite). */
+/* Sets the weight of point i of a rational curve or a B-spline (w > 0, finite); a polynomial
+ * B-spline becomes a NURBS with every other weight 1. */
 cj_status cj_vdoc_set_weight(cj_vdoc *doc, size_t ci, size_t i, double w);
 /* Inserts a point before index i (i = count appends) at (x, y), weight 1 for rational
- * curves. The curve's degree grows by one (Bézier) or it passes through one more point. */
+ * curves. The curve's degree grows by one (Bézier) or it passes through one more point.
+ * B-splines: CJ_ERR_ARGUMENT (their knots fix the count: insert a knot instead). */
 cj_status cj_vdoc_insert_point(cj_vdoc *doc, size_t ci, size_t i, double x, double y);
-/* Deletes point i (a Bézier keeps at least 1 point, a spline at least 2). */
+/* Deletes point i (a Bézier keeps at least 1 point, a spline at least 2). B-splines:
+ * CJ_ERR_ARGUMENT. */
 cj_status cj_vdoc_delete_point(cj_vdoc *doc, size_t ci, size_t i);
 /* Degree elevation by one (cj_bezier_elevate; rational curves in homogeneous form): the same
- * curve with one more control point. Splines: CJ_ERR_ARGUMENT. */
+ * curve with one more control point. Splines and B-splines: CJ_ERR_ARGUMENT. */
 cj_status cj_vdoc_elevate(cj_vdoc *doc, size_t ci);
 /* Splits a Bézier / rational curve at t in [0, 1] (cj_bezier_split / cj_rbezier_split): curve
  * ci becomes the piece on [0, t] and the piece on [t, 1] is inserted after it with the same
- * style. Splines: CJ_ERR_ARGUMENT. */
+ * style. Splines and B-splines: CJ_ERR_ARGUMENT. */
 cj_status cj_vdoc_split(cj_vdoc *doc, size_t ci, double t);
+
+/* Inserts the knot u once into B-spline curve ci (Boehm, cj_bspline_insert_knot): one more
+ * control point, the same curve (up to rounding: the new points are convex combinations of
+ * old ones). CJ_ERR_ARGUMENT if the curve is not a B-spline, and what cj_bspline_insert_knot
+ * reports (u outside the domain, a multiplicity above the degree). */
+cj_status cj_vdoc_insert_knot(cj_vdoc *doc, size_t ci, double u);
+
+/* The B-spline view of a CJ_VCURVE_BSPLINE curve (dimension 2). */
+cj_bspline cj_vcurve_bspline(const cj_vcurve *c);
+
+/* The parameter range of the knot spans control point i of a B-spline influences (its basis
+ * function's support [u_i, u_{i+p+1}] clipped to the domain): moving the point changes the
+ * curve there and nowhere else. CJ_ERR_ARGUMENT if c is not a B-spline or i is out of range. */
+cj_status cj_vcurve_support(const cj_vcurve *c, size_t i, double *u0, double *u1);
 
 /* Sets the plot style of curve ci (colour, width, control polygon/points, hull, normals, knots,
  * frames) to style's; the points stay. */
@@ -136,6 +160,58 @@ int cj_vdoc_pick(const cj_vdoc *doc, const cj_vview *v, double px, double py, do
 /* Exact comparison of ax² + ay² with bx² + by² (-1, 0, +1), for finite doubles. */
 int cj_vpick_compare(double ax, double ay, double bx, double by);
 
+/* ---- queries: snapping and intersections (casteljau/nearest.h, casteljau/intersect.h) ----- */
+
+/* A curve as Bézier pieces: piece j has degree `degree`, control points pts[j*(degree+1)*2 ..]
+ * and (rational pieces) weights w[j*(degree+1) ..] (w NULL: polynomial), and covers the
+ * curve's own parameter range [breaks[j], breaks[j+1]]: [0, 1] for a Bézier or rational curve
+ * (one piece), the knot spans for a B-spline (cj_bspline_to_bezier), [j, j+1] for segment j of
+ * a spline. */
+typedef struct cj_vpieces {
+    int n, degree;
+    double *pts, *w, *breaks;
+} cj_vpieces;
+cj_status cj_vcurve_pieces(const cj_vcurve *c, cj_vpieces *out);
+void cj_vpieces_free(cj_vpieces *p);
+
+/* The certified nearest point of the document's curves to a point q (data units). */
+typedef struct cj_vsnap {
+    long curve;      /* the curve it lies on; -1 when no curve could be queried */
+    double u;        /* its parameter on that curve (the curve's own, as cj_vpieces) */
+    double point[2]; /* the nearest point found, c(u) rounded to doubles */
+    double distance; /* proven upper bound of |c(u) - q| */
+    double lower;    /* proven lower bound of the distance from q to every curve queried */
+    double on_curve; /* proven upper bound of the distance from `point` to the curve */
+    long pieces;     /* work: pieces examined by the branch and bound */
+} cj_vsnap;
+
+/* Nearest point of every curve except curve `skip` (-1: none) to q, each Bézier piece through
+ * cj_nearest_curve (a global minimum, not a local Newton root): distance - lower <= tol, so no
+ * point of those curves is nearer to q than distance - tol. Pieces that are single points (a
+ * degenerate piece) are skipped. tol: data units, raised to 2^-39 times the scale when below
+ * what doubles resolve. CJ_ERR_EMPTY if no curve could be queried; errors of the queries. */
+cj_status cj_vdoc_snap(const cj_vdoc *doc, const double q[2], long skip, double tol, cj_vsnap *out);
+
+/* The same for one curve (out->curve is 0). */
+cj_status cj_vcurve_nearest(const cj_vcurve *c, const double q[2], double tol, cj_vsnap *out);
+
+/* One intersection of two different curves of the document (cj_intersect_curves on each pair
+ * of their pieces): the point, its kind and the two curves and parameters. */
+typedef struct cj_vmark {
+    double point[2];
+    int kind; /* cj_isect_kind */
+    size_t a, b;
+    double ua, ub;
+} cj_vmark;
+
+/* Every intersection between pieces of different curves, at tolerance tol (data units, as in
+ * intersect.h; raised to 2^-39 times the scale when below what doubles resolve). A crossing at
+ * the joint of two pieces (at_end) is kept once: one within 4 tol of a mark of the same two
+ * curves is dropped. *out (malloc'ed, free() it; NULL when none) and *count. Pairs whose query
+ * fails (a degenerate piece, CJ_ERR_CAP) are left out and counted in *failed (may be NULL). */
+cj_status cj_vdoc_intersections(const cj_vdoc *doc, double tol, cj_vmark **out, size_t *count,
+                                size_t *failed);
+
 /* ---- files ------------------------------------------------------------------------------ */
 
 /* Display state saved with the document (so the plot file shows what the viewer showed). */
@@ -149,14 +225,16 @@ typedef struct cj_vdoc_display {
 
 /* Writes the document as a plot JSON file (the format of `casteljau plot`): width, height,
  * background, "axes": false, "margin": 0, the view, and one item per curve ("bezier" with
- * weights for rational curves, "catmull-rom"), every number with 17 significant digits so it
- * reads back bit-identical. Atomic: a temporary file beside `path`, flushed, synced and
- * renamed; on failure an existing file is kept. CJ_ERR_IO naming the path, CJ_ERR_NOMEM.
- * Kochanek–Bartels splines have no plot JSON form: CJ_ERR_UNSUPPORTED. */
+ * weights for rational curves, "catmull-rom", "bspline" written by the formats/ B-spline writer
+ * of `casteljau fit` with the plot's drawing options), every number with 17 significant digits so
+ * it reads back bit-identical. Atomic: a temporary file beside `path`, flushed, synced and renamed;
+ * on failure an existing file is kept. CJ_ERR_IO naming the path, CJ_ERR_NOMEM. Kochanek–Bartels
+ * splines have no plot JSON form: CJ_ERR_UNSUPPORTED. */
 cj_status cj_vdoc_save_json(const cj_vdoc *doc, const cj_vview *v, const cj_vdoc_display *disp,
                             const char *path);
 
-/* Reads a plot JSON file of one plot (no "panels") whose items are "bezier" or "catmull-rom"
+/* Reads a plot JSON file of one plot (no "panels") whose items are "bezier", "catmull-rom" or
+ * "bspline" (the latter through the formats/ reader that `casteljau plot` uses)
  * into a new document (empty log), its view (the file's "view", else fitted with a 10 %
  * border; width/height from the file, else 800 × 600) and display state. CJ_ERR_IO (cannot
  * read), CJ_ERR_PARSE (syntax, a missing or ill-typed field, an item kind the editor cannot
