@@ -1,0 +1,13 @@
+# PNG through libpng (issue 20's start-up row): the libpng encoder and decoder against the
+# OpenImageIO plug-in they replaced for PNG, pixel for pixel, and their error paths.
+if(CJ_WITH_OIIO AND TARGET cj::viz AND TARGET casteljau_image_oiio)
+  pkg_check_modules(CJ_TEST_PNG REQUIRED IMPORTED_TARGET libpng zlib)
+  # image_png.c is compiled in (its functions are private to the library).
+  cj_add_test(test_image_png SOURCES test_image_png.c ${PROJECT_SOURCE_DIR}/viz/src/image_png.c
+    LIBS PkgConfig::CJ_TEST_PNG cmocka ${CMAKE_DL_LIBS})
+  target_include_directories(test_image_png PRIVATE ${PROJECT_SOURCE_DIR}/viz/src
+    ${PROJECT_SOURCE_DIR}/viz/include ${PROJECT_SOURCE_DIR}/curves/include)
+  target_compile_definitions(test_image_png PRIVATE
+    CJ_TEST_OIIO_PLUGIN="$<TARGET_FILE:casteljau_image_oiio>")
+  add_dependencies(test_image_png casteljau_image_oiio)
+endif()
