@@ -25,3 +25,11 @@ if(TARGET casteljau AND TARGET cj::raster)
   target_compile_definitions(test_font_lookup PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")
   add_dependencies(test_font_lookup casteljau)
 endif()
+# What the program maps at start-up: no GLFW/OpenGL, FFmpeg or OpenImageIO (modules instead).
+if(TARGET casteljau AND CJ_HAVE_VIDEO)
+  cj_add_test(test_cli_modules SOURCES test_cli_modules.c)
+  target_include_directories(test_cli_modules PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(test_cli_modules PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+    CJ_ANIM_PATH="${PROJECT_SOURCE_DIR}/scenes/anim_flyby.json")
+  add_dependencies(test_cli_modules casteljau)
+endif()

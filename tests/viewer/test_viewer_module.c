@@ -1,6 +1,5 @@
-/* The viewer is a module opened only by `view` (issue 25): the casteljau program needs no
- * GLFW, OpenGL or GLX library (its dynamic section, read with readelf, and what the loader maps
- * for `eval`, seen with LD_DEBUG=libs); `view` reports a missing module and a module that
+/* The viewer is a module opened only by `view` (issue 25; test_cli_modules checks that the
+ * program links no graphics library): `view` reports a missing module and a module that
  * cannot load (a file that is not a library) in one clear line, exit status 1 or 2, never a
  * crash; without a display the module loads and says "no display". */
 #include <setjmp.h>
@@ -23,23 +22,6 @@ static cj_cli_result shell(const char *fmt, ...) {
     cj_cli_result r;
     assert_int_equal(cj_cli_shell(cmd, &r), 0);
     return r;
-}
-
-static void test_program_links_no_graphics(void **state) {
-    (void)state;
-    cj_cli_result r = shell("readelf -d '%s' | grep NEEDED", CJ_CLI);
-    assert_int_equal(r.status, 0);
-    assert_non_null(strstr(r.out, "libc.so")); /* the check can see NEEDED entries */
-    const char *banned[] = {"libglfw", "libGL", "libGLX", "libGLEW", "libOpenGL"};
-    for (size_t i = 0; i < sizeof banned / sizeof banned[0]; ++i)
-        if (strstr(r.out, banned[i])) fail_msg("casteljau links %s:\n%s", banned[i], r.out);
-    cj_cli_result_free(&r);
-    r = shell("LD_DEBUG=libs '%s' eval --points '0,0;1,1' 0.5 2>&1 >/dev/null | grep -c "
-              "'calling init:.*\\(glfw\\|libGL\\)' || true",
-              CJ_CLI);
-    assert_int_equal(atoi(r.out), 0);
-    cj_cli_result_free(&r);
-    printf("test_viewer_module: casteljau needs no GLFW/OpenGL library and eval maps none\n");
 }
 
 static void expect_view_error(const char *env, const char *want1, const char *want2) {
@@ -75,7 +57,6 @@ static void test_view_errors(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_program_links_no_graphics),
         cmocka_unit_test(test_view_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
