@@ -1,8 +1,9 @@
-/* Image files: the loader side of the OpenImageIO plug-in (see image_plugin.h) and the one
- * place where image bytes reach the disk. OpenImageIO is opened with dlopen on the first
- * image call, so a program linking casteljau_viz pays for it only when it reads or writes an
- * image. Every write goes to a temporary file beside the destination; each write(2), fsync(2)
- * and close(2) is checked, and only a complete, synced file is renamed onto the destination. */
+/* Image files: the loader side of the OpenImageIO plug-in (see image_plugin.h), the choice
+ * between it and libpng (image_png.c, for every PNG), and the one place where image bytes
+ * reach the disk. OpenImageIO is opened with dlopen on the first call that needs it, so a
+ * program linking casteljau_viz pays for it only when it reads or writes a non-PNG image. Every
+ * write goes to a temporary file beside the destination; each write(2), fsync(2) and close(2) is
+ * checked, and only a complete, synced file is renamed onto the destination. */
 #define _GNU_SOURCE /* dladdr */
 #include "casteljau/image_io.h"
 
