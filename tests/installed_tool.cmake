@@ -1,6 +1,6 @@
 # CTest script (cmake -P): installs the build into a prefix, MOVES the prefix elsewhere, and
 # runs the installed casteljau from there: it must find its teapot (<bindir>/../share) and its
-# OpenImageIO plug-in and viewer module (<bindir>/../<libdir>/casteljau, checked with
+# OpenImageIO plug-in, vector plot and viewer modules (<bindir>/../<libdir>/casteljau, checked with
 # LD_DEBUG=libs) relative to itself. Inputs (-D): CJ_BUILD_DIR CJ_WORK_DIR CJ_LIBDIR CJ_CONFIG.
 cmake_minimum_required(VERSION 3.20)
 file(REMOVE_RECURSE ${CJ_WORK_DIR})
@@ -34,6 +34,16 @@ if(NOT plugin MATCHES "^${CJ_WORK_DIR}/moved/")
   message(FATAL_ERROR "the installed plot did not load the moved plug-in (loaded: '${plugin}')")
 endif()
 message(STATUS "moved installation: teapot found, plug-in loaded from ${plugin}")
+# The vector plot module (cairo), when built: an SVG loads it from the moved prefix.
+if(EXISTS ${CJ_BUILD_DIR}/libcasteljau_cairo.so)
+  run("installed plot to SVG" ${CMAKE_COMMAND} -E env LD_DEBUG=libs ${exe} plot --demo
+      --width 120 --height 90 -o g.svg)
+  string(REGEX MATCH "[^ \n]*libcasteljau_cairo.so" cairo "${run_err}")
+  if(NOT cairo MATCHES "^${CJ_WORK_DIR}/moved/")
+    message(FATAL_ERROR "the installed plot did not load the moved cairo module ('${cairo}')")
+  endif()
+  message(STATUS "moved installation: vector plot module loaded from ${cairo}")
+endif()
 # The viewer module (<libdir>/casteljau/libcasteljau_viewer.so), when built: `view` without a
 # display fails, but only after loading the module from the moved prefix.
 if(EXISTS ${CJ_BUILD_DIR}/libcasteljau_viewer.so)
