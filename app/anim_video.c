@@ -1,8 +1,10 @@
 /* Films through FFmpeg: libavformat picks the container from the file name, its default video
  * encoder (H.264 by libx264 for .mp4/.mkv/.mov, VP9 by libvpx for .webm) runs in constant-quality
  * mode, libswscale turns our sRGB RGBA rows into the encoder's YUV 4:2:0 (BT.601, limited range,
- * the players' default for untagged SD-size video; tagged so players need not guess). */
+ * the players' default for untagged SD-size video; tagged so players need not guess).
+ * Built as the module libcasteljau_video.so (anim_video_plugin.h), opened only by a film. */
 #include "anim_video.h"
+#include "anim_video_plugin.h"
 
 #include <libavcodec/avcodec.h>
 #include <libavformat/avformat.h>
@@ -32,16 +34,6 @@ static void av_reason(char *why, int size, const char *what, int err) {
     char msg[AV_ERROR_MAX_STRING_SIZE];
     av_strerror(err, msg, sizeof msg);
     snprintf(why, (size_t)size, "%s (%s)", what, msg);
-}
-
-int anim_video_is_film(const char *path) {
-    static const char *const ext[] = {".mp4", ".m4v", ".mov", ".mkv", ".webm"};
-    const size_t n = strlen(path);
-    for (size_t i = 0; i < sizeof ext / sizeof ext[0]; ++i) {
-        const size_t k = strlen(ext[i]);
-        if (n > k && !strcasecmp(path + n - k, ext[i])) return 1;
-    }
-    return 0;
 }
 
 static void free_all(anim_video *v) {
@@ -209,4 +201,12 @@ int anim_video_close(anim_video *v, char *why, int why_size) {
     }
     free_all(v);
     return rc;
+}
+
+__attribute__((visibility("default"))) const anim_video_plugin *cj_video_plugin_v1(void);
+
+const anim_video_plugin *cj_video_plugin_v1(void) {
+    static const anim_video_plugin table = {ANIM_VIDEO_PLUGIN_ABI, anim_video_open, anim_video_add,
+                                            anim_video_close};
+    return &table;
 }

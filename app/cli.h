@@ -74,6 +74,9 @@ int cli_next(cli_parser *p, const char **value);
  * NULL. Used by cli_next for its "did you mean" message. */
 const char *cli_suggest(const char *typed, size_t len, const cli_opt *opts, size_t nopts);
 
+/* The same rule for a word among names[0..count) (no "--" prefix): "rendr" -> "render". */
+const char *cli_suggest_word(const char *typed, const char *const *names, size_t count);
+
 /* cli_next for the loop of a command, the control codes handled: returns 1 while there is an
  * argument, with *k its index in opts or CLI_POSITIONAL and *value as cli_next; returns 0 when
  * the loop must end, with *status -1 when every argument was read (go on), else the exit status

@@ -218,20 +218,33 @@ static size_t edit_distance(const char *a, size_t na, const char *b, size_t nb) 
     return d[na][nb];
 }
 
+/* Keeps `name` in *best when it is nearer to typed[0..len) than *best_d and near enough to be
+ * a slip. `prefix` characters at the start of every name ("--") do not count as its length. */
+static void consider(const char *typed, size_t len, const char *name, size_t prefix,
+                     const char **best, size_t *best_d) {
+    const size_t n = strlen(name);
+    size_t dist = edit_distance(typed, len, name, n);
+    /* a cut-short name ("--wid" for "--width", "rend" for "render") is as near as one slip */
+    if (len >= prefix + 2 && len < n && !strncmp(typed, name, len) && dist > 1) dist = 1;
+    /* near: at most 2 edits, and at most a third of the name after the prefix (so "--x"
+     * suggests nothing) */
+    if (n >= prefix && dist <= 2 && 3 * dist <= n - prefix && dist < *best_d)
+        *best = name, *best_d = dist;
+}
+
 const char *cli_suggest(const char *typed, size_t len, const cli_opt *opts, size_t nopts) {
     static const char *const everywhere[] = {"--help", "--version", "--quiet"};
     const char *best = NULL;
     size_t best_d = (size_t)-1;
-    for (size_t k = 0; k < nopts + 3; ++k) {
-        const char *name = k < nopts ? opts[k].name : everywhere[k - nopts];
-        const size_t n = strlen(name);
-        size_t dist = edit_distance(typed, len, name, n);
-        /* a cut-short name ("--wid" for "--width") is as near as one slip */
-        if (len >= 4 && len < n && !strncmp(typed, name, len) && dist > 1) dist = 1;
-        /* near: at most 2 edits, and at most a third of the name after "--" (so "--x" suggests
-         * nothing) */
-        if (dist <= 2 && 3 * dist <= n - 2 && dist < best_d) best = name, best_d = dist;
-    }
+    for (size_t k = 0; k < nopts + 3; ++k)
+        consider(typed, len, k < nopts ? opts[k].name : everywhere[k - nopts], 2, &best, &best_d);
+    return best;
+}
+
+const char *cli_suggest_word(const char *typed, const char *const *names, size_t count) {
+    const char *best = NULL;
+    size_t best_d = (size_t)-1;
+    for (size_t k = 0; k < count; ++k) consider(typed, strlen(typed), names[k], 0, &best, &best_d);
     return best;
 }
 

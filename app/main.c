@@ -56,8 +56,17 @@ int main(int argc, char **argv) {
     }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
         if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
+    enum { NCOMMANDS = sizeof commands / sizeof commands[0] };
+    const char *names[NCOMMANDS];
+    for (size_t i = 0; i < NCOMMANDS; ++i) names[i] = commands[i].name;
+    const char *near = cli_suggest_word(argv[1], names, NCOMMANDS);
     char q[160];
-    fprintf(stderr, "casteljau: unknown command '%s' (try 'casteljau --help')\n",
-            cli_quote(argv[1], q, sizeof q));
+    if (near)
+        fprintf(stderr,
+                "casteljau: unknown command '%s': did you mean '%s'? (try 'casteljau --help')\n",
+                cli_quote(argv[1], q, sizeof q), near);
+    else
+        fprintf(stderr, "casteljau: unknown command '%s' (try 'casteljau --help')\n",
+                cli_quote(argv[1], q, sizeof q));
     return CLI_EXIT_USAGE;
 }

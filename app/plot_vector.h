@@ -5,10 +5,9 @@
 #define CASTELJAU_APP_PLOT_VECTOR_H
 
 #include "plot_json.h"
+#include "plot_vector_plugin.h" /* PLOT_VECTOR_SVG, PLOT_VECTOR_PDF */
 
 #include <stddef.h>
-
-enum { PLOT_VECTOR_NONE = 0, PLOT_VECTOR_SVG, PLOT_VECTOR_PDF };
 
 /* PLOT_VECTOR_SVG or _PDF from the extension of path (any case), else PLOT_VECTOR_NONE. */
 int plot_vector_format(const char *path);

@@ -1,6 +1,7 @@
 /* bench_startup: start-up cost of the casteljau tool, over 100 launches per command: wall time
  * (median and 90th percentile) and peak resident memory (from wait4's rusage), for commands
- * that write no image (they must not load OpenImageIO) and, for contrast, one that does.
+ * that write no image (they must not load OpenImageIO), for render and plot to PNG (libpng,
+ * no plug-in) and, for contrast, the same to TIFF (which loads the OpenImageIO plug-in).
  *   bench_startup [path/to/casteljau] [launches] */
 #define _DEFAULT_SOURCE
 #include "bench_clock.h"
@@ -50,9 +51,10 @@ int main(int argc, char **argv) {
     const int n = argc > 2 ? atoi(argv[2]) : 100;
     char out[] = "/tmp/cj_bench_startup_XXXXXX";
     if (!mkdtemp(out)) return 1;
-    char png[64], obj[64];
+    char png[64], obj[64], tif[64];
     snprintf(png, sizeof png, "%s/p.png", out);
     snprintf(obj, sizeof obj, "%s/t.obj", out);
+    snprintf(tif, sizeof tif, "%s/p.tif", out);
     struct {
         const char *what;
         char *argv[12];
@@ -65,8 +67,15 @@ int main(int argc, char **argv) {
         {"tessellate (teapot, uniform 2)",
          {exe, "tessellate", "--teapot", "--uniform", "2", "-o", obj, NULL}},
         {"--version", {exe, "--version", NULL}},
-        {"plot --demo 64x64 (loads OpenImageIO)",
+        /* PNG goes through libpng (issue 20's goal: <= 50 ms and <= 30 MB for render) */
+        {"render --demo 64x64 -o x.png",
+         {exe, "render", "--demo", "--width", "64", "--height", "64", "-o", png, NULL}},
+        {"plot --demo 64x64 -o x.png",
          {exe, "plot", "--demo", "--width", "64", "--height", "64", "-o", png, NULL}},
+        /* the same plot through the OpenImageIO plug-in (as every PNG was written before; render
+         * writes PNG or EXR only) */
+        {"plot --demo 64x64 -o x.tif (OIIO)",
+         {exe, "plot", "--demo", "--width", "64", "--height", "64", "-o", tif, NULL}},
     };
     printf("casteljau start-up, %d launches each (%s)\n", n, exe);
     printf("%-40s %10s %10s %10s %12s\n", "command", "wall ms", "wall p90", "CPU ms",
@@ -97,6 +106,7 @@ int main(int argc, char **argv) {
     free(cpu);
     unlink(png);
     unlink(obj);
+    unlink(tif);
     rmdir(out);
     return 0;
 }

@@ -8,6 +8,7 @@ PKGS="build-essential cmake pkg-config libcmocka-dev libmpfr-dev libgmp-dev libc
 liblapacke-dev libfreetype-dev fonts-dejavu-core libopenimageio-dev libvtk9-dev \
 xvfb xauth libgl1-mesa-dri libcairo2-dev clang libclang-rt-14-dev libgif-dev libembree-dev \
 libglfw3-dev xdotool valgrind"
+PKGS="$PKGS libpng-dev libfontconfig-dev"
 PKGS="$PKGS python3-cffi python3-numpy python3-pytest"
 PKGS="$PKGS libimagequant-dev libavformat-dev libavcodec-dev libswscale-dev poppler-utils libexpat1-dev"
 PKGS="$PKGS libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev"

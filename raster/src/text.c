@@ -3,11 +3,13 @@
 
 #include "error_internal.h"
 
+#include <fontconfig/fontconfig.h>
 #include <ft2build.h>
 #include FT_FREETYPE_H
 
 #include <assert.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -24,27 +26,61 @@ static int readable(const char *path) {
     return 1;
 }
 
+/* The fontconfig answer, looked up once per process (fontconfig's set-up costs a few
+ * milliseconds: its configuration and cache files). */
+static pthread_once_t lookup_once = PTHREAD_ONCE_INIT;
+static char found_path[4096];
+static char lookup_error[512];
+
+static void lookup_font(void) {
+    FcConfig *config = FcInitLoadConfigAndFonts();
+    if (!config) {
+        snprintf(lookup_error, sizeof lookup_error, "fontconfig could not load its configuration");
+        return;
+    }
+    /* DejaVu Sans, the font the plots are laid out with; fontconfig's rules may substitute the
+     * nearest sans-serif face when it is not installed. Scalable only: FreeType renders at
+     * any size. */
+    FcPattern *want = FcNameParse((const FcChar8 *)CJ_FONT_FAMILY);
+    FcResult result = FcResultNoMatch;
+    FcPattern *match = NULL;
+    if (want) {
+        FcPatternAddBool(want, FC_SCALABLE, FcTrue);
+        FcConfigSubstitute(config, want, FcMatchPattern);
+        FcDefaultSubstitute(want);
+        match = FcFontMatch(config, want, &result);
+    }
+    FcChar8 *file = NULL;
+    FcBool scalable = FcFalse;
+    if (match && FcPatternGetString(match, FC_FILE, 0, &file) == FcResultMatch &&
+        FcPatternGetBool(match, FC_SCALABLE, 0, &scalable) == FcResultMatch && scalable &&
+        readable((const char *)file) &&
+        snprintf(found_path, sizeof found_path, "%s", (const char *)file) <
+            (int)sizeof found_path) {
+        /* found */
+    } else {
+        found_path[0] = '\0';
+        snprintf(lookup_error, sizeof lookup_error,
+                 "no font for text: fontconfig finds no scalable font for '%s'%s%s%s (install "
+                 "fonts-dejavu-core, or set CJ_FONT to a .ttf file)",
+                 CJ_FONT_FAMILY, file ? " (it offered '" : "", file ? (const char *)file : "",
+                 file ? "')" : "");
+    }
+    if (match) FcPatternDestroy(match);
+    if (want) FcPatternDestroy(want);
+    FcConfigDestroy(config);
+}
+
 const char *cj_font_find_default(void) {
-    static const char *const candidates[] = {
-        CJ_FONT_DEFAULT_PATH,
-        "/usr/share/fonts/dejavu/DejaVuSans.ttf",            /* Fedora */
-        "/usr/share/fonts/TTF/DejaVuSans.ttf",               /* Arch */
-        "/usr/share/fonts/dejavu-sans-fonts/DejaVuSans.ttf", /* newer Fedora */
-        "/usr/local/share/fonts/DejaVuSans.ttf",             /* BSD, manual installs */
-        "/Library/Fonts/DejaVuSans.ttf",                     /* macOS */
-    };
     const char *env = getenv("CJ_FONT");
     if (env && *env) {
         if (readable(env)) return env;
         cj_fail(CJ_ERR_UNSUPPORTED, "CJ_FONT='%s' is not a readable font file", env);
         return NULL;
     }
-    for (size_t i = 0; i < sizeof candidates / sizeof candidates[0]; ++i)
-        if (readable(candidates[i])) return candidates[i];
-    cj_fail(CJ_ERR_UNSUPPORTED,
-            "no font for text: install fonts-dejavu-core (expected %s) or set CJ_FONT to a "
-            ".ttf file",
-            CJ_FONT_DEFAULT_PATH);
+    pthread_once(&lookup_once, lookup_font);
+    if (found_path[0]) return found_path;
+    cj_fail(CJ_ERR_UNSUPPORTED, "%s", lookup_error);
     return NULL;
 }
 

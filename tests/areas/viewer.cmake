@@ -34,3 +34,11 @@ if(CJ_HAVE_VIEWER AND TARGET casteljau)
   add_dependencies(test_viewer_live casteljau)
   set_tests_properties(test_viewer_live PROPERTIES TIMEOUT 900)
 endif()
+# The viewer as a module opened only by `view`: the program links no graphics library, and a
+# missing or broken module is a clear error.
+if(CJ_HAVE_VIEWER AND TARGET casteljau)
+  cj_add_test(test_viewer_module SOURCES viewer/test_viewer_module.c)
+  target_include_directories(test_viewer_module PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(test_viewer_module PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")
+  add_dependencies(test_viewer_module casteljau)
+endif()

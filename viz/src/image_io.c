@@ -1,14 +1,16 @@
-/* Image files: the loader side of the OpenImageIO plug-in (see image_plugin.h) and the one
- * place where image bytes reach the disk. OpenImageIO is opened with dlopen on the first
- * image call, so a program linking casteljau_viz pays for it only when it reads or writes an
- * image. Every write goes to a temporary file beside the destination; each write(2), fsync(2)
- * and close(2) is checked, and only a complete, synced file is renamed onto the destination. */
+/* Image files: the loader side of the OpenImageIO plug-in (see image_plugin.h), the choice
+ * between it and libpng (image_png.c, for every PNG), and the one place where image bytes
+ * reach the disk. OpenImageIO is opened with dlopen on the first call that needs it, so a
+ * program linking casteljau_viz pays for it only when it reads or writes a non-PNG image. Every
+ * write goes to a temporary file beside the destination; each write(2), fsync(2) and close(2) is
+ * checked, and only a complete, synced file is renamed onto the destination. */
 #define _GNU_SOURCE /* dladdr */
 #include "casteljau/image_io.h"
 
 #include "error_internal.h"
 #include "file_internal.h"
 #include "image_plugin.h"
+#include "image_png_internal.h"
 
 #include <assert.h>
 #include <dlfcn.h>
@@ -168,10 +170,14 @@ static cj_status check_size(int width, int height, size_t row_stride, size_t pix
 }
 
 static cj_status write_image(const char *path, const char *force_ext, const cj_image_pixels *px) {
-    const cj_image_plugin *p = NULL;
-    cj_status st = get_plugin(&p);
-    if (st) return st;
     if (!*path) return cj_fail(CJ_ERR_ARGUMENT, "the image file name is empty");
+    /* PNG through libpng, without the plug-in: the common case starts in milliseconds. */
+    const int png = force_ext ? !strcmp(force_ext, "png") : cj_png_is_png_name(path);
+    const cj_image_plugin *p = NULL;
+    if (!png) {
+        cj_status st = get_plugin(&p);
+        if (st) return st;
+    }
     char *tmp = NULL;
     int slot = -1;
     int fd = cj_temp_create_beside(path, &tmp, &slot);
@@ -188,7 +194,8 @@ static cj_status write_image(const char *path, const char *force_ext, const cj_i
         snprintf(forced, sizeof forced, "x.%s", force_ext);
         name = forced;
     }
-    int code = p->encode(name, tmp, px, &bytes, &size, why, sizeof why);
+    int code = png ? cj_png_encode(px, &bytes, &size, why, sizeof why)
+                   : p->encode(name, tmp, px, &bytes, &size, why, sizeof why);
     const char *stage = "cannot write";
     const int in_memory = bytes != NULL;
     if (code == CJ_OK && in_memory) {
@@ -279,9 +286,12 @@ cj_status cj_image_check_destination(const char *path, int is_float) {
      * and removing the temporary file proves the directory is writable. */
     static const uint8_t px8[4] = {0, 0, 0, 255};
     static const float pxf[4] = {0, 0, 0, 1};
+    const int png = cj_png_is_png_name(path);
     const cj_image_plugin *p = NULL;
-    cj_status st = get_plugin(&p);
-    if (st) return st;
+    if (!png) {
+        cj_status st = get_plugin(&p);
+        if (st) return st;
+    }
     char *tmp = NULL;
     int slot = -1;
     int fd = cj_temp_create_beside(path, &tmp, &slot);
@@ -293,7 +303,8 @@ cj_status cj_image_check_destination(const char *path, int is_float) {
     char why[512] = "";
     unsigned char *bytes = NULL;
     size_t size = 0;
-    int code = p->encode(path, tmp, &px, &bytes, &size, why, sizeof why);
+    int code = png ? cj_png_encode(&px, &bytes, &size, why, sizeof why)
+                   : p->encode(path, tmp, &px, &bytes, &size, why, sizeof why);
     free(bytes);
     unlink(tmp);
     cj_temp_release(slot);
@@ -304,15 +315,21 @@ cj_status cj_image_check_destination(const char *path, int is_float) {
 
 cj_status cj_image_read(const char *path, int *width, int *height, uint8_t **rgba) {
     assert(path && width && height && rgba);
+    cj_status st = cj_file_check_input(path, CJ_IMAGE_MAX_FILE_BYTES, "image");
+    if (st) return st;
+    /* A PNG (by its signature, whatever its name) is decoded by libpng, anything else by the
+     * plug-in. */
+    const int png = cj_png_file_is_png(path);
     const cj_image_plugin *p = NULL;
-    cj_status st = get_plugin(&p);
-    if (st) return st;
-    st = cj_file_check_input(path, CJ_IMAGE_MAX_FILE_BYTES, "image");
-    if (st) return st;
+    if (!png) {
+        st = get_plugin(&p);
+        if (st) return st;
+    }
     char why[512] = "";
     int w = 0, h = 0;
     uint8_t *buf = NULL;
-    int code = p->read_rgba8(path, &w, &h, &buf, why, sizeof why);
+    int code = png ? cj_png_read_rgba8(path, &w, &h, &buf, why, sizeof why)
+                   : p->read_rgba8(path, &w, &h, &buf, why, sizeof why);
     if (code != CJ_OK) return cj_fail((cj_status)code, "cannot read image '%s': %s", path, why);
     *width = w;
     *height = h;

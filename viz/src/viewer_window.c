@@ -4,6 +4,7 @@
  * back buffer with glReadPixels before the swap. */
 #define _POSIX_C_SOURCE 200809L
 #include "viewer_app.h"
+#include "viewer_plugin.h"
 #include "viewer_render.h"
 
 #include "casteljau/image_io.h"
@@ -287,7 +288,7 @@ static cj_status run_live(win *g) {
     return st;
 }
 
-cj_status cj_viewer_run(const cj_viewer_options *opt) {
+cj_status cj_viewer_window_run(const cj_viewer_options *opt) {
     win *g = calloc(1, sizeof *g);
     if (!g) return cj_fail(CJ_ERR_NOMEM, "viewer: out of memory");
     cj_viewer *v = &g->v;

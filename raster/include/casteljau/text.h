@@ -9,8 +9,9 @@
  *
  * Font lookup (cj_font_open with path NULL), in order:
  *   1. the environment variable CJ_FONT, if set (it must name a readable font file);
- *   2. DejaVu Sans at its Debian path /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
- *      (package fonts-dejavu-core), then the same font at the Fedora/Arch and macOS paths.
+ *   2. fontconfig's best scalable match for CJ_FONT_FAMILY ("DejaVu Sans", Debian package
+ *      fonts-dejavu-core), wherever the system keeps it; fontconfig's rules may offer another
+ *      sans-serif face when DejaVu is missing (text then keeps its place but changes shape).
  * If none is found the status is CJ_ERR_UNSUPPORTED and the message says what to install or set.
  */
 #ifndef CASTELJAU_TEXT_H
@@ -27,11 +28,14 @@ extern "C" {
 
 typedef struct cj_font cj_font;
 
-/* The Debian path of the default font. */
+/* The family asked of fontconfig for the default font. */
+#define CJ_FONT_FAMILY "DejaVu Sans"
+/* Where Debian installs it (for reference; the lookup goes through fontconfig). */
 #define CJ_FONT_DEFAULT_PATH "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
 
-/* Finds the default font as described above. Returns a static string, or NULL (with
- * cj_last_error() explaining, status CJ_ERR_UNSUPPORTED) when none is found. */
+/* Finds the default font as described above (fontconfig is asked once per process; thread-
+ * safe). Returns a static string, or NULL (with cj_last_error() explaining, status
+ * CJ_ERR_UNSUPPORTED) when none is found. */
 const char *cj_font_find_default(void);
 
 /* Opens a font file (TrueType/OpenType/anything FreeType reads); path NULL = the default.

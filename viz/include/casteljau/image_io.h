@@ -13,13 +13,16 @@
  * temporary file is removed and `path` is left as it was (absent or with its previous
  * content): a failed run never leaves a half-written image.
  *
- * OpenImageIO is not linked into the program: it sits in a plug-in, libcasteljau_image_oiio.so,
- * opened with dlopen on the first call of any function here, so that programs which never
- * touch an image do not load it (and the ~260 libraries it pulls in). The plug-in is looked
- * for next to the program or library that contains this code, in its casteljau/ and
- * ../lib/casteljau/ folders (the install layout), then where it was built and installed;
- * the environment variable CJ_IMAGE_PLUGIN names it explicitly. When it cannot be found or
- * opened, every function returns CJ_ERR_UNSUPPORTED saying where it looked.
+ * PNG is written and read through libpng directly (8-bit RGBA marked sRGB, zlib level 3; any
+ * file starting with the PNG signature is read by libpng): no plug-in is opened for it.
+ * OpenImageIO, for every other format, is not linked into the program: it sits in a plug-in,
+ * libcasteljau_image_oiio.so, opened with dlopen on the first call that needs it, so that
+ * programs which never touch such an image do not load it (and the ~260 libraries it pulls
+ * in). The plug-in is looked for next to the program or library that contains this code, in its
+ * casteljau/ and ../lib/casteljau/ folders (the install layout), then where it was built and
+ * installed; the environment variable CJ_IMAGE_PLUGIN names it explicitly. When it cannot be
+ * found or opened, every function that needs it returns CJ_ERR_UNSUPPORTED saying where it
+ * looked.
  */
 #ifndef CASTELJAU_IMAGE_IO_H
 #define CASTELJAU_IMAGE_IO_H
@@ -32,10 +35,11 @@
 extern "C" {
 #endif
 
-/* Writes a width x height RGBA8 image in the format `path`'s extension names (case-insensitive),
- * through OpenImageIO: .png, .tif/.tiff, .exr (stored as half floats, values / 255), .bmp,
- * .tga, .ppm, .webp, ... Formats without an alpha channel (.jpg/.jpeg, .ppm, .bmp ...) get the
- * colour composited over black (rgb * alpha / 255, rounded); JPEG is written at quality 95.
+/* Writes a width x height RGBA8 image in the format `path`'s extension names (any case):
+ * .png through libpng; through OpenImageIO .tif/.tiff, .exr (stored as half floats, values /
+ * 255), .bmp, .tga, .ppm, .webp, ... Formats without an alpha channel (.jpg/.jpeg, .ppm, .bmp
+ * ...) get the colour composited over black (rgb * alpha / 255, rounded); JPEG is written at
+ * quality 95.
  *   rgba        pixel data, bottom-up rows (see above); not modified
  *   row_stride  bytes from one row to the next (>= 4*width; 0 means exactly 4*width)
  * Returns CJ_OK, or
@@ -47,7 +51,8 @@ extern "C" {
  *                      disk), or the rename fails; the message names the path and the reason.
  *                      Nothing is left behind and an existing `path` is untouched.
  *   CJ_ERR_NOMEM       no memory to encode
- *   CJ_ERR_UNSUPPORTED the OpenImageIO plug-in cannot be found or opened (see above) */
+ *   CJ_ERR_UNSUPPORTED the OpenImageIO plug-in cannot be found or opened (see above; never
+ *                      for .png) */
 cj_status cj_image_write(const char *path, int width, int height, const uint8_t *rgba,
                          size_t row_stride);
 
@@ -94,10 +99,12 @@ const char *cj_image_backend(void);
 cj_status cj_image_write_png(const char *path, int width, int height, const uint8_t *rgba,
                              size_t row_stride);
 
-/* Reads any image OpenImageIO understands (first subimage) into a newly allocated RGBA8
- * buffer of 4*width*height bytes, bottom-up rows. Gray images are replicated into R, G, B;
- * images without alpha get alpha 255; channels beyond four are ignored; other bit depths are
- * converted to 8 bits by OpenImageIO. Free the buffer with cj_image_free().
+/* Reads a PNG (libpng) or any image OpenImageIO understands (first subimage) into a newly
+ * allocated RGBA8 buffer of 4*width*height bytes, bottom-up rows. Gray images are replicated
+ * into R, G, B; images without alpha get alpha 255 (a PNG's tRNS becomes alpha); channels
+ * beyond four are ignored; other bit depths are converted to 8 bits (16-bit PNG samples
+ * rounded to nearest, as OpenImageIO does; no gamma is applied). Free the buffer with
+ * cj_image_free().
  * Hostile files cost little: `path` must be a regular file (not /dev/zero, a pipe or a folder)
  * of at most CJ_IMAGE_MAX_FILE_BYTES, and the dimensions in its header are checked against
  * CJ_IMAGE_MAX_SIDE and CJ_IMAGE_MAX_PIXELS before any pixel is decoded (a 249 kB PNG may
