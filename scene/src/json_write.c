@@ -5,6 +5,7 @@
 #include "error_internal.h"
 #include "file_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,7 +15,9 @@ void cj_json_number_text(double v, char buf[CJ_JSON_NUMBER_MAX]) {
         memcpy(buf, "null", 5);
         return;
     }
-    for (int digits = 15; digits <= 17; ++digits) {
+    /* Subnormals carry fewer than 15 significant digits: search them from one digit up. */
+    const int from = fabs(v) < DBL_MIN && v != 0.0 ? 1 : 15;
+    for (int digits = from; digits <= 17; ++digits) {
         snprintf(buf, CJ_JSON_NUMBER_MAX, "%.*g", digits, v);
         if (digits == 17 || strtod(buf, NULL) == v) return;
     }

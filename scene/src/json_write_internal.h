@@ -20,9 +20,12 @@ extern "C" {
 #define CJ_JSON_NUMBER_MAX 32
 
 /* The shortest decimal text that reads back (strtod) to exactly v: "%.15g" when it round-trips,
- * else "%.16g", else "%.17g" (a double never needs more). Because "%.Ng" rounds to nearest and
- * drops trailing zeros, the first precision that round-trips gives the fewest digits: 5.6 is
- * written "5.6", not "5.5999999999999996". JSON has no NaN or infinity: those give "null". */
+ * else "%.16g", else "%.17g" (a double never needs more). "%.Ng" rounds to nearest and drops
+ * trailing zeros, and a normal double's shortest form of up to 15 digits is within half a unit
+ * of its 15th digit, so the first precision that round-trips gives the fewest digits: 5.6 is
+ * written "5.6", not "5.5999999999999996". Subnormals (fewer significant bits) are searched from
+ * one digit: 4.9406564584124654e-324 is "5e-324". NaN and infinity, which JSON has not, give
+ * "null". */
 void cj_json_number_text(double v, char buf[CJ_JSON_NUMBER_MAX]);
 
 /* A cJSON node that cJSON's printer writes as cj_json_number_text(v) (a raw node: cJSON's own
