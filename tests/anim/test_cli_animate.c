@@ -116,7 +116,7 @@ static void test_frames_and_checkpoints(void **state) {
     assert_string_equal(head, "GIF89a");
     printf("--gif wrote an animated GIF89a\n");
     run("a.json --frames 9:9 --no-render --stage-report --quiet", 0, &r);
-    assert_non_null(strstr(r.out, "\"name\": \"spring_forces\", \"ran\": true"));
+    assert_non_null(strstr(r.out, "\"name\":\"spring_forces\",\"ran\":true"));
     assert_non_null(strstr(r.out, "\"name\": \"particle_pass\", \"ran\": true"));
     assert_non_null(strstr(r.out, "\"name\": \"flocking\", \"ran\": false"));
     printf("stage report of frame 9: spring forces and particle pass ran, flocking left out\n");
