@@ -206,7 +206,7 @@ int cmd_animate(int argc, char **argv) {
     long fa = -1, fb = -1, every = 0;
     double fps = 0;
     int no_render = 0, report = 0, trace = 0;
-    cj_render_options opt = cj_render_options_default();
+    cj_render_options opt = cj_render_options_defaults();
     enum {
         O_NO_RENDER,
         O_REPORT,
@@ -374,7 +374,7 @@ int cmd_animate(int argc, char **argv) {
     }
     if (rc) goto done;
     if (!no_render) {
-        cj_renderer_options ro = cj_renderer_options_default();
+        cj_renderer_options ro = cj_renderer_options_defaults();
         ro.render = opt;
         if (cj_renderer_create(&ro, NULL, &ren)) {
             rc = cli_fail(cmd, "%s", cj_last_error());

@@ -42,7 +42,7 @@ int cmd_render(int argc, char **argv) {
     cli_scene_args a = {NULL, NULL, 0, 0, 0};
     const char *v;
     long n;
-    cj_render_options opt = cj_render_options_default();
+    cj_render_options opt = cj_render_options_defaults();
     int k, status;
     while (cli_next_arg(&ps, &k, &v, &status)) {
         switch (k) {
@@ -66,7 +66,7 @@ int cmd_render(int argc, char **argv) {
     if (rc) return rc;
     cj_render_image *img = NULL;
     cj_stage_report rep;
-    cj_renderer_options ro = cj_renderer_options_default();
+    cj_renderer_options ro = cj_renderer_options_defaults();
     ro.render = opt;
     const double t0 = cli_now();
     rc = cli_draw_scene(cmd, a.scene_path ? a.scene_path : "demo", ro, scene, CJ_BACKEND_RASTER, 0,

@@ -69,7 +69,7 @@ int cmd_trace(int argc, char **argv) {
     const char *v;
     int signature = 0;
     long n;
-    cj_render_options opt = cj_render_options_default();
+    cj_render_options opt = cj_render_options_defaults();
     cj_trace_options topt;
     memset(&topt, 0, sizeof topt);
     int k, status;
@@ -122,14 +122,14 @@ int cmd_trace(int argc, char **argv) {
     if (rc) return rc;
     if (opt.max_depth < 0) {
         /* --max-depth 0: primary rays only; the options use 0 for "the scene's" */
-        cj_scene_settings s = *cj_scene_settings_get(scene);
+        cj_scene_settings s = *cj_scene_get_settings(scene);
         s.max_depth = 0;
         cj_scene_set_settings(scene, &s);
         opt.max_depth = 0;
     }
     cj_render_image *img = NULL;
     cj_stage_report rep;
-    cj_renderer_options ro = cj_renderer_options_default();
+    cj_renderer_options ro = cj_renderer_options_defaults();
     ro.render = opt;
     ro.trace = topt;
     const double t0 = cli_now();

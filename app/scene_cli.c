@@ -35,7 +35,7 @@ static const char *dir_of(const char *path, char *buf, size_t size) {
 int cli_load_scene(const char *cmd, const char *path, cj_scene **out) {
     cj_scene_json_options jo = {cli_teapot_path()};
     cj_scene *scene = NULL;
-    cj_status st = cj_scene_load_json_ex(path, &jo, NULL, &scene);
+    cj_status st = cj_scene_load_json_with_options(path, &jo, NULL, &scene);
     char dir[PATH_MAX];
     if (!st) st = cj_scene_load_textures(scene, dir_of(path, dir, sizeof dir));
     if (st) {
@@ -74,8 +74,8 @@ int cli_write_render(const char *cmd, const char *out, int exr, const cj_render_
             memcpy(px + 4 * i, img->rgba + 4 * i, 3 * sizeof(float));
             px[4 * i + 3] = 1.0f;
         }
-        st = cj_image_write_float_ex(out, img->width, img->height, px, 0,
-                                     exr == 2 ? (unsigned)CJ_IMAGE_FLOAT_HALF : 0u);
+        st = cj_image_write_float_with_flags(out, img->width, img->height, px, 0,
+                                             exr == 2 ? (unsigned)CJ_IMAGE_FLOAT_HALF : 0u);
         free(px);
     } else {
         uint8_t *px = malloc(n * 4);

@@ -8,7 +8,7 @@
 
 #include <string.h>
 
-cj_node cj_render_node(int geometry, int material) {
+cj_node cj_node_defaults(int geometry, int material) {
     cj_node n;
     memset(&n, 0, sizeof n);
     n.parent = -1;
@@ -24,6 +24,6 @@ cj_node cj_render_node(int geometry, int material) {
 
 cj_status cj_render_demo_scene(const char *teapot_bpt, const cj_allocator *alloc, cj_scene **out) {
     const cj_scene_json_options o = {teapot_bpt};
-    return cj_scene_parse_json_ex(cj_demo_render_json, "scenes/demo_render.json", NULL, &o, alloc,
-                                  out);
+    return cj_scene_parse_json_with_options(cj_demo_render_json, "scenes/demo_render.json", NULL,
+                                            &o, alloc, out);
 }

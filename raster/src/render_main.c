@@ -125,7 +125,7 @@ static const char *const stage_order[] = {"scene_check",
 /* Image size, samples, tolerance and tiles: the renderer's options over the scene's. */
 static cj_status resolve_settings(cj_rframe *F) {
     const cj_render_options *o = &F->r->opt.render;
-    const cj_scene_settings *ss = cj_scene_settings_get(F->scene);
+    const cj_scene_settings *ss = cj_scene_get_settings(F->scene);
     F->W = o->width ? o->width : ss->width;
     F->H = o->height ? o->height : ss->height;
     F->spp = o->spp ? o->spp : ss->spp;
@@ -150,10 +150,10 @@ static cj_status resolve_settings(cj_rframe *F) {
 
 /* The camera and the frame's constants the tiles read. */
 static cj_status setup_view(cj_rframe *F) {
-    cj_status st = cj_rview_init(cj_scene_camera(F->scene), F->W, F->H, &F->view);
+    cj_status st = cj_rview_init(cj_scene_get_camera(F->scene), F->W, F->H, &F->view);
     if (st) return st;
     cj_rctx *c = &F->c;
-    const cj_scene_settings *ss = cj_scene_settings_get(F->scene);
+    const cj_scene_settings *ss = cj_scene_get_settings(F->scene);
     c->view = &F->view;
     c->width = F->W;
     c->height = F->H;

@@ -111,7 +111,7 @@ static cj_status attach(cj_anim_doc *doc, cj_scene *scene, int *binding) {
         free(nrm);
         int mat = -1, geo = -1, node = -1;
         if (!st) {
-            cj_material m = cj_material_default();
+            cj_material m = cj_material_defaults();
             m.color = doc->cloth_color;
             m.two_sided = 1;
             m.ks = 0.1;
@@ -151,7 +151,7 @@ static cj_status attach(cj_anim_doc *doc, cj_scene *scene, int *binding) {
         st = cj_particles_create(&doc->pdesc, NULL, &doc->particles);
         if (st) return st;
         int mat = -1, geo = -1;
-        cj_material m = cj_material_default();
+        cj_material m = cj_material_defaults();
         m.color = doc->particle_color;
         m.shading = CJ_SHADE_GOURAUD;
         st = cj_scene_add_material(scene, &m, &mat);

@@ -303,7 +303,7 @@ static cj_status read_emitter(actx *c, const cJSON *e, const char *path, cj_emit
     static const char *const K[] = {"position",      "direction", "spread",   "speed",
                                     "speed_jitter",  "rate",      "lifetime", "lifetime_jitter",
                                     "jitter_radius", "start",     "stop",     NULL};
-    *out = cj_emitter_default();
+    *out = cj_emitter_defaults();
     cj_status st;
     if ((st = cj_json_object(&c->json, e, path, K)) ||
         (st = aj_vec3_in(c, e, path, "position", CJ_ANIM_MAX_COORD, out->position)) ||

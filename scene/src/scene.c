@@ -12,7 +12,7 @@
 
 /* ---- defaults ------------------------------------------------------------------------------ */
 
-cj_light cj_light_default(cj_light_kind kind) {
+cj_light cj_light_defaults(cj_light_kind kind) {
     cj_light l;
     memset(&l, 0, sizeof l);
     l.kind = kind;
@@ -28,7 +28,7 @@ cj_light cj_light_default(cj_light_kind kind) {
     return l;
 }
 
-cj_texture cj_texture_default(cj_texture_kind kind) {
+cj_texture cj_texture_defaults(cj_texture_kind kind) {
     cj_texture t;
     memset(&t, 0, sizeof t);
     t.kind = kind;
@@ -41,7 +41,7 @@ cj_texture cj_texture_default(cj_texture_kind kind) {
     return t;
 }
 
-cj_material cj_material_default(void) {
+cj_material cj_material_defaults(void) {
     cj_material m;
     memset(&m, 0, sizeof m);
     m.color = cj_rgb_make(0.8, 0.8, 0.8);
@@ -59,7 +59,7 @@ cj_material cj_material_default(void) {
     return m;
 }
 
-cj_scene_settings cj_scene_settings_default(void) {
+cj_scene_settings cj_scene_settings_defaults(void) {
     cj_scene_settings s;
     memset(&s, 0, sizeof s);
     s.width = 640;
@@ -174,8 +174,8 @@ cj_status cj_scene_create(const cj_allocator *alloc, cj_scene **out) {
     if (!s) return cj_fail(CJ_ERR_NOMEM, "out of memory creating a scene");
     memset(s, 0, sizeof *s);
     if (alloc) s->alloc = *alloc;
-    s->camera = cj_camera_default();
-    s->settings = cj_scene_settings_default();
+    s->camera = cj_camera_defaults();
+    s->settings = cj_scene_settings_defaults();
     *out = s;
     return CJ_OK;
 }
@@ -223,7 +223,7 @@ cj_status cj_scene_set_camera(cj_scene *s, const cj_camera *cam) {
     return CJ_OK;
 }
 
-const cj_camera *cj_scene_camera(const cj_scene *s) {
+const cj_camera *cj_scene_get_camera(const cj_scene *s) {
     assert(s);
     return &s->camera;
 }
@@ -236,7 +236,7 @@ cj_status cj_scene_set_settings(cj_scene *s, const cj_scene_settings *set) {
     return CJ_OK;
 }
 
-const cj_scene_settings *cj_scene_settings_get(const cj_scene *s) {
+const cj_scene_settings *cj_scene_get_settings(const cj_scene *s) {
     assert(s);
     return &s->settings;
 }

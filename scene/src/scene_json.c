@@ -93,9 +93,9 @@ static cj_status read_document(jctx *c, const cJSON *root) {
     return CJ_OK;
 }
 
-cj_status cj_scene_parse_json_ex(const char *text, const char *name, const char *base_dir,
-                                 const cj_scene_json_options *options, const cj_allocator *alloc,
-                                 cj_scene **out) {
+cj_status cj_scene_parse_json_with_options(const char *text, const char *name, const char *base_dir,
+                                           const cj_scene_json_options *options,
+                                           const cj_allocator *alloc, cj_scene **out) {
     assert(text && out);
     if (!name) name = "<scene>";
     const char *end = NULL;
@@ -139,11 +139,11 @@ cj_status cj_scene_parse_json_ex(const char *text, const char *name, const char 
 
 cj_status cj_scene_parse_json(const char *text, const char *name, const char *base_dir,
                               const cj_allocator *alloc, cj_scene **out) {
-    return cj_scene_parse_json_ex(text, name, base_dir, NULL, alloc, out);
+    return cj_scene_parse_json_with_options(text, name, base_dir, NULL, alloc, out);
 }
 
-cj_status cj_scene_load_json_ex(const char *path, const cj_scene_json_options *options,
-                                const cj_allocator *alloc, cj_scene **out) {
+cj_status cj_scene_load_json_with_options(const char *path, const cj_scene_json_options *options,
+                                          const cj_allocator *alloc, cj_scene **out) {
     assert(path && out);
     char *text = NULL;
     size_t len = 0;
@@ -167,11 +167,11 @@ cj_status cj_scene_load_json_ex(const char *path, const cj_scene_json_options *o
     } else {
         dir[0] = '\0';
     }
-    cj_status st = cj_scene_parse_json_ex(text, path, dir, options, alloc, out);
+    cj_status st = cj_scene_parse_json_with_options(text, path, dir, options, alloc, out);
     free(text);
     return st;
 }
 
 cj_status cj_scene_load_json(const char *path, const cj_allocator *alloc, cj_scene **out) {
-    return cj_scene_load_json_ex(path, NULL, alloc, out);
+    return cj_scene_load_json_with_options(path, NULL, alloc, out);
 }

@@ -253,7 +253,7 @@ static cj_status read_node(jctx *c, const cJSON *obj, const char *p, int parent,
         TRY(node_geometry(c, gn, p, &n.geometry));
         if (mat < 0) {
             if (c->default_material < 0) {
-                cj_material d = cj_material_default();
+                cj_material d = cj_material_defaults();
                 TRY(cj_scene_add_material(c->scene, &d, &c->default_material));
             }
             mat = c->default_material;

@@ -35,7 +35,7 @@ static const char *const CAMERA_KEYS[] = {"eye",
 cj_status cj_json_read_camera_(jctx *c, const cJSON *obj) {
     const char *p = "camera";
     TRY(cj_json_object(&c->json, obj, p, CAMERA_KEYS));
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     TRY(cj_json_vec3(&c->json, obj, p, "eye", &cam.eye));
     const cJSON *g = cJSON_GetObjectItemCaseSensitive(obj, "gaze");
     const cJSON *la = cJSON_GetObjectItemCaseSensitive(obj, "look_at");
@@ -95,7 +95,7 @@ static const char *const LIGHT_MODELS[] = {"legacy", "radiometric", NULL}; /* cj
 cj_status cj_json_read_settings_(jctx *c, const cJSON *obj) {
     const char *p = "settings";
     TRY(cj_json_object(&c->json, obj, p, SETTINGS_KEYS));
-    cj_scene_settings s = *cj_scene_settings_get(c->scene);
+    cj_scene_settings s = *cj_scene_get_settings(c->scene);
     TRY(cj_json_int(&c->json, obj, p, "width", 1, 32768, &s.width));
     TRY(cj_json_int(&c->json, obj, p, "height", 1, 32768, &s.height));
     TRY(cj_json_int(&c->json, obj, p, "spp", 1, 65536, &s.spp));
@@ -140,7 +140,7 @@ static cj_status read_light(jctx *c, const cJSON *obj, const char *p) {
     int type = 0;
     TRY(cj_json_enum(&c->json, obj, p, "type", LIGHT_TYPES, &type));
     TRY(cj_json_object(&c->json, obj, p, LIGHT_KEYS[type]));
-    cj_light l = cj_light_default((cj_light_kind)type);
+    cj_light l = cj_light_defaults((cj_light_kind)type);
     TRY(cj_json_rgb(&c->json, obj, p, "color", -1, &l.color));
     TRY(cj_json_num(&c->json, obj, p, "intensity", CJ_JSON_GE, 0, 0, &l.intensity));
     TRY(cj_json_bool(&c->json, obj, p, "casts_shadows", &l.casts_shadows));
@@ -220,7 +220,7 @@ static cj_status read_texture(jctx *c, const cJSON *obj, const char *p) {
     const char *name = NULL;
     TRY(unique_name(c, obj, p, "textures", cj_scene_texture_name, cj_scene_texture_count(c->scene),
                     &name));
-    cj_texture t = cj_texture_default((cj_texture_kind)type);
+    cj_texture t = cj_texture_defaults((cj_texture_kind)type);
     int filter = (int)t.filter, wrap = (int)t.wrap;
     TRY(cj_json_enum(&c->json, obj, p, "filter", FILTERS, &filter));
     TRY(cj_json_enum(&c->json, obj, p, "wrap", WRAPS, &wrap));
@@ -333,7 +333,7 @@ cj_status cj_json_read_material_(jctx *c, const cJSON *obj, const char *p, int n
     if (named)
         TRY(unique_name(c, obj, p, "materials", cj_scene_material_name,
                         cj_scene_material_count(c->scene), &name));
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     TRY(cj_json_rgb(&c->json, obj, p, "color", 1, &m.color));
     TRY(cj_json_rgb(&c->json, obj, p, "specular", 1, &m.specular));
     TRY(cj_json_num(&c->json, obj, p, "ka", CJ_JSON_GE, 0, 0, &m.ka));

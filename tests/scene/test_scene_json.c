@@ -72,7 +72,7 @@ static void test_shipped_scenes(void **state) {
         char path[512];
         snprintf(path, sizeof path, "%s/%s", CJ_SCENES_DIR, e->d_name);
         cj_scene *s = NULL;
-        cj_status st = cj_scene_load_json_ex(path, &sj_opts, NULL, &s);
+        cj_status st = cj_scene_load_json_with_options(path, &sj_opts, NULL, &s);
         /* Animation documents (casteljau/anim_scene.h) name their scene with a top-level
          * "scene" key and live here too; they are not scene documents. */
         const char *msg = cj_last_error(), *at = msg + strlen(path) + 1;
@@ -310,7 +310,8 @@ static void test_bad_documents(void **state) {
         cj_scene *sentinel = (cj_scene *)&live_blocks, *s = sentinel;
         const cj_scene_json_options *opt = strstr(b->doc, "teapot") ? NULL : &sj_opts;
         live_blocks = 0;
-        cj_status st = cj_scene_parse_json_ex(b->doc, "scene.json", sj_tmpdir, opt, &counting, &s);
+        cj_status st =
+            cj_scene_parse_json_with_options(b->doc, "scene.json", sj_tmpdir, opt, &counting, &s);
         if (s != sentinel) fail_msg("case %zu: a scene was returned on error", i);
         if (live_blocks != 0) fail_msg("case %zu: %ld blocks leaked", i, live_blocks);
         if (st != b->status)
@@ -393,7 +394,7 @@ static void test_values(void **state) {
         " ]}\n";
     cj_scene *s = NULL;
     if (cj_scene_parse_json(doc, "v.json", NULL, NULL, &s)) fail_msg("%s", cj_last_error());
-    const cj_camera *c = cj_scene_camera(s);
+    const cj_camera *c = cj_scene_get_camera(s);
     assert_true(fabs(c->fov_y - 2 * atan(12.0 / 50.0)) < 1e-15);
     assert_true(c->gaze.x == 0 && c->gaze.y == 0 && c->gaze.z == -10);
     assert_true(c->near == -0.5 && c->far == -50 && c->projection == CJ_PROJ_PERSPECTIVE);
@@ -496,8 +497,8 @@ static void test_mutations(void **state) {
             int lines = 1;
             for (size_t i = 0; i < n; ++i) lines += buf[i] == '\n';
             cj_scene *s = NULL;
-            cj_status st =
-                cj_scene_parse_json_ex(buf, "scene.json", CJ_SCENES_DIR, &sj_opts, NULL, &s);
+            cj_status st = cj_scene_parse_json_with_options(buf, "scene.json", CJ_SCENES_DIR,
+                                                            &sj_opts, NULL, &s);
             if (st == CJ_OK) {
                 assert_int_equal(cj_scene_check(s), CJ_OK);
                 cj_scene_destroy(s);

@@ -69,7 +69,7 @@ static void ring(cj_framebuffer *fb, double x, double y, double r, cj_rgba c) {
     double px = x + r, py = y;
     for (int k = 1; k <= 24; ++k) {
         const double a = 6.283185307179586 * k / 24, qx = x + r * cos(a), qy = y + r * sin(a);
-        cj_raster_line_aa(fb, px, py, qx, qy, c);
+        cj_line_draw_aa(fb, px, py, qx, qy, c);
         px = qx, py = qy;
     }
 }
@@ -111,9 +111,8 @@ static void comb(cj_viewer *v, const cj_vcurve *c) {
         const double len = -60.0 * kap[i] / kmax;
         tip[i][0] = pt[i][0] + len * tip[i][0];
         tip[i][1] = pt[i][1] + len * tip[i][1];
-        cj_raster_line_aa(v->screen, pt[i][0], pt[i][1], tip[i][0], tip[i][1], col);
-        if (i)
-            cj_raster_line_aa(v->screen, tip[i - 1][0], tip[i - 1][1], tip[i][0], tip[i][1], col);
+        cj_line_draw_aa(v->screen, pt[i][0], pt[i][1], tip[i][0], tip[i][1], col);
+        if (i) cj_line_draw_aa(v->screen, tip[i - 1][0], tip[i - 1][1], tip[i][0], tip[i][1], col);
     }
 }
 
