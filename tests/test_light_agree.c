@@ -360,8 +360,8 @@ static void test_json_specular_model(void **state) {
     fclose(f);
     remove(path);
     assert_true(got > 0);
-    assert_non_null(strstr(text, "\"specular_model\": \"phong\""));
-    assert_non_null(strstr(text, "\"specular_model\": \"blinn\""));
+    assert_non_null(strstr(text, "\"specular_model\":\t\"phong\""));
+    assert_non_null(strstr(text, "\"specular_model\":\t\"blinn\""));
     free(text);
     cj_scene_destroy(s);
     const char *bad = "{\"materials\": [{\"name\": \"a\", \"specular_model\": \"cook\"}], "
