@@ -419,11 +419,9 @@ static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
     if (sc) {
         if (!cJSON_IsString(sc))
             return cj_json_fail(&c->json, sc, 0, CJ_ERR_PARSE, "scene must be a file name");
-        if (sc->valuestring[0] == '/' || !c->base_dir[0])
-            snprintf(doc->scene_path, sizeof doc->scene_path, "%s", sc->valuestring);
-        else
-            snprintf(doc->scene_path, sizeof doc->scene_path, "%s/%s", c->base_dir,
-                     sc->valuestring);
+        st = cj_json_resolve(&c->json, c->base_dir, sc, "scene", sc->valuestring, doc->scene_path,
+                             sizeof doc->scene_path);
+        if (st) return st;
     }
     if ((st =
              aj_num_in(c, root, "document", "fps", CJ_ANIM_MIN_FPS, CJ_ANIM_MAX_FPS, 0, &doc->fps)))

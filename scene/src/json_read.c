@@ -518,3 +518,15 @@ cj_status cj_json_list(const cj_json_doc *c, const cJSON *arr, const char *p) {
     if (!cJSON_IsArray(arr)) return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must be an array", p);
     return CJ_OK;
 }
+
+cj_status cj_json_resolve(const cj_json_doc *c, const char *base_dir, const cJSON *node,
+                          const char *path, const char *rel, char *dst, size_t cap) {
+    int w;
+    if (rel[0] == '/' || !base_dir || !base_dir[0])
+        w = snprintf(dst, cap, "%s", rel);
+    else
+        w = snprintf(dst, cap, "%s/%s", base_dir, rel);
+    if (w < 0 || (size_t)w >= cap)
+        return cj_json_fail(c, node, 0, CJ_ERR_RANGE, "%s: path too long", path);
+    return CJ_OK;
+}

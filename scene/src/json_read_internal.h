@@ -103,4 +103,10 @@ cj_status cj_json_numbers(const cj_json_doc *c, const cJSON *arr, const char *pa
 cj_status cj_json_angle(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
                         cj_json_range r, double lo_rad, double hi_rad, double *out);
 
+/* A file named in the document (rel) resolved against the document's folder base_dir ("" or
+ * NULL: the current folder; an absolute rel stays as it is) into dst (cap bytes). CJ_ERR_RANGE
+ * at node, naming path, when it does not fit. */
+cj_status cj_json_resolve(const cj_json_doc *c, const char *base_dir, const cJSON *node,
+                          const char *path, const char *rel, char *dst, size_t cap);
+
 #endif

@@ -13,18 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-cj_status cj_json_resolve_(const jctx *c, const cJSON *node, const char *path, const char *rel,
-                           char *dst, size_t cap) {
-    int w;
-    if (rel[0] == '/' || !c->base_dir[0])
-        w = snprintf(dst, cap, "%s", rel);
-    else
-        w = snprintf(dst, cap, "%s/%s", c->base_dir, rel);
-    if (w < 0 || (size_t)w >= cap)
-        return cj_json_fail(&c->json, node, 0, CJ_ERR_RANGE, "%s: path too long", path);
-    return CJ_OK;
-}
-
 /* ---- entry points --------------------------------------------------------------------------- */
 
 static const char *const TOP_KEYS[] = {"camera",    "settings",   "lights",  "textures",

@@ -460,7 +460,7 @@ static cj_status read_mesh(jctx *c, const cJSON *obj, const char *p, int *index)
         char file[4096];
         char pk[CJ_JSON_PATH];
         cj_json_join(pk, p, "path");
-        TRY(cj_json_resolve_(c, pn, pk, rel, file, sizeof file));
+        TRY(cj_json_resolve(&c->json, c->base_dir, pn, pk, rel, file, sizeof file));
         st = cj_mesh_read(file, NULL, &m);
         if (st) {
             char msg[512];
@@ -588,7 +588,7 @@ cj_status cj_json_read_geometry_(jctx *c, const cJSON *obj, const char *p, int *
         TRY(cj_json_string(&c->json, obj, p, "path", &rel));
         char file[4096], pk[CJ_JSON_PATH];
         cj_json_join(pk, p, "path");
-        TRY(cj_json_resolve_(c, pn, pk, rel, file, sizeof file));
+        TRY(cj_json_resolve(&c->json, c->base_dir, pn, pk, rel, file, sizeof file));
         return add_patchset(c, obj, pn, pk, file, index);
     }
     case G_PATCHES:

@@ -23,10 +23,6 @@ typedef struct jctx {
     int default_material;    /* -1 until an object needs the default material */
 } jctx;
 
-/* Resolves a path of the document against its folder into dst (cap bytes). */
-cj_status cj_json_resolve_(const jctx *c, const cJSON *node, const char *path, const char *rel,
-                           char *dst, size_t cap);
-
 /* Parts (scene_json_parts.c, scene_json_geom.c). */
 cj_status cj_json_read_camera_(jctx *c, const cJSON *obj);
 cj_status cj_json_read_settings_(jctx *c, const cJSON *obj);

@@ -143,10 +143,6 @@ void cj_render_cache_destroy(cj_render_cache *cache);
 cj_status cj_render_scene_mesh(const cj_scene *scene, const cj_render_options *opt,
                                const cj_allocator *alloc, cj_mesh **out);
 
-/* A node with the defaults every builder wants: no parent, identity transform, visible, no
- * overlay (white lines, 1 iso line, normals 0.1 long when switched on). */
-cj_node cj_node_defaults(int geometry, int material);
-
 /* The built-in demo scene of `casteljau render --demo`: the Utah teapot read from teapot_bpt
  * (data/teapot.bpt), lit by an ambient, a point and a directional light, with a procedural
  * checker and its control net, on a checkered floor; 800 x 600, 4 samples per pixel. The

@@ -354,6 +354,10 @@ typedef struct cj_node {
     uint32_t id; /* object id (signature image, id buffer): 1 + index among objects */
 } cj_node;
 
+/* A node with the defaults every builder wants: no parent, identity transform, visible, no
+ * overlay (white lines, 1 iso line, normals 0.1 long when switched on). */
+cj_node cj_node_defaults(int geometry, int material);
+
 /* ---- render settings stored with the scene (CLI flags override them) ---------------------- */
 
 /* The ray tracer's pixel reconstruction filter (docs/light.md), separable f(dx) f(dy) over
