@@ -509,3 +509,19 @@ cj_status cj_scene_node_world(const cj_scene *s, int index, cj_xform3 *out) {
     *out = m;
     return CJ_OK;
 }
+
+int cj_scene_node_shown(const cj_scene *s, int index) {
+    assert(s);
+    if (index < 0 || (size_t)index >= s->nnodes) return 0;
+    for (int i = index; i >= 0; i = s->nodes[i].parent)
+        if (!s->nodes[i].visible) return 0;
+    return 1;
+}
+
+void cj_scene_nodes_shown(const cj_scene *s, unsigned char *shown) {
+    assert(s && (shown || !s->nnodes));
+    for (size_t i = 0; i < s->nnodes; ++i) {
+        const cj_node *nd = &s->nodes[i];
+        shown[i] = nd->visible && (nd->parent < 0 || shown[nd->parent]);
+    }
+}

@@ -5,3 +5,5 @@ if(TARGET cj::formats)
   target_include_directories(test_plot_json_write PRIVATE ${PROJECT_SOURCE_DIR}/scene/src
     ${PROJECT_SOURCE_DIR}/curves/src)
 endif()
+# The one visibility walk up the parent chain (scene layer), against its definition.
+cj_add_test(test_scene_shown SOURCES scene/test_scene_shown.c LIBS cj::scene)

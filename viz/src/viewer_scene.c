@@ -54,7 +54,7 @@ static cj_status collect(cj_vscene *vs) {
         const cj_node *node = cj_scene_node(vs->scene, (int)n);
         cj_status st = cj_scene_node_world(vs->scene, (int)n, &vs->world[n]);
         if (st) return st;
-        if (node->geometry < 0 || !node->visible) continue;
+        if (node->geometry < 0 || !cj_scene_node_shown(vs->scene, (int)n)) continue;
         cj_geometry *g = cj_scene_geometry_mut(vs->scene, node->geometry);
         size_t add = 0;
         if (g->kind == CJ_GEOM_PATCHES)

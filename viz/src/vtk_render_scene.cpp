@@ -46,7 +46,7 @@ cj_status split_scene(const cj_scene *scene, const cj_mesh *mesh, int width, int
     const size_t nodes = cj_scene_node_count(scene);
     for (size_t i = 0; i < nodes; i++) {
         const cj_node *n = cj_scene_node(scene, (int)i);
-        if (n->geometry < 0 || !n->visible) continue;
+        if (n->geometry < 0 || !cj_scene_node_shown(scene, (int)i)) continue;
         if (node_of.size() <= n->id) node_of.resize(n->id + 1, -1);
         node_of[n->id] = (int)i;
     }

@@ -446,6 +446,15 @@ const char *cj_scene_texture_source(const cj_scene *scene, int index);
 /* World transform of node `index` (parents composed). */
 cj_status cj_scene_node_world(const cj_scene *scene, int index, cj_xform3 *out);
 
+/* Whether node `index` is shown: its own `visible` and that of every group above it (a hidden
+ * group hides its whole subtree). The one walk up the parent chain that every renderer, the
+ * viewer and the exports use. 0 for an index that names no node. */
+int cj_scene_node_shown(const cj_scene *scene, int index);
+
+/* cj_scene_node_shown of every node at once, in one pass (parents come before their children):
+ * shown[i] for i < cj_scene_node_count(scene). */
+void cj_scene_nodes_shown(const cj_scene *scene, unsigned char *shown);
+
 /* Validates the whole scene (every field of every part); the message names the part
  * ("materials[2].alpha must be >= 0"). Renderers call it first: the rasterizer and the ray
  * tracer accept exactly the same scenes. Beyond finiteness it bounds what would overflow
