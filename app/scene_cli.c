@@ -171,3 +171,17 @@ int cli_finish_render(const char *cmd, const char *out, int exr, cj_render_image
         return cli_error(cmd, "%s", cj_last_error());
     return 0;
 }
+
+int cli_render_scene(const char *cmd, const cli_scene_args *a, int exr, cj_scene *scene,
+                     cj_renderer_options ro, cj_backend backend, unsigned planes, double ray_factor,
+                     void (*touch)(cj_render_image *img)) {
+    cj_render_image *img = NULL;
+    cj_stage_report rep;
+    const double t0 = cli_now();
+    const int rc = cli_draw_scene(cmd, a->scene_path ? a->scene_path : "demo", ro, scene, backend,
+                                  planes, ray_factor, &img, &rep);
+    cj_scene_destroy(scene);
+    if (rc) return rc;
+    if (touch) touch(img);
+    return cli_finish_render(cmd, a->out, exr, img, a->report ? &rep : NULL, t0);
+}
