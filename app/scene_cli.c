@@ -10,38 +10,17 @@
 #include "casteljau/scene_json.h"
 #include "casteljau/scene_textures.h"
 
-#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-#ifndef PATH_MAX
-#define PATH_MAX 4096
-#endif
-
-/* The folder of a path ("" for a bare name), into buf. */
-static const char *dir_of(const char *path, char *buf, size_t size) {
-    const char *slash = strrchr(path, '/');
-    if (!slash) return "";
-    size_t n = (size_t)(slash - path);
-    if (n >= size) n = size - 1;
-    memcpy(buf, path, n);
-    buf[n] = '\0';
-    return n ? buf : "/";
-}
-
 int cli_load_scene(const char *cmd, const char *path, cj_scene **out) {
     cj_scene_json_options jo = {cli_teapot_path()};
     cj_scene *scene = NULL;
-    cj_status st = cj_scene_load_json_with_options(path, &jo, NULL, &scene);
-    char dir[PATH_MAX];
-    if (!st) st = cj_scene_load_textures(scene, dir_of(path, dir, sizeof dir));
-    if (st) {
-        cj_scene_destroy(scene);
-        return cli_fail_status(cmd, st, "%s", cj_last_error());
-    }
+    const cj_status st = cj_scene_load_with_textures(path, &jo, NULL, &scene);
+    if (st) return cli_fail_status(cmd, st, "%s", cj_last_error());
     *out = scene;
     return 0;
 }

@@ -100,16 +100,6 @@ static cj_status bpt_scene(const char *path, cj_scene **out) {
     return CJ_OK;
 }
 
-static const char *dir_of(const char *path, char *buf, size_t size) {
-    const char *slash = strrchr(path, '/');
-    if (!slash) return "";
-    size_t n = (size_t)(slash - path);
-    if (n >= size) n = size - 1;
-    memcpy(buf, path, n);
-    buf[n] = '\0';
-    return n ? buf : "/";
-}
-
 cj_status cj_viewer_load(cj_viewer *v) {
     const cj_viewer_options *o = v->opt;
     cj_status st;
@@ -134,12 +124,7 @@ cj_status cj_viewer_load(cj_viewer *v) {
         if (anim && (st = cj_anim_doc_load(o->path, &v->anim))) return st;
         const char *sp = anim ? v->anim->scene_path : o->path;
         cj_scene_json_options jo = {o->teapot_path};
-        char dir[4096];
-        st = cj_scene_load_json_with_options(sp, &jo, NULL, &scene);
-        if (!st && (st = cj_scene_load_textures(scene, dir_of(sp, dir, sizeof dir)))) {
-            cj_scene_destroy(scene);
-            scene = NULL;
-        }
+        st = cj_scene_load_with_textures(sp, &jo, NULL, &scene);
         if (!st && anim) {
             v->anim_frame = v->anim->frame_first;
             v->playing = 0;
