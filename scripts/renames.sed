@@ -53,3 +53,5 @@ s/\bcj_image_write_float_ex\b/cj_image_write_float_with_flags/g
 # (cj_scene_settings is the type, so the getter cannot be the bare noun).
 s/\bcj_scene_settings_get\b/cj_scene_get_settings/g
 s/\bcj_scene_camera\b/cj_scene_get_camera/g
+# (and the renderer's options beside cj_renderer_set_options)
+s/\bcj_renderer_options_get\b/cj_renderer_get_options/g
