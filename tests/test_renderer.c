@@ -278,7 +278,7 @@ static void test_options(void **state) {
     o = cj_renderer_options_defaults();
     o.render.spp = -2;
     assert_int_equal(cj_renderer_set_options(r, &o), CJ_ERR_RANGE);
-    assert_int_equal(cj_renderer_options_get(r)->render.spp, 0); /* the old options stay */
+    assert_int_equal(cj_renderer_get_options(r)->render.spp, 0); /* the old options stay */
     /* an option only the scene can judge is refused at the draw */
     rs_sphere_scene sc;
     rs_sphere(&sc, 1);

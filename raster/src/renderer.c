@@ -112,7 +112,7 @@ cj_status cj_renderer_set_options(cj_renderer *r, const cj_renderer_options *opt
     return st;
 }
 
-const cj_renderer_options *cj_renderer_options_get(const cj_renderer *r) {
+const cj_renderer_options *cj_renderer_get_options(const cj_renderer *r) {
     assert(r);
     return &r->opt;
 }

@@ -101,7 +101,7 @@ void cj_renderer_destroy(cj_renderer *r);
  * depend on). Same CJ_ERR_RANGE checks as cj_renderer_create; on error the old options stay. */
 cj_status cj_renderer_set_options(cj_renderer *r, const cj_renderer_options *opt);
 /* The options in use. */
-const cj_renderer_options *cj_renderer_options_get(const cj_renderer *r);
+const cj_renderer_options *cj_renderer_get_options(const cj_renderer *r);
 
 /* Draws the scene with `backend` into *image with the planes `planes` (CJ_IMAGE_*). *image
  * NULL: a new image is created (free with cj_render_image_destroy). *image an image of the
