@@ -4,9 +4,11 @@
 #ifndef CASTELJAU_APP_PLOT_JSON_H
 #define CASTELJAU_APP_PLOT_JSON_H
 
+#include "casteljau/bspline.h"
 #include "casteljau/chart.h"
 #include "casteljau/plot.h"
 #include <stddef.h>
+#include <stdio.h>
 
 #define PLOT_JSON_MIN_SIDE   64
 #define PLOT_JSON_MAX_SIDE   8192
@@ -88,6 +90,12 @@ cj_status plot_json_curve_add(cj_plot *plot, const plot_json_curve *k);
  * CJ_ERR_UNSUPPORTED (a Kochanek-Bartels spline, which the format cannot describe; the message
  * names the curve), CJ_ERR_NOMEM, CJ_ERR_IO (naming path). */
 cj_status plot_json_write_page(const plot_json_page *page, const char *path);
+
+/* The document of `casteljau fit` for a curve: a plot with the title, the fitted B-spline item
+ * and (2D data) the n data points as a "points" item, printed with cJSON onto f, numbers in
+ * their shortest exact form. Errors: CJ_ERR_NOMEM, CJ_ERR_IO (the stream's error flag). */
+cj_status plot_json_print_fit(FILE *f, const cj_bspline *c, const double *data, int n,
+                              const char *title);
 
 /* After plot_doc_render failed: the JSON path of the panel ("panels[3]" or "the plot"). */
 const char *plot_doc_where(plot_doc *doc);

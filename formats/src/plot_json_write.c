@@ -4,6 +4,8 @@
  * is replaced atomically. What it writes, plot_json_read_page reads back bit-identical. */
 #include "plot_json_internal.h"
 
+#include "bspline_json.h"
+
 #include "error_internal.h"
 #include "json_write_internal.h"
 
@@ -110,6 +112,34 @@ cj_status plot_json_write_page(const plot_json_page *page, const char *path) {
     cJSON *root = page_json(page);
     if (!root) return cj_fail(CJ_ERR_NOMEM, "%s: out of memory", path);
     const cj_status st = cj_json_write_file(root, path, path);
+    cJSON_Delete(root);
+    return st;
+}
+
+cj_status plot_json_print_fit(FILE *f, const cj_bspline *c, const double *data, int n,
+                              const char *title) {
+    cJSON *root = cJSON_CreateObject(), *items = cJSON_CreateArray();
+    cJSON *curve = bsp_json_item(c);
+    int bad = !root || !items || !curve || add(root, "title", cJSON_CreateString(title)) ||
+              !cJSON_AddItemToArray(items, curve);
+    if (!bad) curve = NULL; /* owned by items */
+    if (!bad && c->dim == 2) {
+        cJSON *pts = cJSON_CreateObject();
+        bad = !pts || !cJSON_AddItemToArray(items, pts);
+        if (bad) cJSON_Delete(pts);
+        bad = bad || add(pts, "type", cJSON_CreateString("points")) ||
+              cj_json_add_number(pts, "radius", 2) ||
+              add(pts, "color", cJSON_CreateString("#d62728")) ||
+              add(pts, "points", points_json(data, (size_t)n));
+    }
+    if (!bad) {
+        bad = add(root, "items", items); /* takes items, also on failure */
+        items = NULL;
+    }
+    cj_status st = bad ? cj_fail(CJ_ERR_NOMEM, "fit: out of memory writing the document")
+                       : cj_json_print(root, 1, f, "fit");
+    cJSON_Delete(curve);
+    cJSON_Delete(items);
     cJSON_Delete(root);
     return st;
 }

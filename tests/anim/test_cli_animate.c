@@ -123,7 +123,7 @@ static void test_frames_and_checkpoints(void **state) {
     cj_cli_result_free(&r);
     /* one renderer for the animation: a line of each frame's tessellation cache hits/misses */
     run("a.json --frames 0:3 -o rep_%04d.png --stage-report --quiet", 0, &r);
-    const char *frames = strstr(r.out, "{\"frames\": [{\"frame\": 0, \"cache_hits\": 0, ");
+    const char *frames = strstr(r.out, "{\"frames\":[{\"frame\":0,\"cache_hits\":0,");
     assert_non_null(frames);
     int rows = 0;
     for (const char *p = frames; (p = strstr(p, "\"cache_misses\"")) != NULL; ++p) ++rows;
