@@ -24,6 +24,8 @@ s/\bcj_raster_stroke_rbezier\b/cj_line_stroke_rbezier/g
 s/\bcj_raster_stroke_sequence\b/cj_line_stroke_sequence/g
 s/\bcj_raster_stroke\b/cj_line_stroke/g
 s/\bcj_raster_fill_convex\b/cj_line_fill_convex/g
+# (the family as documents name it)
+s/\bcj_raster_stroke_\*/cj_line_stroke_*/g
 s/\bcj_raster_fill_disc\b/cj_line_fill_disc/g
 s/\bCJ_RASTER_COORD_MAX\b/CJ_LINE_COORD_MAX/g
 s/\bCJ_RASTER_MAX_WIDTH\b/CJ_LINE_MAX_WIDTH/g
