@@ -197,7 +197,7 @@ static int add(cJSON *obj, const char *key, cJSON *item) {
 int surface_json_write(FILE *f, const cj_bspline_surface *s) {
     const int n = s->npts_u * s->npts_v;
     const double degree[2] = {s->deg_u, s->deg_v}, size[2] = {s->npts_u, s->npts_v};
-    cJSON *root = cJSON_CreateObject(), *pts = cJSON_CreateArray();
+    cJSON *root = cJSON_CreateObject(), *pts = cj_json_point_array(s->pts, (size_t)n, 3);
     int bad =
         !root || !pts ||
         add(root, "type", cJSON_CreateString(s->weights ? "nurbs_surface" : "bspline_surface")) ||
@@ -207,13 +207,6 @@ int surface_json_write(FILE *f, const cj_bspline_surface *s) {
             cj_json_number_array(s->knots_u, (size_t)(s->npts_u + s->deg_u + 1))) ||
         add(root, "knots_v", cj_json_number_array(s->knots_v, (size_t)(s->npts_v + s->deg_v + 1)));
     if (!bad && s->weights) bad = add(root, "weights", cj_json_number_array(s->weights, (size_t)n));
-    for (int i = 0; !bad && i < n; ++i) {
-        cJSON *p = cj_json_number_array(s->pts + 3 * (size_t)i, 3);
-        if (!p || !cJSON_AddItemToArray(pts, p)) {
-            cJSON_Delete(p);
-            bad = 1;
-        }
-    }
     if (!bad) {
         bad = add(root, "points", pts); /* takes pts, also on failure */
         pts = NULL;

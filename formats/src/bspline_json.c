@@ -172,7 +172,7 @@ const cJSON *bsp_json_find(const cJSON *doc, char *path, size_t n) {
 }
 
 cJSON *bsp_json_item(const cj_bspline *c) {
-    cJSON *it = cJSON_CreateObject(), *pts = cJSON_CreateArray();
+    cJSON *it = cJSON_CreateObject(), *pts = cj_json_point_array(c->pts, (size_t)c->npts, c->dim);
     int bad = !it || !pts || !cJSON_AddStringToObject(it, "type", "bspline") ||
               cj_json_add_number(it, "degree", c->degree);
     cJSON *knots = bad ? NULL : cj_json_number_array(c->knots, (size_t)(c->npts + c->degree + 1));
@@ -184,13 +184,6 @@ cJSON *bsp_json_item(const cj_bspline *c) {
         cJSON *w = cj_json_number_array(c->weights, (size_t)c->npts);
         if (!w || !cJSON_AddItemToObject(it, "weights", w)) {
             cJSON_Delete(w);
-            bad = 1;
-        }
-    }
-    for (int i = 0; !bad && i < c->npts; ++i) {
-        cJSON *p = cj_json_number_array(c->pts + (size_t)i * (size_t)c->dim, (size_t)c->dim);
-        if (!p || !cJSON_AddItemToArray(pts, p)) {
-            cJSON_Delete(p);
             bad = 1;
         }
     }

@@ -23,19 +23,6 @@ static int add(cJSON *obj, const char *key, cJSON *item) {
     return -1;
 }
 
-static cJSON *points_json(const double *p, size_t n) {
-    cJSON *a = cJSON_CreateArray();
-    for (size_t i = 0; a && i < n; ++i) {
-        cJSON *xy = cj_json_number_array(p + 2 * i, 2);
-        if (!xy || !cJSON_AddItemToArray(a, xy)) {
-            cJSON_Delete(xy);
-            cJSON_Delete(a);
-            a = NULL;
-        }
-    }
-    return a;
-}
-
 static cJSON *curve_json(const plot_json_curve *k) {
     static const char *const kinds[] = {"uniform", "centripetal", "chordal"};
     const cj_plot_bezier_opts *o = &k->bezier;
@@ -57,7 +44,7 @@ static cJSON *curve_json(const plot_json_curve *k) {
     }
     bad |= cj_json_add_number(it, "width", o->width);
     bad |= add(it, "color", color_json(o->color));
-    bad |= add(it, "points", points_json(k->points, k->count));
+    bad |= add(it, "points", cj_json_point_array(k->points, k->count, 2));
     if (!k->spline && k->weights)
         bad |= add(it, "weights", cj_json_number_array(k->weights, k->count));
     if (bad) {
@@ -130,7 +117,7 @@ cj_status plot_json_print_fit(FILE *f, const cj_bspline *c, const double *data, 
         bad = bad || add(pts, "type", cJSON_CreateString("points")) ||
               cj_json_add_number(pts, "radius", 2) ||
               add(pts, "color", cJSON_CreateString("#d62728")) ||
-              add(pts, "points", points_json(data, (size_t)n));
+              add(pts, "points", cj_json_point_array(data, (size_t)n, 2));
     }
     if (!bad) {
         bad = add(root, "items", items); /* takes items, also on failure */

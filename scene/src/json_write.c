@@ -49,6 +49,19 @@ cJSON *cj_json_number_array(const double *v, size_t n) {
     return a;
 }
 
+cJSON *cj_json_point_array(const double *p, size_t n, int dim) {
+    cJSON *a = cJSON_CreateArray();
+    for (size_t i = 0; a && i < n; ++i) {
+        cJSON *pt = cj_json_number_array(p + i * (size_t)dim, (size_t)dim);
+        if (!pt || !cJSON_AddItemToArray(a, pt)) {
+            cJSON_Delete(pt);
+            cJSON_Delete(a);
+            a = NULL;
+        }
+    }
+    return a;
+}
+
 cj_status cj_json_print(const cJSON *root, int pretty, FILE *f, const char *what) {
     char *text = pretty ? cJSON_Print(root) : cJSON_PrintUnformatted(root);
     if (!text) return cj_fail(CJ_ERR_NOMEM, "%s: out of memory while printing the JSON", what);

@@ -39,6 +39,10 @@ int cj_json_add_number(cJSON *obj, const char *key, double v);
 /* An array of n numbers, each as cj_json_number. NULL when out of memory. */
 cJSON *cj_json_number_array(const double *v, size_t n);
 
+/* An array of n points of dim coordinates each ([[x, y], ...]), numbers as cj_json_number. NULL
+ * when out of memory. */
+cJSON *cj_json_point_array(const double *p, size_t n, int dim);
+
 /* Prints root with cJSON's printer (indented when `pretty`) followed by a newline onto f.
  * Errors: CJ_ERR_NOMEM, CJ_ERR_IO (the stream's error flag), each naming `what`. */
 cj_status cj_json_print(const cJSON *root, int pretty, FILE *f, const char *what);
