@@ -57,3 +57,7 @@ s/\bcj_scene_settings_get\b/cj_scene_get_settings/g
 s/\bcj_scene_camera\b/cj_scene_get_camera/g
 # (and the renderer's options beside cj_renderer_set_options)
 s/\bcj_renderer_options_get\b/cj_renderer_get_options/g
+#
+# Private names whose function moved to its own layer (rerun after merging others' callers):
+# the figures of a stage are the stage report's (scene/), not the rasterizer's.
+s/\bcj_rframe_figures\b/cj_stage_report_figures/g
