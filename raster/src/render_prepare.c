@@ -213,8 +213,8 @@ cj_status cj_rframe_textures(cj_rframe *F) {
     cj_stage_report_set(F->R, "mipmaps", F->f.trilinear, "%s",
                         F->f.trilinear ? "a trilinear image texture"
                                        : "no trilinear image texture");
-    cj_rframe_figures(F->R, "mipmaps", "textures", (uint64_t)c->nsamplers, "textures",
-                      (uint64_t)c->nsamplers, F->sec_mip);
+    cj_stage_report_figures(F->R, "mipmaps", "textures", (uint64_t)c->nsamplers, "textures",
+                            (uint64_t)c->nsamplers, F->sec_mip);
     return st;
 }
 

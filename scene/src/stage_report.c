@@ -47,6 +47,18 @@ void cj_stage_add_value(cj_stage *s, const char *key, double value) {
     v->value = value;
 }
 
+cj_stage *cj_stage_report_figures(cj_stage_report *r, const char *name, const char *unit_in,
+                                  uint64_t in, const char *unit_out, uint64_t out, double seconds) {
+    cj_stage *s = cj_stage_report_stage(r, name);
+    if (!s) return NULL;
+    snprintf(s->unit_in, sizeof s->unit_in, "%s", unit_in);
+    snprintf(s->unit_out, sizeof s->unit_out, "%s", unit_out);
+    s->in = in;
+    s->out = out;
+    s->seconds = seconds;
+    return s;
+}
+
 const cj_stage *cj_stage_report_find(const cj_stage_report *r, const char *name) {
     for (int i = 0; i < r->count; ++i)
         if (!strcmp(r->stages[i].name, name)) return &r->stages[i];
