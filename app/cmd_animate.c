@@ -57,6 +57,7 @@ static const char animate_usage[] =
 #include "cli_guard.h"
 #include "error_internal.h"
 #include "file_internal.h"
+#include "json_write_internal.h"
 #include "scene_cli.h"
 #include "casteljau/anim_json.h"
 #include "casteljau/image_io.h"
@@ -190,13 +191,23 @@ static int reuse_add(reuse_log *log, long frame, const cj_stage_report *r, int t
     return 0;
 }
 
-static void reuse_print(const reuse_log *log, int trace, FILE *f) {
-    fputs("{\"frames\": [", f);
-    for (size_t i = 0; i < log->count; ++i)
-        fprintf(f, "%s{\"frame\": %ld, \"%s\": %.0f, \"%s\": %.0f}", i ? ", " : "",
-                log->rows[i].frame, trace ? "bvh_reused" : "cache_hits", log->rows[i].hits,
-                trace ? "bvh_built" : "cache_misses", log->rows[i].misses);
-    fputs("]}\n", f);
+/* The reuse log as JSON on f, printed by cJSON: {"frames": [{"frame", hits, misses}, ...]}. */
+static cj_status reuse_print(const reuse_log *log, int trace, FILE *f) {
+    cJSON *root = cJSON_CreateObject(), *frames = cJSON_CreateArray();
+    int bad = !root || !frames || !cJSON_AddItemToObject(root, "frames", frames);
+    if (bad) cJSON_Delete(frames);
+    for (size_t i = 0; !bad && i < log->count; ++i) {
+        cJSON *row = cJSON_CreateObject();
+        bad = !row || !cJSON_AddItemToArray(frames, row);
+        if (bad) cJSON_Delete(row);
+        bad = bad || cj_json_add_number(row, "frame", (double)log->rows[i].frame) ||
+              cj_json_add_number(row, trace ? "bvh_reused" : "cache_hits", log->rows[i].hits) ||
+              cj_json_add_number(row, trace ? "bvh_built" : "cache_misses", log->rows[i].misses);
+    }
+    const cj_status st = bad ? cj_fail(CJ_ERR_NOMEM, "animate: out of memory (reuse log)")
+                             : cj_json_print(root, 0, f, "animate");
+    cJSON_Delete(root);
+    return st;
 }
 
 int cmd_animate(int argc, char **argv) {
@@ -206,7 +217,7 @@ int cmd_animate(int argc, char **argv) {
     long fa = -1, fb = -1, every = 0;
     double fps = 0;
     int no_render = 0, report = 0, trace = 0;
-    cj_render_options opt = cj_render_options_default();
+    cj_render_options opt = cj_render_options_defaults();
     enum {
         O_NO_RENDER,
         O_REPORT,
@@ -374,7 +385,7 @@ int cmd_animate(int argc, char **argv) {
     }
     if (rc) goto done;
     if (!no_render) {
-        cj_renderer_options ro = cj_renderer_options_default();
+        cj_renderer_options ro = cj_renderer_options_defaults();
         ro.render = opt;
         if (cj_renderer_create(&ro, NULL, &ren)) {
             rc = cli_fail(cmd, "%s", cj_last_error());
@@ -500,7 +511,7 @@ int cmd_animate(int argc, char **argv) {
             if (!no_render) {
                 cj_stage_report_json(&ren_rep, stdout);
                 fputc('\n', stdout);
-                reuse_print(&reuse, trace, stdout);
+                if (reuse_print(&reuse, trace, stdout)) rc = cli_error(cmd, "%s", cj_last_error());
             }
         }
     }

@@ -1,5 +1,6 @@
 /* casteljau fit: a B-spline through (or near) points read from a file or standard input. */
 #include "bspline_json.h"
+#include "plot_json.h"
 #include "cli.h"
 #include "file_internal.h"
 
@@ -121,19 +122,6 @@ static int read_points(FILE *f, const char *name, double **out, int *npts, int *
     return 0;
 }
 
-static void write_doc(FILE *f, const cj_bspline *c, const double *data, int n, const char *title) {
-    fprintf(f, "{\"title\": \"%s\",\n \"items\": [\n", title);
-    bsp_json_write(f, c, "  ");
-    if (c->dim == 2) {
-        fprintf(f,
-                ",\n  {\"type\": \"points\", \"radius\": 2, \"color\": \"#d62728\", \"points\": [");
-        for (int i = 0; i < n; ++i)
-            fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", data[2 * i], data[2 * i + 1]);
-        fprintf(f, "]}");
-    }
-    fprintf(f, "\n]}\n");
-}
-
 /* fit --grid: the interpolating surface, written as its JSON object. */
 static int fit_grid(const double *data, int n, int dim, int nu, int nv, int degree,
                     cj_fit_param kind, const char *output) {
@@ -157,14 +145,15 @@ static int fit_grid(const double *data, int n, int dim, int nu, int nv, int degr
             if (cj_atomic_open(&f, output)) {
                 rc = cli_error("fit", "%s", cj_last_error());
             } else {
-                surface_json_write(f.fp, &s);
-                fputc('\n', f.fp);
-                if (cj_atomic_commit(&f)) rc = cli_error("fit", "%s", cj_last_error());
+                if (surface_json_write(f.fp, &s)) {
+                    rc = cli_error("fit", "%s", cj_last_error());
+                    cj_atomic_abandon(&f);
+                } else if (cj_atomic_commit(&f)) {
+                    rc = cli_error("fit", "%s", cj_last_error());
+                }
             }
         } else {
-            surface_json_write(stdout, &s);
-            putchar('\n');
-            if (fflush(stdout) != 0 || ferror(stdout))
+            if (surface_json_write(stdout, &s) || fflush(stdout) != 0 || ferror(stdout))
                 rc = cli_error("fit", "cannot write the output");
         }
     }
@@ -306,11 +295,16 @@ int cmd_fit(int argc, char **argv) {
             rc = cli_error("fit", "%s", cj_last_error());
             goto done;
         }
-        write_doc(f.fp, &c, data, n, title);
-        if (cj_atomic_commit(&f)) rc = cli_error("fit", "%s", cj_last_error());
+        if (plot_json_print_fit(f.fp, &c, data, n, title)) {
+            rc = cli_error("fit", "%s", cj_last_error());
+            cj_atomic_abandon(&f);
+        } else if (cj_atomic_commit(&f)) {
+            rc = cli_error("fit", "%s", cj_last_error());
+        }
     } else {
-        write_doc(stdout, &c, data, n, title);
-        if (fflush(stdout) != 0 || ferror(stdout)) rc = cli_error("fit", "cannot write the output");
+        if (plot_json_print_fit(stdout, &c, data, n, title) || fflush(stdout) != 0 ||
+            ferror(stdout))
+            rc = cli_error("fit", "cannot write the output");
     }
 done:
     free(data);

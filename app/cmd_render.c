@@ -42,7 +42,7 @@ int cmd_render(int argc, char **argv) {
     cli_scene_args a = {NULL, NULL, 0, 0, 0};
     const char *v;
     long n;
-    cj_render_options opt = cj_render_options_default();
+    cj_render_options opt = cj_render_options_defaults();
     int k, status;
     while (cli_next_arg(&ps, &k, &v, &status)) {
         switch (k) {
@@ -64,16 +64,9 @@ int cmd_render(int argc, char **argv) {
     cj_scene *scene = NULL;
     int exr, rc = cli_open_scene(cmd, &a, cj_render_demo_scene, &exr, &scene);
     if (rc) return rc;
-    cj_render_image *img = NULL;
-    cj_stage_report rep;
-    cj_renderer_options ro = cj_renderer_options_default();
+    cj_renderer_options ro = cj_renderer_options_defaults();
     ro.render = opt;
-    const double t0 = cli_now();
-    rc = cli_draw_scene(cmd, a.scene_path ? a.scene_path : "demo", ro, scene, CJ_BACKEND_RASTER, 0,
-                        1.0, &img, &rep);
-    cj_scene_destroy(scene);
-    if (rc) return rc;
-    return cli_finish_render(cmd, a.out, exr, img, a.report ? &rep : NULL, t0);
+    return cli_render_scene(cmd, &a, exr, scene, ro, CJ_BACKEND_RASTER, 0, 1.0, NULL);
 }
 
 #else

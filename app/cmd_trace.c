@@ -56,6 +56,12 @@ static void id_colour(uint32_t id, float c[3]) {
     c[2] = 0.15f + 0.85f * (float)((h >> 24) & 255) / 255.0f;
 }
 
+/* --signature: each object id its own colour; the background black. */
+static void colour_ids(cj_render_image *img) {
+    const size_t npx = (size_t)img->width * (size_t)img->height;
+    for (size_t i = 0; i < npx; ++i) id_colour(img->ids[i], img->rgba + 4 * i);
+}
+
 int cmd_trace(int argc, char **argv) {
     const char *cmd = "trace";
     enum { O_SIGNATURE = CLI_SO_COUNT, O_SPP, O_DEPTH, O_SEED, O_INDIRECT, O_INTEGRATOR };
@@ -69,7 +75,7 @@ int cmd_trace(int argc, char **argv) {
     const char *v;
     int signature = 0;
     long n;
-    cj_render_options opt = cj_render_options_default();
+    cj_render_options opt = cj_render_options_defaults();
     cj_trace_options topt;
     memset(&topt, 0, sizeof topt);
     int k, status;
@@ -122,26 +128,16 @@ int cmd_trace(int argc, char **argv) {
     if (rc) return rc;
     if (opt.max_depth < 0) {
         /* --max-depth 0: primary rays only; the options use 0 for "the scene's" */
-        cj_scene_settings s = *cj_scene_settings_get(scene);
+        cj_scene_settings s = *cj_scene_get_settings(scene);
         s.max_depth = 0;
         cj_scene_set_settings(scene, &s);
         opt.max_depth = 0;
     }
-    cj_render_image *img = NULL;
-    cj_stage_report rep;
-    cj_renderer_options ro = cj_renderer_options_default();
+    cj_renderer_options ro = cj_renderer_options_defaults();
     ro.render = opt;
     ro.trace = topt;
-    const double t0 = cli_now();
-    rc = cli_draw_scene(cmd, a.scene_path ? a.scene_path : "demo", ro, scene, CJ_BACKEND_TRACE,
-                        signature ? CJ_IMAGE_IDS : 0, 1.0 + topt.indirect_samples, &img, &rep);
-    cj_scene_destroy(scene);
-    if (rc) return rc;
-    if (signature) { /* each object id its own colour; the background black */
-        size_t npx = (size_t)img->width * (size_t)img->height;
-        for (size_t i = 0; i < npx; ++i) id_colour(img->ids[i], img->rgba + 4 * i);
-    }
-    return cli_finish_render(cmd, a.out, exr, img, a.report ? &rep : NULL, t0);
+    return cli_render_scene(cmd, &a, exr, scene, ro, CJ_BACKEND_TRACE, signature ? CJ_IMAGE_IDS : 0,
+                            1.0 + topt.indirect_samples, signature ? colour_ids : NULL);
 }
 
 #else

@@ -10,38 +10,17 @@
 #include "casteljau/scene_json.h"
 #include "casteljau/scene_textures.h"
 
-#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-#ifndef PATH_MAX
-#define PATH_MAX 4096
-#endif
-
-/* The folder of a path ("" for a bare name), into buf. */
-static const char *dir_of(const char *path, char *buf, size_t size) {
-    const char *slash = strrchr(path, '/');
-    if (!slash) return "";
-    size_t n = (size_t)(slash - path);
-    if (n >= size) n = size - 1;
-    memcpy(buf, path, n);
-    buf[n] = '\0';
-    return n ? buf : "/";
-}
-
 int cli_load_scene(const char *cmd, const char *path, cj_scene **out) {
     cj_scene_json_options jo = {cli_teapot_path()};
     cj_scene *scene = NULL;
-    cj_status st = cj_scene_load_json_ex(path, &jo, NULL, &scene);
-    char dir[PATH_MAX];
-    if (!st) st = cj_scene_load_textures(scene, dir_of(path, dir, sizeof dir));
-    if (st) {
-        cj_scene_destroy(scene);
-        return cli_fail_status(cmd, st, "%s", cj_last_error());
-    }
+    const cj_status st = cj_scene_load_with_textures(path, &jo, NULL, &scene);
+    if (st) return cli_fail_status(cmd, st, "%s", cj_last_error());
     *out = scene;
     return 0;
 }
@@ -74,8 +53,8 @@ int cli_write_render(const char *cmd, const char *out, int exr, const cj_render_
             memcpy(px + 4 * i, img->rgba + 4 * i, 3 * sizeof(float));
             px[4 * i + 3] = 1.0f;
         }
-        st = cj_image_write_float_ex(out, img->width, img->height, px, 0,
-                                     exr == 2 ? (unsigned)CJ_IMAGE_FLOAT_HALF : 0u);
+        st = cj_image_write_float_with_flags(out, img->width, img->height, px, 0,
+                                             exr == 2 ? (unsigned)CJ_IMAGE_FLOAT_HALF : 0u);
         free(px);
     } else {
         uint8_t *px = malloc(n * 4);
@@ -170,4 +149,18 @@ int cli_finish_render(const char *cmd, const char *out, int exr, cj_render_image
     if (report && cj_stage_report_json(report, stdout))
         return cli_error(cmd, "%s", cj_last_error());
     return 0;
+}
+
+int cli_render_scene(const char *cmd, const cli_scene_args *a, int exr, cj_scene *scene,
+                     cj_renderer_options ro, cj_backend backend, unsigned planes, double ray_factor,
+                     void (*touch)(cj_render_image *img)) {
+    cj_render_image *img = NULL;
+    cj_stage_report rep;
+    const double t0 = cli_now();
+    const int rc = cli_draw_scene(cmd, a->scene_path ? a->scene_path : "demo", ro, scene, backend,
+                                  planes, ray_factor, &img, &rep);
+    cj_scene_destroy(scene);
+    if (rc) return rc;
+    if (touch) touch(img);
+    return cli_finish_render(cmd, a->out, exr, img, a->report ? &rep : NULL, t0);
 }

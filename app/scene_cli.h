@@ -80,4 +80,13 @@ int cli_draw_scene(const char *cmd, const char *name, cj_renderer_options ro, co
                    cj_backend backend, unsigned planes, double ray_factor, cj_render_image **img,
                    cj_stage_report *rep);
 
+/* The whole second half of render and trace, written once: draws the scene opened by
+ * cli_open_scene with a renderer made from ro (cli_draw_scene), destroys the scene, hands the
+ * image to `touch` when not NULL (trace --signature recolours the object ids), then
+ * cli_finish_render (the file, the summary line, the stage report when --stage-report).
+ * Returns the command's exit status. */
+int cli_render_scene(const char *cmd, const cli_scene_args *a, int exr, cj_scene *scene,
+                     cj_renderer_options ro, cj_backend backend, unsigned planes, double ray_factor,
+                     void (*touch)(cj_render_image *img));
+
 #endif

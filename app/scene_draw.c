@@ -15,7 +15,7 @@
 int cli_draw_scene(const char *cmd, const char *name, cj_renderer_options ro, const cj_scene *scene,
                    cj_backend backend, unsigned planes, double ray_factor, cj_render_image **img,
                    cj_stage_report *rep) {
-    const cj_scene_settings *s = cj_scene_settings_get(scene);
+    const cj_scene_settings *s = cj_scene_get_settings(scene);
     const int w = ro.render.width ? ro.render.width : s->width;
     const int h = ro.render.height ? ro.render.height : s->height;
     const int spp = ro.render.spp ? ro.render.spp : s->spp;

@@ -1,7 +1,9 @@
 /* B-spline / NURBS surfaces in the tool's JSON. See surface_json.h. */
 #include "surface_json.h"
 
+#include "error_internal.h"
 #include "file_internal.h"
+#include "json_write_internal.h"
 
 #include <cJSON.h>
 #include <math.h>
@@ -186,22 +188,32 @@ void surface_json_free(surface_patches *s) {
     memset(s, 0, sizeof *s);
 }
 
-static void list(FILE *f, const char *key, const double *v, int n) {
-    fprintf(f, " \"%s\": [", key);
-    for (int i = 0; i < n; ++i) fprintf(f, "%s%.17g", i ? ", " : "", v[i]);
-    fprintf(f, "],\n");
+static int add(cJSON *obj, const char *key, cJSON *item) {
+    if (item && cJSON_AddItemToObject(obj, key, item)) return 0;
+    cJSON_Delete(item);
+    return -1;
 }
 
-void surface_json_write(FILE *f, const cj_bspline_surface *s) {
-    fprintf(f, "{\"type\": \"%s\", \"degree\": [%d, %d], \"size\": [%d, %d],\n",
-            s->weights ? "nurbs_surface" : "bspline_surface", s->deg_u, s->deg_v, s->npts_u,
-            s->npts_v);
-    list(f, "knots_u", s->knots_u, s->npts_u + s->deg_u + 1);
-    list(f, "knots_v", s->knots_v, s->npts_v + s->deg_v + 1);
-    if (s->weights) list(f, "weights", s->weights, s->npts_u * s->npts_v);
-    fprintf(f, " \"points\": [");
-    for (int i = 0; i < s->npts_u * s->npts_v; ++i)
-        fprintf(f, "%s[%.17g, %.17g, %.17g]", i ? ",\n  " : "\n  ", s->pts[3 * i],
-                s->pts[3 * i + 1], s->pts[3 * i + 2]);
-    fprintf(f, "]}");
+int surface_json_write(FILE *f, const cj_bspline_surface *s) {
+    const int n = s->npts_u * s->npts_v;
+    const double degree[2] = {s->deg_u, s->deg_v}, size[2] = {s->npts_u, s->npts_v};
+    cJSON *root = cJSON_CreateObject(), *pts = cj_json_point_array(s->pts, (size_t)n, 3);
+    int bad =
+        !root || !pts ||
+        add(root, "type", cJSON_CreateString(s->weights ? "nurbs_surface" : "bspline_surface")) ||
+        add(root, "degree", cj_json_number_array(degree, 2)) ||
+        add(root, "size", cj_json_number_array(size, 2)) ||
+        add(root, "knots_u",
+            cj_json_number_array(s->knots_u, (size_t)(s->npts_u + s->deg_u + 1))) ||
+        add(root, "knots_v", cj_json_number_array(s->knots_v, (size_t)(s->npts_v + s->deg_v + 1)));
+    if (!bad && s->weights) bad = add(root, "weights", cj_json_number_array(s->weights, (size_t)n));
+    if (!bad) {
+        bad = add(root, "points", pts); /* takes pts, also on failure */
+        pts = NULL;
+    }
+    const cj_status st = bad ? cj_fail(CJ_ERR_NOMEM, "fit: out of memory writing the surface")
+                             : cj_json_print(root, 1, f, "fit");
+    cJSON_Delete(pts);
+    cJSON_Delete(root);
+    return st ? -1 : 0;
 }

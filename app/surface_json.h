@@ -23,7 +23,8 @@ int surface_json_load(const char *path, surface_patches *out, char *why, size_t 
                       int *nomem);
 void surface_json_free(surface_patches *s);
 
-/* Writes the surface object (no trailing newline). */
-void surface_json_write(FILE *f, const cj_bspline_surface *s);
+/* Prints the surface object with cJSON's printer (a newline after it), numbers in their
+ * shortest exact form. 0, or -1 with cj_last_error() explaining (out of memory, a write error). */
+int surface_json_write(FILE *f, const cj_bspline_surface *s);
 
 #endif

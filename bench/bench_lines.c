@@ -103,8 +103,8 @@ static cairo_t *g_cairo;
 /* Draws lines [0, n) of the pool with method m; returns seconds. */
 static double run(cj_framebuffer *fb, int m, long long n) {
     cj_rgba opaque = cj_rgba_make(20, 40, 200, 255), half = cj_rgba_make(200, 40, 20, 128);
-    cj_raster_rect clip = cj_raster_rect_of(fb);
-    cj_raster_stroke st = cj_raster_stroke_default(m == M_STROKE1 ? 1 : m == M_STROKE3 ? 3 : 10);
+    cj_line_rect clip = cj_line_rect_of(fb);
+    cj_line_stroke st = cj_line_stroke_defaults(m == M_STROKE1 ? 1 : m == M_STROKE3 ? 3 : 10);
 #ifdef CJ_HAVE_CAIRO
     if (m >= M_CAIRO1) {
         cairo_set_line_width(g_cairo, m == M_CAIRO1 ? 1 : m == M_CAIRO3 ? 3 : 10);
@@ -127,23 +127,23 @@ static double run(cj_framebuffer *fb, int m, long long n) {
         switch (m) {
         case M_BRES:
         case M_BRES_PAD:
-            cj_raster_line(fb, s->x0, s->y0, s->x1, s->y1, opaque);
+            cj_line_draw(fb, s->x0, s->y0, s->x1, s->y1, opaque);
             break;
         case M_BRES_BLEND:
-            cj_raster_line(fb, s->x0, s->y0, s->x1, s->y1, half);
+            cj_line_draw(fb, s->x0, s->y0, s->x1, s->y1, half);
             break;
         case M_VISIT:
-            cj_raster_line_visit(s->x0, s->y0, s->x1, s->y1, clip, count_pixel, &cnt, NULL);
+            cj_line_visit(s->x0, s->y0, s->x1, s->y1, clip, count_pixel, &cnt, NULL);
             break;
         case M_WU:
         case M_WU_PAD:
-            cj_raster_line_aa(fb, (double)s->x0 + 0.3, (double)s->y0 + 0.6, (double)s->x1 + 0.7,
-                              (double)s->y1 + 0.2, opaque);
+            cj_line_draw_aa(fb, (double)s->x0 + 0.3, (double)s->y0 + 0.6, (double)s->x1 + 0.7,
+                            (double)s->y1 + 0.2, opaque);
             break;
         default: {
             cj_vec2 p[2] = {{(double)s->x0 + 0.5, (double)s->y0 + 0.5},
                             {(double)s->x1 + 0.5, (double)s->y1 + 0.5}};
-            cj_raster_stroke_polyline(fb, p, 2, 0, &st, opaque);
+            cj_line_stroke_polyline(fb, p, 2, 0, &st, opaque);
         }
         }
     }
@@ -171,8 +171,8 @@ int main(int argc, char **argv) {
 #endif
     /* Warm the stroke scratch (allocated on first use). */
     cj_vec2 w[2] = {{1, 1}, {2, 2}};
-    cj_raster_stroke ws = cj_raster_stroke_default(1);
-    cj_raster_stroke_polyline(fb, w, 2, 0, &ws, cj_rgba_make(0, 0, 0, 255));
+    cj_line_stroke ws = cj_line_stroke_defaults(1);
+    cj_line_stroke_polyline(fb, w, 2, 0, &ws, cj_rgba_make(0, 0, 0, 255));
 
     const int lengths[] = {4, 16, 64, 256, 1000};
     printf("bench_lines: %dx%d RGBA8, pool of %d random lines per length (all octants mixed), "
@@ -221,21 +221,21 @@ int main(int argc, char **argv) {
         long long n = 200000, visited = 0;
         double t0 = cj_bench_thread_cpu();
         for (long long i = 0; i < n; ++i)
-            cj_raster_line(fb, -1000000000LL, -1000000000LL + (i & 7), 1000000000LL, 1000000000LL,
-                           cj_rgba_make(0, 0, 0, 255));
+            cj_line_draw(fb, -1000000000LL, -1000000000LL + (i & 7), 1000000000LL, 1000000000LL,
+                         cj_rgba_make(0, 0, 0, 255));
         double t = cj_bench_thread_cpu() - t0;
-        cj_raster_line_visit(-1000000000LL, -1000000000LL, 1000000000LL, 1000000000LL,
-                             cj_raster_rect_of(fb), count_pixel, &visited, NULL);
+        cj_line_visit(-1000000000LL, -1000000000LL, 1000000000LL, 1000000000LL, cj_line_rect_of(fb),
+                      count_pixel, &visited, NULL);
         printf("\nclipped (-1e9,-1e9)-(1e9,1e9): %lld visible pixels, %.0f ns per line "
                "(%.1f Mpx/s of visible pixels)\n",
                visited, t / (double)n * 1e9, (double)n * (double)visited / t * 1e-6);
         long long c = 0;
         cj_vec2 p[2] = {{-1e9, -1e9}, {1e9, 1e9}};
-        cj_raster_stroke st = cj_raster_stroke_default(3);
+        cj_line_stroke st = cj_line_stroke_defaults(3);
         n = 2000;
         t0 = cj_bench_thread_cpu();
         for (long long i = 0; i < n; ++i)
-            cj_raster_stroke_polyline(fb, p, 2, 0, &st, cj_rgba_make(0, 0, 0, 255));
+            cj_line_stroke_polyline(fb, p, 2, 0, &st, cj_rgba_make(0, 0, 0, 255));
         t = cj_bench_thread_cpu() - t0;
         (void)count_cover;
         printf("clipped stroke w=3 (-1e9,-1e9)-(1e9,1e9): %.1f us per stroke\n",

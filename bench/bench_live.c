@@ -29,8 +29,8 @@ typedef struct cj_renderer_options {
     cj_render_options render;
 } cj_renderer_options;
 enum { CJ_BACKEND_RASTER };
-static cj_renderer_options cj_renderer_options_default(void) {
-    cj_renderer_options o = {cj_render_options_default()};
+static cj_renderer_options cj_renderer_options_defaults(void) {
+    cj_renderer_options o = {cj_render_options_defaults()};
     return o;
 }
 static cj_status cj_renderer_create(const cj_renderer_options *o, const void *a, cj_renderer **r) {
@@ -72,7 +72,7 @@ static void die(const char *what) {
 static cj_scene *teapot(void) {
     cj_scene *s = NULL;
     if (cj_render_demo_scene(CJ_TEAPOT_PATH, NULL, &s)) die("demo scene");
-    cj_scene_settings set = *cj_scene_settings_get(s);
+    cj_scene_settings set = *cj_scene_get_settings(s);
     set.width = 1024;
     set.height = 1024;
     set.spp = 1;
@@ -144,8 +144,8 @@ static int print_stages = 0; /* `stages`: the last renderer frame's stage report
 static void run(int workload, int renderer, int frames, int threads) {
     cj_scene *s = teapot();
     double *pt = drag_point(s);
-    cj_camera cam0 = *cj_scene_camera(s);
-    cj_renderer_options ro = cj_renderer_options_default();
+    cj_camera cam0 = *cj_scene_get_camera(s);
+    cj_renderer_options ro = cj_renderer_options_defaults();
     ro.render.threads = threads;
     cj_renderer *r = NULL;
     if (renderer && cj_renderer_create(&ro, NULL, &r)) die("renderer");
@@ -183,8 +183,8 @@ static void run(int workload, int renderer, int frames, int threads) {
 static int callgrind(int workload, int renderer, int frames) {
     cj_scene *s = teapot();
     double *pt = drag_point(s);
-    cj_camera cam0 = *cj_scene_camera(s);
-    cj_renderer_options ro = cj_renderer_options_default();
+    cj_camera cam0 = *cj_scene_get_camera(s);
+    cj_renderer_options ro = cj_renderer_options_defaults();
     ro.render.threads = 1;
     cj_renderer *r = NULL;
     if (renderer && cj_renderer_create(&ro, NULL, &r)) die("renderer");

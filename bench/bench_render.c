@@ -78,7 +78,7 @@ static cj_scene *teapot(cj_shading shading, int textured, int transparent_sphere
         m->color = cj_rgb_make(0.8, 0.3, 0.2);
     }
     if (transparent_sphere) {
-        cj_material g = cj_material_default();
+        cj_material g = cj_material_defaults();
         g.opacity = 0.4;
         g.color = cj_rgb_make(0.3, 0.5, 0.9);
         int mi, gi;
@@ -88,7 +88,7 @@ static cj_scene *teapot(cj_shading shading, int textured, int transparent_sphere
         geo.u.sphere.center = cj_v3(0.8, 1.2, 2.2);
         geo.u.sphere.radius = 1.0;
         if (cj_scene_add_material(s, &g, &mi) || cj_scene_add_geometry(s, &geo, &gi)) exit(1);
-        cj_node n = cj_render_node(gi, mi);
+        cj_node n = cj_node_defaults(gi, mi);
         if (cj_scene_add_node(s, &n, NULL)) exit(1);
     }
     return s;
@@ -102,7 +102,7 @@ typedef struct run_result {
 /* Median over `reps` renders of the wall time per frame (and the stage report of the median). */
 static run_result measure(const cj_scene *s, int w, int spp, int threads, int reps,
                           cj_render_cache *cache) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.cache = cache;
     o.width = o.height = w;
     o.spp = spp;
@@ -153,7 +153,7 @@ static void peak_memory(void) {
     pid_t pid = fork();
     if (pid == 0) {
         cj_scene *s = teapot(CJ_SHADE_PHONG, 1, 0);
-        cj_render_options o = cj_render_options_default();
+        cj_render_options o = cj_render_options_defaults();
         o.width = o.height = 4096;
         o.spp = 16;
         cj_render_image *img = NULL;
@@ -178,18 +178,18 @@ static void peak_memory(void) {
 static int one_frame(int unused) {
     cj_scene *s = teapot(CJ_SHADE_PHONG, 0, 0);
     if (unused) {
-        cj_texture t = cj_texture_default(CJ_TEX_CHECKER);
-        cj_material m = cj_material_default();
+        cj_texture t = cj_texture_defaults(CJ_TEX_CHECKER);
+        cj_material m = cj_material_defaults();
         m.opacity = 0.5;
-        cj_light l = cj_light_default(CJ_LIGHT_SPOT);
+        cj_light l = cj_light_defaults(CJ_LIGHT_SPOT);
         l.intensity = 0.0;
-        cj_light a = cj_light_default(CJ_LIGHT_AMBIENT);
+        cj_light a = cj_light_defaults(CJ_LIGHT_AMBIENT);
         a.intensity = 0.0;
         if (cj_scene_add_texture(s, &t, NULL) || cj_scene_add_material(s, &m, NULL) ||
             cj_scene_add_light(s, &l, NULL) || cj_scene_add_light(s, &a, NULL))
             return 1;
     }
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = o.height = 256;
     o.spp = 1;
     o.threads = 1;

@@ -47,21 +47,21 @@ static void die(const char *what) {
 static cj_scene *teapot_scene(int size, double tol_px, const cj_mesh *mesh) {
     cj_scene *sc = NULL;
     if (cj_scene_create(NULL, &sc) != CJ_OK) die("scene");
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(5.0, -6.5, 4.5);
     cam.gaze = cj_v3_sub(cj_v3(0.2, 0.0, 1.4), cam.eye);
     cam.up = cj_v3(0, 0, 1);
     cam.near = -0.5;
     cam.far = -50.0;
     cam.fov_y = 34.0 * M_PI / 180.0;
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.width = set.height = size;
     set.spp = 1;
     set.tol_px = tol_px;
     set.background = cj_rgb_make(0.05, 0.05, 0.1);
     if (cj_scene_set_camera(sc, &cam) || cj_scene_set_settings(sc, &set)) die("camera");
-    cj_light l[3] = {cj_light_default(CJ_LIGHT_AMBIENT), cj_light_default(CJ_LIGHT_POINT),
-                     cj_light_default(CJ_LIGHT_DIRECTIONAL)};
+    cj_light l[3] = {cj_light_defaults(CJ_LIGHT_AMBIENT), cj_light_defaults(CJ_LIGHT_POINT),
+                     cj_light_defaults(CJ_LIGHT_DIRECTIONAL)};
     l[0].intensity = 0.2;
     l[1].position = cj_v3(4.0, -3.0, 7.0);
     l[1].intensity = 0.7;
@@ -69,7 +69,7 @@ static cj_scene *teapot_scene(int size, double tol_px, const cj_mesh *mesh) {
     l[2].intensity = 0.4;
     for (int i = 0; i < 3; i++)
         if (cj_scene_add_light(sc, &l[i], NULL)) die("light");
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = cj_rgb_make(0.8, 0.6, 0.4);
     m.shading = CJ_SHADE_PHONG;
     int mi = -1, gi = -1;
@@ -88,7 +88,7 @@ static cj_scene *teapot_scene(int size, double tol_px, const cj_mesh *mesh) {
     }
     if (cj_scene_add_geometry(sc, &g, &gi)) die("geometry");
     cj_patchset_destroy(ps);
-    cj_node n = cj_render_node(gi, mi);
+    cj_node n = cj_node_defaults(gi, mi);
     if (cj_scene_add_node(sc, &n, NULL)) die("node");
     return sc;
 }
@@ -109,7 +109,7 @@ enum { OURS_PATCHES, OURS_WARM, OURS_MESH, VTK_RENDER, VTK_READ, NCOL };
 
 static void run(int threads, int size, int reps, double tol_px) {
     cj_scene *sc = teapot_scene(size, tol_px, NULL);
-    cj_render_options opt = cj_render_options_default();
+    cj_render_options opt = cj_render_options_defaults();
     opt.threads = threads;
     cj_mesh *mesh = NULL;
     if (cj_render_scene_mesh(sc, &opt, NULL, &mesh)) die("cj_render_scene_mesh");

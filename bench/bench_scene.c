@@ -28,7 +28,7 @@ static void load_scene(const char *name) {
     for (int r = 0; r < REPS; ++r) {
         cj_scene *s;
         double t0 = cj_bench_thread_cpu();
-        if (cj_scene_load_json_ex(path, &opt, NULL, &s)) {
+        if (cj_scene_load_json_with_options(path, &opt, NULL, &s)) {
             fprintf(stderr, "%s\n", cj_last_error());
             exit(1);
         }
@@ -95,7 +95,7 @@ int main(int argc, char **argv) {
     memset(&g, 0, sizeof g);
     g.kind = CJ_GEOM_MESH;
     g.u.mesh = m;
-    cj_material mat = cj_material_default();
+    cj_material mat = cj_material_defaults();
     int gi, mi;
     cj_scene_add_geometry(s, &g, &gi);
     cj_scene_add_material(s, &mat, &mi);

@@ -183,7 +183,7 @@ static void embree_teapot(const cj_mesh *m, cj_bvh *ours) {
 
 static void tracer_run(const char *name, cj_scene *sc, int w, int h) {
     for (int th = 1; th <= 2; th++) {
-        cj_render_options o = cj_render_options_default();
+        cj_render_options o = cj_render_options_defaults();
         o.width = w;
         o.height = h;
         o.threads = th;
@@ -219,22 +219,22 @@ static void tracer_run(const char *name, cj_scene *sc, int w, int h) {
 static void rmse_vs_spp(void) {
     cj_scene *sc;
     if (cj_scene_create(NULL, &sc)) return;
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(0, 3, 6);
     cam.gaze = cj_v3(0, -2.5, -6);
     cj_scene_set_camera(sc, &cam);
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.width = 64;
     set.height = 48;
     cj_scene_set_settings(sc, &set);
-    cj_light amb = cj_light_default(CJ_LIGHT_AMBIENT), area = cj_light_default(CJ_LIGHT_AREA);
+    cj_light amb = cj_light_defaults(CJ_LIGHT_AMBIENT), area = cj_light_defaults(CJ_LIGHT_AREA);
     amb.intensity = 0.2;
     area.position = cj_v3(-1.5, 4, -1.5);
     area.edge_u = cj_v3(3, 0, 0);
     area.edge_v = cj_v3(0, 0, 3);
     cj_scene_add_light(sc, &amb, NULL);
     cj_scene_add_light(sc, &area, NULL);
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     int im, g1, g2;
     cj_scene_add_material(sc, &m, &im);
     cj_geometry g;
@@ -259,7 +259,7 @@ static void rmse_vs_spp(void) {
     cj_scene_add_node(sc, &n, NULL);
     n.geometry = g2;
     cj_scene_add_node(sc, &n, NULL);
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.threads = 2;
     o.spp = 1024;
     cj_render_image *ref;
@@ -276,7 +276,7 @@ static void rmse_vs_spp(void) {
             o.seed = 777;
             cj_render_image *img;
             double t0 = cj_bench_wall();
-            if (cj_render_trace_ex(sc, &o, &to, 0, NULL, &img, NULL)) break;
+            if (cj_render_trace_with_options(sc, &o, &to, 0, NULL, &img, NULL)) break;
             double dt = cj_bench_wall() - t0, e = 0;
             size_t np = 64 * 48;
             for (size_t i = 0; i < np; i++)

@@ -21,7 +21,7 @@
 
 static int trace(const cj_scene *sc, int w, int h, int spp, int threads, double ptol, int random,
                  cj_render_image **img, double *ms) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = w;
     o.height = h;
     o.spp = spp;
@@ -30,7 +30,7 @@ static int trace(const cj_scene *sc, int w, int h, int spp, int threads, double 
     o.seed = 777;
     cj_trace_options to = {random, ptol, 0, 0};
     double t0 = cj_bench_wall();
-    if (cj_render_trace_ex(sc, &o, &to, 0, NULL, img, NULL)) {
+    if (cj_render_trace_with_options(sc, &o, &to, 0, NULL, img, NULL)) {
         printf("  trace failed: %s\n", cj_last_error());
         return 1;
     }
@@ -88,7 +88,7 @@ void bench_trace_rmse_shipped(const char *scene_json, const char *teapot_bpt) {
     const int W = 96, H = 72, REF = 1024;
     cj_scene_json_options jo = {teapot_bpt};
     cj_scene *sc;
-    if (cj_scene_load_json_ex(scene_json, &jo, NULL, &sc)) {
+    if (cj_scene_load_json_with_options(scene_json, &jo, NULL, &sc)) {
         printf("\n(cannot load %s: %s)\n", scene_json, cj_last_error());
         return;
     }
@@ -140,16 +140,16 @@ static const pov_ball balls[5] = {
 static cj_scene *pov_scene_ours(void) {
     cj_scene *sc;
     if (cj_scene_create(NULL, &sc)) return NULL;
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(0, 2.5, 9);
     cam.gaze = cj_v3(0, -1.5, -9);
     cam.fov_y = 40 * 3.14159265358979323846 / 180;
     cam.far = -200;
     cj_scene_set_camera(sc, &cam);
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.background = (cj_rgb){0.05, 0.06, 0.09};
     cj_scene_set_settings(sc, &set);
-    cj_light amb = cj_light_default(CJ_LIGHT_AMBIENT), pt = cj_light_default(CJ_LIGHT_POINT);
+    cj_light amb = cj_light_defaults(CJ_LIGHT_AMBIENT), pt = cj_light_defaults(CJ_LIGHT_POINT);
     amb.intensity = 1.0;
     pt.position = cj_v3(-4, 7, 5);
     pt.intensity = 1.0;
@@ -163,7 +163,7 @@ static cj_scene *pov_scene_ours(void) {
     n.visible = 1;
     n.overlay.iso_count = 1;
     n.overlay.normal_length = 0.1;
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = (cj_rgb){0.8, 0.8, 0.8};
     m.ka = 0.1;
     m.kd = 0.7;
@@ -268,7 +268,7 @@ void bench_trace_povray(void) {
             double t0 = cj_bench_wall();
             if (system(cmd) != 0) ok = 0;
             tp[r] = 1e3 * (cj_bench_wall() - t0);
-            cj_render_options o = cj_render_options_default();
+            cj_render_options o = cj_render_options_defaults();
             o.width = W;
             o.height = H;
             o.spp = 1;

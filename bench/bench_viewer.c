@@ -70,7 +70,7 @@ static int replay_drag(int frames) {
     cj_scene *s = NULL;
     if (cj_render_demo_scene(CJ_TEAPOT_PATH, NULL, &s))
         return fprintf(stderr, "%s\n", cj_last_error()), 1;
-    cj_scene_settings set = *cj_scene_settings_get(s);
+    cj_scene_settings set = *cj_scene_get_settings(s);
     set.width = W, set.height = H, set.spp = 1, set.tol_px = 0.25;
     cj_scene_set_settings(s, &set);
     /* In-process reference: cj_render_raster alone (2 threads), median of 5. */
@@ -78,7 +78,7 @@ static int replay_drag(int frames) {
     size_t tris = 0;
     float *depth = malloc((size_t)W * H * sizeof *depth);
     for (int i = 0; i < 5; ++i) {
-        cj_render_options ro = cj_render_options_default();
+        cj_render_options ro = cj_render_options_defaults();
         ro.threads = 2;
         cj_render_image *img = NULL;
         cj_stage_report rep;
@@ -92,7 +92,7 @@ static int replay_drag(int frames) {
         cj_render_image_destroy(img);
     }
     /* A visible control point near the middle of the picture: the one the viewer picks. */
-    const cj_camera cam0 = *cj_scene_camera(s);
+    const cj_camera cam0 = *cj_scene_get_camera(s);
     cj_vscene *vs = NULL;
     if (cj_vscene_create(s, &vs)) return fprintf(stderr, "%s\n", cj_last_error()), 1;
     size_t picked = 0;
@@ -166,10 +166,10 @@ static int replay_drag(int frames) {
         cj_scene *m = NULL;
         cj_vscene *vm = NULL;
         cj_vec3 end;
-        if (cj_scene_load_json_ex(saved, &jo, NULL, &m) || cj_vscene_create(m, &vm) ||
+        if (cj_scene_load_json_with_options(saved, &jo, NULL, &m) || cj_vscene_create(m, &vm) ||
             cj_vscene_point(vm, picked, &end) ||
             cj_v3_norm(cj_v3_sub(end, start)) > 1e-9 * cj_v3_norm(start) + 1e-12 ||
-            memcmp(cj_scene_camera(cj_vscene_scene(vm)), &cam0, sizeof cam0))
+            memcmp(cj_scene_get_camera(cj_vscene_scene(vm)), &cam0, sizeof cam0))
             return fprintf(stderr, "bench_viewer: the replay did not drag point %zu\n", picked), 1;
         cj_vscene_destroy(vm);
         unlink(saved);
@@ -250,7 +250,7 @@ static int xdo(const char *cmd) {
 static int visible_point(int w, int h, double fx, double fy, int *x, int *y) {
     cj_scene *s = NULL;
     if (cj_render_demo_scene(CJ_TEAPOT_PATH, NULL, &s)) return 1;
-    cj_render_options ro = cj_render_options_default();
+    cj_render_options ro = cj_render_options_defaults();
     ro.spp = 1;
     cj_render_image *img = NULL;
     if (cj_render_raster(s, &ro, CJ_IMAGE_DEPTH, NULL, &img, NULL)) return 1;

@@ -23,25 +23,25 @@ static void check(cj_status st, const char *what) {
 static cj_scene *make_scene(void) {
     cj_scene *s = NULL;
     check(cj_scene_create(NULL, &s), "scene");
-    cj_camera cam = cj_camera_default(); /* at (0, 0, 5) looking at the origin */
+    cj_camera cam = cj_camera_defaults(); /* at (0, 0, 5) looking at the origin */
     check(cj_scene_set_camera(s, &cam), "camera");
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.width = 160;
     set.height = 120;
     check(cj_scene_set_settings(s, &set), "settings");
-    cj_light key = cj_light_default(CJ_LIGHT_POINT);
+    cj_light key = cj_light_defaults(CJ_LIGHT_POINT);
     key.position = (cj_vec3){2.0, 3.0, 6.0};
     check(cj_scene_add_light(s, &key, NULL), "light");
     cj_geometry ball;
     memset(&ball, 0, sizeof ball);
     ball.kind = CJ_GEOM_SPHERE;
     ball.u.sphere.radius = 0.5;
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = cj_rgb_make(0.9, 0.6, 0.1);
     int gi, mi;
     check(cj_scene_add_geometry(s, &ball, &gi), "geometry");
     check(cj_scene_add_material(s, &m, &mi), "material");
-    cj_node node = cj_render_node(gi, mi);
+    cj_node node = cj_node_defaults(gi, mi);
     node.name = "ball";
     check(cj_scene_add_node(s, &node, NULL), "node");
     return s;
@@ -70,7 +70,7 @@ int main(int argc, char **argv) {
 
     cj_render_cache *cache = NULL; /* lives across frames: unchanged meshes are reused */
     check(cj_render_cache_create(NULL, &cache), "cache");
-    cj_render_options opt = cj_render_options_default();
+    cj_render_options opt = cj_render_options_defaults();
     opt.cache = cache;
     for (int f = 0; f < frames; f++) {
         double t = (double)f / (frames - 1);

@@ -20,7 +20,7 @@ static int add_object(cj_scene *s, const cj_geometry *g, const cj_material *m) {
     int gi, mi, ni;
     check(cj_scene_add_geometry(s, g, &gi), "geometry"); /* the scene copies the geometry */
     check(cj_scene_add_material(s, m, &mi), "material");
-    cj_node node = cj_render_node(gi, mi); /* no parent, identity transform, visible */
+    cj_node node = cj_node_defaults(gi, mi); /* no parent, identity transform, visible */
     check(cj_scene_add_node(s, &node, &ni), "node");
     return ni;
 }
@@ -30,20 +30,20 @@ int main(int argc, char **argv) {
     cj_scene *s = NULL;
     check(cj_scene_create(NULL, &s), "scene");
 
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = (cj_vec3){0.0, 2.0, 6.0};
     cam.gaze = (cj_vec3){0.0, -1.6, -6.0}; /* towards (0, 0.4, 0) */
     check(cj_scene_set_camera(s, &cam), "camera");
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.width = 320;
     set.height = 240;
     set.spp = 4;
     set.background = cj_rgb_make(0.05, 0.06, 0.1);
     check(cj_scene_set_settings(s, &set), "settings");
 
-    cj_light ambient = cj_light_default(CJ_LIGHT_AMBIENT);
+    cj_light ambient = cj_light_defaults(CJ_LIGHT_AMBIENT);
     ambient.intensity = 0.3;
-    cj_light key = cj_light_default(CJ_LIGHT_POINT);
+    cj_light key = cj_light_defaults(CJ_LIGHT_POINT);
     key.position = (cj_vec3){4.0, 6.0, 5.0};
     check(cj_scene_add_light(s, &ambient, NULL), "light");
     check(cj_scene_add_light(s, &key, NULL), "light");
@@ -53,7 +53,7 @@ int main(int argc, char **argv) {
     sphere.kind = CJ_GEOM_SPHERE;
     sphere.u.sphere.center = (cj_vec3){-1.0, 0.8, 0.0};
     sphere.u.sphere.radius = 0.8;
-    cj_material red = cj_material_default();
+    cj_material red = cj_material_defaults();
     red.color = cj_rgb_make(0.85, 0.15, 0.1);
     add_object(s, &sphere, &red);
 
@@ -73,7 +73,7 @@ int main(int argc, char **argv) {
     wave.kind = CJ_GEOM_PATCHES;
     wave.u.patches.count = 1;
     wave.u.patches.patches = &patch;
-    cj_material blue = cj_material_default();
+    cj_material blue = cj_material_defaults();
     blue.color = cj_rgb_make(0.2, 0.4, 0.9);
     blue.two_sided = 1; /* an open surface: both sides show */
     add_object(s, &wave, &blue);
@@ -84,12 +84,12 @@ int main(int argc, char **argv) {
     check(cj_planar_patch_init(&floor.u.planar, (cj_vec3){-4, 0, 4}, (cj_vec3){8, 0, 0},
                                (cj_vec3){0, 0, -8}),
           "floor");
-    cj_material grey = cj_material_default();
+    cj_material grey = cj_material_defaults();
     grey.ks = 0.05;
     add_object(s, &floor, &grey);
 
     /* Render (linear float RGBA, bottom row first), convert once to 8-bit sRGB, write. */
-    cj_render_options opt = cj_render_options_default(); /* all zero: the scene's settings */
+    cj_render_options opt = cj_render_options_defaults(); /* all zero: the scene's settings */
     cj_render_image *img = NULL;
     check(cj_render_raster(s, &opt, 0, NULL, &img, NULL), "render");
     uint8_t *rgba = malloc((size_t)img->width * img->height * 4);

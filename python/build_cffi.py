@@ -112,7 +112,7 @@ typedef struct cj_camera {
     cj_projection projection; double fov_y; double ortho_height;
     ...;
 } cj_camera;
-cj_camera cj_camera_default(void);
+cj_camera cj_camera_defaults(void);
 typedef enum cj_light_kind {
     CJ_LIGHT_AMBIENT, CJ_LIGHT_POINT, CJ_LIGHT_DIRECTIONAL, CJ_LIGHT_SPOT, CJ_LIGHT_AREA
 } cj_light_kind;
@@ -120,13 +120,13 @@ typedef struct cj_light {
     cj_light_kind kind; cj_rgb color; double intensity; cj_vec3 position; cj_vec3 direction;
     ...;
 } cj_light;
-cj_light cj_light_default(cj_light_kind kind);
+cj_light cj_light_defaults(cj_light_kind kind);
 typedef struct cj_material {
     cj_rgb color; cj_rgb specular; double ka; double kd; double ks; double alpha;
     int two_sided; double opacity; double mirror; double transmission; double ior;
     ...;
 } cj_material;
-cj_material cj_material_default(void);
+cj_material cj_material_defaults(void);
 typedef enum cj_geometry_kind { CJ_GEOM_PATCHES, CJ_GEOM_SPHERE, ... } cj_geometry_kind;
 typedef struct cj_geometry { cj_geometry_kind kind; ...; } cj_geometry;
 typedef struct cj_transform { cj_vec3 translate; double rotation[4]; cj_vec3 scale; ...; }
@@ -141,9 +141,9 @@ typedef struct cj_scene cj_scene;
 cj_status cj_scene_create(const cj_allocator *alloc, cj_scene **out);
 void cj_scene_destroy(cj_scene *scene);
 cj_status cj_scene_set_camera(cj_scene *scene, const cj_camera *cam);
-const cj_camera *cj_scene_camera(const cj_scene *scene);
+const cj_camera *cj_scene_get_camera(const cj_scene *scene);
 cj_status cj_scene_set_settings(cj_scene *scene, const cj_scene_settings *s);
-const cj_scene_settings *cj_scene_settings_get(const cj_scene *scene);
+const cj_scene_settings *cj_scene_get_settings(const cj_scene *scene);
 cj_status cj_scene_add_light(cj_scene *scene, const cj_light *light, int *index);
 cj_status cj_scene_add_material(cj_scene *scene, const cj_material *mat, int *index);
 cj_status cj_scene_add_geometry(cj_scene *scene, const cj_geometry *geom, int *index);
@@ -152,10 +152,10 @@ size_t cj_scene_node_count(const cj_scene *scene);
 size_t cj_scene_light_count(const cj_scene *scene);
 cj_status cj_scene_check(const cj_scene *scene);
 typedef struct cj_scene_json_options { const char *teapot_path; } cj_scene_json_options;
-cj_status cj_scene_parse_json_ex(const char *text, const char *name, const char *base_dir,
+cj_status cj_scene_parse_json_with_options(const char *text, const char *name, const char *base_dir,
                                  const cj_scene_json_options *options,
                                  const cj_allocator *alloc, cj_scene **out);
-cj_status cj_scene_load_json_ex(const char *path, const cj_scene_json_options *options,
+cj_status cj_scene_load_json_with_options(const char *path, const cj_scene_json_options *options,
                                 const cj_allocator *alloc, cj_scene **out);
 cj_status cj_scene_save_json(const cj_scene *scene, const char *path);
 
@@ -171,7 +171,7 @@ typedef struct cj_render_options {
     int width, height; int spp; double tol_px; int threads; int tile_size; int max_depth;
     int use_seed; uint64_t seed; ...;
 } cj_render_options;
-cj_render_options cj_render_options_default(void);
+cj_render_options cj_render_options_defaults(void);
 typedef struct cj_stage_report cj_stage_report;
 cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt,
                            unsigned planes, const cj_allocator *alloc, cj_render_image **out,
@@ -179,7 +179,7 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt,
 cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, unsigned planes,
                           const cj_allocator *alloc, cj_render_image **out,
                           cj_stage_report *report);
-cj_node cj_render_node(int geometry, int material);
+cj_node cj_node_defaults(int geometry, int material);
 """
 
 # The sphere and patch geometries are filled in C: cffi cannot name members of the anonymous

@@ -36,7 +36,7 @@ static double cov_total(void) {
 
 void test_wu(void **state) {
     (void)state;
-    cj_raster_rect clip = {0, 0, CW - 1, CH - 1};
+    cj_line_rect clip = {0, 0, CW - 1, CH - 1};
     cj_rng r;
     cj_rng_init(&r, g_seed + 4);
     static float a[CH][CW];
@@ -44,7 +44,7 @@ void test_wu(void **state) {
         double x0 = cj_rng_range(&r, 5, CW - 5), y0 = cj_rng_range(&r, 5, CH - 5);
         double x1 = cj_rng_range(&r, 5, CW - 5), y1 = cj_rng_range(&r, 5, CH - 5);
         memset(g_cov, 0, sizeof g_cov);
-        assert_int_equal(cj_raster_line_aa_visit(x0, y0, x1, y1, clip, cov_collect, NULL), CJ_OK);
+        assert_int_equal(cj_line_aa_visit(x0, y0, x1, y1, clip, cov_collect, NULL), CJ_OK);
         double major = fmax(fabs(x1 - x0), fabs(y1 - y0));
         if (fabs(cov_total() - major) > 1e-4 * (1 + major))
             fail_msg("Wu total %g vs major length %g (seed %llu case %d)", cov_total(), major,
@@ -52,7 +52,7 @@ void test_wu(void **state) {
         memcpy(a, g_cov, sizeof a);
         /* Mirror x -> CW - x maps pixel x to CW-1-x. */
         memset(g_cov, 0, sizeof g_cov);
-        cj_raster_line_aa_visit(CW - x0, y0, CW - x1, y1, clip, cov_collect, NULL);
+        cj_line_aa_visit(CW - x0, y0, CW - x1, y1, clip, cov_collect, NULL);
         for (int y = 0; y < CH; ++y)
             for (int x = 0; x < CW; ++x)
                 if (fabs(a[y][x] - g_cov[y][CW - 1 - x]) > 1e-4)
@@ -62,13 +62,13 @@ void test_wu(void **state) {
     printf("Wu: 300 random AA lines, total coverage == major length, mirror symmetric\n");
 }
 
-static double stroke_total(const cj_vec2 *p, size_t n, int closed, cj_raster_stroke st) {
-    cj_raster_rect clip = {0, 0, CW - 1, CH - 1};
-    size_t need = cj_raster_stroke_work_size(clip);
+static double stroke_total(const cj_vec2 *p, size_t n, int closed, cj_line_stroke st) {
+    cj_line_rect clip = {0, 0, CW - 1, CH - 1};
+    size_t need = cj_line_stroke_work_size(clip);
     void *work = malloc(need);
     memset(g_cov, 0, sizeof g_cov);
     assert_int_equal(
-        cj_raster_stroke_polyline_visit(p, n, closed, &st, clip, work, need, cov_collect, NULL),
+        cj_line_stroke_polyline_visit(p, n, closed, &st, clip, work, need, cov_collect, NULL),
         CJ_OK);
     free(work);
     return cov_total();
@@ -86,8 +86,8 @@ void test_stroke_area(void **state) {
         cj_vec2 c = {CW / 2.0 + cj_rng_range(&r, -5, 5), CH / 2.0 + cj_rng_range(&r, -5, 5)};
         cj_vec2 p[2] = {{c.x - 0.5 * len * cos(ang), c.y - 0.5 * len * sin(ang)},
                         {c.x + 0.5 * len * cos(ang), c.y + 0.5 * len * sin(ang)}};
-        cj_raster_stroke st = cj_raster_stroke_default(w);
-        const cj_raster_cap caps[3] = {CJ_CAP_BUTT, CJ_CAP_ROUND, CJ_CAP_SQUARE};
+        cj_line_stroke st = cj_line_stroke_defaults(w);
+        const cj_line_cap caps[3] = {CJ_CAP_BUTT, CJ_CAP_ROUND, CJ_CAP_SQUARE};
         st.cap = caps[i % 3];
         double expect = len * w + (st.cap == CJ_CAP_ROUND    ? pi * w * w / 4
                                    : st.cap == CJ_CAP_SQUARE ? w * w
@@ -112,10 +112,10 @@ void test_stroke_area(void **state) {
     /* Joins of an L: union areas 4hL (miter), 4hL - h^2/2 (bevel), 4hL - h^2 + pi h^2/4. */
     double h = 6, L = 60;
     cj_vec2 l[3] = {{30, 30}, {30 + L, 30}, {30 + L, 30 + L}};
-    const cj_raster_join joins[3] = {CJ_JOIN_MITER, CJ_JOIN_BEVEL, CJ_JOIN_ROUND};
+    const cj_line_join joins[3] = {CJ_JOIN_MITER, CJ_JOIN_BEVEL, CJ_JOIN_ROUND};
     const double areas[3] = {4 * h * L, 4 * h * L - h * h / 2, 4 * h * L - h * h + pi * h * h / 4};
     for (int j = 0; j < 3; ++j) {
-        cj_raster_stroke st = cj_raster_stroke_default(2 * h);
+        cj_line_stroke st = cj_line_stroke_defaults(2 * h);
         st.cap = CJ_CAP_BUTT;
         st.join = joins[j];
         double got = stroke_total(l, 3, 0, st);
@@ -123,13 +123,13 @@ void test_stroke_area(void **state) {
     }
     /* Closed square of side 40, miter joins: outer minus inner square. */
     cj_vec2 sq[4] = {{40, 40}, {80, 40}, {80, 80}, {40, 80}};
-    cj_raster_stroke st = cj_raster_stroke_default(4);
+    cj_line_stroke st = cj_line_stroke_defaults(4);
     st.join = CJ_JOIN_MITER;
     double got = stroke_total(sq, 4, 1, st);
     assert_true(fabs(got - (44.0 * 44 - 36.0 * 36)) < 1e-4 * (44.0 * 44 - 36.0 * 36));
     /* Closed two-point polylines (with and without the repeated first point): a capsule. */
     cj_vec2 two[3] = {{40, 40}, {80, 40}, {40, 40}};
-    st = cj_raster_stroke_default(4);
+    st = cj_line_stroke_defaults(4);
     for (size_t n = 2; n <= 3; ++n) {
         got = stroke_total(two, n, 1, st);
         assert_true(fabs(got - (40 * 4 + pi * 4)) < 1e-4 * (40 * 4 + pi * 4));
@@ -137,7 +137,7 @@ void test_stroke_area(void **state) {
     /* A tiny closed triangle under a wide stroke: every rectangle covers the centre, which must
      * stay fully covered (coverage 1 at the pixel of the centroid). */
     cj_vec2 tri[3] = {{80, 60}, {83, 60}, {81.5, 62.5}};
-    st = cj_raster_stroke_default(12);
+    st = cj_line_stroke_defaults(12);
     stroke_total(tri, 3, 1, st);
     assert_true(fabs(g_cov[60][81] - 1.0f) < 1e-5);
     printf("strokes: 200 random widths 0.2..16 and caps, coverage == exact area (1e-4), reversal "
@@ -168,7 +168,7 @@ void test_stroke_pixels_supersampled(void **state) {
         cj_vec2 a = {cj_rng_range(&r, 50, 110), cj_rng_range(&r, 40, 80)};
         cj_vec2 b = {a.x + len * cos(ang), a.y + len * sin(ang)};
         cj_vec2 p[2] = {a, b};
-        cj_raster_stroke st = cj_raster_stroke_default(w);
+        cj_line_stroke st = cj_line_stroke_defaults(w);
         int round = i & 1;
         st.cap = round ? CJ_CAP_ROUND : CJ_CAP_BUTT;
         stroke_total(p, 2, 0, st);
@@ -200,37 +200,37 @@ void test_stroke_pixels_supersampled(void **state) {
 void test_stroke_clip_and_errors(void **state) {
     (void)state;
     cj_vec2 p[2] = {{-1e9, -1e9}, {1e9, 1e9}};
-    cj_raster_stroke st = cj_raster_stroke_default(3);
+    cj_line_stroke st = cj_line_stroke_defaults(3);
     double got = stroke_total(p, 2, 0, st);
     /* The band |y - x| <= 1.5 sqrt(2) inside the 160x120 window: 120 * 3 sqrt(2) minus the
      * triangle cut off at x < 0 (legs 1.5 sqrt(2): area 2.25). */
     double expect = 120 * 3 * sqrt(2.0) - 2.25;
     assert_true(fabs(got - expect) < 1e-4 * expect);
-    cj_raster_rect clip = {0, 0, CW - 1, CH - 1};
-    size_t need = cj_raster_stroke_work_size(clip);
+    cj_line_rect clip = {0, 0, CW - 1, CH - 1};
+    size_t need = cj_line_stroke_work_size(clip);
     void *work = malloc(need);
     cj_vec2 bad[2] = {{0, 0}, {NAN, 1}};
     assert_int_equal(
-        cj_raster_stroke_polyline_visit(bad, 2, 0, &st, clip, work, need, cov_collect, NULL),
+        cj_line_stroke_polyline_visit(bad, 2, 0, &st, clip, work, need, cov_collect, NULL),
         CJ_ERR_NONFINITE);
     assert_int_equal(
-        cj_raster_stroke_polyline_visit(p, 0, 0, &st, clip, work, need, cov_collect, NULL),
+        cj_line_stroke_polyline_visit(p, 0, 0, &st, clip, work, need, cov_collect, NULL),
         CJ_ERR_EMPTY);
     assert_int_equal(
-        cj_raster_stroke_polyline_visit(p, 2, 0, &st, clip, work, need - 1, cov_collect, NULL),
+        cj_line_stroke_polyline_visit(p, 2, 0, &st, clip, work, need - 1, cov_collect, NULL),
         CJ_ERR_BUFFER);
     st.width = 0;
     assert_int_equal(
-        cj_raster_stroke_polyline_visit(p, 2, 0, &st, clip, work, need, cov_collect, NULL),
+        cj_line_stroke_polyline_visit(p, 2, 0, &st, clip, work, need, cov_collect, NULL),
         CJ_ERR_RANGE);
     st.width = NAN;
     assert_int_equal(
-        cj_raster_stroke_polyline_visit(p, 2, 0, &st, clip, work, need, cov_collect, NULL),
+        cj_line_stroke_polyline_visit(p, 2, 0, &st, clip, work, need, cov_collect, NULL),
         CJ_ERR_NONFINITE);
-    st = cj_raster_stroke_default(2);
+    st = cj_line_stroke_defaults(2);
     st.miter_limit = 0.5;
     assert_int_equal(
-        cj_raster_stroke_polyline_visit(p, 2, 0, &st, clip, work, need, cov_collect, NULL),
+        cj_line_stroke_polyline_visit(p, 2, 0, &st, clip, work, need, cov_collect, NULL),
         CJ_ERR_RANGE);
     free(work);
 
@@ -242,13 +242,13 @@ void test_stroke_clip_and_errors(void **state) {
     cj_framebuffer_clear(f2, cj_rgba_make(255, 255, 255, 255));
     const double cub[8] = {10, 10, 50, 40, 90, 70, 130, 100};
     cj_bezier c = cj_bezier_view(3, 2, cub);
-    st = cj_raster_stroke_default(5);
+    st = cj_line_stroke_defaults(5);
     double bound = -1;
     cj_rgba ink = cj_rgba_make(0, 0, 200, 200);
-    assert_int_equal(cj_raster_stroke_bezier(f1, &c, 0.25, &st, ink, &bound), CJ_OK);
+    assert_int_equal(cj_line_stroke_bezier(f1, &c, 0.25, &st, ink, &bound), CJ_OK);
     assert_true(bound >= 0 && bound <= 0.25);
     cj_vec2 chord[2] = {{10, 10}, {130, 100}};
-    assert_int_equal(cj_raster_stroke_polyline(f2, chord, 2, 0, &st, ink), CJ_OK);
+    assert_int_equal(cj_line_stroke_polyline(f2, chord, 2, 0, &st, ink), CJ_OK);
     int maxdiff = 0;
     for (int i = 0; i < CW * CH; ++i) {
         int d = abs(f1->pixels[i].r - f2->pixels[i].r) + abs(f1->pixels[i].b - f2->pixels[i].b);
@@ -257,7 +257,7 @@ void test_stroke_clip_and_errors(void **state) {
     assert_true(maxdiff <= 2);
     const double c3[6] = {0, 0, 0, 1, 1, 1};
     cj_bezier c3d = cj_bezier_view(1, 3, c3);
-    assert_int_equal(cj_raster_stroke_bezier(f1, &c3d, 0.25, &st, ink, NULL), CJ_ERR_DIMENSION);
+    assert_int_equal(cj_line_stroke_bezier(f1, &c3d, 0.25, &st, ink, NULL), CJ_ERR_DIMENSION);
     cj_framebuffer_destroy(f1);
     cj_framebuffer_destroy(f2);
     printf("strokes: (-1e9,-1e9)-(1e9,1e9) width 3 clipped to the window, bad input refused, a "
@@ -284,11 +284,11 @@ void test_stroke_curves(void **state) {
     const double pts[6] = {cx + R, cy, cx + R, cy + R, cx, cy + R};
     const double wts[3] = {1, sqrt(0.5), 1};
     cj_rbezier arc = {2, 2, pts, wts};
-    cj_raster_stroke st = cj_raster_stroke_default(4);
+    cj_line_stroke st = cj_line_stroke_defaults(4);
     st.cap = CJ_CAP_BUTT;
     double bound = -1;
     cj_rgba white = cj_rgba_make(255, 255, 255, 255);
-    assert_int_equal(cj_raster_stroke_rbezier(fb, &arc, 0.25, &st, white, &bound), CJ_OK);
+    assert_int_equal(cj_line_stroke_rbezier(fb, &arc, 0.25, &st, white, &bound), CJ_OK);
     double area = ink_total(fb), expect = 2 * 3.141592653589793 * R;
     assert_true(bound > 0 && bound <= 0.25);
     assert_true(fabs(area - expect) < 0.005 * expect);
@@ -296,11 +296,11 @@ void test_stroke_curves(void **state) {
     cj_framebuffer_clear(fb, cj_rgba_make(0, 0, 0, 255));
     const double h1[8] = {10, 10, 20, 20, 30, 30, 40, 40}, h2[8] = {40, 40, 50, 50, 60, 60, 70, 70};
     cj_flatten_piece seq[2] = {{cj_bezier_view(3, 2, h1), NULL}, {cj_bezier_view(3, 2, h2), NULL}};
-    assert_int_equal(cj_raster_stroke_sequence(fb, seq, 2, 0.25, &st, white, NULL), CJ_OK);
+    assert_int_equal(cj_line_stroke_sequence(fb, seq, 2, 0.25, &st, white, NULL), CJ_OK);
     double seq_area = ink_total(fb), line_area = 60 * sqrt(2.0) * 4;
     assert_true(fabs(seq_area - line_area) < 0.005 * line_area);
-    assert_int_equal(cj_raster_stroke_rbezier(fb, &arc, 0.0, &st, white, NULL), CJ_ERR_RANGE);
-    assert_int_equal(cj_raster_stroke_rbezier(fb, &arc, NAN, &st, white, NULL), CJ_ERR_NONFINITE);
+    assert_int_equal(cj_line_stroke_rbezier(fb, &arc, 0.0, &st, white, NULL), CJ_ERR_RANGE);
+    assert_int_equal(cj_line_stroke_rbezier(fb, &arc, NAN, &st, white, NULL), CJ_ERR_NONFINITE);
     cj_framebuffer_destroy(fb);
     printf("curves: rational quarter circle R=40 w=4 covers %.2f px^2 (2 pi R = %.2f, bound %.3f); "
            "2-piece sequence %.2f vs %.2f; bad tolerances refused\n",
@@ -321,17 +321,17 @@ void test_fills(void **state) {
         poly[i] = cj_v2(70.3 + 30 * cos(a), 55.7 + 30 * sin(a));
     }
     for (int i = 0; i < 20; ++i) area += cj_v2_cross(poly[i], poly[(i + 1) % 20]) / 2;
-    assert_int_equal(cj_raster_fill_convex(fb, poly, 20, white), CJ_OK);
+    assert_int_equal(cj_line_fill_convex(fb, poly, 20, white), CJ_OK);
     double got = ink_total(fb);
     assert_true(fabs(got - area) < 1e-3 * area);
     cj_framebuffer_clear(fb, cj_rgba_make(0, 0, 0, 255));
-    assert_int_equal(cj_raster_fill_disc(fb, cj_v2(40.25, 50.6), 17.5, white), CJ_OK);
+    assert_int_equal(cj_line_fill_disc(fb, cj_v2(40.25, 50.6), 17.5, white), CJ_OK);
     double disc = ink_total(fb), exact = 3.141592653589793 * 17.5 * 17.5;
     assert_true(fabs(disc - exact) < 1e-3 * exact);
     cj_vec2 concave[4] = {{0, 0}, {10, 0}, {2, 2}, {0, 10}};
-    assert_int_equal(cj_raster_fill_convex(fb, concave, 4, white), CJ_ERR_ARGUMENT);
-    assert_int_equal(cj_raster_fill_convex(fb, concave, 2, white), CJ_ERR_EMPTY);
-    assert_int_equal(cj_raster_fill_disc(fb, cj_v2(1, 1), 0, white), CJ_ERR_RANGE);
+    assert_int_equal(cj_line_fill_convex(fb, concave, 4, white), CJ_ERR_ARGUMENT);
+    assert_int_equal(cj_line_fill_convex(fb, concave, 2, white), CJ_ERR_EMPTY);
+    assert_int_equal(cj_line_fill_disc(fb, cj_v2(1, 1), 0, white), CJ_ERR_RANGE);
     cj_framebuffer_destroy(fb);
     printf("fills: convex 20-gon %.3f vs shoelace %.3f, disc %.3f vs pi r^2 %.3f; concave "
            "refused\n",
@@ -352,12 +352,12 @@ void test_stroke_fb_matches_visit(void **state) {
         const double len = cj_rng_range(&r, 0.5, 100);
         const cj_vec2 a = {cj_rng_range(&r, -10, CW + 10), cj_rng_range(&r, -10, CH + 10)};
         cj_vec2 p[2] = {a, {a.x + len * cos(ang), a.y + len * sin(ang)}};
-        cj_raster_stroke st = cj_raster_stroke_default(w);
-        st.cap = (cj_raster_cap)(i % 3);
+        cj_line_stroke st = cj_line_stroke_defaults(w);
+        st.cap = (cj_line_cap)(i % 3);
         const cj_rgba bg = cj_rgba_make(10, 20, 30, 255);
         const cj_rgba ink = cj_rgba_make(200, 150, 100, (uint8_t)(1 + i % 255));
         cj_framebuffer_clear(fb, bg);
-        assert_int_equal(cj_raster_stroke_polyline(fb, p, 2, 0, &st, ink), CJ_OK);
+        assert_int_equal(cj_line_stroke_polyline(fb, p, 2, 0, &st, ink), CJ_OK);
         stroke_total(p, 2, 0, st);
         for (int y = 0; y < CH; ++y)
             for (int x = 0; x < CW; ++x) {

@@ -26,10 +26,10 @@ static inline void rs_check(cj_status st) {
  * and a directional light. */
 static inline void rs_sphere(rs_sphere_scene *sc, int lit) {
     rs_check(cj_scene_create(NULL, &sc->s));
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.fov_y = 40.0 * 3.14159265358979323846 / 180.0;
     rs_check(cj_scene_set_camera(sc->s, &cam));
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = cj_rgb_make(0.8, 0.5, 0.3);
     rs_check(cj_scene_add_material(sc->s, &m, &sc->mat));
     cj_geometry g;
@@ -37,15 +37,15 @@ static inline void rs_sphere(rs_sphere_scene *sc, int lit) {
     g.kind = CJ_GEOM_SPHERE;
     g.u.sphere.radius = 1.0;
     rs_check(cj_scene_add_geometry(sc->s, &g, &sc->geo));
-    cj_node n = cj_render_node(sc->geo, sc->mat);
+    cj_node n = cj_node_defaults(sc->geo, sc->mat);
     rs_check(cj_scene_add_node(sc->s, &n, &sc->node));
     if (lit) {
-        cj_light a = cj_light_default(CJ_LIGHT_AMBIENT);
+        cj_light a = cj_light_defaults(CJ_LIGHT_AMBIENT);
         a.intensity = 0.2;
-        cj_light p = cj_light_default(CJ_LIGHT_POINT);
+        cj_light p = cj_light_defaults(CJ_LIGHT_POINT);
         p.position = cj_v3(3, 4, 5);
         p.intensity = 0.8;
-        cj_light d = cj_light_default(CJ_LIGHT_DIRECTIONAL);
+        cj_light d = cj_light_defaults(CJ_LIGHT_DIRECTIONAL);
         d.direction = cj_v3(1, 0.5, -1);
         d.intensity = 0.4;
         d.color = cj_rgb_make(0.6, 0.7, 1.0);
@@ -73,7 +73,7 @@ static inline int rs_add_patch_quad(cj_scene *s, int mat, double z, unsigned ove
     g.u.patches.patches = &p;
     int gi, ni;
     rs_check(cj_scene_add_geometry(s, &g, &gi));
-    cj_node n = cj_render_node(gi, mat);
+    cj_node n = cj_node_defaults(gi, mat);
     n.overlay.flags = overlay;
     n.overlay.color = cj_rgb_make(1, 1, 0);
     n.overlay.iso_count = 4;
@@ -95,7 +95,7 @@ static inline int rs_add_curve(cj_scene *s, int mat, double z) {
     g.u.curve.color = cj_rgb_make(0.1, 1.0, 0.2);
     int gi, ni;
     rs_check(cj_scene_add_geometry(s, &g, &gi));
-    cj_node n = cj_render_node(gi, mat);
+    cj_node n = cj_node_defaults(gi, mat);
     n.overlay.flags = CJ_OVERLAY_CONTROL_NET;
     rs_check(cj_scene_add_node(s, &n, &ni));
     return ni;
@@ -106,14 +106,14 @@ static inline int rs_add_curve(cj_scene *s, int mat, double z) {
 static inline cj_scene *rs_feature_scene(void) {
     rs_sphere_scene sc;
     rs_sphere(&sc, 1);
-    cj_texture ck = cj_texture_default(CJ_TEX_CHECKER);
+    cj_texture ck = cj_texture_defaults(CJ_TEX_CHECKER);
     ck.filter = CJ_TEX_BILINEAR;
     ck.checks_u = 8;
     ck.checks_v = 4;
     int ti, mflat, mg, mt;
     rs_check(cj_scene_add_texture(sc.s, &ck, &ti));
     cj_scene_material_mut(sc.s, sc.mat)->texture = ti;
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.shading = CJ_SHADE_FLAT;
     m.color = cj_rgb_make(0.2, 0.6, 0.9);
     rs_check(cj_scene_add_material(sc.s, &m, &mflat));
@@ -131,7 +131,7 @@ static inline cj_scene *rs_feature_scene(void) {
     rs_check(cj_torus_init(&g.u.torus, cj_v3(-1.6, -0.8, -1), cj_v3(0.3, 1, 0.2), 0.8, 0.25));
     int gi;
     rs_check(cj_scene_add_geometry(sc.s, &g, &gi));
-    cj_node n = cj_render_node(gi, mflat);
+    cj_node n = cj_node_defaults(gi, mflat);
     n.overlay.flags = CJ_OVERLAY_NORMALS | CJ_OVERLAY_ISO_LINES;
     n.overlay.normal_length = 0.15;
     n.overlay.iso_count = 6;
@@ -141,13 +141,13 @@ static inline cj_scene *rs_feature_scene(void) {
     rs_check(
         cj_cylinder_init(&g.u.cylinder, cj_v3(1.7, -1, -0.5), cj_v3(0.2, 1, 0.1), 0.4, 0, 1.6));
     rs_check(cj_scene_add_geometry(sc.s, &g, &gi));
-    n = cj_render_node(gi, mg);
+    n = cj_node_defaults(gi, mg);
     n.overlay.flags = CJ_OVERLAY_WIREFRAME;
     rs_check(cj_scene_add_node(sc.s, &n, NULL));
     rs_add_patch_quad(sc.s, mt, 1.2, CJ_OVERLAY_CONTROL_NET | CJ_OVERLAY_ISO_LINES);
     int cn = rs_add_curve(sc.s, sc.mat, 0.5);
     cj_scene_geometry_mut(sc.s, cj_scene_node(sc.s, cn)->geometry)->u.curve.width_px = 3.0;
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.background = cj_rgb_make(0.05, 0.05, 0.1);
     rs_check(cj_scene_set_settings(sc.s, &set));
     return sc.s;

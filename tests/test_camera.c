@@ -24,7 +24,7 @@ static cj_vec3 rand_dir(cj_rng *r) {
 }
 
 static cj_camera rand_camera(cj_rng *r, int ortho) {
-    cj_camera c = cj_camera_default();
+    cj_camera c = cj_camera_defaults();
     c.eye = cj_v3(cj_rng_range(r, -10, 10), cj_rng_range(r, -10, 10), cj_rng_range(r, -10, 10));
     c.gaze = cj_v3_scale(rand_dir(r), cj_rng_range(r, 0.01, 100));
     for (;;) {
@@ -52,7 +52,7 @@ static cj_vec3 apply(const cj_xform3 *m, cj_vec3 p, double *w) {
 
 static void test_default_and_basis(void **state) {
     (void)state;
-    cj_camera c = cj_camera_default();
+    cj_camera c = cj_camera_defaults();
     assert_int_equal(cj_camera_check(&c), CJ_OK);
     cj_vec3 u, v, w;
     assert_int_equal(cj_camera_basis(&c, &u, &v, &w), CJ_OK);
@@ -195,47 +195,47 @@ static void test_ray_round_trip(void **state) {
 
 static void test_errors(void **state) {
     (void)state;
-    cj_camera c = cj_camera_default();
+    cj_camera c = cj_camera_defaults();
     cj_xform3 m;
     cj_vec3 u, v, w;
     c.far = c.near;
     assert_int_equal(cj_camera_check(&c), CJ_ERR_RANGE);
     assert_int_equal(cj_camera_projection(&c, 1.0, &m), CJ_ERR_RANGE);
-    c = cj_camera_default();
+    c = cj_camera_defaults();
     c.far = -0.05; /* F > f */
     assert_int_equal(cj_camera_check(&c), CJ_ERR_RANGE);
-    c = cj_camera_default();
+    c = cj_camera_defaults();
     c.near = 0;
     assert_int_equal(cj_camera_check(&c), CJ_ERR_RANGE);
     c.near = 0.5;
     assert_int_equal(cj_camera_view(&c, &m), CJ_ERR_RANGE);
-    c = cj_camera_default();
+    c = cj_camera_defaults();
     c.gaze = cj_v3(0, 0, 0);
     assert_int_equal(cj_camera_basis(&c, &u, &v, &w), CJ_ERR_DEGENERATE);
-    c = cj_camera_default();
+    c = cj_camera_defaults();
     c.up = cj_v3(0, 0, 3); /* parallel to the gaze */
     assert_int_equal(cj_camera_check(&c), CJ_ERR_DEGENERATE);
     c.up = cj_v3(0, 0, 0);
     assert_int_equal(cj_camera_check(&c), CJ_ERR_DEGENERATE);
-    c = cj_camera_default();
+    c = cj_camera_defaults();
     c.eye.y = NAN;
     assert_int_equal(cj_camera_check(&c), CJ_ERR_NONFINITE);
-    c = cj_camera_default();
+    c = cj_camera_defaults();
     c.near = NAN;
     assert_int_equal(cj_camera_check(&c), CJ_ERR_NONFINITE);
-    c = cj_camera_default();
+    c = cj_camera_defaults();
     c.gaze.x = INFINITY;
     assert_int_equal(cj_camera_check(&c), CJ_ERR_NONFINITE);
-    c = cj_camera_default();
+    c = cj_camera_defaults();
     c.fov_y = 3.2;
     assert_int_equal(cj_camera_check(&c), CJ_ERR_RANGE);
     c.fov_y = NAN;
     assert_int_equal(cj_camera_check(&c), CJ_ERR_NONFINITE);
-    c = cj_camera_default();
+    c = cj_camera_defaults();
     c.projection = CJ_PROJ_ORTHOGRAPHIC;
     c.ortho_height = 0;
     assert_int_equal(cj_camera_check(&c), CJ_ERR_RANGE);
-    c = cj_camera_default();
+    c = cj_camera_defaults();
     assert_int_equal(cj_camera_projection(&c, 0.0, &m), CJ_ERR_RANGE);
     assert_int_equal(cj_camera_projection(&c, NAN, &m), CJ_ERR_NONFINITE);
     cj_vec3 o, d;

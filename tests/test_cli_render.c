@@ -73,16 +73,16 @@ static void test_stage_report(void **state) {
     run(&r, args);
     assert_int_equal(r.status, 0);
     assert_string_equal(r.err, "");
-    assert_true(!strncmp(r.out, "{\"renderer\": \"raster\",", 22));
+    assert_true(!strncmp(r.out, "{\"renderer\":\"raster\",", 21));
     size_t n = strlen(r.out);
     assert_true(n > 2 && r.out[n - 2] == '}' && r.out[n - 1] == '\n');
-    const char *must[] = {"\"tessellate_patches\", \"ran\": true",
-                          "\"shade_phong\", \"ran\": true",
-                          "\"texture\", \"ran\": true",
-                          "\"overlay_lines\", \"ran\": true",
-                          "\"resolve\", \"ran\": true",
-                          "\"transparency\", \"ran\": false, \"why\": \"no transparent material\"",
-                          "\"tol_px\": 0.5"};
+    const char *must[] = {"\"tessellate_patches\",\"ran\":true",
+                          "\"shade_phong\",\"ran\":true",
+                          "\"texture\",\"ran\":true",
+                          "\"overlay_lines\",\"ran\":true",
+                          "\"resolve\",\"ran\":true",
+                          "\"transparency\",\"ran\":false,\"why\":\"no transparent material\"",
+                          "\"tol_px\":0.5"};
     for (size_t i = 0; i < sizeof must / sizeof must[0]; ++i)
         if (!strstr(r.out, must[i])) fail_msg("stage report lacks %s:\n%s", must[i], r.out);
     printf("test_stage_report: JSON report on stdout with every stage, run or not, and why\n");

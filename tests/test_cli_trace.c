@@ -57,11 +57,11 @@ static void test_demo_and_report(void **state) {
     run(&r, a2);
     assert_int_equal(r.status, 0);
     assert_string_equal(r.err, "");
-    assert_true(!strncmp(r.out, "{\"renderer\": \"trace\",", 21));
-    const char *must[] = {"\"primary_rays\", \"ran\": true", "\"shadow_rays\", \"ran\": true",
-                          "\"reflection_rays\", \"ran\": true",
-                          "\"refraction_rays\", \"ran\": true",
-                          "\"transparency_rays\", \"ran\": false"};
+    assert_true(!strncmp(r.out, "{\"renderer\":\"trace\",", 20));
+    const char *must[] = {"\"primary_rays\",\"ran\":true", "\"shadow_rays\",\"ran\":true",
+                          "\"reflection_rays\",\"ran\":true",
+                          "\"refraction_rays\",\"ran\":true",
+                          "\"transparency_rays\",\"ran\":false"};
     for (int i = 0; i < 5; i++) {
         if (!strstr(r.out, must[i])) fprintf(stderr, "missing %s in\n%s\n", must[i], r.out);
         assert_non_null(strstr(r.out, must[i]));

@@ -272,7 +272,7 @@ static void test_atomic_writer(void **state) {
 
 static void test_emission_bounded(void **state) {
     (void)state;
-    cj_emitter e = cj_emitter_default();
+    cj_emitter e = cj_emitter_defaults();
     e.rate = 1e18;
     cj_particles_desc d;
     memset(&d, 0, sizeof d);

@@ -59,7 +59,7 @@ typedef struct scene_def {
 static cj_scene *build(const scene_def *d) {
     cj_scene *s;
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     if (d->ortho) {
         cam.projection = CJ_PROJ_ORTHOGRAPHIC;
         cam.ortho_height = 2.4;
@@ -67,14 +67,14 @@ static cj_scene *build(const scene_def *d) {
         cam.fov_y = 30.0 * PI / 180.0;
     }
     assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
-    cj_scene_settings st = cj_scene_settings_default();
+    cj_scene_settings st = cj_scene_settings_defaults();
     st.width = W;
     st.height = H;
     st.spp = 1;
     st.tol_px = 0.05;
     st.light_model = d->radiometric ? CJ_LIGHT_RADIOMETRIC : CJ_LIGHT_LEGACY;
     assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = cj_rgb_make(d->cr[0], d->cr[1], d->cr[2]);
     m.specular = cj_rgb_make(d->cp[0], d->cp[1], d->cp[2]);
     m.ka = d->ka;
@@ -90,15 +90,15 @@ static cj_scene *build(const scene_def *d) {
     g.kind = CJ_GEOM_SPHERE;
     g.u.sphere.radius = 1.0;
     assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
-    cj_node n = cj_render_node(gi, mi);
+    cj_node n = cj_node_defaults(gi, mi);
     assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
-    cj_light a = cj_light_default(CJ_LIGHT_AMBIENT);
+    cj_light a = cj_light_defaults(CJ_LIGHT_AMBIENT);
     a.color = cj_rgb_make(d->ia[0], d->ia[1], d->ia[2]);
     a.intensity = 1.0;
     assert_int_equal(cj_scene_add_light(s, &a, NULL), CJ_OK);
     for (int i = 0; i < d->nlights; ++i) {
         const light_def *ld = &d->lights[i];
-        cj_light l = cj_light_default(ld->kind);
+        cj_light l = cj_light_defaults(ld->kind);
         l.color = cj_rgb_make(ld->I[0], ld->I[1], ld->I[2]);
         l.intensity = 1.0;
         l.position = cj_v3(ld->pos[0], ld->pos[1], ld->pos[2]);
@@ -125,7 +125,8 @@ static double dot(const double a[3], const double b[3]) {
 static int closed_form(const scene_def *d, const cj_scene *s, int x, int y, double out[3],
                        double *nl_min) {
     cj_vec3 o, dir;
-    assert_int_equal(cj_camera_ray(cj_scene_camera(s), W, H, x + 0.5, y + 0.5, &o, &dir), CJ_OK);
+    assert_int_equal(cj_camera_ray(cj_scene_get_camera(s), W, H, x + 0.5, y + 0.5, &o, &dir),
+                     CJ_OK);
     double O[3] = {o.x, o.y, o.z}, D[3] = {dir.x, dir.y, dir.z};
     double b = dot(O, D), c = dot(O, O) - 1.0, disc = b * b - c;
     if (disc <= 0.0) return 0;
@@ -195,7 +196,7 @@ static int covered(const cj_render_image *img, int x, int y) {
 
 static void check_scene(const scene_def *d, const char *name) {
     cj_scene *s = build(d);
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     cj_render_image *ri = NULL, *ti = NULL;
     assert_int_equal(cj_render_raster(s, &o, CJ_IMAGE_IDS, NULL, &ri, NULL), CJ_OK);
     assert_int_equal(cj_render_trace(s, &o, CJ_IMAGE_IDS, NULL, &ti, NULL), CJ_OK);
@@ -359,8 +360,8 @@ static void test_json_specular_model(void **state) {
     fclose(f);
     remove(path);
     assert_true(got > 0);
-    assert_non_null(strstr(text, "\"specular_model\": \"phong\""));
-    assert_non_null(strstr(text, "\"specular_model\": \"blinn\""));
+    assert_non_null(strstr(text, "\"specular_model\":\t\"phong\""));
+    assert_non_null(strstr(text, "\"specular_model\":\t\"blinn\""));
     free(text);
     cj_scene_destroy(s);
     const char *bad = "{\"materials\": [{\"name\": \"a\", \"specular_model\": \"cook\"}], "

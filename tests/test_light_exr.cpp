@@ -82,8 +82,9 @@ static void test_float_by_default(void **) {
 static void test_half_on_request(void **) {
     std::vector<float> px = image(1.5f);
     const std::string path = scratch("half.exr");
-    assert_int_equal(cj_image_write_float_ex(path.c_str(), W, H, px.data(), 0, CJ_IMAGE_FLOAT_HALF),
-                     CJ_OK);
+    assert_int_equal(
+        cj_image_write_float_with_flags(path.c_str(), W, H, px.data(), 0, CJ_IMAGE_FLOAT_HALF),
+        CJ_OK);
     OIIO::TypeDesc t;
     const float a = read_back(path, 2, 2, 1, &t);
     std::printf("half on request: stored type %s, 1.5 -> %g\n", t.c_str(), (double)a);
@@ -92,8 +93,9 @@ static void test_half_on_request(void **) {
 
     px[4 * (0 * W + 2) + 1] = 70000.0f; // beyond the largest half
     const std::string big = scratch("big_half.exr");
-    assert_int_equal(cj_image_write_float_ex(big.c_str(), W, H, px.data(), 0, CJ_IMAGE_FLOAT_HALF),
-                     CJ_ERR_RANGE);
+    assert_int_equal(
+        cj_image_write_float_with_flags(big.c_str(), W, H, px.data(), 0, CJ_IMAGE_FLOAT_HALF),
+        CJ_ERR_RANGE);
     std::printf("70000 in half: refused: %s\n", cj_last_error());
     assert_non_null(std::strstr(cj_last_error(), "pixel (2, 0) G"));
     assert_non_null(std::strstr(cj_last_error(), "65504"));
@@ -107,8 +109,8 @@ static void test_no_infinity(void **) {
         std::vector<float> px = image(0.5f);
         px[4 * (2 * W + 1) + 2] = k == 3 ? std::nanf("") : inf;
         const std::string path = scratch(names[k]);
-        cj_status st = cj_image_write_float_ex(path.c_str(), W, H, px.data(), 0,
-                                               k == 2 ? (unsigned)CJ_IMAGE_FLOAT_HALF : 0u);
+        cj_status st = cj_image_write_float_with_flags(path.c_str(), W, H, px.data(), 0,
+                                                       k == 2 ? (unsigned)CJ_IMAGE_FLOAT_HALF : 0u);
         std::printf("%s: status %d: %s\n", names[k], (int)st, cj_last_error());
         assert_int_equal(st, CJ_ERR_NONFINITE);
         assert_non_null(std::strstr(cj_last_error(), "pixel (1, 2) B"));

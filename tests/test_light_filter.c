@@ -56,18 +56,18 @@ static double edge_response(cj_pixel_filter f, double r, double c) {
 static void check(cj_pixel_filter f, double radius, double r_eff, const char *name) {
     cj_scene *s;
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.projection = CJ_PROJ_ORTHOGRAPHIC;
     cam.ortho_height = H;
     assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
-    cj_scene_settings st = cj_scene_settings_default();
+    cj_scene_settings st = cj_scene_settings_defaults();
     st.width = W;
     st.height = H;
     st.spp = 4096; /* 64 × 64 strata: the ratio Σ f L / Σ f converges as they grow */
     st.filter = f;
     st.filter_radius = radius;
     assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = cj_rgb_make(1, 1, 1);
     m.two_sided = 1;
     int mi, gi;
@@ -80,9 +80,9 @@ static void check(cj_pixel_filter f, double radius, double r_eff, const char *na
                                           cj_v3(0, 80, 0)),
                      CJ_OK);
     assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
-    cj_node n = cj_render_node(gi, mi);
+    cj_node n = cj_node_defaults(gi, mi);
     assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     cj_render_image *img = NULL;
     assert_int_equal(cj_render_trace(s, &o, 0, NULL, &img, NULL), CJ_OK);
     double worst = 0, lo = 1, hi = 0, wv = 0, wr = 0;

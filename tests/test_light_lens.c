@@ -28,17 +28,17 @@ static const double PI = 3.14159265358979323846, FOV = 30.0, A = 0.5, F = 5.0, R
 static double measured_radius(double d, double aperture, double *expect) {
     cj_scene *s;
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(0, 0, 0);
     cam.gaze = cj_v3(0, 0, -1);
     cam.fov_y = FOV * PI / 180;
     cam.aperture = aperture;
     cam.focus_distance = F;
     assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
-    cj_scene_settings st = cj_scene_settings_default();
+    cj_scene_settings st = cj_scene_settings_defaults();
     st.width = st.height = S;
     assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = cj_rgb_make(1, 1, 1);
     int mi, gi;
     assert_int_equal(cj_scene_add_material(s, &m, &mi), CJ_OK);
@@ -48,9 +48,9 @@ static double measured_radius(double d, double aperture, double *expect) {
     g.u.sphere.center = cj_v3(0, 0, -d);
     g.u.sphere.radius = RHO;
     assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
-    cj_node n = cj_render_node(gi, mi);
+    cj_node n = cj_node_defaults(gi, mi);
     assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.spp = 1024;
     cj_render_image *img = NULL;
     assert_int_equal(cj_render_trace(s, &o, 0, NULL, &img, NULL), CJ_OK);
@@ -97,7 +97,7 @@ static void test_circle_of_confusion(void **state) {
 
 static void test_refused(void **state) {
     (void)state;
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.aperture = 0.1;
     cam.focus_distance = 0.0;
     assert_int_equal(cj_camera_check(&cam), CJ_ERR_RANGE);

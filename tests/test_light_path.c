@@ -32,7 +32,7 @@ static const double PI = 3.14159265358979323846;
 
 static cj_render_image *path_render(const cj_scene *s, int spp, int threads, uint64_t seed,
                                     cj_stage_report *rep) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.spp = spp;
     o.threads = threads;
     o.use_seed = 1;
@@ -41,7 +41,7 @@ static cj_render_image *path_render(const cj_scene *s, int spp, int threads, uin
     memset(&to, 0, sizeof to);
     to.integrator = CJ_INTEGRATOR_PATH;
     cj_render_image *img = NULL;
-    cj_status st = cj_render_trace_ex(s, &o, &to, 0, NULL, &img, rep);
+    cj_status st = cj_render_trace_with_options(s, &o, &to, 0, NULL, &img, rep);
     if (st) printf("trace failed: %s\n", cj_last_error());
     assert_int_equal(st, CJ_OK);
     return img;
@@ -51,20 +51,20 @@ static void test_furnace(void **state) {
     (void)state;
     cj_scene *s;
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(0.1, -0.2, 0.05);
     cam.gaze = cj_v3(0.3, 1, 0.2);
     cam.fov_y = 1.2;
     cam.near = -0.01;
     assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
-    cj_scene_settings st = cj_scene_settings_default();
+    cj_scene_settings st = cj_scene_settings_defaults();
     st.width = 32;
     st.height = 32;
     st.max_depth = 64;
     st.light_model = CJ_LIGHT_RADIOMETRIC;
     assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
     const double rho[3] = {0.5, 0.8, 0.9}, le = 0.3;
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = cj_rgb_make(rho[0], rho[1], rho[2]);
     m.kd = 1.0;
     m.ks = 0.0;
@@ -78,7 +78,7 @@ static void test_furnace(void **state) {
     g.kind = CJ_GEOM_SPHERE;
     g.u.sphere.radius = 1.0;
     assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
-    cj_node n = cj_render_node(gi, mi);
+    cj_node n = cj_node_defaults(gi, mi);
     assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
     cj_stage_report rep;
     cj_render_image *img = path_render(s, 16, 0, 5, &rep);
@@ -116,20 +116,20 @@ static const double RECT[4] = {-0.7, 0.5, -0.4, 0.8}, RH = 0.8, LE = 3.0, RHO = 
 static cj_scene *emitter_scene(double cam_z) {
     cj_scene *s;
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.projection = CJ_PROJ_ORTHOGRAPHIC;
     cam.ortho_height = 4.0;
     cam.eye = cj_v3(0, 0, cam_z);
     cam.gaze = cj_v3(0, 0, -1);
     cam.up = cj_v3(0, 1, 0);
     assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
-    cj_scene_settings st = cj_scene_settings_default();
+    cj_scene_settings st = cj_scene_settings_defaults();
     st.width = FW;
     st.height = FW;
     st.max_depth = 8;
     st.light_model = CJ_LIGHT_RADIOMETRIC;
     assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = cj_rgb_make(RHO, RHO, RHO);
     m.ka = 0.0;
     m.kd = 1.0;
@@ -143,9 +143,9 @@ static cj_scene *emitter_scene(double cam_z) {
     assert_int_equal(
         cj_planar_patch_init(&g.u.planar, cj_v3(-2, -2, 0), cj_v3(4, 0, 0), cj_v3(0, 4, 0)), CJ_OK);
     assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
-    cj_node n = cj_render_node(gi, mi);
+    cj_node n = cj_node_defaults(gi, mi);
     assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
-    cj_light a = cj_light_default(CJ_LIGHT_AREA);
+    cj_light a = cj_light_defaults(CJ_LIGHT_AREA);
     a.intensity = LE;
     a.position = cj_v3(RECT[0], RECT[2], RH);
     a.edge_u = cj_v3(0, RECT[3] - RECT[2], 0); /* edge_u × edge_v = −z: facing the floor */
@@ -202,7 +202,7 @@ static void test_emitter_mis(void **state) {
 
     /* the camera above the emitter: its back is dark (one-sided), so look from below it */
     s = emitter_scene(0.5);
-    cj_camera cam = *cj_scene_camera(s);
+    cj_camera cam = *cj_scene_get_camera(s);
     cam.eye = cj_v3(-0.1, 0.2, 0.3);
     cam.gaze = cj_v3(0, 0, 1);
     cam.ortho_height = 0.5;
@@ -223,7 +223,7 @@ static void test_emitter_mis(void **state) {
 static void test_convergence_and_threads(void **state) {
     (void)state;
     cj_scene *s = emitter_scene(2.0);
-    cj_scene_settings st = *cj_scene_settings_get(s);
+    cj_scene_settings st = *cj_scene_get_settings(s);
     st.width = st.height = 24;
     assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
     cj_render_image *ref = path_render(s, 4096, 0, 99, NULL);

@@ -43,20 +43,20 @@ static const double RHO = 0.6, HALF = 2.0; /* floor albedo; floor [-HALF, HALF]Â
 static cj_scene *floor_scene(cj_light_model model, double floor_z) {
     cj_scene *s;
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.projection = CJ_PROJ_ORTHOGRAPHIC;
     cam.ortho_height = 2 * HALF;
     cam.eye = cj_v3(0, 0, 10);
     cam.gaze = cj_v3(0, 0, -1);
     cam.up = cj_v3(0, 1, 0);
     assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
-    cj_scene_settings st = cj_scene_settings_default();
+    cj_scene_settings st = cj_scene_settings_defaults();
     st.width = W;
     st.height = H;
     st.spp = 1;
     st.light_model = model;
     assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = cj_rgb_make(RHO, RHO, RHO);
     m.ka = 0.0;
     m.kd = 1.0;
@@ -71,7 +71,7 @@ static cj_scene *floor_scene(cj_light_model model, double floor_z) {
                                           cj_v3(2 * HALF, 0, 0), cj_v3(0, 2 * HALF, 0)),
                      CJ_OK);
     assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
-    cj_node n = cj_render_node(gi, mi);
+    cj_node n = cj_node_defaults(gi, mi);
     assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
     return s;
 }
@@ -83,7 +83,7 @@ static void floor_point(int x, int y, double *px, double *py) {
 }
 
 static cj_render_image *draw(const cj_scene *s, int trace, int spp) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.spp = spp;
     cj_render_image *img = NULL;
     cj_status st = trace ? cj_render_trace(s, &o, 0, NULL, &img, NULL)
@@ -97,12 +97,12 @@ static const double LP[3] = {0.4, -0.3, 1.5}, LI = 2.0; /* point light: position
 static const double ED = 0.5, TD = 0.6;                 /* directional: irradiance, angle */
 
 static void add_lamps(cj_scene *s, double height) {
-    cj_light p = cj_light_default(CJ_LIGHT_POINT);
+    cj_light p = cj_light_defaults(CJ_LIGHT_POINT);
     p.position = cj_v3(LP[0], LP[1], height);
     p.intensity = LI;
     p.casts_shadows = 0;
     assert_int_equal(cj_scene_add_light(s, &p, NULL), CJ_OK);
-    cj_light d = cj_light_default(CJ_LIGHT_DIRECTIONAL);
+    cj_light d = cj_light_defaults(CJ_LIGHT_DIRECTIONAL);
     d.direction = cj_v3(sin(TD), 0, -cos(TD));
     d.intensity = ED;
     d.casts_shadows = 0;
@@ -145,7 +145,7 @@ static void test_point_and_directional(void **state) {
         double v[2];
         for (int k = 0; k < 2; ++k) {
             cj_scene *s = floor_scene(CJ_LIGHT_RADIOMETRIC, 0.0);
-            cj_light p = cj_light_default(CJ_LIGHT_POINT);
+            cj_light p = cj_light_defaults(CJ_LIGHT_POINT);
             p.position = cj_v3(0, 0, k ? 2.0 : 1.0);
             p.intensity = LI;
             assert_int_equal(cj_scene_add_light(s, &p, NULL), CJ_OK);
@@ -191,7 +191,7 @@ static const double RECT[4] = {-0.7, 0.5, -0.4, 0.8}; /* x0, x1, y0, y1 */
 static const double RH = 0.8, LE = 3.0;               /* height, radiance */
 
 static void add_emitter(cj_scene *s, int facing_down) {
-    cj_light a = cj_light_default(CJ_LIGHT_AREA);
+    cj_light a = cj_light_defaults(CJ_LIGHT_AREA);
     a.intensity = LE;
     a.casts_shadows = 0;
     a.position = cj_v3(RECT[0], RECT[2], RH);
@@ -281,7 +281,7 @@ static void test_legacy_unchanged(void **state) {
     (void)state;
     for (int trace = 0; trace < 2; ++trace) {
         cj_scene *s = floor_scene(CJ_LIGHT_LEGACY, 0.0);
-        cj_light p = cj_light_default(CJ_LIGHT_POINT);
+        cj_light p = cj_light_defaults(CJ_LIGHT_POINT);
         p.position = cj_v3(LP[0], LP[1], LP[2]);
         p.intensity = LI;
         p.casts_shadows = 0;

@@ -209,7 +209,7 @@ static void test_depth_and_barycentrics(void **state) {
     int tris = 0;
     for (int it = 0; it < 40; ++it) {
         const int W = cj_rng_int(&r, 24, 64), H = cj_rng_int(&r, 24, 64);
-        cj_camera cam = cj_camera_default();
+        cj_camera cam = cj_camera_defaults();
         cam.projection = it % 4 == 3 ? CJ_PROJ_ORTHOGRAPHIC : CJ_PROJ_PERSPECTIVE;
         cam.ortho_height = 3;
         cam.fov_y = cj_rng_range(&r, 0.3, 1.5);
@@ -240,7 +240,7 @@ static void test_depth_and_barycentrics(void **state) {
 
 /* Camera at the origin looking down −z (clip = projection only). */
 static void camera_clip(double near, double far, int W, int H, cj_xform3 *M) {
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(0, 0, 0);
     cam.gaze = cj_v3(0, 0, -1);
     cam.near = near;

@@ -407,7 +407,7 @@ static int winding(const dedge *e, size_t ne, const int64_t *X, const int64_t *Y
 static void test_teapot_coverage(void **state) {
     (void)state;
     const int W = 192, H = 144;
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(5.5, 4.0, 6.5);
     cam.gaze = cj_v3(-5.5, -4.5, -6.5);
     cam.fov_y = 0.6;
@@ -519,7 +519,7 @@ static void nearest_frag(void *u, int x, int y, int s, uint32_t tri, float z, fl
 static void test_determinism(void **state) {
     (void)state;
     const int W = 203, H = 157;
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(2.5, 3.0, 4.0);
     cam.gaze = cj_v3(-2.5, -3.2, -4.0);
     cam.near = -3.0; /* cuts the teapot: near-plane clipping inside the frame */

@@ -81,7 +81,7 @@ static void ps_sort(pixset *s) {
 }
 
 /* Reference pixels of the line restricted to clip (iterates the major axis over the window). */
-static void reference(long long x0, long long y0, long long x1, long long y1, cj_raster_rect clip,
+static void reference(long long x0, long long y0, long long x1, long long y1, cj_line_rect clip,
                       pixset *out) {
     long long adx = llabs(x1 - x0), ady = llabs(y1 - y0);
     if (adx == 0 && ady == 0) {
@@ -107,15 +107,14 @@ static void reference(long long x0, long long y0, long long x1, long long y1, cj
     }
 }
 
-static const cj_raster_rect big = {-1000000, -1000000, 1000000, 1000000};
+static const cj_line_rect big = {-1000000, -1000000, 1000000, 1000000};
 
-static void check_line(long long x0, long long y0, long long x1, long long y1, cj_raster_rect clip,
+static void check_line(long long x0, long long y0, long long x1, long long y1, cj_line_rect clip,
                        const char *what) {
     pixset got = {0}, rev = {0}, ref = {0};
     long long visited = -1, visited_rev = -1;
-    assert_int_equal(cj_raster_line_visit(x0, y0, x1, y1, clip, collect, &got, &visited), CJ_OK);
-    assert_int_equal(cj_raster_line_visit(x1, y1, x0, y0, clip, collect, &rev, &visited_rev),
-                     CJ_OK);
+    assert_int_equal(cj_line_visit(x0, y0, x1, y1, clip, collect, &got, &visited), CJ_OK);
+    assert_int_equal(cj_line_visit(x1, y1, x0, y0, clip, collect, &rev, &visited_rev), CJ_OK);
     reference(x0, y0, x1, y1, clip, &ref);
     int ok = visited == (long long)got.n && visited_rev == (long long)rev.n;
     /* Steps: consecutive visited pixels differ by exactly one along the major axis. */
@@ -150,14 +149,14 @@ static void test_exhaustive_small(void **state) {
             long long x0 = a % 9 - 4, y0 = a / 9 - 4, x1 = b % 9 - 4, y1 = b / 9 - 4;
             check_line(x0, y0, x1, y1, big, "grid");
             long long n;
-            cj_raster_line_visit(x0, y0, x1, y1, big, NULL, NULL, &n);
+            cj_line_visit(x0, y0, x1, y1, big, NULL, NULL, &n);
             long long adx = llabs(x1 - x0), ady = llabs(y1 - y0);
             assert_int_equal(n, (adx > ady ? adx : ady) + 1);
             ++lines;
         }
     /* The tie rule, by hand: (0,0)-(2,1) passes y = 1/2 at x = 1, rounded up to (1,1). */
     pixset s = {0};
-    cj_raster_line_visit(0, 0, 2, 1, big, collect, &s, NULL);
+    cj_line_visit(0, 0, 2, 1, big, collect, &s, NULL);
     assert_int_equal(s.n, 3);
     assert_true(s.p[1].x == 1 && s.p[1].y == 1);
     free(s.p);
@@ -178,8 +177,8 @@ static void test_random_and_clipped(void **state) {
         int oct = (x1 > x0) | (y1 > y0) << 1 | (llabs(x1 - x0) > llabs(y1 - y0)) << 2;
         octants[oct]++;
         check_line(x0, y0, x1, y1, big, "random");
-        cj_raster_rect clip = {cj_rng_int(&r, -200, 0), cj_rng_int(&r, -200, 0),
-                               cj_rng_int(&r, 0, 200), cj_rng_int(&r, 0, 200)};
+        cj_line_rect clip = {cj_rng_int(&r, -200, 0), cj_rng_int(&r, -200, 0),
+                             cj_rng_int(&r, 0, 200), cj_rng_int(&r, 0, 200)};
         check_line(x0, y0, x1, y1, clip, "random clipped");
     }
     for (int k = 0; k < 8; ++k) assert_true(octants[k] > 100);
@@ -190,14 +189,14 @@ static void test_random_and_clipped(void **state) {
  * work (callback invocations) is only the visible pixels. */
 static void test_huge_clipping(void **state) {
     (void)state;
-    cj_raster_rect clip = {0, 0, 99, 99};
+    cj_line_rect clip = {0, 0, 99, 99};
     long long n = -1;
-    assert_int_equal(cj_raster_line_visit_d(-1e9, -1e9, 1e9, 1e9, clip, NULL, NULL, &n), CJ_OK);
+    assert_int_equal(cj_line_visit_d(-1e9, -1e9, 1e9, 1e9, clip, NULL, NULL, &n), CJ_OK);
     assert_int_equal(n, 100);
     pixset s = {0};
-    assert_int_equal(cj_raster_line_visit(-1000000000, -1000000000, 1000000000, 1000000000, clip,
-                                          collect, &s, &n),
-                     CJ_OK);
+    assert_int_equal(
+        cj_line_visit(-1000000000, -1000000000, 1000000000, 1000000000, clip, collect, &s, &n),
+        CJ_OK);
     assert_int_equal(s.n, 100);
     for (size_t i = 0; i < s.n; ++i) assert_true(s.p[i].x == s.p[i].y);
     free(s.p);
@@ -228,28 +227,26 @@ static void cov_count(void *user, int x, int y, float c) {
 static void test_nonfinite_refused(void **state) {
     (void)state;
     int aa_visits = 0;
-    cj_raster_rect clip = {0, 0, 9, 9};
+    cj_line_rect clip = {0, 0, 9, 9};
     pixset s = {0};
     const double bad[3] = {NAN, INFINITY, -INFINITY};
     for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 4; ++c) {
             double v[4] = {1, 2, 3, 4};
             v[c] = bad[k];
-            assert_int_equal(
-                cj_raster_line_visit_d(v[0], v[1], v[2], v[3], clip, collect, &s, NULL),
-                CJ_ERR_NONFINITE);
-            assert_int_equal(
-                cj_raster_line_aa_visit(v[0], v[1], v[2], v[3], clip, cov_count, &aa_visits),
-                CJ_ERR_NONFINITE);
+            assert_int_equal(cj_line_visit_d(v[0], v[1], v[2], v[3], clip, collect, &s, NULL),
+                             CJ_ERR_NONFINITE);
+            assert_int_equal(cj_line_aa_visit(v[0], v[1], v[2], v[3], clip, cov_count, &aa_visits),
+                             CJ_ERR_NONFINITE);
         }
     assert_int_equal(s.n, 0);
     assert_int_equal(aa_visits, 0);
-    assert_int_equal(cj_raster_line_visit_d(1e300, 0, 0, 0, clip, collect, &s, NULL), CJ_ERR_RANGE);
-    assert_int_equal(cj_raster_line_visit(0, 0, (1LL << 52) + 1, 0, clip, collect, &s, NULL),
+    assert_int_equal(cj_line_visit_d(1e300, 0, 0, 0, clip, collect, &s, NULL), CJ_ERR_RANGE);
+    assert_int_equal(cj_line_visit(0, 0, (1LL << 52) + 1, 0, clip, collect, &s, NULL),
                      CJ_ERR_RANGE);
     assert_int_equal(s.n, 0);
     /* Double end points map to the pixel containing them. */
-    assert_int_equal(cj_raster_line_visit_d(-0.5, 0.25, 4.99, 2.75, big, collect, &s, NULL), CJ_OK);
+    assert_int_equal(cj_line_visit_d(-0.5, 0.25, 4.99, 2.75, big, collect, &s, NULL), CJ_OK);
     pixset ref = {0};
     reference(-1, 0, 4, 2, big, &ref);
     ps_sort(&s);
@@ -313,15 +310,15 @@ static void test_framebuffer_basics(void **state) {
             assert_int_equal(cj_framebuffer_create(64, 48, i ? CJ_FB_PADDED : 0u, &al, &fb), CJ_OK);
             assert_true(i ? fb->stride > 64 && fb->stride % 32 == 16 : fb->stride == 64);
         }
-        cj_raster_rect clip = cj_raster_rect_of(fb);
+        cj_line_rect clip = cj_line_rect_of(fb);
         long long x0 = cj_rng_int(&r, -100, 160), y0 = cj_rng_int(&r, -100, 150);
         long long x1 = cj_rng_int(&r, -100, 160), y1 = cj_rng_int(&r, -100, 150);
         cj_rgba bg = cj_rgba_make(10, 20, 30, 255), c = cj_rgba_make(200, 100, 50, 255);
         if (i & 1) c.a = 128;
         cj_framebuffer_clear(fb, bg);
-        assert_int_equal(cj_raster_line(fb, x0, y0, x1, y1, c), CJ_OK);
+        assert_int_equal(cj_line_draw(fb, x0, y0, x1, y1, c), CJ_OK);
         pixset s = {0};
-        cj_raster_line_visit(x0, y0, x1, y1, clip, collect, &s, NULL);
+        cj_line_visit(x0, y0, x1, y1, clip, collect, &s, NULL);
         cj_rgba expect = cj_rgba_over(c, bg);
         size_t marked = 0;
         for (int y = 0; y < 48; ++y)
@@ -338,10 +335,10 @@ static void test_framebuffer_basics(void **state) {
         if (i % 50 == 1) {
             cj_framebuffer_clear(fb, bg);
             cj_vec2 pts[2] = {{20.5, 10.0}, {20.5, 30.0}};
-            cj_raster_stroke st = cj_raster_stroke_default(1);
+            cj_line_stroke st = cj_line_stroke_defaults(1);
             st.cap = CJ_CAP_BUTT;
-            cj_raster_stroke_polyline(fb, pts, 2, 0, &st, cj_rgba_make(255, 255, 255, 255));
-            cj_raster_line_aa(fb, 40.5, 5.0, 40.5, 26.0, cj_rgba_make(255, 255, 255, 255));
+            cj_line_stroke_polyline(fb, pts, 2, 0, &st, cj_rgba_make(255, 255, 255, 255));
+            cj_line_draw_aa(fb, 40.5, 5.0, 40.5, 26.0, cj_rgba_make(255, 255, 255, 255));
             for (int y = 0; y < 48; ++y)
                 for (int x = 0; x < 64; ++x) {
                     int on = (x == 20 && y >= 10 && y < 30) || (x == 40 && y >= 5 && y <= 25);

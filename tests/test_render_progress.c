@@ -34,7 +34,7 @@ static int same_image(const cj_render_image *a, const cj_render_image *b) {
 }
 
 static int check_backend(const char *name, render_fn fn, const cj_scene *s, int threads) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 96;
     o.height = 64;
     o.tile_size = 16;

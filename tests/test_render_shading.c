@@ -37,14 +37,14 @@ static void test_phong_by_hand(void **state) {
     (void)state;
     rs_sphere_scene sc;
     rs_sphere(&sc, 1);
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = o.height = 200;
     o.spp = 1;
     double worst = 0.0;
     int checked = 0;
     for (int pass = 0; pass < 2; ++pass) {
         if (pass == 1) { /* a spot light too: cone 9 degrees, exponent 4 */
-            cj_light sp = cj_light_default(CJ_LIGHT_SPOT);
+            cj_light sp = cj_light_defaults(CJ_LIGHT_SPOT);
             sp.position = cj_v3(-2, 2, 3);
             sp.direction = cj_v3(2, -2, -3);
             sp.spot_angle = 9.0 * 3.14159265358979323846 / 180.0;
@@ -54,7 +54,7 @@ static void test_phong_by_hand(void **state) {
         }
         cj_render_image *img = render(sc.s, &o, 0, NULL);
         dump(img, pass ? "phong_spot" : "phong");
-        const cj_camera *cam = cj_scene_camera(sc.s);
+        const cj_camera *cam = cj_scene_get_camera(sc.s);
         const cj_material *m = cj_scene_material(sc.s, sc.mat);
         for (int y = 2; y < o.height; y += 4)
             for (int x = 3; x < o.width; x += 4) {
@@ -120,12 +120,12 @@ static void test_sphere_silhouette(void **state) {
         rs_sphere(&sc, 0);
         cj_vec3 centre = off ? cj_v3(1.1, -0.7, -0.5) : cj_v3(0, 0, 0);
         cj_scene_node_mut(sc.s, sc.node)->local.translate = centre;
-        cj_render_options o = cj_render_options_default();
+        cj_render_options o = cj_render_options_defaults();
         o.width = 211;
         o.height = 157;
         o.spp = 1;
         cj_render_image *img = render(sc.s, &o, CJ_IMAGE_IDS, NULL);
-        const cj_camera *cam = cj_scene_camera(sc.s);
+        const cj_camera *cam = cj_scene_get_camera(sc.s);
         /* exact classification of every pixel centre: the ray meets the sphere */
         uint8_t *in = malloc((size_t)o.width * (size_t)o.height);
         assert_non_null(in);
@@ -170,11 +170,11 @@ static void test_sphere_silhouette(void **state) {
     /* orthographic: the silhouette is the circle of radius r / (pixel size) */
     rs_sphere_scene sc;
     rs_sphere(&sc, 0);
-    cj_camera cam = *cj_scene_camera(sc.s);
+    cj_camera cam = *cj_scene_get_camera(sc.s);
     cam.projection = CJ_PROJ_ORTHOGRAPHIC;
     cam.ortho_height = 3.0;
     rs_check(cj_scene_set_camera(sc.s, &cam));
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 200;
     o.height = 150;
     o.spp = 1;
@@ -204,13 +204,13 @@ static void test_bsp_interpenetrating(void **state) {
     (void)state;
     cj_scene *s;
     rs_check(cj_scene_create(NULL, &s));
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.fov_y = 40.0 * 3.14159265358979323846 / 180.0;
     rs_check(cj_scene_set_camera(s, &cam));
     const double sl[2] = {0.5, -0.5};
     const cj_rgb col[2] = {{1, 0, 0}, {0, 0, 1}};
     for (int q = 0; q < 2; ++q) {
-        cj_material m = cj_material_default();
+        cj_material m = cj_material_defaults();
         m.color = col[q];
         m.opacity = 0.5;
         m.two_sided = 1;
@@ -222,10 +222,10 @@ static void test_bsp_interpenetrating(void **state) {
         rs_check(cj_planar_patch_init(&g.u.planar, cj_v3(-1, -1, -sl[q]), cj_v3(2, 0, 2 * sl[q]),
                                       cj_v3(0, 2, 0)));
         rs_check(cj_scene_add_geometry(s, &g, &gi));
-        cj_node n = cj_render_node(gi, mi);
+        cj_node n = cj_node_defaults(gi, mi);
         rs_check(cj_scene_add_node(s, &n, NULL));
     }
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 160;
     o.height = 120;
     o.spp = 1;
@@ -293,7 +293,7 @@ static void test_view_tessellation(void **state) {
     rs_sphere_scene sc;
     rs_sphere(&sc, 0);
     rs_add_patch_quad(sc.s, sc.mat, -2.0, 0);
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 320;
     o.height = 240;
     const double tols[3] = {1.0, 0.25, 0.1};

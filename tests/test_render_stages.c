@@ -48,7 +48,7 @@ static void expect_stages(const cj_scene *s, const cj_render_options *o, const c
 
 static void test_stage_iff_feature(void **state) {
     (void)state;
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 96;
     o.height = 72;
     o.spp = 1;
@@ -57,12 +57,12 @@ static void test_stage_iff_feature(void **state) {
     /* no lights, one-sided opaque untextured sphere */
     expect_stages(sc.s, &o, "tessellate_surfaces,cull_backfaces,shade_unlit");
     /* an ambient light alone: still unlit (no normals) */
-    cj_light amb = cj_light_default(CJ_LIGHT_AMBIENT);
+    cj_light amb = cj_light_defaults(CJ_LIGHT_AMBIENT);
     amb.intensity = 0.3;
     assert_int_equal(cj_scene_add_light(sc.s, &amb, NULL), CJ_OK);
     expect_stages(sc.s, &o, "tessellate_surfaces,cull_backfaces,shade_unlit");
     /* a point light: Phong (the default material) with normals */
-    cj_light pt = cj_light_default(CJ_LIGHT_POINT);
+    cj_light pt = cj_light_defaults(CJ_LIGHT_POINT);
     assert_int_equal(cj_scene_add_light(sc.s, &pt, NULL), CJ_OK);
     expect_stages(sc.s, &o, "tessellate_surfaces,cull_backfaces,vertex_normals,shade_phong");
     cj_material *m = cj_scene_material_mut(sc.s, sc.mat);
@@ -76,7 +76,7 @@ static void test_stage_iff_feature(void **state) {
     expect_stages(sc.s, &o, "tessellate_surfaces,vertex_normals,shade_phong");
     m->two_sided = 0;
     /* a checker texture: (u, v) and sampling */
-    cj_texture ck = cj_texture_default(CJ_TEX_CHECKER);
+    cj_texture ck = cj_texture_defaults(CJ_TEX_CHECKER);
     int ti;
     assert_int_equal(cj_scene_add_texture(sc.s, &ck, &ti), CJ_OK);
     m = cj_scene_material_mut(sc.s, sc.mat);
@@ -85,7 +85,7 @@ static void test_stage_iff_feature(void **state) {
                   "tessellate_surfaces,cull_backfaces,vertex_normals,texture_coords,shade_phong,"
                   "texture");
     /* a trilinear image texture: mip-maps too */
-    cj_texture im = cj_texture_default(CJ_TEX_IMAGE);
+    cj_texture im = cj_texture_defaults(CJ_TEX_IMAGE);
     im.filter = CJ_TEX_TRILINEAR;
     im.path = "white.png";
     assert_int_equal(cj_scene_add_texture(sc.s, &im, &ti), CJ_OK);
@@ -128,7 +128,7 @@ static void test_stage_iff_feature(void **state) {
 
 static void test_neutral_features_bit_identical(void **state) {
     (void)state;
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 120;
     o.height = 90;
     o.spp = 4;
@@ -136,11 +136,11 @@ static void test_neutral_features_bit_identical(void **state) {
     rs_sphere(&sc, 1);
     cj_render_image *ref = render(sc.s, &o, 0, NULL);
     /* a point light and an ambient light of zero intensity */
-    cj_light z = cj_light_default(CJ_LIGHT_POINT);
+    cj_light z = cj_light_defaults(CJ_LIGHT_POINT);
     z.intensity = 0.0;
     z.position = cj_v3(-3, 1, 2);
     assert_int_equal(cj_scene_add_light(sc.s, &z, NULL), CJ_OK);
-    z = cj_light_default(CJ_LIGHT_AMBIENT);
+    z = cj_light_defaults(CJ_LIGHT_AMBIENT);
     z.intensity = 0.0;
     assert_int_equal(cj_scene_add_light(sc.s, &z, NULL), CJ_OK);
     cj_render_image *img = render(sc.s, &o, 0, NULL);
@@ -152,7 +152,7 @@ static void test_neutral_features_bit_identical(void **state) {
     for (int i = 0; i < 128; ++i) px[i] = 1.0f;
     int checked = 0;
     for (int f = 0; f < 4; ++f) {
-        cj_texture t = cj_texture_default(f < 3 ? CJ_TEX_IMAGE : CJ_TEX_CHECKER);
+        cj_texture t = cj_texture_defaults(f < 3 ? CJ_TEX_IMAGE : CJ_TEX_CHECKER);
         int ti;
         if (f < 3) {
             t.filter = filters[f];
@@ -180,7 +180,7 @@ static void test_neutral_features_bit_identical(void **state) {
 static void test_threads_tiles_identical(void **state) {
     (void)state;
     cj_scene *s = rs_feature_scene();
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 173;
     o.height = 131;
     o.spp = 4;
@@ -215,7 +215,7 @@ static void test_edge_cases(void **state) {
     (void)state;
     cj_scene *s;
     rs_check(cj_scene_create(NULL, &s));
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.background = cj_rgb_make(0.25, 0.5, 0.125);
     set.width = 40;
     set.height = 30;
@@ -231,7 +231,7 @@ static void test_edge_cases(void **state) {
     assert_false(ran(&rep, "shade_unlit") || ran(&rep, "overlay_lines"));
     cj_render_image_destroy(img);
     /* only a curve: the line pass alone */
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     int mi;
     rs_check(cj_scene_add_material(s, &m, &mi));
     rs_add_curve(s, mi, 0.0);
@@ -240,7 +240,7 @@ static void test_edge_cases(void **state) {
                 cj_stage_report_find(&rep, "overlay_lines")->out > 20);
     cj_render_image_destroy(img);
     /* refused options and data: nothing is returned */
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     cj_render_image *none = NULL;
     o.spp = 3;
     assert_int_equal(cj_render_raster(s, &o, 0, NULL, &none, NULL), CJ_ERR_RANGE);
@@ -251,7 +251,7 @@ static void test_edge_cases(void **state) {
     o.tol_px = -1.0;
     assert_int_equal(cj_render_raster(s, &o, 0, NULL, &none, NULL), CJ_ERR_RANGE);
     o.tol_px = 0.0;
-    cj_texture t = cj_texture_default(CJ_TEX_IMAGE);
+    cj_texture t = cj_texture_defaults(CJ_TEX_IMAGE);
     t.path = "missing.png";
     int ti;
     rs_check(cj_scene_add_texture(s, &t, &ti));
@@ -263,7 +263,7 @@ static void test_edge_cases(void **state) {
     g.u.sphere.radius = 0.5;
     int gi;
     rs_check(cj_scene_add_geometry(s, &g, &gi));
-    cj_node n = cj_render_node(gi, mi);
+    cj_node n = cj_node_defaults(gi, mi);
     rs_check(cj_scene_add_node(s, &n, NULL));
     assert_int_equal(cj_render_raster(s, &o, 0, NULL, &none, NULL), CJ_ERR_ARGUMENT);
     assert_non_null(strstr(cj_last_error(), "textures[0]"));
@@ -275,7 +275,7 @@ static void test_edge_cases(void **state) {
     rs_sphere(&sc, 1);
     rs_add_patch_quad(sc.s, sc.mat, 4.8, 0);
     cj_scene_material_mut(sc.s, sc.mat)->two_sided = 1;
-    o = cj_render_options_default();
+    o = cj_render_options_defaults();
     o.width = 120;
     o.height = 90;
     cj_render_image_destroy(render(sc.s, &o, 0, &rep));
@@ -329,7 +329,7 @@ static void test_tessellation_cache(void **state) {
     rs_sphere_scene sc;
     rs_sphere(&sc, 1);
     int pn = rs_add_patch_quad(sc.s, sc.mat, -1.0, CJ_OVERLAY_CONTROL_NET);
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 160;
     o.height = 120;
     cj_render_image *ref = render(sc.s, &o, 0, NULL);
@@ -347,7 +347,7 @@ static void test_tessellation_cache(void **state) {
         hits[i] = st->extra[st->extra_count - 1].value;
     }
     /* the camera a little farther: the cached, finer mesh is reused and still within tol */
-    cj_camera cam = *cj_scene_camera(sc.s);
+    cj_camera cam = *cj_scene_get_camera(sc.s);
     cam.eye = cj_v3(0, 0, 6);
     rs_check(cj_scene_set_camera(sc.s, &cam));
     cj_render_image_destroy(render(sc.s, &o, 0, &rep));

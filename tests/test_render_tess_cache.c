@@ -28,7 +28,7 @@ static void test_edits_same_image(void **state) {
     cj_rng_init(&rng, seed);
     cj_scene *s = NULL;
     assert_int_equal(cj_render_demo_scene(CJ_TEAPOT_PATH, NULL, &s), CJ_OK);
-    cj_camera cam = *cj_scene_camera(s);
+    cj_camera cam = *cj_scene_get_camera(s);
     cam.projection = CJ_PROJ_ORTHOGRAPHIC;
     cam.ortho_height = 7.0;
     assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
@@ -36,7 +36,7 @@ static void test_edits_same_image(void **state) {
     cj_geometry *g = cj_scene_geometry_mut(s, cj_scene_node(s, 0)->geometry);
     assert_int_equal(g->kind, CJ_GEOM_PATCHES);
     const size_t np = g->u.patches.count;
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 160;
     o.height = 120;
     o.tol_px = 0.5;

@@ -15,7 +15,7 @@
 #include <string.h>
 
 static cj_texture image(int w, int h, const float *texels, cj_tex_filter f, cj_tex_wrap wrap) {
-    cj_texture t = cj_texture_default(CJ_TEX_IMAGE);
+    cj_texture t = cj_texture_defaults(CJ_TEX_IMAGE);
     t.filter = f;
     t.wrap = wrap;
     t.width = w;
@@ -126,7 +126,7 @@ static void test_trilinear_levels(void **state) {
 
 static void test_checker(void **state) {
     (void)state;
-    cj_texture t = cj_texture_default(CJ_TEX_CHECKER);
+    cj_texture t = cj_texture_defaults(CJ_TEX_CHECKER);
     t.checks_u = t.checks_v = 4;
     t.scale_u = t.scale_v = 1.0;
     t.offset_u = t.offset_v = 0.0;

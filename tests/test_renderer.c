@@ -38,9 +38,10 @@ static double value(const cj_stage_report *r, const char *stage, const char *key
 static cj_render_image *one_shot(const cj_scene *s, cj_backend be, const cj_renderer_options *o,
                                  unsigned planes) {
     cj_render_image *img = NULL;
-    cj_status st = be == CJ_BACKEND_TRACE
-                       ? cj_render_trace_ex(s, &o->render, &o->trace, planes, NULL, &img, NULL)
-                       : cj_render_raster(s, &o->render, planes, NULL, &img, NULL);
+    cj_status st =
+        be == CJ_BACKEND_TRACE
+            ? cj_render_trace_with_options(s, &o->render, &o->trace, planes, NULL, &img, NULL)
+            : cj_render_raster(s, &o->render, planes, NULL, &img, NULL);
     if (st) fail_msg("one-shot render failed: %s", cj_last_error());
     return img;
 }
@@ -99,7 +100,7 @@ static void edit(cj_scene *s, int e, cj_renderer_options *o) {
 /* One renderer through every edit, each frame compared with the one-shot call. */
 static void run_sequence(cj_scene *(*make)(void), const char *name, cj_backend be, int threads) {
     cj_scene *s = make();
-    cj_renderer_options o = cj_renderer_options_default();
+    cj_renderer_options o = cj_renderer_options_defaults();
     o.render.width = 80;
     o.render.height = 60;
     o.render.spp = 1;
@@ -184,7 +185,7 @@ static void test_feature_sequence(void **state) {
 static void test_alternating(void **state) {
     (void)state;
     cj_scene *s = teapot_scene();
-    cj_renderer_options o = cj_renderer_options_default();
+    cj_renderer_options o = cj_renderer_options_defaults();
     o.render.width = 64;
     o.render.height = 48;
     o.render.spp = 1;
@@ -219,7 +220,7 @@ static int cancel_at_2(void *user, uint64_t done, uint64_t total) {
 static void test_cancel_then_draw(void **state) {
     (void)state;
     cj_scene *s = teapot_scene();
-    cj_renderer_options o = cj_renderer_options_default();
+    cj_renderer_options o = cj_renderer_options_defaults();
     o.render.width = 64;
     o.render.height = 48;
     o.render.tile_size = 16;
@@ -258,26 +259,26 @@ static void test_cancel_then_draw(void **state) {
 static void test_options(void **state) {
     (void)state;
     cj_renderer *r = NULL;
-    cj_renderer_options o = cj_renderer_options_default();
+    cj_renderer_options o = cj_renderer_options_defaults();
     int refused = 0;
     o.render.threads = -1;
     refused += cj_renderer_create(&o, NULL, &r) == CJ_ERR_RANGE;
-    o = cj_renderer_options_default();
+    o = cj_renderer_options_defaults();
     o.render.tile_size = 4;
     refused += cj_renderer_create(&o, NULL, &r) == CJ_ERR_RANGE;
-    o = cj_renderer_options_default();
+    o = cj_renderer_options_defaults();
     o.render.tol_px = NAN;
     refused += cj_renderer_create(&o, NULL, &r) == CJ_ERR_RANGE;
-    o = cj_renderer_options_default();
+    o = cj_renderer_options_defaults();
     o.trace.indirect_samples = 5000;
     refused += cj_renderer_create(&o, NULL, &r) == CJ_ERR_RANGE;
     assert_int_equal(refused, 4);
     assert_null(r);
     assert_int_equal(cj_renderer_create(NULL, NULL, &r), CJ_OK);
-    o = cj_renderer_options_default();
+    o = cj_renderer_options_defaults();
     o.render.spp = -2;
     assert_int_equal(cj_renderer_set_options(r, &o), CJ_ERR_RANGE);
-    assert_int_equal(cj_renderer_options_get(r)->render.spp, 0); /* the old options stay */
+    assert_int_equal(cj_renderer_get_options(r)->render.spp, 0); /* the old options stay */
     /* an option only the scene can judge is refused at the draw */
     rs_sphere_scene sc;
     rs_sphere(&sc, 1);
@@ -300,7 +301,7 @@ static void test_options(void **state) {
 static void test_scene_mesh(void **state) {
     (void)state;
     cj_scene *s = teapot_scene();
-    cj_renderer_options o = cj_renderer_options_default();
+    cj_renderer_options o = cj_renderer_options_defaults();
     o.render.width = 96;
     o.render.height = 72;
     cj_renderer *r = NULL;

@@ -37,23 +37,23 @@
 static cj_scene *sphere_scene(double s, cj_vec3 shift, double mirror, int w) {
     cj_scene *sc;
     assert_int_equal(cj_scene_create(NULL, &sc), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3_add(shift, cj_v3(0, 3 * s, 8 * s));
     cam.gaze = cj_v3(0, -3, -8);
     cam.near = -0.1 * s;
     cam.far = -100 * s;
     assert_int_equal(cj_scene_set_camera(sc, &cam), CJ_OK);
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.width = w;
     set.height = w;
     set.spp = 1;
     assert_int_equal(cj_scene_set_settings(sc, &set), CJ_OK);
-    cj_light amb = cj_light_default(CJ_LIGHT_AMBIENT), pt = cj_light_default(CJ_LIGHT_POINT);
+    cj_light amb = cj_light_defaults(CJ_LIGHT_AMBIENT), pt = cj_light_defaults(CJ_LIGHT_POINT);
     amb.intensity = 0.5;
     pt.position = cj_v3_add(shift, cj_v3(0, 10 * s, 0));
     assert_int_equal(cj_scene_add_light(sc, &amb, NULL), CJ_OK);
     assert_int_equal(cj_scene_add_light(sc, &pt, NULL), CJ_OK);
-    cj_material fm = cj_material_default(), sm = cj_material_default();
+    cj_material fm = cj_material_defaults(), sm = cj_material_defaults();
     fm.color = cj_rgb_make(1, 0.8, 0.6);
     fm.ka = 0.2;
     fm.kd = 0.8;
@@ -74,7 +74,7 @@ static cj_scene *sphere_scene(double s, cj_vec3 shift, double mirror, int w) {
     g.u.sphere.center = cj_v3_add(shift, cj_v3(0, 2 * s, 0));
     g.u.sphere.radius = s;
     assert_int_equal(cj_scene_add_geometry(sc, &g, &ig2), CJ_OK);
-    cj_node n1 = cj_render_node(ig1, ifm), n2 = cj_render_node(ig2, ism);
+    cj_node n1 = cj_node_defaults(ig1, ifm), n2 = cj_node_defaults(ig2, ism);
     assert_int_equal(cj_scene_add_node(sc, &n1, NULL), CJ_OK);
     assert_int_equal(cj_scene_add_node(sc, &n2, NULL), CJ_OK);
     return sc;
@@ -82,7 +82,7 @@ static cj_scene *sphere_scene(double s, cj_vec3 shift, double mirror, int w) {
 
 static cj_render_image *trace(const cj_scene *sc, int threads, int tile, unsigned planes,
                               cj_stage_report *rep) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.threads = threads;
     o.tile_size = tile;
     cj_render_image *img = NULL;
@@ -140,7 +140,7 @@ static void test_only_called_effects(void **state) {
 static double floor_by_hand(const cj_scene *sc, int w, int x, int y, double s, cj_vec3 shift,
                             int *shadowed, double *amb) {
     cj_vec3 o, d;
-    assert_int_equal(cj_camera_ray(cj_scene_camera(sc), w, w, x + 0.5, y + 0.5, &o, &d), CJ_OK);
+    assert_int_equal(cj_camera_ray(cj_scene_get_camera(sc), w, w, x + 0.5, y + 0.5, &o, &d), CJ_OK);
     if (!(d.y < 0)) return -1;
     double t = (shift.y - o.y) / d.y;
     cj_vec3 p = cj_v3_add(o, cj_v3_scale(d, t));
@@ -210,25 +210,25 @@ static void test_no_leak_under_thin_roof(void **state) {
     const double h = 1e-6;
     cj_scene *sc;
     assert_int_equal(cj_scene_create(NULL, &sc), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(0, 0.5 * h, 0);
     cam.gaze = cj_v3(0, -0.2 * h, -1e-6);
     cam.near = -1e-9;
     cam.far = -10;
     cam.fov_y = 1.0;
     assert_int_equal(cj_scene_set_camera(sc, &cam), CJ_OK);
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.width = set.height = 48;
     assert_int_equal(cj_scene_set_settings(sc, &set), CJ_OK);
-    cj_light amb = cj_light_default(CJ_LIGHT_AMBIENT), pt = cj_light_default(CJ_LIGHT_POINT);
+    cj_light amb = cj_light_defaults(CJ_LIGHT_AMBIENT), pt = cj_light_defaults(CJ_LIGHT_POINT);
     amb.intensity = 0.5;
     pt.position = cj_v3(0, 1, 0);
-    cj_light dir = cj_light_default(CJ_LIGHT_DIRECTIONAL);
+    cj_light dir = cj_light_defaults(CJ_LIGHT_DIRECTIONAL);
     dir.direction = cj_v3(0.3, -1, 0.2);
     assert_int_equal(cj_scene_add_light(sc, &amb, NULL), CJ_OK);
     assert_int_equal(cj_scene_add_light(sc, &pt, NULL), CJ_OK);
     assert_int_equal(cj_scene_add_light(sc, &dir, NULL), CJ_OK);
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = cj_rgb_make(1, 1, 1);
     m.ka = 0.2;
     m.ks = 0.0;
@@ -244,7 +244,7 @@ static void test_no_leak_under_thin_roof(void **state) {
     assert_int_equal(
         cj_planar_patch_init(&g.u.planar, cj_v3(-1, h, 1), cj_v3(2, 0, 0), cj_v3(0, 0, -2)), CJ_OK);
     assert_int_equal(cj_scene_add_geometry(sc, &g, &ig2), CJ_OK);
-    cj_node n1 = cj_render_node(ig1, im), n2 = cj_render_node(ig2, im);
+    cj_node n1 = cj_node_defaults(ig1, im), n2 = cj_node_defaults(ig2, im);
     assert_int_equal(cj_scene_add_node(sc, &n1, NULL), CJ_OK);
     assert_int_equal(cj_scene_add_node(sc, &n2, NULL), CJ_OK);
     cj_render_image *img = trace(sc, 2, 0, CJ_IMAGE_IDS, NULL);
@@ -292,13 +292,13 @@ static void test_threads_bit_identical(void **state) {
     cj_scene *sc = sphere_scene(1.0, cj_v3(0, 0, 0), 0.5, 48);
     cj_scene_material_mut(sc, 1)->transmission = 0.5;
     cj_scene_material_mut(sc, 1)->glossiness = 50;
-    cj_light area = cj_light_default(CJ_LIGHT_AREA);
+    cj_light area = cj_light_defaults(CJ_LIGHT_AREA);
     area.position = cj_v3(-1, 8, -1);
     area.edge_u = cj_v3(2, 0, 0);
     area.edge_v = cj_v3(0, 0, 2);
     area.intensity = 0.5;
     assert_int_equal(cj_scene_add_light(sc, &area, NULL), CJ_OK);
-    cj_scene_settings set = *cj_scene_settings_get(sc);
+    cj_scene_settings set = *cj_scene_get_settings(sc);
     set.spp = 4;
     assert_int_equal(cj_scene_set_settings(sc, &set), CJ_OK);
     cj_render_image *ref = trace(sc, 1, 0, CJ_IMAGE_IDS, NULL);
@@ -310,7 +310,7 @@ static void test_threads_bit_identical(void **state) {
         cj_render_image_destroy(img);
     }
     /* A different seed changes the picture (sampling is really used). */
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.use_seed = 1;
     o.seed = 12345;
     cj_render_image *other = NULL;
@@ -320,12 +320,12 @@ static void test_threads_bit_identical(void **state) {
     /* Plain random sampling: another image, still the same for any thread count. */
     cj_trace_options to = {1, 0, 0, 0};
     cj_render_image *r1 = NULL, *r2 = NULL;
-    o = cj_render_options_default();
+    o = cj_render_options_defaults();
     o.threads = 1;
-    assert_int_equal(cj_render_trace_ex(sc, &o, &to, 0, NULL, &r1, NULL), CJ_OK);
+    assert_int_equal(cj_render_trace_with_options(sc, &o, &to, 0, NULL, &r1, NULL), CJ_OK);
     o.threads = 2;
     o.tile_size = 8;
-    assert_int_equal(cj_render_trace_ex(sc, &o, &to, 0, NULL, &r2, NULL), CJ_OK);
+    assert_int_equal(cj_render_trace_with_options(sc, &o, &to, 0, NULL, &r2, NULL), CJ_OK);
     assert_memory_equal(r1->rgba, r2->rgba, sizeof(float) * 4 * 48 * 48);
     assert_true(memcmp(ref->rgba, r1->rgba, sizeof(float) * 4 * 48 * 48) != 0);
     cj_render_image_destroy(r1);
@@ -341,7 +341,7 @@ static void test_threads_bit_identical(void **state) {
  * around a silhouette (a neighbour shows another object in the traced or the rasterized
  * image). */
 static void compare_ids(const char *name, const cj_scene *sc, int W, int H) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = W;
     o.height = H;
     o.spp = 1;
@@ -414,7 +414,7 @@ static void test_patch_tolerance_option(void **state) {
     (void)state;
     cj_scene *sc;
     assert_int_equal(cj_trace_demo_scene(CJ_TEAPOT_PATH, NULL, &sc), CJ_OK);
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 40;
     o.height = 30;
     o.spp = 1;
@@ -423,7 +423,8 @@ static void test_patch_tolerance_option(void **state) {
     for (int k = 0; k < 4; k++) {
         cj_trace_options to = {0, bad[k], 0, 0};
         cj_render_image *img = NULL;
-        assert_int_equal(cj_render_trace_ex(sc, &o, &to, 0, NULL, &img, NULL), CJ_ERR_RANGE);
+        assert_int_equal(cj_render_trace_with_options(sc, &o, &to, 0, NULL, &img, NULL),
+                         CJ_ERR_RANGE);
         assert_null(img);
     }
     double err[2];
@@ -432,7 +433,7 @@ static void test_patch_tolerance_option(void **state) {
         cj_trace_options to = {0, tol[k], 0, 0};
         cj_render_image *img = NULL;
         cj_stage_report rep;
-        assert_int_equal(cj_render_trace_ex(sc, &o, &to, 0, NULL, &img, &rep), CJ_OK);
+        assert_int_equal(cj_render_trace_with_options(sc, &o, &to, 0, NULL, &img, &rep), CJ_OK);
         err[k] = patch_max_err(&rep);
         cj_render_image_destroy(img);
     }
@@ -457,7 +458,7 @@ static void test_signature_vs_raster(void **state) {
     for (int i = 0; i < 3; i++) {
         char path[512];
         snprintf(path, sizeof path, "%s/%s", CJ_SCENES_DIR, files[i]);
-        cj_status st = cj_scene_load_json_ex(path, &jo, NULL, &sc);
+        cj_status st = cj_scene_load_json_with_options(path, &jo, NULL, &sc);
         if (st) fprintf(stderr, "%s\n", cj_last_error());
         assert_int_equal(st, CJ_OK);
         compare_ids(files[i], sc, 160, 120);
@@ -499,12 +500,12 @@ static void test_cosine_sampler(void **state) {
 
 static cj_render_image *trace_ind(const cj_scene *sc, int threads, int tile, int indirect,
                                   cj_stage_report *rep) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.threads = threads;
     o.tile_size = tile;
     cj_trace_options to = {0, 0, indirect, 0};
     cj_render_image *img = NULL;
-    assert_int_equal(cj_render_trace_ex(sc, &o, &to, 0, NULL, &img, rep), CJ_OK);
+    assert_int_equal(cj_render_trace_with_options(sc, &o, &to, 0, NULL, &img, rep), CJ_OK);
     return img;
 }
 
@@ -536,17 +537,18 @@ static void test_indirect(void **state) {
     cj_render_image_destroy(on1);
     cj_render_image_destroy(ref);
     /* Out of range. */
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     cj_trace_options bad = {0, 0, -1, 0};
     cj_render_image *none = NULL;
-    assert_int_equal(cj_render_trace_ex(sc, &o, &bad, 0, NULL, &none, NULL), CJ_ERR_RANGE);
+    assert_int_equal(cj_render_trace_with_options(sc, &o, &bad, 0, NULL, &none, NULL),
+                     CJ_ERR_RANGE);
     assert_null(none);
     /* Furnace: the floor alone (sphere hidden), lit only by a zero ambient, under a sky of
      * radiance B: every indirect ray escapes, so each floor pixel is kd c B exactly. */
     cj_scene_node_mut(sc, 1)->visible = 0;
     cj_scene_light_mut(sc, 0)->intensity = 0.0;
     cj_scene_light_mut(sc, 1)->intensity = 0.0;
-    cj_scene_settings set = *cj_scene_settings_get(sc);
+    cj_scene_settings set = *cj_scene_get_settings(sc);
     set.background = cj_rgb_make(0.5, 0.25, 1.0);
     assert_int_equal(cj_scene_set_settings(sc, &set), CJ_OK);
     const int N = 5;

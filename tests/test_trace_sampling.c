@@ -59,25 +59,25 @@ static void test_permute_is_bijective(void **state) {
 static cj_scene *penumbra_scene(int spp) {
     cj_scene *sc;
     assert_int_equal(cj_scene_create(NULL, &sc), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(0, 9, 0.01);
     cam.gaze = cj_v3(0, -1, 0);
     cam.up = cj_v3(0, 0, -1);
     cam.near = -0.1;
     cam.far = -100;
     assert_int_equal(cj_scene_set_camera(sc, &cam), CJ_OK);
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.width = W;
     set.height = W;
     set.spp = spp;
     assert_int_equal(cj_scene_set_settings(sc, &set), CJ_OK);
-    cj_light area = cj_light_default(CJ_LIGHT_AREA);
+    cj_light area = cj_light_defaults(CJ_LIGHT_AREA);
     area.position = cj_v3(-2, 6, -2);
     area.edge_u = cj_v3(4, 0, 0);
     area.edge_v = cj_v3(0, 0, 4);
     area.intensity = 1.0;
     assert_int_equal(cj_scene_add_light(sc, &area, NULL), CJ_OK);
-    cj_material fm = cj_material_default();
+    cj_material fm = cj_material_defaults();
     fm.ka = 0.0;
     fm.kd = 1.0;
     fm.ks = 0.0;
@@ -95,7 +95,7 @@ static cj_scene *penumbra_scene(int spp) {
     g.u.sphere.center = cj_v3(0, 2, 0);
     g.u.sphere.radius = 1;
     assert_int_equal(cj_scene_add_geometry(sc, &g, &ig2), CJ_OK);
-    cj_node n1 = cj_render_node(ig1, ifm), n2 = cj_render_node(ig2, ifm);
+    cj_node n1 = cj_node_defaults(ig1, ifm), n2 = cj_node_defaults(ig2, ifm);
     assert_int_equal(cj_scene_add_node(sc, &n1, NULL), CJ_OK);
     assert_int_equal(cj_scene_add_node(sc, &n2, NULL), CJ_OK);
     return sc;
@@ -103,13 +103,13 @@ static cj_scene *penumbra_scene(int spp) {
 
 /* The red channel of a render with this seed and sampling, accumulated into acc (W*W). */
 static void render_into(const cj_scene *sc, uint64_t seed, int random, double *acc) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.use_seed = 1;
     o.seed = seed;
     o.threads = 2;
     cj_trace_options to = {random, 0, 0, 0};
     cj_render_image *img = NULL;
-    assert_int_equal(cj_render_trace_ex(sc, &o, &to, 0, NULL, &img, NULL), CJ_OK);
+    assert_int_equal(cj_render_trace_with_options(sc, &o, &to, 0, NULL, &img, NULL), CJ_OK);
     for (int i = 0; i < W * W; i++) acc[i] += img->rgba[4 * i];
     cj_render_image_destroy(img);
 }

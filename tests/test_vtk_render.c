@@ -49,19 +49,19 @@ static cj_scene *new_scene(const cj_camera *cam, int w, int h) {
     cj_scene *sc = NULL;
     assert_int_equal(cj_scene_create(NULL, &sc), CJ_OK);
     assert_int_equal(cj_scene_set_camera(sc, cam), CJ_OK);
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.width = w;
     set.height = h;
     set.spp = 1;
     set.tol_px = 0.25;
     set.background = cj_rgb_make(0.05, 0.05, 0.1);
     assert_int_equal(cj_scene_set_settings(sc, &set), CJ_OK);
-    cj_light amb = cj_light_default(CJ_LIGHT_AMBIENT);
+    cj_light amb = cj_light_defaults(CJ_LIGHT_AMBIENT);
     amb.intensity = 0.25;
-    cj_light dir = cj_light_default(CJ_LIGHT_DIRECTIONAL);
+    cj_light dir = cj_light_defaults(CJ_LIGHT_DIRECTIONAL);
     dir.direction = cj_v3(-0.4, -1.0, -0.6);
     dir.intensity = 0.6;
-    cj_light pt = cj_light_default(CJ_LIGHT_POINT);
+    cj_light pt = cj_light_defaults(CJ_LIGHT_POINT);
     pt.position = cj_v3(4.0, 3.0, 6.0);
     pt.intensity = 0.5;
     pt.color = cj_rgb_make(1.0, 0.9, 0.8);
@@ -76,7 +76,7 @@ static double g_ks = 0.0;                     /* its specular coefficient */
 static unsigned g_vtk_flags = 0;              /* the VTK view's flags */
 
 static int add_material(cj_scene *sc, cj_rgb colour, int two_sided) {
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     m.color = colour;
     m.ks = g_ks;
     m.alpha = 24.0;
@@ -92,7 +92,7 @@ static int add_material(cj_scene *sc, cj_rgb colour, int two_sided) {
 static void add_object(cj_scene *sc, const cj_geometry *g, int mat, cj_vec3 at, double turn) {
     int gi = -1;
     assert_int_equal(cj_scene_add_geometry(sc, g, &gi), CJ_OK);
-    cj_node n = cj_render_node(gi, mat);
+    cj_node n = cj_node_defaults(gi, mat);
     n.local.translate = at;
     n.local.rotation[0] = cos(turn / 2); /* about the axis (1, 1, 0)/sqrt 2 */
     n.local.rotation[1] = sin(turn / 2) / sqrt(2.0);
@@ -135,7 +135,7 @@ static uint8_t to8(float v) {
 }
 
 static void compare_with_vtk(const char *name, cj_scene *sc, int w, int h) {
-    cj_render_options opt = cj_render_options_default();
+    cj_render_options opt = cj_render_options_defaults();
     opt.width = w;
     opt.height = h;
     opt.spp = 1;
@@ -245,7 +245,7 @@ static void compare_with_vtk(const char *name, cj_scene *sc, int w, int h) {
 }
 
 static cj_camera view_camera(cj_vec3 eye, cj_vec3 at, cj_vec3 up, double fov_deg) {
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = eye;
     cam.gaze = cj_v3_sub(at, eye);
     cam.up = up;
@@ -269,7 +269,7 @@ static void test_ours_vs_vtk_sphere(void **state) {
 
     /* the scene's drawn mesh exported with its camera */
     {
-        cj_render_options o = cj_render_options_default();
+        cj_render_options o = cj_render_options_defaults();
         cj_mesh *mesh = NULL;
         assert_int_equal(cj_render_scene_mesh(sc, &o, NULL, &mesh), CJ_OK);
         char path[] = "/tmp/cj_vtk_scene_XXXXXX";
@@ -294,7 +294,7 @@ static void test_ours_vs_vtk_sphere(void **state) {
     }
 
     /* our sphere's silhouette against the exact projected conic */
-    cj_render_options opt = cj_render_options_default();
+    cj_render_options opt = cj_render_options_defaults();
     opt.width = w;
     opt.height = h;
     opt.spp = 1;
@@ -452,7 +452,7 @@ static void test_export_vtp(void **state) {
     const cj_vec3 c = cj_v3(0.3, -0.2, 0.1);
     double delta = 0.0;
     cj_mesh *m = sphere_mesh(c, 1.0, 24, 12, &delta);
-    cj_material mat = cj_material_default();
+    cj_material mat = cj_material_defaults();
     const cj_camera cam = view_camera(cj_v3(0.8, 1.1, 4.5), cj_v3(0, 0, 0), cj_v3(0, 1, 0), 40);
     cj_vtk_view view = {cam, NULL, 0, cj_rgb_make(0, 0, 0), 64, 48, 0};
     cj_vtk_object obj[2] = {{m, &mat, 3}, {m, &mat, 9}};
@@ -493,8 +493,8 @@ static void test_refusals(void **state) {
     (void)state;
     double delta = 0.0;
     cj_mesh *m = sphere_mesh(cj_v3(0, 0, 0), 1.0, 8, 4, &delta);
-    cj_material mat = cj_material_default();
-    cj_light spot = cj_light_default(CJ_LIGHT_SPOT);
+    cj_material mat = cj_material_defaults();
+    cj_light spot = cj_light_defaults(CJ_LIGHT_SPOT);
     const cj_camera cam = view_camera(cj_v3(0, 0, 5), cj_v3(0, 0, 0), cj_v3(0, 1, 0), 40);
     cj_vtk_view view = {cam, NULL, 0, cj_rgb_make(0, 0, 0), 32, 32, 0};
     cj_vtk_object obj = {m, &mat, 1};
@@ -513,7 +513,7 @@ static void test_refusals(void **state) {
     view.light_count = 0;
     mat.kd = -1.0;
     assert_int_equal(cj_vtk_render_mesh(&view, &obj, 1, &frame, NULL), CJ_ERR_RANGE);
-    mat = cj_material_default();
+    mat = cj_material_defaults();
     m->positions[4] = NAN;
     assert_int_equal(cj_vtk_render_mesh(&view, &obj, 1, &frame, NULL), CJ_ERR_NONFINITE);
     printf("refusals: no objects, zero width, near >= 0, a spot light, kd < 0, a NaN vertex: "

@@ -90,10 +90,10 @@ static void vtk_sphere_case(const char *name, const cj_camera *cam, int w, int h
     const double r = 1.0;
     double delta = 0.0;
     cj_mesh *m = sphere_mesh(c, r, 192, 96, &delta);
-    cj_material mat = cj_material_default();
+    cj_material mat = cj_material_defaults();
     mat.ks = 0.0;
-    cj_light lights[2] = {cj_light_default(CJ_LIGHT_DIRECTIONAL),
-                          cj_light_default(CJ_LIGHT_AMBIENT)};
+    cj_light lights[2] = {cj_light_defaults(CJ_LIGHT_DIRECTIONAL),
+                          cj_light_defaults(CJ_LIGHT_AMBIENT)};
     lights[0].direction = cj_v3(-1, -1, -2);
     lights[1].intensity = 0.2;
     cj_vtk_view view = {*cam, lights, 2, cj_rgb_make(0, 0, 0), w, h, 0};
@@ -198,7 +198,7 @@ static void vtk_sphere_case(const char *name, const cj_camera *cam, int w, int h
 
 void test_vtk_sphere_perspective(void **state) {
     (void)state;
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(0.8, 1.1, 4.5);
     cam.gaze = cj_v3(-0.8, -1.1, -4.5);
     cam.up = cj_v3(0.1, 1, 0);
@@ -210,7 +210,7 @@ void test_vtk_sphere_perspective(void **state) {
 
 void test_vtk_sphere_orthographic(void **state) {
     (void)state;
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(-2.0, 0.5, 3.0);
     cam.gaze = cj_v3(2.0, -0.5, -3.0);
     cam.projection = CJ_PROJ_ORTHOGRAPHIC;

@@ -34,12 +34,9 @@ static inline cj_bspline bsp_json_view(const bsp_json *b) {
  * "items" of one of its "panels". Writes its JSON path to path[path_size]; NULL if none. */
 const cJSON *bsp_json_find(const cJSON *doc, char *path, size_t path_size);
 
-/* Writes the item (no trailing newline), numbers with %.17g, indented by `indent`. */
-void bsp_json_write(FILE *f, const cj_bspline *c, const char *indent);
-
-/* The same, with `fields` (may be NULL or ""), further members written as they are
- * ("\"color\": \"#1f77b4ff\", \"width\": 2.5"), on a line of their own after the degree: the
- * drawing options of a plot item (the viewer saves its B-splines with this). */
-void bsp_json_write_styled(FILE *f, const cj_bspline *c, const char *indent, const char *fields);
+/* The item as a cJSON tree (the caller deletes it): numbers in their shortest exact form, so
+ * that it reads back bit-identical; printed with cJSON's printer by whoever writes the document
+ * (plot_json_print_fit). NULL when out of memory. */
+cJSON *bsp_json_item(const cj_bspline *c);
 
 #endif

@@ -4,9 +4,11 @@
 #ifndef CASTELJAU_APP_PLOT_JSON_H
 #define CASTELJAU_APP_PLOT_JSON_H
 
+#include "casteljau/bspline.h"
 #include "casteljau/chart.h"
 #include "casteljau/plot.h"
 #include <stddef.h>
+#include <stdio.h>
 
 #define PLOT_JSON_MIN_SIDE   64
 #define PLOT_JSON_MAX_SIDE   8192
@@ -41,6 +43,66 @@ void plot_doc_free(plot_doc *doc);
  * font may be NULL. Returns CJ_OK or the first failing status (cj_last_error explains; the
  * panel is recorded for plot_doc_where). */
 cj_status plot_doc_render(plot_doc *doc, cj_framebuffer *fb, cj_font *font);
+
+/* ---- single-plot pages of curves: the documents the viewer edits ----
+ * The one reader of "bezier", "catmull-rom" and "bspline" items (plot_json_curve.c,
+ * plot_json_bspline.c) fills this model; the
+ * plot reader above draws what it read, the viewer edits it, and plot_json_write_page (the one
+ * writer of the plot format, plot_json_write.c) writes it back. */
+typedef struct plot_json_curve {
+    int spline;     /* 0: a "bezier" item, 1: a "catmull-rom" item */
+    double *points; /* 2 * count coordinates (malloc'd, owned) */
+    size_t count;
+    double *weights; /* bezier: count weights (a rational curve, normalised so the largest is
+                        in [1, 2)) or NULL; malloc'd, owned */
+    cj_plot_bezier_opts bezier; /* colour and width of either kind; the rest for bezier only */
+    cj_spline_options spline_options; /* catmull-rom: kind (not Kochanek-Bartels), tension,
+                                         closed */
+    int knots;                        /* catmull-rom: markers at the points */
+    int bspline;         /* 1: a "bspline" item (spline is 0): a 2D B-spline, or a NURBS when
+                            weights (count of them, kept as written) are given */
+    int degree;          /* bspline: the degree */
+    double *knot_vector; /* bspline: count + degree + 1 knots (malloc'd, owned) */
+    cj_plot_bspline_opts bspline_opts; /* bspline: its drawing options */
+} plot_json_curve;
+
+typedef struct plot_json_page {
+    int width, height; /* pixels, PLOT_JSON_MIN_SIDE..PLOT_JSON_MAX_SIDE (default 800 x 600) */
+    cj_rgba background;
+    int axes;      /* default 1 */
+    double margin; /* pixels, default 12 */
+    char *title;   /* malloc'd or NULL */
+    int have_view; /* view[] = x0, y0, x1, y1 given */
+    double view[4];
+    size_t ncurves;
+    plot_json_curve *curves; /* malloc'd, owned */
+} plot_json_page;
+
+/* Reads a single-plot document whose items are all "bezier", "catmull-rom" or 2D "bspline" (with
+ * the same checks and messages as plot_json_parse; a document with panels, a chart or another kind
+ * of item is refused, naming it). Returns 0 and fills *page (free with plot_json_page_free), or -1
+ * with nothing allocated and a one-line reason in why. */
+int plot_json_read_page(const char *text, plot_json_page *page, char *why, size_t why_size);
+
+void plot_json_page_free(plot_json_page *page);
+
+/* Draws curve k into plot as the plot reader does (cj_plot_add_bezier, _rbezier, _spline or
+ * _bspline):
+ * their status (cj_last_error explains a failure). */
+cj_status plot_json_curve_add(cj_plot *plot, const plot_json_curve *k);
+
+/* Writes page as a plot document with cJSON's printer, every number in the shortest form that
+ * reads back to the same double, atomically (the old file stays whole on failure): what
+ * plot_json_read_page reads back bit-identical and `casteljau plot` draws. Errors:
+ * CJ_ERR_UNSUPPORTED (a Kochanek-Bartels spline, which the format cannot describe; the message
+ * names the curve), CJ_ERR_NOMEM, CJ_ERR_IO (naming path). */
+cj_status plot_json_write_page(const plot_json_page *page, const char *path);
+
+/* The document of `casteljau fit` for a curve: a plot with the title, the fitted B-spline item
+ * and (2D data) the n data points as a "points" item, printed with cJSON onto f, numbers in
+ * their shortest exact form. Errors: CJ_ERR_NOMEM, CJ_ERR_IO (the stream's error flag). */
+cj_status plot_json_print_fit(FILE *f, const cj_bspline *c, const double *data, int n,
+                              const char *title);
 
 /* After plot_doc_render failed: the JSON path of the panel ("panels[3]" or "the plot"). */
 const char *plot_doc_where(plot_doc *doc);

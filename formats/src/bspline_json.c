@@ -1,6 +1,8 @@
 /* The B-spline curve item of the tool's JSON documents. See bspline_json.h. */
 #include "bspline_json.h"
 
+#include "json_write_internal.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -169,28 +171,30 @@ const cJSON *bsp_json_find(const cJSON *doc, char *path, size_t n) {
     return NULL;
 }
 
-void bsp_json_write(FILE *f, const cj_bspline *c, const char *indent) {
-    bsp_json_write_styled(f, c, indent, NULL);
-}
-
-void bsp_json_write_styled(FILE *f, const cj_bspline *c, const char *indent, const char *fields) {
-    fprintf(f, "%s{\"type\": \"bspline\", \"degree\": %d,\n", indent, c->degree);
-    if (fields && *fields) fprintf(f, "%s %s,\n", indent, fields);
-    fprintf(f, "%s \"knots\": [", indent);
-    const int nk = c->npts + c->degree + 1;
-    for (int i = 0; i < nk; ++i) fprintf(f, "%s%.17g", i ? ", " : "", c->knots[i]);
-    fprintf(f, "],\n");
-    if (c->weights) {
-        fprintf(f, "%s \"weights\": [", indent);
-        for (int i = 0; i < c->npts; ++i) fprintf(f, "%s%.17g", i ? ", " : "", c->weights[i]);
-        fprintf(f, "],\n");
+cJSON *bsp_json_item(const cj_bspline *c) {
+    cJSON *it = cJSON_CreateObject(), *pts = cj_json_point_array(c->pts, (size_t)c->npts, c->dim);
+    int bad = !it || !pts || !cJSON_AddStringToObject(it, "type", "bspline") ||
+              cj_json_add_number(it, "degree", c->degree);
+    cJSON *knots = bad ? NULL : cj_json_number_array(c->knots, (size_t)(c->npts + c->degree + 1));
+    if (!bad && (!knots || !cJSON_AddItemToObject(it, "knots", knots))) {
+        cJSON_Delete(knots);
+        bad = 1;
     }
-    fprintf(f, "%s \"points\": [", indent);
-    for (int i = 0; i < c->npts; ++i) {
-        fprintf(f, "%s%s  [", i ? ",\n" : "\n", indent);
-        for (int k = 0; k < c->dim; ++k)
-            fprintf(f, "%s%.17g", k ? ", " : "", c->pts[(size_t)i * (size_t)c->dim + (size_t)k]);
-        fprintf(f, "]");
+    if (!bad && c->weights) {
+        cJSON *w = cj_json_number_array(c->weights, (size_t)c->npts);
+        if (!w || !cJSON_AddItemToObject(it, "weights", w)) {
+            cJSON_Delete(w);
+            bad = 1;
+        }
     }
-    fprintf(f, "]}");
+    if (!bad && !cJSON_AddItemToObject(it, "points", pts))
+        bad = 1;
+    else if (!bad)
+        pts = NULL;
+    cJSON_Delete(pts);
+    if (bad) {
+        cJSON_Delete(it);
+        return NULL;
+    }
+    return it;
 }

@@ -41,8 +41,6 @@
  */
 #include "plot_json_internal.h"
 
-#include "weights.h"
-
 #include <cJSON.h>
 
 #include <math.h>
@@ -51,131 +49,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const cj_rgba palette[] = {{0x1f, 0x77, 0xb4, 255}, {0xff, 0x7f, 0x0e, 255},
-                                  {0x2c, 0xa0, 0x2c, 255}, {0xd6, 0x27, 0x28, 255},
-                                  {0x94, 0x67, 0xbd, 255}, {0x8c, 0x56, 0x4b, 255},
-                                  {0xe3, 0x77, 0xc2, 255}, {0x17, 0xbe, 0xcf, 255}};
-
-/* Optional field helpers: return 0 when absent (out untouched). */
-#define OPT(obj, key, path, call)                                                                  \
-    do {                                                                                           \
-        const cJSON *v_ = pj_field(obj, key);                                                      \
-        if (v_) {                                                                                  \
-            char p_[300];                                                                          \
-            pj_pathf(p_, sizeof p_, "%s.%s", path, key);                                           \
-            if (call) return -1;                                                                   \
-        }                                                                                          \
-    } while (0)
-
-static int parse_bezier(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot,
-                        cj_rgba color) {
-    static const char *const keys[] = {
-        "type", "points",         "color",    "width",   "control_polygon", "control_points",
-        "hull", "construction_t", "frames_t", "normals", "weights",         NULL};
-    if (pj_check_keys(c, it, path, keys)) return -1;
-    cj_plot_bezier_opts o = cj_plot_bezier_defaults();
-    o.color = color;
-    OPT(it, "color", path, pj_parse_color(c, v_, p_, &o.color));
-    OPT(it, "width", path, pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &o.width));
-    OPT(it, "control_polygon", path, pj_parse_bool(c, v_, p_, &o.control_polygon));
-    OPT(it, "control_points", path, pj_parse_bool(c, v_, p_, &o.control_points));
-    OPT(it, "hull", path, pj_parse_bool(c, v_, p_, &o.hull));
-    OPT(it, "normals", path, pj_parse_bool(c, v_, p_, &o.normals));
-    const cJSON *ct = pj_field(it, "construction_t");
-    if (ct) {
-        char p[300];
-        pj_pathf(p, sizeof p, "%s.construction_t", path);
-        if (pj_parse_number(c, ct, p, 0.0, 1.0, &o.construction_t)) return -1;
-        o.construction = 1;
-    }
-    const cJSON *ft = pj_field(it, "frames_t");
-    if (ft) {
-        char p[300];
-        pj_pathf(p, sizeof p, "%s.frames_t", path);
-        if (!cJSON_IsArray(ft) || cJSON_GetArraySize(ft) > CJ_PLOT_MAX_FRAMES)
-            return pj_fail(c, "%s is not an array of at most %d parameters", p, CJ_PLOT_MAX_FRAMES);
-        for (const cJSON *e = ft->child; e; e = e->next) {
-            char q[320];
-            pj_pathf(q, sizeof q, "%s[%zu]", p, o.nframes);
-            if (pj_parse_number(c, e, q, 0.0, 1.0, &o.frames_t[o.nframes])) return -1;
-            ++o.nframes;
-        }
-    }
-    const cJSON *pv = pj_field(it, "points");
-    if (!pv) return pj_fail(c, "%s: a bezier needs \"points\"", path);
-    char p[300];
-    pj_pathf(p, sizeof p, "%s.points", path);
-    double *pts = NULL;
-    size_t n = 0;
-    if (pj_parse_points(c, pv, p, 1, &pts, &n)) return -1;
-    if (n > (size_t)CJ_BEZIER_MAX_DEGREE + 1) {
-        free(pts);
-        return pj_fail(c, "%s has %zu points: the degree is at most %d", p, n,
-                       CJ_BEZIER_MAX_DEGREE);
-    }
-    double *w = NULL;
-    const cJSON *wv = pj_field(it, "weights");
-    if (wv) {
-        pj_pathf(p, sizeof p, "%s.weights", path);
-        int bad = 0;
-        if (!cJSON_IsArray(wv) || (size_t)cJSON_GetArraySize(wv) != n)
-            bad = pj_fail(c, "%s is not an array of %zu weights (one per point)", p, n);
-        else if (!(w = malloc(n * sizeof *w)))
-            bad = pj_fail(c, "%s: out of memory", p);
-        else if (pj_parse_numbers(c, wv, p, (int)n, w))
-            bad = -1;
-        for (size_t i = 0; !bad && i < n; ++i)
-            if (!(w[i] > 0)) bad = pj_fail(c, "%s[%zu] = %g is not a positive weight", p, i, w[i]);
-        if (!bad && weights_normalize(w, n))
-            bad = pj_fail(c, "%s: the weights span more than the double range", p);
-        if (bad) {
-            free(pts);
-            free(w);
-            return -1;
-        }
-    }
-    cj_bezier b = cj_bezier_view((int)n - 1, 2, pts);
-    cj_rbezier rb = cj_rbezier_view((int)n - 1, 2, pts, w);
-    cj_status st = w ? cj_plot_add_rbezier(plot, &rb, &o) : cj_plot_add_bezier(plot, &b, &o);
-    free(pts);
-    free(w);
-    return st ? pj_lib_fail(c, path) : 0;
-}
-
-static int parse_spline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot,
-                        cj_rgba color) {
-    static const char *const keys[] = {"type", "points", "color", "width", "tension",
-                                       "kind", "closed", "knots", NULL};
-    if (pj_check_keys(c, it, path, keys)) return -1;
-    cj_spline_options so = cj_spline_defaults();
-    double width = 2.5;
-    int knots = 1;
-    OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
-    OPT(it, "width", path, pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
-    OPT(it, "tension", path, pj_parse_number(c, v_, p_, -10.0, 10.0, &so.tension));
-    OPT(it, "closed", path, pj_parse_bool(c, v_, p_, &so.closed));
-    OPT(it, "knots", path, pj_parse_bool(c, v_, p_, &knots));
-    const cJSON *kv = pj_field(it, "kind");
-    if (kv) {
-        const char *k = cJSON_IsString(kv) ? kv->valuestring : "";
-        if (!strcmp(k, "uniform"))
-            so.kind = CJ_SPLINE_CATMULL_ROM;
-        else if (!strcmp(k, "centripetal"))
-            so.kind = CJ_SPLINE_CENTRIPETAL;
-        else if (!strcmp(k, "chordal"))
-            so.kind = CJ_SPLINE_CHORDAL;
-        else
-            return pj_fail(c, "%s.kind is not \"uniform\", \"centripetal\" or \"chordal\"", path);
-    }
-    const cJSON *pv = pj_field(it, "points");
-    if (!pv) return pj_fail(c, "%s: a catmull-rom spline needs \"points\"", path);
-    char p[300];
-    pj_pathf(p, sizeof p, "%s.points", path);
-    double *pts = NULL;
-    size_t n = 0;
-    if (pj_parse_points(c, pv, p, so.closed ? 3 : 2, &pts, &n)) return -1;
-    cj_status st = cj_plot_add_spline(plot, pts, n, &so, color, width, knots);
-    free(pts);
+/* "bezier" and "catmull-rom" items: read by the one curve reader (plot_json_curve.c). */
+static int parse_curve(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, int spline,
+                       cj_rgba color) {
+    plot_json_curve k;
+    if (pj_read_curve(c, it, path, spline, color, &k)) return -1;
+    const cj_status st = plot_json_curve_add(plot, &k);
+    pj_curve_free(&k);
     return st ? pj_lib_fail(c, path) : 0;
 }
 
@@ -186,9 +66,9 @@ static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
     if (pj_check_keys(c, it, path, keys)) return -1;
     double width = 2.5;
     int grid = 64;
-    OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
-    OPT(it, "width", path, pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
-    OPT(it, "grid", path, pj_parse_int(c, v_, p_, 4, 1024, &grid));
+    PJ_OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
+    PJ_OPT(it, "width", path, pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
+    PJ_OPT(it, "grid", path, pj_parse_int(c, v_, p_, 4, 1024, &grid));
     const char *kinds[] = {"circle", "ellipse", "line", "poly"};
     int which = -1;
     for (int k = 0; k < 4; ++k)
@@ -298,12 +178,12 @@ static int parse_polyline(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
     if (pj_check_keys(c, it, path, points_only ? pkeys : lkeys)) return -1;
     double width = points_only ? 4.0 : 2.0;
     int closed = 0, markers = 0;
-    OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
-    OPT(it, points_only ? "radius" : "width", path,
-        pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
+    PJ_OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
+    PJ_OPT(it, points_only ? "radius" : "width", path,
+           pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
     if (!points_only) {
-        OPT(it, "closed", path, pj_parse_bool(c, v_, p_, &closed));
-        OPT(it, "markers", path, pj_parse_bool(c, v_, p_, &markers));
+        PJ_OPT(it, "closed", path, pj_parse_bool(c, v_, p_, &closed));
+        PJ_OPT(it, "markers", path, pj_parse_bool(c, v_, p_, &markers));
     }
     const cJSON *pv = pj_field(it, "points");
     if (!pv)
@@ -397,12 +277,12 @@ static int parse_panel(pj_ctx *c, const cJSON *obj, const char *prefix, cj_rgba 
             pj_fail(c, "%s: the document has more than %d items in all", ip, PLOT_JSON_MAX_ITEMS);
             PFAIL;
         }
-        cj_rgba color = palette[i % (sizeof palette / sizeof palette[0])];
+        cj_rgba color = pj_palette(i);
         int r;
         if (!strcmp(t->valuestring, "bezier"))
-            r = parse_bezier(c, it, ip, plot, color);
+            r = parse_curve(c, it, ip, plot, 0, color);
         else if (!strcmp(t->valuestring, "catmull-rom"))
-            r = parse_spline(c, it, ip, plot, color);
+            r = parse_curve(c, it, ip, plot, 1, color);
         else if (!strcmp(t->valuestring, "implicit"))
             r = parse_implicit(c, it, ip, plot, color);
         else if (!strcmp(t->valuestring, "polyline"))
@@ -429,17 +309,6 @@ void plot_doc_free(plot_doc *doc) {
         cj_chart_destroy(doc->charts[i]);
     }
     doc->npanels = 0;
-}
-
-static void syntax_error(pj_ctx *c, const char *text, const char *at) {
-    int line = 1, col = 1;
-    for (const char *s = text; at && s < at && *s; ++s) {
-        if (*s == '\n')
-            line++, col = 1;
-        else
-            col++;
-    }
-    pj_fail(c, "JSON syntax error at line %d, column %d", line, col);
 }
 
 /* Work of the implicit items of one panel object, added to *work; fails naming the item at
@@ -484,7 +353,7 @@ int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size)
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
     if (!root) {
-        syntax_error(&c, text, end ? end : cJSON_GetErrorPtr());
+        pj_syntax_error(&c, text, end ? end : cJSON_GetErrorPtr());
         return -1;
     }
     int rc = -1;

@@ -7,15 +7,19 @@
 #include "bspline_json.h"
 #include "plot_json_internal.h"
 
-int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color) {
+#include <string.h>
+
+int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
+                    plot_json_curve *out) {
     static const char *const extra[] = {"color",          "width",        "control_polygon",
                                         "control_points", "knot_markers", NULL};
     bsp_json b;
     char why[400];
     if (bsp_json_parse(it, path, extra, PLOT_JSON_MAX_POINTS - c->points, &b, why, sizeof why))
         return pj_fail(c, "%s", why);
-    double width = 2.5;
-    int polygon = 1, points = 1, knots = 1, r = 0;
+    cj_plot_bspline_opts o = cj_plot_bspline_defaults();
+    o.color = color;
+    int r = 0;
     const cJSON *v;
     char p[300];
 #define BOPT(key, call)                                                                            \
@@ -23,24 +27,38 @@ int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot
         pj_pathf(p, sizeof p, "%s.%s", path, key);                                                 \
         r = call;                                                                                  \
     }
-    BOPT("color", pj_parse_color(c, v, p, &color));
-    BOPT("width", pj_parse_number(c, v, p, 0.1, CJ_PLOT_MAX_WIDTH, &width));
-    BOPT("control_polygon", pj_parse_bool(c, v, p, &polygon));
-    BOPT("control_points", pj_parse_bool(c, v, p, &points));
-    BOPT("knot_markers", pj_parse_bool(c, v, p, &knots));
+    BOPT("color", pj_parse_color(c, v, p, &o.color));
+    BOPT("width", pj_parse_number(c, v, p, 0.1, CJ_PLOT_MAX_WIDTH, &o.width));
+    BOPT("control_polygon", pj_parse_bool(c, v, p, &o.control_polygon));
+    BOPT("control_points", pj_parse_bool(c, v, p, &o.control_points));
+    BOPT("knot_markers", pj_parse_bool(c, v, p, &o.knot_markers));
 #undef BOPT
     if (!r && b.dim != 2)
         r = pj_fail(c, "%s.points: a plotted B-spline needs 2D points, not %d coordinates", path,
                     b.dim);
-    const cj_bspline s = bsp_json_view(&b);
+    if (r) {
+        bsp_json_free(&b);
+        return -1;
+    }
     c->points += (size_t)b.npts;
-    cj_plot_bspline_opts o = cj_plot_bspline_defaults();
-    o.color = color;
-    o.width = width;
-    o.control_polygon = polygon;
-    o.control_points = points;
-    o.knot_markers = knots;
-    if (!r && cj_plot_add_bspline(plot, &s, &o)) r = pj_lib_fail(c, path);
-    bsp_json_free(&b);
+    memset(out, 0, sizeof *out);
+    out->bspline = 1;
+    out->degree = b.degree;
+    out->count = (size_t)b.npts;
+    out->points = b.pts; /* the item's arrays change owner */
+    out->weights = b.weights;
+    out->knot_vector = b.knots;
+    out->bspline_opts = o;
+    out->bezier = cj_plot_bezier_defaults();
+    out->bezier.color = o.color;
+    out->bezier.width = o.width;
+    return 0;
+}
+
+int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color) {
+    plot_json_curve k;
+    if (pj_read_bspline(c, it, path, color, &k)) return -1;
+    const int r = plot_json_curve_add(plot, &k) ? pj_lib_fail(c, path) : 0;
+    pj_curve_free(&k);
     return r ? -1 : 0;
 }

@@ -41,12 +41,39 @@ int pj_parse_points(pj_ctx *c, const cJSON *v, const char *path, size_t min_coun
 int pj_lib_fail(pj_ctx *c, const char *path);
 const cJSON *pj_field(const cJSON *obj, const char *key);
 
+/* An optional field: when obj has key, runs call with v_ (the value) and p_ (its JSON path)
+ * and returns -1 from the calling function if call fails; absent, nothing happens. */
+#define PJ_OPT(obj, key, path, call)                                                               \
+    do {                                                                                           \
+        const cJSON *v_ = pj_field(obj, key);                                                      \
+        if (v_) {                                                                                  \
+            char p_[300];                                                                          \
+            pj_pathf(p_, sizeof p_, "%s.%s", path, key);                                           \
+            if (call) return -1;                                                                   \
+        }                                                                                          \
+    } while (0)
+
+/* The default colour of item i (a palette of eight, by position). */
+cj_rgba pj_palette(size_t i);
+/* "JSON syntax error at line L, column C" for the parse error at `at` in text. */
+void pj_syntax_error(pj_ctx *c, const char *text, const char *at);
+
+/* A "bezier" (spline 0) or "catmull-rom" (spline 1) item at path into *out (plot_json_curve.c;
+ * free with pj_curve_free); color is its default colour. */
+int pj_read_curve(pj_ctx *c, const cJSON *it, const char *path, int spline, cj_rgba color,
+                  plot_json_curve *out);
+void pj_curve_free(plot_json_curve *k);
+
 /* A chart panel ("kind": "chart", format in chart_json.c) at path; extra_keys (NULL-terminated,
  * may be NULL) are also accepted (the document's own fields when the chart is the document). */
 int chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path, const char *const *extra_keys,
                      cj_chart **out);
 
-/* A "bspline" item (plot_json_bspline.c). */
+/* A 2D "bspline" item at path into *out (plot_json_bspline.c; free with pj_curve_free); color
+ * is its default colour. */
+int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
+                    plot_json_curve *out);
+/* A "bspline" item read and drawn into plot. */
 int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color);
 
 #endif

@@ -183,3 +183,23 @@ int pj_lib_fail(pj_ctx *c, const char *path) {
 const cJSON *pj_field(const cJSON *obj, const char *key) {
     return cJSON_GetObjectItemCaseSensitive(obj, key);
 }
+
+static const cj_rgba palette[] = {{0x1f, 0x77, 0xb4, 255}, {0xff, 0x7f, 0x0e, 255},
+                                  {0x2c, 0xa0, 0x2c, 255}, {0xd6, 0x27, 0x28, 255},
+                                  {0x94, 0x67, 0xbd, 255}, {0x8c, 0x56, 0x4b, 255},
+                                  {0xe3, 0x77, 0xc2, 255}, {0x17, 0xbe, 0xcf, 255}};
+
+cj_rgba pj_palette(size_t i) {
+    return palette[i % (sizeof palette / sizeof palette[0])];
+}
+
+void pj_syntax_error(pj_ctx *c, const char *text, const char *at) {
+    int line = 1, col = 1;
+    for (const char *s = text; at && s < at && *s; ++s) {
+        if (*s == '\n')
+            line++, col = 1;
+        else
+            col++;
+    }
+    pj_fail(c, "JSON syntax error at line %d, column %d", line, col);
+}

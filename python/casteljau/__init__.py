@@ -504,8 +504,8 @@ class Scene:
         teapot_c = ffi.new("char[]", _teapot_path().encode()) if _paths else ffi.NULL
         opts.teapot_path = teapot_c
         pp = ffi.new("cj_scene **")
-        _check(lib.cj_scene_load_json_ex(str(path).encode(), opts, ffi.NULL, pp),
-               "cj_scene_load_json_ex")
+        _check(lib.cj_scene_load_json_with_options(str(path).encode(), opts, ffi.NULL, pp),
+               "cj_scene_load_json_with_options")
         return cls(pp[0])
 
     @classmethod
@@ -516,9 +516,9 @@ class Scene:
         teapot_c = ffi.new("char[]", _teapot_path().encode()) if _paths else ffi.NULL
         opts.teapot_path = teapot_c
         pp = ffi.new("cj_scene **")
-        _check(lib.cj_scene_parse_json_ex(text.encode(), name.encode(), str(base_dir).encode(),
+        _check(lib.cj_scene_parse_json_with_options(text.encode(), name.encode(), str(base_dir).encode(),
                                           opts, ffi.NULL, pp),
-               "cj_scene_parse_json_ex")
+               "cj_scene_parse_json_with_options")
         return cls(pp[0])
 
     def save(self, path):
@@ -536,7 +536,7 @@ class Scene:
     def set_camera(self, eye=(0, 0, 5), look_at=(0, 0, 0), up=(0, 1, 0), fov_deg=45.0,
                    near=-0.1, far=-100.0):
         """A perspective camera at `eye` looking at `look_at` (near, far < 0 as in the seed)."""
-        cam = ffi.new("cj_camera *", lib.cj_camera_default())
+        cam = ffi.new("cj_camera *", lib.cj_camera_defaults())
         _vec3(eye, cam.eye)
         _vec3(np.subtract(look_at, eye), cam.gaze)
         _vec3(up, cam.up)
@@ -546,7 +546,7 @@ class Scene:
 
     def set_settings(self, width=None, height=None, spp=None, background=None, tol_px=None):
         """Changes the render settings stored with the scene (None keeps a value)."""
-        s = ffi.new("cj_scene_settings *", lib.cj_scene_settings_get(self._s)[0])
+        s = ffi.new("cj_scene_settings *", lib.cj_scene_get_settings(self._s)[0])
         if width is not None:
             s.width = int(width)
         if height is not None:
@@ -564,7 +564,7 @@ class Scene:
         """Adds an ambient, point, directional or spot light; returns its index."""
         if kind not in _LIGHTS:
             raise ValueError(f"unknown light {kind!r}: one of {', '.join(_LIGHTS)}")
-        light = ffi.new("cj_light *", lib.cj_light_default(_LIGHTS[kind]))
+        light = ffi.new("cj_light *", lib.cj_light_defaults(_LIGHTS[kind]))
         _rgb(color, light.color)
         light.intensity = float(intensity)
         if position is not None:
@@ -577,8 +577,8 @@ class Scene:
 
     def add_material(self, color=(0.8, 0.8, 0.8), ka=None, kd=None, ks=None, alpha=None,
                      two_sided=None, opacity=None, mirror=None, transmission=None, ior=None):
-        """Adds a Phong material (defaults: cj_material_default); returns its index."""
-        m = ffi.new("cj_material *", lib.cj_material_default())
+        """Adds a Phong material (defaults: cj_material_defaults); returns its index."""
+        m = ffi.new("cj_material *", lib.cj_material_defaults())
         _rgb(color, m.color)
         for name, value in (("ka", ka), ("kd", kd), ("ks", ks), ("alpha", alpha),
                             ("opacity", opacity), ("mirror", mirror),
@@ -594,7 +594,7 @@ class Scene:
     def _add_object(self, geom, material, translate, scale):
         gi = ffi.new("int *")
         _check(lib.cj_scene_add_geometry(self._s, geom, gi), "cj_scene_add_geometry")
-        node = ffi.new("cj_node *", lib.cj_render_node(gi[0], int(material)))
+        node = ffi.new("cj_node *", lib.cj_node_defaults(gi[0], int(material)))
         if translate is not None:
             _vec3(translate, node.local.translate)
         if scale is not None:
@@ -626,7 +626,7 @@ class Scene:
         _check(lib.cj_scene_check(self._s), "cj_scene_check")
 
     def _image(self, fn, what, width, height, spp, threads, seed):
-        opt = ffi.new("cj_render_options *", lib.cj_render_options_default())
+        opt = ffi.new("cj_render_options *", lib.cj_render_options_defaults())
         opt.width = int(width or 0)
         opt.height = int(height or 0)
         opt.spp = int(spp or 0)

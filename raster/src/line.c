@@ -32,7 +32,7 @@ static i128 ceildiv(i128 a, i128 b) {
 }
 
 static cj_status check_coord(long long v, int point, const char *axis) {
-    if (v > (long long)CJ_RASTER_COORD_MAX || v < -(long long)CJ_RASTER_COORD_MAX)
+    if (v > (long long)CJ_LINE_COORD_MAX || v < -(long long)CJ_LINE_COORD_MAX)
         return cj_fail(CJ_ERR_RANGE, "line end point %d: %s = %lld exceeds 2^52 in magnitude",
                        point, axis, v);
     return CJ_OK;
@@ -42,7 +42,7 @@ static cj_status check_coord_d(double v, int point, const char *axis, long long 
     if (!isfinite(v))
         return cj_fail(CJ_ERR_NONFINITE, "line end point %d: %s is %s", point, axis,
                        isnan(v) ? "NaN" : "infinite");
-    if (fabs(v) > CJ_RASTER_COORD_MAX)
+    if (fabs(v) > CJ_LINE_COORD_MAX)
         return cj_fail(CJ_ERR_RANGE, "line end point %d: %s = %g exceeds 2^52 in magnitude", point,
                        axis, v);
     *out = (long long)floor(v);
@@ -50,7 +50,7 @@ static cj_status check_coord_d(double v, int point, const char *axis, long long 
 }
 
 /* Plans the clipped run of the exact line; coordinates already validated. */
-static void line_plan(long long x0, long long y0, long long x1, long long y1, cj_raster_rect clip,
+static void line_plan(long long x0, long long y0, long long x1, long long y1, cj_line_rect clip,
                       line_run *run) {
     run->n = 0;
     if (clip.x1 < clip.x0 || clip.y1 < clip.y0) return;
@@ -133,9 +133,8 @@ static cj_status to_pixels(double x0, double y0, double x1, double y1, long long
     return CJ_OK;
 }
 
-cj_status cj_raster_line_visit(long long x0, long long y0, long long x1, long long y1,
-                               cj_raster_rect clip, cj_raster_pixel_fn fn, void *user,
-                               long long *visited) {
+cj_status cj_line_visit(long long x0, long long y0, long long x1, long long y1, cj_line_rect clip,
+                        cj_line_pixel_fn fn, void *user, long long *visited) {
     cj_status st = validate_ll(x0, y0, x1, y1);
     if (st) return st;
     line_run run;
@@ -159,12 +158,12 @@ cj_status cj_raster_line_visit(long long x0, long long y0, long long x1, long lo
     return CJ_OK;
 }
 
-cj_status cj_raster_line_visit_d(double x0, double y0, double x1, double y1, cj_raster_rect clip,
-                                 cj_raster_pixel_fn fn, void *user, long long *visited) {
+cj_status cj_line_visit_d(double x0, double y0, double x1, double y1, cj_line_rect clip,
+                          cj_line_pixel_fn fn, void *user, long long *visited) {
     long long p[4] = {0, 0, 0, 0}; /* set by to_pixels on success; zeroed for -O3 flow analysis */
     cj_status st = to_pixels(x0, y0, x1, y1, p);
     if (st) return st;
-    return cj_raster_line_visit(p[0], p[1], p[2], p[3], clip, fn, user, visited);
+    return cj_line_visit(p[0], p[1], p[2], p[3], clip, fn, user, visited);
 }
 
 static void draw_run(cj_framebuffer *fb, const line_run *run, cj_rgba c) {
@@ -201,22 +200,22 @@ static void draw_run(cj_framebuffer *fb, const line_run *run, cj_rgba c) {
     }
 }
 
-cj_status cj_raster_line(cj_framebuffer *fb, long long x0, long long y0, long long x1, long long y1,
-                         cj_rgba c) {
+cj_status cj_line_draw(cj_framebuffer *fb, long long x0, long long y0, long long x1, long long y1,
+                       cj_rgba c) {
     assert(fb);
     cj_status st = validate_ll(x0, y0, x1, y1);
     if (st) return st;
     line_run run;
-    line_plan(x0, y0, x1, y1, cj_raster_rect_of(fb), &run);
+    line_plan(x0, y0, x1, y1, cj_line_rect_of(fb), &run);
     draw_run(fb, &run, c);
     return CJ_OK;
 }
 
-cj_status cj_raster_line_d(cj_framebuffer *fb, double x0, double y0, double x1, double y1,
-                           cj_rgba c) {
+cj_status cj_line_draw_d(cj_framebuffer *fb, double x0, double y0, double x1, double y1,
+                         cj_rgba c) {
     assert(fb);
     long long p[4] = {0, 0, 0, 0}; /* set by to_pixels on success; zeroed for -O3 flow analysis */
     cj_status st = to_pixels(x0, y0, x1, y1, p);
     if (st) return st;
-    return cj_raster_line(fb, p[0], p[1], p[2], p[3], c);
+    return cj_line_draw(fb, p[0], p[1], p[2], p[3], c);
 }

@@ -18,7 +18,7 @@ static cj_status check_point(double x, double y, int point) {
         if (!isfinite(c[k]))
             return cj_fail(CJ_ERR_NONFINITE, "line end point %d: %s is %s", point, k ? "y" : "x",
                            isnan(c[k]) ? "NaN" : "infinite");
-        if (fabs(c[k]) > CJ_RASTER_COORD_MAX)
+        if (fabs(c[k]) > CJ_LINE_COORD_MAX)
             return cj_fail(CJ_ERR_RANGE, "line end point %d: %s = %g exceeds 2^52 in magnitude",
                            point, k ? "y" : "x", c[k]);
     }
@@ -51,13 +51,13 @@ static int clip_segment(double *t0, double *t1, double px, double py, double dx,
 }
 
 typedef struct aa_sink {
-    cj_raster_cover_fn fn;
+    cj_line_cover_fn fn;
     void *user;
     cj_framebuffer *fb;
     cj_rgba c;
 } aa_sink;
 
-static void emit(const aa_sink *s, long long x, long long y, float cov, cj_raster_rect clip) {
+static void emit(const aa_sink *s, long long x, long long y, float cov, cj_line_rect clip) {
     if (!(cov > 0.0f) || x < clip.x0 || x > clip.x1 || y < clip.y0 || y > clip.y1) return;
     if (s->fn)
         s->fn(s->user, (int)x, (int)y, cov);
@@ -69,7 +69,7 @@ static void emit(const aa_sink *s, long long x, long long y, float cov, cj_raste
     }
 }
 
-static cj_status wu(double x0, double y0, double x1, double y1, cj_raster_rect clip,
+static cj_status wu(double x0, double y0, double x1, double y1, cj_line_rect clip,
                     const aa_sink *s) {
     cj_status st;
     if ((st = check_point(x0, y0, 0)) || (st = check_point(x1, y1, 1))) return st;
@@ -111,16 +111,16 @@ static cj_status wu(double x0, double y0, double x1, double y1, cj_raster_rect c
     return CJ_OK;
 }
 
-cj_status cj_raster_line_aa_visit(double x0, double y0, double x1, double y1, cj_raster_rect clip,
-                                  cj_raster_cover_fn fn, void *user) {
+cj_status cj_line_aa_visit(double x0, double y0, double x1, double y1, cj_line_rect clip,
+                           cj_line_cover_fn fn, void *user) {
     assert(fn);
     aa_sink s = {fn, user, NULL, {0, 0, 0, 0}};
     return wu(x0, y0, x1, y1, clip, &s);
 }
 
-cj_status cj_raster_line_aa(cj_framebuffer *fb, double x0, double y0, double x1, double y1,
-                            cj_rgba c) {
+cj_status cj_line_draw_aa(cj_framebuffer *fb, double x0, double y0, double x1, double y1,
+                          cj_rgba c) {
     assert(fb);
     aa_sink s = {NULL, NULL, fb, c};
-    return wu(x0, y0, x1, y1, cj_raster_rect_of(fb), &s);
+    return wu(x0, y0, x1, y1, cj_line_rect_of(fb), &s);
 }

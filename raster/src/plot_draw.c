@@ -112,8 +112,8 @@ cj_status cj_plot_stroke(cj_plot_canvas *cv, const double *xy, size_t n, int clo
         cv->vec_cap = cap;
     }
     for (size_t i = 0; i < n; ++i) cv->vec[i] = cj_v2(xy[2 * i], xy[2 * i + 1]);
-    cj_raster_stroke style = cj_raster_stroke_default(width);
-    return cj_raster_stroke_polyline(cv->fb, cv->vec, n, closed, &style, c);
+    cj_line_stroke style = cj_line_stroke_defaults(width);
+    return cj_line_stroke_polyline(cv->fb, cv->vec, n, closed, &style, c);
 }
 
 void cj_plot_disc(cj_plot_canvas *cv, double x, double y, double r, cj_rgba c) {

@@ -43,7 +43,7 @@ void cj_plot_canvas_free(cj_plot_canvas *cv);
 cj_status cj_plot_canvas_reserve(cj_plot_canvas *cv, size_t n);
 
 /* Strokes the polyline xy[2n] (pixel coordinates, y up; closed: back to the start) with the
- * given width through cj_raster_stroke_polyline (round joins and caps, anti-aliased, no double
+ * given width through cj_line_stroke_polyline (round joins and caps, anti-aliased, no double
  * blending where segments meet). */
 cj_status cj_plot_stroke(cj_plot_canvas *cv, const double *xy, size_t n, int closed, cj_rgba c,
                          double width);

@@ -48,8 +48,5 @@ typedef struct cj_rframe {
  * decide), then the samplers of the textures used. */
 cj_status cj_rframe_materials(cj_rframe *F);
 cj_status cj_rframe_textures(cj_rframe *F);
-/* render_main.c: the figures of a stage whose decision is already recorded. */
-cj_stage *cj_rframe_figures(cj_stage_report *R, const char *name, const char *uin, uint64_t in,
-                            const char *uout, uint64_t out, double sec);
 
 #endif

@@ -45,7 +45,7 @@ double cj_render_thread_cpu(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-cj_render_options cj_render_options_default(void) {
+cj_render_options cj_render_options_defaults(void) {
     cj_render_options o;
     memset(&o, 0, sizeof o);
     return o;

@@ -4,7 +4,7 @@
  * Every 3D segment is clipped in homogeneous coordinates (near and far planes, and a guard band
  * of twice the view volume's width so that the visible part of a line keeps its exact pixels),
  * projected once for the whole image and binned into tiles; each tile draws its segments with
- * cj_raster_line_visit_d clipped to the tile, which visits exactly the pixels of the unclipped
+ * cj_line_visit_d clipped to the tile, which visits exactly the pixels of the unclipped
  * line inside it, so the picture does not depend on the tiling. Depth is the pseudodepth of the
  * ends interpolated along the major axis (pseudodepth is affine in screen space); a pixel
  * takes the line's colour in every sample whose stored depth is strictly larger, and that depth
@@ -420,7 +420,7 @@ static void line_pixel(void *user, int x, int y) {
 
 void cj_rlines_tile(const cj_rctx *c, const cj_tile *t, float *col, uint64_t *pixels) {
     const cj_rlines *L = &c->lines;
-    cj_raster_rect r = {t->x0, t->y0, t->x1 - 1, t->y1 - 1};
+    cj_line_rect r = {t->x0, t->y0, t->x1 - 1, t->y1 - 1};
     for (size_t k = L->bin_start[t->index]; k < L->bin_start[t->index + 1]; ++k) {
         const cj_rseg *s = &L->segs[L->bin_items[k]];
         line_px u = {s, t, col, floor(s->x0), floor(s->y0), floor(s->x1), floor(s->y1), 0, 0};
@@ -432,8 +432,8 @@ void cj_rlines_tile(const cj_rctx *c, const cj_tile *t, float *col, uint64_t *pi
             u.X1 = floor(s->x1) + dx;
             u.Y0 = floor(s->y0) + dy;
             u.Y1 = floor(s->y1) + dy;
-            (void)cj_raster_line_visit_d(s->x0 + dx, s->y0 + dy, s->x1 + dx, s->y1 + dy, r,
-                                         line_pixel, &u, NULL);
+            (void)cj_line_visit_d(s->x0 + dx, s->y0 + dy, s->x1 + dx, s->y1 + dy, r, line_pixel, &u,
+                                  NULL);
         }
         *pixels += u.pixels;
     }

@@ -33,19 +33,6 @@ static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
     cj_rlines_free(&c->lines, a);
 }
 
-/* The figures of a stage whose decision is already recorded. */
-cj_stage *cj_rframe_figures(cj_stage_report *R, const char *name, const char *uin, uint64_t in,
-                            const char *uout, uint64_t out, double sec) {
-    cj_stage *s = cj_stage_report_stage(R, name);
-    if (!s) return NULL;
-    snprintf(s->unit_in, sizeof s->unit_in, "%s", uin);
-    snprintf(s->unit_out, sizeof s->unit_out, "%s", uout);
-    s->in = in;
-    s->out = out;
-    s->seconds = sec;
-    return s;
-}
-
 static cj_status split_lists(cj_rctx *c, const cj_rbuild *b, const cj_allocator *a) {
     size_t nt = 0, no = 0;
     for (size_t t = 0; t < b->tri_count; ++t)
@@ -125,7 +112,7 @@ static const char *const stage_order[] = {"scene_check",
 /* Image size, samples, tolerance and tiles: the renderer's options over the scene's. */
 static cj_status resolve_settings(cj_rframe *F) {
     const cj_render_options *o = &F->r->opt.render;
-    const cj_scene_settings *ss = cj_scene_settings_get(F->scene);
+    const cj_scene_settings *ss = cj_scene_get_settings(F->scene);
     F->W = o->width ? o->width : ss->width;
     F->H = o->height ? o->height : ss->height;
     F->spp = o->spp ? o->spp : ss->spp;
@@ -150,10 +137,10 @@ static cj_status resolve_settings(cj_rframe *F) {
 
 /* The camera and the frame's constants the tiles read. */
 static cj_status setup_view(cj_rframe *F) {
-    cj_status st = cj_rview_init(cj_scene_camera(F->scene), F->W, F->H, &F->view);
+    cj_status st = cj_rview_init(cj_scene_get_camera(F->scene), F->W, F->H, &F->view);
     if (st) return st;
     cj_rctx *c = &F->c;
-    const cj_scene_settings *ss = cj_scene_settings_get(F->scene);
+    const cj_scene_settings *ss = cj_scene_get_settings(F->scene);
     c->view = &F->view;
     c->width = F->W;
     c->height = F->H;
@@ -180,8 +167,8 @@ static cj_status build_triangles(cj_rframe *F) {
     cj_stage *s =
         cj_stage_report_set(R, "tessellate_patches", f->patches, "%s",
                             f->patches ? "the scene has Bezier patch objects" : "no patch objects");
-    cj_rframe_figures(R, "tessellate_patches", "patches", b->patches_in, "triangles", b->patch_tris,
-                      b->sec_patches);
+    cj_stage_report_figures(R, "tessellate_patches", "patches", b->patches_in, "triangles",
+                            b->patch_tris, b->sec_patches);
     cj_stage_add_value(s, "tol_px", F->tol_px);
     cj_stage_add_value(s, "bound_px", b->patch_bound_px);
     cj_stage_add_value(s, "patches_culled", (double)b->patches_culled);
@@ -195,23 +182,23 @@ static cj_status build_triangles(cj_rframe *F) {
     s = cj_stage_report_set(R, "tessellate_surfaces", f->surfaces, "%s",
                             f->surfaces ? "the scene has analytic surfaces"
                                         : "no analytic surfaces");
-    cj_rframe_figures(R, "tessellate_surfaces", "objects", 0, "triangles", b->surface_tris,
-                      b->sec_surfaces);
+    cj_stage_report_figures(R, "tessellate_surfaces", "objects", 0, "triangles", b->surface_tris,
+                            b->sec_surfaces);
     cj_stage_add_value(s, "bound_px", b->surface_bound_px);
     cj_stage_report_set(R, "meshes", f->meshes, "%s",
                         f->meshes ? "the scene has triangle meshes" : "no mesh objects");
-    cj_rframe_figures(R, "meshes", "triangles", b->mesh_tris, "triangles", b->mesh_tris,
-                      b->sec_meshes);
+    cj_stage_report_figures(R, "meshes", "triangles", b->mesh_tris, "triangles", b->mesh_tris,
+                            b->sec_meshes);
     cj_stage_report_set(R, "transform", 1, "always");
-    cj_rframe_figures(R, "transform", "vertices", b->vertex_count, "vertices", b->vertex_count,
-                      b->sec_transform);
+    cj_stage_report_figures(R, "transform", "vertices", b->vertex_count, "vertices",
+                            b->vertex_count, b->sec_transform);
     const uint64_t vn = (F->flags & CJ_RB_NORMALS) ? b->vertex_count : 0;
     const uint64_t vt = (F->flags & CJ_RB_UVS) ? b->vertex_count : 0;
-    cj_rframe_figures(R, "vertex_normals", "vertices", vn, "vertices", vn, 0.0);
-    cj_rframe_figures(R, "texture_coords", "vertices", vt, "vertices", vt, 0.0);
+    cj_stage_report_figures(R, "vertex_normals", "vertices", vn, "vertices", vn, 0.0);
+    cj_stage_report_figures(R, "texture_coords", "vertices", vt, "vertices", vt, 0.0);
     size_t built = b->patch_tris + b->surface_tris + b->mesh_tris;
-    cj_rframe_figures(R, "cull_backfaces", "triangles", built + b->culled_back, "triangles", built,
-                      b->sec_cull);
+    cj_stage_report_figures(R, "cull_backfaces", "triangles", built + b->culled_back, "triangles",
+                            built, b->sec_cull);
     cj_rctx *c = &F->c;
     c->obj_mat = cj_ralloc(&F->A, sizeof(int) * (b->object_count ? b->object_count : 1));
     if (!c->obj_mat) return cj_fail(CJ_ERR_NOMEM, "object table");
@@ -233,8 +220,8 @@ static cj_status order_triangles(cj_rframe *F) {
         F->sec_sort = cj_render_now() - ts;
         if (st) return st;
     }
-    cj_stage *s = cj_rframe_figures(F->R, "sort_transparent", "triangles", F->transp_in,
-                                    "triangles", c->transp.count, F->sec_sort);
+    cj_stage *s = cj_stage_report_figures(F->R, "sort_transparent", "triangles", F->transp_in,
+                                          "triangles", c->transp.count, F->sec_sort);
     if (F->f.transparent) {
         cj_stage_add_value(s, "bsp_splits", (double)F->splits);
         cj_stage_add_value(s, "painter_fallback", F->fallback);
@@ -250,16 +237,16 @@ static cj_status project_and_light(cj_rframe *F) {
     F->sec_project = cj_render_now() - ts;
     if (st) return st;
     cj_stage_report_set(F->R, "project", 1, "always");
-    cj_rframe_figures(F->R, "project", "vertices", F->b.vertex_count, "vertices", F->b.vertex_count,
-                      F->sec_project);
+    cj_stage_report_figures(F->R, "project", "vertices", F->b.vertex_count, "vertices",
+                            F->b.vertex_count, F->sec_project);
     ts = cj_render_now();
     st = cj_rshade_prepare_list(c, &c->opaque, &F->A);
     if (!st) st = cj_rshade_prepare_list(c, &c->transp, &F->A);
     if (!st) st = cj_rshade_prepare_gouraud(c, &F->A, &F->gouraud_vertices);
     F->sec_shade_setup = cj_render_now() - ts;
     if (st) return st;
-    cj_rframe_figures(F->R, "shade_setup", "triangles", c->opaque.count + c->transp.count,
-                      "vertices", F->gouraud_vertices, F->sec_shade_setup);
+    cj_stage_report_figures(F->R, "shade_setup", "triangles", c->opaque.count + c->transp.count,
+                            "vertices", F->gouraud_vertices, F->sec_shade_setup);
     ts = cj_render_now();
     if (F->f.overlays) st = cj_rlines_build(c, F->scene, &F->A);
     F->sec_lines_setup = cj_render_now() - ts;
@@ -277,8 +264,8 @@ static cj_status setup_raster(cj_rframe *F) {
     if (st) return st;
     c->has_transp = F->f.transparent && c->transp.count > 0;
     cj_stage_report_set(F->R, "raster_setup", 1, "always");
-    cj_rframe_figures(F->R, "raster_setup", "triangles", F->rs_o.tris_in + F->rs_t.tris_in,
-                      "triangles", F->rs_o.tris_setup + F->rs_t.tris_setup, F->sec_setup);
+    cj_stage_report_figures(F->R, "raster_setup", "triangles", F->rs_o.tris_in + F->rs_t.tris_in,
+                            "triangles", F->rs_o.tris_setup + F->rs_t.tris_setup, F->sec_setup);
     return CJ_OK;
 }
 
@@ -331,8 +318,8 @@ static void report_tiles(cj_rframe *F) {
     for (int k = 0; k < CJ_RS_COUNT; ++k) cb += sum.sec[k];
     double vis = F->run.seconds_raster * c->threads - cb;
     cj_stage_report_set(R, "rasterize", 1, "always");
-    cj_stage *s = cj_rframe_figures(R, "rasterize", "samples", F->run.samples_tested, "samples",
-                                    F->run.samples_written, vis > 0.0 ? vis : 0.0);
+    cj_stage *s = cj_stage_report_figures(R, "rasterize", "samples", F->run.samples_tested,
+                                          "samples", F->run.samples_written, vis > 0.0 ? vis : 0.0);
     cj_stage_add_value(s, "tris_clipped", (double)(F->rs_o.tris_clipped + F->rs_t.tris_clipped));
     cj_stage_add_value(s, "tris_rejected", (double)(F->rs_o.tris_rejected + F->rs_t.tris_rejected));
     cj_stage_add_value(s, "run_wall_seconds", F->sec_run);
@@ -344,25 +331,25 @@ static void report_tiles(cj_rframe *F) {
         uint64_t n = sum.n[2 * m] + sum.n[2 * m + 1];
         textured += sum.n[2 * m + 1];
         tex_sec += sum.sec[2 * m + 1];
-        cj_stage *sh = cj_rframe_figures(R, name, "samples", n, "samples", n,
-                                         sum.sec[2 * m] + sum.sec[2 * m + 1]);
+        cj_stage *sh = cj_stage_report_figures(R, name, "samples", n, "samples", n,
+                                               sum.sec[2 * m] + sum.sec[2 * m + 1]);
         if (F->f.model_used[m])
             cj_stage_add_value(sh, "cpu_seconds", sum.cpu[2 * m] + sum.cpu[2 * m + 1]);
     }
-    s = cj_rframe_figures(R, "texture", "samples", textured, "samples", textured, tex_sec);
+    s = cj_stage_report_figures(R, "texture", "samples", textured, "samples", textured, tex_sec);
     if (F->f.textured) cj_stage_add_value(s, "seconds_include_shading", 1.0);
-    cj_rframe_figures(R, "overlay_lines", "segments", c->lines.world_segments, "pixels",
-                      sum.n[CJ_RS_LINES], sum.sec[CJ_RS_LINES] + F->sec_lines_setup);
-    s = cj_rframe_figures(R, "transparency", "triangles", c->transp.count, "fragments",
-                          sum.n[CJ_RS_TRANSPARENT], sum.sec[CJ_RS_TRANSPARENT]);
+    cj_stage_report_figures(R, "overlay_lines", "segments", c->lines.world_segments, "pixels",
+                            sum.n[CJ_RS_LINES], sum.sec[CJ_RS_LINES] + F->sec_lines_setup);
+    s = cj_stage_report_figures(R, "transparency", "triangles", c->transp.count, "fragments",
+                                sum.n[CJ_RS_TRANSPARENT], sum.sec[CJ_RS_TRANSPARENT]);
     if (F->f.transparent) cj_stage_add_value(s, "cpu_seconds", sum.cpu[CJ_RS_TRANSPARENT]);
     const uint64_t spp = (uint64_t)F->spp;
-    cj_rframe_figures(R, "resolve", "samples", spp > 1 ? sum.n[CJ_RS_RESOLVE] * spp : 0, "pixels",
-                      sum.n[CJ_RS_RESOLVE], sum.sec[CJ_RS_RESOLVE]);
+    cj_stage_report_figures(R, "resolve", "samples", spp > 1 ? sum.n[CJ_RS_RESOLVE] * spp : 0,
+                            "pixels", sum.n[CJ_RS_RESOLVE], sum.sec[CJ_RS_RESOLVE]);
     const uint64_t px = (uint64_t)F->W * (uint64_t)F->H;
     cj_stage_report_set(R, "output", 1, "always");
-    cj_rframe_figures(R, "output", "pixels", px, "pixels", px,
-                      sum.sec[CJ_RS_OUTPUT] + sum.sec[CJ_RS_BACKGROUND]);
+    cj_stage_report_figures(R, "output", "pixels", px, "pixels", px,
+                            sum.sec[CJ_RS_OUTPUT] + sum.sec[CJ_RS_BACKGROUND]);
     cj_renderer_report_frame(F->r, R, F->pool_workers, F->pool_reused, F->buffers_reused,
                              !F->target.fresh);
 }

@@ -13,7 +13,7 @@ const char *const cj_rmodel_name[CJ_RM_COUNT] = {"unlit", "flat", "gouraud", "ph
 
 static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rfeatures *f) {
     size_t n = cj_scene_light_count(scene);
-    const int radiometric = cj_scene_settings_get(scene)->light_model == CJ_LIGHT_RADIOMETRIC;
+    const int radiometric = cj_scene_get_settings(scene)->light_model == CJ_LIGHT_RADIOMETRIC;
     c->radiometric = radiometric;
     Ia[0] = Ia[1] = Ia[2] = 0.0f;
     for (size_t i = 0; i < n; ++i) {
@@ -134,7 +134,7 @@ cj_status cj_rframe_materials(cj_rframe *F) {
     memset(c->samplers, 0, sizeof(cj_tex_sampler) * (size_t)(c->nsamplers + 1));
     prepare_lights(scene, c, F->Ia, f);
     for (int m = 0; m <= c->nmat; ++m) {
-        cj_material def = cj_material_default();
+        cj_material def = cj_material_defaults();
         set_material(&c->mats[m], m < c->nmat ? cj_scene_material(scene, m) : &def, f->lit,
                      f->any_ambient, F->Ia);
     }
@@ -213,8 +213,8 @@ cj_status cj_rframe_textures(cj_rframe *F) {
     cj_stage_report_set(F->R, "mipmaps", F->f.trilinear, "%s",
                         F->f.trilinear ? "a trilinear image texture"
                                        : "no trilinear image texture");
-    cj_rframe_figures(F->R, "mipmaps", "textures", (uint64_t)c->nsamplers, "textures",
-                      (uint64_t)c->nsamplers, F->sec_mip);
+    cj_stage_report_figures(F->R, "mipmaps", "textures", (uint64_t)c->nsamplers, "textures",
+                            (uint64_t)c->nsamplers, F->sec_mip);
     return st;
 }
 

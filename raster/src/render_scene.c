@@ -43,9 +43,9 @@ cj_status cj_rscene_prepare(const cj_scene *scene, const cj_allocator *alloc, cj
     }
     memset(out->material_used, 0, (size_t)nm + 1);
     cj_status st = CJ_OK;
+    cj_scene_nodes_shown(scene, shown);
     for (size_t i = 0; i < n && !st; ++i) {
         const cj_node *nd = cj_scene_node(scene, (int)i);
-        shown[i] = nd->visible && (nd->parent < 0 || shown[nd->parent]);
         out->drawn[i] = shown[i] && nd->geometry >= 0;
         if (nd->overlay.flags & CJ_OVERLAY_NORMALS) out->features |= CJ_RF_NORMALS_OVERLAY;
         if (!out->drawn[i]) continue;

@@ -12,10 +12,10 @@
 #include <math.h>
 #include <string.h>
 
-cj_renderer_options cj_renderer_options_default(void) {
+cj_renderer_options cj_renderer_options_defaults(void) {
     cj_renderer_options o;
     memset(&o, 0, sizeof o);
-    o.render = cj_render_options_default();
+    o.render = cj_render_options_defaults();
     return o;
 }
 
@@ -48,7 +48,7 @@ static cj_status check_options(const cj_renderer_options *o) {
 static cj_status create(const cj_renderer_options *opt, const cj_allocator *alloc, int caching,
                         cj_renderer **out) {
     assert(out);
-    cj_renderer_options o = opt ? *opt : cj_renderer_options_default();
+    cj_renderer_options o = opt ? *opt : cj_renderer_options_defaults();
     cj_status st = check_options(&o);
     if (st) return st;
     cj_allocator a = cj_render_alloc(alloc);
@@ -112,7 +112,7 @@ cj_status cj_renderer_set_options(cj_renderer *r, const cj_renderer_options *opt
     return st;
 }
 
-const cj_renderer_options *cj_renderer_options_get(const cj_renderer *r) {
+const cj_renderer_options *cj_renderer_get_options(const cj_renderer *r) {
     assert(r);
     return &r->opt;
 }
@@ -230,7 +230,7 @@ static cj_status once(const cj_scene *scene, const cj_render_options *opt,
                       const cj_trace_options *topt, cj_backend backend, unsigned planes,
                       const cj_allocator *alloc, cj_render_image **out, cj_stage_report *report) {
     assert(scene && out);
-    cj_renderer_options ro = cj_renderer_options_default();
+    cj_renderer_options ro = cj_renderer_options_defaults();
     if (opt) ro.render = *opt;
     if (topt) ro.trace = *topt;
     cj_renderer *r = NULL;
@@ -255,10 +255,10 @@ cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, u
     return once(scene, opt, NULL, CJ_BACKEND_TRACE, planes, alloc, out, report);
 }
 
-cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt,
-                             const cj_trace_options *topt, unsigned planes,
-                             const cj_allocator *alloc, cj_render_image **out,
-                             cj_stage_report *report) {
+cj_status cj_render_trace_with_options(const cj_scene *scene, const cj_render_options *opt,
+                                       const cj_trace_options *topt, unsigned planes,
+                                       const cj_allocator *alloc, cj_render_image **out,
+                                       cj_stage_report *report) {
     return once(scene, opt, topt, CJ_BACKEND_TRACE, planes, alloc, out, report);
 }
 
@@ -266,7 +266,7 @@ cj_status cj_renderer_scene_mesh(cj_renderer *r, const cj_scene *scene, cj_mesh 
     assert(r && scene && out);
     cj_status st = cj_scene_check(scene);
     if (st) return st;
-    const cj_scene_settings *ss = cj_scene_settings_get(scene);
+    const cj_scene_settings *ss = cj_scene_get_settings(scene);
     const cj_render_options *opt = &r->opt.render;
     int W = opt->width ? opt->width : ss->width;
     int H = opt->height ? opt->height : ss->height;
@@ -275,7 +275,7 @@ cj_status cj_renderer_scene_mesh(cj_renderer *r, const cj_scene *scene, cj_mesh 
         return cj_fail(CJ_ERR_RANGE, "image size %d x %d or tolerance %g px out of range", W, H,
                        tol);
     cj_rview view;
-    st = cj_rview_init(cj_scene_camera(scene), W, H, &view);
+    st = cj_rview_init(cj_scene_get_camera(scene), W, H, &view);
     if (st) return st;
     cj_rscene rs;
     st = cj_rscene_prepare(scene, &r->alloc, &rs);
@@ -307,7 +307,7 @@ cj_status cj_renderer_scene_mesh(cj_renderer *r, const cj_scene *scene, cj_mesh 
 
 cj_status cj_render_scene_mesh(const cj_scene *scene, const cj_render_options *opt,
                                const cj_allocator *alloc, cj_mesh **out) {
-    cj_renderer_options ro = cj_renderer_options_default();
+    cj_renderer_options ro = cj_renderer_options_defaults();
     if (opt) ro.render = *opt;
     cj_renderer *r = NULL;
     cj_status st = cj_renderer_create_once(&ro, alloc, &r);

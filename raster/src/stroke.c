@@ -35,8 +35,8 @@ static inline double dmax(double a, double b) {
 typedef struct stroker {
     cover_target *t;
     double hw; /* half width */
-    cj_raster_join join;
-    cj_raster_cap cap;
+    cj_line_join join;
+    cj_line_cap cap;
     double miter_limit;
     double rxlo, rxhi, rylo, ryhi; /* visibility rectangle: target grown by the piece reach */
     int closed;
@@ -266,17 +266,17 @@ static void stroker_finish(stroker *s) {
 
 /* ---- set-up, validation, composition ------------------------------------------------------ */
 
-static cj_status check_style(const cj_raster_stroke *st) {
+static cj_status check_style(const cj_line_stroke *st) {
     if (!isfinite(st->width))
         return cj_fail(CJ_ERR_NONFINITE, "stroke width is %s",
                        isnan(st->width) ? "NaN" : "infinite");
-    if (!(st->width > 0.0) || st->width > CJ_RASTER_MAX_WIDTH)
+    if (!(st->width > 0.0) || st->width > CJ_LINE_MAX_WIDTH)
         return cj_fail(CJ_ERR_RANGE, "stroke width %g is outside (0, %g]", st->width,
-                       CJ_RASTER_MAX_WIDTH);
+                       CJ_LINE_MAX_WIDTH);
     if (st->join != CJ_JOIN_MITER && st->join != CJ_JOIN_ROUND && st->join != CJ_JOIN_BEVEL)
-        return cj_fail(CJ_ERR_ARGUMENT, "stroke join %d is not a cj_raster_join", (int)st->join);
+        return cj_fail(CJ_ERR_ARGUMENT, "stroke join %d is not a cj_line_join", (int)st->join);
     if (st->cap != CJ_CAP_BUTT && st->cap != CJ_CAP_ROUND && st->cap != CJ_CAP_SQUARE)
-        return cj_fail(CJ_ERR_ARGUMENT, "stroke cap %d is not a cj_raster_cap", (int)st->cap);
+        return cj_fail(CJ_ERR_ARGUMENT, "stroke cap %d is not a cj_line_cap", (int)st->cap);
     if (!isfinite(st->miter_limit))
         return cj_fail(CJ_ERR_NONFINITE, "miter limit is %s",
                        isnan(st->miter_limit) ? "NaN" : "infinite");
@@ -293,7 +293,7 @@ static cj_status check_points(const cj_vec2 *pts, size_t n) {
             if (!isfinite(c[k]))
                 return cj_fail(CJ_ERR_NONFINITE, "polyline point %zu: %s is %s", i, k ? "y" : "x",
                                isnan(c[k]) ? "NaN" : "infinite");
-            if (fabs(c[k]) > CJ_RASTER_COORD_MAX)
+            if (fabs(c[k]) > CJ_LINE_COORD_MAX)
                 return cj_fail(CJ_ERR_RANGE, "polyline point %zu: %s = %g exceeds 2^52", i,
                                k ? "y" : "x", c[k]);
         }
@@ -301,7 +301,7 @@ static cj_status check_points(const cj_vec2 *pts, size_t n) {
     return CJ_OK;
 }
 
-static void stroker_init(stroker *s, cover_target *t, const cj_raster_stroke *st, int closed) {
+static void stroker_init(stroker *s, cover_target *t, const cj_line_stroke *st, int closed) {
     memset(s, 0, sizeof *s);
     s->closed = closed;
     s->t = t;
@@ -358,8 +358,8 @@ static cj_status fb_target(cj_framebuffer *fb, cover_target *t) {
     return CJ_OK;
 }
 
-cj_status cj_raster_stroke_polyline(cj_framebuffer *fb, const cj_vec2 *pts, size_t n, int closed,
-                                    const cj_raster_stroke *style, cj_rgba c) {
+cj_status cj_line_stroke_polyline(cj_framebuffer *fb, const cj_vec2 *pts, size_t n, int closed,
+                                  const cj_line_stroke *style, cj_rgba c) {
     assert(fb && style && (pts || n == 0));
     cj_status st;
     if ((st = check_style(style)) || (st = check_points(pts, n))) return st;
@@ -374,21 +374,20 @@ cj_status cj_raster_stroke_polyline(cj_framebuffer *fb, const cj_vec2 *pts, size
     return CJ_OK;
 }
 
-size_t cj_raster_stroke_work_size(cj_raster_rect clip) {
+size_t cj_line_stroke_work_size(cj_line_rect clip) {
     if (clip.x1 < clip.x0 || clip.y1 < clip.y0) return 0;
     size_t w = (size_t)((long long)clip.x1 - clip.x0 + 1);
     size_t h = (size_t)((long long)clip.y1 - clip.y0 + 1);
     return w * h * sizeof(float) + 2 * h * sizeof(int);
 }
 
-cj_status cj_raster_stroke_polyline_visit(const cj_vec2 *pts, size_t n, int closed,
-                                          const cj_raster_stroke *style, cj_raster_rect clip,
-                                          void *work, size_t work_bytes, cj_raster_cover_fn fn,
-                                          void *user) {
+cj_status cj_line_stroke_polyline_visit(const cj_vec2 *pts, size_t n, int closed,
+                                        const cj_line_stroke *style, cj_line_rect clip, void *work,
+                                        size_t work_bytes, cj_line_cover_fn fn, void *user) {
     assert(style && fn && (pts || n == 0));
     cj_status st;
     if ((st = check_style(style)) || (st = check_points(pts, n))) return st;
-    size_t need = cj_raster_stroke_work_size(clip);
+    size_t need = cj_line_stroke_work_size(clip);
     if (need == 0) return CJ_OK;
     assert(work);
     if (work_bytes < need)
@@ -427,7 +426,7 @@ typedef cj_status (*flatten_call)(const void *what, const cj_flatten_opts *opts,
                                   cj_flatten_stats *stats);
 
 static cj_status stroke_flattened(cj_framebuffer *fb, const void *what, flatten_call run,
-                                  double tol, const cj_raster_stroke *style, cj_rgba c,
+                                  double tol, const cj_line_stroke *style, cj_rgba c,
                                   double *bound) {
     cover_target t;
     cj_status st = fb_target(fb, &t);
@@ -467,8 +466,8 @@ static cj_status run_sequence(const void *what, const cj_flatten_opts *opts, voi
     return cj_flatten_sequence_cb(q->pieces, q->count, opts, curve_sink, s, stats);
 }
 
-cj_status cj_raster_stroke_bezier(cj_framebuffer *fb, const cj_bezier *curve, double tol,
-                                  const cj_raster_stroke *style, cj_rgba c, double *bound) {
+cj_status cj_line_stroke_bezier(cj_framebuffer *fb, const cj_bezier *curve, double tol,
+                                const cj_line_stroke *style, cj_rgba c, double *bound) {
     assert(fb && curve && style);
     cj_status st;
     if ((st = check_style(style))) return st;
@@ -477,8 +476,8 @@ cj_status cj_raster_stroke_bezier(cj_framebuffer *fb, const cj_bezier *curve, do
     return stroke_flattened(fb, curve, run_bezier, tol, style, c, bound);
 }
 
-cj_status cj_raster_stroke_rbezier(cj_framebuffer *fb, const cj_rbezier *curve, double tol,
-                                   const cj_raster_stroke *style, cj_rgba c, double *bound) {
+cj_status cj_line_stroke_rbezier(cj_framebuffer *fb, const cj_rbezier *curve, double tol,
+                                 const cj_line_stroke *style, cj_rgba c, double *bound) {
     assert(fb && curve && style);
     cj_status st;
     if ((st = check_style(style))) return st;
@@ -487,9 +486,9 @@ cj_status cj_raster_stroke_rbezier(cj_framebuffer *fb, const cj_rbezier *curve, 
     return stroke_flattened(fb, curve, run_rbezier, tol, style, c, bound);
 }
 
-cj_status cj_raster_stroke_sequence(cj_framebuffer *fb, const cj_flatten_piece *pieces,
-                                    size_t count, double tol, const cj_raster_stroke *style,
-                                    cj_rgba c, double *bound) {
+cj_status cj_line_stroke_sequence(cj_framebuffer *fb, const cj_flatten_piece *pieces, size_t count,
+                                  double tol, const cj_line_stroke *style, cj_rgba c,
+                                  double *bound) {
     assert(fb && style && (pieces || count == 0));
     cj_status st;
     if ((st = check_style(style))) return st;
@@ -503,7 +502,7 @@ cj_status cj_raster_stroke_sequence(cj_framebuffer *fb, const cj_flatten_piece *
 
 /* ---- filled shapes ----------------------------------------------------------------------- */
 
-cj_status cj_raster_fill_convex(cj_framebuffer *fb, const cj_vec2 *pts, size_t n, cj_rgba c) {
+cj_status cj_line_fill_convex(cj_framebuffer *fb, const cj_vec2 *pts, size_t n, cj_rgba c) {
     assert(fb && (pts || n == 0));
     if (n < 3) return cj_fail(CJ_ERR_EMPTY, "polygon has %zu points, at least 3 needed", n);
     cj_status st = check_points(pts, n);
@@ -522,7 +521,7 @@ cj_status cj_raster_fill_convex(cj_framebuffer *fb, const cj_vec2 *pts, size_t n
     }
     cover_target t;
     if ((st = fb_target(fb, &t))) return st;
-    cj_raster_stroke style = cj_raster_stroke_default(1.0);
+    cj_line_stroke style = cj_line_stroke_defaults(1.0);
     stroker s;
     stroker_init(&s, &t, &style, 0);
     /* A fan of pieces of at most POLY_MAX - 2 vertices around pts[0]: disjoint, areas add. */
@@ -539,18 +538,18 @@ cj_status cj_raster_fill_convex(cj_framebuffer *fb, const cj_vec2 *pts, size_t n
     return CJ_OK;
 }
 
-cj_status cj_raster_fill_disc(cj_framebuffer *fb, cj_vec2 centre, double radius, cj_rgba c) {
+cj_status cj_line_fill_disc(cj_framebuffer *fb, cj_vec2 centre, double radius, cj_rgba c) {
     assert(fb);
     cj_status st = check_points(&centre, 1);
     if (st) return st;
     if (!isfinite(radius))
         return cj_fail(CJ_ERR_NONFINITE, "disc radius is %s", isnan(radius) ? "NaN" : "infinite");
-    if (!(radius > 0.0) || radius > CJ_RASTER_MAX_WIDTH)
+    if (!(radius > 0.0) || radius > CJ_LINE_MAX_WIDTH)
         return cj_fail(CJ_ERR_RANGE, "disc radius %g is outside (0, %g]", radius,
-                       CJ_RASTER_MAX_WIDTH);
+                       CJ_LINE_MAX_WIDTH);
     cover_target t;
     if ((st = fb_target(fb, &t))) return st;
-    cj_raster_stroke style = cj_raster_stroke_default(2.0 * radius);
+    cj_line_stroke style = cj_line_stroke_defaults(2.0 * radius);
     stroker s;
     stroker_init(&s, &t, &style, 0);
     if (visible(&s, centre)) {

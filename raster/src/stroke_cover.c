@@ -143,7 +143,7 @@ void cj_stroke_cover_poly(cover_target *t, const poly *p, float sign) {
 
 /* Hands every covered pixel to fn (or blends it into fb) and clears the plane behind: the
  * running sum of a row's cells is its coverage. */
-void cj_stroke_compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_raster_cover_fn fn,
+void cj_stroke_compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_line_cover_fn fn,
                        void *user) {
     for (int ry = t->ymin; ry <= t->ymax; ++ry) {
         float *row = t->cover + row_offset(t, ry);
@@ -200,7 +200,7 @@ void cj_stroke_compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_raster
  * stroke are contiguous and stay in cache from stroke to stroke. Other strokes keep the full
  * plane. Returns 1 if the target was switched to the sheared addressing. */
 int cj_stroke_narrow_plane(cover_target *t, const cj_vec2 *pts, size_t n, int closed,
-                           const cj_raster_stroke *style) {
+                           const cj_line_stroke *style) {
     if (n != 2 || closed) return 0;
     const double x0 = pts[0].x - t->ox, y0 = pts[0].y - t->oy;
     const double dx = pts[1].x - pts[0].x, dy = pts[1].y - pts[0].y;

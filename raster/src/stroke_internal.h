@@ -37,12 +37,12 @@ void cj_stroke_cover_poly(cover_target *t, const poly *p, float sign);
 
 /* Hands every covered pixel to fn (or blends colour c into fb; both NULL: just clears) and
  * clears the plane behind. */
-void cj_stroke_compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_raster_cover_fn fn,
+void cj_stroke_compose(cover_target *t, cj_framebuffer *fb, cj_rgba c, cj_line_cover_fn fn,
                        void *user);
 
 /* Switches t to the narrow sheared plane where the stroke allows it (see stroke_cover.c);
  * returns 1 if it did. */
 int cj_stroke_narrow_plane(cover_target *t, const cj_vec2 *pts, size_t n, int closed,
-                           const cj_raster_stroke *style);
+                           const cj_line_stroke *style);
 
 #endif

@@ -8,6 +8,6 @@
 
 cj_status cj_trace_demo_scene(const char *teapot_bpt, const cj_allocator *alloc, cj_scene **out) {
     const cj_scene_json_options o = {teapot_bpt};
-    return cj_scene_parse_json_ex(cj_demo_trace_json, "scenes/demo_trace.json", NULL, &o, alloc,
-                                  out);
+    return cj_scene_parse_json_with_options(cj_demo_trace_json, "scenes/demo_trace.json", NULL, &o,
+                                            alloc, out);
 }

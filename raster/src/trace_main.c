@@ -280,7 +280,7 @@ typedef struct trace_settings {
 
 static cj_status resolve(const cj_renderer *r, const cj_scene *scene, trace_settings *t) {
     const cj_render_options *o = &r->opt.render;
-    const cj_scene_settings *ss = cj_scene_settings_get(scene);
+    const cj_scene_settings *ss = cj_scene_get_settings(scene);
     t->w = o->width ? o->width : ss->width;
     t->h = o->height ? o->height : ss->height;
     t->spp = o->spp ? o->spp : ss->spp;
@@ -300,7 +300,7 @@ static cj_status resolve(const cj_renderer *r, const cj_scene *scene, trace_sett
 static cj_status gather_lights(const cj_scene *scene, tr_lights *lights) {
     memset(lights, 0, sizeof *lights);
     lights->unlit = cj_scene_light_count(scene) == 0;
-    lights->radiometric = cj_scene_settings_get(scene)->light_model == CJ_LIGHT_RADIOMETRIC;
+    lights->radiometric = cj_scene_get_settings(scene)->light_model == CJ_LIGHT_RADIOMETRIC;
     for (size_t i = 0; i < cj_scene_light_count(scene); i++) {
         const cj_light *l = cj_scene_light(scene, (int)i);
         if (l->kind == CJ_LIGHT_AMBIENT) {
@@ -367,7 +367,7 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     memset(&j, 0, sizeof j);
     j.s = &ts;
     j.lights = &lights;
-    j.cam = cj_scene_camera(scene);
+    j.cam = cj_scene_get_camera(scene);
     cj_camera_world_to_clip(j.cam, (double)set.w / set.h, &j.clip);
     j.img = img;
     j.w = set.w;
@@ -378,10 +378,10 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     j.max_depth = set.max_depth;
     j.indirect = set.indirect;
     j.integrator = r->opt.trace.integrator;
-    j.filter = set.spp > 1 ? cj_scene_settings_get(scene)->filter : CJ_FILTER_BOX;
-    j.filter_r = cj_pixel_filter_radius(j.filter, cj_scene_settings_get(scene)->filter_radius);
-    j.seed = r->opt.render.use_seed ? r->opt.render.seed : cj_scene_settings_get(scene)->seed;
-    j.bg = cj_scene_settings_get(scene)->background;
+    j.filter = set.spp > 1 ? cj_scene_get_settings(scene)->filter : CJ_FILTER_BOX;
+    j.filter_r = cj_pixel_filter_radius(j.filter, cj_scene_get_settings(scene)->filter_radius);
+    j.seed = r->opt.render.use_seed ? r->opt.render.seed : cj_scene_get_settings(scene)->seed;
+    j.bg = cj_scene_get_settings(scene)->background;
     j.tile = set.tile;
     j.tiles_x = (set.w + j.tile - 1) / j.tile;
     j.ntiles = j.tiles_x * ((set.h + j.tile - 1) / j.tile);

@@ -38,7 +38,7 @@ static const cj_chart_marker MK[NS_MAX] = {CJ_MARKER_SQUARE, CJ_MARKER_TRIANGLE,
 
 static cj_status frame(const cj_scene *s, int w, int h, double tol, int spp, cj_render_cache *cache,
                        cj_render_image **img, cj_stage_report *rep) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = w, o.height = h, o.spp = spp, o.tol_px = tol, o.cache = cache;
     o.threads = 1; /* deterministic instruction counts; steadier times on a shared machine */
     return cj_render_raster(s, &o, 0, NULL, img, rep);

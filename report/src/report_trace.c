@@ -2,8 +2,8 @@
  *
  * Part 1, distribution ray tracing: a scene built here whose picture needs many samples (an
  * area light's soft shadows, a glossy sphere, a checkered floor whose edges alias at 1 spp),
- * traced by cj_render_trace_ex at spp 1 .. 256 (quick 1 .. 16) with stratified and with plain
- * random sampling (cj_trace_options.random_sampling). Error: the RMSE of the linear radiance
+ * traced by cj_render_trace_with_options at spp 1 .. 256 (quick 1 .. 16) with stratified and with
+ * plain random sampling (cj_trace_options.random_sampling). Error: the RMSE of the linear radiance
  * against a reference, sqrt(Σ (c − ref)² / 3P) over the P pixels and the 3 channels. The
  * reference is the mean of two random-sampled high-spp renders A and B with other seeds than
  * the measured images (same seeds would correlate the errors); A and B are independent, so the
@@ -55,27 +55,27 @@ static cj_status soft_scene(cj_scene **out) {
     cj_scene *sc = NULL;
     cj_status st = cj_scene_create(NULL, &sc);
     if (st) return st;
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(0, 3.2, 6.5);
     cam.gaze = cj_v3(0, -2.6, -6.5);
     cam.fov_y = 0.75;
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.width = 64;
     set.height = 48;
     set.max_depth = 3;
     set.background = (cj_rgb){0.05, 0.06, 0.09};
-    cj_light amb = cj_light_default(CJ_LIGHT_AMBIENT), area = cj_light_default(CJ_LIGHT_AREA);
+    cj_light amb = cj_light_defaults(CJ_LIGHT_AMBIENT), area = cj_light_defaults(CJ_LIGHT_AREA);
     amb.intensity = 0.15;
     area.position = cj_v3(-1.5, 4, -1.2);
     area.edge_u = cj_v3(2.5, 0, 0);
     area.edge_v = cj_v3(0, 0, 2.5);
     area.intensity = 0.9;
-    cj_texture tex = cj_texture_default(CJ_TEX_CHECKER);
+    cj_texture tex = cj_texture_defaults(CJ_TEX_CHECKER);
     tex.checks_u = tex.checks_v = 10;
     tex.checker_a = (cj_rgb){0.85, 0.85, 0.85};
     tex.checker_b = (cj_rgb){0.25, 0.25, 0.3};
-    cj_material floor = cj_material_default(), red = cj_material_default(),
-                gloss = cj_material_default();
+    cj_material floor = cj_material_defaults(), red = cj_material_defaults(),
+                gloss = cj_material_defaults();
     red.color = (cj_rgb){0.8, 0.2, 0.15};
     gloss.color = (cj_rgb){0.7, 0.75, 0.8};
     gloss.kd = 0.2;
@@ -106,7 +106,7 @@ static cj_status soft_scene(cj_scene **out) {
     if (!st) st = cj_scene_add_geometry(sc, &s2, &gg);
     const int geo[3] = {gf, gr, gg}, mat[3] = {mf, mr, mg};
     for (int i = 0; i < 3 && !st; ++i) {
-        cj_node n = cj_render_node(geo[i], mat[i]);
+        cj_node n = cj_node_defaults(geo[i], mat[i]);
         st = cj_scene_add_node(sc, &n, NULL);
     }
     if (st) {
@@ -124,11 +124,11 @@ typedef struct cell {
 
 static cj_status frame(const cj_scene *sc, int w, int h, const cell *c, int threads, uint64_t seed,
                        cj_render_image **img, cj_stage_report *rep) {
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = w, o.height = h, o.spp = c->spp, o.threads = threads;
     o.use_seed = 1, o.seed = seed;
     const cj_trace_options to = {c->random, c->ptol, 0, 0};
-    return cj_render_trace_ex(sc, &o, &to, 0, NULL, img, rep);
+    return cj_render_trace_with_options(sc, &o, &to, 0, NULL, img, rep);
 }
 
 /* sqrt(Σ (a − b)² / 3P) over the colour channels of P pixels. */
@@ -280,7 +280,8 @@ static int trace_spp(report *r) {
     int dom[2 * NSPP];
     report_pareto((size_t)nc, ms, err, dom);
     fprintf(r->html,
-            "<h2>Ray tracer: samples per pixel</h2>\n<p>cj_render_trace_ex on a scene that needs "
+            "<h2>Ray tracer: samples per pixel</h2>\n<p>cj_render_trace_with_options on a scene "
+            "that needs "
             "many samples: a square area light over a checkered floor, a diffuse and a glossy "
             "sphere (mirror 0.7, Phong lobe exponent 60), max depth 3, %d&times;%d pixels. "
             "Stratified sampling jitters pixel positions in a k&times;k grid and draws area-light "

@@ -111,7 +111,7 @@ static cj_status attach(cj_anim_doc *doc, cj_scene *scene, int *binding) {
         free(nrm);
         int mat = -1, geo = -1, node = -1;
         if (!st) {
-            cj_material m = cj_material_default();
+            cj_material m = cj_material_defaults();
             m.color = doc->cloth_color;
             m.two_sided = 1;
             m.ks = 0.1;
@@ -126,14 +126,8 @@ static cj_status attach(cj_anim_doc *doc, cj_scene *scene, int *binding) {
         }
         cj_mesh_destroy(mesh);
         if (!st) {
-            cj_node n;
-            memset(&n, 0, sizeof n);
+            cj_node n = cj_node_defaults(geo, mat);
             n.name = doc->cloth_name;
-            n.parent = -1;
-            n.local = cj_transform_identity();
-            n.geometry = geo;
-            n.material = mat;
-            n.visible = 1;
             st = cj_scene_add_node(scene, &n, &node);
         }
         if (st) return st;
@@ -151,7 +145,7 @@ static cj_status attach(cj_anim_doc *doc, cj_scene *scene, int *binding) {
         st = cj_particles_create(&doc->pdesc, NULL, &doc->particles);
         if (st) return st;
         int mat = -1, geo = -1;
-        cj_material m = cj_material_default();
+        cj_material m = cj_material_defaults();
         m.color = doc->particle_color;
         m.shading = CJ_SHADE_GOURAUD;
         st = cj_scene_add_material(scene, &m, &mat);
@@ -163,12 +157,7 @@ static cj_status attach(cj_anim_doc *doc, cj_scene *scene, int *binding) {
             st = cj_scene_add_geometry(scene, &g, &geo);
         }
         for (size_t i = 0; !st && i < doc->pdesc.capacity; ++i) {
-            cj_node n;
-            memset(&n, 0, sizeof n);
-            n.parent = -1;
-            n.local = cj_transform_identity();
-            n.geometry = geo;
-            n.material = mat;
+            cj_node n = cj_node_defaults(geo, mat);
             n.visible = 0;
             int idx;
             st = cj_scene_add_node(scene, &n, &idx);

@@ -32,10 +32,10 @@ static cj_status read_path_channel(actx *c, cj_anim *anim, const cJSON *ch, cons
     const cJSON *pj = cJSON_GetObjectItemCaseSensitive(ch, "path");
     char pp[300];
     snprintf(pp, sizeof pp, "%s.path", path);
-    cj_status st = aj_keys(c, pj, pp, PK);
+    cj_status st = cj_json_object(&c->json, pj, pp, PK);
     if (st) return st;
     const cJSON *pts = cJSON_GetObjectItemCaseSensitive(pj, "points");
-    if (!pts) return aj_jfail(c, pj, CJ_ERR_PARSE, "%s needs \"points\"", pp);
+    if (!pts) return cj_json_fail(&c->json, pj, 0, CJ_ERR_PARSE, "%s needs \"points\"", pp);
     int dim = 3, spline = 0;
     double *p = NULL, tension = 0.5;
     snprintf(pp, sizeof pp, "%s.path.points", path);
@@ -43,19 +43,20 @@ static cj_status read_path_channel(actx *c, cj_anim *anim, const cJSON *ch, cons
     const size_t n = (size_t)cJSON_GetArraySize(pts);
     const cJSON *cl = cJSON_GetObjectItemCaseSensitive(pj, "closed");
     if (cl && !cJSON_IsBool(cl))
-        st = aj_jfail(c, cl, CJ_ERR_PARSE, "%s.path.closed must be true or false", path);
+        st = cj_json_fail(&c->json, cl, 0, CJ_ERR_PARSE, "%s.path.closed must be true or false",
+                          path);
     static const char *const SPL[] = {"catmull_rom", "centripetal", NULL};
     snprintf(pp, sizeof pp, "%s.path", path);
     if (!st) st = aj_pick(c, pj, pp, "spline", SPL, &spline);
-    if (!st) st = aj_num(c, pj, pp, "tension", -1e300, &tension);
+    if (!st) st = cj_json_num(&c->json, pj, pp, "tension", CJ_JSON_GE, -1e300, 0, &tension);
     double start = 0, dur = 0, accel = 0.25;
     int ease = 0;
-    if (!st) st = aj_num(c, ch, path, "start", 0, &start);
-    if (!st) st = aj_num(c, ch, path, "duration", 0, &dur);
+    if (!st) st = cj_json_num(&c->json, ch, path, "start", CJ_JSON_GE, 0, 0, &start);
+    if (!st) st = cj_json_num(&c->json, ch, path, "duration", CJ_JSON_GE, 0, 0, &dur);
     if (!st && !(dur > 0))
-        st = aj_jfail(c, ch, CJ_ERR_RANGE, "%s.duration must be given and > 0", path);
+        st = cj_json_fail(&c->json, ch, 0, CJ_ERR_RANGE, "%s.duration must be given and > 0", path);
     if (!st) st = aj_pick(c, ch, path, "ease", EASES, &ease);
-    if (!st) st = aj_num(c, ch, path, "accel", 0, &accel);
+    if (!st) st = cj_json_num(&c->json, ch, path, "accel", CJ_JSON_GE, 0, 0, &accel);
     double *segs = NULL;
     cj_path *motion = NULL;
     if (!st) {
@@ -74,7 +75,7 @@ static cj_status read_path_channel(actx *c, cj_anim *anim, const cJSON *ch, cons
             cj_path_destroy(motion);
             char msg[300];
             snprintf(msg, sizeof msg, "%s", cj_last_error());
-            st = aj_jfail(c, pj, st, "%s.path: %s", path, msg);
+            st = cj_json_fail(&c->json, pj, 0, st, "%s.path: %s", path, msg);
         }
     }
     free(segs);
@@ -87,11 +88,12 @@ static cj_status read_channel(actx *c, cj_anim *anim, const cJSON *ch, const cha
         "target",  "type",       "interpolation", "times",       "values",  "tangents",
         "tension", "continuity", "bias",          "euler_order", "degrees", "path",
         "start",   "duration",   "ease",          "accel",       NULL};
-    cj_status st = aj_keys(c, ch, path, CK);
+    cj_status st = cj_json_object(&c->json, ch, path, CK);
     if (st) return st;
     const cJSON *tg = cJSON_GetObjectItemCaseSensitive(ch, "target");
     if (!cJSON_IsString(tg))
-        return aj_jfail(c, tg ? tg : ch, CJ_ERR_PARSE, "%s.target must be a string", path);
+        return cj_json_fail(&c->json, tg ? tg : ch, 0, CJ_ERR_PARSE, "%s.target must be a string",
+                            path);
     if (cJSON_GetObjectItemCaseSensitive(ch, "path"))
         return read_path_channel(c, anim, ch, path, tg->valuestring);
     int kind = 0, interp = 1, order = 0;
@@ -100,7 +102,9 @@ static cj_status read_channel(actx *c, cj_anim *anim, const cJSON *ch, const cha
     if ((st = aj_pick(c, ch, path, "euler_order", ORDERS, &order))) return st;
     const cJSON *tj = cJSON_GetObjectItemCaseSensitive(ch, "times");
     const cJSON *vj = cJSON_GetObjectItemCaseSensitive(ch, "values");
-    if (!tj || !vj) return aj_jfail(c, ch, CJ_ERR_PARSE, "%s needs \"times\" and \"values\"", path);
+    if (!tj || !vj)
+        return cj_json_fail(&c->json, ch, 0, CJ_ERR_PARSE, "%s needs \"times\" and \"values\"",
+                            path);
     char pp[300];
     snprintf(pp, sizeof pp, "%s.times", path);
     int one = 1;
@@ -111,12 +115,13 @@ static cj_status read_channel(actx *c, cj_anim *anim, const cJSON *ch, const cha
     snprintf(pp, sizeof pp, "%s.values", path);
     st = aj_key_values(c, vj, pp, &dim, n, &v);
     cj_channel_desc d = cj_channel_desc_make((cj_channel_kind)kind, (cj_interp)interp, dim);
-    if (!st) st = aj_num(c, ch, path, "tension", -1e300, &d.tension);
-    if (!st) st = aj_num(c, ch, path, "continuity", -1e300, &d.continuity);
-    if (!st) st = aj_num(c, ch, path, "bias", -1e300, &d.bias);
+    if (!st) st = cj_json_num(&c->json, ch, path, "tension", CJ_JSON_GE, -1e300, 0, &d.tension);
+    if (!st)
+        st = cj_json_num(&c->json, ch, path, "continuity", CJ_JSON_GE, -1e300, 0, &d.continuity);
+    if (!st) st = cj_json_num(&c->json, ch, path, "bias", CJ_JSON_GE, -1e300, 0, &d.bias);
     const cJSON *deg = cJSON_GetObjectItemCaseSensitive(ch, "degrees");
     if (!st && deg && !cJSON_IsBool(deg))
-        st = aj_jfail(c, deg, CJ_ERR_PARSE, "%s.degrees must be true or false", path);
+        st = cj_json_fail(&c->json, deg, 0, CJ_ERR_PARSE, "%s.degrees must be true or false", path);
     if (!st && kind == 2 && deg && cJSON_IsTrue(deg))
         for (size_t i = 0; i < 3 * n; ++i) v[i] *= PI_ / 180.0;
     const cJSON *tn = cJSON_GetObjectItemCaseSensitive(ch, "tangents");
@@ -129,7 +134,8 @@ static cj_status read_channel(actx *c, cj_anim *anim, const cJSON *ch, const cha
             if (!tan) st = cj_fail(CJ_ERR_NOMEM, "no memory for tangents");
             size_t i = 0;
             if (!st && (!cJSON_IsArray(tn) || (size_t)cJSON_GetArraySize(tn) != n))
-                st = aj_jfail(c, tn, CJ_ERR_PARSE, "%s must hold [in, out] per key", pp);
+                st = cj_json_fail(&c->json, tn, 0, CJ_ERR_PARSE, "%s must hold [in, out] per key",
+                                  pp);
             for (const cJSON *e = tn ? tn->child : NULL; !st && e; e = e->next, ++i) {
                 double *pair_v = NULL;
                 char pe[320];
@@ -156,7 +162,7 @@ static cj_status read_channel(actx *c, cj_anim *anim, const cJSON *ch, const cha
         if (st) {
             char msg[400];
             snprintf(msg, sizeof msg, "%s", cj_last_error());
-            st = aj_jfail(c, ch, st, "%s: %s", path, msg);
+            st = cj_json_fail(&c->json, ch, 0, st, "%s: %s", path, msg);
         }
     }
     free(t);
@@ -175,7 +181,7 @@ static cj_status read_colliders(actx *c, const cJSON *cj, cj_sphere_collider *sp
     static const char *const K[] = {"spheres", "planes", NULL};
     static const char *const SK[] = {"center", "radius", "friction", NULL};
     static const char *const PK[] = {"normal", "offset", "friction", NULL};
-    cj_status st = aj_keys(c, cj, "colliders", K);
+    cj_status st = cj_json_object(&c->json, cj, "colliders", K);
     if (st) return st;
     const cJSON *s = cJSON_GetObjectItemCaseSensitive(cj, "spheres");
     const cJSON *p = cJSON_GetObjectItemCaseSensitive(cj, "planes");
@@ -183,11 +189,12 @@ static cj_status read_colliders(actx *c, const cJSON *cj, cj_sphere_collider *sp
     for (const cJSON *e = s ? s->child : NULL; e; e = e->next, ++i) {
         char path[64];
         snprintf(path, sizeof path, "colliders.spheres[%zu]", i);
-        if (i >= 8) return aj_jfail(c, e, CJ_ERR_PARSE, "at most 8 spheres");
+        if (i >= 8) return cj_json_fail(&c->json, e, 0, CJ_ERR_PARSE, "at most 8 spheres");
         sph[i] = (cj_sphere_collider){{0, 0, 0}, 1, 0};
-        if ((st = aj_keys(c, e, path, SK)) || (st = aj_vec3(c, e, path, "center", sph[i].center)) ||
-            (st = aj_num(c, e, path, "radius", 0, &sph[i].radius)) ||
-            (st = aj_num(c, e, path, "friction", 0, &sph[i].friction)))
+        if ((st = cj_json_object(&c->json, e, path, SK)) ||
+            (st = aj_vec3(c, e, path, "center", sph[i].center)) ||
+            (st = cj_json_num(&c->json, e, path, "radius", CJ_JSON_GE, 0, 0, &sph[i].radius)) ||
+            (st = cj_json_num(&c->json, e, path, "friction", CJ_JSON_GE, 0, 0, &sph[i].friction)))
             return st;
     }
     *nsph = i;
@@ -195,11 +202,12 @@ static cj_status read_colliders(actx *c, const cJSON *cj, cj_sphere_collider *sp
     for (const cJSON *e = p ? p->child : NULL; e; e = e->next, ++i) {
         char path[64];
         snprintf(path, sizeof path, "colliders.planes[%zu]", i);
-        if (i >= 8) return aj_jfail(c, e, CJ_ERR_PARSE, "at most 8 planes");
+        if (i >= 8) return cj_json_fail(&c->json, e, 0, CJ_ERR_PARSE, "at most 8 planes");
         pl[i] = (cj_plane_collider){{0, 1, 0}, 0, 0};
-        if ((st = aj_keys(c, e, path, PK)) || (st = aj_vec3(c, e, path, "normal", pl[i].normal)) ||
-            (st = aj_num(c, e, path, "offset", -1e300, &pl[i].offset)) ||
-            (st = aj_num(c, e, path, "friction", 0, &pl[i].friction)))
+        if ((st = cj_json_object(&c->json, e, path, PK)) ||
+            (st = aj_vec3(c, e, path, "normal", pl[i].normal)) ||
+            (st = cj_json_num(&c->json, e, path, "offset", CJ_JSON_GE, -1e300, 0, &pl[i].offset)) ||
+            (st = cj_json_num(&c->json, e, path, "friction", CJ_JSON_GE, 0, 0, &pl[i].friction)))
             return st;
     }
     *npl = i;
@@ -211,7 +219,7 @@ static cj_status read_cloth(actx *c, cj_anim_doc *doc, const cJSON *cj,
     static const char *const K[] = {
         "grid",   "corner",     "edge_u",          "edge_v", "mass", "stiffness",    "damping",
         "pinned", "integrator", "steps_per_frame", "color",  "name", "collide_with", NULL};
-    cj_status st = aj_keys(c, cj, "cloth", K);
+    cj_status st = cj_json_object(&c->json, cj, "cloth", K);
     if (st) return st;
     double grid[2] = {16, 16}, corner[3] = {-1, 1, -1}, eu[3] = {2, 0, 0}, ev[3] = {0, 0, 2};
     double mass = 1, k[3] = {2000, 500, 50}, damping = 0.5, spf = 4, col[3] = {0.8, 0.2, 0.2};
@@ -220,7 +228,8 @@ static cj_status read_cloth(actx *c, cj_anim_doc *doc, const cJSON *cj,
     if (g && (st = aj_nums(c, g, "cloth.grid", 2, grid, 2, NULL))) return st;
     if (grid[0] < 2 || grid[1] < 2 || grid[0] > 256 || grid[1] > 256 || grid[0] != floor(grid[0]) ||
         grid[1] != floor(grid[1]))
-        return aj_jfail(c, g, CJ_ERR_RANGE, "cloth.grid must be two integers in 2..256");
+        return cj_json_fail(&c->json, g, 0, CJ_ERR_RANGE,
+                            "cloth.grid must be two integers in 2..256");
     const cJSON *kj = cJSON_GetObjectItemCaseSensitive(cj, "stiffness");
     if (kj && (st = aj_nums(c, kj, "cloth.stiffness", 3, k, 3, NULL))) return st;
     const cJSON *cc = cJSON_GetObjectItemCaseSensitive(cj, "color");
@@ -228,15 +237,15 @@ static cj_status read_cloth(actx *c, cj_anim_doc *doc, const cJSON *cj,
     if ((st = aj_vec3_in(c, cj, "cloth", "corner", CJ_ANIM_MAX_COORD, corner)) ||
         (st = aj_vec3_in(c, cj, "cloth", "edge_u", CJ_ANIM_MAX_COORD, eu)) ||
         (st = aj_vec3_in(c, cj, "cloth", "edge_v", CJ_ANIM_MAX_COORD, ev)) ||
-        (st = aj_num(c, cj, "cloth", "mass", 0, &mass)) ||
-        (st = aj_num(c, cj, "cloth", "damping", 0, &damping)) ||
+        (st = cj_json_num(&c->json, cj, "cloth", "mass", CJ_JSON_GE, 0, 0, &mass)) ||
+        (st = cj_json_num(&c->json, cj, "cloth", "damping", CJ_JSON_GE, 0, 0, &damping)) ||
         (st = aj_num_in(c, cj, "cloth", "steps_per_frame", 1, CJ_ANIM_MAX_STEPS_PER_FRAME, 1,
                         &spf)) ||
         (st = aj_pick(c, cj, "cloth", "integrator", INTEGRATORS, &integ)))
         return st;
     const cJSON *nm = cJSON_GetObjectItemCaseSensitive(cj, "name");
     if (nm && !cJSON_IsString(nm))
-        return aj_jfail(c, nm, CJ_ERR_PARSE, "cloth.name must be a string");
+        return cj_json_fail(&c->json, nm, 0, CJ_ERR_PARSE, "cloth.name must be a string");
     snprintf(doc->cloth_name, sizeof doc->cloth_name, "%s", nm ? nm->valuestring : "cloth");
     double pins[64];
     size_t npins = 0;
@@ -245,9 +254,9 @@ static cj_status read_cloth(actx *c, cj_anim_doc *doc, const cJSON *cj,
     int ipins[64];
     for (size_t i = 0; i < npins; ++i) {
         if (!(pins[i] >= 0 && pins[i] < grid[0] * grid[1]) || pins[i] != floor(pins[i]))
-            return aj_jfail(c, pj, CJ_ERR_RANGE,
-                            "cloth.pinned[%zu] = %g is not a vertex index in 0..%g", i, pins[i],
-                            grid[0] * grid[1] - 1);
+            return cj_json_fail(&c->json, pj, 0, CJ_ERR_RANGE,
+                                "cloth.pinned[%zu] = %g is not a vertex index in 0..%g", i, pins[i],
+                                grid[0] * grid[1] - 1);
         ipins[i] = (int)pins[i];
     }
     st = cj_springs_create_cloth((int)grid[0], (int)grid[1], corner, eu, ev, mass, k[0], k[1], k[2],
@@ -255,16 +264,18 @@ static cj_status read_cloth(actx *c, cj_anim_doc *doc, const cJSON *cj,
     if (st) {
         char msg[300];
         snprintf(msg, sizeof msg, "%s", cj_last_error());
-        return aj_jfail(c, cj, st, "cloth: %s", msg);
+        return cj_json_fail(&c->json, cj, 0, st, "cloth: %s", msg);
     }
     const cJSON *cw = cJSON_GetObjectItemCaseSensitive(cj, "collide_with");
     size_t ncw = 0;
     if (cw && !cJSON_IsArray(cw))
-        return aj_jfail(c, cw, CJ_ERR_PARSE, "cloth.collide_with must be a list of names");
+        return cj_json_fail(&c->json, cw, 0, CJ_ERR_PARSE,
+                            "cloth.collide_with must be a list of names");
     for (const cJSON *e = cw ? cw->child : NULL; e; e = e->next, ++ncw) {
         if (ncw >= 4 || !cJSON_IsString(e))
-            return aj_jfail(c, e, CJ_ERR_PARSE,
-                            "cloth.collide_with[%zu] must be an object's name (at most 4)", ncw);
+            return cj_json_fail(&c->json, e, 0, CJ_ERR_PARSE,
+                                "cloth.collide_with[%zu] must be an object's name (at most 4)",
+                                ncw);
         snprintf(doc->cloth_collide_with[ncw], sizeof doc->cloth_collide_with[ncw], "%s",
                  e->valuestring);
     }
@@ -292,21 +303,23 @@ static cj_status read_emitter(actx *c, const cJSON *e, const char *path, cj_emit
     static const char *const K[] = {"position",      "direction", "spread",   "speed",
                                     "speed_jitter",  "rate",      "lifetime", "lifetime_jitter",
                                     "jitter_radius", "start",     "stop",     NULL};
-    *out = cj_emitter_default();
+    *out = cj_emitter_defaults();
     cj_status st;
-    if ((st = aj_keys(c, e, path, K)) ||
+    if ((st = cj_json_object(&c->json, e, path, K)) ||
         (st = aj_vec3_in(c, e, path, "position", CJ_ANIM_MAX_COORD, out->position)) ||
         (st = aj_vec3_in(c, e, path, "direction", CJ_ANIM_MAX_COORD, out->direction)) ||
-        (st = aj_num(c, e, path, "spread", 0, &out->spread)) ||
+        (st = cj_json_num(&c->json, e, path, "spread", CJ_JSON_GE, 0, 0, &out->spread)) ||
         (st = aj_num_in(c, e, path, "speed", 0, CJ_ANIM_MAX_SPEED, 0, &out->speed)) ||
-        (st = aj_num(c, e, path, "speed_jitter", 0, &out->speed_jitter)) ||
+        (st = cj_json_num(&c->json, e, path, "speed_jitter", CJ_JSON_GE, 0, 0,
+                          &out->speed_jitter)) ||
         (st = aj_num_in(c, e, path, "rate", 0, CJ_ANIM_MAX_EMIT_RATE, 0, &out->rate)) ||
         (st = aj_num_in(c, e, path, "lifetime", 0, CJ_ANIM_MAX_LIFETIME, 0, &out->lifetime)) ||
-        (st = aj_num(c, e, path, "lifetime_jitter", 0, &out->lifetime_jitter)) ||
+        (st = cj_json_num(&c->json, e, path, "lifetime_jitter", CJ_JSON_GE, 0, 0,
+                          &out->lifetime_jitter)) ||
         (st = aj_num_in(c, e, path, "jitter_radius", 0, CJ_ANIM_MAX_COORD, 0,
                         &out->jitter_radius)) ||
-        (st = aj_num(c, e, path, "start", 0, &out->start)) ||
-        (st = aj_num(c, e, path, "stop", 0, &out->stop)))
+        (st = cj_json_num(&c->json, e, path, "start", CJ_JSON_GE, 0, 0, &out->start)) ||
+        (st = cj_json_num(&c->json, e, path, "stop", CJ_JSON_GE, 0, 0, &out->stop)))
         return st;
     return CJ_OK;
 }
@@ -317,14 +330,15 @@ static cj_status read_particles(actx *c, cj_anim_doc *doc, const cJSON *pj) {
                                     "flocking",        "emitters", NULL};
     static const char *const FK[] = {"radius",   "separation", "alignment",
                                      "cohesion", "max_speed",  NULL};
-    cj_status st = aj_keys(c, pj, "particles", K);
+    cj_status st = cj_json_object(&c->json, pj, "particles", K);
     if (st) return st;
     cj_particles_desc *d = &doc->pdesc;
     double cap = 200, seed = 1, spf = 1, col[3] = {1, 0.8, 0.2};
     doc->particle_radius = 0.04;
-    if ((st = aj_num(c, pj, "particles", "capacity", 1, &cap)) ||
+    if ((st = cj_json_num(&c->json, pj, "particles", "capacity", CJ_JSON_GE, 1, 0, &cap)) ||
         (st = aj_num_in(c, pj, "particles", "seed", 0, 9007199254740992.0, 1, &seed)) ||
-        (st = aj_num(c, pj, "particles", "restitution", 0, &d->restitution)) ||
+        (st = cj_json_num(&c->json, pj, "particles", "restitution", CJ_JSON_GE, 0, 0,
+                          &d->restitution)) ||
         (st = aj_vec3_in(c, pj, "particles", "wind", CJ_ANIM_MAX_SPEED, d->wind)) ||
         (st = aj_num_in(c, pj, "particles", "steps_per_frame", 1, CJ_ANIM_MAX_STEPS_PER_FRAME, 1,
                         &spf)) ||
@@ -332,44 +346,50 @@ static cj_status read_particles(actx *c, cj_anim_doc *doc, const cJSON *pj) {
                         &doc->particle_radius)))
         return st;
     if (cap > 5000 || cap != floor(cap))
-        return aj_jfail(c, cJSON_GetObjectItemCaseSensitive(pj, "capacity"), CJ_ERR_RANGE,
-                        "particles.capacity must be an integer in 1..5000");
+        return cj_json_fail(&c->json, cJSON_GetObjectItemCaseSensitive(pj, "capacity"), 0,
+                            CJ_ERR_RANGE, "particles.capacity must be an integer in 1..5000");
     const cJSON *cc = cJSON_GetObjectItemCaseSensitive(pj, "color");
     if (cc && (st = aj_nums(c, cc, "particles.color", 3, col, 3, NULL))) return st;
     const cJSON *fl = cJSON_GetObjectItemCaseSensitive(pj, "flocking");
     if (fl) {
         cj_flocking *f = &d->flocking;
-        if ((st = aj_keys(c, fl, "particles.flocking", FK)) ||
-            (st = aj_num(c, fl, "particles.flocking", "radius", 0, &f->radius)) ||
-            (st = aj_num(c, fl, "particles.flocking", "separation", -1e300, &f->separation)) ||
-            (st = aj_num(c, fl, "particles.flocking", "alignment", -1e300, &f->alignment)) ||
-            (st = aj_num(c, fl, "particles.flocking", "cohesion", -1e300, &f->cohesion)) ||
-            (st = aj_num(c, fl, "particles.flocking", "max_speed", 0, &f->max_speed)))
+        if ((st = cj_json_object(&c->json, fl, "particles.flocking", FK)) ||
+            (st = cj_json_num(&c->json, fl, "particles.flocking", "radius", CJ_JSON_GE, 0, 0,
+                              &f->radius)) ||
+            (st = cj_json_num(&c->json, fl, "particles.flocking", "separation", CJ_JSON_GE, -1e300,
+                              0, &f->separation)) ||
+            (st = cj_json_num(&c->json, fl, "particles.flocking", "alignment", CJ_JSON_GE, -1e300,
+                              0, &f->alignment)) ||
+            (st = cj_json_num(&c->json, fl, "particles.flocking", "cohesion", CJ_JSON_GE, -1e300, 0,
+                              &f->cohesion)) ||
+            (st = cj_json_num(&c->json, fl, "particles.flocking", "max_speed", CJ_JSON_GE, 0, 0,
+                              &f->max_speed)))
             return st;
     }
     const cJSON *cw = cJSON_GetObjectItemCaseSensitive(pj, "collide_with");
     size_t i = 0;
     if (cw && !cJSON_IsArray(cw))
-        return aj_jfail(c, cw, CJ_ERR_PARSE, "particles.collide_with must be a list of names");
+        return cj_json_fail(&c->json, cw, 0, CJ_ERR_PARSE,
+                            "particles.collide_with must be a list of names");
     for (const cJSON *e = cw ? cw->child : NULL; e; e = e->next, ++i) {
         if (i >= 8 || !cJSON_IsString(e))
-            return aj_jfail(c, e, CJ_ERR_PARSE,
-                            "particles.collide_with[%zu] must be an object's "
-                            "name (at most 8)",
-                            i);
+            return cj_json_fail(&c->json, e, 0, CJ_ERR_PARSE,
+                                "particles.collide_with[%zu] must be an object's "
+                                "name (at most 8)",
+                                i);
         snprintf(doc->collide_with[i], sizeof doc->collide_with[i], "%s", e->valuestring);
     }
     doc->collide_count = (int)i;
     const cJSON *em = cJSON_GetObjectItemCaseSensitive(pj, "emitters");
     if (em && !cJSON_IsArray(em))
-        return aj_jfail(c, em, CJ_ERR_PARSE, "particles.emitters must be a list");
+        return cj_json_fail(&c->json, em, 0, CJ_ERR_PARSE, "particles.emitters must be a list");
     i = 0;
     for (const cJSON *e = em ? em->child : NULL; e; e = e->next, ++i) {
         char path[48];
         snprintf(path, sizeof path, "particles.emitters[%zu]", i);
-        if (i >= 16) return aj_jfail(c, e, CJ_ERR_PARSE, "at most 16 emitters");
+        if (i >= 16) return cj_json_fail(&c->json, e, 0, CJ_ERR_PARSE, "at most 16 emitters");
         if ((st = read_emitter(c, e, path, &doc->emitters[i]))) return st;
-        doc->emitter_lines[i] = aj_line(c, e);
+        doc->emitter_lines[i] = cj_json_line(&c->json, e);
     }
     d->capacity = (size_t)cap;
     d->seed = (uint64_t)seed;
@@ -385,7 +405,7 @@ static cj_status read_particles(actx *c, cj_anim_doc *doc, const cJSON *pj) {
     if (st) {
         char msg[300];
         snprintf(msg, sizeof msg, "%s", cj_last_error());
-        return aj_jfail(c, pj, st, "particles: %s", msg);
+        return cj_json_fail(&c->json, pj, 0, st, "particles: %s", msg);
     }
     return CJ_OK;
 }
@@ -393,34 +413,33 @@ static cj_status read_particles(actx *c, cj_anim_doc *doc, const cJSON *pj) {
 static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
     static const char *const TOP[] = {"scene", "fps",       "frames", "channels",  "gravity",
                                       "drag",  "colliders", "cloth",  "particles", NULL};
-    cj_status st = aj_keys(c, root, "document", TOP);
+    cj_status st = cj_json_object(&c->json, root, "document", TOP);
     if (st) return st;
     const cJSON *sc = cJSON_GetObjectItemCaseSensitive(root, "scene");
     if (sc) {
-        if (!cJSON_IsString(sc)) return aj_jfail(c, sc, CJ_ERR_PARSE, "scene must be a file name");
-        if (sc->valuestring[0] == '/' || !c->base_dir[0])
-            snprintf(doc->scene_path, sizeof doc->scene_path, "%s", sc->valuestring);
-        else
-            snprintf(doc->scene_path, sizeof doc->scene_path, "%s/%s", c->base_dir,
-                     sc->valuestring);
+        if (!cJSON_IsString(sc))
+            return cj_json_fail(&c->json, sc, 0, CJ_ERR_PARSE, "scene must be a file name");
+        st = cj_json_resolve(&c->json, c->base_dir, sc, "scene", sc->valuestring, doc->scene_path,
+                             sizeof doc->scene_path);
+        if (st) return st;
     }
     if ((st =
              aj_num_in(c, root, "document", "fps", CJ_ANIM_MIN_FPS, CJ_ANIM_MAX_FPS, 0, &doc->fps)))
         return st;
-    doc->fps_line = aj_line(c, cJSON_GetObjectItemCaseSensitive(root, "fps"));
+    doc->fps_line = cj_json_line(&c->json, cJSON_GetObjectItemCaseSensitive(root, "fps"));
     const cJSON *fr = cJSON_GetObjectItemCaseSensitive(root, "frames");
     if (fr) {
         double f[2];
         if ((st = aj_nums(c, fr, "frames", 2, f, 2, NULL))) return st;
         if (f[0] < 0 || f[1] < f[0] || f[1] > 1e7 || f[0] != floor(f[0]) || f[1] != floor(f[1]))
-            return aj_jfail(c, fr, CJ_ERR_RANGE,
-                            "frames must be [first, last], 0 <= first <= last");
+            return cj_json_fail(&c->json, fr, 0, CJ_ERR_RANGE,
+                                "frames must be [first, last], 0 <= first <= last");
         doc->frame_first = (int)f[0];
         doc->frame_last = (int)f[1];
     }
     const cJSON *chs = cJSON_GetObjectItemCaseSensitive(root, "channels");
     if (chs && !cJSON_IsArray(chs))
-        return aj_jfail(c, chs, CJ_ERR_PARSE, "channels must be an array");
+        return cj_json_fail(&c->json, chs, 0, CJ_ERR_PARSE, "channels must be an array");
     size_t i = 0;
     for (const cJSON *e = chs ? chs->child : NULL; e; e = e->next, ++i) {
         char path[48];
@@ -495,7 +514,7 @@ cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base
                            c.name, line, CJSON_NESTING_LIMIT);
         return cj_fail(CJ_ERR_PARSE, "%s:%d: JSON syntax error", c.name, line);
     }
-    aj_lines(&c, text, root);
+    cj_json_doc_init(&c.json, &c.lines, c.name, text, root);
     cj_anim_doc *doc = calloc(1, sizeof *doc);
     cj_status st = doc ? CJ_OK : cj_fail(CJ_ERR_NOMEM, "no memory for the animation");
     if (!st) {
@@ -511,9 +530,7 @@ cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base
         st = read_doc(&c, root, doc);
     }
     cJSON_Delete(root);
-    free(c.nodes);
-    free(c.lines);
-    free(c.scan);
+    cj_json_doc_free(&c.json);
     if (st) {
         cj_anim_doc_destroy(doc);
         return st;

@@ -1,38 +1,27 @@
-/* Private: the animation document reader's line table and checked JSON accessors (every
- * failure reported as "<file>:<line>: <path> <message>" through cj_fail). */
+/* Private: the animation document reader's context and the accessors of its own kinds of value
+ * (bounded numbers and vectors, key lists), built on the shared checked-JSON kit
+ * (json_read_internal.h, called with &c->json): every failure is reported as
+ * "<file>:<line>: <path> <message>" through cj_fail. */
 #ifndef CASTELJAU_ANIM_JSON_INTERNAL_H
 #define CASTELJAU_ANIM_JSON_INTERNAL_H
 
 #include "casteljau/anim_json.h"
 #include "error_internal.h"
+#include "json_read_internal.h"
 
 #include <cjson/cJSON.h>
 #include <stddef.h>
 
 typedef struct actx {
+    cj_json_doc json; /* the document: name and lines (json_read_internal.h) */
+    cj_json_lines lines;
     const char *name, *base_dir;
-    const cJSON **nodes;
-    int *lines;
-    size_t n, cap;
-    int *scan; /* lines of values in document order */
-    size_t nscan, capscan;
     cj_anim_doc *doc; /* the document being read (channel lines are recorded in it) */
 } actx;
 
-/* The line of value n (0 when unknown). */
-int aj_line(const actx *c, const cJSON *n);
 /* Records the line of the channel just added (for binding errors, which come later). */
 cj_status aj_channel_line(actx *c, const cJSON *n);
 
-/* Records the line of every value of `root` (parsed from `text`). */
-void aj_lines(actx *c, const char *text, const cJSON *root);
-cj_status aj_jfail(const actx *c, const cJSON *n, cj_status st, const char *fmt, ...)
-    CJ_PRINTF(4, 5);
-/* obj is an object whose keys are all in `ok` (NULL-terminated), none repeated. */
-cj_status aj_keys(const actx *c, const cJSON *obj, const char *path, const char *const *ok);
-/* An optional finite number >= lo (missing: *out unchanged). */
-cj_status aj_num(const actx *c, const cJSON *obj, const char *path, const char *key, double lo,
-                 double *out);
 /* An optional finite number in [lo, hi], an integer when `integer` (missing: unchanged). Every
  * simulation parameter is read through it, so that no value implies unbounded work or a
  * float-to-int conversion out of range. */

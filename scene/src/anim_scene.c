@@ -363,7 +363,7 @@ cj_status cj_anim_pose(cj_scene *scene, const cj_anim *a, double t, cj_anim_pose
     const double t0 = cj_clock_seconds();
     cj_anim_pose_info inf;
     memset(&inf, 0, sizeof inf);
-    cj_camera cam = *cj_scene_camera(scene);
+    cj_camera cam = *cj_scene_get_camera(scene);
     int have_look = 0;
     double look[3] = {0, 0, 0};
     for (size_t i = 0; i < a->count; ++i) {

@@ -9,7 +9,7 @@
 #include <math.h>
 #include <string.h>
 
-cj_camera cj_camera_default(void) {
+cj_camera cj_camera_defaults(void) {
     cj_camera c;
     memset(&c, 0, sizeof c);
     c.eye = cj_v3(0.0, 0.0, 5.0);

@@ -34,7 +34,7 @@ static double rng_sym(uint64_t *s) {
     return 2.0 * rng_unit(s) - 1.0;
 }
 
-cj_emitter cj_emitter_default(void) {
+cj_emitter cj_emitter_defaults(void) {
     cj_emitter e;
     memset(&e, 0, sizeof e);
     e.direction[2] = 1.0;

@@ -32,57 +32,58 @@ cj_status cj_json_read_bspline_surface_(jctx *c, const cJSON *obj, const char *p
     keys[k++] = "knots_v";
     if (nurbs) keys[k++] = "weights";
     keys[k] = NULL;
-    TRY(cj_json_object_(c, obj, p, keys));
+    TRY(cj_json_object(&c->json, obj, p, keys));
     const cJSON *dn, *sn, *pn, *wn = NULL;
-    TRY(cj_json_require_(c, obj, p, "degree", &dn));
-    TRY(cj_json_require_(c, obj, p, "size", &sn));
-    TRY(cj_json_require_(c, obj, p, "points", &pn));
-    if (nurbs) TRY(cj_json_require_(c, obj, p, "weights", &wn));
-    char pk[JPATH];
+    TRY(cj_json_require(&c->json, obj, p, "degree", &dn));
+    TRY(cj_json_require(&c->json, obj, p, "size", &sn));
+    TRY(cj_json_require(&c->json, obj, p, "points", &pn));
+    if (nurbs) TRY(cj_json_require(&c->json, obj, p, "weights", &wn));
+    char pk[CJ_JSON_PATH];
     double *deg = NULL, *size = NULL;
     size_t cnt;
-    cj_json_join_(pk, p, "degree");
-    TRY(cj_json_numbers_(c, dn, pk, 0, R_GE, 1, 2, &deg, &cnt));
+    cj_json_join(pk, p, "degree");
+    TRY(cj_json_numbers(&c->json, dn, pk, 0, CJ_JSON_GE, 1, 2, &deg, &cnt));
     const int dp = (int)deg[0], dq = (int)deg[1];
     const int deg_ok =
         deg[0] == dp && deg[1] == dq && dp <= CJ_PATCH_MAX_DEGREE && dq <= CJ_PATCH_MAX_DEGREE;
     free(deg);
     if (!deg_ok)
-        return cj_json_fail_(c, dn, 0, CJ_ERR_RANGE, "%s must be two integers in [1, %d]", pk,
-                             CJ_PATCH_MAX_DEGREE);
-    cj_json_join_(pk, p, "size");
-    TRY(cj_json_numbers_(c, sn, pk, 0, R_GE, 2, 2, &size, &cnt));
+        return cj_json_fail(&c->json, dn, 0, CJ_ERR_RANGE, "%s must be two integers in [1, %d]", pk,
+                            CJ_PATCH_MAX_DEGREE);
+    cj_json_join(pk, p, "size");
+    TRY(cj_json_numbers(&c->json, sn, pk, 0, CJ_JSON_GE, 2, 2, &size, &cnt));
     const double su = size[0], sv = size[1];
     free(size);
     if (su != (int)su || sv != (int)sv || su * sv > 1e6)
-        return cj_json_fail_(c, sn, 0, CJ_ERR_RANGE,
-                             "%s must be two integers >= 2 with at most 1e6 points in all", pk);
+        return cj_json_fail(&c->json, sn, 0, CJ_ERR_RANGE,
+                            "%s must be two integers >= 2 with at most 1e6 points in all", pk);
     const int nu = (int)su, nv = (int)sv;
     double *pts = NULL, *w = NULL, *ku = NULL, *kv = NULL, *pp = NULL, *pw = NULL;
     cj_patch *patches = NULL;
     cj_status st;
-    cj_json_join_(pk, p, "points");
-    st = cj_json_numbers_(c, pn, pk, 3, R_ANY, 0, (size_t)nu * (size_t)nv, &pts, &cnt);
+    cj_json_join(pk, p, "points");
+    st = cj_json_numbers(&c->json, pn, pk, 3, CJ_JSON_ANY, 0, (size_t)nu * (size_t)nv, &pts, &cnt);
     if (!st && wn) {
-        cj_json_join_(pk, p, "weights");
-        st = cj_json_numbers_(c, wn, pk, 0, R_GT, 0, (size_t)nu * (size_t)nv, &w, &cnt);
+        cj_json_join(pk, p, "weights");
+        st = cj_json_numbers(&c->json, wn, pk, 0, CJ_JSON_GT, 0, (size_t)nu * (size_t)nv, &w, &cnt);
     }
     for (int dir = 0; dir < 2 && !st; ++dir) {
         const char *key = dir ? "knots_v" : "knots_u";
         const int n = dir ? nv : nu, deg1 = dir ? dq : dp;
         double **dst = dir ? &kv : &ku;
         const cJSON *kn = cJSON_GetObjectItemCaseSensitive(obj, key);
-        cj_json_join_(pk, p, key);
+        cj_json_join(pk, p, key);
         if (kn) {
-            st = cj_json_numbers_(c, kn, pk, 0, R_ANY, 0, (size_t)(n + deg1 + 1), dst, &cnt);
+            st = cj_json_numbers(&c->json, kn, pk, 0, CJ_JSON_ANY, 0, (size_t)(n + deg1 + 1), dst,
+                                 &cnt);
         } else {
             *dst = malloc(sizeof(double) * (size_t)(n + deg1 + 1));
-            st = !*dst ? cj_json_fail_(c, obj, 0, CJ_ERR_NOMEM, "%s: out of memory", p)
+            st = !*dst ? cj_json_fail(&c->json, obj, 0, CJ_ERR_NOMEM, "%s: out of memory", p)
                        : cj_bspline_uniform_knots(n, deg1, 0.0, 1.0, 1, *dst);
             if (st && *dst) {
                 char msg[300];
                 snprintf(msg, sizeof msg, "%s", cj_last_error());
-                st = cj_json_fail_(c, obj, 0, st, "%s: %s", p, msg);
+                st = cj_json_fail(&c->json, obj, 0, st, "%s: %s", p, msg);
             }
         }
     }
@@ -91,7 +92,7 @@ cj_status cj_json_read_bspline_surface_(jctx *c, const cJSON *obj, const char *p
     if (!st && (st = cj_bspline_surface_patch_count(&s, &np))) {
         char msg[400];
         snprintf(msg, sizeof msg, "%s", cj_last_error());
-        st = cj_json_fail_(c, obj, 0, st, "%s: %s", p, msg);
+        st = cj_json_fail(&c->json, obj, 0, st, "%s: %s", p, msg);
     }
     const size_t per = (size_t)(dp + 1) * (size_t)(dq + 1);
     if (!st) {
@@ -99,12 +100,12 @@ cj_status cj_json_read_bspline_surface_(jctx *c, const cJSON *obj, const char *p
         pw = w ? malloc(sizeof(double) * per * (size_t)np) : NULL;
         patches = calloc((size_t)np, sizeof *patches);
         if (!pp || !patches || (w && !pw))
-            st = cj_json_fail_(c, obj, 0, CJ_ERR_NOMEM, "%s: out of memory", p);
+            st = cj_json_fail(&c->json, obj, 0, CJ_ERR_NOMEM, "%s: out of memory", p);
     }
     if (!st && (st = cj_bspline_surface_to_patches(&s, pp, pw, NULL, NULL, np, NULL))) {
         char msg[400];
         snprintf(msg, sizeof msg, "%s", cj_last_error());
-        st = cj_json_fail_(c, obj, 0, st, "%s: %s", p, msg);
+        st = cj_json_fail(&c->json, obj, 0, st, "%s: %s", p, msg);
     }
     if (!st) {
         for (int i = 0; i < np; ++i)
@@ -117,7 +118,7 @@ cj_status cj_json_read_bspline_surface_(jctx *c, const cJSON *obj, const char *p
         g.u.patches.patches = patches;
         st = cj_scene_check_geometry_(&g, p);
         if (!st) st = cj_scene_add_geometry(c->scene, &g, index);
-        if (st) st = cj_json_relabel_(c, obj, st);
+        if (st) st = cj_json_relabel(&c->json, obj, st);
     }
     free(pts);
     free(w);

@@ -63,14 +63,14 @@ static cj_status geom_keys(const jctx *c, const cJSON *obj, const char *p, int t
     if (named) keys[k++] = "name";
     for (int i = 0; GEOM_KEYS[type][i]; ++i) keys[k++] = GEOM_KEYS[type][i];
     keys[k] = NULL;
-    return cj_json_object_(c, obj, p, keys);
+    return cj_json_object(&c->json, obj, p, keys);
 }
 
 /* Every key in the NULL-terminated list must be present. */
 static cj_status need(const jctx *c, const cJSON *obj, const char *p, const char *const *keys) {
     for (; *keys; ++keys) {
         const cJSON *n;
-        TRY(cj_json_require_(c, obj, p, *keys, &n));
+        TRY(cj_json_require(&c->json, obj, p, *keys, &n));
     }
     return CJ_OK;
 }
@@ -79,13 +79,13 @@ static cj_status need(const jctx *c, const cJSON *obj, const char *p, const char
 static cj_status ctor_fail(const jctx *c, const cJSON *obj, const char *p, cj_status st) {
     char msg[512];
     snprintf(msg, sizeof msg, "%s", cj_last_error());
-    return cj_json_fail_(c, obj, 0, st, "%s: %s", p, msg);
+    return cj_json_fail(&c->json, obj, 0, st, "%s: %s", p, msg);
 }
 
 static cj_status add(jctx *c, const cJSON *obj, const char *p, const cj_geometry *g, int *index) {
     cj_status st = cj_scene_check_geometry_(g, p);
     if (!st) st = cj_scene_add_geometry(c->scene, g, index);
-    return st ? cj_json_relabel_(c, obj, st) : CJ_OK;
+    return st ? cj_json_relabel(&c->json, obj, st) : CJ_OK;
 }
 
 /* ---- patches -------------------------------------------------------------------------------- */
@@ -97,7 +97,7 @@ static cj_status add_patchset(jctx *c, const cJSON *obj, const cJSON *at, const 
     if (st) {
         char msg[512];
         snprintf(msg, sizeof msg, "%s", cj_last_error());
-        return cj_json_fail_(c, at, 0, st, "%s: %s", p, msg);
+        return cj_json_fail(&c->json, at, 0, st, "%s: %s", p, msg);
     }
     cj_geometry g;
     memset(&g, 0, sizeof g);
@@ -113,10 +113,10 @@ static const char *const PATCH_KEYS[] = {"degree", "points", "weights", NULL};
 
 static cj_status read_patches(jctx *c, const cJSON *obj, const char *p, int *index) {
     const cJSON *arr = cJSON_GetObjectItemCaseSensitive(obj, "patches");
-    char pa[JPATH];
-    cj_json_join_(pa, p, "patches");
+    char pa[CJ_JSON_PATH];
+    cj_json_join(pa, p, "patches");
     if (!cJSON_IsArray(arr) || cJSON_GetArraySize(arr) < 1)
-        return cj_json_fail_(c, arr, 0, CJ_ERR_PARSE, "%s must be a non-empty array", pa);
+        return cj_json_fail(&c->json, arr, 0, CJ_ERR_PARSE, "%s must be a non-empty array", pa);
     size_t n = (size_t)cJSON_GetArraySize(arr);
     cj_patch *patches = calloc(n, sizeof *patches);
     double **blocks = calloc(2 * n, sizeof *blocks);
@@ -124,35 +124,36 @@ static cj_status read_patches(jctx *c, const cJSON *obj, const char *p, int *ind
     if (!patches || !blocks) st = cj_fail(CJ_ERR_NOMEM, "%s: out of memory", c->name);
     size_t i = 0;
     for (const cJSON *e = arr->child; e && !st; e = e->next, ++i) {
-        char pe[JPATH], pk[JPATH];
-        cj_json_index_(pe, pa, i);
-        st = cj_json_object_(c, e, pe, PATCH_KEYS);
+        char pe[CJ_JSON_PATH], pk[CJ_JSON_PATH];
+        cj_json_index(pe, pa, i);
+        st = cj_json_object(&c->json, e, pe, PATCH_KEYS);
         const cJSON *dn = NULL, *pn = NULL;
-        if (!st) st = cj_json_require_(c, e, pe, "degree", &dn);
-        if (!st) st = cj_json_require_(c, e, pe, "points", &pn);
+        if (!st) st = cj_json_require(&c->json, e, pe, "degree", &dn);
+        if (!st) st = cj_json_require(&c->json, e, pe, "points", &pn);
         if (st) break;
-        cj_json_join_(pk, pe, "degree");
+        cj_json_join(pk, pe, "degree");
         double *deg;
         size_t nd;
-        st = cj_json_numbers_(c, dn, pk, 0, R_GE, 1, 2, &deg, &nd);
+        st = cj_json_numbers(&c->json, dn, pk, 0, CJ_JSON_GE, 1, 2, &deg, &nd);
         if (st) break;
         int m = (int)deg[0], k = (int)deg[1];
         int ok = deg[0] == m && deg[1] == k && m >= 1 && k >= 1 && m <= CJ_PATCH_MAX_DEGREE &&
                  k <= CJ_PATCH_MAX_DEGREE;
         free(deg);
         if (!ok) {
-            st = cj_json_fail_(c, dn, 0, CJ_ERR_RANGE, "%s must be two integers in [1, %d]", pk,
-                               CJ_PATCH_MAX_DEGREE);
+            st = cj_json_fail(&c->json, dn, 0, CJ_ERR_RANGE, "%s must be two integers in [1, %d]",
+                              pk, CJ_PATCH_MAX_DEGREE);
             break;
         }
         size_t want = (size_t)(m + 1) * (size_t)(k + 1), cnt;
-        cj_json_join_(pk, pe, "points");
-        st = cj_json_numbers_(c, pn, pk, 3, R_ANY, 0, want, &blocks[2 * i], &cnt);
+        cj_json_join(pk, pe, "points");
+        st = cj_json_numbers(&c->json, pn, pk, 3, CJ_JSON_ANY, 0, want, &blocks[2 * i], &cnt);
         if (st) break;
         const cJSON *wn = cJSON_GetObjectItemCaseSensitive(e, "weights");
         if (wn) {
-            cj_json_join_(pk, pe, "weights");
-            st = cj_json_numbers_(c, wn, pk, 0, R_GT, 0, want, &blocks[2 * i + 1], &cnt);
+            cj_json_join(pk, pe, "weights");
+            st =
+                cj_json_numbers(&c->json, wn, pk, 0, CJ_JSON_GT, 0, want, &blocks[2 * i + 1], &cnt);
             if (st) break;
         }
         patches[i] = cj_patch_view(m, k, blocks[2 * i], blocks[2 * i + 1]);
@@ -184,9 +185,9 @@ static const char *const QUADRIC_PARAMS[][8] = {
 
 static cj_status read_quadric(jctx *c, const cJSON *obj, const char *p, int named, int *index) {
     const cJSON *kn;
-    TRY(cj_json_require_(c, obj, p, "kind", &kn));
+    TRY(cj_json_require(&c->json, obj, p, "kind", &kn));
     int kind = 0;
-    TRY(cj_json_enum_(c, obj, p, "kind", QUADRIC_KINDS, &kind));
+    TRY(cj_json_enum(&c->json, obj, p, "kind", QUADRIC_KINDS, &kind));
     const char *keys[12];
     int k = 0;
     keys[k++] = "type";
@@ -195,18 +196,18 @@ static cj_status read_quadric(jctx *c, const cJSON *obj, const char *p, int name
     for (int i = 0; QUADRIC_PARAMS[kind][i]; ++i) keys[k++] = QUADRIC_PARAMS[kind][i];
     if (kind == CJ_QUADRIC_HYPERBOLOID2) keys[k++] = "lower";
     keys[k] = NULL;
-    TRY(cj_json_object_(c, obj, p, keys));
+    TRY(cj_json_object(&c->json, obj, p, keys));
     TRY(need(c, obj, p, QUADRIC_PARAMS[kind]));
     double a = 1, b = 1, cc = 1, u0 = 0, u1 = 1, v0 = 0, v1 = 1;
     int lower = 0;
-    TRY(cj_json_num_(c, obj, p, "a", R_GT, 0, 0, &a));
-    TRY(cj_json_num_(c, obj, p, "b", R_GT, 0, 0, &b));
-    TRY(cj_json_num_(c, obj, p, "c", R_GT, 0, 0, &cc));
-    TRY(cj_json_num_(c, obj, p, "u0", R_ANY, 0, 0, &u0));
-    TRY(cj_json_num_(c, obj, p, "u1", R_ANY, 0, 0, &u1));
-    TRY(cj_json_num_(c, obj, p, "v0", R_ANY, 0, 0, &v0));
-    TRY(cj_json_num_(c, obj, p, "v1", R_ANY, 0, 0, &v1));
-    TRY(cj_json_bool_(c, obj, p, "lower", &lower));
+    TRY(cj_json_num(&c->json, obj, p, "a", CJ_JSON_GT, 0, 0, &a));
+    TRY(cj_json_num(&c->json, obj, p, "b", CJ_JSON_GT, 0, 0, &b));
+    TRY(cj_json_num(&c->json, obj, p, "c", CJ_JSON_GT, 0, 0, &cc));
+    TRY(cj_json_num(&c->json, obj, p, "u0", CJ_JSON_ANY, 0, 0, &u0));
+    TRY(cj_json_num(&c->json, obj, p, "u1", CJ_JSON_ANY, 0, 0, &u1));
+    TRY(cj_json_num(&c->json, obj, p, "v0", CJ_JSON_ANY, 0, 0, &v0));
+    TRY(cj_json_num(&c->json, obj, p, "v1", CJ_JSON_ANY, 0, 0, &v1));
+    TRY(cj_json_bool(&c->json, obj, p, "lower", &lower));
     cj_geometry g;
     memset(&g, 0, sizeof g);
     g.kind = CJ_GEOM_QUADRIC;
@@ -235,7 +236,7 @@ static cj_status read_quadric(jctx *c, const cJSON *obj, const char *p, int name
     if (st) {
         char msg[512];
         snprintf(msg, sizeof msg, "%s", cj_last_error());
-        return cj_json_fail_(c, obj, 0, st, "%s: %s", p, msg);
+        return cj_json_fail(&c->json, obj, 0, st, "%s: %s", p, msg);
     }
     return add(c, obj, p, &g, index);
 }
@@ -250,22 +251,22 @@ static const char *const NEED_POINTS[] = {"points", NULL};
 /* A planar Bézier profile: points [[x, y], ...] and optional weights. */
 static cj_status read_profile(const jctx *c, const cJSON *obj, const char *p, double **pts,
                               double **w, int *degree) {
-    char pk[JPATH];
-    cj_json_join_(pk, p, "points");
+    char pk[CJ_JSON_PATH];
+    cj_json_join(pk, p, "points");
     size_t n, nw;
-    TRY(cj_json_numbers_(c, cJSON_GetObjectItemCaseSensitive(obj, "points"), pk, 2, R_ANY, 0, 0,
-                         pts, &n));
+    TRY(cj_json_numbers(&c->json, cJSON_GetObjectItemCaseSensitive(obj, "points"), pk, 2,
+                        CJ_JSON_ANY, 0, 0, pts, &n));
     if (n < 2 || n > 256) {
         free(*pts);
-        return cj_json_fail_(c, cJSON_GetObjectItemCaseSensitive(obj, "points"), 0, CJ_ERR_RANGE,
-                             "%s must have 2 to 256 points (degree 1 to 255)", pk);
+        return cj_json_fail(&c->json, cJSON_GetObjectItemCaseSensitive(obj, "points"), 0,
+                            CJ_ERR_RANGE, "%s must have 2 to 256 points (degree 1 to 255)", pk);
     }
     *degree = (int)n - 1;
     *w = NULL;
     const cJSON *wn = cJSON_GetObjectItemCaseSensitive(obj, "weights");
     if (wn) {
-        cj_json_join_(pk, p, "weights");
-        cj_status st = cj_json_numbers_(c, wn, pk, 0, R_GT, 0, n, w, &nw);
+        cj_json_join(pk, p, "weights");
+        cj_status st = cj_json_numbers(&c->json, wn, pk, 0, CJ_JSON_GT, 0, n, w, &nw);
         if (st) {
             free(*pts);
             return st;
@@ -283,17 +284,17 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
         TRY(need(c, obj, p, NEED_SPHERE));
         g.kind = CJ_GEOM_SPHERE;
         g.u.sphere.center = zero;
-        TRY(cj_json_vec3_(c, obj, p, "center", &g.u.sphere.center));
-        TRY(cj_json_num_(c, obj, p, "radius", R_GT, 0, 0, &g.u.sphere.radius));
+        TRY(cj_json_vec3(&c->json, obj, p, "center", &g.u.sphere.center));
+        TRY(cj_json_num(&c->json, obj, p, "radius", CJ_JSON_GT, 0, 0, &g.u.sphere.radius));
         return add(c, obj, p, &g, index);
     case G_TORUS: {
         TRY(need(c, obj, p, NEED_TORUS));
         cj_vec3 center = zero, axis = z;
         double major = 1, minor = 0.25;
-        TRY(cj_json_vec3_(c, obj, p, "center", &center));
-        TRY(cj_json_vec3_(c, obj, p, "axis", &axis));
-        TRY(cj_json_num_(c, obj, p, "major", R_GT, 0, 0, &major));
-        TRY(cj_json_num_(c, obj, p, "minor", R_GT, 0, 0, &minor));
+        TRY(cj_json_vec3(&c->json, obj, p, "center", &center));
+        TRY(cj_json_vec3(&c->json, obj, p, "axis", &axis));
+        TRY(cj_json_num(&c->json, obj, p, "major", CJ_JSON_GT, 0, 0, &major));
+        TRY(cj_json_num(&c->json, obj, p, "minor", CJ_JSON_GT, 0, 0, &minor));
         g.kind = CJ_GEOM_TORUS;
         cj_status st = cj_torus_init(&g.u.torus, center, axis, major, minor);
         return st ? ctor_fail(c, obj, p, st) : add(c, obj, p, &g, index);
@@ -302,11 +303,11 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
         TRY(need(c, obj, p, NEED_CYLINDER));
         cj_vec3 base = zero, axis = z;
         double radius = 1, h0 = 0, h1 = 1;
-        TRY(cj_json_vec3_(c, obj, p, "base", &base));
-        TRY(cj_json_vec3_(c, obj, p, "axis", &axis));
-        TRY(cj_json_num_(c, obj, p, "radius", R_GT, 0, 0, &radius));
-        TRY(cj_json_num_(c, obj, p, "h0", R_ANY, 0, 0, &h0));
-        TRY(cj_json_num_(c, obj, p, "h1", R_ANY, 0, 0, &h1));
+        TRY(cj_json_vec3(&c->json, obj, p, "base", &base));
+        TRY(cj_json_vec3(&c->json, obj, p, "axis", &axis));
+        TRY(cj_json_num(&c->json, obj, p, "radius", CJ_JSON_GT, 0, 0, &radius));
+        TRY(cj_json_num(&c->json, obj, p, "h0", CJ_JSON_ANY, 0, 0, &h0));
+        TRY(cj_json_num(&c->json, obj, p, "h1", CJ_JSON_ANY, 0, 0, &h1));
         g.kind = CJ_GEOM_CYLINDER;
         cj_status st = cj_cylinder_init(&g.u.cylinder, base, axis, radius, h0, h1);
         return st ? ctor_fail(c, obj, p, st) : add(c, obj, p, &g, index);
@@ -315,9 +316,9 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
     case G_PLANE: {
         TRY(need(c, obj, p, NEED_PLANAR));
         cj_vec3 o = zero, eu = zero, ev = zero;
-        TRY(cj_json_vec3_(c, obj, p, "origin", &o));
-        TRY(cj_json_vec3_(c, obj, p, "edge_u", &eu));
-        TRY(cj_json_vec3_(c, obj, p, "edge_v", &ev));
+        TRY(cj_json_vec3(&c->json, obj, p, "origin", &o));
+        TRY(cj_json_vec3(&c->json, obj, p, "edge_u", &eu));
+        TRY(cj_json_vec3(&c->json, obj, p, "edge_v", &ev));
         g.kind = CJ_GEOM_PLANAR;
         cj_status st = cj_planar_patch_init(&g.u.planar, o, eu, ev);
         return st ? ctor_fail(c, obj, p, st) : add(c, obj, p, &g, index);
@@ -325,7 +326,7 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
     case G_BILINEAR: {
         TRY(need(c, obj, p, NEED_BILINEAR));
         cj_vec3 q[4];
-        for (int k = 0; k < 4; ++k) TRY(cj_json_vec3_(c, obj, p, NEED_BILINEAR[k], &q[k]));
+        for (int k = 0; k < 4; ++k) TRY(cj_json_vec3(&c->json, obj, p, NEED_BILINEAR[k], &q[k]));
         g.kind = CJ_GEOM_BILINEAR;
         cj_status st = cj_bilinear_init(&g.u.bilinear, q[0], q[1], q[2], q[3]);
         return st ? ctor_fail(c, obj, p, st) : add(c, obj, p, &g, index);
@@ -335,8 +336,8 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
         g.kind = CJ_GEOM_REVOLUTION;
         g.u.revolution.origin = zero;
         g.u.revolution.axis = z;
-        TRY(cj_json_vec3_(c, obj, p, "origin", &g.u.revolution.origin));
-        TRY(cj_json_vec3_(c, obj, p, "axis", &g.u.revolution.axis));
+        TRY(cj_json_vec3(&c->json, obj, p, "origin", &g.u.revolution.origin));
+        TRY(cj_json_vec3(&c->json, obj, p, "axis", &g.u.revolution.axis));
         double *pts, *w;
         TRY(read_profile(c, obj, p, &pts, &w, &g.u.revolution.degree));
         g.u.revolution.pts = pts;
@@ -355,12 +356,12 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
         g.u.gen_cylinder.dir = z;
         g.u.gen_cylinder.v0 = 0;
         g.u.gen_cylinder.v1 = 1;
-        TRY(cj_json_vec3_(c, obj, p, "origin", &g.u.gen_cylinder.origin));
-        TRY(cj_json_vec3_(c, obj, p, "e1", &g.u.gen_cylinder.e1));
-        TRY(cj_json_vec3_(c, obj, p, "e2", &g.u.gen_cylinder.e2));
-        TRY(cj_json_vec3_(c, obj, p, "dir", &g.u.gen_cylinder.dir));
-        TRY(cj_json_num_(c, obj, p, "v0", R_ANY, 0, 0, &g.u.gen_cylinder.v0));
-        TRY(cj_json_num_(c, obj, p, "v1", R_ANY, 0, 0, &g.u.gen_cylinder.v1));
+        TRY(cj_json_vec3(&c->json, obj, p, "origin", &g.u.gen_cylinder.origin));
+        TRY(cj_json_vec3(&c->json, obj, p, "e1", &g.u.gen_cylinder.e1));
+        TRY(cj_json_vec3(&c->json, obj, p, "e2", &g.u.gen_cylinder.e2));
+        TRY(cj_json_vec3(&c->json, obj, p, "dir", &g.u.gen_cylinder.dir));
+        TRY(cj_json_num(&c->json, obj, p, "v0", CJ_JSON_ANY, 0, 0, &g.u.gen_cylinder.v0));
+        TRY(cj_json_num(&c->json, obj, p, "v1", CJ_JSON_ANY, 0, 0, &g.u.gen_cylinder.v1));
         double *pts, *w;
         TRY(read_profile(c, obj, p, &pts, &w, &g.u.gen_cylinder.degree));
         g.u.gen_cylinder.pts = pts;
@@ -378,39 +379,39 @@ static cj_status read_surface(jctx *c, const cJSON *obj, const char *p, int type
 static cj_status inline_mesh(const jctx *c, const cJSON *obj, const char *p, cj_mesh *m) {
     const char *const need_keys[] = {"positions", "triangles", NULL};
     TRY(need(c, obj, p, need_keys));
-    char pk[JPATH];
+    char pk[CJ_JSON_PATH];
     double *pos = NULL, *tri = NULL, *nrm = NULL, *uv = NULL, *pid = NULL;
     size_t nv = 0, nt = 0, k;
     cj_status st;
-    cj_json_join_(pk, p, "positions");
-    st = cj_json_numbers_(c, cJSON_GetObjectItemCaseSensitive(obj, "positions"), pk, 3, R_ANY, 0, 0,
-                          &pos, &nv);
+    cj_json_join(pk, p, "positions");
+    st = cj_json_numbers(&c->json, cJSON_GetObjectItemCaseSensitive(obj, "positions"), pk, 3,
+                         CJ_JSON_ANY, 0, 0, &pos, &nv);
     if (!st) {
-        cj_json_join_(pk, p, "triangles");
-        st = cj_json_numbers_(c, cJSON_GetObjectItemCaseSensitive(obj, "triangles"), pk, 3, R_ANY,
-                              0, 0, &tri, &nt);
+        cj_json_join(pk, p, "triangles");
+        st = cj_json_numbers(&c->json, cJSON_GetObjectItemCaseSensitive(obj, "triangles"), pk, 3,
+                             CJ_JSON_ANY, 0, 0, &tri, &nt);
     }
     const cJSON *nn = cJSON_GetObjectItemCaseSensitive(obj, "normals");
     if (!st && nn) {
-        cj_json_join_(pk, p, "normals");
-        st = cj_json_numbers_(c, nn, pk, 3, R_ANY, 0, nv, &nrm, &k);
+        cj_json_join(pk, p, "normals");
+        st = cj_json_numbers(&c->json, nn, pk, 3, CJ_JSON_ANY, 0, nv, &nrm, &k);
     }
     const cJSON *un = cJSON_GetObjectItemCaseSensitive(obj, "uvs");
     if (!st && un) {
-        cj_json_join_(pk, p, "uvs");
-        st = cj_json_numbers_(c, un, pk, 2, R_ANY, 0, nv, &uv, &k);
+        cj_json_join(pk, p, "uvs");
+        st = cj_json_numbers(&c->json, un, pk, 2, CJ_JSON_ANY, 0, nv, &uv, &k);
     }
     const cJSON *pn = cJSON_GetObjectItemCaseSensitive(obj, "patch_ids");
     if (!st && pn) {
-        cj_json_join_(pk, p, "patch_ids");
-        st = cj_json_numbers_(c, pn, pk, 0, R_ANY, 0, nt, &pid, &k);
+        cj_json_join(pk, p, "patch_ids");
+        st = cj_json_numbers(&c->json, pn, pk, 0, CJ_JSON_ANY, 0, nt, &pid, &k);
         for (size_t t = 0; !st && t < nt; ++t)
             if (pid[t] != floor(pid[t]) || fabs(pid[t]) > 2147483647.0)
-                st = cj_json_fail_(c, pn, 0, CJ_ERR_RANGE, "%s[%zu] must be a 32-bit integer", pk,
-                                   t);
+                st = cj_json_fail(&c->json, pn, 0, CJ_ERR_RANGE, "%s[%zu] must be a 32-bit integer",
+                                  pk, t);
     }
     if (!st && nv > CJ_MESH_MAX_VERTICES)
-        st = cj_json_fail_(c, obj, 0, CJ_ERR_RANGE, "%s: too many vertices", p);
+        st = cj_json_fail(&c->json, obj, 0, CJ_ERR_RANGE, "%s: too many vertices", p);
     if (!st) st = cj_mesh_reserve(m, nv, nt);
     for (size_t i = 0; i < nv && !st; ++i)
         st = cj_mesh_add_vertex(m, pos + 3 * i, nrm ? nrm + 3 * i : NULL, uv ? uv + 2 * i : NULL,
@@ -423,10 +424,10 @@ static cj_status inline_mesh(const jctx *c, const cJSON *obj, const char *p, cj_
         for (int j = 0; j < 3; ++j, x = x->next) {
             double d = tri[3 * t + (size_t)j];
             if (d != floor(d) || d < 0 || d >= (double)nv) {
-                cj_json_join_(pk, p, "triangles");
-                st = cj_json_fail_(c, x, 0, CJ_ERR_RANGE,
-                                   "%s[%zu][%d] = %g names no vertex (%zu vertices)", pk, t, j, d,
-                                   nv);
+                cj_json_join(pk, p, "triangles");
+                st = cj_json_fail(&c->json, x, 0, CJ_ERR_RANGE,
+                                  "%s[%zu][%d] = %g names no vertex (%zu vertices)", pk, t, j, d,
+                                  nv);
                 break;
             }
             v[j] = (uint32_t)d;
@@ -452,19 +453,19 @@ static cj_status read_mesh(jctx *c, const cJSON *obj, const char *p, int *index)
             cJSON_GetObjectItemCaseSensitive(obj, "normals") ||
             cJSON_GetObjectItemCaseSensitive(obj, "uvs") ||
             cJSON_GetObjectItemCaseSensitive(obj, "patch_ids"))
-            return cj_json_fail_(c, pn, 1, CJ_ERR_PARSE,
-                                 "%s: give either \"path\" or inline mesh data, not both", p);
+            return cj_json_fail(&c->json, pn, 1, CJ_ERR_PARSE,
+                                "%s: give either \"path\" or inline mesh data, not both", p);
         const char *rel = NULL;
-        TRY(cj_json_string_(c, obj, p, "path", &rel));
+        TRY(cj_json_string(&c->json, obj, p, "path", &rel));
         char file[4096];
-        char pk[JPATH];
-        cj_json_join_(pk, p, "path");
-        TRY(cj_json_resolve_(c, pn, pk, rel, file, sizeof file));
+        char pk[CJ_JSON_PATH];
+        cj_json_join(pk, p, "path");
+        TRY(cj_json_resolve(&c->json, c->base_dir, pn, pk, rel, file, sizeof file));
         st = cj_mesh_read(file, NULL, &m);
         if (st) {
             char msg[512];
             snprintf(msg, sizeof msg, "%s", cj_last_error());
-            return cj_json_fail_(c, pn, 0, st, "%s: %s", pk, msg);
+            return cj_json_fail(&c->json, pn, 0, st, "%s: %s", pk, msg);
         }
     } else {
         st = cj_mesh_create(NULL, &m);
@@ -491,9 +492,9 @@ static const char *const CURVE_KINDS[] = {
 
 static cj_status read_curve(jctx *c, const cJSON *obj, const char *p, int named, int *index) {
     const cJSON *kn;
-    TRY(cj_json_require_(c, obj, p, "kind", &kn));
+    TRY(cj_json_require(&c->json, obj, p, "kind", &kn));
     int kind = 0;
-    TRY(cj_json_enum_(c, obj, p, "kind", CURVE_KINDS, &kind));
+    TRY(cj_json_enum(&c->json, obj, p, "kind", CURVE_KINDS, &kind));
     const char *keys[14];
     int k = 0;
     keys[k++] = "type";
@@ -512,7 +513,7 @@ static cj_status read_curve(jctx *c, const cJSON *obj, const char *p, int named,
         keys[k++] = "bias";
     }
     keys[k] = NULL;
-    TRY(cj_json_object_(c, obj, p, keys));
+    TRY(cj_json_object(&c->json, obj, p, keys));
     const char *const need_rational[] = {"points", "weights", NULL};
     TRY(need(c, obj, p, kind == 1 ? need_rational : NEED_POINTS));
     cj_geometry g;
@@ -523,26 +524,26 @@ static cj_status read_curve(jctx *c, const cJSON *obj, const char *p, int named,
     g.u.curve.tension = kind == 5 ? 0.0 : 0.5;
     g.u.curve.width_px = 1.0;
     g.u.curve.color = cj_rgb_make(1, 1, 1);
-    TRY(cj_json_num_(c, obj, p, "tension", R_ANY, 0, 0, &g.u.curve.tension));
-    TRY(cj_json_num_(c, obj, p, "continuity", R_ANY, 0, 0, &g.u.curve.continuity));
-    TRY(cj_json_num_(c, obj, p, "bias", R_ANY, 0, 0, &g.u.curve.bias));
-    TRY(cj_json_bool_(c, obj, p, "closed", &g.u.curve.closed));
-    TRY(cj_json_num_(c, obj, p, "width_px", R_GE, 1, 0, &g.u.curve.width_px));
-    TRY(cj_json_rgb_(c, obj, p, "color", -1, &g.u.curve.color));
-    char pk[JPATH];
-    cj_json_join_(pk, p, "points");
+    TRY(cj_json_num(&c->json, obj, p, "tension", CJ_JSON_ANY, 0, 0, &g.u.curve.tension));
+    TRY(cj_json_num(&c->json, obj, p, "continuity", CJ_JSON_ANY, 0, 0, &g.u.curve.continuity));
+    TRY(cj_json_num(&c->json, obj, p, "bias", CJ_JSON_ANY, 0, 0, &g.u.curve.bias));
+    TRY(cj_json_bool(&c->json, obj, p, "closed", &g.u.curve.closed));
+    TRY(cj_json_num(&c->json, obj, p, "width_px", CJ_JSON_GE, 1, 0, &g.u.curve.width_px));
+    TRY(cj_json_rgb(&c->json, obj, p, "color", -1, &g.u.curve.color));
+    char pk[CJ_JSON_PATH];
+    cj_json_join(pk, p, "points");
     double *pts = NULL, *w = NULL;
     size_t n, nw;
-    TRY(cj_json_numbers_(c, cJSON_GetObjectItemCaseSensitive(obj, "points"), pk, 3, R_ANY, 0, 0,
-                         &pts, &n));
+    TRY(cj_json_numbers(&c->json, cJSON_GetObjectItemCaseSensitive(obj, "points"), pk, 3,
+                        CJ_JSON_ANY, 0, 0, &pts, &n));
     cj_status st = CJ_OK;
     if (kind <= 1 && (n < 2 || n > 256))
-        st = cj_json_fail_(c, cJSON_GetObjectItemCaseSensitive(obj, "points"), 0, CJ_ERR_RANGE,
-                           "%s must have 2 to 256 points (degree 1 to 255)", pk);
+        st = cj_json_fail(&c->json, cJSON_GetObjectItemCaseSensitive(obj, "points"), 0,
+                          CJ_ERR_RANGE, "%s must have 2 to 256 points (degree 1 to 255)", pk);
     if (!st && kind == 1) {
-        cj_json_join_(pk, p, "weights");
-        st = cj_json_numbers_(c, cJSON_GetObjectItemCaseSensitive(obj, "weights"), pk, 0, R_GT, 0,
-                              n, &w, &nw);
+        cj_json_join(pk, p, "weights");
+        st = cj_json_numbers(&c->json, cJSON_GetObjectItemCaseSensitive(obj, "weights"), pk, 0,
+                             CJ_JSON_GT, 0, n, &w, &nw);
     }
     if (!st) {
         g.u.curve.count = n;
@@ -560,13 +561,13 @@ static cj_status read_curve(jctx *c, const cJSON *obj, const char *p, int named,
 
 cj_status cj_json_read_geometry_(jctx *c, const cJSON *obj, const char *p, int *index) {
     if (!cJSON_IsObject(obj))
-        return cj_json_fail_(c, obj, 0, CJ_ERR_PARSE,
-                             "%s must be a geometry object or the name of one in geometries", p);
+        return cj_json_fail(&c->json, obj, 0, CJ_ERR_PARSE,
+                            "%s must be a geometry object or the name of one in geometries", p);
     const int named = !strncmp(p, "geometries[", 11);
     const cJSON *tn;
-    TRY(cj_json_require_(c, obj, p, "type", &tn));
+    TRY(cj_json_require(&c->json, obj, p, "type", &tn));
     int type = 0;
-    TRY(cj_json_enum_(c, obj, p, "type", GEOM_TYPES, &type));
+    TRY(cj_json_enum(&c->json, obj, p, "type", GEOM_TYPES, &type));
     if (type == G_QUADRIC) return read_quadric(c, obj, p, named, index);
     if (type == G_CURVE) return read_curve(c, obj, p, named, index);
     if (type == G_BSPLINE_SURFACE || type == G_NURBS_SURFACE)
@@ -575,19 +576,19 @@ cj_status cj_json_read_geometry_(jctx *c, const cJSON *obj, const char *p, int *
     switch (type) {
     case G_TEAPOT:
         if (!c->teapot_path)
-            return cj_json_fail_(c, tn, 0, CJ_ERR_UNSUPPORTED,
-                                 "%s: the teapot's data file is not known here "
-                                 "(cj_scene_json_options.teapot_path)",
-                                 p);
+            return cj_json_fail(&c->json, tn, 0, CJ_ERR_UNSUPPORTED,
+                                "%s: the teapot's data file is not known here "
+                                "(cj_scene_json_options.teapot_path)",
+                                p);
         return add_patchset(c, obj, tn, p, c->teapot_path, index);
     case G_BPT: {
         const cJSON *pn;
-        TRY(cj_json_require_(c, obj, p, "path", &pn));
+        TRY(cj_json_require(&c->json, obj, p, "path", &pn));
         const char *rel = NULL;
-        TRY(cj_json_string_(c, obj, p, "path", &rel));
-        char file[4096], pk[JPATH];
-        cj_json_join_(pk, p, "path");
-        TRY(cj_json_resolve_(c, pn, pk, rel, file, sizeof file));
+        TRY(cj_json_string(&c->json, obj, p, "path", &rel));
+        char file[4096], pk[CJ_JSON_PATH];
+        cj_json_join(pk, p, "path");
+        TRY(cj_json_resolve(&c->json, c->base_dir, pn, pk, rel, file, sizeof file));
         return add_patchset(c, obj, pn, pk, file, index);
     }
     case G_PATCHES:

@@ -38,59 +38,60 @@ static void axis_angle(cj_vec3 axis, double angle_rad, double q[4]) {
 }
 
 static cj_status read_transform(const jctx *c, const cJSON *obj, const char *p, cj_transform *t) {
-    TRY(cj_json_object_(c, obj, p, TRANSFORM_KEYS));
+    TRY(cj_json_object(&c->json, obj, p, TRANSFORM_KEYS));
     *t = cj_transform_identity();
-    TRY(cj_json_vec3_(c, obj, p, "translate", &t->translate));
+    TRY(cj_json_vec3(&c->json, obj, p, "translate", &t->translate));
     const cJSON *rot = cJSON_GetObjectItemCaseSensitive(obj, "rotate");
     const cJSON *qn = cJSON_GetObjectItemCaseSensitive(obj, "quaternion");
     const cJSON *eu = cJSON_GetObjectItemCaseSensitive(obj, "euler_deg");
     const cJSON *eo = cJSON_GetObjectItemCaseSensitive(obj, "euler_order");
     if ((rot != NULL) + (qn != NULL) + (eu != NULL) > 1)
-        return cj_json_fail_(c, obj, 0, CJ_ERR_PARSE,
-                             "%s: give one rotation (rotate, quaternion or euler_deg)", p);
+        return cj_json_fail(&c->json, obj, 0, CJ_ERR_PARSE,
+                            "%s: give one rotation (rotate, quaternion or euler_deg)", p);
     if (eo && !eu)
-        return cj_json_fail_(c, eo, 1, CJ_ERR_PARSE, "%s.euler_order needs euler_deg", p);
+        return cj_json_fail(&c->json, eo, 1, CJ_ERR_PARSE, "%s.euler_order needs euler_deg", p);
     if (rot) {
-        char pr[JPATH];
-        cj_json_join_(pr, p, "rotate");
-        TRY(cj_json_object_(c, rot, pr, ROTATE_KEYS));
+        char pr[CJ_JSON_PATH];
+        cj_json_join(pr, p, "rotate");
+        TRY(cj_json_object(&c->json, rot, pr, ROTATE_KEYS));
         const cJSON *ax;
-        TRY(cj_json_require_(c, rot, pr, "axis", &ax));
+        TRY(cj_json_require(&c->json, rot, pr, "axis", &ax));
         cj_vec3 axis = cj_v3(0, 0, 1);
-        TRY(cj_json_vec3_(c, rot, pr, "axis", &axis));
+        TRY(cj_json_vec3(&c->json, rot, pr, "axis", &axis));
         if (!(cj_v3_norm(axis) > 0.0))
-            return cj_json_fail_(c, ax, 0, CJ_ERR_DEGENERATE, "%s.axis must not be the zero vector",
-                                 pr);
+            return cj_json_fail(&c->json, ax, 0, CJ_ERR_DEGENERATE,
+                                "%s.axis must not be the zero vector", pr);
         double a = 0.0;
         if (!cJSON_GetObjectItemCaseSensitive(rot, "angle_deg") &&
             !cJSON_GetObjectItemCaseSensitive(rot, "angle_rad"))
-            return cj_json_fail_(c, rot, 0, CJ_ERR_PARSE, "%s: missing key \"angle_deg\"", pr);
-        TRY(cj_json_angle_(c, rot, pr, "angle", R_ANY, 0, 0, &a));
+            return cj_json_fail(&c->json, rot, 0, CJ_ERR_PARSE, "%s: missing key \"angle_deg\"",
+                                pr);
+        TRY(cj_json_angle(&c->json, rot, pr, "angle", CJ_JSON_ANY, 0, 0, &a));
         axis_angle(axis, a, t->rotation);
     } else if (qn) {
-        char pq[JPATH];
-        cj_json_join_(pq, p, "quaternion");
+        char pq[CJ_JSON_PATH];
+        cj_json_join(pq, p, "quaternion");
         double *v;
         size_t n;
-        TRY(cj_json_numbers_(c, qn, pq, 0, R_ANY, 0, 4, &v, &n));
+        TRY(cj_json_numbers(&c->json, qn, pq, 0, CJ_JSON_ANY, 0, 4, &v, &n));
         double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3]);
         if (!(len > 0.0) || !isfinite(len)) {
             free(v);
-            return cj_json_fail_(c, qn, 0, CJ_ERR_DEGENERATE, "%s must not be zero", pq);
+            return cj_json_fail(&c->json, qn, 0, CJ_ERR_DEGENERATE, "%s must not be zero", pq);
         }
         /* A unit quaternion is kept bit for bit (files written by cj_scene_save_json). */
         double n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3];
         for (int k = 0; k < 4; ++k) t->rotation[k] = fabs(n2 - 1.0) <= 1e-12 ? v[k] : v[k] / len;
         free(v);
     } else if (eu) {
-        char pe[JPATH];
-        cj_json_join_(pe, p, "euler_deg");
+        char pe[CJ_JSON_PATH];
+        cj_json_join(pe, p, "euler_deg");
         double *v;
         size_t n;
-        TRY(cj_json_numbers_(c, eu, pe, 0, R_ANY, 0, 3, &v, &n));
+        TRY(cj_json_numbers(&c->json, eu, pe, 0, CJ_JSON_ANY, 0, 3, &v, &n));
         static const char *const ORDERS[] = {"xyz", "xzy", "yxz", "yzx", "zxy", "zyx", NULL};
         int order = 0;
-        cj_status st = cj_json_enum_(c, obj, p, "euler_order", ORDERS, &order);
+        cj_status st = cj_json_enum(&c->json, obj, p, "euler_order", ORDERS, &order);
         if (st) {
             free(v);
             return st;
@@ -108,38 +109,39 @@ static cj_status read_transform(const jctx *c, const cJSON *obj, const char *p, 
     }
     const cJSON *sc = cJSON_GetObjectItemCaseSensitive(obj, "scale");
     if (sc) {
-        char ps[JPATH];
-        cj_json_join_(ps, p, "scale");
+        char ps[CJ_JSON_PATH];
+        cj_json_join(ps, p, "scale");
         if (cJSON_IsNumber(sc)) {
             double s = 1.0;
-            TRY(cj_json_num_(c, obj, p, "scale", R_ANY, 0, 0, &s));
+            TRY(cj_json_num(&c->json, obj, p, "scale", CJ_JSON_ANY, 0, 0, &s));
             t->scale = cj_v3(s, s, s);
         } else {
             if (!cJSON_IsArray(sc))
-                return cj_json_fail_(c, sc, 0, CJ_ERR_PARSE,
-                                     "%s must be a number or an array of 3 numbers", ps);
-            TRY(cj_json_vec3_(c, obj, p, "scale", &t->scale));
+                return cj_json_fail(&c->json, sc, 0, CJ_ERR_PARSE,
+                                    "%s must be a number or an array of 3 numbers", ps);
+            TRY(cj_json_vec3(&c->json, obj, p, "scale", &t->scale));
         }
         if (t->scale.x == 0 || t->scale.y == 0 || t->scale.z == 0)
-            return cj_json_fail_(c, sc, 0, CJ_ERR_RANGE, "%s must not be zero", ps);
+            return cj_json_fail(&c->json, sc, 0, CJ_ERR_RANGE, "%s must not be zero", ps);
     }
     const cJSON *mx = cJSON_GetObjectItemCaseSensitive(obj, "matrix");
     if (mx) {
-        char pm[JPATH];
-        cj_json_join_(pm, p, "matrix");
+        char pm[CJ_JSON_PATH];
+        cj_json_join(pm, p, "matrix");
         if (!cJSON_IsArray(mx) || cJSON_GetArraySize(mx) != 4)
-            return cj_json_fail_(c, mx, 0, CJ_ERR_PARSE, "%s must be 4 rows of 4 numbers", pm);
+            return cj_json_fail(&c->json, mx, 0, CJ_ERR_PARSE, "%s must be 4 rows of 4 numbers",
+                                pm);
         double *v;
         size_t n;
-        TRY(cj_json_numbers_(c, mx, pm, 4, R_ANY, 0, 4, &v, &n));
+        TRY(cj_json_numbers(&c->json, mx, pm, 4, CJ_JSON_ANY, 0, 4, &v, &n));
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 4; ++j) t->matrix.m[i][j] = v[4 * i + j];
         free(v);
         if (!cj_xform3_is_affine(&t->matrix))
-            return cj_json_fail_(c, mx, 0, CJ_ERR_RANGE, "%s[3] must be [0, 0, 0, 1]", pm);
+            return cj_json_fail(&c->json, mx, 0, CJ_ERR_RANGE, "%s[3] must be [0, 0, 0, 1]", pm);
     }
     cj_status st = cj_scene_check_transform_(t, p);
-    return st ? cj_json_relabel_(c, obj, st) : CJ_OK;
+    return st ? cj_json_relabel(&c->json, obj, st) : CJ_OK;
 }
 
 /* ---- objects -------------------------------------------------------------------------------- */
@@ -150,15 +152,15 @@ static const char *const OVERLAY_KEYS[] = {"control_net", "wireframe", "iso_line
                                            "normals",     "color",     NULL};
 
 static cj_status read_overlay(const jctx *c, const cJSON *obj, const char *p, cj_overlay_style *o) {
-    TRY(cj_json_object_(c, obj, p, OVERLAY_KEYS));
+    TRY(cj_json_object(&c->json, obj, p, OVERLAY_KEYS));
     int net = 0, wire = 0;
-    TRY(cj_json_bool_(c, obj, p, "control_net", &net));
-    TRY(cj_json_bool_(c, obj, p, "wireframe", &wire));
+    TRY(cj_json_bool(&c->json, obj, p, "control_net", &net));
+    TRY(cj_json_bool(&c->json, obj, p, "wireframe", &wire));
     int iso = 0;
-    TRY(cj_json_int_(c, obj, p, "iso_lines", 0, 10000, &iso));
+    TRY(cj_json_int(&c->json, obj, p, "iso_lines", 0, 10000, &iso));
     double len = 0.0;
-    TRY(cj_json_num_(c, obj, p, "normals", R_GE, 0, 0, &len));
-    TRY(cj_json_rgb_(c, obj, p, "color", -1, &o->color));
+    TRY(cj_json_num(&c->json, obj, p, "normals", CJ_JSON_GE, 0, 0, &len));
+    TRY(cj_json_rgb(&c->json, obj, p, "color", -1, &o->color));
     o->flags = (net ? CJ_OVERLAY_CONTROL_NET : 0u) | (wire ? CJ_OVERLAY_WIREFRAME : 0u) |
                (iso > 0 ? CJ_OVERLAY_ISO_LINES : 0u) | (len > 0 ? CJ_OVERLAY_NORMALS : 0u);
     if (iso > 0) o->iso_count = iso;
@@ -168,8 +170,8 @@ static cj_status read_overlay(const jctx *c, const cJSON *obj, const char *p, cj
 
 static cj_status node_material(jctx *c, const cJSON *obj, const char *p, int inherited, int *out) {
     const cJSON *mn = cJSON_GetObjectItemCaseSensitive(obj, "material");
-    char pm[JPATH];
-    cj_json_join_(pm, p, "material");
+    char pm[CJ_JSON_PATH];
+    cj_json_join(pm, p, "material");
     if (!mn) {
         *out = inherited;
         return CJ_OK;
@@ -183,18 +185,18 @@ static cj_status node_material(jctx *c, const cJSON *obj, const char *p, int inh
                 return CJ_OK;
             }
         }
-        return cj_json_fail_(c, mn, 0, CJ_ERR_PARSE, "%s \"%s\" names no material", pm,
-                             mn->valuestring);
+        return cj_json_fail(&c->json, mn, 0, CJ_ERR_PARSE, "%s \"%s\" names no material", pm,
+                            mn->valuestring);
     }
     if (!cJSON_IsObject(mn))
-        return cj_json_fail_(c, mn, 0, CJ_ERR_PARSE,
-                             "%s must be a material's name or a material object", pm);
+        return cj_json_fail(&c->json, mn, 0, CJ_ERR_PARSE,
+                            "%s must be a material's name or a material object", pm);
     return cj_json_read_material_(c, mn, pm, 0, out);
 }
 
 static cj_status node_geometry(jctx *c, const cJSON *gn, const char *p, int *out) {
-    char pg[JPATH];
-    cj_json_join_(pg, p, "geometry");
+    char pg[CJ_JSON_PATH];
+    cj_json_join(pg, p, "geometry");
     if (cJSON_IsString(gn)) {
         size_t i = 0;
         for (const cJSON *g = c->geometries ? c->geometries->child : NULL; g; g = g->next, ++i) {
@@ -204,14 +206,14 @@ static cj_status node_geometry(jctx *c, const cJSON *gn, const char *p, int *out
                 return CJ_OK;
             }
         }
-        return cj_json_fail_(c, gn, 0, CJ_ERR_PARSE, "%s \"%s\" names no entry of geometries", pg,
-                             gn->valuestring);
+        return cj_json_fail(&c->json, gn, 0, CJ_ERR_PARSE, "%s \"%s\" names no entry of geometries",
+                            pg, gn->valuestring);
     }
     return cj_json_read_geometry_(c, gn, pg, out);
 }
 
 static cj_status read_node(jctx *c, const cJSON *obj, const char *p, int parent, int material) {
-    TRY(cj_json_object_(c, obj, p, NODE_KEYS));
+    TRY(cj_json_object(&c->json, obj, p, NODE_KEYS));
     cj_node n;
     memset(&n, 0, sizeof n);
     n.parent = parent;
@@ -222,28 +224,28 @@ static cj_status read_node(jctx *c, const cJSON *obj, const char *p, int parent,
     n.overlay.color = cj_rgb_make(1, 1, 0);
     n.overlay.iso_count = 8;
     n.overlay.normal_length = 0.1;
-    TRY(cj_json_string_(c, obj, p, "name", &n.name));
-    TRY(cj_json_bool_(c, obj, p, "visible", &n.visible));
+    TRY(cj_json_string(&c->json, obj, p, "name", &n.name));
+    TRY(cj_json_bool(&c->json, obj, p, "visible", &n.visible));
     const cJSON *tn = cJSON_GetObjectItemCaseSensitive(obj, "transform");
     if (tn) {
-        char pt[JPATH];
-        cj_json_join_(pt, p, "transform");
+        char pt[CJ_JSON_PATH];
+        cj_json_join(pt, p, "transform");
         TRY(read_transform(c, tn, pt, &n.local));
     }
     const cJSON *on = cJSON_GetObjectItemCaseSensitive(obj, "overlay");
     if (on) {
-        char po[JPATH];
-        cj_json_join_(po, p, "overlay");
+        char po[CJ_JSON_PATH];
+        cj_json_join(po, p, "overlay");
         TRY(read_overlay(c, on, po, &n.overlay));
     }
     const cJSON *gn = cJSON_GetObjectItemCaseSensitive(obj, "geometry");
     const cJSON *ch = cJSON_GetObjectItemCaseSensitive(obj, "children");
     if (gn && ch)
-        return cj_json_fail_(c, ch, 1, CJ_ERR_PARSE,
-                             "%s: an object has either a geometry or children, not both", p);
+        return cj_json_fail(&c->json, ch, 1, CJ_ERR_PARSE,
+                            "%s: an object has either a geometry or children, not both", p);
     if (!gn && !ch)
-        return cj_json_fail_(c, obj, 0, CJ_ERR_PARSE,
-                             "%s: missing key \"geometry\" (or \"children\" for a group)", p);
+        return cj_json_fail(&c->json, obj, 0, CJ_ERR_PARSE,
+                            "%s: missing key \"geometry\" (or \"children\" for a group)", p);
     int mat;
     TRY(node_material(c, obj, p, material, &mat));
     int index;
@@ -251,35 +253,35 @@ static cj_status read_node(jctx *c, const cJSON *obj, const char *p, int parent,
         TRY(node_geometry(c, gn, p, &n.geometry));
         if (mat < 0) {
             if (c->default_material < 0) {
-                cj_material d = cj_material_default();
+                cj_material d = cj_material_defaults();
                 TRY(cj_scene_add_material(c->scene, &d, &c->default_material));
             }
             mat = c->default_material;
         }
         n.material = mat;
         cj_status st = cj_scene_add_node(c->scene, &n, &index);
-        return st ? cj_json_relabel_(c, obj, st) : CJ_OK;
+        return st ? cj_json_relabel(&c->json, obj, st) : CJ_OK;
     }
     cj_status st = cj_scene_add_node(c->scene, &n, &index);
-    if (st) return cj_json_relabel_(c, obj, st);
-    char pc[JPATH];
-    cj_json_join_(pc, p, "children");
-    TRY(cj_json_list_(c, ch, pc));
+    if (st) return cj_json_relabel(&c->json, obj, st);
+    char pc[CJ_JSON_PATH];
+    cj_json_join(pc, p, "children");
+    TRY(cj_json_list(&c->json, ch, pc));
     size_t i = 0;
     for (const cJSON *e = ch->child; e; e = e->next, ++i) {
-        char pe[JPATH];
-        cj_json_index_(pe, pc, i);
+        char pe[CJ_JSON_PATH];
+        cj_json_index(pe, pc, i);
         TRY(read_node(c, e, pe, index, mat));
     }
     return CJ_OK;
 }
 
 cj_status cj_json_read_objects_(jctx *c, const cJSON *arr) {
-    TRY(cj_json_list_(c, arr, "objects"));
+    TRY(cj_json_list(&c->json, arr, "objects"));
     size_t i = 0;
     for (const cJSON *e = arr->child; e; e = e->next, ++i) {
-        char p[JPATH];
-        cj_json_index_(p, "objects", i);
+        char p[CJ_JSON_PATH];
+        cj_json_index(p, "objects", i);
         TRY(read_node(c, e, p, -1, -1));
     }
     return CJ_OK;

@@ -5,130 +5,98 @@
 
 #include "casteljau/scene_json.h"
 #include "error_internal.h"
+#include "json_write_internal.h"
 
 #include <assert.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
+/* The document is built as a cJSON tree (stack[depth] is the open object or array) and printed
+ * by cJSON's printer through json_write_internal.h: one escaper, shortest exact numbers. */
+#define EMIT_DEPTH 64
 typedef struct emitter {
-    FILE *f;
+    cJSON *stack[EMIT_DEPTH];
     int depth;
-    int first[64]; /* per depth: nothing written in this object/array yet */
+    int oom;      /* an allocation failed: the document is not written */
+    int too_deep; /* the node hierarchy is deeper than EMIT_DEPTH allows */
 } emitter;
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 
-static void put_num(FILE *f, double v) {
-    char buf[40];
-    snprintf(buf, sizeof buf, "%.15g", v);
-    if (strtod(buf, NULL) != v) snprintf(buf, sizeof buf, "%.17g", v);
-    fputs(buf, f);
-}
-
-static void put_str(FILE *f, const char *s) {
-    fputc('"', f);
-    for (; *s; ++s) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(f, "\\u%04x", c);
-        else
-            fputc(c, f);
-    }
-    fputc('"', f);
-}
-
-static void indent(emitter *e) {
-    fputc('\n', e->f);
-    for (int i = 0; i < e->depth; ++i) fputs("  ", e->f);
-}
-
-/* Starts the next member (key != NULL) or element of the current container. */
-static void next(emitter *e, const char *key) {
-    if (!e->first[e->depth]) fputc(',', e->f);
-    e->first[e->depth] = 0;
-    indent(e);
-    if (key) {
-        put_str(e->f, key);
-        fputs(": ", e->f);
+/* Adds item (taking it) to the open container, under key in an object. */
+static void add(emitter *e, const char *key, cJSON *item) {
+    cJSON *parent = e->stack[e->depth];
+    if (!item ||
+        !(key ? cJSON_AddItemToObject(parent, key, item) : cJSON_AddItemToArray(parent, item))) {
+        cJSON_Delete(item);
+        e->oom = 1;
     }
 }
 
 static void open_c(emitter *e, const char *key, char c) {
-    if (e->depth > 0 || key) next(e, key);
-    fputc(c, e->f);
-    e->depth++;
-    e->first[e->depth] = 1;
+    cJSON *x = c == '{' ? cJSON_CreateObject() : cJSON_CreateArray();
+    cJSON *parent = e->stack[e->depth];
+    add(e, key, x);
+    if (e->depth + 1 >= EMIT_DEPTH) {
+        e->too_deep = 1;
+        return;
+    }
+    /* after a failed add, later members land in the parent: the document is dropped anyway */
+    e->stack[++e->depth] = e->oom ? parent : x;
 }
 
 static void close_c(emitter *e, char c) {
-    int empty = e->first[e->depth];
-    e->depth--;
-    if (!empty) indent(e);
-    fputc(c, e->f);
+    (void)c;
+    if (e->depth > 0 && !e->too_deep) e->depth--;
 }
 
 static void num(emitter *e, const char *key, double v) {
-    next(e, key);
-    put_num(e->f, v);
+    add(e, key, cj_json_number(v));
 }
 
 static void integer(emitter *e, const char *key, long long v) {
-    next(e, key);
-    fprintf(e->f, "%lld", v);
+    num(e, key, (double)v);
 }
 
 static void boolean(emitter *e, const char *key, int v) {
-    next(e, key);
-    fputs(v ? "true" : "false", e->f);
+    add(e, key, cJSON_CreateBool(v));
 }
 
 static void string(emitter *e, const char *key, const char *s) {
-    next(e, key);
-    put_str(e->f, s);
+    add(e, key, cJSON_CreateString(s));
 }
 
-static void numbers(FILE *f, const double *v, size_t n) {
-    fputc('[', f);
-    for (size_t i = 0; i < n; ++i) {
-        if (i) fputs(", ", f);
-        put_num(f, v[i]);
-    }
-    fputc(']', f);
+static void nums(emitter *e, const char *key, const double *v, size_t n) {
+    add(e, key, cj_json_number_array(v, n));
 }
 
 static void vec3(emitter *e, const char *key, cj_vec3 v) {
     const double a[3] = {v.x, v.y, v.z};
-    next(e, key);
-    numbers(e->f, a, 3);
+    nums(e, key, a, 3);
 }
 
 static void rgb(emitter *e, const char *key, cj_rgb c) {
     const double a[3] = {c.r, c.g, c.b};
-    next(e, key);
-    numbers(e->f, a, 3);
+    nums(e, key, a, 3);
 }
 
 /* count points of dim coordinates as [[...], [...]]. */
 static void points(emitter *e, const char *key, const double *p, size_t count, int dim) {
-    next(e, key);
-    fputc('[', e->f);
-    for (size_t i = 0; i < count; ++i) {
-        if (i) fputs(", ", e->f);
-        numbers(e->f, p + i * (size_t)dim, (size_t)dim);
-    }
-    fputc(']', e->f);
+    open_c(e, key, '[');
+    for (size_t i = 0; i < count; ++i) nums(e, NULL, p + i * (size_t)dim, (size_t)dim);
+    close_c(e, ']');
 }
 
 static void weights(emitter *e, const double *w, size_t n) {
-    if (!w) return;
-    next(e, "weights");
-    numbers(e->f, w, n);
+    if (w) nums(e, "weights", w, n);
+}
+
+/* Two whole numbers [a, b] (degrees of a patch, checks of a checker). */
+static void pair(emitter *e, const char *key, int a, int b) {
+    const double v[2] = {a, b};
+    nums(e, key, v, 2);
 }
 
 /* An angle in degrees when that reads back to the same radians, else in radians. */
@@ -246,21 +214,14 @@ static void write_texture(emitter *e, const cj_scene *s, int i) {
     string(e, "filter", FILTERS[t->filter]);
     string(e, "wrap", t->wrap == CJ_TEX_REPEAT ? "repeat" : "clamp");
     const double sc[2] = {t->scale_u, t->scale_v}, of[2] = {t->offset_u, t->offset_v};
-    next(e, "scale");
-    numbers(e->f, sc, 2);
-    next(e, "offset");
-    numbers(e->f, of, 2);
+    nums(e, "scale", sc, 2);
+    nums(e, "offset", of, 2);
     if (t->kind == CJ_TEX_CHECKER) {
-        next(e, "checks");
-        fprintf(e->f, "[%d, %d]", t->checks_u, t->checks_v);
-        const double a[3] = {t->checker_a.r, t->checker_a.g, t->checker_a.b};
-        const double b[3] = {t->checker_b.r, t->checker_b.g, t->checker_b.b};
-        next(e, "colors");
-        fputc('[', e->f);
-        numbers(e->f, a, 3);
-        fputs(", ", e->f);
-        numbers(e->f, b, 3);
-        fputc(']', e->f);
+        pair(e, "checks", t->checks_u, t->checks_v);
+        open_c(e, "colors", '[');
+        rgb(e, NULL, t->checker_a);
+        rgb(e, NULL, t->checker_b);
+        close_c(e, ']');
     }
     close_c(e, '}');
 }
@@ -320,18 +281,16 @@ static void write_mesh(emitter *e, const cj_mesh *m) {
     points(e, "positions", m->positions, m->vertex_count, 3);
     points(e, "normals", m->normals, m->vertex_count, 3);
     points(e, "uvs", m->uvs, m->vertex_count, 2);
-    next(e, "triangles");
-    fputc('[', e->f);
+    open_c(e, "triangles", '[');
     for (size_t t = 0; t < m->triangle_count; ++t) {
         const uint32_t *v = m->triangles + 3 * t;
-        fprintf(e->f, "%s[%u, %u, %u]", t ? ", " : "", v[0], v[1], v[2]);
+        const double corners[3] = {v[0], v[1], v[2]};
+        nums(e, NULL, corners, 3);
     }
-    fputc(']', e->f);
-    next(e, "patch_ids");
-    fputc('[', e->f);
-    for (size_t t = 0; t < m->triangle_count; ++t)
-        fprintf(e->f, "%s%d", t ? ", " : "", (int)m->triangle_patch[t]);
-    fputc(']', e->f);
+    close_c(e, ']');
+    open_c(e, "patch_ids", '[');
+    for (size_t t = 0; t < m->triangle_count; ++t) integer(e, NULL, m->triangle_patch[t]);
+    close_c(e, ']');
 }
 
 static void write_curve(emitter *e, const cj_geometry *g) {
@@ -369,8 +328,7 @@ static void write_geometry(emitter *e, const cj_geometry *g, int i) {
         for (size_t k = 0; k < g->u.patches.count; ++k) {
             const cj_patch *p = &g->u.patches.patches[k];
             open_c(e, NULL, '{');
-            next(e, "degree");
-            fprintf(e->f, "[%d, %d]", p->deg_u, p->deg_v);
+            pair(e, "degree", p->deg_u, p->deg_v);
             points(e, "points", p->pts, cj_patch_point_count(p), 3);
             weights(e, p->weights, cj_patch_point_count(p));
             close_c(e, '}');
@@ -452,15 +410,11 @@ static void write_node(emitter *e, const cj_scene *s, size_t i) {
     if (n->name) string(e, "name", n->name);
     open_c(e, "transform", '{');
     vec3(e, "translate", n->local.translate);
-    next(e, "quaternion");
-    numbers(e->f, n->local.rotation, 4);
+    nums(e, "quaternion", n->local.rotation, 4);
     vec3(e, "scale", n->local.scale);
     if (!is_identity(&n->local.matrix)) {
         open_c(e, "matrix", '[');
-        for (int r = 0; r < 4; ++r) {
-            next(e, NULL);
-            numbers(e->f, n->local.matrix.m[r], 4);
-        }
+        for (int r = 0; r < 4; ++r) nums(e, NULL, n->local.matrix.m[r], 4);
         close_c(e, ']');
     }
     close_c(e, '}');
@@ -491,9 +445,6 @@ static void write_node(emitter *e, const cj_scene *s, size_t i) {
 }
 
 static void write_scene(emitter *e, const cj_scene *s) {
-    fputc('{', e->f);
-    e->depth = 1;
-    e->first[1] = 1;
     write_camera(e, &s->camera);
     write_settings(e, &s->settings);
     open_c(e, "lights", '[');
@@ -512,7 +463,6 @@ static void write_scene(emitter *e, const cj_scene *s) {
     for (size_t i = 0; i < s->nnodes; ++i)
         if (s->nodes[i].parent < 0) write_node(e, s, i);
     close_c(e, ']');
-    fputs("\n}\n", e->f);
 }
 
 /* ---- the file ------------------------------------------------------------------------------- */
@@ -526,42 +476,17 @@ cj_status cj_scene_save_json(const cj_scene *s, const char *path) {
     if (s->settings.seed > (1ull << 53))
         return cj_fail(CJ_ERR_RANGE, "settings.seed %llu is above 2^53 (not exact in JSON)",
                        (unsigned long long)s->settings.seed);
-    size_t n = strlen(path);
-    char *tmp = malloc(n + 16);
-    if (!tmp) return cj_fail(CJ_ERR_NOMEM, "out of memory saving '%s'", path);
-    snprintf(tmp, n + 16, "%s.tmp-XXXXXX", path);
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        st = cj_fail(CJ_ERR_IO, "cannot create a temporary file next to '%s': %s", path,
-                     strerror(errno));
-        free(tmp);
-        return st;
-    }
-    FILE *f = fdopen(fd, "w");
-    if (!f) {
-        st = cj_fail(CJ_ERR_IO, "cannot open '%s': %s", tmp, strerror(errno));
-        close(fd);
-        remove(tmp);
-        free(tmp);
-        return st;
-    }
     emitter e;
     memset(&e, 0, sizeof e);
-    e.f = f;
-    write_scene(&e, s);
-    int bad = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
-    int err = errno;
-    if (fclose(f) != 0 && !bad) {
-        bad = 1;
-        err = errno;
-    }
-    if (bad || rename(tmp, path) != 0) {
-        if (!bad) err = errno;
-        st = cj_fail(CJ_ERR_IO, "writing '%s' failed: %s", path, strerror(err));
-        remove(tmp);
-        free(tmp);
-        return st;
-    }
-    free(tmp);
-    return CJ_OK;
+    cJSON *root = e.stack[0] = cJSON_CreateObject();
+    if (root) write_scene(&e, s);
+    if (!root || e.oom)
+        st = cj_fail(CJ_ERR_NOMEM, "out of memory saving '%s'", path);
+    else if (e.too_deep)
+        st = cj_fail(CJ_ERR_RANGE, "saving '%s': the object hierarchy is deeper than %d levels",
+                     path, EMIT_DEPTH / 2 - 2);
+    else
+        st = cj_json_write_file(root, path, path);
+    cJSON_Delete(root);
+    return st;
 }

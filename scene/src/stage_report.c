@@ -2,6 +2,7 @@
 #include "casteljau/stage_report.h"
 
 #include "error_internal.h"
+#include "json_write_internal.h"
 
 #include <stdarg.h>
 #include <string.h>
@@ -46,63 +47,62 @@ void cj_stage_add_value(cj_stage *s, const char *key, double value) {
     v->value = value;
 }
 
+cj_stage *cj_stage_report_figures(cj_stage_report *r, const char *name, const char *unit_in,
+                                  uint64_t in, const char *unit_out, uint64_t out, double seconds) {
+    cj_stage *s = cj_stage_report_stage(r, name);
+    if (!s) return NULL;
+    snprintf(s->unit_in, sizeof s->unit_in, "%s", unit_in);
+    snprintf(s->unit_out, sizeof s->unit_out, "%s", unit_out);
+    s->in = in;
+    s->out = out;
+    s->seconds = seconds;
+    return s;
+}
+
 const cj_stage *cj_stage_report_find(const cj_stage_report *r, const char *name) {
     for (int i = 0; i < r->count; ++i)
         if (!strcmp(r->stages[i].name, name)) return &r->stages[i];
     return NULL;
 }
 
-/* Writes s as a JSON string (the texts here are our own, but quotes and control characters are
- * escaped all the same so the output always parses). */
-static void put_string(FILE *f, const char *s) {
-    fputc('"', f);
-    for (; *s; ++s) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(f, "\\u%04x", c);
-        else
-            fputc(c, f);
+/* Built as a cJSON tree and printed by cJSON (json_write_internal.h): strings escaped by the
+ * printer, numbers in their shortest exact form, NaN and infinity as null. */
+static int add_stage(cJSON *stages, const cj_stage *s) {
+    cJSON *o = cJSON_CreateObject(), *values = cJSON_CreateObject();
+    if (!o || !values || !cJSON_AddItemToArray(stages, o)) {
+        cJSON_Delete(o);
+        cJSON_Delete(values);
+        return -1;
     }
-    fputc('"', f);
-}
-
-/* JSON has no NaN or infinity: such a figure is written as null. */
-static void put_number(FILE *f, double v) {
-    if (v != v || v > 1.79e308 || v < -1.79e308)
-        fputs("null", f);
-    else
-        fprintf(f, "%.17g", v);
+    int bad =
+        !cJSON_AddStringToObject(o, "name", s->name) || !cJSON_AddBoolToObject(o, "ran", s->ran) ||
+        !cJSON_AddStringToObject(o, "why", s->why) || cj_json_add_number(o, "in", (double)s->in) ||
+        !cJSON_AddStringToObject(o, "unit_in", s->unit_in) ||
+        cj_json_add_number(o, "out", (double)s->out) ||
+        !cJSON_AddStringToObject(o, "unit_out", s->unit_out) ||
+        cj_json_add_number(o, "seconds", s->seconds);
+    if (!cJSON_AddItemToObject(o, "values", values)) {
+        cJSON_Delete(values);
+        return -1;
+    }
+    for (int k = 0; !bad && k < s->extra_count; ++k)
+        bad = cj_json_add_number(values, s->extra[k].key, s->extra[k].value);
+    return bad ? -1 : 0;
 }
 
 cj_status cj_stage_report_json(const cj_stage_report *r, FILE *f) {
-    fputs("{\"renderer\": ", f);
-    put_string(f, r->renderer);
-    fputs(", \"total_seconds\": ", f);
-    put_number(f, r->total_seconds);
-    fputs(", \"stages\": [", f);
-    for (int i = 0; i < r->count; ++i) {
-        const cj_stage *s = &r->stages[i];
-        fputs(i ? ",\n  {\"name\": " : "\n  {\"name\": ", f);
-        put_string(f, s->name);
-        fprintf(f, ", \"ran\": %s, \"why\": ", s->ran ? "true" : "false");
-        put_string(f, s->why);
-        fprintf(f, ", \"in\": %llu, \"unit_in\": ", (unsigned long long)s->in);
-        put_string(f, s->unit_in);
-        fprintf(f, ", \"out\": %llu, \"unit_out\": ", (unsigned long long)s->out);
-        put_string(f, s->unit_out);
-        fputs(", \"seconds\": ", f);
-        put_number(f, s->seconds);
-        fputs(", \"values\": {", f);
-        for (int k = 0; k < s->extra_count; ++k) {
-            if (k) fputs(", ", f);
-            put_string(f, s->extra[k].key);
-            fputs(": ", f);
-            put_number(f, s->extra[k].value);
-        }
-        fputs("}}", f);
-    }
-    fputs("]}\n", f);
-    return ferror(f) ? cj_fail(CJ_ERR_IO, "writing the stage report failed") : CJ_OK;
+    cJSON *root = cJSON_CreateObject(), *stages = cJSON_CreateArray();
+    int bad = !root || !stages || !cJSON_AddStringToObject(root, "renderer", r->renderer) ||
+              cj_json_add_number(root, "total_seconds", r->total_seconds);
+    if (!bad && !cJSON_AddItemToObject(root, "stages", stages))
+        bad = 1;
+    else if (!bad)
+        stages = NULL; /* owned by root now */
+    for (int i = 0; !bad && i < r->count; ++i)
+        bad = add_stage(cJSON_GetObjectItem(root, "stages"), &r->stages[i]);
+    cj_status st = bad ? cj_fail(CJ_ERR_NOMEM, "stage report: out of memory")
+                       : cj_json_print(root, 0, f, "stage report");
+    cJSON_Delete(stages);
+    cJSON_Delete(root);
+    return st;
 }

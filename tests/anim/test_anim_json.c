@@ -67,8 +67,8 @@ static void test_path_pose(void **state) {
     assert_int_equal(cj_anim_doc_parse(DOC, "doc.json", "", &doc), CJ_OK);
     cj_scene *scene = NULL;
     assert_int_equal(cj_scene_create(NULL, &scene), CJ_OK);
-    cj_light l = cj_light_default(CJ_LIGHT_POINT);
-    cj_material m = cj_material_default();
+    cj_light l = cj_light_defaults(CJ_LIGHT_POINT);
+    cj_material m = cj_material_defaults();
     int idx;
     assert_int_equal(cj_scene_add_light(scene, &l, &idx), CJ_OK);
     assert_int_equal(cj_scene_add_material(scene, &m, &idx), CJ_OK);
@@ -96,7 +96,7 @@ static void test_path_pose(void **state) {
         assert_int_equal(cj_anim_doc_frame(doc, scene, 0, NULL), CJ_OK);
         cj_anim_pose_info info;
         assert_int_equal(cj_anim_pose(scene, doc->anim, t, &info), CJ_OK);
-        const cj_camera *c = cj_scene_camera(scene);
+        const cj_camera *c = cj_scene_get_camera(scene);
         const double e[3] = {c->eye.x, c->eye.y, c->eye.z};
         if (k == 0) assert_true(fabs(e[0]) < 1e-12 && fabs(e[1]) < 1e-12);
         if (k == 40) assert_true(fabs(e[0] - 4) < 1e-12 && fabs(e[1] - 3) < 1e-12);

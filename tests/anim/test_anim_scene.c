@@ -14,10 +14,10 @@
 static cj_scene *build(void) {
     cj_scene *s = NULL;
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_light l = cj_light_default(CJ_LIGHT_POINT);
+    cj_light l = cj_light_defaults(CJ_LIGHT_POINT);
     int idx;
     assert_int_equal(cj_scene_add_light(s, &l, &idx), CJ_OK);
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     assert_int_equal(cj_scene_add_material(s, &m, &idx), CJ_OK);
     double pts[16 * 3];
     for (int j = 0; j < 4; ++j)
@@ -92,7 +92,7 @@ static void test_pose(void **state) {
     assert_int_equal(cj_anim_pose(s, a, 1.3, &info), CJ_OK);
     assert_true(info.channels == 7 && info.camera && info.control_points);
     cj_node n1 = *cj_scene_node(s, 1), n0 = *cj_scene_node(s, 0);
-    cj_camera c1 = *cj_scene_camera(s);
+    cj_camera c1 = *cj_scene_get_camera(s);
     const double *pts = cj_scene_geometry(s, 0)->u.patches.patches[0].pts;
     double p5[3];
     memcpy(p5, pts + 15, sizeof p5);
@@ -100,7 +100,7 @@ static void test_pose(void **state) {
     assert_int_equal(cj_anim_pose(s, a, 1.3, &info), CJ_OK);
     assert_memory_equal(&n1.local, &cj_scene_node(s, 1)->local, sizeof n1.local);
     assert_memory_equal(&n0.local, &cj_scene_node(s, 0)->local, sizeof n0.local);
-    assert_memory_equal(&c1, cj_scene_camera(s), sizeof c1);
+    assert_memory_equal(&c1, cj_scene_get_camera(s), sizeof c1);
     /* values are the channels' */
     double v[4];
     assert_int_equal(cj_channel_eval(cj_anim_channel(a, 0), 1.3, v), CJ_OK);

@@ -116,14 +116,14 @@ static void test_frames_and_checkpoints(void **state) {
     assert_string_equal(head, "GIF89a");
     printf("--gif wrote an animated GIF89a\n");
     run("a.json --frames 9:9 --no-render --stage-report --quiet", 0, &r);
-    assert_non_null(strstr(r.out, "\"name\": \"spring_forces\", \"ran\": true"));
-    assert_non_null(strstr(r.out, "\"name\": \"particle_pass\", \"ran\": true"));
-    assert_non_null(strstr(r.out, "\"name\": \"flocking\", \"ran\": false"));
+    assert_non_null(strstr(r.out, "\"name\":\"spring_forces\",\"ran\":true"));
+    assert_non_null(strstr(r.out, "\"name\":\"particle_pass\",\"ran\":true"));
+    assert_non_null(strstr(r.out, "\"name\":\"flocking\",\"ran\":false"));
     printf("stage report of frame 9: spring forces and particle pass ran, flocking left out\n");
     cj_cli_result_free(&r);
     /* one renderer for the animation: a line of each frame's tessellation cache hits/misses */
     run("a.json --frames 0:3 -o rep_%04d.png --stage-report --quiet", 0, &r);
-    const char *frames = strstr(r.out, "{\"frames\": [{\"frame\": 0, \"cache_hits\": 0, ");
+    const char *frames = strstr(r.out, "{\"frames\":[{\"frame\":0,\"cache_hits\":0,");
     assert_non_null(frames);
     int rows = 0;
     for (const char *p = frames; (p = strstr(p, "\"cache_misses\"")) != NULL; ++p) ++rows;

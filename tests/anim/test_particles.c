@@ -67,7 +67,7 @@ static void test_ballistic_and_drag(void **state) {
 static void test_lifetimes(void **state) {
     (void)state;
     cj_particles_desc d = base_desc(1000);
-    cj_emitter e = cj_emitter_default();
+    cj_emitter e = cj_emitter_defaults();
     e.rate = 100;
     e.lifetime = 0.505;
     d.emitter_count = 1;
@@ -137,7 +137,7 @@ static void test_bounces(void **state) {
     assert_true(fabs(a5 - 0.25) < 2e-3);
     /* a shower on a sphere: nobody inside after any step */
     cj_particles_desc d = base_desc(2000);
-    cj_emitter e = cj_emitter_default();
+    cj_emitter e = cj_emitter_defaults();
     e.position[2] = 2;
     e.direction[2] = -1;
     e.spread = 0.4;
@@ -220,7 +220,7 @@ static void test_flocking(void **state) {
 
 static cj_particles_desc busy_desc(cj_emitter *e, cj_sphere_collider *s, cj_plane_collider *pl) {
     cj_particles_desc d = base_desc(250);
-    *e = cj_emitter_default();
+    *e = cj_emitter_defaults();
     e->rate = 150;
     e->speed = 3;
     e->speed_jitter = 0.3;
@@ -337,7 +337,7 @@ static void test_patch_collider(void **state) {
     cj_patch_collider *pc = NULL;
     assert_int_equal(cj_patch_collider_create(&patch, 1, &up, 1e-9, 0.2, NULL, &pc), CJ_OK);
     cj_particles_desc d = base_desc(400);
-    cj_emitter e = cj_emitter_default();
+    cj_emitter e = cj_emitter_defaults();
     e.position[0] = e.position[1] = 1;
     e.position[2] = 1.5;
     e.jitter_radius = 0.7;
@@ -393,7 +393,7 @@ static void test_patch_collider(void **state) {
 static void test_bad_input(void **state) {
     (void)state;
     cj_particles_desc d = base_desc(10);
-    cj_emitter e = cj_emitter_default();
+    cj_emitter e = cj_emitter_defaults();
     e.direction[1] = NAN;
     d.emitter_count = 1;
     d.emitters = &e;

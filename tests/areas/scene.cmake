@@ -1,6 +1,7 @@
 # Scenes (issue 8): the scene model, its JSON format, the OBJ/PLY readers. Sources in tests/scene/.
 cj_add_test(test_scene SOURCES scene/test_scene.c LIBS cj::scene)
-cj_add_test(test_scene_json SOURCES scene/test_scene_json.c scene/scene_json_round_trip.c LIBS cj::scene)
+cj_add_test(test_scene_json SOURCES scene/test_scene_json.c scene/scene_json_bad.c
+  scene/scene_json_round_trip.c LIBS cj::scene)
 target_compile_definitions(test_scene_json PRIVATE
   CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt"
   CJ_SCENES_DIR="${PROJECT_SOURCE_DIR}/scenes")

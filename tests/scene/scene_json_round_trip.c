@@ -156,7 +156,7 @@ static void eq_geometry(const char *ctx, const cj_geometry *a, const cj_geometry
 
 /* Equal values everywhere; names where the first scene has them. */
 static void eq_scenes(const char *ctx, const cj_scene *a, const cj_scene *b) {
-    const cj_camera *c = cj_scene_camera(a), *d = cj_scene_camera(b);
+    const cj_camera *c = cj_scene_get_camera(a), *d = cj_scene_get_camera(b);
     EQV(c->eye, d->eye, "eye");
     EQV(c->gaze, d->gaze, "gaze");
     EQV(c->up, d->up, "up");
@@ -164,7 +164,7 @@ static void eq_scenes(const char *ctx, const cj_scene *a, const cj_scene *b) {
     EQ(c->far, d->far, "far");
     EQ(c->projection, d->projection, "projection");
     EQ(c->fov_y, d->fov_y, "fov_y");
-    const cj_scene_settings *s = cj_scene_settings_get(a), *t = cj_scene_settings_get(b);
+    const cj_scene_settings *s = cj_scene_get_settings(a), *t = cj_scene_get_settings(b);
     EQ(s->width, t->width, "width");
     EQ(s->height, t->height, "height");
     EQ(s->spp, t->spp, "spp");
@@ -283,7 +283,7 @@ static void round_trip(const char *ctx, const cj_scene *s) {
     snprintf(p2, sizeof p2, "%s/rt2.json", sj_tmpdir);
     if (cj_scene_save_json(s, p1)) fail_msg("%s: save: %s", ctx, cj_last_error());
     cj_scene *b = NULL;
-    if (cj_scene_load_json_ex(p1, &sj_opts, NULL, &b))
+    if (cj_scene_load_json_with_options(p1, &sj_opts, NULL, &b))
         fail_msg("%s: reload: %s", ctx, cj_last_error());
     eq_scenes(ctx, s, b);
     assert_int_equal(cj_scene_save_json(b, p2), CJ_OK);
@@ -302,7 +302,7 @@ void test_round_trip_shipped(void **state) {
         char path[512];
         snprintf(path, sizeof path, "%s/%s.json", CJ_SCENES_DIR, names[i]);
         cj_scene *s = NULL;
-        assert_int_equal(cj_scene_load_json_ex(path, &sj_opts, NULL, &s), CJ_OK);
+        assert_int_equal(cj_scene_load_json_with_options(path, &sj_opts, NULL, &s), CJ_OK);
         round_trip(names[i], s);
         cj_scene_destroy(s);
     }
@@ -314,24 +314,24 @@ void test_round_trip_shipped(void **state) {
 static cj_scene *everything(void) {
     cj_scene *s;
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.projection = CJ_PROJ_ORTHOGRAPHIC;
     cam.ortho_height = 3.25;
     cam.fov_y = 0.7123456789;
     cam.gaze = cj_v3(0.1, -0.3, -1);
     assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.width = 333, set.height = 222, set.spp = 16, set.tol_px = 0.1, set.seed = 123456789;
     set.background = cj_rgb_make(0.1, 1.0 / 3.0, 2.5);
     assert_int_equal(cj_scene_set_settings(s, &set), CJ_OK);
     for (int k = 0; k <= CJ_LIGHT_AREA; ++k) {
-        cj_light l = cj_light_default((cj_light_kind)k);
+        cj_light l = cj_light_defaults((cj_light_kind)k);
         l.intensity = 0.1 * (k + 1);
         l.spot_angle = 0.3;
         l.casts_shadows = k & 1;
         assert_int_equal(cj_scene_add_light(s, &l, NULL), CJ_OK);
     }
-    cj_texture ti = cj_texture_default(CJ_TEX_IMAGE), tc = cj_texture_default(CJ_TEX_CHECKER);
+    cj_texture ti = cj_texture_defaults(CJ_TEX_IMAGE), tc = cj_texture_defaults(CJ_TEX_CHECKER);
     ti.path = "tex/a b\"c.png";
     ti.filter = CJ_TEX_NEAREST, ti.wrap = CJ_TEX_CLAMP, ti.scale_u = 2, ti.offset_v = 0.25;
     tc.checks_u = 3, tc.checks_v = 5;
@@ -340,7 +340,7 @@ static cj_scene *everything(void) {
     assert_int_equal(cj_scene_add_texture(s, &tc, &t1), CJ_OK);
     /* Texture 0 stays unnamed: the writer's "texture0" for it must not clash with this. */
     assert_int_equal(cj_scene_set_texture_name(s, t1, "texture0"), CJ_OK);
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     int m0, m1;
     assert_int_equal(cj_scene_add_material(s, &m, &m0), CJ_OK);
     m.texture = t1, m.opacity = 0.5, m.mirror = 0.25, m.transmission = 0.125, m.ior = 1.33;

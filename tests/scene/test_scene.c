@@ -68,11 +68,11 @@ static void test_builder_and_copies(void **state) {
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
     assert_int_equal(cj_scene_node_count(s), 0);
     assert_int_equal(cj_scene_check(s), CJ_OK); /* an empty scene is valid */
-    const cj_scene_settings *set = cj_scene_settings_get(s);
+    const cj_scene_settings *set = cj_scene_get_settings(s);
     assert_int_equal(set->width, 640);
     assert_int_equal(set->height, 480);
     assert_true(set->tol_px == 0.25);
-    cj_material md = cj_material_default();
+    cj_material md = cj_material_defaults();
     assert_true(md.alpha == 32 && md.texture == -1 && md.opacity == 1 && md.ior == 1.5);
 
     /* Patches: the points and weights are copied; changing the caller's arrays later does
@@ -126,7 +126,7 @@ static void test_builder_and_copies(void **state) {
     cp[5] = -1;
     assert_true(cj_scene_geometry(s, gi)->u.curve.pts[5] == 1);
     char path[] = "textures/a.png";
-    cj_texture t = cj_texture_default(CJ_TEX_IMAGE);
+    cj_texture t = cj_texture_defaults(CJ_TEX_IMAGE);
     t.path = path;
     int ti;
     assert_int_equal(cj_scene_add_texture(s, &t, &ti), CJ_OK);
@@ -141,7 +141,7 @@ static void test_builder_and_copies(void **state) {
     assert_int_equal(cj_scene_set_texture_pixels(s, ti, 2, 1, px), CJ_ERR_NONFINITE);
     assert_string_equal(cj_last_error(), "textures[0]: texel 0, channel 1 is not finite");
     assert_true(cj_scene_texture(s, ti)->texels[1] == 0.2f); /* unchanged on failure */
-    cj_texture tn = cj_texture_default(CJ_TEX_IMAGE);
+    cj_texture tn = cj_texture_defaults(CJ_TEX_IMAGE);
     tn.path = "b.png";
     tn.width = 2;
     tn.height = 1;
@@ -193,7 +193,7 @@ static void test_hierarchy(void **state) {
     (void)state;
     cj_scene *s;
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_material md = cj_material_default();
+    cj_material md = cj_material_defaults();
     int mat, geo = add_sphere(s, 1);
     assert_int_equal(cj_scene_add_material(s, &md, &mat), CJ_OK);
     /* Group A: translate (1, 2, 3), quarter turn about z (q = (cos 45°, 0, 0, sin 45°)).
@@ -271,10 +271,10 @@ static void test_check_messages(void **state) {
     (void)state;
     cj_scene *s;
     assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_material md = cj_material_default();
+    cj_material md = cj_material_defaults();
     int mat, geo = add_sphere(s, 1), li, grp, ob;
     for (int i = 0; i < 3; ++i) assert_int_equal(cj_scene_add_material(s, &md, &mat), CJ_OK);
-    cj_light l = cj_light_default(CJ_LIGHT_POINT);
+    cj_light l = cj_light_defaults(CJ_LIGHT_POINT);
     assert_int_equal(cj_scene_add_light(s, &l, &li), CJ_OK);
     cj_node n = object_node(-1, -1, -1);
     assert_int_equal(cj_scene_add_node(s, &n, &grp), CJ_OK);
@@ -324,15 +324,15 @@ static void test_check_messages(void **state) {
     assert_int_equal(cj_scene_check(s), CJ_ERR_RANGE);
     assert_string_equal(cj_last_error(), "geometries[0].radius must be > 0");
     gm->u.sphere.radius = 1;
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.near = 0.5;
     assert_int_equal(cj_scene_set_camera(s, &cam), CJ_ERR_RANGE);
     assert_string_equal(cj_last_error(), "camera.near must be < 0");
-    cam = cj_camera_default();
+    cam = cj_camera_defaults();
     cam.up = cam.gaze;
     assert_int_equal(cj_scene_set_camera(s, &cam), CJ_ERR_DEGENERATE);
     assert_string_equal(cj_last_error(), "camera.up must not be parallel to the gaze");
-    cj_scene_settings set = cj_scene_settings_default();
+    cj_scene_settings set = cj_scene_settings_defaults();
     set.tol_px = 0;
     assert_int_equal(cj_scene_set_settings(s, &set), CJ_ERR_RANGE);
     assert_string_equal(cj_last_error(), "settings.tol_px must be > 0");
@@ -370,7 +370,7 @@ static void test_check_messages(void **state) {
     assert_int_equal(cj_scene_add_geometry(s, &g, NULL), CJ_ERR_NONFINITE);
     assert_string_equal(cj_last_error(), "geometries[1].points[1][1] is not finite");
     assert_int_equal(cj_scene_geometry_count(s), 1);
-    cj_texture t = cj_texture_default(CJ_TEX_IMAGE);
+    cj_texture t = cj_texture_defaults(CJ_TEX_IMAGE);
     assert_int_equal(cj_scene_add_texture(s, &t, NULL), CJ_ERR_ARGUMENT);
     assert_string_equal(cj_last_error(),
                         "textures[0].path is missing (an image texture needs a file)");
@@ -384,9 +384,9 @@ static void test_check_messages(void **state) {
 /* Builds a scene with one of everything that allocates; returns the add status. */
 static cj_status build(cj_scene *s) {
     cj_status st;
-    cj_material md = cj_material_default();
-    cj_light l = cj_light_default(CJ_LIGHT_POINT);
-    cj_texture t = cj_texture_default(CJ_TEX_IMAGE);
+    cj_material md = cj_material_defaults();
+    cj_light l = cj_light_defaults(CJ_LIGHT_POINT);
+    cj_texture t = cj_texture_defaults(CJ_TEX_IMAGE);
     t.path = "a.png";
     double pts[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 1}, w[4] = {1, 1, 1, 1};
     cj_patch p = cj_patch_view(1, 1, pts, w);

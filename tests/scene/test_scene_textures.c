@@ -35,7 +35,8 @@ static void test_decode(void **state) {
 static void test_teapot_texture(void **state) {
     (void)state;
     cj_scene *s = NULL;
-    assert_int_equal(cj_scene_load_json_ex(CJ_SCENES_DIR "/teapot.json", &OPTS, NULL, &s), CJ_OK);
+    assert_int_equal(cj_scene_load_json_with_options(CJ_SCENES_DIR "/teapot.json", &OPTS, NULL, &s),
+                     CJ_OK);
     assert_null(cj_scene_texture(s, 0)->texels);
     if (cj_scene_load_textures(s, CJ_SCENES_DIR)) fail_msg("%s", cj_last_error());
     const cj_texture *t = cj_scene_texture(s, 0);

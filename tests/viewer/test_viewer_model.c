@@ -313,13 +313,13 @@ static cj_vscene *one_patch_scene(void) {
     g.u.patches.count = 1;
     g.u.patches.patches = &pa;
     int gi, mi, ni;
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
     assert_int_equal(cj_scene_add_material(s, &m, &mi), CJ_OK);
-    cj_node n = cj_render_node(gi, mi);
+    cj_node n = cj_node_defaults(gi, mi);
     n.local.translate = cj_v3(0.25, 0, 0); /* a non-identity transform */
     assert_int_equal(cj_scene_add_node(s, &n, &ni), CJ_OK);
-    cj_camera cam = cj_camera_default();
+    cj_camera cam = cj_camera_defaults();
     cam.eye = cj_v3(1, -6, 4);
     cam.gaze = cj_v3(-1, 6, -4);
     cam.up = cj_v3(0, 0, 1);
@@ -353,7 +353,7 @@ static void test_scene_drags(void **state) {
     assert_true(cj_vscene_project(vs, 5, W, H, q1));
     const double err = fmax(fabs(q1[0] - (q0[0] + 40)), fabs(q1[1] - (q0[1] - 20)));
     assert_true(err < 1e-6);
-    cj_vec3 now, g = cj_v3_normalize(cj_scene_camera(cj_vscene_scene(vs))->gaze);
+    cj_vec3 now, g = cj_v3_normalize(cj_scene_get_camera(cj_vscene_scene(vs))->gaze);
     assert_int_equal(cj_vscene_point(vs, 5, &now), CJ_OK);
     const double off_plane = fabs(cj_v3_dot(cj_v3_sub(now, before[5]), g));
     assert_true(off_plane < 1e-12);
@@ -374,7 +374,7 @@ static void test_scene_drags(void **state) {
     assert_int_equal(cj_vscene_redo(vs), CJ_OK);
     /* The orbit clamps the elevation at 89 degrees. */
     assert_int_equal(cj_vscene_orbit(vs, 0, 1e6), CJ_OK);
-    const cj_camera *cam = cj_scene_camera(cj_vscene_scene(vs));
+    const cj_camera *cam = cj_scene_get_camera(cj_vscene_scene(vs));
     const double el = asin(-cj_v3_normalize(cam->gaze).z) * 180 / 3.14159265358979323846;
     assert_true(fabs(el - 89.0) < 1e-9);
     assert_int_equal(cj_scene_check(cj_vscene_scene(vs)), CJ_OK);

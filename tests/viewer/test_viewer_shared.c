@@ -35,9 +35,9 @@ static cj_vscene *teapot_scene(void) {
     int gi, mi, ni;
     assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
     cj_patchset_destroy(set);
-    cj_material m = cj_material_default();
+    cj_material m = cj_material_defaults();
     assert_int_equal(cj_scene_add_material(s, &m, &mi), CJ_OK);
-    cj_node n = cj_render_node(gi, mi);
+    cj_node n = cj_node_defaults(gi, mi);
     n.local.translate = cj_v3(0.5, -0.25, 0.125);
     n.local.scale = cj_v3(0.5, 0.5, 0.5);
     assert_int_equal(cj_scene_add_node(s, &n, &ni), CJ_OK);

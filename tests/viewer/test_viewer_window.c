@@ -181,12 +181,12 @@ static void test_3d_drag_and_pixels(void **state) {
     const int W = 320, H = 240;
     cj_scene *s = NULL;
     assert_int_equal(cj_render_demo_scene(CJ_TEAPOT_PATH, NULL, &s), CJ_OK);
-    cj_scene_settings set = *cj_scene_settings_get(s);
+    cj_scene_settings set = *cj_scene_get_settings(s);
     set.width = W, set.height = H, set.spp = 1;
     assert_int_equal(cj_scene_set_settings(s, &set), CJ_OK);
     /* the depth plane the viewer picks against (the same deterministic render) */
     cj_render_image *img = NULL;
-    cj_render_options ro = cj_render_options_default();
+    cj_render_options ro = cj_render_options_defaults();
     assert_int_equal(cj_render_raster(s, &ro, CJ_IMAGE_DEPTH, NULL, &img, NULL), CJ_OK);
     cj_vscene *vs = NULL;
     assert_int_equal(cj_vscene_create(s, &vs), CJ_OK);
@@ -225,7 +225,7 @@ static void test_3d_drag_and_pixels(void **state) {
     snprintf(path, sizeof path, "%s/moved.json", dir);
     cj_scene_json_options jo = {CJ_TEAPOT_PATH};
     cj_scene *m = NULL;
-    assert_int_equal(cj_scene_load_json_ex(path, &jo, NULL, &m), CJ_OK);
+    assert_int_equal(cj_scene_load_json_with_options(path, &jo, NULL, &m), CJ_OK);
     cj_vscene *vm = NULL;
     assert_int_equal(cj_vscene_create(m, &vm), CJ_OK);
     assert_int_equal(cj_vscene_point_count(vm), cj_vscene_point_count(vs));

@@ -252,11 +252,11 @@ cj_status cj_image_write(const char *path, int width, int height, const uint8_t 
 
 cj_status cj_image_write_float(const char *path, int width, int height, const float *rgba,
                                size_t row_stride) {
-    return cj_image_write_float_ex(path, width, height, rgba, row_stride, 0);
+    return cj_image_write_float_with_flags(path, width, height, rgba, row_stride, 0);
 }
 
-cj_status cj_image_write_float_ex(const char *path, int width, int height, const float *rgba,
-                                  size_t row_stride, unsigned flags) {
+cj_status cj_image_write_float_with_flags(const char *path, int width, int height,
+                                          const float *rgba, size_t row_stride, unsigned flags) {
     assert(path && rgba);
     cj_image_pixels px = {width, height, (flags & CJ_IMAGE_FLOAT_HALF) ? 2 : 1, rgba, 0};
     cj_status st = check_size(width, height, row_stride, 4 * sizeof(float), &px.row_stride);

@@ -68,3 +68,31 @@ cj_status cj_scene_load_textures(cj_scene *scene, const char *base_dir) {
     }
     return CJ_OK;
 }
+
+cj_status cj_scene_load_with_textures(const char *path, const cj_scene_json_options *options,
+                                      const cj_allocator *alloc, cj_scene **out) {
+    assert(path && out);
+    const cj_scene_json_options none = {NULL};
+    cj_scene *scene = NULL;
+    cj_status st = cj_scene_load_json_with_options(path, options ? options : &none, alloc, &scene);
+    if (st) return st;
+    /* the file's folder: "" for a bare name, "/" for a file at the root */
+    const char *slash = strrchr(path, '/');
+    const size_t n = slash ? (size_t)(slash - path) : 0;
+    char *dir = malloc(n + 2);
+    if (!dir) {
+        cj_scene_destroy(scene);
+        return cj_fail(CJ_ERR_NOMEM, "%s: out of memory", path);
+    }
+    memcpy(dir, path, n);
+    dir[n] = '\0';
+    if (slash && !n) strcpy(dir, "/");
+    st = cj_scene_load_textures(scene, dir);
+    free(dir);
+    if (st) {
+        cj_scene_destroy(scene);
+        return st;
+    }
+    *out = scene;
+    return CJ_OK;
+}

@@ -69,14 +69,14 @@ static cj_status bpt_scene(const char *path, cj_scene **out) {
         g.u.patches.count = set->count;
         g.u.patches.patches = set->patches;
         int gi, mi, ni, li;
-        cj_material m = cj_material_default();
+        cj_material m = cj_material_defaults();
         m.two_sided = 1;
-        cj_light amb = cj_light_default(CJ_LIGHT_AMBIENT), pt = cj_light_default(CJ_LIGHT_POINT);
+        cj_light amb = cj_light_defaults(CJ_LIGHT_AMBIENT), pt = cj_light_defaults(CJ_LIGHT_POINT);
         amb.intensity = 0.3;
         const cj_vec3 c =
             cj_v3(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]));
         pt.position = cj_v3(c.x + diag, c.y - diag, c.z + diag);
-        cj_camera cam = cj_camera_default();
+        cj_camera cam = cj_camera_defaults();
         cam.eye = cj_v3(c.x + 0.9 * diag, c.y - 1.4 * diag, c.z + 0.8 * diag);
         cam.gaze = cj_v3_sub(c, cam.eye);
         cam.up = cj_v3(0, 0, 1);
@@ -85,7 +85,7 @@ static cj_status bpt_scene(const char *path, cj_scene **out) {
         if (!(st = cj_scene_add_geometry(s, &g, &gi)) &&
             !(st = cj_scene_add_material(s, &m, &mi)) && !(st = cj_scene_add_light(s, &amb, &li)) &&
             !(st = cj_scene_add_light(s, &pt, &li)) && !(st = cj_scene_set_camera(s, &cam))) {
-            cj_node n = cj_render_node(gi, mi);
+            cj_node n = cj_node_defaults(gi, mi);
             n.overlay.flags = CJ_OVERLAY_CONTROL_NET;
             n.overlay.color = cj_rgb_make(0.9, 0.6, 0.1);
             st = cj_scene_add_node(s, &n, &ni);
@@ -98,16 +98,6 @@ static cj_status bpt_scene(const char *path, cj_scene **out) {
     }
     *out = s;
     return CJ_OK;
-}
-
-static const char *dir_of(const char *path, char *buf, size_t size) {
-    const char *slash = strrchr(path, '/');
-    if (!slash) return "";
-    size_t n = (size_t)(slash - path);
-    if (n >= size) n = size - 1;
-    memcpy(buf, path, n);
-    buf[n] = '\0';
-    return n ? buf : "/";
 }
 
 cj_status cj_viewer_load(cj_viewer *v) {
@@ -134,12 +124,7 @@ cj_status cj_viewer_load(cj_viewer *v) {
         if (anim && (st = cj_anim_doc_load(o->path, &v->anim))) return st;
         const char *sp = anim ? v->anim->scene_path : o->path;
         cj_scene_json_options jo = {o->teapot_path};
-        char dir[4096];
-        st = cj_scene_load_json_ex(sp, &jo, NULL, &scene);
-        if (!st && (st = cj_scene_load_textures(scene, dir_of(sp, dir, sizeof dir)))) {
-            cj_scene_destroy(scene);
-            scene = NULL;
-        }
+        st = cj_scene_load_with_textures(sp, &jo, NULL, &scene);
         if (!st && anim) {
             v->anim_frame = v->anim->frame_first;
             v->playing = 0;
@@ -150,7 +135,7 @@ cj_status cj_viewer_load(cj_viewer *v) {
     }
     if (st) return st;
     /* Overrides go into the scene's own settings, so the saved scene renders the same. */
-    cj_scene_settings set = *cj_scene_settings_get(scene);
+    cj_scene_settings set = *cj_scene_get_settings(scene);
     if (o->width) set.width = o->width;
     if (o->height) set.height = o->height;
     if (o->spp) set.spp = o->spp;

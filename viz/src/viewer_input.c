@@ -226,7 +226,7 @@ static void set_all_overlays(cj_viewer *v, unsigned flag) {
 
 static void key_3d(cj_viewer *v, int key) {
     cj_scene *s = cj_vscene_scene(v->vs);
-    cj_scene_settings set = *cj_scene_settings_get(s);
+    cj_scene_settings set = *cj_scene_get_settings(s);
     switch (key) {
     case GLFW_KEY_N:
         set_all_overlays(v, CJ_OVERLAY_CONTROL_NET);

@@ -69,7 +69,7 @@ static void ring(cj_framebuffer *fb, double x, double y, double r, cj_rgba c) {
     double px = x + r, py = y;
     for (int k = 1; k <= 24; ++k) {
         const double a = 6.283185307179586 * k / 24, qx = x + r * cos(a), qy = y + r * sin(a);
-        cj_raster_line_aa(fb, px, py, qx, qy, c);
+        cj_line_draw_aa(fb, px, py, qx, qy, c);
         px = qx, py = qy;
     }
 }
@@ -111,9 +111,8 @@ static void comb(cj_viewer *v, const cj_vcurve *c) {
         const double len = -60.0 * kap[i] / kmax;
         tip[i][0] = pt[i][0] + len * tip[i][0];
         tip[i][1] = pt[i][1] + len * tip[i][1];
-        cj_raster_line_aa(v->screen, pt[i][0], pt[i][1], tip[i][0], tip[i][1], col);
-        if (i)
-            cj_raster_line_aa(v->screen, tip[i - 1][0], tip[i - 1][1], tip[i][0], tip[i][1], col);
+        cj_line_draw_aa(v->screen, pt[i][0], pt[i][1], tip[i][0], tip[i][1], col);
+        if (i) cj_line_draw_aa(v->screen, tip[i - 1][0], tip[i - 1][1], tip[i][0], tip[i][1], col);
     }
 }
 
@@ -180,7 +179,7 @@ static void local_span(cj_viewer *v, const cj_vcurve *c, double u0, double u1) {
         if (cj_bspline_eval(&b, i == 128 ? u1 : u0 + (u1 - u0) * (i / 128.0), p)) return;
         cj_vview_to_px(&v->view, p[0], p[1], q);
         for (int k = -3; i && k <= 3; ++k) /* a band about 7 px wide */
-            cj_raster_line_aa(v->screen, prev[0], prev[1] + k, q[0], q[1] + k, col);
+            cj_line_draw_aa(v->screen, prev[0], prev[1] + k, q[0], q[1] + k, col);
         prev[0] = q[0], prev[1] = q[1];
     }
 }
@@ -255,8 +254,8 @@ static void overlay_queries(cj_viewer *v, panel *p) {
             double q[2];
             cj_vview_to_px(&v->view, v->marks[i].point[0], v->marks[i].point[1], q);
             for (int k = 0; k < 2; ++k) { /* two pixels wide, to stand out over the curves */
-                cj_raster_line_aa(v->screen, q[0] - 6 + k, q[1] - 6, q[0] + 6 + k, q[1] + 6, mk);
-                cj_raster_line_aa(v->screen, q[0] - 6 + k, q[1] + 6, q[0] + 6 + k, q[1] - 6, mk);
+                cj_line_draw_aa(v->screen, q[0] - 6 + k, q[1] - 6, q[0] + 6 + k, q[1] + 6, mk);
+                cj_line_draw_aa(v->screen, q[0] - 6 + k, q[1] + 6, q[0] + 6 + k, q[1] - 6, mk);
             }
             kinds[v->marks[i].kind % 3]++;
         }
@@ -271,10 +270,10 @@ static void overlay_queries(cj_viewer *v, panel *p) {
     double q[2];
     cj_vview_to_px(&v->view, v->snap.point[0], v->snap.point[1], q);
     if (v->drag == VIEW_DRAG_NONE) /* from the cursor to the point it snaps to */
-        cj_raster_line_aa(v->screen, v->cx, v->cy, q[0], q[1], cj_rgba_make(200, 0, 120, 120));
+        cj_line_draw_aa(v->screen, v->cx, v->cy, q[0], q[1], cj_rgba_make(200, 0, 120, 120));
     ring(v->screen, q[0], q[1], 5.0, mk);
-    cj_raster_line_aa(v->screen, q[0] - 8, q[1], q[0] + 8, q[1], mk);
-    cj_raster_line_aa(v->screen, q[0], q[1] - 8, q[0], q[1] + 8, mk);
+    cj_line_draw_aa(v->screen, q[0] - 8, q[1], q[0] + 8, q[1], mk);
+    cj_line_draw_aa(v->screen, q[0], q[1] - 8, q[0], q[1] + 8, mk);
     add(p, "P: snap to curve %ld at u = %.9g: (%.9g, %.9g)", v->snap.curve + 1, v->snap.u,
         v->snap.point[0], v->snap.point[1]);
     add(p, "   distance <= %.6g, >= %.6g (certified); on the curve within %.2g", v->snap.distance,

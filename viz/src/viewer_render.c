@@ -69,8 +69,8 @@ cj_status cj_vscene_snapshot(const cj_scene *src, cj_scene **out) {
     cj_status st = cj_scene_create(NULL, &s);
     if (st) return st;
     int idx;
-    st = cj_scene_set_camera(s, cj_scene_camera(src));
-    if (!st) st = cj_scene_set_settings(s, cj_scene_settings_get(src));
+    st = cj_scene_set_camera(s, cj_scene_get_camera(src));
+    if (!st) st = cj_scene_set_settings(s, cj_scene_get_settings(src));
     for (size_t i = 0; !st && i < cj_scene_light_count(src); ++i)
         st = cj_scene_add_light(s, cj_scene_light(src, (int)i), &idx);
     for (size_t i = 0; !st && i < cj_scene_texture_count(src); ++i) {
@@ -112,8 +112,8 @@ static uint64_t view_key(const cj_scene *s) {
         const unsigned char *b_ = (const unsigned char *)(ptr);                                    \
         for (size_t k_ = 0; k_ < (bytes); ++k_) h = (h ^ b_[k_]) * 1099511628211ull;               \
     } while (0)
-    const cj_camera *cam = cj_scene_camera(s);
-    const cj_scene_settings *set = cj_scene_settings_get(s);
+    const cj_camera *cam = cj_scene_get_camera(s);
+    const cj_scene_settings *set = cj_scene_get_settings(s);
     MIX(&cam->eye, sizeof cam->eye);
     MIX(&cam->gaze, sizeof cam->gaze);
     MIX(&cam->up, sizeof cam->up);
@@ -139,12 +139,12 @@ static uint64_t view_key(const cj_scene *s) {
  * band, while a still view is drawn exactly as `casteljau render` draws it: from a cache whose
  * every entry was made for this very view, else from a fresh one. */
 static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f) {
-    cj_render_options ro = cj_render_options_default();
+    cj_render_options ro = cj_render_options_defaults();
     ro.threads = r->threads;
     ro.progress = on_progress;
     ro.progress_user = r;
     cj_render_image *img = NULL;
-    cj_renderer_options rop = cj_renderer_options_default();
+    cj_renderer_options rop = cj_renderer_options_defaults();
     cj_stage_report rep;
     cj_status st;
     int scale = 1;
@@ -166,7 +166,7 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
         if (job->interactive) {
             /* a drag frame is a preview: 1 sample per pixel and at least 1 px of tessellation
              * tolerance; the still view after the drag has the scene's */
-            const double tol = cj_scene_settings_get(job->scene)->tol_px;
+            const double tol = cj_scene_get_settings(job->scene)->tol_px;
             ro.spp = 1;
             ro.tol_px = tol > VIEW_DRAG_TOL_PX ? tol : VIEW_DRAG_TOL_PX;
         }
@@ -194,8 +194,8 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
     if (st) return st;
     img = r->img;
     f->seconds = cj_clock_seconds() - t0;
-    f->spp = ro.spp ? ro.spp : cj_scene_settings_get(job->scene)->spp;
-    f->tol_px = ro.tol_px > 0 ? ro.tol_px : cj_scene_settings_get(job->scene)->tol_px;
+    f->spp = ro.spp ? ro.spp : cj_scene_get_settings(job->scene)->spp;
+    f->tol_px = ro.tol_px > 0 ? ro.tol_px : cj_scene_get_settings(job->scene)->tol_px;
     /* nearest upscaling of a low-resolution pass; alpha 255 (the window shows opaque pixels) */
     const size_t w = (size_t)r->width, h = (size_t)r->height, iw = (size_t)img->width;
     if (scale == 1) {

@@ -54,7 +54,7 @@ static cj_status collect(cj_vscene *vs) {
         const cj_node *node = cj_scene_node(vs->scene, (int)n);
         cj_status st = cj_scene_node_world(vs->scene, (int)n, &vs->world[n]);
         if (st) return st;
-        if (node->geometry < 0 || !node->visible) continue;
+        if (node->geometry < 0 || !cj_scene_node_shown(vs->scene, (int)n)) continue;
         cj_geometry *g = cj_scene_geometry_mut(vs->scene, node->geometry);
         size_t add = 0;
         if (g->kind == CJ_GEOM_PATCHES)
@@ -89,7 +89,7 @@ static cj_status collect(cj_vscene *vs) {
 }
 
 static cj_status camera_write(cj_vscene *vs) {
-    cj_camera cam = *cj_scene_camera(vs->scene);
+    cj_camera cam = *cj_scene_get_camera(vs->scene);
     const double ce = cos(vs->el), se = sin(vs->el);
     cj_vec3 g =
         cj_v3_add(cj_v3_scale(vs->f0, ce * cos(vs->az)), cj_v3_scale(vs->r0, ce * sin(vs->az)));
@@ -101,7 +101,7 @@ static cj_status camera_write(cj_vscene *vs) {
 }
 
 static void camera_init(cj_vscene *vs) {
-    const cj_camera *cam = cj_scene_camera(vs->scene);
+    const cj_camera *cam = cj_scene_get_camera(vs->scene);
     const cj_vec3 g = cj_v3_normalize(cam->gaze);
     vs->up = cj_v3_normalize(cam->up);
     /* Target: the centre of the control points along the gaze (else 5 units ahead). */
@@ -231,7 +231,7 @@ static int project(const cj_xform3 *clip, cj_vec3 w, int width, int height, doub
 int cj_vscene_project(const cj_vscene *vs, size_t k, int width, int height, double out[3]) {
     cj_xform3 clip;
     cj_vec3 w;
-    if (cj_camera_world_to_clip(cj_scene_camera(vs->scene), (double)width / height, &clip))
+    if (cj_camera_world_to_clip(cj_scene_get_camera(vs->scene), (double)width / height, &clip))
         return 0;
     if (cj_vscene_point(vs, k, &w)) return 0;
     return project(&clip, w, width, height, out);
@@ -240,7 +240,7 @@ int cj_vscene_project(const cj_vscene *vs, size_t k, int width, int height, doub
 int cj_vscene_pick(const cj_vscene *vs, int width, int height, const float *depth, double px,
                    double py, double radius, size_t *k) {
     cj_xform3 clip;
-    if (cj_camera_world_to_clip(cj_scene_camera(vs->scene), (double)width / height, &clip))
+    if (cj_camera_world_to_clip(cj_scene_get_camera(vs->scene), (double)width / height, &clip))
         return 0;
     int found = 0;
     double b[2] = {0, 0};
@@ -364,7 +364,7 @@ cj_status cj_vscene_drag(cj_vscene *vs, size_t k, int width, int height, double 
     /* The start of a drag is remembered so that every move is measured from it (no drift). */
     if (!vs->drag_open || isnan(vs->drag_start.x)) vs->drag_start = p;
     const cj_vec3 p0 = vs->drag_start;
-    const cj_camera *cam = cj_scene_camera(vs->scene);
+    const cj_camera *cam = cj_scene_get_camera(vs->scene);
     cj_vec3 np;
     if (axis < 0) {
         const cj_vec3 n = cj_v3_normalize(cam->gaze);
@@ -423,7 +423,7 @@ cj_status cj_vscene_orbit(cj_vscene *vs, double dx, double dy) {
 }
 
 cj_status cj_vscene_pan(cj_vscene *vs, double dx, double dy, int height) {
-    const cj_camera *cam = cj_scene_camera(vs->scene);
+    const cj_camera *cam = cj_scene_get_camera(vs->scene);
     cj_vec3 u, v, w;
     cj_status st = cj_camera_basis(cam, &u, &v, &w);
     if (st) return st;
@@ -438,7 +438,7 @@ cj_status cj_vscene_pan(cj_vscene *vs, double dx, double dy, int height) {
 cj_status cj_vscene_zoom(cj_vscene *vs, double factor) {
     if (!(factor > 0.0) || !isfinite(factor))
         return cj_fail(CJ_ERR_RANGE, "viewer: zoom factor %g is not positive", factor);
-    cj_camera cam = *cj_scene_camera(vs->scene);
+    cj_camera cam = *cj_scene_get_camera(vs->scene);
     if (cam.projection == CJ_PROJ_ORTHOGRAPHIC) {
         cam.ortho_height *= factor;
         cj_status st = cj_scene_set_camera(vs->scene, &cam);

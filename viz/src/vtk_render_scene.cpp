@@ -29,9 +29,9 @@ cj_status split_scene(const cj_scene *scene, const cj_mesh *mesh, int width, int
     if (st != CJ_OK) return st;
     if (mesh->triangle_count == 0)
         return cj_fail(CJ_ERR_ARGUMENT, "the scene's mesh has no triangles");
-    const cj_scene_settings *set = cj_scene_settings_get(scene);
+    const cj_scene_settings *set = cj_scene_get_settings(scene);
     cj_vtk_view &view = out.view;
-    view.camera = *cj_scene_camera(scene);
+    view.camera = *cj_scene_get_camera(scene);
     view.light_count = cj_scene_light_count(scene);
     for (size_t i = 0; i < view.light_count; i++)
         out.lights.push_back(*cj_scene_light(scene, (int)i));
@@ -46,7 +46,7 @@ cj_status split_scene(const cj_scene *scene, const cj_mesh *mesh, int width, int
     const size_t nodes = cj_scene_node_count(scene);
     for (size_t i = 0; i < nodes; i++) {
         const cj_node *n = cj_scene_node(scene, (int)i);
-        if (n->geometry < 0 || !n->visible) continue;
+        if (n->geometry < 0 || !cj_scene_node_shown(scene, (int)i)) continue;
         if (node_of.size() <= n->id) node_of.resize(n->id + 1, -1);
         node_of[n->id] = (int)i;
     }

@@ -105,7 +105,7 @@ typedef struct cj_render_options {
 } cj_render_options;
 
 /* All zero: the scene decides. */
-cj_render_options cj_render_options_default(void);
+cj_render_options cj_render_options_defaults(void);
 
 /* Renders the scene with the rasterizer into *out, created here with the planes `planes`
  * (CJ_IMAGE_*) at the size the scene/options ask for (free with cj_render_image_destroy): a
@@ -143,17 +143,13 @@ void cj_render_cache_destroy(cj_render_cache *cache);
 cj_status cj_render_scene_mesh(const cj_scene *scene, const cj_render_options *opt,
                                const cj_allocator *alloc, cj_mesh **out);
 
-/* A node with the defaults every builder wants: no parent, identity transform, visible, no
- * overlay (white lines, 1 iso line, normals 0.1 long when switched on). */
-cj_node cj_render_node(int geometry, int material);
-
 /* The built-in demo scene of `casteljau render --demo`: the Utah teapot read from teapot_bpt
  * (data/teapot.bpt), lit by an ambient, a point and a directional light, with a procedural
  * checker and its control net, on a checkered floor; 800 x 600, 4 samples per pixel. The
  * scene is scenes/demo_render.json, embedded in the library at build time and read by
- * cj_scene_parse_json_ex (casteljau/scene_json.h) with teapot_bpt as the teapot's path.
- * Status: those of cj_scene_parse_json_ex (CJ_ERR_IO naming the .bpt file when it cannot be
- * read), CJ_ERR_NOMEM. */
+ * cj_scene_parse_json_with_options (casteljau/scene_json.h) with teapot_bpt as the teapot's path.
+ * Status: those of cj_scene_parse_json_with_options (CJ_ERR_IO naming the .bpt file when it cannot
+ * be read), CJ_ERR_NOMEM. */
 cj_status cj_render_demo_scene(const char *teapot_bpt, const cj_allocator *alloc, cj_scene **out);
 
 #ifdef __cplusplus

@@ -1,10 +1,11 @@
 /* casteljau: the RENDERER, an object that lives across frames (a viewer, an animation, a
  * bench) and draws scenes with either back end: the z-buffered rasterizer (casteljau/render.h)
  * or the ray tracer (casteljau/trace.h). The one-shot calls cj_render_raster, cj_render_trace,
- * cj_render_trace_ex and cj_render_scene_mesh are thin wrappers around a renderer used once.
+ * cj_render_trace_with_options and cj_render_scene_mesh are thin wrappers around a renderer used
+ * once.
  *
  *     cj_renderer *r;
- *     cj_renderer_options o = cj_renderer_options_default();
+ *     cj_renderer_options o = cj_renderer_options_defaults();
  *     o.render.threads = 2;
  *     cj_renderer_create(&o, NULL, &r);
  *     cj_render_image *img = NULL;                  // created by the first draw, then reused
@@ -75,7 +76,7 @@ typedef struct cj_renderer cj_renderer;
 /* The back end of a draw. */
 typedef enum cj_backend {
     CJ_BACKEND_RASTER = 0, /* the rasterizer (cj_render_raster's picture) */
-    CJ_BACKEND_TRACE = 1   /* the ray tracer (cj_render_trace_ex's picture) */
+    CJ_BACKEND_TRACE = 1   /* the ray tracer (cj_render_trace_with_options's picture) */
 } cj_backend;
 
 typedef struct cj_renderer_options {
@@ -85,7 +86,7 @@ typedef struct cj_renderer_options {
 } cj_renderer_options;
 
 /* All zero: the scene decides, one thread per core. */
-cj_renderer_options cj_renderer_options_default(void);
+cj_renderer_options cj_renderer_options_defaults(void);
 
 /* Creates a renderer (no thread is started before the first draw). opt may be NULL (the
  * defaults), alloc may be NULL. CJ_ERR_RANGE for options out of range everywhere (threads < 0,
@@ -100,15 +101,15 @@ void cj_renderer_destroy(cj_renderer *r);
  * depend on). Same CJ_ERR_RANGE checks as cj_renderer_create; on error the old options stay. */
 cj_status cj_renderer_set_options(cj_renderer *r, const cj_renderer_options *opt);
 /* The options in use. */
-const cj_renderer_options *cj_renderer_options_get(const cj_renderer *r);
+const cj_renderer_options *cj_renderer_get_options(const cj_renderer *r);
 
 /* Draws the scene with `backend` into *image with the planes `planes` (CJ_IMAGE_*). *image
  * NULL: a new image is created (free with cj_render_image_destroy). *image an image of the
  * frame's size with exactly those planes: drawn into in place (no allocation); of another
  * size or planes: destroyed and replaced. report may be NULL. Status: as cj_render_raster
- * (CJ_BACKEND_RASTER) or cj_render_trace_ex (CJ_BACKEND_TRACE), including CJ_ERR_CANCELLED
- * from the progress callback. On error a new image is not created; a reused one keeps
- * unspecified pixels but stays valid. */
+ * (CJ_BACKEND_RASTER) or cj_render_trace_with_options (CJ_BACKEND_TRACE), including
+ * CJ_ERR_CANCELLED from the progress callback. On error a new image is not created; a reused one
+ * keeps unspecified pixels but stays valid. */
 cj_status cj_renderer_draw(cj_renderer *r, const cj_scene *scene, cj_backend backend,
                            unsigned planes, cj_render_image **image, cj_stage_report *report);
 

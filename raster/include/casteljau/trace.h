@@ -103,10 +103,10 @@ typedef enum cj_trace_integrator {
 /* cj_render_trace with trace options (NULL: defaults); same status codes, and CJ_ERR_RANGE
  * for a patch_tolerance that is not 0 and not in (0, 1], indirect_samples outside 0..4096 or
  * an integrator that is not a cj_trace_integrator. */
-cj_status cj_render_trace_ex(const cj_scene *scene, const cj_render_options *opt,
-                             const cj_trace_options *topt, unsigned planes,
-                             const cj_allocator *alloc, cj_render_image **out,
-                             cj_stage_report *report);
+cj_status cj_render_trace_with_options(const cj_scene *scene, const cj_render_options *opt,
+                                       const cj_trace_options *topt, unsigned planes,
+                                       const cj_allocator *alloc, cj_render_image **out,
+                                       cj_stage_report *report);
 
 /* Refraction of the unit direction d at a surface with unit normal n facing against d
  * (d·n <= 0), from index n1 into n2 (Snell: n1 sin θ1 = n2 sin θ2): 1 and the unit refracted

@@ -72,7 +72,7 @@ typedef struct cj_emitter {
 } cj_emitter;
 
 cj_emitter
-cj_emitter_default(void); /* at the origin, up +z, spread 0.3, speed 1, rate 10, life 2 */
+cj_emitter_defaults(void); /* at the origin, up +z, spread 0.3, speed 1, rate 10, life 2 */
 
 typedef struct cj_flocking {
     double radius; /* neighbourhood radius, >= 0 */

@@ -82,7 +82,7 @@ typedef struct cj_camera {
 
 /* A camera at (0, 0, 5) looking at the origin, up +y, 45° vertical field of view,
  * f = −0.1, F = −100, perspective. */
-cj_camera cj_camera_default(void);
+cj_camera cj_camera_defaults(void);
 
 /* Validates a camera (finite fields, F < f < 0, non-degenerate basis, fov in (0, pi)). */
 cj_status cj_camera_check(const cj_camera *cam);
@@ -168,7 +168,7 @@ typedef struct cj_light {
 typedef enum cj_light_model { CJ_LIGHT_LEGACY = 0, CJ_LIGHT_RADIOMETRIC } cj_light_model;
 
 /* A white point light of intensity 1 at (5, 5, 5), casting shadows. */
-cj_light cj_light_default(cj_light_kind kind);
+cj_light cj_light_defaults(cj_light_kind kind);
 
 /* ---- textures (seed 10) ------------------------------------------------------------------ */
 
@@ -198,7 +198,7 @@ typedef struct cj_texture {
     cj_rgb checker_a, checker_b;
 } cj_texture;
 
-cj_texture cj_texture_default(cj_texture_kind kind);
+cj_texture cj_texture_defaults(cj_texture_kind kind);
 
 /* ---- materials (seed 8-13) -------------------------------------------------------------- */
 
@@ -240,7 +240,7 @@ typedef struct cj_material {
 
 /* Grey plastic: colour 0.8, specular 1, r_a 0.1, r_d 0.7, r_s 0.3, α 32, Phong shading,
  * one-sided, no texture, opaque, no mirror/transmission, ior 1.5, receives shadows. */
-cj_material cj_material_default(void);
+cj_material cj_material_defaults(void);
 
 /* ---- geometry ---------------------------------------------------------------------------- */
 
@@ -354,6 +354,10 @@ typedef struct cj_node {
     uint32_t id; /* object id (signature image, id buffer): 1 + index among objects */
 } cj_node;
 
+/* A node with the defaults every builder wants: no parent, identity transform, visible, no
+ * overlay (white lines, 1 iso line, normals 0.1 long when switched on). */
+cj_node cj_node_defaults(int geometry, int material);
+
 /* ---- render settings stored with the scene (CLI flags override them) ---------------------- */
 
 /* The ray tracer's pixel reconstruction filter (docs/light.md), separable f(dx) f(dy) over
@@ -383,7 +387,7 @@ typedef struct cj_scene_settings {
     double filter_radius;       /* pixels, >= 0; 0: the filter's default */
 } cj_scene_settings;
 
-cj_scene_settings cj_scene_settings_default(void);
+cj_scene_settings cj_scene_settings_defaults(void);
 
 /* ---- the scene ------------------------------------------------------------------------------ */
 
@@ -393,9 +397,9 @@ cj_status cj_scene_create(const cj_allocator *alloc, cj_scene **out);
 void cj_scene_destroy(cj_scene *scene);
 
 cj_status cj_scene_set_camera(cj_scene *scene, const cj_camera *cam);
-const cj_camera *cj_scene_camera(const cj_scene *scene);
+const cj_camera *cj_scene_get_camera(const cj_scene *scene);
 cj_status cj_scene_set_settings(cj_scene *scene, const cj_scene_settings *s);
-const cj_scene_settings *cj_scene_settings_get(const cj_scene *scene);
+const cj_scene_settings *cj_scene_get_settings(const cj_scene *scene);
 
 cj_status cj_scene_add_light(cj_scene *scene, const cj_light *light, int *index);
 cj_status cj_scene_add_texture(cj_scene *scene, const cj_texture *tex, int *index);
@@ -441,6 +445,15 @@ const char *cj_scene_texture_source(const cj_scene *scene, int index);
 
 /* World transform of node `index` (parents composed). */
 cj_status cj_scene_node_world(const cj_scene *scene, int index, cj_xform3 *out);
+
+/* Whether node `index` is shown: its own `visible` and that of every group above it (a hidden
+ * group hides its whole subtree). The one walk up the parent chain that every renderer, the
+ * viewer and the exports use. 0 for an index that names no node. */
+int cj_scene_node_shown(const cj_scene *scene, int index);
+
+/* cj_scene_node_shown of every node at once, in one pass (parents come before their children):
+ * shown[i] for i < cj_scene_node_count(scene). */
+void cj_scene_nodes_shown(const cj_scene *scene, unsigned char *shown);
 
 /* Validates the whole scene (every field of every part); the message names the part
  * ("materials[2].alpha must be >= 0"). Renderers call it first: the rasterizer and the ray

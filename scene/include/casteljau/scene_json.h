@@ -13,8 +13,8 @@
  * THE DOCUMENT: one object with the keys below, all optional except "objects". Numbers are JSON
  * numbers; vectors are arrays of 3 numbers; colours are LINEAR RGB arrays of 3 numbers
  * (reflectances in [0, 1], radiances >= 0); booleans are true/false; angles are in degrees
- * ("..._deg") or radians ("..._rad"). Every default is the C default (cj_camera_default,
- * cj_light_default, cj_material_default, ...). Paths are relative to the scene file's folder.
+ * ("..._deg") or radians ("..._rad"). Every default is the C default (cj_camera_defaults,
+ * cj_light_defaults, cj_material_defaults, ...). Paths are relative to the scene file's folder.
  *
  * {
  *   "camera": {
@@ -144,18 +144,18 @@ typedef struct cj_scene_json_options {
  * nothing), CJ_ERR_RANGE / CJ_ERR_NONFINITE / CJ_ERR_DEGENERATE (a value out of range),
  * CJ_ERR_IO (a referenced file cannot be read), CJ_ERR_UNSUPPORTED (teapot without a path),
  * CJ_ERR_NOMEM; the message is "name:line: path message". */
-cj_status cj_scene_parse_json_ex(const char *text, const char *name, const char *base_dir,
-                                 const cj_scene_json_options *options, const cj_allocator *alloc,
-                                 cj_scene **out);
-/* cj_scene_parse_json_ex without options. */
+cj_status cj_scene_parse_json_with_options(const char *text, const char *name, const char *base_dir,
+                                           const cj_scene_json_options *options,
+                                           const cj_allocator *alloc, cj_scene **out);
+/* cj_scene_parse_json_with_options without options. */
 cj_status cj_scene_parse_json(const char *text, const char *name, const char *base_dir,
                               const cj_allocator *alloc, cj_scene **out);
 
 /* Reads the file at `path` and parses it with base_dir = the file's folder and name = path.
  * CJ_ERR_IO if the file cannot be read. */
-cj_status cj_scene_load_json_ex(const char *path, const cj_scene_json_options *options,
-                                const cj_allocator *alloc, cj_scene **out);
-/* cj_scene_load_json_ex without options. */
+cj_status cj_scene_load_json_with_options(const char *path, const cj_scene_json_options *options,
+                                          const cj_allocator *alloc, cj_scene **out);
+/* cj_scene_load_json_with_options without options. */
 cj_status cj_scene_load_json(const char *path, const cj_allocator *alloc, cj_scene **out);
 
 /* Writes the scene as JSON that cj_scene_load_json reads back to an equal scene: every

@@ -65,6 +65,12 @@ cj_stage *cj_stage_report_set(cj_stage_report *r, const char *name, int ran, con
 #endif
     ;
 
+/* Sets the figures of the stage `name` (added if new; its decision is left as recorded): the
+ * work in and out with their units ("patches" in, "triangles" out) and the seconds it took.
+ * Returns the stage, or NULL when the report is full. */
+cj_stage *cj_stage_report_figures(cj_stage_report *r, const char *name, const char *unit_in,
+                                  uint64_t in, const char *unit_out, uint64_t out, double seconds);
+
 /* Adds an extra named figure to a stage (ignored beyond CJ_STAGE_EXTRA_MAX). */
 void cj_stage_add_value(cj_stage *s, const char *key, double value);
 

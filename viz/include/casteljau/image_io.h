@@ -69,7 +69,7 @@ cj_status cj_image_write(const char *path, int width, int height, const uint8_t 
 cj_status cj_image_write_float(const char *path, int width, int height, const float *rgba,
                                size_t row_stride);
 
-/* Flags of cj_image_write_float_ex. */
+/* Flags of cj_image_write_float_with_flags. */
 enum {
     CJ_IMAGE_FLOAT_HALF = 1u /* OpenEXR: store half floats (16-bit) instead of 32-bit ones */
 };
@@ -77,8 +77,8 @@ enum {
 /* cj_image_write_float with flags (0: the same). With CJ_IMAGE_FLOAT_HALF an EXR is stored as
  * half floats, and a sample beyond the largest half (65504), which would become infinity, is
  * CJ_ERR_RANGE naming the pixel (nothing is written); other formats ignore the flag. */
-cj_status cj_image_write_float_ex(const char *path, int width, int height, const float *rgba,
-                                  size_t row_stride, unsigned flags);
+cj_status cj_image_write_float_with_flags(const char *path, int width, int height,
+                                          const float *rgba, size_t row_stride, unsigned flags);
 
 /* Checks, before any expensive work, that an image could be written to `path`: the name is not
  * empty or a directory, its extension names a format that can store the pixels (is_float

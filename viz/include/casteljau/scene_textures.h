@@ -10,6 +10,7 @@
 #define CASTELJAU_SCENE_TEXTURES_H
 
 #include "casteljau/scene.h"
+#include "casteljau/scene_json.h"
 #include "casteljau/status.h"
 
 #ifdef __cplusplus
@@ -24,6 +25,13 @@ extern "C" {
  * keep their pixels. Status: CJ_ERR_IO (missing or unreadable image), CJ_ERR_NOMEM, or what
  * cj_scene_set_texture_pixels reports. */
 cj_status cj_scene_load_textures(cj_scene *scene, const char *base_dir);
+
+/* "Load a scene and its textures", written once for the tool and the viewer: reads the scene
+ * file (cj_scene_load_json_with_options; options may be NULL), then its image textures with
+ * cj_scene_load_textures against the file's folder. On failure nothing is kept (*out
+ * untouched) and the status and message are those of the step that failed; CJ_ERR_NOMEM. */
+cj_status cj_scene_load_with_textures(const char *path, const cj_scene_json_options *options,
+                                      const cj_allocator *alloc, cj_scene **out);
 
 /* The sRGB 8-bit code c (0..255) as a linear value in [0, 1]. */
 float cj_srgb8_to_linear(unsigned char c);

@@ -223,23 +223,25 @@ typedef struct cj_vdoc_display {
     int frame;        /* draw its tangent and normal at t (one more plot frames_t entry) */
 } cj_vdoc_display;
 
-/* Writes the document as a plot JSON file (the format of `casteljau plot`): width, height,
- * background, "axes": false, "margin": 0, the view, and one item per curve ("bezier" with
- * weights for rational curves, "catmull-rom", "bspline" written by the formats/ B-spline writer
- * of `casteljau fit` with the plot's drawing options), every number with 17 significant digits so
- * it reads back bit-identical. Atomic: a temporary file beside `path`, flushed, synced and renamed;
- * on failure an existing file is kept. CJ_ERR_IO naming the path, CJ_ERR_NOMEM. Kochanek–Bartels
- * splines have no plot JSON form: CJ_ERR_UNSUPPORTED. */
+/* Writes the document as a plot JSON file (the format of `casteljau plot`) through the format's
+ * one writer (formats/, plot_json_write_page): width, height, background, "axes": false,
+ * "margin": 0, the view, and one item per curve ("bezier" with weights for rational curves,
+ * "catmull-rom", "bspline" with its knots, weights and drawing options), every number in the
+ * shortest form that reads back bit-identical, printed by cJSON. Atomic: a temporary file beside
+ * `path`, flushed, synced and renamed; on failure an existing file is kept. CJ_ERR_IO naming the
+ * path, CJ_ERR_NOMEM. Kochanek–Bartels splines have no plot JSON form: CJ_ERR_UNSUPPORTED. */
 cj_status cj_vdoc_save_json(const cj_vdoc *doc, const cj_vview *v, const cj_vdoc_display *disp,
                             const char *path);
 
 /* Reads a plot JSON file of one plot (no "panels") whose items are "bezier", "catmull-rom" or
- * "bspline" (the latter through the formats/ reader that `casteljau plot` uses)
- * into a new document (empty log), its view (the file's "view", else fitted with a 10 %
- * border; width/height from the file, else 800 × 600) and display state. CJ_ERR_IO (cannot
- * read), CJ_ERR_PARSE (syntax, a missing or ill-typed field, an item kind the editor cannot
- * edit), CJ_ERR_RANGE / CJ_ERR_NONFINITE (values), CJ_ERR_NOMEM; messages name the file and
- * the JSON path. */
+ * (2D) "bspline" through the format's one reader (formats/, plot_json_read_page: the checks and
+ * messages of `casteljau plot`; rational Bézier weights scaled so the largest is in [1, 2),
+ * B-spline weights kept as written) into a new document (empty log), its view (the file's
+ * "view", else fitted with a 10 % border; width/height from the file, else 800 × 600) and
+ * display state. CJ_ERR_IO (cannot read), CJ_ERR_PARSE (syntax, a missing, unknown or ill-typed
+ * field, a value out of range, an item kind the editor cannot edit), CJ_ERR_RANGE /
+ * CJ_ERR_NONFINITE (values the document refuses), CJ_ERR_NOMEM; messages name the file and the
+ * JSON path. */
 cj_status cj_vdoc_load_json(const char *path, cj_vdoc **out, cj_vview *v, cj_vdoc_display *disp);
 
 /* Builds the plot the viewer shows (and `casteljau plot` draws from the saved file). */

@@ -1,0 +1,532 @@
+/* The checked-JSON reading kit (json_read_internal.h), shared by the scene reader
+ * (scene_json*.c) and the animation reader (anim_json*.c): lines of values for messages, checked
+ * accessors. cJSON keeps no positions, so when a message needs a line a scanner walks the raw
+ * text once (cJSON accepted it, so it is valid JSON) and records the line of every value in
+ * document order; a node's position in a pre-order walk of the cJSON tree is its index in that
+ * list, and a table sorted by node address finds it. The success path pays nothing. */
+#include "json_read_internal.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double DEG = 3.14159265358979323846 / 180.0;
+
+/* ---- lines ---------------------------------------------------------------------------------- */
+
+typedef struct scanner {
+    const char *s;
+    int line;
+    int *vals; /* pairs (line, key_line) in document order */
+    size_t n, cap;
+    int ok;
+} scanner;
+
+static void skip_ws(scanner *sc) {
+    while (*sc->s && (unsigned char)*sc->s <= 32) {
+        if (*sc->s == '\n') sc->line++;
+        sc->s++;
+    }
+}
+
+static void skip_string(scanner *sc) {
+    sc->s++; /* opening quote */
+    while (*sc->s && *sc->s != '"') {
+        if (*sc->s == '\\' && sc->s[1]) sc->s++;
+        if (*sc->s == '\n') sc->line++;
+        sc->s++;
+    }
+    if (*sc->s) sc->s++;
+}
+
+static void record(scanner *sc, int line, int key_line) {
+    if (sc->n + 2 > sc->cap) {
+        size_t nc = sc->cap ? 2 * sc->cap : 256;
+        int *d = realloc(sc->vals, nc * sizeof *d);
+        if (!d) {
+            sc->ok = 0;
+            return;
+        }
+        sc->vals = d;
+        sc->cap = nc;
+    }
+    sc->vals[sc->n++] = line;
+    sc->vals[sc->n++] = key_line;
+}
+
+/* The text is valid JSON (cJSON parsed it), so the scanner only has to find token starts. */
+static void scan_value(scanner *sc, int key_line, int depth) {
+    skip_ws(sc);
+    record(sc, sc->line, key_line ? key_line : sc->line);
+    char ch = *sc->s;
+    if (ch == '{' || ch == '[') {
+        const char close = ch == '{' ? '}' : ']';
+        sc->s++;
+        skip_ws(sc);
+        if (*sc->s == close) {
+            sc->s++;
+            return;
+        }
+        while (*sc->s && sc->ok && depth < 4096) {
+            skip_ws(sc);
+            int kl = 0;
+            if (close == '}') {
+                kl = sc->line;
+                skip_string(sc);
+                skip_ws(sc);
+                if (*sc->s == ':') sc->s++;
+            }
+            scan_value(sc, kl, depth + 1);
+            skip_ws(sc);
+            if (*sc->s == ',') {
+                sc->s++;
+                continue;
+            }
+            if (*sc->s == close) sc->s++;
+            return;
+        }
+    } else if (ch == '"') {
+        skip_string(sc);
+    } else {
+        while (*sc->s && *sc->s != ',' && *sc->s != ']' && *sc->s != '}' &&
+               (unsigned char)*sc->s > 32)
+            sc->s++;
+    }
+}
+
+/* The sorted table: every node of the tree with its (line, key line), ordered by address, so a
+ * lookup is a binary search (a reader that asks for many lines, such as the animation reader's
+ * one line per channel, stays linear overall). */
+typedef struct node_entry {
+    const cJSON *node;
+    int line, key_line;
+} node_entry;
+
+static void pair_nodes(const cJSON *n, const int *vals, size_t nvals, node_entry *t, size_t *k) {
+    for (; n; n = n->next) {
+        t[*k].node = n;
+        t[*k].line = *k < nvals ? vals[2 * *k] : 0;
+        t[*k].key_line = *k < nvals ? vals[2 * *k + 1] : 0;
+        ++*k;
+        if (n->child) pair_nodes(n->child, vals, nvals, t, k);
+    }
+}
+
+static size_t count_nodes(const cJSON *n) {
+    size_t k = 0;
+    for (; n; n = n->next) k += 1 + (n->child ? count_nodes(n->child) : 0);
+    return k;
+}
+
+static int by_node(const void *a, const void *b) {
+    const uintptr_t x = (uintptr_t)((const node_entry *)a)->node,
+                    y = (uintptr_t)((const node_entry *)b)->node;
+    return x < y ? -1 : x > y;
+}
+
+static void build_table(cj_json_lines *l) {
+    scanner sc = {l->text, 1, NULL, 0, 0, 1};
+    if ((unsigned char)sc.s[0] == 0xEF && (unsigned char)sc.s[1] == 0xBB &&
+        (unsigned char)sc.s[2] == 0xBF)
+        sc.s += 3;
+    scan_value(&sc, 0, 0);
+    const size_t n = count_nodes(l->root);
+    node_entry *t = sc.ok ? malloc((n ? n : 1) * sizeof *t) : NULL;
+    if (t) {
+        size_t k = 0;
+        pair_nodes(l->root, sc.vals, sc.n / 2, t, &k);
+        qsort(t, n, sizeof *t, by_node);
+    }
+    free(sc.vals);
+    l->table = t;
+    l->n = t ? n : 0;
+    l->scanned = t ? 1 : -1;
+}
+
+/* The entry of node, scanning the text on the first request; NULL if unknown. */
+static const node_entry *node_lines(const cj_json_doc *c, const cJSON *node) {
+    cj_json_lines *l = c->lines;
+    if (!l || !node || !l->text || !l->root) return NULL;
+    if (!l->scanned) build_table(l);
+    const node_entry *t = l->table;
+    size_t lo = 0, hi = l->n;
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if ((uintptr_t)t[mid].node < (uintptr_t)node)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < l->n && t[lo].node == node ? &t[lo] : NULL;
+}
+
+int cj_json_line(const cj_json_doc *c, const cJSON *node) {
+    const node_entry *e = node_lines(c, node);
+    return e ? e->line : 0;
+}
+
+int cj_json_key_line(const cj_json_doc *c, const cJSON *node) {
+    const node_entry *e = node_lines(c, node);
+    return e ? e->key_line : 0;
+}
+
+void cj_json_doc_init(cj_json_doc *d, cj_json_lines *lines, const char *name, const char *text,
+                      const cJSON *root) {
+    memset(lines, 0, sizeof *lines);
+    lines->text = text;
+    lines->root = root;
+    d->name = name;
+    d->lines = lines;
+}
+
+void cj_json_doc_free(cj_json_doc *d) {
+    if (!d->lines) return;
+    free(d->lines->table);
+    d->lines->table = NULL;
+    d->lines->n = 0;
+    d->lines->scanned = 0;
+}
+
+/* ---- messages ------------------------------------------------------------------------------- */
+
+cj_status cj_json_fail(const cj_json_doc *c, const cJSON *node, int at_key, cj_status st,
+                       const char *fmt, ...) {
+    char msg[768];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    int line = at_key ? cj_json_key_line(c, node) : cj_json_line(c, node);
+    return cj_fail(st, "%s:%d: %s", c->name, line, msg);
+}
+
+cj_status cj_json_relabel(const cj_json_doc *c, const cJSON *node, cj_status st) {
+    char msg[768];
+    snprintf(msg, sizeof msg, "%s", cj_last_error());
+    return cj_fail(st, "%s:%d: %s", c->name, cj_json_line(c, node), msg);
+}
+
+void cj_json_join(char *dst, const char *path, const char *key) {
+    if (path[0])
+        snprintf(dst, CJ_JSON_PATH, "%s.%s", path, key);
+    else
+        snprintf(dst, CJ_JSON_PATH, "%s", key);
+}
+
+void cj_json_index(char *dst, const char *path, size_t i) {
+    snprintf(dst, CJ_JSON_PATH, "%s[%zu]", path, i);
+}
+
+/* ---- checked accessors ---------------------------------------------------------------------- */
+
+const char *cj_json_type_name(const cJSON *n) {
+    if (cJSON_IsObject(n)) return "an object";
+    if (cJSON_IsArray(n)) return "an array";
+    if (cJSON_IsString(n)) return "a string";
+    if (cJSON_IsNumber(n)) return "a number";
+    if (cJSON_IsBool(n)) return "a boolean";
+    return "null";
+}
+
+cj_status cj_json_object(const cj_json_doc *c, const cJSON *obj, const char *path,
+                         const char *const *allowed) {
+    if (!cJSON_IsObject(obj))
+        return cj_json_fail(c, obj, 0, CJ_ERR_PARSE, "%s must be an object, not %s",
+                            path[0] ? path : "document", cj_json_type_name(obj));
+    for (const cJSON *m = obj->child; m; m = m->next) {
+        int known = 0;
+        for (const char *const *a = allowed; *a && !known; ++a) known = !strcmp(*a, m->string);
+        if (!known) {
+            char list[512] = "";
+            size_t len = 0;
+            for (const char *const *a = allowed; *a; ++a) {
+                int w =
+                    snprintf(list + len, sizeof list - len, "%s%s", a == allowed ? "" : ", ", *a);
+                if (w < 0 || (size_t)w >= sizeof list - len) break;
+                len += (size_t)w;
+            }
+            char p[CJ_JSON_PATH];
+            cj_json_join(p, path, m->string);
+            return cj_json_fail(c, m, 1, CJ_ERR_PARSE,
+                                "%s is not a known key (expected one of: %s)", p, list);
+        }
+        for (const cJSON *o = obj->child; o != m; o = o->next)
+            if (!strcmp(o->string, m->string)) {
+                char p[CJ_JSON_PATH];
+                cj_json_join(p, path, m->string);
+                return cj_json_fail(c, m, 1, CJ_ERR_PARSE, "%s is given twice (line %d)", p,
+                                    cj_json_key_line(c, o));
+            }
+    }
+    return CJ_OK;
+}
+
+cj_status cj_json_require(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
+                          const cJSON **out) {
+    const cJSON *m = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!m)
+        return cj_json_fail(c, obj, 0, CJ_ERR_PARSE, "%s: missing key \"%s\"",
+                            path[0] ? path : "document", key);
+    *out = m;
+    return CJ_OK;
+}
+
+static cj_status check_range(const cj_json_doc *c, const cJSON *n, const char *p, cj_json_range r,
+                             double lo, double hi, double v) {
+    int ok = 1;
+    char what[64] = "";
+    switch (r) {
+    case CJ_JSON_ANY:
+        break;
+    case CJ_JSON_GE:
+        ok = v >= lo;
+        snprintf(what, sizeof what, ">= %g", lo);
+        break;
+    case CJ_JSON_GT:
+        ok = v > lo;
+        snprintf(what, sizeof what, "> %g", lo);
+        break;
+    case CJ_JSON_LT:
+        ok = v < hi;
+        snprintf(what, sizeof what, "< %g", hi);
+        break;
+    case CJ_JSON_IN:
+        ok = v >= lo && v <= hi;
+        snprintf(what, sizeof what, "in [%g, %g]", lo, hi);
+        break;
+    case CJ_JSON_OPEN:
+        ok = v > lo && v < hi;
+        snprintf(what, sizeof what, "in (%g, %g)", lo, hi);
+        break;
+    }
+    if (!ok) return cj_json_fail(c, n, 0, CJ_ERR_RANGE, "%s must be %s", p, what);
+    return CJ_OK;
+}
+
+static cj_status number_node(const cj_json_doc *c, const cJSON *n, const char *p, double *v) {
+    if (!cJSON_IsNumber(n))
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be a number, not %s", p,
+                            cj_json_type_name(n));
+    if (!isfinite(n->valuedouble))
+        return cj_json_fail(c, n, 0, CJ_ERR_NONFINITE, "%s is not finite", p);
+    *v = n->valuedouble;
+    return CJ_OK;
+}
+
+cj_status cj_json_num(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
+                      cj_json_range r, double lo, double hi, double *out) {
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!n) return CJ_OK;
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, key);
+    double v;
+    cj_status st = number_node(c, n, p, &v);
+    if (!st) st = check_range(c, n, p, r, lo, hi, v);
+    if (!st) *out = v;
+    return st;
+}
+
+cj_status cj_json_int(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
+                      double lo, double hi, int *out) {
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!n) return CJ_OK;
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, key);
+    double v;
+    cj_status st = number_node(c, n, p, &v);
+    if (st) return st;
+    if (v != floor(v)) return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be an integer", p);
+    st = check_range(c, n, p, CJ_JSON_IN, lo, hi, v);
+    if (!st) *out = (int)v;
+    return st;
+}
+
+cj_status cj_json_bool(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
+                       int *out) {
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!n) return CJ_OK;
+    if (!cJSON_IsBool(n)) {
+        char p[CJ_JSON_PATH];
+        cj_json_join(p, path, key);
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be true or false, not %s", p,
+                            cj_json_type_name(n));
+    }
+    *out = cJSON_IsTrue(n) ? 1 : 0;
+    return CJ_OK;
+}
+
+/* A fixed-length array of numbers at node n. */
+static cj_status fixed_array(const cj_json_doc *c, const cJSON *n, const char *p, int len,
+                             double *v, const char *what) {
+    if (!cJSON_IsArray(n) || cJSON_GetArraySize(n) != len)
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be %s", p, what);
+    int k = 0;
+    for (const cJSON *e = n->child; e; e = e->next, ++k) {
+        char pe[CJ_JSON_PATH];
+        cj_json_index(pe, p, (size_t)k);
+        cj_status st = number_node(c, e, pe, &v[k]);
+        if (st) return st;
+    }
+    return CJ_OK;
+}
+
+cj_status cj_json_vec3(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
+                       cj_vec3 *out) {
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!n) return CJ_OK;
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, key);
+    double v[3];
+    cj_status st = fixed_array(c, n, p, 3, v, "an array of 3 numbers");
+    if (!st) *out = cj_v3(v[0], v[1], v[2]);
+    return st;
+}
+
+cj_status cj_json_rgb(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
+                      double max, cj_rgb *out) {
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!n) return CJ_OK;
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, key);
+    double v[3];
+    cj_status st = fixed_array(c, n, p, 3, v, "an array of 3 numbers (linear RGB)");
+    if (st) return st;
+    const cJSON *e = n->child;
+    for (int k = 0; k < 3; ++k, e = e->next) {
+        char pe[CJ_JSON_PATH];
+        cj_json_index(pe, p, (size_t)k);
+        st = max >= 0 ? check_range(c, e, pe, CJ_JSON_IN, 0, max, v[k])
+                      : check_range(c, e, pe, CJ_JSON_GE, 0, 0, v[k]);
+        if (st) return st;
+    }
+    *out = cj_rgb_make(v[0], v[1], v[2]);
+    return CJ_OK;
+}
+
+cj_status cj_json_string(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
+                         const char **out) {
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!n) return CJ_OK;
+    if (!cJSON_IsString(n)) {
+        char p[CJ_JSON_PATH];
+        cj_json_join(p, path, key);
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be a string, not %s", p,
+                            cj_json_type_name(n));
+    }
+    *out = n->valuestring;
+    return CJ_OK;
+}
+
+cj_status cj_json_enum(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
+                       const char *const *names, int *out) {
+    const char *s = NULL;
+    cj_status st = cj_json_string(c, obj, path, key, &s);
+    if (st || !s) return st;
+    for (int i = 0; names[i]; ++i)
+        if (!strcmp(names[i], s)) {
+            *out = i;
+            return CJ_OK;
+        }
+    char list[256] = "";
+    size_t len = 0;
+    for (int i = 0; names[i]; ++i) {
+        int w = snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", names[i]);
+        if (w < 0 || (size_t)w >= sizeof list - len) break;
+        len += (size_t)w;
+    }
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, key);
+    return cj_json_fail(c, cJSON_GetObjectItemCaseSensitive(obj, key), 0, CJ_ERR_PARSE,
+                        "%s \"%s\" is not one of %s", p, s, list);
+}
+
+cj_status cj_json_numbers(const cj_json_doc *c, const cJSON *arr, const char *path, int dim,
+                          cj_json_range r, double lo, size_t want, double **out, size_t *count) {
+    if (!cJSON_IsArray(arr))
+        return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must be an array, not %s", path,
+                            cj_json_type_name(arr));
+    size_t n = (size_t)cJSON_GetArraySize(arr);
+    if (n == 0) return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must not be empty", path);
+    if (want && n != want)
+        return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must have %zu entries, not %zu", path,
+                            want, n);
+    size_t per = dim > 0 ? (size_t)dim : 1;
+    double *v = malloc(n * per * sizeof *v);
+    if (!v) return cj_fail(CJ_ERR_NOMEM, "%s: out of memory reading %s", c->name, path);
+    size_t i = 0;
+    for (const cJSON *e = arr->child; e; e = e->next, ++i) {
+        /* Fast path for well-formed entries (big inline meshes); messages are only built on
+         * the slow path below, which finds and names the fault. */
+        if (dim > 0 && cJSON_IsArray(e)) {
+            int k = 0;
+            const cJSON *x = e->child;
+            for (; x && k < dim && cJSON_IsNumber(x) && isfinite(x->valuedouble); x = x->next)
+                v[i * per + (size_t)k++] = x->valuedouble;
+            if (k == dim && !x) continue;
+        } else if (dim <= 0 && cJSON_IsNumber(e) && isfinite(e->valuedouble) &&
+                   (r == CJ_JSON_ANY || (r == CJ_JSON_GE && e->valuedouble >= lo) ||
+                    (r == CJ_JSON_GT && e->valuedouble > lo))) {
+            v[i] = e->valuedouble;
+            continue;
+        }
+        char pe[CJ_JSON_PATH];
+        cj_json_index(pe, path, i);
+        cj_status st;
+        if (dim > 0) {
+            char what[48];
+            snprintf(what, sizeof what, "an array of %d numbers", dim);
+            st = fixed_array(c, e, pe, dim, v + i * per, what);
+        } else {
+            st = number_node(c, e, pe, v + i);
+            if (!st) st = check_range(c, e, pe, r, lo, 0, v[i]);
+        }
+        if (st) {
+            free(v);
+            return st;
+        }
+    }
+    *out = v;
+    *count = n;
+    return CJ_OK;
+}
+
+/* An angle given as key_deg or key_rad (not both), converted to radians. */
+cj_status cj_json_angle(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
+                        cj_json_range r, double lo_rad, double hi_rad, double *out) {
+    char kd[64], kr[64];
+    snprintf(kd, sizeof kd, "%s_deg", key);
+    snprintf(kr, sizeof kr, "%s_rad", key);
+    const cJSON *nd = cJSON_GetObjectItemCaseSensitive(obj, kd);
+    const cJSON *nr = cJSON_GetObjectItemCaseSensitive(obj, kr);
+    if (nd && nr)
+        return cj_json_fail(c, nr, 1, CJ_ERR_PARSE, "%s: give either \"%s\" or \"%s\", not both",
+                            path, kd, kr);
+    if (nd) {
+        double v = *out / DEG;
+        CJ_JSON_TRY(cj_json_num(c, obj, path, kd, r, lo_rad / DEG, hi_rad / DEG, &v));
+        *out = v * DEG;
+    } else if (nr) {
+        CJ_JSON_TRY(cj_json_num(c, obj, path, kr, r, lo_rad, hi_rad, out));
+    }
+    return CJ_OK;
+}
+
+cj_status cj_json_list(const cj_json_doc *c, const cJSON *arr, const char *p) {
+    if (!cJSON_IsArray(arr)) return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must be an array", p);
+    return CJ_OK;
+}
+
+cj_status cj_json_resolve(const cj_json_doc *c, const char *base_dir, const cJSON *node,
+                          const char *path, const char *rel, char *dst, size_t cap) {
+    int w;
+    if (rel[0] == '/' || !base_dir || !base_dir[0])
+        w = snprintf(dst, cap, "%s", rel);
+    else
+        w = snprintf(dst, cap, "%s/%s", base_dir, rel);
+    if (w < 0 || (size_t)w >= cap)
+        return cj_json_fail(c, node, 0, CJ_ERR_RANGE, "%s: path too long", path);
+    return CJ_OK;
+}
