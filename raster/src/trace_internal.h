@@ -23,7 +23,12 @@ typedef struct tr_object {
     double *own_pts, *own_w;
     cj_bvh *bvh;    /* patches or mesh triangles */
     int bvh_cached; /* bvh belongs to the renderer's BVH cache, not to this object */
-    cj_aabb wbox;
+    cj_aabb wbox;   /* over the whole shutter for a moving object */
+    /* motion blur: the object's transforms at `poses` evenly spaced shutter times, every
+     * `stride`-th entry of the renderer's motion array from `motion`; NULL when static */
+    const cj_xform3 *motion;
+    size_t stride;
+    int poses;
 } tr_object;
 
 /* Per-thread counters of ray kinds. */
@@ -62,12 +67,21 @@ void tr_bvh_cache_sweep(tr_bvh_cache *c);
 /* The traced scene of the frame's scene pass (render_scene.h: drawn nodes, world transforms).
  * cache may be NULL; *reused / *built count the object BVHs taken from it / built. */
 struct cj_rscene;
-cj_status tr_scene_build(const struct cj_rscene *rs, tr_bvh_cache *cache, const cj_allocator *alloc,
-                         tr_scene *out, size_t *reused, size_t *built);
+/* motion (may be NULL): poses × node_count world transforms (cj_renderer_set_motion), node_count
+ * equal to the scene's; *moving counts the objects that move over the shutter. */
+typedef struct tr_motion {
+    const cj_xform3 *world;
+    int poses;
+    size_t node_count;
+} tr_motion;
+cj_status tr_scene_build(const struct cj_rscene *rs, tr_bvh_cache *cache, const tr_motion *motion,
+                         const cj_allocator *alloc, tr_scene *out, size_t *reused, size_t *built,
+                         size_t *moving);
 void tr_scene_free(tr_scene *s);
 
-/* Closest hit (hit->obj = object index) / any hit in [tmin, tmax]. */
-int tr_closest(const tr_scene *s, const cj_ray *ray, cj_hit *hit, tr_counts *c);
-int tr_any(const tr_scene *s, const cj_ray *ray, tr_counts *c);
+/* Closest hit (hit->obj = object index) / any hit in [tmin, tmax], with moving objects placed
+ * at shutter time `time` in [0, 1] (ignored by static ones). */
+int tr_closest(const tr_scene *s, const cj_ray *ray, double time, cj_hit *hit, tr_counts *c);
+int tr_any(const tr_scene *s, const cj_ray *ray, double time, tr_counts *c);
 
 #endif

@@ -65,7 +65,7 @@ int cj_trace_refract(cj_vec3 d, cj_vec3 n, double n1, double n2, cj_vec3 *t) {
 
 int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit) {
     double t0 = now();
-    int got = tr_closest(sh->s, ray, hit, sh->c);
+    int got = tr_closest(sh->s, ray, sh->time, hit, sh->c);
     sh->c->seconds[kind] += now() - t0;
     sh->c->cast[kind]++;
     if (got) sh->c->hit[kind]++;
@@ -74,7 +74,7 @@ int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit) {
 
 int tr_occluded(tr_shade *sh, const cj_ray *ray) {
     double t0 = now();
-    int got = tr_any(sh->s, ray, sh->c);
+    int got = tr_any(sh->s, ray, sh->time, sh->c);
     sh->c->seconds[TR_SHADOW] += now() - t0;
     sh->c->cast[TR_SHADOW]++;
     if (got) sh->c->hit[TR_SHADOW]++;

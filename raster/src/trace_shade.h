@@ -44,6 +44,7 @@ typedef struct tr_shade {
     uint32_t sample, perm; /* the pixel sample; a random offset of the light strata */
     uint64_t perm_key;     /* chooses the pixel's permutation of the light strata */
     tr_rng rng;
+    double time; /* the camera sample's shutter time in [0, 1) (motion blur), else 0.5 */
 } tr_shade;
 
 int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit);

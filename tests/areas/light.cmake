@@ -31,3 +31,7 @@ endif()
 if(TARGET cj::raster)
   cj_add_test(test_light_filter SOURCES test_light_filter.c LIBS cj::raster cj::scene)
 endif()
+# Motion blur: a square sliding under a box shutter against the exact ramp of coverage.
+if(TARGET cj::raster)
+  cj_add_test(test_light_motion SOURCES test_light_motion.c LIBS cj::raster cj::scene)
+endif()
