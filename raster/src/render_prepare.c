@@ -68,6 +68,25 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
             r->spot_exp = (float)L->spot_exponent;
         }
         r->falloff = radiometric && (L->kind == CJ_LIGHT_POINT || L->kind == CJ_LIGHT_SPOT);
+        if (L->kind == CJ_LIGHT_DISC || L->kind == CJ_LIGHT_SPHERE) {
+            /* the far-field point at the centre (scene.h): legacy, a point of strength I;
+             * radiometric, an intensity π R² L_e, times cos θ′ for a disc (a spot of exponent 1
+             * over the half space its normal points to) */
+            r->falloff = radiometric;
+            if (radiometric) {
+                const float proj = (float)(3.14159265358979323846 * L->radius * L->radius);
+                for (int k = 0; k < 3; ++k) r->I[k] *= proj;
+            }
+            if (radiometric && L->kind == CJ_LIGHT_DISC) {
+                cj_vec3 a = cj_v3_normalize(L->direction);
+                r->spot = 1;
+                r->axis[0] = (float)a.x;
+                r->axis[1] = (float)a.y;
+                r->axis[2] = (float)a.z;
+                r->cos_cut = 0.0f;
+                r->spot_exp = 1.0f;
+            }
+        }
     }
     f->lit = c->nlights > 0;
 }

@@ -62,30 +62,19 @@ static double power_heuristic(double a, double b) {
     return a * a / (a * a + b * b);
 }
 
-/* The first area light the ray meets before t_max: its index, distance and the cosine at the
- * light; −1 when none (lights emit on the side edge_u × edge_v points to). */
-static int hit_area_light(const tr_lights *L, const cj_ray *ray, double t_max, double *t_out,
-                          double *cos_l) {
+/* The first emitter (area, disc or sphere light) the ray meets before t_max: its index, distance
+ * and the solid-angle pdf with which next-event estimation draws that direction; −1 when none. */
+static int hit_emitter(const tr_lights *L, const cj_ray *ray, double t_max, double *t_out,
+                       double *light_pdf) {
     int best = -1;
     for (int i = 0; i < L->count; ++i) {
         const cj_light *lt = L->light[i];
-        if (lt->kind != CJ_LIGHT_AREA) continue;
-        cj_vec3 nl = cj_v3_cross(lt->edge_u, lt->edge_v);
-        double dn = cj_v3_dot(ray->dir, nl);
-        if (!(dn < 0.0)) continue; /* the back of the emitter, or edge-on */
-        double t = cj_v3_dot(cj_v3_sub(lt->position, ray->org), nl) / dn;
-        if (!(t > ray->tmin) || !(t < t_max)) continue;
-        cj_vec3 q = cj_v3_sub(cj_v3_add(ray->org, cj_v3_scale(ray->dir, t)), lt->position);
-        /* coordinates of q in (edge_u, edge_v) by the dual basis */
-        double uu = cj_v3_dot(lt->edge_u, lt->edge_u), uv = cj_v3_dot(lt->edge_u, lt->edge_v),
-               vv = cj_v3_dot(lt->edge_v, lt->edge_v), qu = cj_v3_dot(q, lt->edge_u),
-               qv = cj_v3_dot(q, lt->edge_v), det = uu * vv - uv * uv;
-        double s = (qu * vv - qv * uv) / det, r = (qv * uu - qu * uv) / det;
-        if (s < 0.0 || s > 1.0 || r < 0.0 || r > 1.0) continue;
+        double t, pdf;
+        if (!tr_is_emitter(lt) || !tr_emitter_hit(lt, ray, t_max, &t, &pdf)) continue;
         t_max = t;
         best = i;
         *t_out = t;
-        *cos_l = -dn / (cj_v3_norm(nl) * cj_v3_norm(ray->dir));
+        *light_pdf = pdf;
     }
     return best;
 }
@@ -103,10 +92,12 @@ static cj_rgb next_event(tr_shade *sh, const cj_hit *h, const pt_frame *fr, cons
         cj_vec3 target = lt->position;
         if (lt->kind == CJ_LIGHT_DIRECTIONAL) {
             dir = cj_v3_normalize(cj_v3_scale(lt->direction, -1.0));
+        } else if (tr_is_emitter(lt)) { /* one sample (trace_lights.c), L_e E per unit */
+            const double u1 = tr_rand(&sh->rng), u2 = tr_rand(&sh->rng);
+            if (!tr_emitter_sample(lt, h->p, u1, u2, 0, &target, &E, &light_pdf)) continue;
+            dir = cj_v3_normalize(cj_v3_sub(target, h->p));
+            tmax = 1.0;
         } else {
-            if (lt->kind == CJ_LIGHT_AREA)
-                target = cj_v3_add(target, cj_v3_add(cj_v3_scale(lt->edge_u, tr_rand(&sh->rng)),
-                                                     cj_v3_scale(lt->edge_v, tr_rand(&sh->rng))));
             cj_vec3 to = cj_v3_sub(target, h->p);
             double r2 = cj_v3_dot(to, to);
             if (!(r2 > 0.0)) continue;
@@ -115,12 +106,6 @@ static cj_rgb next_event(tr_shade *sh, const cj_hit *h, const pt_frame *fr, cons
             if (lt->kind == CJ_LIGHT_SPOT) {
                 double ct = -cj_v3_dot(cj_v3_normalize(lt->direction), dir);
                 E = ct >= cos(lt->spot_angle) ? E * pow(ct, lt->spot_exponent) : 0.0;
-            } else if (lt->kind == CJ_LIGHT_AREA) {
-                cj_vec3 nl = cj_v3_cross(lt->edge_u, lt->edge_v);
-                double A = cj_v3_norm(nl), ct = -cj_v3_dot(nl, dir) / A;
-                if (!(ct > 0.0)) continue;
-                E = A * ct / r2;           /* L_e A cos θ′ / r² per unit L_e */
-                light_pdf = r2 / (A * ct); /* the sample's solid-angle pdf */
             }
             tmax = 1.0;
         }
@@ -157,16 +142,12 @@ cj_rgb tr_path(tr_shade *sh, const cj_ray *camera_ray, int *hit_any) {
     for (int depth = 0;; ++depth) {
         cj_hit h;
         int got = tr_cast(sh, kind, &ray, &h);
-        double tl = 0.0, cl = 0.0;
-        int li = hit_area_light(L, &ray, got ? h.t : INFINITY, &tl, &cl);
+        double tl = 0.0, lpdf = 0.0;
+        int li = hit_emitter(L, &ray, got ? h.t : INFINITY, &tl, &lpdf);
         if (li >= 0) { /* an emitter seen directly or reached by a BRDF sample */
             const cj_light *lt = L->light[li];
             double w = 1.0;
-            if (!prev_delta) {
-                double A = cj_v3_norm(cj_v3_cross(lt->edge_u, lt->edge_v));
-                double d2 = tl * tl * cj_v3_dot(ray.dir, ray.dir);
-                w = power_heuristic(prev_pdf, d2 / (A * cl));
-            }
+            if (!prev_delta) w = power_heuristic(prev_pdf, lpdf);
             double s = lt->intensity * w;
             out.r += T.r * lt->color.r * s;
             out.g += T.g * lt->color.g * s;

@@ -139,51 +139,48 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
     for (int i = 0; i < L->count; i++) {
         const cj_light *lt = L->light[i];
         cj_vec3 lp = lt->position;
-        if (lt->kind == CJ_LIGHT_AREA) {
-            double s = 0.5, t = 0.5;
-            if (sh->spp > 1) {
-                /* Stratified over the samples of the pixel at the first hit, random deeper.
-                 * The light stratum of pixel sample s is a keyed random permutation of s:
-                 * a fixed pairing (such as a cyclic shift) ties each light stratum to one
-                 * part of the pixel, and the pixel's estimate then keeps a variance that
-                 * more samples do not reduce. The random offset makes every sample's
-                 * stratum uniform over the pixels, so the estimate stays unbiased. */
-                if (depth == 0 && !sh->random) {
-                    uint32_t ns = (uint32_t)sh->spp;
-                    uint32_t si = (tr_permute(sh->sample, ns, sh->perm_key) + sh->perm) % ns;
-                    uint32_t k = (uint32_t)sh->strata;
-                    if (k * k == ns) {
-                        s = ((si % k) + tr_rand(&sh->rng)) / k;
-                        t = ((si / k) + tr_rand(&sh->rng)) / k;
-                    } else { /* spp strata across the light's first edge */
-                        s = (si + tr_rand(&sh->rng)) / ns;
-                        t = tr_rand(&sh->rng);
-                    }
-                } else {
-                    s = tr_rand(&sh->rng);
+        const int extended = tr_is_emitter(lt);
+        double s = 0.5, t = 0.5;
+        if (extended && sh->spp > 1) {
+            /* Stratified over the samples of the pixel at the first hit, random deeper.
+             * The light stratum of pixel sample s is a keyed random permutation of s:
+             * a fixed pairing (such as a cyclic shift) ties each light stratum to one
+             * part of the pixel, and the pixel's estimate then keeps a variance that
+             * more samples do not reduce. The random offset makes every sample's
+             * stratum uniform over the pixels, so the estimate stays unbiased. */
+            if (depth == 0 && !sh->random) {
+                uint32_t ns = (uint32_t)sh->spp;
+                uint32_t si = (tr_permute(sh->sample, ns, sh->perm_key) + sh->perm) % ns;
+                uint32_t k = (uint32_t)sh->strata;
+                if (k * k == ns) {
+                    s = ((si % k) + tr_rand(&sh->rng)) / k;
+                    t = ((si / k) + tr_rand(&sh->rng)) / k;
+                } else { /* spp strata across the light's first edge */
+                    s = (si + tr_rand(&sh->rng)) / ns;
                     t = tr_rand(&sh->rng);
                 }
+            } else {
+                s = tr_rand(&sh->rng);
+                t = tr_rand(&sh->rng);
             }
-            lp = cj_v3_add(lp, cj_v3_add(cj_v3_scale(lt->edge_u, s), cj_v3_scale(lt->edge_v, t)));
         }
         cj_vec3 l;
         double f = 1.0;
         if (lt->kind == CJ_LIGHT_DIRECTIONAL) {
             l = cj_v3_normalize(cj_v3_scale(lt->direction, -1.0));
+        } else if (extended && L->radiometric) {
+            /* a sample of ∫ L_e cos θ dω over the emitter (trace_lights.c): by area for a
+             * parallelogram or disc (L_e A cos θ′ / r²), by the cone's solid angle for a
+             * sphere; one-sided emitters */
+            double pdf;
+            if (!tr_emitter_sample(lt, h->p, s, t, sh->spp == 1, &lp, &f, &pdf)) continue;
+            l = cj_v3_normalize(cj_v3_sub(lp, h->p));
         } else {
+            if (extended) lp = tr_emitter_point(lt, s, t); /* legacy: a point light on it */
             cj_vec3 to = cj_v3_sub(lp, h->p);
             double r2 = cj_v3_dot(to, to);
             l = cj_v3_normalize(to);
-            if (L->radiometric && lt->kind == CJ_LIGHT_AREA) {
-                /* a sample by area (pdf 1/A) of ∫ L_e cos θ cos θ′ / r² dA: L_e A cos θ′ / r²
-                 * times the cos θ of the reflection model; one-sided emitter */
-                cj_vec3 nl = cj_v3_cross(lt->edge_u, lt->edge_v);
-                double A = cj_v3_norm(nl), ct = -cj_v3_dot(nl, l) / A;
-                if (!(ct > 0.0) || !(r2 > 0.0)) continue;
-                f = A * ct / r2;
-            } else if (L->radiometric) {
-                f = 1.0 / r2; /* point and spot: an intensity, inverse-square falloff */
-            }
+            if (L->radiometric) f = 1.0 / r2; /* point and spot: an intensity, 1/r² */
             if (lt->kind == CJ_LIGHT_SPOT) {
                 double ct = -cj_v3_dot(cj_v3_normalize(lt->direction), l);
                 f = ct >= cos(lt->spot_angle) ? f * pow(ct, lt->spot_exponent) : 0.0;

@@ -47,6 +47,24 @@ typedef struct tr_shade {
     double time; /* the camera sample's shutter time in [0, 1) (motion blur), else 0.5 */
 } tr_shade;
 
+/* trace_lights.c: the extended emitters (area, disc, sphere lights; scene.h) read
+ * radiometrically. tr_is_emitter: the light is one of them. tr_emitter_point: the point (u1,
+ * u2) in [0, 1)² of a parallelogram or disc, uniform by area (a sphere: its centre).
+ * tr_emitter_sample: a point *target of the emitter seen from p and *weight, the factor that
+ * turns its radiance L_e into the irradiance estimate along the direction to it
+ * (E ≈ L_e · weight · cos θ at p): parallelogram and disc sampled by area, weight
+ * A cos θ′ / r²; a sphere by the solid angle of its cone, weight 2π (1 − cos θ_max); *pdf is
+ * the sample's solid-angle density (1 / weight). centre: the deterministic one-sample estimate
+ * (caller passes u = 0.5 for a parallelogram or disc: the centre; a sphere: its axis with weight
+ * π sin² θ_max, *pdf 0). 0: the emitter sends nothing to p (its back, or p inside a sphere).
+ * tr_emitter_hit: the ray meets the emitter's emitting side at *t in (tmin, t_max); *pdf the
+ * solid-angle density with which tr_emitter_sample from the ray's origin draws that direction. */
+int tr_is_emitter(const cj_light *lt);
+cj_vec3 tr_emitter_point(const cj_light *lt, double u1, double u2);
+int tr_emitter_sample(const cj_light *lt, cj_vec3 p, double u1, double u2, int centre,
+                      cj_vec3 *target, double *weight, double *pdf);
+int tr_emitter_hit(const cj_light *lt, const cj_ray *ray, double t_max, double *t_out, double *pdf);
+
 int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit);
 /* A shadow ray: 1 when anything is hit in [tmin, tmax] (counted as a shadow ray). */
 int tr_occluded(tr_shade *sh, const cj_ray *ray);

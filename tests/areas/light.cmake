@@ -35,3 +35,7 @@ endif()
 if(TARGET cj::raster)
   cj_add_test(test_light_motion SOURCES test_light_motion.c LIBS cj::raster cj::scene)
 endif()
+# Disc and sphere emitters against their closed-form irradiance, in every renderer.
+if(TARGET cj::raster)
+  cj_add_test(test_light_emitters SOURCES test_light_emitters.c LIBS cj::raster cj::scene)
+endif()
