@@ -27,6 +27,9 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
             f->any_ambient = 1;
             continue;
         }
+        if (radiometric &&
+            (L->kind == CJ_LIGHT_AREA || L->kind == CJ_LIGHT_DISC || L->kind == CJ_LIGHT_SPHERE))
+            c->emitters[c->nemitters++] = L;
         cj_rlight *r = &c->lights[c->nlights++];
         memset(r, 0, sizeof *r);
         memcpy(r->I, I, sizeof I);
@@ -145,10 +148,11 @@ cj_status cj_rframe_materials(cj_rframe *F) {
     c->nmat = (int)cj_scene_material_count(scene);
     c->mats = cj_ralloc(&F->A, sizeof(cj_rmat) * (size_t)(c->nmat + 1));
     c->lights = cj_ralloc(&F->A, sizeof(cj_rlight) * (cj_scene_light_count(scene) + 1));
+    c->emitters = cj_ralloc(&F->A, sizeof(cj_light *) * (cj_scene_light_count(scene) + 1));
     c->nsamplers = (int)cj_scene_texture_count(scene);
     c->samplers = cj_ralloc(&F->A, sizeof(cj_tex_sampler) * (size_t)(c->nsamplers + 1));
     F->need = cj_ralloc(&F->A, sizeof(unsigned) * (size_t)(c->nmat + 1));
-    if (!c->mats || !c->lights || !c->samplers || !F->need)
+    if (!c->mats || !c->lights || !c->emitters || !c->samplers || !F->need)
         return cj_fail(CJ_ERR_NOMEM, "render tables");
     memset(c->samplers, 0, sizeof(cj_tex_sampler) * (size_t)(c->nsamplers + 1));
     prepare_lights(scene, c, F->Ia, f);

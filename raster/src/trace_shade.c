@@ -219,9 +219,32 @@ static cj_rgb add_scaled(cj_rgb a, cj_rgb b, double s) {
     return cj_rgb_make(a.r + s * b.r, a.g + s * b.g, a.b + s * b.b);
 }
 
+/* The radiometric emitter a ray meets before t_max, or NULL. Not for indirect rays: their
+ * light is the direct term's already (the local model samples every light). */
+static const cj_light *seen_emitter(const tr_shade *sh, const cj_ray *ray, int kind, double t_max) {
+    const tr_lights *L = sh->lights;
+    if (!L->radiometric || kind == TR_INDIRECT) return NULL;
+    const cj_light *best = NULL;
+    for (int i = 0; i < L->count; ++i) {
+        double t, pdf;
+        if (tr_is_emitter(L->light[i]) && tr_emitter_hit(L->light[i], ray, t_max, &t, &pdf)) {
+            t_max = t;
+            best = L->light[i];
+        }
+    }
+    return best;
+}
+
 cj_rgb tr_trace(tr_shade *sh, const cj_ray *ray, int kind, int depth, tr_medium med, int *hit_any) {
     cj_hit h;
-    if (!tr_cast(sh, kind, ray, &h)) return sh->background;
+    const int got = tr_cast(sh, kind, ray, &h);
+    const cj_light *em = seen_emitter(sh, ray, kind, got ? h.t : INFINITY);
+    if (em) { /* an emitter in front: its radiance */
+        if (hit_any) *hit_any = 1;
+        return cj_rgb_make(em->color.r * em->intensity, em->color.g * em->intensity,
+                           em->color.b * em->intensity);
+    }
+    if (!got) return sh->background;
     if (hit_any) *hit_any = 1;
     const tr_object *o = &sh->s->objs[h.obj];
     const cj_material *m = cj_scene_material(sh->s->scene, o->material);
