@@ -42,6 +42,9 @@ static cj_status check_options(const cj_renderer_options *o) {
     if (o->trace.integrator != CJ_INTEGRATOR_WHITTED && o->trace.integrator != CJ_INTEGRATOR_PATH)
         return cj_fail(CJ_ERR_RANGE, "integrator %d is neither whitted (0) nor path (1)",
                        o->trace.integrator);
+    if (o->trace.emission_by_chance != 0 && o->trace.emission_by_chance != 1)
+        return cj_fail(CJ_ERR_RANGE, "emission_by_chance %d is neither 0 nor 1",
+                       o->trace.emission_by_chance);
     return CJ_OK;
 }
 

@@ -217,6 +217,9 @@ void tr_scene_free(tr_scene *s) {
     for (int i = 0; i < s->ntex; i++) cj_tex_sampler_free(&s->tex[i]);
     cj_rfree(&s->alloc, s->tex);
     cj_rfree(&s->alloc, s->objs);
+    cj_rfree(&s->alloc, s->emit);
+    cj_rfree(&s->alloc, s->emit_cdf);
+    cj_rfree(&s->alloc, s->emit_obj);
     cj_bvh_destroy(s->top);
     memset(s, 0, sizeof *s);
 }

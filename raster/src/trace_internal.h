@@ -41,8 +41,25 @@ typedef struct tr_counts {
     double patch_max_err;
 } tr_counts;
 
+/* An emissive triangle in world space (a mesh triangle, or half of a planar patch), sampled by
+ * area for next-event estimation in the path tracer; it emits on both sides, as a path meets
+ * an emissive surface from either side. */
+typedef struct tr_emit_tri {
+    cj_vec3 p0, e1, e2; /* p0 + s e1 + t e2, s, t >= 0, s + t <= 1 */
+    cj_vec3 n;          /* unit normal */
+    double area;
+    cj_rgb emission;
+} tr_emit_tri;
+
 typedef struct tr_scene {
     const cj_scene *scene;
+    /* emissive triangles (static emissive mesh and planar objects), their area CDF, the total
+     * area and, per object, 1 if its triangles are in the table */
+    tr_emit_tri *emit;
+    double *emit_cdf;
+    size_t nemit;
+    double emit_area;
+    uint8_t *emit_obj;
     tr_object *objs;
     size_t nobj;
     cj_bvh *top;
@@ -78,6 +95,8 @@ cj_status tr_scene_build(const struct cj_rscene *rs, tr_bvh_cache *cache, const 
                          const cj_allocator *alloc, tr_scene *out, size_t *reused, size_t *built,
                          size_t *moving);
 void tr_scene_free(tr_scene *s);
+/* The emissive triangle table of a built scene (trace_emit.c). CJ_ERR_NOMEM. */
+cj_status tr_scene_emitters(tr_scene *s);
 
 /* Closest hit (hit->obj = object index) / any hit in [tmin, tmax], with moving objects placed
  * at shutter time `time` in [0, 1] (ignored by static ones). */

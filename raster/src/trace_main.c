@@ -21,6 +21,7 @@ typedef struct tr_job {
     cj_render_image *img;
     int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random, indirect, integrator;
     int motion;             /* some object moves over the shutter: each sample draws a time */
+    int emit_nee;           /* path tracer: emissive triangles sampled as lights */
     cj_pixel_filter filter; /* not box only when spp > 1 */
     double filter_r;
     uint64_t seed;
@@ -160,6 +161,7 @@ static void shade_init(const tr_job *j, tr_counts *c, tr_shade *sh) {
     sh->indirect = j->indirect;
     sh->integrator = j->integrator;
     sh->time = 0.5;
+    sh->emit_nee = j->emit_nee;
 }
 
 /* One tile: a task of the renderer's scheduler (render_pool.h). */
@@ -380,6 +382,13 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
         cj_rtarget_finish(&target, image, st);
         return st;
     }
+    if (r->opt.trace.integrator == CJ_INTEGRATOR_PATH && !r->opt.trace.emission_by_chance)
+        st = tr_scene_emitters(&ts);
+    if (st) {
+        tr_scene_free(&ts);
+        cj_rtarget_finish(&target, image, st);
+        return st;
+    }
     report_build(R, &ts, build_s, bvh_reused, bvh_built);
     if (r->motion || moving)
         cj_stage_report_set(R, "motion_blur", moving > 0,
@@ -405,6 +414,7 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     j.indirect = set.indirect;
     j.integrator = r->opt.trace.integrator;
     j.motion = moving > 0;
+    j.emit_nee = ts.nemit > 0;
     j.filter = set.spp > 1 ? cj_scene_settings_get(scene)->filter : CJ_FILTER_BOX;
     j.filter_r = cj_pixel_filter_radius(j.filter, cj_scene_settings_get(scene)->filter_radius);
     j.seed = r->opt.render.use_seed ? r->opt.render.seed : cj_scene_settings_get(scene)->seed;

@@ -130,6 +130,33 @@ static cj_rgb next_event(tr_shade *sh, const cj_hit *h, const pt_frame *fr, cons
         sum.g += f.g * lt->color.g * s;
         sum.b += f.b * lt->color.b * s;
     }
+    if (sh->emit_nee) { /* one point of the emissive surfaces, picked by area (trace_emit.c) */
+        const double u0 = tr_rand(&sh->rng), u1 = tr_rand(&sh->rng), u2 = tr_rand(&sh->rng);
+        cj_vec3 target;
+        cj_rgb le;
+        double wgt, light_pdf;
+        if (!tr_emit_sample(sh->s, h->p, u0, u1, u2, &target, &le, &wgt, &light_pdf)) return sum;
+        const cj_vec3 dir = cj_v3_normalize(cj_v3_sub(target, h->p));
+        double wi[3];
+        to_local(fr, dir, wi);
+        if (!(wi[2] > 0.0)) return sum;
+        double bpdf;
+        const cj_rgb f = local_f(loc, wo, wi, &bpdf);
+        if (f.r == 0.0 && f.g == 0.0 && f.b == 0.0) return sum;
+        if (receives) {
+            /* stop just short of the target: it lies on the emitter's own surface */
+            cj_ray sr;
+            sr.org = cj_ray_offset_origin(h, dir);
+            sr.dir = cj_v3_sub(target, sr.org);
+            sr.tmin = 0.0;
+            sr.tmax = 1.0 - 1e-6;
+            if (tr_occluded(sh, &sr)) return sum;
+        }
+        const double s = wgt * wi[2] * power_heuristic(light_pdf, bpdf);
+        sum.r += f.r * le.r * s;
+        sum.g += f.g * le.g * s;
+        sum.b += f.b * le.b * s;
+    }
     return sum;
 }
 
@@ -168,9 +195,14 @@ cj_rgb tr_path(tr_shade *sh, const cj_ray *camera_ray, int *hit_any) {
         const int front = cj_v3_dot(h.ng, d) < 0.0;
         cj_vec3 nf = front ? h.ng : cj_v3_scale(h.ng, -1.0), n = h.n;
         if (cj_v3_dot(n, nf) < 0.0) n = cj_v3_scale(n, -1.0);
-        out.r += T.r * m->emission.r;
-        out.g += T.g * m->emission.g;
-        out.b += T.b * m->emission.b;
+        double we = 1.0; /* emission reached by a BRDF sample, MIS against sampling it as light */
+        if (sh->emit_nee && !prev_delta && sh->s->emit_obj && sh->s->emit_obj[h.obj]) {
+            const double dist = h.t * cj_v3_norm(ray.dir), cl = fabs(cj_v3_dot(h.ng, d));
+            if (cl > 0.0) we = power_heuristic(prev_pdf, dist * dist / (sh->s->emit_area * cl));
+        }
+        out.r += T.r * m->emission.r * we;
+        out.g += T.g * m->emission.g * we;
+        out.b += T.b * m->emission.b * we;
         if (depth >= sh->max_depth) break;
         cj_rgb cr = m->color;
         if (m->texture >= 0 && m->texture < sh->s->ntex) {

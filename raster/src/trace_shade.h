@@ -39,6 +39,7 @@ typedef struct tr_shade {
     cj_rgb background;
     int max_depth, spp, strata, random;
     int integrator;        /* cj_trace_integrator */
+    int emit_nee;          /* path tracer: emissive triangles sampled as lights */
     int indirect;          /* diffuse interreflection rays per diffuse hit (0: off) */
     int in_indirect;       /* 1 while tracing an indirect ray: one bounce only */
     uint32_t sample, perm; /* the pixel sample; a random offset of the light strata */
@@ -64,6 +65,14 @@ cj_vec3 tr_emitter_point(const cj_light *lt, double u1, double u2);
 int tr_emitter_sample(const cj_light *lt, cj_vec3 p, double u1, double u2, int centre,
                       cj_vec3 *target, double *weight, double *pdf);
 int tr_emitter_hit(const cj_light *lt, const cj_ray *ray, double t_max, double *t_out, double *pdf);
+
+/* trace_emit.c: a point *target of the scene's emissive triangles (picked by area with u0, uniform
+ * on the triangle with u1, u2) seen from p, its emission, *pdf the solid-angle density
+ * r² / (A_total |cos θ′|) and *weight = 1 / *pdf; 0 when there are none or the sample is
+ * edge-on. The density of a direction that meets an emissive triangle at distance r with cosine
+ * cos θ′ is the same r² / (A_total |cos θ′|). */
+int tr_emit_sample(const tr_scene *s, cj_vec3 p, double u0, double u1, double u2, cj_vec3 *target,
+                   cj_rgb *emission, double *weight, double *pdf);
 
 int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit);
 /* A shadow ray: 1 when anything is hit in [tmin, tmax] (counted as a shadow ray). */

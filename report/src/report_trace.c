@@ -127,7 +127,7 @@ static cj_status frame(const cj_scene *sc, int w, int h, const cell *c, int thre
     cj_render_options o = cj_render_options_default();
     o.width = w, o.height = h, o.spp = c->spp, o.threads = threads;
     o.use_seed = 1, o.seed = seed;
-    const cj_trace_options to = {c->random, c->ptol, 0, 0};
+    const cj_trace_options to = {c->random, c->ptol, 0, 0, 0};
     return cj_render_trace_ex(sc, &o, &to, 0, NULL, img, rep);
 }
 

@@ -39,3 +39,8 @@ endif()
 if(TARGET cj::raster)
   cj_add_test(test_light_emitters SOURCES test_light_emitters.c LIBS cj::raster cj::scene)
 endif()
+# Emissive surfaces sampled as lights by the path tracer: against the form factor, and the
+# variance drop against finding them by chance.
+if(TARGET cj::raster)
+  cj_add_test(test_light_emissive SOURCES test_light_emissive.c LIBS cj::raster cj::scene)
+endif()

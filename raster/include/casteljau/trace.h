@@ -81,6 +81,8 @@ typedef struct cj_trace_options {
                                L_in traced with depth + 1 but casting no further indirect rays.
                                Counted in the stage "indirect_rays". */
     int integrator;         /* CJ_INTEGRATOR_WHITTED (0, the default) or CJ_INTEGRATOR_PATH */
+    int emission_by_chance; /* path tracer, 1: emissive surfaces are found only by BRDF samples,
+                               not sampled as lights (to measure what sampling them gains) */
 } cj_trace_options;
 
 /* CJ_INTEGRATOR_WHITTED: the shading described above. CJ_INTEGRATOR_PATH: a path tracer
