@@ -527,6 +527,7 @@ static int trace_tol(report *r) {
 }
 
 int report_trace(report *r) {
-    const int st = trace_spp(r);
-    return st ? st : trace_tol(r);
+    int st = trace_spp(r);
+    if (!st) st = trace_tol(r);
+    return st ? st : report_path(r); /* the path tracer's convergence (report_path.c) */
 }
