@@ -4,6 +4,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "trace_shade.h"
 
+#include "brdf.h"
 #include "reflect_model.h"
 
 #include <math.h>
@@ -81,15 +82,6 @@ int tr_occluded(tr_shade *sh, const cj_ray *ray) {
     return got;
 }
 
-/* A direction about the unit vector r drawn from the Phong lobe cos^e (importance sampled). */
-static cj_vec3 phong_lobe(cj_vec3 r, double e, double u1, double u2) {
-    double ct = pow(u1, 1.0 / (e + 1.0)), st = sqrt(fmax(0.0, 1.0 - ct * ct)), ph = 2.0 * PI * u2;
-    cj_vec3 a, b;
-    cj_frame_from_axis(r, &a, &b);
-    return cj_v3_normalize(cj_v3_add(
-        cj_v3_scale(r, ct), cj_v3_add(cj_v3_scale(a, st * cos(ph)), cj_v3_scale(b, st * sin(ph)))));
-}
-
 cj_vec3 cj_trace_cosine_sample(cj_vec3 n, double u1, double u2) {
     /* Malley: uniform on the disk, lifted; the projected solid angle makes the pdf cos θ / π */
     double r = sqrt(u1), ph = 2.0 * PI * u2, z = sqrt(fmax(0.0, 1.0 - u1));
@@ -122,8 +114,9 @@ static cj_rgb indirect_light(tr_shade *sh, const cj_hit *h, cj_vec3 n, cj_vec3 n
     return cj_rgb_make(cr.r * acc[0] * w, cr.g * acc[1] * w, cr.b * acc[2] * w);
 }
 
-static cj_vec3 reflect(cj_vec3 d, cj_vec3 n) {
-    return cj_v3_sub(d, cj_v3_scale(n, 2.0 * cj_v3_dot(d, n)));
+/* A direction of the local frame (a, b, n) in world space. */
+static cj_vec3 to_world3(cj_vec3 a, cj_vec3 b, cj_vec3 n, const double v[3]) {
+    return cj_v3_add(cj_v3_add(cj_v3_scale(a, v[0]), cj_v3_scale(b, v[1])), cj_v3_scale(n, v[2]));
 }
 
 /* The local reflection model (reflect_model.h, the rasterizer's too) at the hit with shadow
@@ -274,6 +267,15 @@ cj_rgb tr_trace(tr_shade *sh, const cj_ray *ray, int kind, int depth, tr_medium 
         }
     }
     if (depth >= sh->max_depth) return out;
+    /* The secondary rays through the BRDFs of brdf.h, in the frame of the normal facing the
+     * ray (wo = −d is +z). Legacy: the weights of the original Whitted tracer (mirror r_m,
+     * refraction r_t, no Fresnel, the glossy lobe as a blurred mirror of weight 1). Radiometric:
+     * the path tracer's BSDF, traced on both branches (Fresnel F to the reflection, 1 − F to
+     * the refraction), the mirror tinted by c_p, the glossy lobe weighted f cos θ / pdf. */
+    const int radiometric = sh->lights->radiometric;
+    cj_vec3 fa, fb;
+    cj_frame_from_axis(nf, &fa, &fb);
+    const double wo[3] = {-cj_v3_dot(d, fa), -cj_v3_dot(d, fb), -cj_v3_dot(d, nf)};
     double reflect_w = rm;
     if (rt > 0.0) {
         /* entering: from the current medium into the material; leaving: back to the outer one */
@@ -288,22 +290,42 @@ cj_rgb tr_trace(tr_shade *sh, const cj_ray *ray, int kind, int depth, tr_medium 
             if (inner.top > 0) inner.top--;
             n2 = inner.ior[inner.top];
         }
-        cj_vec3 t;
-        if (cj_trace_refract(d, nf, n1, n2, &t)) {
+        const cj_brdf glass = {CJ_BRDF_DIELECTRIC, 0.0, n2 / n1};
+        const double F = cj_fresnel_dielectric(wo[2], n2 / n1, NULL, NULL);
+        cj_brdf_sample smp;
+        /* u3 = 1: the refraction branch (taken whenever F < 1) */
+        if (F < 1.0 && cj_brdf_sample_dir(&glass, wo, 0.0, 0.0, 1.0, &smp)) {
+            const cj_vec3 t = to_world3(fa, fb, nf, smp.wi);
             cj_ray rr = {cj_ray_offset_origin(&h, t), t, 0.0, INFINITY};
-            out = add_scaled(out, tr_trace(sh, &rr, TR_REFRACT, depth + 1, inner, NULL), rt);
+            out = add_scaled(out, tr_trace(sh, &rr, TR_REFRACT, depth + 1, inner, NULL),
+                             radiometric ? rt * (1.0 - F) : rt);
+            if (radiometric) reflect_w += rt * F;
         } else {
             reflect_w += rt; /* total internal reflection */
         }
     }
     if (reflect_w > 0.0) {
-        cj_vec3 r = cj_v3_normalize(reflect(d, nf));
+        static const cj_brdf mirror = {CJ_BRDF_MIRROR, 0.0, 1.0};
+        cj_brdf_sample smp;
+        cj_brdf_sample_dir(&mirror, wo, 0.0, 0.0, 0.0, &smp);
+        double w = reflect_w;
         if (m->glossiness > 0.0 && sh->spp > 1) {
-            cj_vec3 g = phong_lobe(r, m->glossiness, tr_rand(&sh->rng), tr_rand(&sh->rng));
-            if (cj_v3_dot(g, nf) > 0.0) r = g;
+            const cj_brdf lobe = {CJ_BRDF_PHONG, m->glossiness, 1.0};
+            cj_brdf_sample g;
+            const double u1 = tr_rand(&sh->rng), u2 = tr_rand(&sh->rng);
+            if (cj_brdf_sample_dir(&lobe, wo, u1, u2, 0.0, &g)) { /* else the mirror direction */
+                smp = g;
+                if (radiometric) w *= g.weight;
+            }
         }
+        const cj_vec3 r = cj_v3_normalize(to_world3(fa, fb, nf, smp.wi));
         cj_ray rr = {cj_ray_offset_origin(&h, r), r, 0.0, INFINITY};
-        out = add_scaled(out, tr_trace(sh, &rr, TR_REFLECT, depth + 1, med, NULL), reflect_w);
+        const cj_rgb L = tr_trace(sh, &rr, TR_REFLECT, depth + 1, med, NULL);
+        if (radiometric) /* tinted by c_p, as in the path tracer */
+            out = cj_rgb_make(out.r + w * m->specular.r * L.r, out.g + w * m->specular.g * L.g,
+                              out.b + w * m->specular.b * L.b);
+        else
+            out = add_scaled(out, L, w);
     }
     return out;
 }
