@@ -79,10 +79,33 @@ static int hit_emitter(const tr_lights *L, const cj_ray *ray, double t_max, doub
     return best;
 }
 
+/* Two numbers in [0, 1)² for one of the first hit's samples: at the camera ray's first hit
+ * (first) of a pixel with several stratified samples, the stratum of pixel sample s under a
+ * keyed random permutation (one key per use, `salt`), offset by the pixel's random shift, as
+ * the Whitted tracer stratifies its light samples (trace_shade.c: a fixed pairing with the
+ * pixel strata would keep a variance more samples do not lower); elsewhere uniform. */
+static void strat2(tr_shade *sh, int first, uint64_t salt, double *u, double *v) {
+    const double a = tr_rand(&sh->rng), b = tr_rand(&sh->rng);
+    if (!first || sh->spp < 2 || sh->random) {
+        *u = a;
+        *v = b;
+        return;
+    }
+    const uint32_t ns = (uint32_t)sh->spp, k = (uint32_t)sh->strata;
+    const uint32_t si = (tr_permute(sh->sample, ns, sh->perm_key ^ salt) + sh->perm) % ns;
+    if (k * k == ns) {
+        *u = ((si % k) + a) / k;
+        *v = ((si / k) + b) / k;
+    } else {
+        *u = (si + a) / ns;
+        *v = b;
+    }
+}
+
 /* Next-event estimation at a non-delta hit: Σ over the lights of f cos θ E, area lights by
  * one stratum-free area sample each, MIS-weighted against the BRDF's pdf. */
 static cj_rgb next_event(tr_shade *sh, const cj_hit *h, const pt_frame *fr, const double wo[3],
-                         const pt_local *loc, int receives) {
+                         const pt_local *loc, int receives, int first) {
     const tr_lights *L = sh->lights;
     cj_rgb sum = cj_rgb_make(0, 0, 0);
     for (int i = 0; i < L->count; ++i) {
@@ -93,7 +116,8 @@ static cj_rgb next_event(tr_shade *sh, const cj_hit *h, const pt_frame *fr, cons
         if (lt->kind == CJ_LIGHT_DIRECTIONAL) {
             dir = cj_v3_normalize(cj_v3_scale(lt->direction, -1.0));
         } else if (tr_is_emitter(lt)) { /* one sample (trace_lights.c), L_e E per unit */
-            const double u1 = tr_rand(&sh->rng), u2 = tr_rand(&sh->rng);
+            double u1, u2;
+            strat2(sh, first, 0x6a09e667f3bcc909ull * (uint64_t)(i + 1), &u1, &u2);
             if (!tr_emitter_sample(lt, h->p, u1, u2, 0, &target, &E, &light_pdf)) continue;
             dir = cj_v3_normalize(cj_v3_sub(target, h->p));
             tmax = 1.0;
@@ -131,7 +155,9 @@ static cj_rgb next_event(tr_shade *sh, const cj_hit *h, const pt_frame *fr, cons
         sum.b += f.b * lt->color.b * s;
     }
     if (sh->emit_nee) { /* one point of the emissive surfaces, picked by area (trace_emit.c) */
-        const double u0 = tr_rand(&sh->rng), u1 = tr_rand(&sh->rng), u2 = tr_rand(&sh->rng);
+        const double u0 = tr_rand(&sh->rng);
+        double u1, u2;
+        strat2(sh, first, 0xbb67ae8584caa73bull, &u1, &u2);
         cj_vec3 target;
         cj_rgb le;
         double wgt, light_pdf;
@@ -251,12 +277,13 @@ cj_rgb tr_path(tr_shade *sh, const cj_ray *camera_ray, int *hit_any) {
                 loc.p_diffuse = wd / (wd + ws);
                 /* the local part's share of the mixture is 1 − r_t − r_m, chosen with that
                  * probability: the share cancels */
-                cj_rgb ne = next_event(sh, &h, &fr, wo, &loc, m->receives_shadows);
+                cj_rgb ne = next_event(sh, &h, &fr, wo, &loc, m->receives_shadows, depth == 0);
                 out.r += T.r * ne.r;
                 out.g += T.g * ne.g;
                 out.b += T.b * ne.b;
                 static const cj_brdf lambert = {CJ_BRDF_LAMBERT, 0.0, 1.0};
-                const double u1 = tr_rand(&sh->rng), u2 = tr_rand(&sh->rng);
+                double u1, u2; /* the BRDF sample, stratified at the first hit */
+                strat2(sh, depth == 0, 0x3c6ef372fe94f82bull, &u1, &u2);
                 if (!cj_brdf_sample_dir(tr_rand(&sh->rng) < loc.p_diffuse ? &lambert : &loc.lobe,
                                         wo, u1, u2, 0.0, &smp))
                     break;
