@@ -43,6 +43,7 @@ static const double PI = 3.14159265358979323846;
 static const double RHO = 0.6, HALF = 2.0;
 static const double DC[3] = {0.2, -0.1, 0.8}, DR = 0.6, DL = 3.0; /* disc: centre, radius, L */
 static const double SC[3] = {-0.3, 0.2, 1.0}, SR = 0.3, SL = 2.0; /* sphere */
+static const double EM = 1.25; /* radiance of an emissive surface */
 
 static cj_scene *floor_scene(void) {
     cj_scene *s;
@@ -309,11 +310,33 @@ static void test_sphere(void **state) {
 static void test_renderers_agree(void **state) {
     (void)state;
     cj_scene *s = floor_scene();
-    add_sphere(s);
+    cj_light sl = cj_light_default(CJ_LIGHT_SPHERE);
+    sl.position = cj_v3(SC[0], SC[1], SC[2]);
+    sl.radius = SR;
+    sl.intensity = SL;
+    sl.casts_shadows =
+        0; /* the rasterizer has no shadows (the emissive patch below would cast one) */
+    assert_int_equal(cj_scene_add_light(s, &sl, NULL), CJ_OK);
     add_disc(s, 1.0);
+    /* and a surface whose material emits (reflecting nothing), seen by both */
+    cj_material em = cj_material_default();
+    em.color = cj_rgb_make(0, 0, 0);
+    em.ka = em.kd = em.ks = 0.0;
+    em.emission = cj_rgb_make(EM, EM, EM);
+    int emi, gi;
+    assert_int_equal(cj_scene_add_material(s, &em, &emi), CJ_OK);
+    cj_geometry g;
+    memset(&g, 0, sizeof g);
+    g.kind = CJ_GEOM_PLANAR;
+    assert_int_equal(cj_planar_patch_init(&g.u.planar, cj_v3(0.9, -1.6, 0.05), cj_v3(0.8, 0, 0),
+                                          cj_v3(0, 0.5, 0)),
+                     CJ_OK);
+    assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
+    cj_node n = cj_render_node(gi, emi);
+    assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
     cj_render_image *r = draw(s, 0, 1), *t = draw(s, 1, 1);
     double worst = 0.0, peak = 0.0;
-    int emitter_px = 0;
+    int emitter_px = 0, emissive_px = 0;
     for (int i = 0; i < W * H; ++i) {
         const float a = r->rgba[4 * i], b = t->rgba[4 * i];
         if (a == (float)SL || a == (float)DL || b == (float)SL || b == (float)DL) {
@@ -321,13 +344,19 @@ static void test_renderers_agree(void **state) {
             emitter_px++;
             continue;
         }
+        if (a == (float)EM || b == (float)EM) {
+            assert_true(a == b);
+            emissive_px++;
+            continue;
+        }
         peak = fmax(peak, b);
         worst = fmax(worst, fabs(a - b));
     }
-    printf("render vs trace with emitters in view: %d emitter pixels identical, floor within "
-           "%.2e of its peak %.4f\n",
-           emitter_px, worst / peak, peak);
-    assert_true(emitter_px > 300); /* the disc (~290 px) and the sphere (~72 px), overlapping */
+    printf("render vs trace with emitters in view: %d emitter pixels and %d pixels of an emissive "
+           "surface identical, floor within %.2e of its peak %.4f\n",
+           emitter_px, emissive_px, worst / peak, peak);
+    assert_true(emissive_px >= 90); /* 0.8 x 0.5 at 16 px per unit: 102 */
+    assert_true(emitter_px > 300);  /* the disc (~290 px) and the sphere (~72 px), overlapping */
     assert_true(worst <= 1e-5 * peak);
     cj_render_image_destroy(r);
     cj_render_image_destroy(t);

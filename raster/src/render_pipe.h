@@ -63,6 +63,7 @@ typedef struct cj_rmat {
     float cr[3];   /* c_r */
     float amb[3];  /* r_a I_a (unlit without any light: 1) */
     float spec[3]; /* c_p r_s */
+    float emit[3]; /* the material's emission (a radiance), added to every lit model */
     float kd, alpha, opacity;
     int model, two_sided, tex; /* tex: sampler index or −1 */
     int spec_model;            /* cj_specular_model */

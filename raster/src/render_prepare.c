@@ -132,6 +132,9 @@ static void set_material(cj_rmat *r, const cj_material *m, int lit, int any_ambi
     r->spec[0] = (float)(m->specular.r * m->ks);
     r->spec[1] = (float)(m->specular.g * m->ks);
     r->spec[2] = (float)(m->specular.b * m->ks);
+    r->emit[0] = (float)m->emission.r;
+    r->emit[1] = (float)m->emission.g;
+    r->emit[2] = (float)m->emission.b;
     r->kd = (float)m->kd;
     r->alpha = (float)m->alpha;
     r->spec_model = (int)m->specular_model;
