@@ -32,7 +32,9 @@ static const char animate_usage[] =
     "                      steps_per_frame steps of 1/(F*steps) s per frame)\n"
     "  --width/--height/--spp/--threads   as in 'casteljau render'\n"
     "  --trace             render with the ray tracer ('casteljau trace') instead of the\n"
-    "                      rasterizer (shadows, mirrors; slower)\n"
+    "                      rasterizer (shadows, mirrors; slower); with the document's\n"
+    "                      \"shutter\" it blurs what moves (motion blur, docs/light.md); the\n"
+    "                      rasterizer ignores the shutter and draws the frame's instant\n"
     "  --checkpoint-in F   start from the simulation state saved in F (its frame <= A)\n"
     "  --checkpoint-out P  write the state after frame f to P with %d replaced by f, for every\n"
     "                      f in A..B that is a multiple of K (--checkpoint-every K) and for B\n"
@@ -362,6 +364,7 @@ int cmd_animate(int argc, char **argv) {
      * the threads, tile buffers and the image live from the first frame to the last */
     cj_renderer *ren = NULL;
     cj_render_image *img = NULL;
+    cj_xform3 *motion = NULL; /* the shutter's poses of every node (motion blur) */
     reuse_log reuse = {NULL, 0, 0};
     if (fps > 0 && cj_anim_doc_set_fps(doc, fps, "--fps")) {
         rc = cli_fail(cmd, "%s", cj_last_error());
@@ -475,12 +478,34 @@ int cmd_animate(int argc, char **argv) {
             goto done;
         }
     }
+    const int blur = !no_render && trace && doc->has_shutter;
+    if (!no_render && !trace && doc->has_shutter)
+        cli_warn(cmd, "%s: the rasterizer ignores the shutter (motion blur needs --trace)",
+                 doc_path);
+    if (blur) {
+        const size_t n = (size_t)doc->shutter_poses * cj_scene_node_count(scene);
+        motion = malloc(n * sizeof *motion);
+        if (!motion) {
+            rc = cli_error(cmd, "no memory for %d poses of the shutter", doc->shutter_poses);
+            goto done;
+        }
+    }
     for (long f = fa; f <= fb && !rc; ++f) {
         cj_stage_report anim_rep, ren_rep;
         cj_stage_report_init(&anim_rep, "animate");
         if (cj_anim_doc_frame(doc, scene, f, &anim_rep)) {
             rc = cli_error(cmd, "%s: frame %ld: %s", doc_path, f, cj_last_error());
             break;
+        }
+        if (blur) { /* the node transforms over the shutter, then the frame's pose again */
+            const double t = (double)f / doc->fps;
+            const cj_motion m = {doc->shutter_poses, cj_scene_node_count(scene), motion};
+            if (cj_anim_sample_motion(scene, doc->anim, t + doc->shutter[0] / doc->fps,
+                                      t + doc->shutter[1] / doc->fps, doc->shutter_poses, motion) ||
+                cj_anim_pose(scene, doc->anim, t, NULL) || cj_renderer_set_motion(ren, &m)) {
+                rc = cli_error(cmd, "%s: frame %ld: shutter: %s", doc_path, f, cj_last_error());
+                break;
+            }
         }
         if (!no_render) {
             const cj_status rs = cj_renderer_draw(
@@ -521,6 +546,7 @@ done:
     cj_renderer_destroy(ren);
     free(reuse.rows);
     free(snapshot);
+    free(motion);
     if (sinks.gif && rc) {
         anim_gif_abandon(sinks.gif); /* an old GIF stays as it was */
     } else if (sinks.gif) {

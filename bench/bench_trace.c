@@ -266,7 +266,7 @@ static void rmse_vs_spp(void) {
     if (cj_render_trace(sc, &o, 0, NULL, &ref, NULL)) return;
     printf("\nsoft shadow (area light), 64x48, RMSE against 1024 spp (stratified), 2 threads\n");
     for (int mode = 0; mode < 2; mode++) {
-        cj_trace_options to = {mode, 0, 0, 0};
+        cj_trace_options to = {mode, 0, 0, 0, 0};
         printf("  %s sampling (pixel positions and light points)\n",
                mode ? "plain random" : "stratified");
         double prev = 0;

@@ -28,7 +28,7 @@ static int trace(const cj_scene *sc, int w, int h, int spp, int threads, double 
     o.threads = threads;
     o.use_seed = 1;
     o.seed = 777;
-    cj_trace_options to = {random, ptol, 0, 0};
+    cj_trace_options to = {random, ptol, 0, 0, 0};
     double t0 = cj_bench_wall();
     if (cj_render_trace_with_options(sc, &o, &to, 0, NULL, img, NULL)) {
         printf("  trace failed: %s\n", cj_last_error());

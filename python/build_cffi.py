@@ -114,7 +114,8 @@ typedef struct cj_camera {
 } cj_camera;
 cj_camera cj_camera_defaults(void);
 typedef enum cj_light_kind {
-    CJ_LIGHT_AMBIENT, CJ_LIGHT_POINT, CJ_LIGHT_DIRECTIONAL, CJ_LIGHT_SPOT, CJ_LIGHT_AREA
+    CJ_LIGHT_AMBIENT, CJ_LIGHT_POINT, CJ_LIGHT_DIRECTIONAL, CJ_LIGHT_SPOT, CJ_LIGHT_AREA,
+    CJ_LIGHT_DISC, CJ_LIGHT_SPHERE
 } cj_light_kind;
 typedef struct cj_light {
     cj_light_kind kind; cj_rgb color; double intensity; cj_vec3 position; cj_vec3 direction;

@@ -13,7 +13,8 @@
  *    irradiance) matches ρ/π E within 1e-5 of the peak; the tracer (area samples, stratified,
  *    SPP per pixel) within NOISE_TOL of the peak at every pixel, and its mean over the floor
  *    within BIAS_TOL of the oracle's mean (no bias);
- *  - the emitter is one-sided: a floor above it (the emitter facing away) gets nothing;
+ *  - the emitter is one-sided: a floor above it (the emitter facing away) gets nothing, and
+ *    camera rays see its emitting side with radiance L_e in both renderers;
  *  - the legacy model is unchanged: the same scene with "legacy" has no falloff (the radiance
  *    of the point-lit floor is ρ I cos θ, no π, no r²). */
 #include <setjmp.h>
@@ -260,17 +261,33 @@ static void test_rectangle_emitter(void **state) {
     assert_true(worst_t <= NOISE_TOL);
     assert_true(bias <= BIAS_TOL);
 
-    /* one-sided: the emitter facing up leaves the floor below it dark in both renderers */
+    /* one-sided: the emitter facing up leaves the floor below it dark in both renderers; the
+     * camera above sees its emitting side, drawn with its radiance L_e by both */
     for (int trace = 0; trace < 2; ++trace) {
         cj_scene *s = floor_scene(CJ_LIGHT_RADIOMETRIC, 0.0);
         add_emitter(s, 0);
         cj_render_image *img = draw(s, trace, trace ? 4 : 1);
-        double mx = 0;
-        for (int i = 0; i < W * H; ++i)
-            if (img->rgba[4 * i] > mx) mx = img->rgba[4 * i];
-        printf("%s: emitter facing away, brightest floor pixel %g\n", trace ? "trace" : "render",
-               mx);
+        double mx = 0, pix = 2 * HALF / W;
+        int seen = 0, inside = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                double fx, fy;
+                floor_point(x, y, &fx, &fy);
+                const float v = img->rgba[4 * (y * W + x)];
+                if (fx > RECT[0] + pix && fx < RECT[1] - pix && fy > RECT[2] + pix &&
+                    fy < RECT[3] - pix) {
+                    inside++;
+                    seen += v == (float)LE;
+                } else if (fx < RECT[0] - pix || fx > RECT[1] + pix || fy < RECT[2] - pix ||
+                           fy > RECT[3] + pix) {
+                    mx = fmax(mx, v);
+                }
+            }
+        printf("%s: emitter facing away, brightest floor pixel outside its outline %g; the "
+               "emitter itself L_e = %g at %d of the %d pixels inside it\n",
+               trace ? "trace" : "render", mx, LE, seen, inside);
         assert_true(mx == 0.0);
+        assert_int_equal(seen, inside);
         cj_render_image_destroy(img);
         cj_scene_destroy(s);
     }

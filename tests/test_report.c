@@ -102,7 +102,8 @@ static void test_quick_report(void **state) {
     int rows = 0, tess_rows = 0, eval_rows = 0, flat_rows = 0, fronts_eval = 0, fronts_flat = 0;
     int arc_rows = 0, fronts_arc = 0, interp_rows = 0, contour_rows = 0, ode_rows = 0;
     int render_rows = 0, trace_rows = 0, tess_surf[4] = {0, 0, 0, 0}, arc_cubic_rows = 0;
-    int contour_ellipse_rows = 0;
+    int contour_ellipse_rows = 0, path_rows = 0;
+    double path_err[3] = {0, 0, 0}; /* the path tracer's RMSE at 1, 4, 16 spp */
     /* the arc length's chord sum: set x (N = 16, N = 4096) */
     double chord_err[2][2] = {{0, 0}, {0, 0}};
     double ode_err[4][2] = {{0}}; /* integrator x (N = 32, N = 256) */
@@ -213,6 +214,15 @@ static void test_quick_report(void **state) {
         } else if (!strcmp(f[0], "trace")) {
             trace_rows++;
             report_check_trace_row(f);
+        } else if (!strcmp(f[0], "path")) { /* report_path.c: RMSE, reference noise, corrected */
+            const int spp = atoi(f[2]);
+            const double e = strtod(f[4], NULL), sref = strtod(f[6], NULL),
+                         corr = strtod(f[10], NULL);
+            assert_true(isfinite(e) && e > 0 && sref > 0 && sref < 0.5 * e);
+            assert_true(corr >= 0 && corr <= e);
+            assert_true(spp == 1 || spp == 4 || spp == 16);
+            path_err[spp == 1 ? 0 : (spp == 4 ? 1 : 2)] = corr;
+            path_rows++;
         } else {
             assert_string_equal(f[0], "flatten");
             flat_rows++;
@@ -247,6 +257,14 @@ static void test_quick_report(void **state) {
             fail_msg("integrator %d: error only %g times smaller at N = 256 than at 32", m, gain);
     }
     assert_true(equi_err[1] > 10 * equi_err[0]); /* Runge: degree 24 far worse than 4 */
+    /* the path tracer converges as spp^(-1/2): 16 spp between 0.2 and 0.3 of 1 spp's error
+     * (1/4 expected; measured 0.238), and the page prints the slope */
+    assert_int_equal(path_rows, 3);
+    printf("path tracer: corrected RMSE %.4g, %.4g, %.4g at 1, 4, 16 spp (ratio %.3f)\n",
+           path_err[0], path_err[1], path_err[2], path_err[2] / path_err[0]);
+    assert_true(path_err[2] > 0.2 * path_err[0] && path_err[2] < 0.3 * path_err[0]);
+    assert_non_null(strstr(md, "log-log slope"));
+    assert_non_null(strstr(html, "src=\"path_convergence.png\""));
     report_check_render_end(html, md);
     report_check_trace_end(html, md);
     assert_true(fronts_eval >= 6 && fronts_flat >= 1 && fronts_arc >= 1);

@@ -318,7 +318,7 @@ static void test_threads_bit_identical(void **state) {
     assert_true(memcmp(ref->rgba, other->rgba, sizeof(float) * 4 * 48 * 48) != 0);
     cj_render_image_destroy(other);
     /* Plain random sampling: another image, still the same for any thread count. */
-    cj_trace_options to = {1, 0, 0, 0};
+    cj_trace_options to = {1, 0, 0, 0, 0};
     cj_render_image *r1 = NULL, *r2 = NULL;
     o = cj_render_options_defaults();
     o.threads = 1;
@@ -421,7 +421,7 @@ static void test_patch_tolerance_option(void **state) {
     o.threads = 1;
     const double bad[4] = {-1e-7, NAN, 2.0, INFINITY};
     for (int k = 0; k < 4; k++) {
-        cj_trace_options to = {0, bad[k], 0, 0};
+        cj_trace_options to = {0, bad[k], 0, 0, 0};
         cj_render_image *img = NULL;
         assert_int_equal(cj_render_trace_with_options(sc, &o, &to, 0, NULL, &img, NULL),
                          CJ_ERR_RANGE);
@@ -430,7 +430,7 @@ static void test_patch_tolerance_option(void **state) {
     double err[2];
     const double tol[2] = {1e-2, 0};
     for (int k = 0; k < 2; k++) {
-        cj_trace_options to = {0, tol[k], 0, 0};
+        cj_trace_options to = {0, tol[k], 0, 0, 0};
         cj_render_image *img = NULL;
         cj_stage_report rep;
         assert_int_equal(cj_render_trace_with_options(sc, &o, &to, 0, NULL, &img, &rep), CJ_OK);
@@ -503,7 +503,7 @@ static cj_render_image *trace_ind(const cj_scene *sc, int threads, int tile, int
     cj_render_options o = cj_render_options_defaults();
     o.threads = threads;
     o.tile_size = tile;
-    cj_trace_options to = {0, 0, indirect, 0};
+    cj_trace_options to = {0, 0, indirect, 0, 0};
     cj_render_image *img = NULL;
     assert_int_equal(cj_render_trace_with_options(sc, &o, &to, 0, NULL, &img, rep), CJ_OK);
     return img;
@@ -538,7 +538,7 @@ static void test_indirect(void **state) {
     cj_render_image_destroy(ref);
     /* Out of range. */
     cj_render_options o = cj_render_options_defaults();
-    cj_trace_options bad = {0, 0, -1, 0};
+    cj_trace_options bad = {0, 0, -1, 0, 0};
     cj_render_image *none = NULL;
     assert_int_equal(cj_render_trace_with_options(sc, &o, &bad, 0, NULL, &none, NULL),
                      CJ_ERR_RANGE);

@@ -107,7 +107,7 @@ static void render_into(const cj_scene *sc, uint64_t seed, int random, double *a
     o.use_seed = 1;
     o.seed = seed;
     o.threads = 2;
-    cj_trace_options to = {random, 0, 0, 0};
+    cj_trace_options to = {random, 0, 0, 0, 0};
     cj_render_image *img = NULL;
     assert_int_equal(cj_render_trace_with_options(sc, &o, &to, 0, NULL, &img, NULL), CJ_OK);
     for (int i = 0; i < W * W; i++) acc[i] += img->rgba[4 * i];

@@ -63,6 +63,7 @@ typedef struct cj_rmat {
     float cr[3];   /* c_r */
     float amb[3];  /* r_a I_a (unlit without any light: 1) */
     float spec[3]; /* c_p r_s */
+    float emit[3]; /* the material's emission (a radiance), added to every lit model */
     float kd, alpha, opacity;
     int model, two_sided, tex; /* tex: sampler index or −1 */
     int spec_model;            /* cj_specular_model */
@@ -112,6 +113,10 @@ typedef struct cj_rctx {
     int *obj_mat; /* object -> index into mats */
     cj_rlight *lights;
     int nlights;
+    /* radiometric area, disc and sphere lights, drawn with their radiance where camera rays
+     * meet them in front of the surfaces (render_emitters.c) */
+    const cj_light **emitters;
+    int nemitters;
     int radiometric; /* cj_light_model CJ_LIGHT_RADIOMETRIC (reflect_model.h) */
     cj_tex_sampler *samplers;
     int nsamplers;
@@ -139,6 +144,10 @@ void cj_rshade_one(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, 
  * vertex A/S into c->gouraud. */
 cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a);
 cj_status cj_rshade_prepare_gouraud(cj_rctx *c, const cj_allocator *a, size_t *vertices);
+
+/* render_emitters.c: the samples of the tile whose camera ray meets an emitter in front of
+ * what was drawn take its radiance (alpha 1). */
+void cj_remitters_tile(const cj_rctx *c, const cj_tile *t, float *col);
 
 /* render_tile.c: the cj_tile_fn of the opaque run (user = the cj_rctx). */
 void cj_rtile_run(void *user, const cj_tile *t);

@@ -27,6 +27,9 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
             f->any_ambient = 1;
             continue;
         }
+        if (radiometric &&
+            (L->kind == CJ_LIGHT_AREA || L->kind == CJ_LIGHT_DISC || L->kind == CJ_LIGHT_SPHERE))
+            c->emitters[c->nemitters++] = L;
         cj_rlight *r = &c->lights[c->nlights++];
         memset(r, 0, sizeof *r);
         memcpy(r->I, I, sizeof I);
@@ -68,6 +71,25 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
             r->spot_exp = (float)L->spot_exponent;
         }
         r->falloff = radiometric && (L->kind == CJ_LIGHT_POINT || L->kind == CJ_LIGHT_SPOT);
+        if (L->kind == CJ_LIGHT_DISC || L->kind == CJ_LIGHT_SPHERE) {
+            /* the far-field point at the centre (scene.h): legacy, a point of strength I;
+             * radiometric, an intensity π R² L_e, times cos θ′ for a disc (a spot of exponent 1
+             * over the half space its normal points to) */
+            r->falloff = radiometric;
+            if (radiometric) {
+                const float proj = (float)(3.14159265358979323846 * L->radius * L->radius);
+                for (int k = 0; k < 3; ++k) r->I[k] *= proj;
+            }
+            if (radiometric && L->kind == CJ_LIGHT_DISC) {
+                cj_vec3 a = cj_v3_normalize(L->direction);
+                r->spot = 1;
+                r->axis[0] = (float)a.x;
+                r->axis[1] = (float)a.y;
+                r->axis[2] = (float)a.z;
+                r->cos_cut = 0.0f;
+                r->spot_exp = 1.0f;
+            }
+        }
     }
     f->lit = c->nlights > 0;
 }
@@ -110,6 +132,9 @@ static void set_material(cj_rmat *r, const cj_material *m, int lit, int any_ambi
     r->spec[0] = (float)(m->specular.r * m->ks);
     r->spec[1] = (float)(m->specular.g * m->ks);
     r->spec[2] = (float)(m->specular.b * m->ks);
+    r->emit[0] = (float)m->emission.r;
+    r->emit[1] = (float)m->emission.g;
+    r->emit[2] = (float)m->emission.b;
     r->kd = (float)m->kd;
     r->alpha = (float)m->alpha;
     r->spec_model = (int)m->specular_model;
@@ -126,10 +151,11 @@ cj_status cj_rframe_materials(cj_rframe *F) {
     c->nmat = (int)cj_scene_material_count(scene);
     c->mats = cj_ralloc(&F->A, sizeof(cj_rmat) * (size_t)(c->nmat + 1));
     c->lights = cj_ralloc(&F->A, sizeof(cj_rlight) * (cj_scene_light_count(scene) + 1));
+    c->emitters = cj_ralloc(&F->A, sizeof(cj_light *) * (cj_scene_light_count(scene) + 1));
     c->nsamplers = (int)cj_scene_texture_count(scene);
     c->samplers = cj_ralloc(&F->A, sizeof(cj_tex_sampler) * (size_t)(c->nsamplers + 1));
     F->need = cj_ralloc(&F->A, sizeof(unsigned) * (size_t)(c->nmat + 1));
-    if (!c->mats || !c->lights || !c->samplers || !F->need)
+    if (!c->mats || !c->lights || !c->emitters || !c->samplers || !F->need)
         return cj_fail(CJ_ERR_NOMEM, "render tables");
     memset(c->samplers, 0, sizeof(cj_tex_sampler) * (size_t)(c->nsamplers + 1));
     prepare_lights(scene, c, F->Ia, f);

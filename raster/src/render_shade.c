@@ -103,7 +103,7 @@ CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
     }
     for (int k = 0; k < 3; ++k) {
         A[k] = m->amb[k] + m->kd * sum_d[k];
-        S[k] = m->spec[k] * sum_s[k];
+        S[k] = m->spec[k] * sum_s[k] + m->emit[k]; /* emission: added, not reflected */
     }
 }
 

@@ -93,6 +93,8 @@ void cj_rtile_run(void *user, const cj_tile *t) {
         cnt->n[CJ_RS_SHADE0 + k] += m;
     }
 
+    if (c->nemitters) cj_remitters_tile(c, t, col);
+
     if (c->has_lines) {
         double a = cj_render_now();
         cj_rlines_tile(c, t, col, &cnt->n[CJ_RS_LINES]);

@@ -42,6 +42,9 @@ static cj_status check_options(const cj_renderer_options *o) {
     if (o->trace.integrator != CJ_INTEGRATOR_WHITTED && o->trace.integrator != CJ_INTEGRATOR_PATH)
         return cj_fail(CJ_ERR_RANGE, "integrator %d is neither whitted (0) nor path (1)",
                        o->trace.integrator);
+    if (o->trace.emission_by_chance != 0 && o->trace.emission_by_chance != 1)
+        return cj_fail(CJ_ERR_RANGE, "emission_by_chance %d is neither 0 nor 1",
+                       o->trace.emission_by_chance);
     return CJ_OK;
 }
 
@@ -101,6 +104,7 @@ void cj_renderer_destroy(cj_renderer *r) {
     cj_render_cache_destroy(r->cache);
     tr_bvh_cache_destroy(r->bvh);
     free_shade_buffers(r);
+    cj_rfree(&r->alloc, r->motion);
     cj_allocator a = r->alloc;
     cj_rfree(&a, r);
 }
@@ -110,6 +114,39 @@ cj_status cj_renderer_set_options(cj_renderer *r, const cj_renderer_options *opt
     cj_status st = check_options(opt);
     if (!st) r->opt = *opt;
     return st;
+}
+
+cj_status cj_renderer_set_motion(cj_renderer *r, const cj_motion *m) {
+    assert(r);
+    cj_rfree(&r->alloc, r->motion);
+    r->motion = NULL;
+    r->motion_poses = 0;
+    r->motion_nodes = 0;
+    if (!m) return CJ_OK;
+    assert(m->world);
+    if (m->poses < 2 || m->poses > 1024)
+        return cj_fail(CJ_ERR_RANGE, "motion: %d poses outside 2..1024", m->poses);
+    if (m->node_count == 0 || m->node_count > ((size_t)1 << 40) / (size_t)m->poses)
+        return cj_fail(CJ_ERR_RANGE, "motion: %zu nodes", m->node_count);
+    const size_t n = (size_t)m->poses * m->node_count;
+    for (size_t i = 0; i < n; ++i) {
+        const cj_xform3 *x = &m->world[i];
+        for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b)
+                if (!isfinite(x->m[a][b]))
+                    return cj_fail(CJ_ERR_NONFINITE,
+                                   "motion: pose %zu, node %zu: entry (%d, %d) is %g",
+                                   i / m->node_count, i % m->node_count, a, b, x->m[a][b]);
+        if (x->m[3][0] != 0.0 || x->m[3][1] != 0.0 || x->m[3][2] != 0.0 || x->m[3][3] != 1.0)
+            return cj_fail(CJ_ERR_UNSUPPORTED, "motion: pose %zu, node %zu: projective transform",
+                           i / m->node_count, i % m->node_count);
+    }
+    r->motion = cj_ralloc(&r->alloc, n * sizeof *r->motion);
+    if (!r->motion) return cj_fail(CJ_ERR_NOMEM, "motion: %zu transforms", n);
+    memcpy(r->motion, m->world, n * sizeof *r->motion);
+    r->motion_poses = m->poses;
+    r->motion_nodes = m->node_count;
+    return CJ_OK;
 }
 
 const cj_renderer_options *cj_renderer_get_options(const cj_renderer *r) {

@@ -26,6 +26,10 @@ struct cj_renderer {
     float **color;
     uint32_t **order;
     struct cj_rcount *count;
+    /* motion blur (cj_renderer_set_motion): motion_poses × motion_nodes transforms, or none */
+    int motion_poses;
+    size_t motion_nodes;
+    cj_xform3 *motion;
 };
 
 /* A renderer for one call (the one-shot wrappers): no caches of its own. */

@@ -121,8 +121,37 @@ static cj_status object_bvh(tr_object *o, int node_index, tr_bvh_cache *cache,
     return CJ_OK;
 }
 
+/* The node's transforms over the shutter when they are not all equal. */
+static void object_motion(tr_object *o, const tr_motion *mo, int node_index) {
+    if (!mo || !mo->world) return;
+    const cj_xform3 *x0 = &mo->world[node_index];
+    for (int k = 1; k < mo->poses; ++k)
+        if (memcmp(x0, &mo->world[(size_t)k * mo->node_count + (size_t)node_index], sizeof *x0)) {
+            o->motion = x0;
+            o->stride = mo->node_count;
+            o->poses = mo->poses;
+            return;
+        }
+}
+
+/* The transform at shutter time τ: the poses around it interpolated entrywise (affine). */
+static cj_xform3 motion_at(const tr_object *o, double time) {
+    double u = time * (o->poses - 1);
+    int k = (int)u;
+    if (k < 0) k = 0;
+    if (k > o->poses - 2) k = o->poses - 2;
+    const double f = u - k;
+    const cj_xform3 *a = &o->motion[(size_t)k * o->stride],
+                    *b = &o->motion[(size_t)(k + 1) * o->stride];
+    cj_xform3 m = *a;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j) m.m[i][j] = (1.0 - f) * a->m[i][j] + f * b->m[i][j];
+    return m;
+}
+
 static cj_status build_object(const cj_rscene *rs, int node_index, tr_bvh_cache *cache,
-                              const cj_allocator *a, tr_object *o, size_t *reused, size_t *built) {
+                              const tr_motion *mo, const cj_allocator *a, tr_object *o,
+                              size_t *reused, size_t *built) {
     const cj_scene *scene = rs->scene;
     const cj_node *nd = cj_scene_node(scene, node_index);
     const cj_geometry *g = cj_scene_geometry(scene, nd->geometry);
@@ -164,6 +193,17 @@ static cj_status build_object(const cj_rscene *rs, int node_index, tr_bvh_cache 
     cj_aabb ob = object_box(o);
     pad(&ob);
     o->wbox = o->identity ? ob : cj_aabb_transform(&o->x, &ob);
+    object_motion(o, mo, node_index);
+    /* an interpolated transform maps each point between its images at the two poses, so the
+     * boxes at the poses bound every time between them */
+    for (int k = 0; o->motion && k < o->poses; ++k) {
+        cj_ray_xform xk;
+        st = cj_ray_xform_init(&xk, &o->motion[(size_t)k * o->stride]);
+        if (st) return st;
+        cj_aabb bk = cj_aabb_transform(&xk, &ob);
+        cj_aabb_merge(&o->wbox, &bk);
+    }
+    if (o->motion) o->identity = 0;
     return CJ_OK;
 }
 
@@ -177,14 +217,18 @@ void tr_scene_free(tr_scene *s) {
     for (int i = 0; i < s->ntex; i++) cj_tex_sampler_free(&s->tex[i]);
     cj_rfree(&s->alloc, s->tex);
     cj_rfree(&s->alloc, s->objs);
+    cj_rfree(&s->alloc, s->emit);
+    cj_rfree(&s->alloc, s->emit_cdf);
+    cj_rfree(&s->alloc, s->emit_obj);
     cj_bvh_destroy(s->top);
     memset(s, 0, sizeof *s);
 }
 
-cj_status tr_scene_build(const cj_rscene *rs, tr_bvh_cache *cache, const cj_allocator *alloc,
-                         tr_scene *out, size_t *reused, size_t *built) {
+cj_status tr_scene_build(const cj_rscene *rs, tr_bvh_cache *cache, const tr_motion *motion,
+                         const cj_allocator *alloc, tr_scene *out, size_t *reused, size_t *built,
+                         size_t *moving) {
     const cj_scene *scene = rs->scene;
-    *reused = *built = 0;
+    *reused = *built = *moving = 0;
     tr_scene s;
     memset(&s, 0, sizeof s);
     s.scene = scene;
@@ -205,7 +249,8 @@ cj_status tr_scene_build(const cj_rscene *rs, tr_bvh_cache *cache, const cj_allo
     for (size_t i = 0; i < nn && !st; i++) {
         const cj_node *nd = cj_scene_node(scene, (int)i);
         if (!rs->drawn[i] || !traced_kind(cj_scene_geometry(scene, nd->geometry)->kind)) continue;
-        st = build_object(rs, (int)i, cache, &s.alloc, &s.objs[s.nobj], reused, built);
+        st = build_object(rs, (int)i, cache, motion, &s.alloc, &s.objs[s.nobj], reused, built);
+        if (s.objs[s.nobj].motion) ++*moving;
         s.nobj++;
     }
     if (!st && s.nobj) {
@@ -228,13 +273,21 @@ cj_status tr_scene_build(const cj_rscene *rs, tr_bvh_cache *cache, const cj_allo
 typedef struct cb_ctx {
     const tr_scene *s;
     tr_counts *c;
+    double time;
 } cb_ctx;
 
 static int object_cb(void *user, uint32_t prim, const cj_ray *wray, cj_hit *hit) {
     const cb_ctx *cc = user;
     const tr_object *o = &cc->s->objs[prim];
     cj_ray r = *wray;
-    if (!o->identity) cj_ray_to_object(&o->x, wray, &r);
+    cj_ray_xform xt; /* a moving object's transform at the ray's time */
+    const cj_ray_xform *x = &o->x;
+    if (o->motion) {
+        const cj_xform3 m = motion_at(o, cc->time);
+        if (cj_ray_xform_init(&xt, &m) != CJ_OK) return 0; /* singular in passing: not there */
+        x = &xt;
+    }
+    if (!o->identity) cj_ray_to_object(x, wray, &r);
     const cj_geometry *g = o->g;
     int got = 0;
     switch (o->kind) {
@@ -294,21 +347,21 @@ static int object_cb(void *user, uint32_t prim, const cj_ray *wray, cj_hit *hit)
     }
     }
     if (!got) return 0;
-    if (!o->identity) cj_hit_to_world(&o->x, hit);
+    if (!o->identity) cj_hit_to_world(x, hit);
     hit->obj = prim;
     return 1;
 }
 
-int tr_closest(const tr_scene *s, const cj_ray *ray, cj_hit *hit, tr_counts *c) {
+int tr_closest(const tr_scene *s, const cj_ray *ray, double time, cj_hit *hit, tr_counts *c) {
     if (!s->top) return 0;
-    cb_ctx cc = {s, c};
+    cb_ctx cc = {s, c, time};
     if (!cj_bvh_closest(s->top, ray, object_cb, &cc, hit, NULL)) return 0;
     hit->obj = hit->prim; /* the top level's primitive is the object */
     return 1;
 }
 
-int tr_any(const tr_scene *s, const cj_ray *ray, tr_counts *c) {
+int tr_any(const tr_scene *s, const cj_ray *ray, double time, tr_counts *c) {
     if (!s->top) return 0;
-    cb_ctx cc = {s, c};
+    cb_ctx cc = {s, c, time};
     return cj_bvh_any(s->top, ray, object_cb, &cc, NULL);
 }

@@ -23,7 +23,12 @@ typedef struct tr_object {
     double *own_pts, *own_w;
     cj_bvh *bvh;    /* patches or mesh triangles */
     int bvh_cached; /* bvh belongs to the renderer's BVH cache, not to this object */
-    cj_aabb wbox;
+    cj_aabb wbox;   /* over the whole shutter for a moving object */
+    /* motion blur: the object's transforms at `poses` evenly spaced shutter times, every
+     * `stride`-th entry of the renderer's motion array from `motion`; NULL when static */
+    const cj_xform3 *motion;
+    size_t stride;
+    int poses;
 } tr_object;
 
 /* Per-thread counters of ray kinds. */
@@ -36,8 +41,25 @@ typedef struct tr_counts {
     double patch_max_err;
 } tr_counts;
 
+/* An emissive triangle in world space (a mesh triangle, or half of a planar patch), sampled by
+ * area for next-event estimation in the path tracer; it emits on both sides, as a path meets
+ * an emissive surface from either side. */
+typedef struct tr_emit_tri {
+    cj_vec3 p0, e1, e2; /* p0 + s e1 + t e2, s, t >= 0, s + t <= 1 */
+    cj_vec3 n;          /* unit normal */
+    double area;
+    cj_rgb emission;
+} tr_emit_tri;
+
 typedef struct tr_scene {
     const cj_scene *scene;
+    /* emissive triangles (static emissive mesh and planar objects), their area CDF, the total
+     * area and, per object, 1 if its triangles are in the table */
+    tr_emit_tri *emit;
+    double *emit_cdf;
+    size_t nemit;
+    double emit_area;
+    uint8_t *emit_obj;
     tr_object *objs;
     size_t nobj;
     cj_bvh *top;
@@ -62,12 +84,23 @@ void tr_bvh_cache_sweep(tr_bvh_cache *c);
 /* The traced scene of the frame's scene pass (render_scene.h: drawn nodes, world transforms).
  * cache may be NULL; *reused / *built count the object BVHs taken from it / built. */
 struct cj_rscene;
-cj_status tr_scene_build(const struct cj_rscene *rs, tr_bvh_cache *cache, const cj_allocator *alloc,
-                         tr_scene *out, size_t *reused, size_t *built);
+/* motion (may be NULL): poses × node_count world transforms (cj_renderer_set_motion), node_count
+ * equal to the scene's; *moving counts the objects that move over the shutter. */
+typedef struct tr_motion {
+    const cj_xform3 *world;
+    int poses;
+    size_t node_count;
+} tr_motion;
+cj_status tr_scene_build(const struct cj_rscene *rs, tr_bvh_cache *cache, const tr_motion *motion,
+                         const cj_allocator *alloc, tr_scene *out, size_t *reused, size_t *built,
+                         size_t *moving);
 void tr_scene_free(tr_scene *s);
+/* The emissive triangle table of a built scene (trace_emit.c). CJ_ERR_NOMEM. */
+cj_status tr_scene_emitters(tr_scene *s);
 
-/* Closest hit (hit->obj = object index) / any hit in [tmin, tmax]. */
-int tr_closest(const tr_scene *s, const cj_ray *ray, cj_hit *hit, tr_counts *c);
-int tr_any(const tr_scene *s, const cj_ray *ray, tr_counts *c);
+/* Closest hit (hit->obj = object index) / any hit in [tmin, tmax], with moving objects placed
+ * at shutter time `time` in [0, 1] (ignored by static ones). */
+int tr_closest(const tr_scene *s, const cj_ray *ray, double time, cj_hit *hit, tr_counts *c);
+int tr_any(const tr_scene *s, const cj_ray *ray, double time, tr_counts *c);
 
 #endif

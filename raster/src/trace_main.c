@@ -20,6 +20,8 @@ typedef struct tr_job {
     cj_xform3 clip;
     cj_render_image *img;
     int w, h, spp, strata, max_depth, tile, tiles_x, ntiles, random, indirect, integrator;
+    int motion;             /* some object moves over the shutter: each sample draws a time */
+    int emit_nee;           /* path tracer: emissive triangles sampled as lights */
     cj_pixel_filter filter; /* not box only when spp > 1 */
     double filter_r;
     uint64_t seed;
@@ -67,6 +69,18 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
             py = y + 0.5 + dy;
             fw = cj_pixel_filter_eval(j->filter, j->filter_r, dx) *
                  cj_pixel_filter_eval(j->filter, j->filter_r, dy);
+        }
+        sh->time = 0.5;
+        if (j->motion) { /* a shutter time per sample, stratified like the lens */
+            double tu = tr_rand(&sh->rng);
+            if (j->spp > 1 && !j->random) {
+                uint32_t ns = (uint32_t)j->spp;
+                uint32_t si =
+                    (tr_permute((uint32_t)s, ns, sh->perm_key ^ 0x9e3779b97f4a7c15ull) + sh->perm) %
+                    ns;
+                tu = (si + tu) / ns;
+            }
+            sh->time = tu;
         }
         cj_ray ray;
         if (j->cam->aperture > 0.0) { /* thin lens: a lens point per sample, stratified */
@@ -126,7 +140,7 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
         if (cj_camera_ray(j->cam, j->w, j->h, x + 0.5, y + 0.5, &ray.org, &ray.dir) == CJ_OK) {
             ray.tmin = 0.0;
             ray.tmax = INFINITY;
-            if (tr_closest(j->s, &ray, &h, NULL)) {
+            if (tr_closest(j->s, &ray, 0.5, &h, NULL)) { /* mid-shutter */
                 if (j->img->ids) j->img->ids[pix] = j->s->objs[h.obj].id;
                 if (j->img->depth) j->img->depth[pix] = pseudodepth(&j->clip, h.p);
             }
@@ -146,6 +160,8 @@ static void shade_init(const tr_job *j, tr_counts *c, tr_shade *sh) {
     sh->random = j->random;
     sh->indirect = j->indirect;
     sh->integrator = j->integrator;
+    sh->time = 0.5;
+    sh->emit_nee = j->emit_nee;
 }
 
 /* One tile: a task of the renderer's scheduler (render_pool.h). */
@@ -349,16 +365,35 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     }
     decide_stages(R, scene, set.spp, set.indirect, planes, r->opt.trace.integrator);
     tr_scene ts;
-    size_t bvh_reused = 0, bvh_built = 0;
+    size_t bvh_reused = 0, bvh_built = 0, moving = 0;
+    tr_motion motion = {r->motion, r->motion_poses, r->motion_nodes};
+    if (r->motion && r->motion_nodes != rs->node_count) {
+        st = cj_fail(CJ_ERR_DIMENSION, "motion blur: the motion has %zu nodes, the scene %zu",
+                     r->motion_nodes, rs->node_count);
+        cj_rtarget_finish(&target, image, st);
+        return st;
+    }
     double t0 = cj_render_now();
-    st = tr_scene_build(rs, r->bvh, &r->alloc, &ts, &bvh_reused, &bvh_built);
+    st = tr_scene_build(rs, r->bvh, r->motion ? &motion : NULL, &r->alloc, &ts, &bvh_reused,
+                        &bvh_built, &moving);
     double build_s = cj_render_now() - t0;
     if (r->bvh) tr_bvh_cache_sweep(r->bvh);
     if (st) {
         cj_rtarget_finish(&target, image, st);
         return st;
     }
+    if (r->opt.trace.integrator == CJ_INTEGRATOR_PATH && !r->opt.trace.emission_by_chance)
+        st = tr_scene_emitters(&ts);
+    if (st) {
+        tr_scene_free(&ts);
+        cj_rtarget_finish(&target, image, st);
+        return st;
+    }
     report_build(R, &ts, build_s, bvh_reused, bvh_built);
+    if (r->motion || moving)
+        cj_stage_report_set(R, "motion_blur", moving > 0,
+                            "%zu of %zu object(s) move over the shutter (%d poses)", moving,
+                            ts.nobj, r->motion_poses);
     if (set.ptol > 0.0)
         for (size_t i = 0; i < ts.nobj; i++) ts.objs[i].tol *= set.ptol / 1e-7;
     tr_lights lights;
@@ -378,6 +413,8 @@ cj_status cj_rtrace_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     j.max_depth = set.max_depth;
     j.indirect = set.indirect;
     j.integrator = r->opt.trace.integrator;
+    j.motion = moving > 0;
+    j.emit_nee = ts.nemit > 0;
     j.filter = set.spp > 1 ? cj_scene_get_settings(scene)->filter : CJ_FILTER_BOX;
     j.filter_r = cj_pixel_filter_radius(j.filter, cj_scene_get_settings(scene)->filter_radius);
     j.seed = r->opt.render.use_seed ? r->opt.render.seed : cj_scene_get_settings(scene)->seed;

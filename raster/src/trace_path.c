@@ -62,38 +62,50 @@ static double power_heuristic(double a, double b) {
     return a * a / (a * a + b * b);
 }
 
-/* The first area light the ray meets before t_max: its index, distance and the cosine at the
- * light; −1 when none (lights emit on the side edge_u × edge_v points to). */
-static int hit_area_light(const tr_lights *L, const cj_ray *ray, double t_max, double *t_out,
-                          double *cos_l) {
+/* The first emitter (area, disc or sphere light) the ray meets before t_max: its index, distance
+ * and the solid-angle pdf with which next-event estimation draws that direction; −1 when none. */
+static int hit_emitter(const tr_lights *L, const cj_ray *ray, double t_max, double *t_out,
+                       double *light_pdf) {
     int best = -1;
     for (int i = 0; i < L->count; ++i) {
         const cj_light *lt = L->light[i];
-        if (lt->kind != CJ_LIGHT_AREA) continue;
-        cj_vec3 nl = cj_v3_cross(lt->edge_u, lt->edge_v);
-        double dn = cj_v3_dot(ray->dir, nl);
-        if (!(dn < 0.0)) continue; /* the back of the emitter, or edge-on */
-        double t = cj_v3_dot(cj_v3_sub(lt->position, ray->org), nl) / dn;
-        if (!(t > ray->tmin) || !(t < t_max)) continue;
-        cj_vec3 q = cj_v3_sub(cj_v3_add(ray->org, cj_v3_scale(ray->dir, t)), lt->position);
-        /* coordinates of q in (edge_u, edge_v) by the dual basis */
-        double uu = cj_v3_dot(lt->edge_u, lt->edge_u), uv = cj_v3_dot(lt->edge_u, lt->edge_v),
-               vv = cj_v3_dot(lt->edge_v, lt->edge_v), qu = cj_v3_dot(q, lt->edge_u),
-               qv = cj_v3_dot(q, lt->edge_v), det = uu * vv - uv * uv;
-        double s = (qu * vv - qv * uv) / det, r = (qv * uu - qu * uv) / det;
-        if (s < 0.0 || s > 1.0 || r < 0.0 || r > 1.0) continue;
+        double t, pdf;
+        if (!tr_is_emitter(lt) || !tr_emitter_hit(lt, ray, t_max, &t, &pdf)) continue;
         t_max = t;
         best = i;
         *t_out = t;
-        *cos_l = -dn / (cj_v3_norm(nl) * cj_v3_norm(ray->dir));
+        *light_pdf = pdf;
     }
     return best;
+}
+
+/* Two numbers in [0, 1)² for one of the first hit's samples: at the camera ray's first hit
+ * (first) of a pixel with several stratified samples, the stratum of pixel sample s under a
+ * keyed random permutation (one key per use, `salt`), offset by the pixel's random shift, as
+ * the Whitted tracer stratifies its light samples (trace_shade.c: a fixed pairing with the
+ * pixel strata would keep a variance more samples do not lower); elsewhere uniform. */
+static void strat2(tr_shade *sh, int first, uint64_t salt, double *u, double *v) {
+    const double a = tr_rand(&sh->rng), b = tr_rand(&sh->rng);
+    if (!first || sh->spp < 2 || sh->random) {
+        *u = a;
+        *v = b;
+        return;
+    }
+    const uint32_t ns = (uint32_t)sh->spp, k = (uint32_t)sh->strata;
+    const uint32_t si = (tr_permute(sh->sample, ns, sh->perm_key ^ salt) + sh->perm) % ns;
+    if (k * k == ns) {
+        *u = ((si % k) + a) / k;
+        *v = ((si / k) + b) / k;
+    } else {
+        *u = (si + a) / ns;
+        *v = b;
+    }
 }
 
 /* Next-event estimation at a non-delta hit: Σ over the lights of f cos θ E, area lights by
  * one stratum-free area sample each, MIS-weighted against the BRDF's pdf. */
 static cj_rgb next_event(tr_shade *sh, const cj_hit *h, const pt_frame *fr, const double wo[3],
-                         const pt_local *loc, int receives) {
+                         const pt_local *loc, int receives, int first) {
     const tr_lights *L = sh->lights;
     cj_rgb sum = cj_rgb_make(0, 0, 0);
     for (int i = 0; i < L->count; ++i) {
@@ -103,10 +115,13 @@ static cj_rgb next_event(tr_shade *sh, const cj_hit *h, const pt_frame *fr, cons
         cj_vec3 target = lt->position;
         if (lt->kind == CJ_LIGHT_DIRECTIONAL) {
             dir = cj_v3_normalize(cj_v3_scale(lt->direction, -1.0));
+        } else if (tr_is_emitter(lt)) { /* one sample (trace_lights.c), L_e E per unit */
+            double u1, u2;
+            strat2(sh, first, 0x6a09e667f3bcc909ull * (uint64_t)(i + 1), &u1, &u2);
+            if (!tr_emitter_sample(lt, h->p, u1, u2, 0, &target, &E, &light_pdf)) continue;
+            dir = cj_v3_normalize(cj_v3_sub(target, h->p));
+            tmax = 1.0;
         } else {
-            if (lt->kind == CJ_LIGHT_AREA)
-                target = cj_v3_add(target, cj_v3_add(cj_v3_scale(lt->edge_u, tr_rand(&sh->rng)),
-                                                     cj_v3_scale(lt->edge_v, tr_rand(&sh->rng))));
             cj_vec3 to = cj_v3_sub(target, h->p);
             double r2 = cj_v3_dot(to, to);
             if (!(r2 > 0.0)) continue;
@@ -115,12 +130,6 @@ static cj_rgb next_event(tr_shade *sh, const cj_hit *h, const pt_frame *fr, cons
             if (lt->kind == CJ_LIGHT_SPOT) {
                 double ct = -cj_v3_dot(cj_v3_normalize(lt->direction), dir);
                 E = ct >= cos(lt->spot_angle) ? E * pow(ct, lt->spot_exponent) : 0.0;
-            } else if (lt->kind == CJ_LIGHT_AREA) {
-                cj_vec3 nl = cj_v3_cross(lt->edge_u, lt->edge_v);
-                double A = cj_v3_norm(nl), ct = -cj_v3_dot(nl, dir) / A;
-                if (!(ct > 0.0)) continue;
-                E = A * ct / r2;           /* L_e A cos θ′ / r² per unit L_e */
-                light_pdf = r2 / (A * ct); /* the sample's solid-angle pdf */
             }
             tmax = 1.0;
         }
@@ -145,6 +154,35 @@ static cj_rgb next_event(tr_shade *sh, const cj_hit *h, const pt_frame *fr, cons
         sum.g += f.g * lt->color.g * s;
         sum.b += f.b * lt->color.b * s;
     }
+    if (sh->emit_nee) { /* one point of the emissive surfaces, picked by area (trace_emit.c) */
+        const double u0 = tr_rand(&sh->rng);
+        double u1, u2;
+        strat2(sh, first, 0xbb67ae8584caa73bull, &u1, &u2);
+        cj_vec3 target;
+        cj_rgb le;
+        double wgt, light_pdf;
+        if (!tr_emit_sample(sh->s, h->p, u0, u1, u2, &target, &le, &wgt, &light_pdf)) return sum;
+        const cj_vec3 dir = cj_v3_normalize(cj_v3_sub(target, h->p));
+        double wi[3];
+        to_local(fr, dir, wi);
+        if (!(wi[2] > 0.0)) return sum;
+        double bpdf;
+        const cj_rgb f = local_f(loc, wo, wi, &bpdf);
+        if (f.r == 0.0 && f.g == 0.0 && f.b == 0.0) return sum;
+        if (receives) {
+            /* stop just short of the target: it lies on the emitter's own surface */
+            cj_ray sr;
+            sr.org = cj_ray_offset_origin(h, dir);
+            sr.dir = cj_v3_sub(target, sr.org);
+            sr.tmin = 0.0;
+            sr.tmax = 1.0 - 1e-6;
+            if (tr_occluded(sh, &sr)) return sum;
+        }
+        const double s = wgt * wi[2] * power_heuristic(light_pdf, bpdf);
+        sum.r += f.r * le.r * s;
+        sum.g += f.g * le.g * s;
+        sum.b += f.b * le.b * s;
+    }
     return sum;
 }
 
@@ -157,16 +195,12 @@ cj_rgb tr_path(tr_shade *sh, const cj_ray *camera_ray, int *hit_any) {
     for (int depth = 0;; ++depth) {
         cj_hit h;
         int got = tr_cast(sh, kind, &ray, &h);
-        double tl = 0.0, cl = 0.0;
-        int li = hit_area_light(L, &ray, got ? h.t : INFINITY, &tl, &cl);
+        double tl = 0.0, lpdf = 0.0;
+        int li = hit_emitter(L, &ray, got ? h.t : INFINITY, &tl, &lpdf);
         if (li >= 0) { /* an emitter seen directly or reached by a BRDF sample */
             const cj_light *lt = L->light[li];
             double w = 1.0;
-            if (!prev_delta) {
-                double A = cj_v3_norm(cj_v3_cross(lt->edge_u, lt->edge_v));
-                double d2 = tl * tl * cj_v3_dot(ray.dir, ray.dir);
-                w = power_heuristic(prev_pdf, d2 / (A * cl));
-            }
+            if (!prev_delta) w = power_heuristic(prev_pdf, lpdf);
             double s = lt->intensity * w;
             out.r += T.r * lt->color.r * s;
             out.g += T.g * lt->color.g * s;
@@ -187,9 +221,14 @@ cj_rgb tr_path(tr_shade *sh, const cj_ray *camera_ray, int *hit_any) {
         const int front = cj_v3_dot(h.ng, d) < 0.0;
         cj_vec3 nf = front ? h.ng : cj_v3_scale(h.ng, -1.0), n = h.n;
         if (cj_v3_dot(n, nf) < 0.0) n = cj_v3_scale(n, -1.0);
-        out.r += T.r * m->emission.r;
-        out.g += T.g * m->emission.g;
-        out.b += T.b * m->emission.b;
+        double we = 1.0; /* emission reached by a BRDF sample, MIS against sampling it as light */
+        if (sh->emit_nee && !prev_delta && sh->s->emit_obj && sh->s->emit_obj[h.obj]) {
+            const double dist = h.t * cj_v3_norm(ray.dir), cl = fabs(cj_v3_dot(h.ng, d));
+            if (cl > 0.0) we = power_heuristic(prev_pdf, dist * dist / (sh->s->emit_area * cl));
+        }
+        out.r += T.r * m->emission.r * we;
+        out.g += T.g * m->emission.g * we;
+        out.b += T.b * m->emission.b * we;
         if (depth >= sh->max_depth) break;
         cj_rgb cr = m->color;
         if (m->texture >= 0 && m->texture < sh->s->ntex) {
@@ -238,12 +277,13 @@ cj_rgb tr_path(tr_shade *sh, const cj_ray *camera_ray, int *hit_any) {
                 loc.p_diffuse = wd / (wd + ws);
                 /* the local part's share of the mixture is 1 − r_t − r_m, chosen with that
                  * probability: the share cancels */
-                cj_rgb ne = next_event(sh, &h, &fr, wo, &loc, m->receives_shadows);
+                cj_rgb ne = next_event(sh, &h, &fr, wo, &loc, m->receives_shadows, depth == 0);
                 out.r += T.r * ne.r;
                 out.g += T.g * ne.g;
                 out.b += T.b * ne.b;
                 static const cj_brdf lambert = {CJ_BRDF_LAMBERT, 0.0, 1.0};
-                const double u1 = tr_rand(&sh->rng), u2 = tr_rand(&sh->rng);
+                double u1, u2; /* the BRDF sample, stratified at the first hit */
+                strat2(sh, depth == 0, 0x3c6ef372fe94f82bull, &u1, &u2);
                 if (!cj_brdf_sample_dir(tr_rand(&sh->rng) < loc.p_diffuse ? &lambert : &loc.lobe,
                                         wo, u1, u2, 0.0, &smp))
                     break;

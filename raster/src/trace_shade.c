@@ -4,6 +4,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "trace_shade.h"
 
+#include "brdf.h"
 #include "reflect_model.h"
 
 #include <math.h>
@@ -65,7 +66,7 @@ int cj_trace_refract(cj_vec3 d, cj_vec3 n, double n1, double n2, cj_vec3 *t) {
 
 int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit) {
     double t0 = now();
-    int got = tr_closest(sh->s, ray, hit, sh->c);
+    int got = tr_closest(sh->s, ray, sh->time, hit, sh->c);
     sh->c->seconds[kind] += now() - t0;
     sh->c->cast[kind]++;
     if (got) sh->c->hit[kind]++;
@@ -74,20 +75,11 @@ int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit) {
 
 int tr_occluded(tr_shade *sh, const cj_ray *ray) {
     double t0 = now();
-    int got = tr_any(sh->s, ray, sh->c);
+    int got = tr_any(sh->s, ray, sh->time, sh->c);
     sh->c->seconds[TR_SHADOW] += now() - t0;
     sh->c->cast[TR_SHADOW]++;
     if (got) sh->c->hit[TR_SHADOW]++;
     return got;
-}
-
-/* A direction about the unit vector r drawn from the Phong lobe cos^e (importance sampled). */
-static cj_vec3 phong_lobe(cj_vec3 r, double e, double u1, double u2) {
-    double ct = pow(u1, 1.0 / (e + 1.0)), st = sqrt(fmax(0.0, 1.0 - ct * ct)), ph = 2.0 * PI * u2;
-    cj_vec3 a, b;
-    cj_frame_from_axis(r, &a, &b);
-    return cj_v3_normalize(cj_v3_add(
-        cj_v3_scale(r, ct), cj_v3_add(cj_v3_scale(a, st * cos(ph)), cj_v3_scale(b, st * sin(ph)))));
 }
 
 cj_vec3 cj_trace_cosine_sample(cj_vec3 n, double u1, double u2) {
@@ -122,8 +114,9 @@ static cj_rgb indirect_light(tr_shade *sh, const cj_hit *h, cj_vec3 n, cj_vec3 n
     return cj_rgb_make(cr.r * acc[0] * w, cr.g * acc[1] * w, cr.b * acc[2] * w);
 }
 
-static cj_vec3 reflect(cj_vec3 d, cj_vec3 n) {
-    return cj_v3_sub(d, cj_v3_scale(n, 2.0 * cj_v3_dot(d, n)));
+/* A direction of the local frame (a, b, n) in world space. */
+static cj_vec3 to_world3(cj_vec3 a, cj_vec3 b, cj_vec3 n, const double v[3]) {
+    return cj_v3_add(cj_v3_add(cj_v3_scale(a, v[0]), cj_v3_scale(b, v[1])), cj_v3_scale(n, v[2]));
 }
 
 /* The local reflection model (reflect_model.h, the rasterizer's too) at the hit with shadow
@@ -139,51 +132,48 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
     for (int i = 0; i < L->count; i++) {
         const cj_light *lt = L->light[i];
         cj_vec3 lp = lt->position;
-        if (lt->kind == CJ_LIGHT_AREA) {
-            double s = 0.5, t = 0.5;
-            if (sh->spp > 1) {
-                /* Stratified over the samples of the pixel at the first hit, random deeper.
-                 * The light stratum of pixel sample s is a keyed random permutation of s:
-                 * a fixed pairing (such as a cyclic shift) ties each light stratum to one
-                 * part of the pixel, and the pixel's estimate then keeps a variance that
-                 * more samples do not reduce. The random offset makes every sample's
-                 * stratum uniform over the pixels, so the estimate stays unbiased. */
-                if (depth == 0 && !sh->random) {
-                    uint32_t ns = (uint32_t)sh->spp;
-                    uint32_t si = (tr_permute(sh->sample, ns, sh->perm_key) + sh->perm) % ns;
-                    uint32_t k = (uint32_t)sh->strata;
-                    if (k * k == ns) {
-                        s = ((si % k) + tr_rand(&sh->rng)) / k;
-                        t = ((si / k) + tr_rand(&sh->rng)) / k;
-                    } else { /* spp strata across the light's first edge */
-                        s = (si + tr_rand(&sh->rng)) / ns;
-                        t = tr_rand(&sh->rng);
-                    }
-                } else {
-                    s = tr_rand(&sh->rng);
+        const int extended = tr_is_emitter(lt);
+        double s = 0.5, t = 0.5;
+        if (extended && sh->spp > 1) {
+            /* Stratified over the samples of the pixel at the first hit, random deeper.
+             * The light stratum of pixel sample s is a keyed random permutation of s:
+             * a fixed pairing (such as a cyclic shift) ties each light stratum to one
+             * part of the pixel, and the pixel's estimate then keeps a variance that
+             * more samples do not reduce. The random offset makes every sample's
+             * stratum uniform over the pixels, so the estimate stays unbiased. */
+            if (depth == 0 && !sh->random) {
+                uint32_t ns = (uint32_t)sh->spp;
+                uint32_t si = (tr_permute(sh->sample, ns, sh->perm_key) + sh->perm) % ns;
+                uint32_t k = (uint32_t)sh->strata;
+                if (k * k == ns) {
+                    s = ((si % k) + tr_rand(&sh->rng)) / k;
+                    t = ((si / k) + tr_rand(&sh->rng)) / k;
+                } else { /* spp strata across the light's first edge */
+                    s = (si + tr_rand(&sh->rng)) / ns;
                     t = tr_rand(&sh->rng);
                 }
+            } else {
+                s = tr_rand(&sh->rng);
+                t = tr_rand(&sh->rng);
             }
-            lp = cj_v3_add(lp, cj_v3_add(cj_v3_scale(lt->edge_u, s), cj_v3_scale(lt->edge_v, t)));
         }
         cj_vec3 l;
         double f = 1.0;
         if (lt->kind == CJ_LIGHT_DIRECTIONAL) {
             l = cj_v3_normalize(cj_v3_scale(lt->direction, -1.0));
+        } else if (extended && L->radiometric) {
+            /* a sample of ∫ L_e cos θ dω over the emitter (trace_lights.c): by area for a
+             * parallelogram or disc (L_e A cos θ′ / r²), by the cone's solid angle for a
+             * sphere; one-sided emitters */
+            double pdf;
+            if (!tr_emitter_sample(lt, h->p, s, t, sh->spp == 1, &lp, &f, &pdf)) continue;
+            l = cj_v3_normalize(cj_v3_sub(lp, h->p));
         } else {
+            if (extended) lp = tr_emitter_point(lt, s, t); /* legacy: a point light on it */
             cj_vec3 to = cj_v3_sub(lp, h->p);
             double r2 = cj_v3_dot(to, to);
             l = cj_v3_normalize(to);
-            if (L->radiometric && lt->kind == CJ_LIGHT_AREA) {
-                /* a sample by area (pdf 1/A) of ∫ L_e cos θ cos θ′ / r² dA: L_e A cos θ′ / r²
-                 * times the cos θ of the reflection model; one-sided emitter */
-                cj_vec3 nl = cj_v3_cross(lt->edge_u, lt->edge_v);
-                double A = cj_v3_norm(nl), ct = -cj_v3_dot(nl, l) / A;
-                if (!(ct > 0.0) || !(r2 > 0.0)) continue;
-                f = A * ct / r2;
-            } else if (L->radiometric) {
-                f = 1.0 / r2; /* point and spot: an intensity, inverse-square falloff */
-            }
+            if (L->radiometric) f = 1.0 / r2; /* point and spot: an intensity, 1/r² */
             if (lt->kind == CJ_LIGHT_SPOT) {
                 double ct = -cj_v3_dot(cj_v3_normalize(lt->direction), l);
                 f = ct >= cos(lt->spot_angle) ? f * pow(ct, lt->spot_exponent) : 0.0;
@@ -222,9 +212,32 @@ static cj_rgb add_scaled(cj_rgb a, cj_rgb b, double s) {
     return cj_rgb_make(a.r + s * b.r, a.g + s * b.g, a.b + s * b.b);
 }
 
+/* The radiometric emitter a ray meets before t_max, or NULL. Not for indirect rays: their
+ * light is the direct term's already (the local model samples every light). */
+static const cj_light *seen_emitter(const tr_shade *sh, const cj_ray *ray, int kind, double t_max) {
+    const tr_lights *L = sh->lights;
+    if (!L->radiometric || kind == TR_INDIRECT) return NULL;
+    const cj_light *best = NULL;
+    for (int i = 0; i < L->count; ++i) {
+        double t, pdf;
+        if (tr_is_emitter(L->light[i]) && tr_emitter_hit(L->light[i], ray, t_max, &t, &pdf)) {
+            t_max = t;
+            best = L->light[i];
+        }
+    }
+    return best;
+}
+
 cj_rgb tr_trace(tr_shade *sh, const cj_ray *ray, int kind, int depth, tr_medium med, int *hit_any) {
     cj_hit h;
-    if (!tr_cast(sh, kind, ray, &h)) return sh->background;
+    const int got = tr_cast(sh, kind, ray, &h);
+    const cj_light *em = seen_emitter(sh, ray, kind, got ? h.t : INFINITY);
+    if (em) { /* an emitter in front: its radiance */
+        if (hit_any) *hit_any = 1;
+        return cj_rgb_make(em->color.r * em->intensity, em->color.g * em->intensity,
+                           em->color.b * em->intensity);
+    }
+    if (!got) return sh->background;
     if (hit_any) *hit_any = 1;
     const tr_object *o = &sh->s->objs[h.obj];
     const cj_material *m = cj_scene_material(sh->s->scene, o->material);
@@ -254,6 +267,15 @@ cj_rgb tr_trace(tr_shade *sh, const cj_ray *ray, int kind, int depth, tr_medium 
         }
     }
     if (depth >= sh->max_depth) return out;
+    /* The secondary rays through the BRDFs of brdf.h, in the frame of the normal facing the
+     * ray (wo = −d is +z). Legacy: the weights of the original Whitted tracer (mirror r_m,
+     * refraction r_t, no Fresnel, the glossy lobe as a blurred mirror of weight 1). Radiometric:
+     * the path tracer's BSDF, traced on both branches (Fresnel F to the reflection, 1 − F to
+     * the refraction), the mirror tinted by c_p, the glossy lobe weighted f cos θ / pdf. */
+    const int radiometric = sh->lights->radiometric;
+    cj_vec3 fa, fb;
+    cj_frame_from_axis(nf, &fa, &fb);
+    const double wo[3] = {-cj_v3_dot(d, fa), -cj_v3_dot(d, fb), -cj_v3_dot(d, nf)};
     double reflect_w = rm;
     if (rt > 0.0) {
         /* entering: from the current medium into the material; leaving: back to the outer one */
@@ -268,22 +290,42 @@ cj_rgb tr_trace(tr_shade *sh, const cj_ray *ray, int kind, int depth, tr_medium 
             if (inner.top > 0) inner.top--;
             n2 = inner.ior[inner.top];
         }
-        cj_vec3 t;
-        if (cj_trace_refract(d, nf, n1, n2, &t)) {
+        const cj_brdf glass = {CJ_BRDF_DIELECTRIC, 0.0, n2 / n1};
+        const double F = cj_fresnel_dielectric(wo[2], n2 / n1, NULL, NULL);
+        cj_brdf_sample smp;
+        /* u3 = 1: the refraction branch (taken whenever F < 1) */
+        if (F < 1.0 && cj_brdf_sample_dir(&glass, wo, 0.0, 0.0, 1.0, &smp)) {
+            const cj_vec3 t = to_world3(fa, fb, nf, smp.wi);
             cj_ray rr = {cj_ray_offset_origin(&h, t), t, 0.0, INFINITY};
-            out = add_scaled(out, tr_trace(sh, &rr, TR_REFRACT, depth + 1, inner, NULL), rt);
+            out = add_scaled(out, tr_trace(sh, &rr, TR_REFRACT, depth + 1, inner, NULL),
+                             radiometric ? rt * (1.0 - F) : rt);
+            if (radiometric) reflect_w += rt * F;
         } else {
             reflect_w += rt; /* total internal reflection */
         }
     }
     if (reflect_w > 0.0) {
-        cj_vec3 r = cj_v3_normalize(reflect(d, nf));
+        static const cj_brdf mirror = {CJ_BRDF_MIRROR, 0.0, 1.0};
+        cj_brdf_sample smp;
+        cj_brdf_sample_dir(&mirror, wo, 0.0, 0.0, 0.0, &smp);
+        double w = reflect_w;
         if (m->glossiness > 0.0 && sh->spp > 1) {
-            cj_vec3 g = phong_lobe(r, m->glossiness, tr_rand(&sh->rng), tr_rand(&sh->rng));
-            if (cj_v3_dot(g, nf) > 0.0) r = g;
+            const cj_brdf lobe = {CJ_BRDF_PHONG, m->glossiness, 1.0};
+            cj_brdf_sample g;
+            const double u1 = tr_rand(&sh->rng), u2 = tr_rand(&sh->rng);
+            if (cj_brdf_sample_dir(&lobe, wo, u1, u2, 0.0, &g)) { /* else the mirror direction */
+                smp = g;
+                if (radiometric) w *= g.weight;
+            }
         }
+        const cj_vec3 r = cj_v3_normalize(to_world3(fa, fb, nf, smp.wi));
         cj_ray rr = {cj_ray_offset_origin(&h, r), r, 0.0, INFINITY};
-        out = add_scaled(out, tr_trace(sh, &rr, TR_REFLECT, depth + 1, med, NULL), reflect_w);
+        const cj_rgb L = tr_trace(sh, &rr, TR_REFLECT, depth + 1, med, NULL);
+        if (radiometric) /* tinted by c_p, as in the path tracer */
+            out = cj_rgb_make(out.r + w * m->specular.r * L.r, out.g + w * m->specular.g * L.g,
+                              out.b + w * m->specular.b * L.b);
+        else
+            out = add_scaled(out, L, w);
     }
     return out;
 }

@@ -105,6 +105,7 @@ int report_contour(report *r);
 int report_ode(report *r);
 int report_render(report *r); /* the rasterizer: screen tolerance x spp (report_render.c) */
 int report_trace(report *r);  /* the ray tracer: spp x sampling (report_trace.c) */
+int report_path(report *r);   /* the path tracer's convergence (report_path.c) */
 /* Workloads for callgrind, "SECTION:..." (report_workload dispatches on the prefix); each
  * does n units of the section's measured computation and prints nothing. */
 int report_eval_workload(const char *spec, long n);    /* "eval:M:DEG" */

@@ -127,7 +127,7 @@ static cj_status frame(const cj_scene *sc, int w, int h, const cell *c, int thre
     cj_render_options o = cj_render_options_defaults();
     o.width = w, o.height = h, o.spp = c->spp, o.threads = threads;
     o.use_seed = 1, o.seed = seed;
-    const cj_trace_options to = {c->random, c->ptol, 0, 0};
+    const cj_trace_options to = {c->random, c->ptol, 0, 0, 0};
     return cj_render_trace_with_options(sc, &o, &to, 0, NULL, img, rep);
 }
 
@@ -528,6 +528,7 @@ static int trace_tol(report *r) {
 }
 
 int report_trace(report *r) {
-    const int st = trace_spp(r);
-    return st ? st : trace_tol(r);
+    int st = trace_spp(r);
+    if (!st) st = trace_tol(r);
+    return st ? st : report_path(r); /* the path tracer's convergence (report_path.c) */
 }

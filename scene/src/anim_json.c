@@ -411,8 +411,9 @@ static cj_status read_particles(actx *c, cj_anim_doc *doc, const cJSON *pj) {
 }
 
 static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
-    static const char *const TOP[] = {"scene", "fps",       "frames", "channels",  "gravity",
-                                      "drag",  "colliders", "cloth",  "particles", NULL};
+    static const char *const TOP[] = {"scene",     "fps",     "frames",        "channels",
+                                      "gravity",   "drag",    "colliders",     "cloth",
+                                      "particles", "shutter", "shutter_poses", NULL};
     cj_status st = cj_json_object(&c->json, root, "document", TOP);
     if (st) return st;
     const cJSON *sc = cJSON_GetObjectItemCaseSensitive(root, "scene");
@@ -437,6 +438,20 @@ static cj_status read_doc(actx *c, const cJSON *root, cj_anim_doc *doc) {
         doc->frame_first = (int)f[0];
         doc->frame_last = (int)f[1];
     }
+    const cJSON *sh = cJSON_GetObjectItemCaseSensitive(root, "shutter");
+    if (sh) {
+        if ((st = aj_nums(c, sh, "shutter", 2, doc->shutter, 2, NULL))) return st;
+        if (!(doc->shutter[0] >= -1.0 && doc->shutter[0] < doc->shutter[1] &&
+              doc->shutter[1] <= 1.0))
+            return cj_json_fail(&c->json, sh, 0, CJ_ERR_RANGE,
+                                "shutter must be [open, close] in frames, -1 <= open < close <= 1");
+        doc->has_shutter = 1;
+    }
+    double poses = 16;
+    if ((st = aj_num_in(c, root, "document", "shutter_poses", 2, CJ_ANIM_MAX_SHUTTER_POSES, 1,
+                        &poses)))
+        return st;
+    doc->shutter_poses = (int)poses;
     const cJSON *chs = cJSON_GetObjectItemCaseSensitive(root, "channels");
     if (chs && !cJSON_IsArray(chs))
         return cj_json_fail(&c->json, chs, 0, CJ_ERR_PARSE, "channels must be an array");

@@ -156,7 +156,7 @@ cj_status cj_scene_check_settings_(const cj_scene_settings *s, const char *p) {
 }
 
 cj_status cj_scene_check_light_(const cj_light *l, const char *p) {
-    if ((int)l->kind < 0 || l->kind > CJ_LIGHT_AREA)
+    if ((int)l->kind < 0 || l->kind > CJ_LIGHT_SPHERE)
         return cj_fail(CJ_ERR_RANGE, "%s.kind %d is not a light kind", p, (int)l->kind);
     TRY(rgb(p, "color", l->color, -1.0));
     TRY(ge(p, "intensity", l->intensity, 0.0));
@@ -190,6 +190,14 @@ cj_status cj_scene_check_light_(const cj_light *l, const char *p) {
         if (!(cj_v3_norm(cj_v3_cross(l->edge_u, l->edge_v)) >
               1e-12 * cj_v3_norm(l->edge_u) * cj_v3_norm(l->edge_v)))
             return cj_fail(CJ_ERR_DEGENERATE, "%s.edge_v must not be parallel to edge_u", p);
+        break;
+    case CJ_LIGHT_DISC:
+    case CJ_LIGHT_SPHERE:
+        TRY(vec(p, "position", l->position));
+        if (l->kind == CJ_LIGHT_DISC) TRY(nonzero(p, "direction", l->direction));
+        TRY(fin(p, "radius", l->radius));
+        if (!(l->radius > 0.0 && l->radius <= 1e9))
+            return cj_fail(CJ_ERR_RANGE, "%s.radius %g must be in (0, 1e9]", p, l->radius);
         break;
     }
     return CJ_OK;

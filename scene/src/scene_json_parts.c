@@ -122,7 +122,8 @@ cj_status cj_json_read_settings_(jctx *c, const cJSON *obj) {
 
 /* ---- lights --------------------------------------------------------------------------------- */
 
-static const char *const LIGHT_TYPES[] = {"ambient", "point", "directional", "spot", "area", NULL};
+static const char *const LIGHT_TYPES[] = {"ambient", "point", "directional", "spot",
+                                          "area",    "disc",  "sphere",      NULL};
 /* Keys each light type accepts beyond type, color, intensity, casts_shadows. */
 static const char *const LIGHT_KEYS[][10] = {
     {"type", "color", "intensity", "casts_shadows", NULL},
@@ -130,7 +131,9 @@ static const char *const LIGHT_KEYS[][10] = {
     {"type", "color", "intensity", "casts_shadows", "direction", NULL},
     {"type", "color", "intensity", "casts_shadows", "position", "direction", "angle_deg",
      "angle_rad", "exponent", NULL},
-    {"type", "color", "intensity", "casts_shadows", "position", "edge_u", "edge_v", NULL}};
+    {"type", "color", "intensity", "casts_shadows", "position", "edge_u", "edge_v", NULL},
+    {"type", "color", "intensity", "casts_shadows", "position", "direction", "radius", NULL},
+    {"type", "color", "intensity", "casts_shadows", "position", "radius", NULL}};
 
 static cj_status read_light(jctx *c, const cJSON *obj, const char *p) {
     if (!cJSON_IsObject(obj))
@@ -150,6 +153,7 @@ static cj_status read_light(jctx *c, const cJSON *obj, const char *p) {
     TRY(cj_json_num(&c->json, obj, p, "exponent", CJ_JSON_GE, 0, 0, &l.spot_exponent));
     TRY(cj_json_vec3(&c->json, obj, p, "edge_u", &l.edge_u));
     TRY(cj_json_vec3(&c->json, obj, p, "edge_v", &l.edge_v));
+    TRY(cj_json_num(&c->json, obj, p, "radius", CJ_JSON_GE, 0, 0, &l.radius));
     cj_status st = cj_scene_check_light_(&l, p);
     if (!st) st = cj_scene_add_light(c->scene, &l, NULL);
     return st ? cj_json_relabel(&c->json, obj, st) : CJ_OK;

@@ -150,16 +150,19 @@ static void write_settings(emitter *e, const cj_scene_settings *s) {
 }
 
 static void write_light(emitter *e, const cj_light *l) {
-    static const char *const TYPES[] = {"ambient", "point", "directional", "spot", "area"};
+    static const char *const TYPES[] = {"ambient", "point", "directional", "spot",
+                                        "area",    "disc",  "sphere"};
     open_c(e, NULL, '{');
     string(e, "type", TYPES[l->kind]);
     rgb(e, "color", l->color);
     num(e, "intensity", l->intensity);
     boolean(e, "casts_shadows", l->casts_shadows);
-    if (l->kind == CJ_LIGHT_POINT || l->kind == CJ_LIGHT_SPOT || l->kind == CJ_LIGHT_AREA)
+    if (l->kind == CJ_LIGHT_POINT || l->kind == CJ_LIGHT_SPOT || l->kind == CJ_LIGHT_AREA ||
+        l->kind == CJ_LIGHT_DISC || l->kind == CJ_LIGHT_SPHERE)
         vec3(e, "position", l->position);
-    if (l->kind == CJ_LIGHT_DIRECTIONAL || l->kind == CJ_LIGHT_SPOT)
+    if (l->kind == CJ_LIGHT_DIRECTIONAL || l->kind == CJ_LIGHT_SPOT || l->kind == CJ_LIGHT_DISC)
         vec3(e, "direction", l->direction);
+    if (l->kind == CJ_LIGHT_DISC || l->kind == CJ_LIGHT_SPHERE) num(e, "radius", l->radius);
     if (l->kind == CJ_LIGHT_SPOT) {
         angle(e, "angle", l->spot_angle);
         num(e, "exponent", l->spot_exponent);

@@ -20,6 +20,7 @@ cj_light cj_light_defaults(cj_light_kind kind) {
     l.spot_exponent = 0.0;
     l.edge_u = cj_v3(1, 0, 0);
     l.edge_v = cj_v3(0, 0, 1);
+    l.radius = 0.5;
     l.casts_shadows = 1;
     return l;
 }

@@ -31,3 +31,16 @@ endif()
 if(TARGET cj::raster)
   cj_add_test(test_light_filter SOURCES test_light_filter.c LIBS cj::raster cj::scene)
 endif()
+# Motion blur: a square sliding under a box shutter against the exact ramp of coverage.
+if(TARGET cj::raster)
+  cj_add_test(test_light_motion SOURCES test_light_motion.c LIBS cj::raster cj::scene)
+endif()
+# Disc and sphere emitters against their closed-form irradiance, in every renderer.
+if(TARGET cj::raster)
+  cj_add_test(test_light_emitters SOURCES test_light_emitters.c LIBS cj::raster cj::scene)
+endif()
+# Emissive surfaces sampled as lights by the path tracer: against the form factor, and the
+# variance drop against finding them by chance.
+if(TARGET cj::raster)
+  cj_add_test(test_light_emissive SOURCES test_light_emissive.c LIBS cj::raster cj::scene)
+endif()

@@ -71,7 +71,7 @@ static const bad_case BAD[] = {
      "scene.json:2: lights[0]: missing key \"type\""},
     {OBJ1 "\"lights\": [\n{\"type\": \"laser\"}]}", CJ_ERR_PARSE,
      "scene.json:3: lights[0].type \"laser\" is not one of ambient, point, directional, spot, "
-     "area"},
+     "area, disc, sphere"},
     {OBJ1
      "\"lights\": [{\"type\": \"point\"},\n {\"type\": \"ambient\",\n \"position\": [0, 0, 0]}]}",
      CJ_ERR_PARSE,

@@ -113,6 +113,28 @@ const cj_renderer_options *cj_renderer_get_options(const cj_renderer *r);
 cj_status cj_renderer_draw(cj_renderer *r, const cj_scene *scene, cj_backend backend,
                            unsigned planes, cj_render_image **image, cj_stage_report *report);
 
+/* MOTION BLUR (the ray tracer; docs/light.md). The world transforms of every node of the scene
+ * at `poses` times evenly spaced over the shutter interval, pose k at shutter fraction
+ * k/(poses − 1), pose-major: world[k * node_count + node] (cj_anim_sample_motion writes exactly
+ * this). Each camera sample of the tracer carries a time τ in [0, 1) over the shutter
+ * (stratified over the pixel's samples, uniform otherwise), and every ray of that sample sees a
+ * node whose transforms differ between poses under the transform linearly interpolated between
+ * the two poses around τ (exact for motion linear between poses; a rotation by Δθ between poses
+ * is drawn with a chord error of at most Δθ²/8 of its radius). Nodes whose poses are all equal
+ * bit for bit are static; the camera, lights, materials and geometry are the scene's as drawn.
+ * The rasterizer IGNORES the motion: it draws the scene as posed (the frame's time).
+ *
+ * The motion is copied and applies to every later draw until cleared (m NULL); a draw whose scene
+ * has another node count fails with CJ_ERR_DIMENSION. poses outside 2..1024, node_count 0:
+ * CJ_ERR_RANGE; a non-finite or projective transform: CJ_ERR_NONFINITE / CJ_ERR_UNSUPPORTED;
+ * CJ_ERR_NOMEM. On error the previous motion is cleared. */
+typedef struct cj_motion {
+    int poses;
+    size_t node_count;
+    const cj_xform3 *world; /* poses × node_count transforms */
+} cj_motion;
+cj_status cj_renderer_set_motion(cj_renderer *r, const cj_motion *m);
+
 /* The stage table of the last draw (what ran, why, what was reused: see above), kept by the
  * renderer until the next draw; after a failed draw it holds what that draw recorded. */
 const cj_stage_report *cj_renderer_report(const cj_renderer *r);

@@ -69,7 +69,8 @@ cj_status cj_render_trace(const cj_scene *scene, const cj_render_options *opt, u
 /* Sampling choices beyond cj_render_options (all zero: the defaults). */
 typedef struct cj_trace_options {
     int random_sampling;    /* 1: plain uniform random pixel positions and area-light points instead
-                               of stratified ones (to measure what stratification gains) */
+                               of stratified ones (to measure what stratification gains); the
+                               path tracer: also its first hit's light and BRDF samples */
     double patch_tolerance; /* 0: the default 1e-7; else the tolerance of the direct Bézier
                                patch intersection, relative to each patch object's box diagonal
                                (to measure what accuracy costs); must be finite, in (0, 1] */
@@ -81,6 +82,8 @@ typedef struct cj_trace_options {
                                L_in traced with depth + 1 but casting no further indirect rays.
                                Counted in the stage "indirect_rays". */
     int integrator;         /* CJ_INTEGRATOR_WHITTED (0, the default) or CJ_INTEGRATOR_PATH */
+    int emission_by_chance; /* path tracer, 1: emissive surfaces are found only by BRDF samples,
+                               not sampled as lights (to measure what sampling them gains) */
 } cj_trace_options;
 
 /* CJ_INTEGRATOR_WHITTED: the shading described above. CJ_INTEGRATOR_PATH: a path tracer
@@ -93,7 +96,9 @@ typedef struct cj_trace_options {
  * it; ambient light is the radiance of the environment (added to the background). Diffuse
  * and glossy bounces are counted as indirect_rays, mirror and Fresnel reflections as
  * reflection_rays, refractions as refraction_rays, next-event rays as shadow_rays;
- * indirect_samples is ignored.
+ * indirect_samples is ignored. At the camera ray's first hit the light samples and the BRDF
+ * sample are stratified over the pixel's samples (keyed random permutations, as the Whitted
+ * tracer's light strata); deeper bounces draw uniformly.
  * Bit-identical for any thread count, like the Whitted tracer. */
 typedef enum cj_trace_integrator {
     CJ_INTEGRATOR_WHITTED = 0,

@@ -8,6 +8,11 @@
  *   "scene": "teapot.json",        the scene file, relative to this document's folder
  *   "fps": 24,                     frames per second (in [0.001, 10000]; default 24)
  *   "frames": [0, 95],             the default frame range (first <= last, >= 0)
+ *   "shutter": [-0.25, 0.25],      MOTION BLUR (the ray tracer): the shutter is open from
+ *                                  frame + open to frame + close, in frames (−1 <= open <
+ *                                  close <= 1); absent: an instantaneous shutter
+ *   "shutter_poses": 16,           node transforms posed at this many times evenly spaced over
+ *                                  the shutter (2..1024, default 16), interpolated between them
  *   "channels": [
  *     {"target": "nodes[\"pot\"].rotation", "type": "quaternion",      vector | quaternion | euler
  *      "interpolation": "squad",   step | linear | catmull_rom | centripetal | kochanek_bartels |
@@ -89,6 +94,7 @@ extern "C" {
 #define CJ_ANIM_MAX_EMIT_PER_STEP   1e4
 #define CJ_ANIM_MIN_FPS             1e-3
 #define CJ_ANIM_MAX_FPS             1e4
+#define CJ_ANIM_MAX_SHUTTER_POSES   1024
 
 typedef struct cj_anim_doc {
     char scene_path[1024]; /* resolved; "" if the document names none */
@@ -132,6 +138,11 @@ typedef struct cj_anim_doc {
     size_t cloth_pin_count;
     int emitter_lines[16]; /* the line of each emitter (for messages after reading) */
     int fps_line;          /* the line of "fps", 0 if absent */
+    /* motion blur: has_shutter 0 = instantaneous; shutter[0] < shutter[1] in frames relative to
+     * the frame's time; shutter_poses >= 2 (cj_anim_sample_motion) */
+    int has_shutter;
+    double shutter[2];
+    int shutter_poses;
 } cj_anim_doc;
 
 cj_status cj_anim_doc_load(const char *path, cj_anim_doc **out);

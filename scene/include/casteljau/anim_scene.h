@@ -97,6 +97,17 @@ typedef struct cj_anim_pose_info {
 /* Poses the bound scene at time t (see above); info may be NULL. */
 cj_status cj_anim_pose(cj_scene *scene, const cj_anim *anim, double t, cj_anim_pose_info *info);
 
+/* MOTION BLUR: the world transform (cj_scene_node_world) of every node of the scene at `poses`
+ * times evenly spaced over [t_open, t_close], pose k at t_open + k (t_close − t_open)/(poses − 1),
+ * written pose-major into world[k * node_count + node] (the caller's array of poses ×
+ * cj_scene_node_count(scene) transforms); the renderer's cj_renderer_set_motion takes it as is.
+ * The scene is posed at each time in turn and left posed at t_close: pose it again at the
+ * frame's time afterwards. Only node transforms are recorded (the camera, lights, materials and
+ * control points stay whatever the caller poses last). poses < 2, t_close <= t_open:
+ * CJ_ERR_RANGE; other errors as cj_anim_pose and cj_scene_node_world. */
+cj_status cj_anim_sample_motion(cj_scene *scene, const cj_anim *anim, double t_open, double t_close,
+                                int poses, cj_xform3 *world);
+
 /* Records the animation stages of one frame in a stage report, run or left out and why:
  * "keyframes" (channels), "spring_forces" (a spring system with springs), "particle_pass" (a
  * particle system), "flocking" (non-zero flocking weights), "collisions" (colliders of either

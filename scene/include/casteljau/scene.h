@@ -125,7 +125,10 @@ typedef enum cj_light_kind {
     CJ_LIGHT_POINT,       /* at `position` */
     CJ_LIGHT_DIRECTIONAL, /* light travelling along `direction` (from the light) */
     CJ_LIGHT_SPOT,        /* at `position`, along `direction`, cone `spot_angle`, falloff */
-    CJ_LIGHT_AREA         /* parallelogram position + s·edge_u + t·edge_v, s,t in [0,1] */
+    CJ_LIGHT_AREA,        /* parallelogram position + s·edge_u + t·edge_v, s,t in [0,1] */
+    CJ_LIGHT_DISC,        /* disc of `radius` centred at `position`, emitting along `direction`
+                             (the side its normal `direction` points to) */
+    CJ_LIGHT_SPHERE       /* sphere of `radius` centred at `position`, emitting outwards */
 } cj_light_kind;
 
 typedef struct cj_light {
@@ -137,6 +140,7 @@ typedef struct cj_light {
     double spot_angle;    /* half-angle of the cone, radians, (0, pi/2] */
     double spot_exponent; /* >= 0 */
     cj_vec3 edge_u, edge_v;
+    double radius;     /* disc and sphere: > 0 */
     int casts_shadows; /* ray tracer: 1 = shadow rays are cast for this light (default 1) */
 } cj_light;
 
@@ -158,6 +162,13 @@ typedef struct cj_light {
  *                  area (pdf 1/A, stratified); the rasterizer takes the exact irradiance of the
  *                  polygon for the diffuse term (Lambert's formula) and its centre as a point of
  *                  intensity L_e A cos θ′ for the specular one.
+ *     disc, sphere I is the radiance L_e of a Lambertian emitter: a disc emits on the side its
+ *                  normal `direction` points to, a sphere outwards. The tracer samples a disc by
+ *                  area (pdf 1/(π R²)) and a sphere by the solid angle of its cone from the point
+ *                  (pdf 1/(2π (1 − cos θ_max)), sin θ_max = R/d); the rasterizer draws both as
+ *                  their far-field point at the centre: a sphere as intensity π R² L_e (its
+ *                  exact irradiance wherever all of it is above the horizon), a disc as
+ *                  π R² L_e cos θ′ (off by a factor 1 + R²/h² on its axis at height h).
  *   The reflected radiance is then Σ f_r E with the material's BRDF
  *     f_r = r_d c_r / π + r_s c_p f_s
  *   (f_s the energy-conserving form of the specular lobe of cj_specular_model:

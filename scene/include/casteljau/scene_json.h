@@ -41,7 +41,9 @@
  *     {"type": "directional", "direction": [-1, -1, -1]},
  *     {"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "angle_deg": 30,
  *      "exponent": 2},
- *     {"type": "area", "position": [-1, 4, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2]}
+ *     {"type": "area", "position": [-1, 4, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2]},
+ *     {"type": "disc", "position": [0, 4, 0], "direction": [0, -1, 0], "radius": 0.5},
+ *     {"type": "sphere", "position": [2, 3, 0], "radius": 0.25}
  *   ],
  *   "textures": [
  *     {"name": "wood", "type": "image", "path": "textures/wood.png", "filter": "trilinear",

@@ -1,0 +1,392 @@
+/* Disc and sphere emitters (scene.h CJ_LIGHT_DISC, CJ_LIGHT_SPHERE; docs/light.md) against closed
+ * forms, on a Lambertian floor z = 0 (albedo ρ, BRDF ρ/π) seen from above, radiometric model.
+ *
+ * DISC of radius R and radiance L parallel to the floor at height h, facing it. At a floor point
+ * at horizontal distance a from the disc's axis,
+ *   E = ∫ L cos θ cos θ′ / r² dA = (π L / 2) (1 − (h² + a² − R²) / √((h² + a² + R²)² − 4 a² R²))
+ * (on the axis, a = 0: 2π L h² ∫₀^R ρ dρ / (h² + ρ²)² = π L R² / (h² + R²) = π L sin² θ, θ the
+ * half-angle the disc subtends). The test checks this formula against a polar midpoint sum of
+ * the integral before using it.
+ * SPHERE of radius R and radiance L, centre at distance d: wherever the whole sphere is above
+ * the horizon, E = π L (R/d)² cos θ (the projected solid angle of its cone, π sin² θ_max, times
+ * the cosine of its axis).
+ *
+ * Renderers: the Whitted tracer with 256 stratified light samples per pixel and the path tracer
+ * with 256 paths (next-event estimation by area for the disc and by solid angle for the sphere,
+ * MIS with BRDF samples that hit them) must be within NOISE_TOL of the peak at every pixel and
+ * their mean over the floor within BIAS_TOL of the oracle's; the Whitted tracer at 1 spp takes
+ * the sphere's axis with weight π sin² θ_max, exact here; the rasterizer draws both as their
+ * far-field point (exact for the sphere; for the disc π R² L cos θ′ cos θ / r², off by
+ * (R² + h²)/h² on its axis); one-sidedness of the disc; a point inside a sphere light gets
+ * nothing from it; every renderer shows the emitters to camera rays with their radiance. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "casteljau/render.h"
+#include "casteljau/scene.h"
+#include "casteljau/trace.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define W         64
+#define H         64
+#define SPP       256
+#define NOISE_TOL 0.03 /* one pixel, fraction of the peak radiance */
+#define BIAS_TOL  3e-3 /* mean over the floor, fraction of the oracle's mean */
+
+static const double PI = 3.14159265358979323846;
+static const double RHO = 0.6, HALF = 2.0;
+static const double DC[3] = {0.2, -0.1, 0.8}, DR = 0.6, DL = 3.0; /* disc: centre, radius, L */
+static const double SC[3] = {-0.3, 0.2, 1.0}, SR = 0.3, SL = 2.0; /* sphere */
+static const double EM = 1.25; /* radiance of an emissive surface */
+
+static cj_scene *floor_scene(void) {
+    cj_scene *s;
+    assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
+    cj_camera cam = cj_camera_defaults();
+    cam.projection = CJ_PROJ_ORTHOGRAPHIC;
+    cam.ortho_height = 2 * HALF;
+    cam.eye = cj_v3(0, 0, 10);
+    cam.gaze = cj_v3(0, 0, -1);
+    cam.up = cj_v3(0, 1, 0);
+    assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
+    cj_scene_settings st = cj_scene_settings_defaults();
+    st.width = W;
+    st.height = H;
+    st.spp = 1;
+    st.light_model = CJ_LIGHT_RADIOMETRIC;
+    assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
+    cj_material m = cj_material_defaults();
+    m.color = cj_rgb_make(RHO, RHO, RHO);
+    m.ka = 0.0;
+    m.kd = 1.0;
+    m.ks = 0.0;
+    m.two_sided = 1;
+    int mi, gi;
+    assert_int_equal(cj_scene_add_material(s, &m, &mi), CJ_OK);
+    cj_geometry g;
+    memset(&g, 0, sizeof g);
+    g.kind = CJ_GEOM_PLANAR;
+    assert_int_equal(cj_planar_patch_init(&g.u.planar, cj_v3(-HALF, -HALF, 0),
+                                          cj_v3(2 * HALF, 0, 0), cj_v3(0, 2 * HALF, 0)),
+                     CJ_OK);
+    assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
+    cj_node n = cj_node_defaults(gi, mi);
+    assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
+    return s;
+}
+
+static void add_disc(cj_scene *s, double dir_z) {
+    cj_light l = cj_light_defaults(CJ_LIGHT_DISC);
+    l.position = cj_v3(DC[0], DC[1], DC[2]);
+    l.direction = cj_v3(0, 0, dir_z);
+    l.radius = DR;
+    l.intensity = DL;
+    assert_int_equal(cj_scene_add_light(s, &l, NULL), CJ_OK);
+}
+
+static void add_sphere(cj_scene *s) {
+    cj_light l = cj_light_defaults(CJ_LIGHT_SPHERE);
+    l.position = cj_v3(SC[0], SC[1], SC[2]);
+    l.radius = SR;
+    l.intensity = SL;
+    assert_int_equal(cj_scene_add_light(s, &l, NULL), CJ_OK);
+}
+
+static void floor_point(int x, int y, double *px, double *py) {
+    *px = -HALF + (x + 0.5) * (2 * HALF / W);
+    *py = -HALF + (y + 0.5) * (2 * HALF / H);
+}
+
+/* The closed forms. */
+static double disc_E(double a, double h, double R, double L) {
+    const double s = h * h + a * a;
+    return 0.5 * PI * L * (1.0 - (s - R * R) / sqrt((s + R * R) * (s + R * R) - 4 * a * a * R * R));
+}
+
+static double sphere_E(double px, double py) {
+    const double dx = SC[0] - px, dy = SC[1] - py, dz = SC[2], d2 = dx * dx + dy * dy + dz * dz;
+    return PI * SL * SR * SR / d2 * (dz / sqrt(d2));
+}
+
+/* kind 0 the rasterizer, 1 Whitted, 2 the path tracer */
+static cj_render_image *draw(const cj_scene *s, int kind, int spp) {
+    cj_render_options o = cj_render_options_defaults();
+    o.spp = spp;
+    cj_trace_options to;
+    memset(&to, 0, sizeof to);
+    to.integrator = kind == 2 ? CJ_INTEGRATOR_PATH : CJ_INTEGRATOR_WHITTED;
+    cj_render_image *img = NULL;
+    cj_status st = kind ? cj_render_trace_with_options(s, &o, &to, 0, NULL, &img, NULL)
+                        : cj_render_raster(s, &o, 0, NULL, &img, NULL);
+    if (st) printf("render failed: %s\n", cj_last_error());
+    assert_int_equal(st, CJ_OK);
+    return img;
+}
+
+typedef struct errs {
+    double worst, rms, bias;
+} errs;
+
+/* Pixels with ref < 0 are left out (the emitter itself in front of the floor). */
+static errs compare(const cj_render_image *img, const double *ref, double peak) {
+    errs e = {0, 0, 0};
+    double sum = 0, sum_ref = 0;
+    int n = 0;
+    for (int i = 0; i < W * H; ++i) {
+        if (ref[i] < 0.0) continue;
+        const double d = fabs(img->rgba[4 * i] - ref[i]) / peak;
+        e.worst = fmax(e.worst, d);
+        e.rms += d * d;
+        sum += img->rgba[4 * i];
+        sum_ref += ref[i];
+        n++;
+    }
+    e.rms = sqrt(e.rms / n);
+    e.bias = fabs(sum - sum_ref) / sum_ref;
+    return e;
+}
+
+/* The path tracer, one unstratified light sample per bounce: per pixel looser than the Whitted
+ * tracer's 256 strata; RMS over the floor and no bias. */
+#define PATH_WORST_TOL 0.15
+#define PATH_RMS_TOL   0.03
+
+static const char *const NAMES[3] = {"render", "trace (whitted)", "trace (path)"};
+
+static void test_disc(void **state) {
+    (void)state;
+    /* the oracle against a polar midpoint sum of cos θ cos θ′ / r² over the disc */
+    const double as[3] = {0.0, 0.45, 1.7};
+    for (int k = 0; k < 3; ++k) {
+        const int NR = 1500, NP = 1500;
+        double sum = 0.0;
+        for (int i = 0; i < NR; ++i)
+            for (int j = 0; j < NP; ++j) {
+                const double r = (i + 0.5) * DR / NR, ph = (j + 0.5) * 2 * PI / NP;
+                const double dx = r * cos(ph) - as[k], dy = r * sin(ph), h = DC[2];
+                const double r2 = dx * dx + dy * dy + h * h;
+                sum += DL * h * h / (r2 * r2) * r * (DR / NR) * (2 * PI / NP);
+            }
+        const double E = disc_E(as[k], DC[2], DR, DL);
+        printf("oracle: disc irradiance at a = %.2f: closed form %.9f, midpoint sum %.9f\n", as[k],
+               E, sum);
+        assert_true(fabs(E - sum) < 2e-6 * E);
+    }
+    assert_true(fabs(disc_E(0, DC[2], DR, DL) - PI * DL * DR * DR / (DC[2] * DC[2] + DR * DR)) <
+                1e-14);
+    double *ref = malloc(sizeof(double) * W * H), *far = malloc(sizeof(double) * W * H), peak = 0;
+    assert_true(ref && far);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double fx, fy;
+            floor_point(x, y, &fx, &fy);
+            const double dx = fx - DC[0], dy = fy - DC[1], h = DC[2];
+            const double a = sqrt(dx * dx + dy * dy), r2 = a * a + h * h;
+            ref[y * W + x] = RHO / PI * disc_E(a, h, DR, DL);
+            far[y * W + x] = RHO / PI * PI * DR * DR * DL * (h * h) / (r2 * r2);
+            peak = fmax(peak, ref[y * W + x]);
+        }
+    for (int kind = 0; kind < 3; ++kind) {
+        cj_scene *s = floor_scene();
+        add_disc(s, -1.0);
+        cj_render_image *img = draw(s, kind, kind ? SPP : 1);
+        errs e = compare(img, kind ? ref : far, peak);
+        if (kind) {
+            printf("disc (R %g at height %g, L %g), peak %.5f: %s %d spp, worst pixel %.2e of the "
+                   "peak, RMS %.2e, mean off by %.2e (tol %.0e)\n",
+                   DR, DC[2], DL, peak, NAMES[kind], SPP, e.worst, e.rms, e.bias, BIAS_TOL);
+            assert_true(e.worst <= (kind == 2 ? PATH_WORST_TOL : NOISE_TOL));
+            assert_true(e.rms <= (kind == 2 ? PATH_RMS_TOL : NOISE_TOL));
+            assert_true(e.bias <= BIAS_TOL);
+        } else {
+            const errs x = compare(img, ref, peak);
+            printf("disc: render is its far-field point to %.2e of the peak; against the exact "
+                   "irradiance off by %.3f of the peak (on the axis (R² + h²)/h² = %.4f)\n",
+                   e.worst, x.worst, (DR * DR + DC[2] * DC[2]) / (DC[2] * DC[2]));
+            assert_true(e.worst <= 1e-5);
+        }
+        cj_render_image_destroy(img);
+        cj_scene_destroy(s);
+    }
+    /* one-sided: facing up, the floor gets nothing (the disc itself faces the camera) */
+    for (int kind = 0; kind < 3; ++kind) {
+        cj_scene *s = floor_scene();
+        add_disc(s, 1.0);
+        cj_render_image *img = draw(s, kind, kind ? 16 : 1);
+        float mx = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                double fx, fy;
+                floor_point(x, y, &fx, &fy);
+                if (hypot(fx - DC[0], fy - DC[1]) > DR + sqrt(2.0) * HALF / W)
+                    mx = fmaxf(mx, img->rgba[4 * (y * W + x)]);
+            }
+        printf("%s: disc facing away, brightest floor pixel outside its outline %g\n", NAMES[kind],
+               mx);
+        assert_true(mx == 0.0f);
+        cj_render_image_destroy(img);
+        cj_scene_destroy(s);
+    }
+    free(ref);
+    free(far);
+}
+
+static void test_sphere(void **state) {
+    (void)state;
+    double *ref = malloc(sizeof(double) * W * H), *seen = malloc(sizeof(double) * W * H), peak = 0;
+    assert_true(ref && seen);
+    const double half_diag = sqrt(2.0) * HALF / W;
+    int inside = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double fx, fy;
+            floor_point(x, y, &fx, &fy);
+            const int i = y * W + x;
+            ref[i] = RHO / PI * sphere_E(fx, fy);
+            peak = fmax(peak, ref[i]);
+            /* where camera rays meet the emitter: all of the pixel (L), part of it (left out) */
+            const double c = hypot(fx - SC[0], fy - SC[1]);
+            seen[i] = c < SR - half_diag ? SL : (c < SR + half_diag ? -1.0 : ref[i]);
+            inside += c < SR - half_diag;
+        }
+    for (int kind = 0; kind < 3; ++kind) {
+        for (int pass = 0; pass < (kind == 1 ? 2 : 1); ++pass) {
+            const int spp = kind == 0 || pass == 1 ? 1 : SPP;
+            cj_scene *s = floor_scene();
+            add_sphere(s);
+            cj_render_image *img = draw(s, kind, spp);
+            /* every renderer shows the emitter to camera rays */
+            const double *want = seen;
+            for (int i = 0; i < W * H; ++i)
+                if (want[i] == SL) assert_true(img->rgba[4 * i] == (float)SL);
+            errs e = compare(img, want, peak);
+            printf("sphere (R %g at height %g, L %g), peak %.5f: %s %d spp, worst pixel %.2e of "
+                   "the peak, RMS %.2e, mean off by %.2e\n",
+                   SR, SC[2], SL, peak, NAMES[kind], spp, e.worst, e.rms, e.bias);
+            if (spp == 1) { /* the closed form itself, up to float pixels */
+                assert_true(e.worst <= 1e-5);
+            } else {
+                assert_true(e.worst <= (kind == 2 ? PATH_WORST_TOL : NOISE_TOL));
+                assert_true(e.rms <= (kind == 2 ? PATH_RMS_TOL : NOISE_TOL));
+                assert_true(e.bias <= BIAS_TOL);
+            }
+            printf("  the %d pixels wholly inside the emitter's outline show its radiance %g "
+                   "exactly\n",
+                   inside, SL);
+            cj_render_image_destroy(img);
+            cj_scene_destroy(s);
+        }
+    }
+    /* a scene inside a sphere light, camera included, gets nothing from it */
+    for (int kind = 1; kind < 3; ++kind) {
+        cj_scene *s = floor_scene();
+        cj_light l = cj_light_defaults(CJ_LIGHT_SPHERE);
+        l.position = cj_v3(0, 0, 0);
+        l.radius = 100.0;
+        assert_int_equal(cj_scene_add_light(s, &l, NULL), CJ_OK);
+        cj_render_image *img = draw(s, kind, 16);
+        float mx = 0;
+        for (int i = 0; i < W * H; ++i) mx = fmaxf(mx, img->rgba[4 * i]);
+        printf("%s: the scene inside a sphere light (it shines outwards): brightest pixel %g\n",
+               NAMES[kind], mx);
+        assert_true(mx == 0.0f);
+        cj_render_image_destroy(img);
+        cj_scene_destroy(s);
+    }
+    free(ref);
+    free(seen);
+}
+
+/* Both renderers on one scene with emitters in view: a sphere light over the floor and a disc
+ * facing the camera (away from the floor). At 1 sample per pixel both take the pixel centre's
+ * ray: the emitters' pixels equal their radiance in both, and the floor (the sphere's exact
+ * irradiance in both) agrees to float rounding. */
+static void test_renderers_agree(void **state) {
+    (void)state;
+    cj_scene *s = floor_scene();
+    cj_light sl = cj_light_defaults(CJ_LIGHT_SPHERE);
+    sl.position = cj_v3(SC[0], SC[1], SC[2]);
+    sl.radius = SR;
+    sl.intensity = SL;
+    sl.casts_shadows =
+        0; /* the rasterizer has no shadows (the emissive patch below would cast one) */
+    assert_int_equal(cj_scene_add_light(s, &sl, NULL), CJ_OK);
+    add_disc(s, 1.0);
+    /* and a surface whose material emits (reflecting nothing), seen by both */
+    cj_material em = cj_material_defaults();
+    em.color = cj_rgb_make(0, 0, 0);
+    em.ka = em.kd = em.ks = 0.0;
+    em.emission = cj_rgb_make(EM, EM, EM);
+    int emi, gi;
+    assert_int_equal(cj_scene_add_material(s, &em, &emi), CJ_OK);
+    cj_geometry g;
+    memset(&g, 0, sizeof g);
+    g.kind = CJ_GEOM_PLANAR;
+    assert_int_equal(cj_planar_patch_init(&g.u.planar, cj_v3(0.9, -1.6, 0.05), cj_v3(0.8, 0, 0),
+                                          cj_v3(0, 0.5, 0)),
+                     CJ_OK);
+    assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
+    cj_node n = cj_node_defaults(gi, emi);
+    assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
+    cj_render_image *r = draw(s, 0, 1), *t = draw(s, 1, 1);
+    double worst = 0.0, peak = 0.0;
+    int emitter_px = 0, emissive_px = 0;
+    for (int i = 0; i < W * H; ++i) {
+        const float a = r->rgba[4 * i], b = t->rgba[4 * i];
+        if (a == (float)SL || a == (float)DL || b == (float)SL || b == (float)DL) {
+            assert_true(a == b);
+            emitter_px++;
+            continue;
+        }
+        if (a == (float)EM || b == (float)EM) {
+            assert_true(a == b);
+            emissive_px++;
+            continue;
+        }
+        peak = fmax(peak, b);
+        worst = fmax(worst, fabs(a - b));
+    }
+    printf("render vs trace with emitters in view: %d emitter pixels and %d pixels of an emissive "
+           "surface identical, floor within %.2e of its peak %.4f\n",
+           emitter_px, emissive_px, worst / peak, peak);
+    assert_true(emissive_px >= 90); /* 0.8 x 0.5 at 16 px per unit: 102 */
+    assert_true(emitter_px > 300);  /* the disc (~290 px) and the sphere (~72 px), overlapping */
+    assert_true(worst <= 1e-5 * peak);
+    cj_render_image_destroy(r);
+    cj_render_image_destroy(t);
+    cj_scene_destroy(s);
+}
+
+static void test_refusals(void **state) {
+    (void)state;
+    cj_scene *s = floor_scene();
+    cj_light l = cj_light_defaults(CJ_LIGHT_SPHERE);
+    l.radius = 0.0;
+    assert_int_equal(cj_scene_add_light(s, &l, NULL), CJ_ERR_RANGE);
+    printf("radius 0: %s\n", cj_last_error());
+    l = cj_light_defaults(CJ_LIGHT_DISC);
+    l.direction = cj_v3(0, 0, 0);
+    assert_int_not_equal(cj_scene_add_light(s, &l, NULL), CJ_OK);
+    printf("disc without a normal: %s\n", cj_last_error());
+    l = cj_light_defaults(CJ_LIGHT_DISC);
+    l.radius = NAN;
+    assert_int_equal(cj_scene_add_light(s, &l, NULL), CJ_ERR_NONFINITE);
+    printf("NaN radius: %s\n", cj_last_error());
+    cj_scene_destroy(s);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_disc),
+        cmocka_unit_test(test_sphere),
+        cmocka_unit_test(test_renderers_agree),
+        cmocka_unit_test(test_refusals),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
