@@ -3,6 +3,7 @@
 #include "casteljau/particles.h"
 
 #include "casteljau/bvh.h"
+#include "casteljau/patch_nearest.h"
 #include "casteljau/ray.h"
 #include "error_internal.h"
 #include "particle_internal.h"
@@ -19,7 +20,11 @@ struct cj_patch_collider {
     cj_patch *patches; /* views into `pts` / `w` below */
     double *pts, *w;
     cj_bvh *bvh;
+    cj_aabb *boxes; /* per patch, world space (after the patches' points) */
+    cj_aabb all;    /* of every patch */
     double tol, friction, offset;
+    int solid;    /* cj_patch_collider_set_solid */
+    double up[3]; /* unit: the direction the solid is closed against */
 };
 
 static void *pc_alloc(const cj_allocator *a, size_t n) {
@@ -53,15 +58,10 @@ cj_status cj_patch_collider_create(const cj_patch *patches, size_t count, const 
         npts += 3 * n;
         if (patches[i].weights) nw += n;
     }
-    const size_t bytes =
-        sizeof(cj_patch_collider) + sizeof(cj_patch) * count + sizeof(double) * (npts + nw);
+    const size_t bytes = sizeof(cj_patch_collider) + sizeof(cj_patch) * count +
+                         sizeof(double) * (npts + nw) + sizeof(cj_aabb) * count;
     cj_patch_collider *c = pc_alloc(alloc, bytes);
-    cj_aabb *boxes = malloc(sizeof(cj_aabb) * count);
-    if (!c || !boxes) {
-        if (c) pc_free(alloc, c);
-        free(boxes);
-        return cj_fail(CJ_ERR_NOMEM, "patch collider: no memory for %zu patches", count);
-    }
+    if (!c) return cj_fail(CJ_ERR_NOMEM, "patch collider: no memory for %zu patches", count);
     memset(c, 0, sizeof *c);
     if (alloc) {
         c->alloc = *alloc;
@@ -71,6 +71,9 @@ cj_status cj_patch_collider_create(const cj_patch *patches, size_t count, const 
     c->patches = (cj_patch *)(c + 1);
     c->pts = (double *)(c->patches + count);
     c->w = c->pts + npts;
+    c->boxes = (cj_aabb *)(c->w + nw);
+    cj_aabb *boxes = c->boxes;
+    c->all = cj_aabb_empty();
     c->tol = tol;
     c->friction = friction;
     double *p = c->pts, *w = c->w, size = 0.0;
@@ -93,10 +96,11 @@ cj_status cj_patch_collider_create(const cj_patch *patches, size_t count, const 
         for (size_t k = 0; k < n; ++k)
             cj_aabb_grow(&boxes[i], cj_v3(p[3 * k], p[3 * k + 1], p[3 * k + 2]));
         for (int k = 0; k < 3; ++k) size = fmax(size, boxes[i].hi[k] - boxes[i].lo[k]);
+        cj_aabb_grow(&c->all, cj_v3(boxes[i].lo[0], boxes[i].lo[1], boxes[i].lo[2]));
+        cj_aabb_grow(&c->all, cj_v3(boxes[i].hi[0], boxes[i].hi[1], boxes[i].hi[2]));
         p += 3 * n;
     }
     if (st == CJ_OK) st = cj_bvh_build(boxes, count, alloc, &c->bvh);
-    free(boxes);
     if (st != CJ_OK) {
         pc_free(alloc, c);
         return st;
@@ -156,6 +160,97 @@ int cj_patch_collider_resolve_(const cj_patch_collider *c, const double a[3], do
         for (int k = 0; k < 3; ++k) {
             const double vt = v[k] - vn * n[k];
             v[k] = -restitution * vn * n[k] + (1.0 - c->friction) * vt;
+        }
+    return 1;
+}
+
+void cj_patch_collider_set_solid(cj_patch_collider *c, const double up[3]) {
+    assert(c != NULL);
+    const double l = up ? sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]) : 0.0;
+    c->solid = l > 0.0 && isfinite(l);
+    for (int k = 0; k < 3; ++k) c->up[k] = c->solid ? up[k] / l : 0.0;
+}
+
+/* The crossings of one ray with the patches, gathered by the BVH walk (the primitive callback
+ * records every hit and reports none, so that every patch whose box the ray meets is seen). */
+typedef struct crossing_walk {
+    const cj_patch_collider *c;
+    double t[64];
+    int n;
+} crossing_walk;
+
+static int record_crossings(void *user, uint32_t prim, const cj_ray *ray, cj_hit *hit) {
+    crossing_walk *w = user;
+    cj_ray r = *ray;
+    (void)hit;
+    cj_hit h;
+    for (int k = 0; k < 8 && w->n < 64; ++k) {
+        if (!cj_ray_patch(&r, &w->c->patches[prim], w->c->tol, &h, NULL)) break;
+        w->t[w->n++] = h.t;
+        r.tmin = h.t + 1e3 * w->c->tol;
+    }
+    return 0;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+int cj_patch_collider_inside(const cj_patch_collider *c, const double x[3]) {
+    assert(c != NULL && x != NULL);
+    if (!c->solid) return 0;
+    for (int k = 0; k < 3; ++k)
+        if (!(x[k] >= c->all.lo[k] && x[k] <= c->all.hi[k])) return 0;
+    double reach = 0.0;
+    for (int k = 0; k < 3; ++k) reach += c->all.hi[k] - c->all.lo[k];
+    cj_ray ray;
+    ray.org = cj_v3(x[0], x[1], x[2]);
+    ray.dir = cj_v3(c->up[0], c->up[1], c->up[2]);
+    ray.tmin = 0.0;
+    ray.tmax = reach;
+    crossing_walk w;
+    w.c = c;
+    w.n = 0;
+    cj_hit unused;
+    (void)cj_bvh_closest(c->bvh, &ray, record_crossings, &w, &unused, NULL);
+    /* a crossing on a seam is found on both patches: count crossings, not hits */
+    qsort(w.t, (size_t)w.n, sizeof(double), cmp_double);
+    int crossings = 0;
+    for (int i = 0; i < w.n; ++i)
+        if (i == 0 || w.t[i] - w.t[i - 1] > 1e3 * c->tol) ++crossings;
+    return crossings & 1;
+}
+
+int cj_patch_collider_push_out_(const cj_patch_collider *c, double x[3], double v[3]) {
+    if (!cj_patch_collider_inside(c, x)) return 0;
+    double best = INFINITY, p[3] = {0.0, 0.0, 0.0};
+    for (size_t q = 0; q < c->count; ++q) {
+        double gap2 = 0.0; /* the distance to the patch's box bounds the distance to it */
+        for (int k = 0; k < 3; ++k) {
+            const double g = fmax(0.0, fmax(c->boxes[q].lo[k] - x[k], x[k] - c->boxes[q].hi[k]));
+            gap2 += g * g;
+        }
+        if (!(sqrt(gap2) < best)) continue;
+        cj_patch_nearest_result r;
+        if (cj_patch_nearest(&c->patches[q], x, c->tol, &r) != CJ_OK) continue;
+        if (r.distance < best) {
+            best = r.distance;
+            memcpy(p, r.point, sizeof p);
+        }
+    }
+    if (!(best < INFINITY) || !(best > 0.0)) return 0;
+    /* out through the nearest surface point: from x towards it, and past it by the offset */
+    double n[3], vn = 0.0;
+    for (int k = 0; k < 3; ++k) n[k] = (p[k] - x[k]) / best;
+    for (int k = 0; k < 3; ++k) {
+        x[k] = p[k] + c->offset * n[k];
+        vn += v[k] * n[k];
+    }
+    if (vn < 0.0)
+        for (int k = 0; k < 3; ++k) {
+            const double vt = v[k] - vn * n[k];
+            v[k] = (1.0 - c->friction) * vt;
         }
     return 1;
 }
