@@ -140,6 +140,16 @@ static int zip_walk_bounds(const ptess *P, double u0, double u1, double v0, doub
 
 /* Adds triangle (a,b,c) (reordered CCW in (u,v)), accounting its bound with strip bounds
  * `db` and its measured deviation; degenerate triangles are counted and not added. */
+/* The smallest and largest of three (no NaN here: parameters in [0,1]). */
+static inline double min3(double a, double b, double c) {
+    const double m = a < b ? a : b;
+    return m < c ? m : c;
+}
+static inline double max3(double a, double b, double c) {
+    const double m = a > b ? a : b;
+    return m > c ? m : c;
+}
+
 static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbounds *db) {
     cj_mesh *M = P->mesh;
     const double *uvs = P->bounds_only ? P->scr_uv : M->uvs;
@@ -155,6 +165,36 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
     }
     if (P->bound_known) {
         /* the bound of these triangles is known (tessellate_adaptive.c, try_grid) */
+    } else if (P->predict) {
+        /* a predicted (not proven) bound for planning a rational patch: the interpolation error
+         * with the sampled second derivatives of the slab cells the triangle's box meets */
+        const double u0 = min3(ua[0], ub[0], uc[0]), u1 = max3(ua[0], ub[0], uc[0]);
+        const double v0 = min3(ua[1], ub[1], uc[1]), v1 = max3(ua[1], ub[1], uc[1]);
+        const int S = CJ_TESS_SLABS;
+        int a0 = (int)(u0 * S), a1 = (int)ceil(u1 * S) - 1, b0 = (int)(v0 * S),
+            b1 = (int)ceil(v1 * S) - 1;
+        a0 = a0 < 0 ? 0 : a0 > S - 1 ? S - 1 : a0;
+        b0 = b0 < 0 ? 0 : b0 > S - 1 ? S - 1 : b0;
+        a1 = a1 < a0 ? a0 : a1 > S - 1 ? S - 1 : a1;
+        b1 = b1 < b0 ? b0 : b1 > S - 1 ? S - 1 : b1;
+        double m[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+        for (int bb = b0; bb <= b1; ++bb)
+            for (int aa = a0; aa <= a1; ++aa)
+                for (int t = 0; t < 6; ++t) {
+                    const double x = P->pm[t * S * S + bb * S + aa];
+                    m[t] = x > m[t] ? x : m[t];
+                }
+        const double du = u1 - u0, dv = v1 - v0;
+        /* min(bF, bQ) as the build's bound: bF from the sampled derivatives (its M's tend to
+         * them as the triangle shrinks), bQ from the slab cells' (Q) bounds (an over-estimate
+         * of a smaller box's) */
+        const double bf = CJ_TESS_PREDICT_MARGIN *
+                          (m[0] * du * du + 2.0 * m[1] * du * dv + m[2] * dv * dv) * 0.125;
+        const double bq =
+            (m[3] * du * du + 2.0 * m[4] * du * dv + m[5] * dv * dv) * 0.125 + P->pm[6 * S * S];
+        const double bnd = fmin(bf, bq) + P->verterr;
+        if (bnd > P->bound) P->bound = bnd;
+        if (P->abort_over > 0.0 && P->bound > P->abort_over) P->aborted = 1;
     } else if (P->rational) {
         double bnd = cj_tess_rational_tri_bound(P, ua, ub, uc, M->positions + 3 * (size_t)a,
                                                 M->positions + 3 * (size_t)b,
@@ -330,7 +370,7 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
     P->aborted = 0;
     P->tris = 0;
     P->worst_terms[0] = P->worst_terms[1] = P->worst_terms[2] = 0.0;
-    assert(!P->bounds_only || !P->rational);
+    assert(!P->bounds_only || !P->rational || P->predict);
     if (P->bounds_only)
         ++P->trials;
     else
@@ -477,7 +517,7 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
         for (int i = i0; i < i1; ++i) {
             dbounds cb = {0.0, 0.0, 0.0};
             if (cells && P->rational) {
-                cj_tess_load_cell(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
+                if (!P->predict) cj_tess_load_cell(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
             } else if (walk) { /* the line at ub[i] was computed for the previous cell */
                 tess_line *A = &P->lines[(i - i0) & 1], *B = &P->lines[(i - i0 + 1) & 1];
                 cj_tess_line(P, &P->strip, ub[i + 1], B);
