@@ -208,7 +208,9 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
     }
     /* grid densities: see cj_tess_patch_densities */
     if (!kfix) dens->known_valid = 0;
-    P->pm = P->rational ? dens->pm : NULL;
+    /* the prediction tables are needed by planning's trials only: filled with the densities
+     * (planning always computes them) in the patch's scratch, not kept in the plan */
+    P->pm = P->rational && !dens->valid ? P->pmbuf : NULL;
     if (!dens->valid) {
         cj_tess_patch_densities(P, tol, dens->rho_u, dens->rho_v, &dens->base_u, &dens->base_v);
         dens->valid = 1;

@@ -95,8 +95,8 @@ typedef struct ptess {
     /* rational patches: the tables of the densities on S x S slab cells (S = CJ_TESS_SLABS):
      * pm[0..3 S^2) the sampled |S_uu|, |S_uv|, |S_vv|, pm[3 S^2..6 S^2) the homogeneous (Q)
      * bound's M's in the patch's parameters, pm[6 S^2] the largest constant term of (Q); NULL:
-     * not kept. predict: the current trial predicts its bound from them (planning only, see
-     * tessellate_adaptive.c) */
+     * not kept (filled with the densities while planning, in pmbuf). predict: the current trial
+     * predicts its bound from them (planning only, see tessellate_adaptive.c) */
     double *pm;
     int predict;
     double abort_over; /* > 0: stop a build as soon as its bound exceeds this (it fails) */
@@ -107,6 +107,7 @@ typedef struct ptess {
     size_t dropped;
     /* ---- large arrays, written before they are read (cj_tess_setup does not clear them) */
     double h[CJ_PATCH_NET_MAX];
+    double pmbuf[6 * CJ_TESS_SLABS * CJ_TESS_SLABS + 1]; /* rational planning: pm points here */
     edge_info e[4];
     /* polynomial patches: difference nets (tess_bounds_poly.c) */
     double duu[CJ_TESS_DNET_MAX], duv[CJ_TESS_DNET_MAX], dvv[CJ_TESS_DNET_MAX];
@@ -199,7 +200,6 @@ void cj_tess_patch_densities(ptess *P, double tol, double *rho_u, double *rho_v,
  * from its planning to its build (valid != 0). */
 typedef struct tess_density {
     double rho_u[CJ_TESS_SLABS], rho_v[CJ_TESS_SLABS], base_u, base_v;
-    double pm[6 * CJ_TESS_SLABS * CJ_TESS_SLABS + 1]; /* rational: ptess.pm */
     int valid;
     /* polynomial patches: the bound (and worst terms) of the planned grid with the planned
      * side counts known_k, from planning's passing trial */
