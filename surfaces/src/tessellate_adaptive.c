@@ -72,7 +72,7 @@ static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, gr
         equidistribute(g.uni ? flat : rho_u, CJ_TESS_SLABS, nu, ub);
         equidistribute(g.uni ? flat : rho_v, CJ_TESS_SLABS, nv, vb);
         /* planning a rational patch: the bound is predicted, not proven (its build proves it) */
-        P->predict = !real && P->rational && P->planning && P->pm != NULL;
+        P->predict = !real && P->planning && P->pm != NULL;
         P->bounds_only = !real && (!P->rational || P->predict);
         /* the build of a grid whose bounds-only trial passed: the same triangles, hence the
          * same bound (known[0], worst terms known[1..3]); not recomputed */
@@ -167,6 +167,28 @@ void cj_tess_patch_densities(ptess *P, double tol, double *rho_u, double *rho_v,
                     rho_v[b] = fmax(rho_v[b], fmin(fv, CJ_TESS_SLABS * sqrt(fmax(qb[2], qb[1]))));
                 }
         } else {
+            if (P->pm) { /* proven bounds per slab cell, for planning's trials */
+                const int S = CJ_TESS_SLABS, S2 = CJ_TESS_SLABS * CJ_TESS_SLABS;
+                const int walk = cj_tess_walkable(P);
+                for (int b = 0; b < S; ++b) {
+                    cj_tess_strip_restrict(P, (double)b / S, (double)(b + 1) / S, &P->strip);
+                    if (walk) cj_tess_line(P, &P->strip, 0.0, &P->lines[0]);
+                    for (int a = 0; a < S; ++a) {
+                        dbounds cb;
+                        if (walk) {
+                            tess_line *A = &P->lines[a & 1], *B = &P->lines[(a + 1) & 1];
+                            cj_tess_line(P, &P->strip, (double)(a + 1) / S, B);
+                            cb = cj_tess_cell_walk(P, A, B);
+                        } else {
+                            cb = cj_tess_cell_bounds(P, &P->strip, (double)a / S,
+                                                     (double)(a + 1) / S);
+                        }
+                        P->pm[b * S + a] = cb.uu;
+                        P->pm[S2 + b * S + a] = cb.uv;
+                        P->pm[2 * S2 + b * S + a] = cb.vv;
+                    }
+                }
+            }
             for (int a = 0; a < CJ_TESS_SLABS; ++a) {
                 const dbounds bu = cj_tess_strip_bounds(P, (double)a / CJ_TESS_SLABS,
                                                         (double)(a + 1) / CJ_TESS_SLABS, 0.0, 1.0);
@@ -210,7 +232,7 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
     if (!kfix) dens->known_valid = 0;
     /* the prediction tables are needed by planning's trials only: filled with the densities
      * (planning always computes them) in the patch's scratch, not kept in the plan */
-    P->pm = P->rational && !dens->valid ? P->pmbuf : NULL;
+    P->pm = !dens->valid ? P->pmbuf : NULL;
     if (!dens->valid) {
         cj_tess_patch_densities(P, tol, dens->rho_u, dens->rho_v, &dens->base_u, &dens->base_v);
         dens->valid = 1;

@@ -177,14 +177,31 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
         b0 = b0 < 0 ? 0 : b0 > S - 1 ? S - 1 : b0;
         a1 = a1 < a0 ? a0 : a1 > S - 1 ? S - 1 : a1;
         b1 = b1 < b0 ? b0 : b1 > S - 1 ? S - 1 : b1;
+        const int tables = P->rational ? 6 : 3;
         double m[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
         for (int bb = b0; bb <= b1; ++bb)
             for (int aa = a0; aa <= a1; ++aa)
-                for (int t = 0; t < 6; ++t) {
+                for (int t = 0; t < tables; ++t) {
                     const double x = P->pm[t * S * S + bb * S + aa];
                     m[t] = x > m[t] ? x : m[t];
                 }
         const double du = u1 - u0, dv = v1 - v0;
+        if (!P->rational) {
+            /* polynomial: the slab cells' bounds are proven bounds over the cells the box
+             * meets (a sub-box's restricted net is a convex combination of the cell's), so
+             * this is the proven polynomial bound, only coarser than the cell's own */
+            const double t0 = m[0] * du * du, t1 = 2.0 * m[1] * du * dv, t2 = m[2] * dv * dv;
+            const double bnd = (t0 + t1 + t2) * 0.125 * (1.0 + 8.0 * U_ROUND) + P->evalerr;
+            if (bnd > P->bound) {
+                P->bound = bnd;
+                P->worst_terms[0] = t0;
+                P->worst_terms[1] = t1;
+                P->worst_terms[2] = t2;
+            }
+            if (P->abort_over > 0.0 && P->bound > P->abort_over) P->aborted = 1;
+            ++P->tris;
+            return CJ_OK;
+        }
         /* min(bF, bQ) as the build's bound: bF from the sampled derivatives (its M's tend to
          * them as the triangle shrinks), bQ from the slab cells' (Q) bounds (an over-estimate
          * of a smaller box's) */
@@ -292,8 +309,9 @@ static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, 
     double *bp = NULL;
     dbounds *iv = NULL;
     P->zip_n = 0;
-    if (!P->rational && !P->bound_known) { /* every triangle spans the ring's strip */
-        const int s = P->zip_dir;          /* set by the caller: the side */
+    if (!P->rational && !P->bound_known &&
+        !P->predict) {            /* every triangle spans the ring's strip */
+        const int s = P->zip_dir; /* set by the caller: the side */
         if (s == 0)
             cj_tess_strip_restrict(P, 0.0, P->zip_t, &P->zip);
         else if (s == 2)
@@ -510,14 +528,14 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
         i1 = nu - 1;
     }
     for (int j = j0; j < j1; ++j) {
-        const int cells = !P->bound_known; /* cell bounds needed */
+        const int cells = !P->bound_known && !P->predict; /* cell bounds needed */
         const int walk = cells && cj_tess_walkable(P);
         if (cells && !P->rational) cj_tess_strip_restrict(P, vb[j], vb[j + 1], &P->strip);
         if (walk) cj_tess_line(P, &P->strip, ub[i0], &P->lines[0]);
         for (int i = i0; i < i1; ++i) {
             dbounds cb = {0.0, 0.0, 0.0};
             if (cells && P->rational) {
-                if (!P->predict) cj_tess_load_cell(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
+                cj_tess_load_cell(P, ub[i], ub[i + 1], vb[j], vb[j + 1]);
             } else if (walk) { /* the line at ub[i] was computed for the previous cell */
                 tess_line *A = &P->lines[(i - i0) & 1], *B = &P->lines[(i - i0 + 1) & 1];
                 cj_tess_line(P, &P->strip, ub[i + 1], B);
