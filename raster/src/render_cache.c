@@ -24,7 +24,22 @@ struct cj_render_cache {
     cj_allocator alloc;
     size_t count, cap;
     cache_entry *e;
+    cj_render_progress_fn progress; /* the frame's callback while it prepares, else NULL */
+    void *progress_user;
 };
+
+void cj_rcache_set_progress(cj_render_cache *c, cj_render_progress_fn fn, void *user) {
+    c->progress = fn;
+    c->progress_user = user;
+}
+
+/* The tessellation cache's per-patch hook, passed on as "preparing" (done = total = 0). */
+static int tess_progress(void *user, size_t done, size_t total) {
+    (void)done;
+    (void)total;
+    const cj_render_cache *c = user;
+    return c->progress(c->progress_user, 0, 0);
+}
 
 cj_status cj_render_cache_create(const cj_allocator *alloc, cj_render_cache **out) {
     cj_allocator a = cj_render_alloc(alloc);
@@ -72,7 +87,9 @@ cj_status cj_rcache_tessellate(cj_render_cache *c, int node, const cj_patch *pat
     cache_entry *e = entry_for(c, node);
     if (!e) return cj_fail(CJ_ERR_NOMEM, "render cache entry of node %d", node);
     if (e->tol > 0.0 && e->tol <= opt->tol && opt->tol <= 2.0 * e->tol) opt->tol = e->tol;
+    cj_tess_cache_set_progress(e->tess, c->progress ? tess_progress : NULL, c);
     const cj_status st = cj_tess_cache_update(e->tess, patches, count, opt, mesh, rep, stats);
+    cj_tess_cache_set_progress(e->tess, NULL, NULL);
     e->tol = st ? 0.0 : opt->tol;
     return st;
 }

@@ -126,10 +126,15 @@ cj_status cj_render_geometry_mesh(const cj_geometry *g, const cj_robject *o, con
 /* render_cache.c: tessellates `count` patches of node `node` through its incremental cache
  * (appending to mesh), at opt->tol or, when that lies within [cached tol, 2 cached tol], at the
  * cached tol (opt->tol is set to the tolerance used). stats: the update's plans and pieces
- * reused / redone. Status: those of cj_tess_cache_update, CJ_ERR_NOMEM. */
+ * reused / redone. Status: those of cj_tess_cache_update (CJ_ERR_CANCELLED when the progress
+ * callback set by cj_rcache_set_progress asks to stop), CJ_ERR_NOMEM. */
 cj_status cj_rcache_tessellate(cj_render_cache *c, int node, const cj_patch *patches, size_t count,
                                cj_tess_options *opt, cj_mesh *mesh, cj_tess_report *rep,
                                cj_tess_cache_stats *stats);
+
+/* render_cache.c: the frame's progress callback, called with done = total = 0 before each patch
+ * the cache plans or builds (a nonzero answer cancels the tessellation); NULL: none. */
+void cj_rcache_set_progress(cj_render_cache *c, cj_render_progress_fn fn, void *user);
 
 /* A geometry of kind REVOLUTION or GEN_CYLINDER as exact rational Bézier patches (render_geom.c).
  * pts/w receive the control points and weights (caller frees with alloc), patches the views. */

@@ -158,8 +158,11 @@ static cj_status setup_view(cj_rframe *F) {
 /* Lights, materials and the feature mask; the per-material attributes the build must make. */
 static cj_status build_triangles(cj_rframe *F) {
     cj_render_cache *cache = cj_renderer_cache(F->r);
+    const cj_render_options *ro = &F->r->opt.render;
+    if (cache) cj_rcache_set_progress(cache, ro->progress, ro->progress_user);
     cj_status st =
         cj_rbuild_scene(F->rs, &F->view, F->tol_px, F->flags, F->need, 1, cache, &F->A, &F->b);
+    if (cache) cj_rcache_set_progress(cache, NULL, NULL);
     if (st) return st;
     const cj_rbuild *b = &F->b;
     const cj_rfeatures *f = &F->f;

@@ -66,6 +66,10 @@ static cj_status attach(cj_anim_doc *doc, cj_scene *scene, int *binding) {
             st = collider_for(scene, "cloth", k, doc->cloth_collide_with[k],
                               &doc->cloth_colliders[k]);
             if (st) return st;
+            /* a cloth drapes over solids closed from above (the teapot's lid): against gravity */
+            const double up[3] = {-doc->pdesc.gravity[0], -doc->pdesc.gravity[1],
+                                  -doc->pdesc.gravity[2]};
+            cj_patch_collider_set_solid(doc->cloth_colliders[k], up);
         }
         /* rebuild the cloth with the same description plus the colliders */
         cj_springs *old = doc->cloth;

@@ -25,4 +25,10 @@ struct cj_particles {
 int cj_patch_collider_resolve_(const cj_patch_collider *c, const double a[3], double x[3],
                                double v[3], double restitution);
 
+/* particle_patches.c: a particle of a solid collider's inside (cj_patch_collider_inside) moved
+ * out through the nearest surface point (certified, cj_patch_nearest) by the collider's offset,
+ * its velocity into the surface removed (the tangential part scaled by 1 - friction); returns 1
+ * when it was moved. */
+int cj_patch_collider_push_out_(const cj_patch_collider *c, double x[3], double v[3]);
+
 #endif

@@ -34,9 +34,13 @@ size_t cj_springs_collide(cj_springs *s) {
     if (s->npatch && dim == 3)
         for (size_t i = 0; i < s->count; ++i)
             if (!s->fixed[i])
-                for (size_t j = 0; j < s->npatch; ++j)
+                for (size_t j = 0; j < s->npatch; ++j) {
                     hits += (size_t)cj_patch_collider_resolve_(
                         s->patch_colliders[j], s->xold + 3 * i, s->x + 3 * i, s->v + 3 * i, 0.0);
+                    /* a solid's inside: entered through a gap or a seam the segment missed */
+                    hits += (size_t)cj_patch_collider_push_out_(s->patch_colliders[j], s->x + 3 * i,
+                                                                s->v + 3 * i);
+                }
     if (s->nspheres == 0 && s->nplanes == 0) return hits;
     for (size_t i = 0; i < s->count; ++i) {
         if (s->fixed[i]) continue;

@@ -38,6 +38,8 @@ struct cj_tess_cache {
     cj_mesh *scratch; /* planning work space */
     ptess *P;
     cj_tess_cache_stats totals;
+    cj_tess_progress_fn progress; /* NULL: not cancellable */
+    void *progress_user;
 };
 
 cj_status cj_tess_cache_create(const cj_allocator *alloc, cj_tess_cache **out) {
@@ -79,6 +81,22 @@ void cj_tess_cache_destroy(cj_tess_cache *c) {
     const cj_allocator a = c->alloc;
     cj_allocator_free(&a, c->P);
     cj_allocator_free(&a, c);
+}
+
+void cj_tess_cache_set_progress(cj_tess_cache *c, cj_tess_progress_fn fn, void *user) {
+    assert(c != NULL);
+    c->progress = fn;
+    c->progress_user = user;
+}
+
+/* CJ_ERR_CANCELLED when the progress callback asks to stop before step `done`. */
+static cj_status check_cancel(const cj_tess_cache *c, size_t done, size_t total) {
+    if (c->progress && c->progress(c->progress_user, done, total))
+        return cj_fail(CJ_ERR_CANCELLED,
+                       "tessellation cancelled by the progress callback before "
+                       "step %zu of %zu",
+                       done, total);
+    return CJ_OK;
 }
 
 cj_tess_cache_stats cj_tess_cache_totals(const cj_tess_cache *c) {
@@ -221,6 +239,7 @@ cj_status cj_tess_cache_update(cj_tess_cache *c, const cj_patch *patches, size_t
             ne[q].taken = 0;
             ++w.plans_reused;
         } else {
+            if ((st = check_cancel(c, q, 2 * count))) break; /* ne[q] not initialised */
             if ((st = entry_init(c, &ne[q], &patches[q], h, opt->tol, cap))) {
                 ++done;
                 break;
@@ -241,6 +260,7 @@ cj_status cj_tess_cache_update(cj_tess_cache *c, const cj_patch *patches, size_t
         if (e->have_piece && memcmp(e->k, k + 4 * q, sizeof e->k) == 0) {
             ++w.pieces_reused;
         } else {
+            if ((st = check_cancel(c, count + q, 2 * count))) break; /* e keeps its piece */
             e->have_piece = 0;
             if (!e->piece && (st = cj_mesh_create(&c->alloc, &e->piece))) break;
             cj_mesh_clear(e->piece);
@@ -270,12 +290,29 @@ cj_status cj_tess_cache_update(cj_tess_cache *c, const cj_patch *patches, size_t
     rep.vertices = nv;
     rep.triangles = nt;
     /* the cache now holds this update's patches (what was planned or built stays valid) */
+    for (size_t q = done; q < count && ne; ++q) memset(&ne[q], 0, sizeof ne[q]);
+    size_t kept = ne ? count : 0;
+    if (st && ne) { /* a failed (cancelled) update keeps the old entries it has not reached */
+        size_t untaken = 0;
+        for (size_t i = 0; i < c->count; ++i) untaken += !c->e[i].taken;
+        centry *merged =
+            untaken ? cj_allocator_alloc(&c->alloc, (done + untaken) * sizeof *merged) : NULL;
+        if (merged) {
+            memcpy(merged, ne, done * sizeof *ne);
+            kept = done;
+            for (size_t i = 0; i < c->count; ++i)
+                if (!c->e[i].taken) merged[kept++] = c->e[i];
+            for (size_t q = 0; q < done; ++q) merged[q].taken = 0;
+            cj_allocator_free(&c->alloc, ne);
+            ne = merged;
+            memset(c->e, 0, c->count * sizeof *c->e); /* moved, not freed */
+        }
+    }
     for (size_t i = 0; i < c->count; ++i)
         if (!c->e[i].taken) entry_free(c, &c->e[i]);
     cj_allocator_free(&c->alloc, c->e);
-    for (size_t q = done; q < count && ne; ++q) memset(&ne[q], 0, sizeof ne[q]);
     c->e = ne;
-    c->count = ne ? count : 0;
+    c->count = kept;
     cj_allocator_free(&c->alloc, k);
     cj_allocator_free(&c->alloc, ix.slot);
     c->totals.plans_reused += w.plans_reused;

@@ -71,7 +71,9 @@ static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, gr
     } else {
         equidistribute(g.uni ? flat : rho_u, CJ_TESS_SLABS, nu, ub);
         equidistribute(g.uni ? flat : rho_v, CJ_TESS_SLABS, nv, vb);
-        P->bounds_only = !real && !P->rational;
+        /* planning a rational patch: the bound is predicted, not proven (its build proves it) */
+        P->predict = !real && P->planning && P->pm != NULL;
+        P->bounds_only = !real && (!P->rational || P->predict);
         /* the build of a grid whose bounds-only trial passed: the same triangles, hence the
          * same bound (known[0], worst terms known[1..3]); not recomputed */
         P->bound_known = known != NULL && !P->rational;
@@ -80,6 +82,7 @@ static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, gr
         st = cj_tess_build_patch(P, nu, ub, nv, vb, k);
         P->abort_over = 0.0;
         P->bounds_only = 0;
+        P->predict = 0;
         if (P->bound_known) {
             P->bound = known[0];
             memcpy(P->worst_terms, known + 1, 3 * sizeof(double));
@@ -109,30 +112,83 @@ void cj_tess_patch_densities(ptess *P, double tol, double *rho_u, double *rho_v,
             /* densities only shape the grid (the bound is checked per triangle): per cell of
              * CJ_TESS_SLABS x CJ_TESS_SLABS, the smaller of the largest |S_uu|, |S_uv|, |S_vv|
              * sampled at its corners and centre and of the homogeneous bound's M's */
-            for (int a = 0; a < CJ_TESS_SLABS; ++a) rho_u[a] = rho_v[a] = 0.0;
+            enum { S = CJ_TESS_SLABS, S1 = CJ_TESS_SLABS + 1 };
+            for (int a = 0; a < S; ++a) rho_u[a] = rho_v[a] = 0.0;
+            /* |S_uu|, |S_uv|, |S_vv| at the slab corners (each shared by up to four cells) */
+            double corner[S1 * S1][3];
+            for (int b = 0; b <= S; ++b)
+                for (int a = 0; a <= S; ++a) {
+                    double d[27];
+                    cj_patch_derivs_unchecked(P->p, P->h, 4, (double)a / S, (double)b / S, 2, 2, d);
+                    double *c = corner[b * S1 + a];
+                    c[0] = sqrt(d[18] * d[18] + d[19] * d[19] + d[20] * d[20]);
+                    c[1] = sqrt(d[12] * d[12] + d[13] * d[13] + d[14] * d[14]);
+                    c[2] = sqrt(d[6] * d[6] + d[7] * d[7] + d[8] * d[8]);
+                }
             for (int a = 0; a < CJ_TESS_SLABS; ++a)
                 for (int b = 0; b < CJ_TESS_SLABS; ++b) {
-                    static const double off[5][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0.5, 0.5}};
-                    double fu = 0.0, fv = 0.0, qb[4];
+                    double fu = 0.0, fv = 0.0, qb[4], muu = 0.0, muv = 0.0, mvv = 0.0;
                     cj_patch_sub_h(P->h, 4, P->m, P->n, (double)a / CJ_TESS_SLABS,
                                    (double)(a + 1) / CJ_TESS_SLABS, (double)b / CJ_TESS_SLABS,
                                    (double)(b + 1) / CJ_TESS_SLABS, P->trinet);
                     cj_tess_homog_bounds(P, P->trinet, qb);
-                    for (int o = 0; o < 5; ++o) {
-                        double d[27];
-                        cj_patch_derivs_unchecked(P->p, P->h, 4, (a + off[o][0]) / CJ_TESS_SLABS,
-                                                  (b + off[o][1]) / CJ_TESS_SLABS, 2, 2, d);
-                        const double suu = sqrt(d[18] * d[18] + d[19] * d[19] + d[20] * d[20]);
-                        const double suv = sqrt(d[12] * d[12] + d[13] * d[13] + d[14] * d[14]);
-                        const double svv = sqrt(d[6] * d[6] + d[7] * d[7] + d[8] * d[8]);
+                    double centre[27];
+                    cj_patch_derivs_unchecked(P->p, P->h, 4, (a + 0.5) / S, (b + 0.5) / S, 2, 2,
+                                              centre);
+                    for (int o = 0; o < 5; ++o) { /* its four corners and its centre */
+                        const double *c = corner[(b + (o >> 1)) * S1 + a + (o & 1)];
+                        const double *d = centre;
+                        const double suu =
+                            o < 4 ? c[0] : sqrt(d[18] * d[18] + d[19] * d[19] + d[20] * d[20]);
+                        const double suv =
+                            o < 4 ? c[1] : sqrt(d[12] * d[12] + d[13] * d[13] + d[14] * d[14]);
+                        const double svv =
+                            o < 4 ? c[2] : sqrt(d[6] * d[6] + d[7] * d[7] + d[8] * d[8]);
                         fu = fmax(fu, sqrt(fmax(suu, suv)));
                         fv = fmax(fv, sqrt(fmax(svv, suv)));
+                        muu = fmax(muu, suu);
+                        muv = fmax(muv, suv);
+                        mvv = fmax(mvv, svv);
+                    }
+                    if (P->pm) {
+                        const int cell = b * CJ_TESS_SLABS + a, S2 = CJ_TESS_SLABS * CJ_TESS_SLABS;
+                        const double s2 = (double)CJ_TESS_SLABS * CJ_TESS_SLABS;
+                        P->pm[cell] = muu;
+                        P->pm[S2 + cell] = muv;
+                        P->pm[2 * S2 + cell] = mvv;
+                        P->pm[3 * S2 + cell] = qb[0] * s2; /* local to patch parameters */
+                        P->pm[4 * S2 + cell] = qb[1] * s2;
+                        P->pm[5 * S2 + cell] = qb[2] * s2;
+                        if (a == 0 && b == 0) P->pm[6 * S2] = 0.0;
+                        P->pm[6 * S2] = fmax(P->pm[6 * S2], qb[3]);
                     }
                     /* the bound kept is the smaller of the two (cj_tess_rational_tri_bound) */
                     rho_u[a] = fmax(rho_u[a], fmin(fu, CJ_TESS_SLABS * sqrt(fmax(qb[0], qb[1]))));
                     rho_v[b] = fmax(rho_v[b], fmin(fv, CJ_TESS_SLABS * sqrt(fmax(qb[2], qb[1]))));
                 }
         } else {
+            if (P->pm) { /* proven bounds per slab cell, for planning's trials */
+                const int S = CJ_TESS_SLABS, S2 = CJ_TESS_SLABS * CJ_TESS_SLABS;
+                const int walk = cj_tess_walkable(P);
+                for (int b = 0; b < S; ++b) {
+                    cj_tess_strip_restrict(P, (double)b / S, (double)(b + 1) / S, &P->strip);
+                    if (walk) cj_tess_line(P, &P->strip, 0.0, &P->lines[0]);
+                    for (int a = 0; a < S; ++a) {
+                        dbounds cb;
+                        if (walk) {
+                            tess_line *A = &P->lines[a & 1], *B = &P->lines[(a + 1) & 1];
+                            cj_tess_line(P, &P->strip, (double)(a + 1) / S, B);
+                            cb = cj_tess_cell_walk(P, A, B);
+                        } else {
+                            cb = cj_tess_cell_bounds(P, &P->strip, (double)a / S,
+                                                     (double)(a + 1) / S);
+                        }
+                        P->pm[b * S + a] = cb.uu;
+                        P->pm[S2 + b * S + a] = cb.uv;
+                        P->pm[2 * S2 + b * S + a] = cb.vv;
+                    }
+                }
+            }
             for (int a = 0; a < CJ_TESS_SLABS; ++a) {
                 const dbounds bu = cj_tess_strip_bounds(P, (double)a / CJ_TESS_SLABS,
                                                         (double)(a + 1) / CJ_TESS_SLABS, 0.0, 1.0);
@@ -174,6 +230,9 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
     }
     /* grid densities: see cj_tess_patch_densities */
     if (!kfix) dens->known_valid = 0;
+    /* the prediction tables are needed by planning's trials only: filled with the densities
+     * (planning always computes them) in the patch's scratch, not kept in the plan */
+    P->pm = !dens->valid ? P->pmbuf : NULL;
     if (!dens->valid) {
         cj_tess_patch_densities(P, tol, dens->rho_u, dens->rho_v, &dens->base_u, &dens->base_v);
         dens->valid = 1;
@@ -200,8 +259,22 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
             }
         }
         if (st) return st;
+        grid g = *hint;
+        /* a rational patch's plan was predicted (not proven): when its build misses tol, grow
+         * the grid by the bound's 1/s^2 law (at least 10%) a few times before searching */
+        for (int retry = 0; !pass && P->rational && retry < 3; ++retry) {
+            const double excess = P->bound - P->verterr, room = tol - P->verterr;
+            double f = room > 0.0 && excess > 0.0 ? 1.02 * sqrt(excess / room) : 2.0;
+            if (!(f >= 1.1)) f = 1.1;
+            if (f > 4.0) f = 4.0;
+            g.nu = (int)ceil(f * g.nu);
+            g.nv = (int)ceil(f * g.nv);
+            if (g.nu > cap || g.nv > cap) break;
+            side_counts(P, ke, kfix, g.nu, g.nv, k);
+            if ((st = try_grid(P, rho_u, rho_v, g, k, tol, q, vs, ts, 1, NULL, &pass))) return st;
+        }
         if (pass) {
-            *out = *hint;
+            *out = g;
             memcpy(kout, k, sizeof k);
             return CJ_OK;
         }

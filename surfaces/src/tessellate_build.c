@@ -140,6 +140,16 @@ static int zip_walk_bounds(const ptess *P, double u0, double u1, double v0, doub
 
 /* Adds triangle (a,b,c) (reordered CCW in (u,v)), accounting its bound with strip bounds
  * `db` and its measured deviation; degenerate triangles are counted and not added. */
+/* The smallest and largest of three (no NaN here: parameters in [0,1]). */
+static inline double min3(double a, double b, double c) {
+    const double m = a < b ? a : b;
+    return m < c ? m : c;
+}
+static inline double max3(double a, double b, double c) {
+    const double m = a > b ? a : b;
+    return m > c ? m : c;
+}
+
 static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbounds *db) {
     cj_mesh *M = P->mesh;
     const double *uvs = P->bounds_only ? P->scr_uv : M->uvs;
@@ -155,6 +165,53 @@ static cj_status add_tri(ptess *P, uint32_t a, uint32_t b, uint32_t c, const dbo
     }
     if (P->bound_known) {
         /* the bound of these triangles is known (tessellate_adaptive.c, try_grid) */
+    } else if (P->predict) {
+        /* a predicted (not proven) bound for planning a rational patch: the interpolation error
+         * with the sampled second derivatives of the slab cells the triangle's box meets */
+        const double u0 = min3(ua[0], ub[0], uc[0]), u1 = max3(ua[0], ub[0], uc[0]);
+        const double v0 = min3(ua[1], ub[1], uc[1]), v1 = max3(ua[1], ub[1], uc[1]);
+        const int S = CJ_TESS_SLABS;
+        int a0 = (int)(u0 * S), a1 = (int)ceil(u1 * S) - 1, b0 = (int)(v0 * S),
+            b1 = (int)ceil(v1 * S) - 1;
+        a0 = a0 < 0 ? 0 : a0 > S - 1 ? S - 1 : a0;
+        b0 = b0 < 0 ? 0 : b0 > S - 1 ? S - 1 : b0;
+        a1 = a1 < a0 ? a0 : a1 > S - 1 ? S - 1 : a1;
+        b1 = b1 < b0 ? b0 : b1 > S - 1 ? S - 1 : b1;
+        const int tables = P->rational ? 6 : 3;
+        double m[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+        for (int bb = b0; bb <= b1; ++bb)
+            for (int aa = a0; aa <= a1; ++aa)
+                for (int t = 0; t < tables; ++t) {
+                    const double x = P->pm[t * S * S + bb * S + aa];
+                    m[t] = x > m[t] ? x : m[t];
+                }
+        const double du = u1 - u0, dv = v1 - v0;
+        if (!P->rational) {
+            /* polynomial: the slab cells' bounds are proven bounds over the cells the box
+             * meets (a sub-box's restricted net is a convex combination of the cell's), so
+             * this is the proven polynomial bound, only coarser than the cell's own */
+            const double t0 = m[0] * du * du, t1 = 2.0 * m[1] * du * dv, t2 = m[2] * dv * dv;
+            const double bnd = (t0 + t1 + t2) * 0.125 * (1.0 + 8.0 * U_ROUND) + P->evalerr;
+            if (bnd > P->bound) {
+                P->bound = bnd;
+                P->worst_terms[0] = t0;
+                P->worst_terms[1] = t1;
+                P->worst_terms[2] = t2;
+            }
+            if (P->abort_over > 0.0 && P->bound > P->abort_over) P->aborted = 1;
+            ++P->tris;
+            return CJ_OK;
+        }
+        /* min(bF, bQ) as the build's bound: bF from the sampled derivatives (its M's tend to
+         * them as the triangle shrinks), bQ from the slab cells' (Q) bounds (an over-estimate
+         * of a smaller box's) */
+        const double bf = CJ_TESS_PREDICT_MARGIN *
+                          (m[0] * du * du + 2.0 * m[1] * du * dv + m[2] * dv * dv) * 0.125;
+        const double bq =
+            (m[3] * du * du + 2.0 * m[4] * du * dv + m[5] * dv * dv) * 0.125 + P->pm[6 * S * S];
+        const double bnd = fmin(bf, bq) + P->verterr;
+        if (bnd > P->bound) P->bound = bnd;
+        if (P->abort_over > 0.0 && P->bound > P->abort_over) P->aborted = 1;
     } else if (P->rational) {
         double bnd = cj_tess_rational_tri_bound(P, ua, ub, uc, M->positions + 3 * (size_t)a,
                                                 M->positions + 3 * (size_t)b,
@@ -252,8 +309,9 @@ static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, 
     double *bp = NULL;
     dbounds *iv = NULL;
     P->zip_n = 0;
-    if (!P->rational && !P->bound_known) { /* every triangle spans the ring's strip */
-        const int s = P->zip_dir;          /* set by the caller: the side */
+    if (!P->rational && !P->bound_known &&
+        !P->predict) {            /* every triangle spans the ring's strip */
+        const int s = P->zip_dir; /* set by the caller: the side */
         if (s == 0)
             cj_tess_strip_restrict(P, 0.0, P->zip_t, &P->zip);
         else if (s == 2)
@@ -330,7 +388,7 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
     P->aborted = 0;
     P->tris = 0;
     P->worst_terms[0] = P->worst_terms[1] = P->worst_terms[2] = 0.0;
-    assert(!P->bounds_only || !P->rational);
+    assert(!P->bounds_only || !P->rational || P->predict);
     if (P->bounds_only)
         ++P->trials;
     else
@@ -470,7 +528,7 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
         i1 = nu - 1;
     }
     for (int j = j0; j < j1; ++j) {
-        const int cells = !P->bound_known; /* cell bounds needed */
+        const int cells = !P->bound_known && !P->predict; /* cell bounds needed */
         const int walk = cells && cj_tess_walkable(P);
         if (cells && !P->rational) cj_tess_strip_restrict(P, vb[j], vb[j + 1], &P->strip);
         if (walk) cj_tess_line(P, &P->strip, ub[i0], &P->lines[0]);

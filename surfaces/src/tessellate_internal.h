@@ -18,6 +18,9 @@
 
 /* Slabs per direction on which the grid densities are sampled. */
 #define CJ_TESS_SLABS 16
+/* Planning a rational patch predicts a grid's bound from sampled second derivatives, times this
+ * margin (the build then proves the bound; see tessellate_adaptive.c). */
+#define CJ_TESS_PREDICT_MARGIN 1.0
 
 /* Bounds on |S_uu|, |S_uv|, |S_vv| over a region, in the patch's own parameters. */
 typedef struct dbounds {
@@ -88,7 +91,14 @@ typedef struct ptess {
     int zip_n;
     const double *zip_bp;
     const dbounds *zip_iv;
-    dbounds whole;     /* polynomial: bounds over the whole patch */
+    dbounds whole; /* polynomial: bounds over the whole patch */
+    /* rational patches: the tables of the densities on S x S slab cells (S = CJ_TESS_SLABS):
+     * pm[0..3 S^2) the sampled |S_uu|, |S_uv|, |S_vv|, pm[3 S^2..6 S^2) the homogeneous (Q)
+     * bound's M's in the patch's parameters, pm[6 S^2] the largest constant term of (Q); NULL:
+     * not kept (filled with the densities while planning, in pmbuf). predict: the current trial
+     * predicts its bound from them (planning only, see tessellate_adaptive.c) */
+    double *pm;
+    int predict;
     double abort_over; /* > 0: stop a build as soon as its bound exceeds this (it fails) */
     int aborted;       /* the last build stopped early */
     /* results of one build */
@@ -97,6 +107,7 @@ typedef struct ptess {
     size_t dropped;
     /* ---- large arrays, written before they are read (cj_tess_setup does not clear them) */
     double h[CJ_PATCH_NET_MAX];
+    double pmbuf[6 * CJ_TESS_SLABS * CJ_TESS_SLABS + 1]; /* rational planning: pm points here */
     edge_info e[4];
     /* polynomial patches: difference nets (tess_bounds_poly.c) */
     double duu[CJ_TESS_DNET_MAX], duv[CJ_TESS_DNET_MAX], dvv[CJ_TESS_DNET_MAX];

@@ -6,3 +6,8 @@ target_compile_definitions(test_tess_cache PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOU
 cj_add_test(test_render_tess_cache SOURCES test_render_tess_cache.c LIBS cj::raster cj::scene)
 target_include_directories(test_render_tess_cache PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
 target_compile_definitions(test_render_tess_cache PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+# Cancelling the cache's update and a cached render's preparation, then finishing: the same mesh
+# and image as one-shot, no work lost.
+cj_add_test(test_tess_cancel SOURCES test_tess_cancel.c LIBS cj::raster cj::scene cj::surfaces)
+target_include_directories(test_tess_cancel PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+target_compile_definitions(test_tess_cancel PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")

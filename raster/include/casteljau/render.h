@@ -87,7 +87,11 @@ cj_status cj_render_image_to_srgb8(const cj_render_image *img, uint8_t *rgba8, s
  * total) after each finished tile (done of total tiles, 1 <= done <= total), from whichever
  * worker thread finished it, one call at a time (calls never overlap; done increases). A
  * nonzero return cancels: no worker starts another tile, the render returns CJ_ERR_CANCELLED
- * and writes no image. NULL: no calls. The callback must not call the renderer. */
+ * and writes no image. NULL: no calls. The callback must not call the renderer.
+ * While a renderer with a tessellation cache (renderer.h) prepares a frame, the callback is
+ * also called with done = total = 0 ("preparing") before each patch the cache plans or builds,
+ * on the drawing thread; a nonzero answer cancels the frame there (CJ_ERR_CANCELLED) and the
+ * cache keeps the patches finished so far (casteljau/tess_cache.h, CANCELLATION). */
 typedef int (*cj_render_progress_fn)(void *user, uint64_t done, uint64_t total);
 
 typedef struct cj_render_options {

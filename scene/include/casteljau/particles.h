@@ -99,6 +99,27 @@ void cj_patch_collider_destroy(cj_patch_collider *c);
  * facing a; 0 when the segment misses. */
 int cj_patch_collider_segment(const cj_patch_collider *c, const double a[3], const double b[3],
                               double *t, double point[3], double normal[3]);
+/* SOLID colliders. A segment test misses a particle that enters through a gap between patches
+ * (the teapot's lid sits 0.1 inside its rim, leaving an open ring) or slips through a seam; it
+ * then stays inside, since every later crossing is pushed back in. After set_solid(up) (up: a
+ * nonzero direction, NULL or zero: not solid) the patches are taken to bound a solid closed
+ * along `up` (every ray from the inside along up leaves through a patch: the teapot with up =
+ * its lid's direction, whatever its open bottom), and a spring system (springs.h) moves a
+ * particle found inside out through the nearest surface point after its segment tests. Inside
+ * means an odd number of crossings of the ray from the point along up (a crossing found on two
+ * patches at a seam counts once); points outside the patches' box are outside. The nearest
+ * point is certified (casteljau/patch_nearest.h, to the collider's tol). Call before the
+ * collider is shared. */
+void cj_patch_collider_set_solid(cj_patch_collider *c, const double up[3]);
+int cj_patch_collider_inside(const cj_patch_collider *c, const double x[3]);
+/* SEALS of a solid: a model's surface can leave narrow gaps (the Utah teapot's lid rests 0.1
+ * inside its rim, an open ring through which a cloth sinks and which hides the inside from the
+ * vertical ray). set_solid pairs every open patch side (shared by no other side, not collapsed)
+ * with the nearest open side of another patch of the same degree whose control points all lie
+ * within 2% of the collider's size of its own, and closes the pair with a ruled patch (degree
+ * (d, 1), rows the two sides), which the segment test, the inside test and the nearest point
+ * then include. The teapot gets four (lid to rim). The number of seals: */
+size_t cj_patch_collider_seals(const cj_patch_collider *c);
 
 typedef struct cj_particles_desc {
     size_t capacity;

@@ -52,12 +52,23 @@ void cj_tess_cache_clear(cj_tess_cache *cache);
  * and pieces of earlier updates as described above; then remembers these patches only.
  * Adaptive mode without measurement only: opt->uniform or opt->measure > 0 is
  * CJ_ERR_ARGUMENT. stats (may be NULL) receives this update's work.
- * Status: those of cj_tessellate_patches; on any failure nothing is appended to the mesh
- * (unlike cj_tessellate_patches, which keeps the patches before the failing one) and the
- * cache stays usable. */
+ * Status: those of cj_tessellate_patches, CJ_ERR_CANCELLED (see CANCELLATION); on any failure
+ * nothing is appended to the mesh (unlike cj_tessellate_patches, which keeps the patches before the
+ * failing one) and the cache stays usable. */
 cj_status cj_tess_cache_update(cj_tess_cache *cache, const cj_patch *patches, size_t count,
                                const cj_tess_options *opt, cj_mesh *mesh, cj_tess_report *report,
                                cj_tess_cache_stats *stats);
+
+/* CANCELLATION. An update calls progress(user, done, total) before each patch it plans or builds
+ * (not before patches whose plan and piece it reuses): done is the step about to start (q for
+ * planning patch q, count + q for building it), total = 2 count. A nonzero return stops the
+ * update at once: it returns CJ_ERR_CANCELLED, appends nothing to the mesh, and the cache keeps
+ * every plan and piece finished so far and every entry of earlier updates not yet matched, so
+ * the next update resumes the work (its mesh is still bit-identical to a one-shot tessellation;
+ * tests/test_tess_cache.c cancels at every k-th step, then finishes). fn NULL: no calls. The
+ * callback is called on the updating thread and must not use the cache. */
+typedef int (*cj_tess_progress_fn)(void *user, size_t done, size_t total);
+void cj_tess_cache_set_progress(cj_tess_cache *cache, cj_tess_progress_fn fn, void *user);
 
 /* The work of all updates since creation. */
 cj_tess_cache_stats cj_tess_cache_totals(const cj_tess_cache *cache);
