@@ -259,7 +259,7 @@ static void test_render_cancelled(void **state) {
     (void)state;
     cj_scene *s = NULL;
     assert_int_equal(cj_render_demo_scene(CJ_TEAPOT_PATH, NULL, &s), CJ_OK);
-    cj_render_options o = cj_render_options_default();
+    cj_render_options o = cj_render_options_defaults();
     o.width = 160;
     o.height = 120;
     o.tol_px = 0.5;

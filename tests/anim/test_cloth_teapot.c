@@ -94,7 +94,7 @@ static void test_cloth_stays_outside(void **state) {
     assert_int_equal(cj_anim_doc_load(CJ_SCENES_DIR "/anim_cloth_teapot.json", &doc), CJ_OK);
     cj_scene *s = NULL;
     const cj_scene_json_options jo = {CJ_TEAPOT_PATH};
-    const cj_status lst = cj_scene_load_json_ex(doc->scene_path, &jo, NULL, &s);
+    const cj_status lst = cj_scene_load_json_with_options(doc->scene_path, &jo, NULL, &s);
     if (lst) fail_msg("%s: %s", doc->scene_path, cj_last_error());
     assert_int_equal(cj_anim_doc_attach(doc, s), CJ_OK);
     static world_patches W;
