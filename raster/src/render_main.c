@@ -24,6 +24,7 @@ static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
         cj_raster_prep_destroy(lists[i]->prep);
     }
     cj_rfree(a, c->clip);
+    cj_rfree(a, c->pe);
     cj_rfree(a, c->gouraud);
     cj_rfree(a, c->mats);
     cj_rfree(a, c->obj_mat);
@@ -253,7 +254,8 @@ static cj_status project_and_light(cj_rframe *F) {
     cj_rframe_figures(F->R, "project", "vertices", F->b.vertex_count, "vertices", F->b.vertex_count,
                       F->sec_project);
     ts = cj_render_now();
-    st = cj_rshade_prepare_list(c, &c->opaque, &F->A);
+    st = cj_rshade_prepare_eye(c, &F->A);
+    if (!st) st = cj_rshade_prepare_list(c, &c->opaque, &F->A);
     if (!st) st = cj_rshade_prepare_list(c, &c->transp, &F->A);
     if (!st) st = cj_rshade_prepare_gouraud(c, &F->A, &F->gouraud_vertices);
     F->sec_shade_setup = cj_render_now() - ts;
