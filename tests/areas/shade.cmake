@@ -3,3 +3,10 @@
 cj_add_test(test_pow_poly SOURCES test_pow_poly.c LIBS PkgConfig::CJ_MPFR)
 target_include_directories(test_pow_poly PRIVATE ${PROJECT_SOURCE_DIR}/raster/src
   ${CMAKE_CURRENT_SOURCE_DIR})
+if(TARGET cj::raster)
+  cj_add_test(test_render_lanes SOURCES test_render_lanes.c LIBS cj::raster cj::scene)
+  target_include_directories(test_render_lanes PRIVATE ${PROJECT_SOURCE_DIR}/raster/src
+    ${CMAKE_CURRENT_SOURCE_DIR})
+  # the kernels' flags (raster/CMakeLists.txt), so the 8-lane loops vectorise here as there
+  target_compile_options(test_render_lanes PRIVATE -fno-math-errno -fno-trapping-math)
+endif()
