@@ -5,6 +5,7 @@
  * sample goes through the same 8-lane code whatever the tile or thread; the values equal the
  * scalar k_phong_one of render_shade.c (the same source at n = 1). */
 #include "render_light8.h"
+#include "texture_lanes.h"
 
 /* One block: lanes j < n hold the samples idx[0..n) of the tile (n <= CJ_LANES). */
 static inline __attribute__((always_inline)) void phong_block(const cj_rctx *c, const cj_tile *t,
@@ -14,8 +15,9 @@ static inline __attribute__((always_inline)) void phong_block(const cj_rctx *c, 
     const int tw = t->x1 - t->x0, spp = t->spp;
     cj_lanes b;
     const cj_rmat *mat[CJ_LANES];
-    float cr[3][CJ_LANES];
-    int any_mirror = 0, any_half = 0;
+    float cr[3][CJ_LANES], tx[3][CJ_LANES];
+    cj_checker_lanes ck;
+    int any_mirror = 0, any_half = 0, any_checker = 0, checker[CJ_LANES];
     for (int j = 0; j < CJ_LANES; ++j) {
         const uint32_t i = idx[j < n ? j : n - 1];
         const cj_vis_sample *s = &t->samples[i];
@@ -37,20 +39,53 @@ static inline __attribute__((always_inline)) void phong_block(const cj_rctx *c, 
         b.mirror[j] = m->spec_model == CJ_SPEC_PHONG;
         any_mirror |= b.mirror[j];
         any_half |= !b.mirror[j];
-        float rgb[3] = {m->cr[0], m->cr[1], m->cr[2]};
+        cr[0][j] = m->cr[0];
+        cr[1][j] = m->cr[1];
+        cr[2][j] = m->cr[2];
         if (tex) {
             const uint32_t px = i / (uint32_t)spp, si = i % (uint32_t)spp;
             const double sx = t->x0 + (int)(px % (uint32_t)tw) + c->pattern[si][0];
             const double sy = t->y0 + (int)(px / (uint32_t)tw) + c->pattern[si][1];
-            float tx[3];
-            cj_rshade_tex(c, L, tri, b1, b2, sx, sy, tx);
-            rgb[0] *= tx[0];
-            rgb[1] *= tx[1];
-            rgb[2] *= tx[2];
+            const cj_tex_sampler *smp = &c->samplers[m->tex];
+            checker[j] = smp->kind == CJ_TEX_CHECKER;
+            if (!checker[j]) { /* image textures: the scalar sampler */
+                float rgb[3];
+                cj_rshade_tex(c, L, tri, b1, b2, sx, sy, rgb);
+                for (int k = 0; k < 3; ++k) tx[k][j] = rgb[k];
+                cj_checker_lanes_clear(&ck, j);
+                continue;
+            }
+            any_checker = 1;
+            const float *t0 = c->b->uv + 2 * (size_t)tv[0], *t1 = c->b->uv + 2 * (size_t)tv[1],
+                        *t2 = c->b->uv + 2 * (size_t)tv[2];
+            ck.u[j] = (double)(b0 * t0[0] + b1 * t1[0] + b2 * t2[0]);
+            ck.v[j] = (double)(b0 * t0[1] + b1 * t1[1] + b2 * t2[1]);
+            ck.sx[j] = sx;
+            ck.sy[j] = sy;
+            const double *pl = smp->needs_deriv && L->uvplane ? L->uvplane + 9 * (size_t)tri : NULL;
+            for (int k = 0; k < 9; ++k) ck.plane[k][j] = pl ? pl[k] : 0.0;
+            ck.su[j] = smp->su;
+            ck.sv[j] = smp->sv;
+            ck.ou[j] = smp->ou;
+            ck.ov[j] = smp->ov;
+            ck.cu[j] = smp->checks_u;
+            ck.cv[j] = smp->checks_v;
+            ck.deriv[j] = smp->needs_deriv;
+            for (int k = 0; k < 3; ++k) {
+                ck.a[k][j] = smp->a[k];
+                ck.b[k][j] = smp->b[k];
+            }
         }
-        cr[0][j] = rgb[0];
-        cr[1][j] = rgb[1];
-        cr[2][j] = rgb[2];
+    }
+    if (tex) {
+        if (any_checker) {
+            float ct[3][CJ_LANES];
+            cj_checker_lanes_sample(CJ_LANES, &ck, ct);
+            for (int k = 0; k < 3; ++k)
+                for (int j = 0; j < CJ_LANES; ++j) tx[k][j] = checker[j] ? ct[k][j] : tx[k][j];
+        }
+        for (int k = 0; k < 3; ++k)
+            for (int j = 0; j < CJ_LANES; ++j) cr[k][j] *= tx[k][j];
     }
     cj_lanes_normalize(CJ_LANES, b.nx, b.ny, b.nz);
     for (int j = 0; j < CJ_LANES; ++j) {
