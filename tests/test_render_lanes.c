@@ -9,8 +9,12 @@
  *   - lit/unlit and the zero lobe (α = 0) agree exactly;
  *   - an 8-lane call equals 8 one-lane calls bit for bit (this file is compiled with the
  *     kernels' flags, so the 8-lane loops are vectorised as in the library).
- * Prints the worst relative difference of s. */
+ * And the 8-lane checker (texture_lanes.h) against cj_tex_sample, bit for bit, over random
+ * (u, v), scales, offsets, checks, filters (NEAREST point-samples, BILINEAR box-filters) and
+ * footprints from tiny to huge (the derivatives from a random (u,v) plane by the formula of
+ * render_shade.c's uv_derivs, restated here). Prints the worst relative difference of s. */
 #include "render_light8.h"
+#include "texture_lanes.h"
 
 #include "support/check.h"
 #include "support/rng.h"
@@ -25,6 +29,86 @@ static void unit(cj_rng *r, float out[3]) {
         l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     } while (l < 0.1 || l > 1.0);
     for (int k = 0; k < 3; ++k) out[k] = (float)(v[k] / l);
+}
+
+/* The (u,v) plane's screen derivatives at (sx, sy) (render_shade.c's uv_derivs). */
+static void plane_derivs(const double *pl, double sx, double sy, double d[4]) {
+    const double *U = pl, *V = pl + 3, *Q = pl + 6;
+    const double s = Q[0] * sx + Q[1] * sy + Q[2];
+    if (s == 0.0) {
+        d[0] = d[1] = d[2] = d[3] = 0.0;
+        return;
+    }
+    const double u = (U[0] * sx + U[1] * sy + U[2]) / s, v = (V[0] * sx + V[1] * sy + V[2]) / s;
+    d[0] = (U[0] - u * Q[0]) / s; /* du/dx */
+    d[1] = (V[0] - v * Q[0]) / s; /* dv/dx */
+    d[2] = (U[1] - u * Q[1]) / s; /* du/dy */
+    d[3] = (V[1] - v * Q[1]) / s; /* dv/dy */
+}
+
+/* Returns the number of lanes that differ from cj_tex_sample. */
+static long checker_cases(cj_rng *rng, long *count) {
+    long differ = 0;
+    for (int it = 0; it < 20000; ++it) {
+        cj_tex_sampler smp[CJ_TEX_LANES];
+        cj_checker_lanes ck;
+        for (int j = 0; j < CJ_TEX_LANES; ++j) {
+            cj_texture tx = cj_texture_default(CJ_TEX_CHECKER);
+            tx.filter = cj_rng_unit(rng) < 0.25 ? CJ_TEX_NEAREST : CJ_TEX_BILINEAR;
+            tx.scale_u = cj_rng_range(rng, -4.0, 4.0);
+            tx.scale_v = cj_rng_range(rng, -4.0, 4.0);
+            tx.offset_u = cj_rng_range(rng, -2.0, 2.0);
+            tx.offset_v = cj_rng_range(rng, -2.0, 2.0);
+            tx.checks_u = cj_rng_int(rng, 1, 64);
+            tx.checks_v = cj_rng_int(rng, 1, 64);
+            tx.checker_a = cj_rgb_make(cj_rng_unit(rng), cj_rng_unit(rng), cj_rng_unit(rng));
+            tx.checker_b = cj_rgb_make(cj_rng_unit(rng), cj_rng_unit(rng), cj_rng_unit(rng));
+            CHECK(!cj_tex_sampler_init(&tx, 0, NULL, &smp[j]), "sampler");
+            ck.u[j] = cj_rng_range(rng, -3.0, 3.0);
+            ck.v[j] = cj_rng_range(rng, -3.0, 3.0);
+            /* on cell edges now and then */
+            if (cj_rng_unit(rng) < 0.1) {
+                ck.u[j] = (double)cj_rng_int(rng, -8, 8) / tx.checks_u;
+                smp[j].su = 1.0;
+                smp[j].ou = 0.0;
+            }
+            ck.sx[j] = cj_rng_range(rng, 0.0, 1024.0);
+            ck.sy[j] = cj_rng_range(rng, 0.0, 1024.0);
+            const double scale = pow(10.0, cj_rng_range(rng, -9.0, 7.0));
+            const int zero = cj_rng_unit(rng) < 0.1;
+            for (int k = 0; k < 9; ++k)
+                ck.plane[k][j] = zero ? 0.0 : cj_rng_range(rng, -1.0, 1.0) * (k < 6 ? scale : 1.0);
+            ck.su[j] = smp[j].su;
+            ck.sv[j] = smp[j].sv;
+            ck.ou[j] = smp[j].ou;
+            ck.ov[j] = smp[j].ov;
+            ck.cu[j] = smp[j].checks_u;
+            ck.cv[j] = smp[j].checks_v;
+            ck.deriv[j] = smp[j].needs_deriv;
+            for (int k = 0; k < 3; ++k) {
+                ck.a[k][j] = smp[j].a[k];
+                ck.b[k][j] = smp[j].b[k];
+            }
+        }
+        float out[3][CJ_TEX_LANES];
+        cj_checker_lanes_sample(CJ_TEX_LANES, &ck, out);
+        for (int j = 0; j < CJ_TEX_LANES; ++j) {
+            double pl[9], d[4];
+            for (int k = 0; k < 9; ++k) pl[k] = ck.plane[k][j];
+            plane_derivs(pl, ck.sx[j], ck.sy[j], d);
+            float ref[3];
+            cj_tex_sample(&smp[j], ck.u[j], ck.v[j], d[0], d[1], d[2], d[3], ref);
+            ++*count;
+            if (ref[0] != out[0][j] || ref[1] != out[1][j] || ref[2] != out[2][j]) {
+                if (++differ <= 5)
+                    fprintf(stderr,
+                            "checker lane %d: (%.9g %.9g %.9g) vs cj_tex_sample (%.9g %.9g %.9g)\n",
+                            j, out[0][j], out[1][j], out[2][j], ref[0], ref[1], ref[2]);
+            }
+            cj_tex_sampler_free(&smp[j]);
+        }
+    }
+    return differ;
 }
 
 int main(void) {
@@ -108,9 +192,15 @@ int main(void) {
     }
     CHECK(lane_mismatch == 0, "%ld lanes differ between the 8-lane and 1-lane calls",
           lane_mismatch);
+    long checker_count = 0;
+    const long checker_differ = checker_cases(&rng, &checker_count);
+    CHECK(checker_differ == 0, "%ld of %ld checker lanes differ from cj_tex_sample", checker_differ,
+          checker_count);
     printf("test_render_lanes: seed %llu, %ld cases (%ld lit with a lobe): d bit-identical to "
            "reflect_model.h, worst relative s difference %.3g of (1 + |α log2 c|) (bound 6e-7), "
-           "8 lanes = 1 lane (%ld mismatches)\n",
-           (unsigned long long)seed, cases, lit, worst, lane_mismatch);
+           "8 lanes = 1 lane (%ld mismatches); checker: %ld of %ld lanes differ from "
+           "cj_tex_sample\n",
+           (unsigned long long)seed, cases, lit, worst, lane_mismatch, checker_differ,
+           checker_count);
     return cj_check_exit();
 }
