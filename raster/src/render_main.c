@@ -288,7 +288,8 @@ static cj_status setup_raster(cj_rframe *F) {
  * visibility, shading, overlays, transparency, resolve, output. */
 static cj_status run_tiles(cj_rframe *F, unsigned planes, cj_render_image *const *image) {
     cj_rctx *c = &F->c;
-    cj_status st = cj_rtarget_acquire(F->r, F->W, F->H, planes, image, &F->target);
+    /* every tile writes all its pixels' colours, ids and depths (cj_rtile_run) */
+    cj_status st = cj_rtarget_acquire_overwritten(F->r, F->W, F->H, planes, image, &F->target);
     if (st) return st;
     c->img = F->target.img;
     F->pool_workers = cj_raster_thread_count(c->opaque.prep, F->r->opt.render.threads);

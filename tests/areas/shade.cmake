@@ -10,3 +10,10 @@ if(TARGET cj::raster)
   # the kernels' flags (raster/CMakeLists.txt), so the 8-lane loops vectorise here as there
   target_compile_options(test_render_lanes PRIVATE -fno-math-errno -fno-trapping-math)
 endif()
+if(TARGET cj::raster)
+  # a fresh image is not cleared: every pixel of every plane must be written by the tiles
+  cj_add_test(test_render_overwrite SOURCES test_render_overwrite.c LIBS cj::raster cj::scene)
+  target_include_directories(test_render_overwrite PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(test_render_overwrite PRIVATE
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+endif()
