@@ -13,6 +13,8 @@ static inline __attribute__((always_inline)) void phong_block(const cj_rctx *c, 
                                                               const int tex, float *col) {
     const cj_rlist *L = &c->opaque;
     const int tw = t->x1 - t->x0, spp = t->spp;
+    const int spp_shift = spp == 16 ? 4 : spp == 4 ? 2 : 0;
+    const double inv_tw = 1.0 / tw;
     cj_lanes b;
     const cj_rmat *mat[CJ_LANES];
     float cr[3][CJ_LANES], tx[3][CJ_LANES];
@@ -43,9 +45,13 @@ static inline __attribute__((always_inline)) void phong_block(const cj_rctx *c, 
         cr[1][j] = m->cr[1];
         cr[2][j] = m->cr[2];
         if (tex) {
-            const uint32_t px = i / (uint32_t)spp, si = i % (uint32_t)spp;
-            const double sx = t->x0 + (int)(px % (uint32_t)tw) + c->pattern[si][0];
-            const double sy = t->y0 + (int)(px / (uint32_t)tw) + c->pattern[si][1];
+            /* pixel and sample of index i without an integer division: spp is 1, 4 or 16;
+             * (px + ½)/tw is at least 1/(2 tw) from an integer and its product by the rounded
+             * 1/tw errs by under 2^-52 · px/tw < 2^-22, so the truncation is exact */
+            const uint32_t px = i >> spp_shift, si = i & (uint32_t)(spp - 1);
+            const int row = (int)(((double)px + 0.5) * inv_tw), column = (int)px - row * tw;
+            const double sx = t->x0 + column + c->pattern[si][0];
+            const double sy = t->y0 + row + c->pattern[si][1];
             const cj_tex_sampler *smp = &c->samplers[m->tex];
             checker[j] = smp->kind == CJ_TEX_CHECKER;
             if (!checker[j]) { /* image textures: the scalar sampler */
