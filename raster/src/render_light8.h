@@ -45,6 +45,14 @@ CJ_LANE_INLINE float cj_lane_pow_fix(float x, float a, float p) {
     return x > 0.0f && x < FLT_MIN ? powf(x, a) : p;
 }
 
+/* 1 if some lane holds a positive subnormal (a vectorised test, so the scalar fix-up of
+ * cj_lane_pow_fix runs only for the rare block that needs it). */
+CJ_LANE_INLINE int cj_lanes_any_subnormal(int n, const float *x) {
+    int any = 0;
+    for (int j = 0; j < n; ++j) any |= x[j] > 0.0f && x[j] < FLT_MIN;
+    return any;
+}
+
 /* d and s (reflect_model.h) of one light direction l per lane, v the view direction. */
 CJ_LANE_INLINE void cj_lanes_terms(int n, int radiometric, int any_mirror, int any_half,
                                    const cj_lanes *b, const float *lx, const float *ly,
@@ -74,7 +82,8 @@ CJ_LANE_INLINE void cj_lanes_terms(int n, int radiometric, int any_mirror, int a
         cc[j] = any_mirror && (!any_half || b->mirror[j]) ? cm[j] : ch[j];
         pw[j] = cj_pow_poly(cc[j] > FLT_MIN ? cc[j] : FLT_MIN, b->alpha[j]);
     }
-    for (int j = 0; j < n; ++j) pw[j] = cj_lane_pow_fix(cc[j], b->alpha[j], pw[j]);
+    if (cj_lanes_any_subnormal(n, cc))
+        for (int j = 0; j < n; ++j) pw[j] = cj_lane_pow_fix(cc[j], b->alpha[j], pw[j]);
     for (int j = 0; j < n; ++j) {
         const float zero_lobe = b->alpha[j] == 0.0f && !radiometric ? 1.0f : 0.0f;
         float sj = cc[j] > 0.0f ? pw[j] : zero_lobe, dj = nl[j];
@@ -187,7 +196,8 @@ CJ_LANE_INLINE void cj_lanes_light(const cj_rctx *c, int n, int any_mirror, int 
                     ct[j] = -(L->axis[0] * lx[j] + L->axis[1] * ly[j] + L->axis[2] * lz[j]);
                     pw[j] = cj_pow_poly(ct[j] > FLT_MIN ? ct[j] : FLT_MIN, L->spot_exp);
                 }
-                for (int j = 0; j < n; ++j) pw[j] = cj_lane_pow_fix(ct[j], L->spot_exp, pw[j]);
+                if (cj_lanes_any_subnormal(n, ct))
+                    for (int j = 0; j < n; ++j) pw[j] = cj_lane_pow_fix(ct[j], L->spot_exp, pw[j]);
                 for (int j = 0; j < n; ++j) f[j] = ct[j] >= L->cos_cut ? f[j] * pw[j] : 0.0f;
             }
         }

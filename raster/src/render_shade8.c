@@ -68,8 +68,11 @@ static inline __attribute__((always_inline)) void phong_block(const cj_rctx *c, 
             ck.v[j] = (double)(b0 * t0[1] + b1 * t1[1] + b2 * t2[1]);
             ck.sx[j] = sx;
             ck.sy[j] = sy;
-            const double *pl = smp->needs_deriv && L->uvplane ? L->uvplane + 9 * (size_t)tri : NULL;
-            for (int k = 0; k < 9; ++k) ck.plane[k][j] = pl ? pl[k] : 0.0;
+            /* no footprint: the zero plane, whose derivatives are 0 (texture_lanes.h) */
+            static const double zero_plane[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+            const double *pl =
+                smp->needs_deriv && L->uvplane ? L->uvplane + 9 * (size_t)tri : zero_plane;
+            for (int k = 0; k < 9; ++k) ck.plane[k][j] = pl[k];
             ck.su[j] = smp->su;
             ck.sv[j] = smp->sv;
             ck.ou[j] = smp->ou;
