@@ -63,6 +63,28 @@ cj_status cj_rbuild_add_vertex(cj_rbuild *b, const double p[3], const float n[3]
     return CJ_OK;
 }
 
+/* Room for `vertices` more vertices and `tris` more triangles in one step each (an object's
+ * counts are known before it is appended: no doubling and copying per 1024 elements). */
+static cj_status reserve(cj_rbuild *b, size_t vertices, size_t tris) {
+    if (b->vertex_count + vertices > b->vertex_cap) {
+        if (b->vertex_count + vertices >= 0xfffffff0u)
+            return cj_fail(CJ_ERR_CAP, "more than 2^32 vertices");
+        void **extra[2] = {(void **)&b->nrm, (void **)&b->uv};
+        size_t ee[2] = {3 * sizeof(float), 2 * sizeof(float)};
+        cj_status st = grow(&b->alloc, (void **)&b->pos, &b->vertex_cap, b->vertex_count + vertices,
+                            3 * sizeof(double), 2, extra, ee);
+        if (st) return st;
+    }
+    if (b->tri_count + tris > b->tri_cap) {
+        void **extra[1] = {(void **)&b->tobj};
+        size_t ee[1] = {sizeof(uint32_t)};
+        cj_status st = grow(&b->alloc, (void **)&b->tris, &b->tri_cap, b->tri_count + tris,
+                            3 * sizeof(uint32_t), 1, extra, ee);
+        if (st) return st;
+    }
+    return CJ_OK;
+}
+
 cj_status cj_rbuild_add_tri(cj_rbuild *b, uint32_t a, uint32_t c, uint32_t d, uint32_t obj) {
     if (b->tri_count == b->tri_cap) {
         void **extra[1] = {(void **)&b->tobj};
@@ -157,6 +179,8 @@ static cj_status append_object(cj_rbuild *b, const cj_scene *scene, const cj_mes
     int one_sided = cull && !(mat && mat->two_sided);
     o->v0 = b->vertex_count;
     double t0 = cj_render_now();
+    cj_status rs = reserve(b, mesh->vertex_count, mesh->triangle_count);
+    if (rs) return rs;
     /* meshes without normals: accumulate area-weighted face normals */
     double *acc = NULL;
     int has_n = 0;

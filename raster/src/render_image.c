@@ -53,6 +53,11 @@ cj_render_options cj_render_options_defaults(void) {
 
 cj_status cj_render_image_create(int width, int height, unsigned flags, const cj_allocator *alloc,
                                  cj_render_image **out) {
+    return cj_render_image_alloc(width, height, flags, alloc, 1, out);
+}
+
+cj_status cj_render_image_alloc(int width, int height, unsigned flags, const cj_allocator *alloc,
+                                int clear, cj_render_image **out) {
     if (width < 1 || height < 1 || width > CJ_FRAMEBUFFER_MAX_SIDE ||
         height > CJ_FRAMEBUFFER_MAX_SIDE)
         return cj_fail(CJ_ERR_RANGE, "image size %d x %d outside 1..%d", width, height,
@@ -75,10 +80,12 @@ cj_status cj_render_image_create(int width, int height, unsigned flags, const cj
         cj_render_image_destroy(img);
         return cj_fail(CJ_ERR_NOMEM, "render image of %d x %d", width, height);
     }
-    memset(img->rgba, 0, n * 4 * sizeof(float));
-    if (img->ids) memset(img->ids, 0, n * sizeof(uint32_t));
-    if (img->depth)
-        for (size_t i = 0; i < n; ++i) img->depth[i] = 1.0f;
+    if (clear) {
+        memset(img->rgba, 0, n * 4 * sizeof(float));
+        if (img->ids) memset(img->ids, 0, n * sizeof(uint32_t));
+        if (img->depth)
+            for (size_t i = 0; i < n; ++i) img->depth[i] = 1.0f;
+    }
     *out = img;
     return CJ_OK;
 }

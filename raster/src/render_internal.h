@@ -158,6 +158,10 @@ cj_allocator cj_render_alloc(const cj_allocator *alloc);
 void *cj_ralloc(const cj_allocator *a, size_t bytes);
 void cj_rfree(const cj_allocator *a, void *p);
 
+/* cj_render_image_create, with the planes cleared only when `clear` (else their values are
+ * undefined until written: for a caller that writes all of them). */
+cj_status cj_render_image_alloc(int width, int height, unsigned flags, const cj_allocator *alloc,
+                                int clear, cj_render_image **out);
 double cj_render_now(void);
 /* CPU time of the calling thread, seconds. */
 double cj_render_thread_cpu(void);

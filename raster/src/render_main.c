@@ -24,6 +24,7 @@ static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
         cj_raster_prep_destroy(lists[i]->prep);
     }
     cj_rfree(a, c->clip);
+    cj_rfree(a, c->pe);
     cj_rfree(a, c->gouraud);
     cj_rfree(a, c->mats);
     cj_rfree(a, c->obj_mat);
@@ -243,7 +244,8 @@ static cj_status project_and_light(cj_rframe *F) {
     cj_stage_report_figures(F->R, "project", "vertices", F->b.vertex_count, "vertices",
                             F->b.vertex_count, F->sec_project);
     ts = cj_render_now();
-    st = cj_rshade_prepare_list(c, &c->opaque, &F->A);
+    st = cj_rshade_prepare_eye(c, &F->A);
+    if (!st) st = cj_rshade_prepare_list(c, &c->opaque, &F->A);
     if (!st) st = cj_rshade_prepare_list(c, &c->transp, &F->A);
     if (!st) st = cj_rshade_prepare_gouraud(c, &F->A, &F->gouraud_vertices);
     F->sec_shade_setup = cj_render_now() - ts;
@@ -276,7 +278,8 @@ static cj_status setup_raster(cj_rframe *F) {
  * visibility, shading, overlays, transparency, resolve, output. */
 static cj_status run_tiles(cj_rframe *F, unsigned planes, cj_render_image *const *image) {
     cj_rctx *c = &F->c;
-    cj_status st = cj_rtarget_acquire(F->r, F->W, F->H, planes, image, &F->target);
+    /* every tile writes all its pixels' colours, ids and depths (cj_rtile_run) */
+    cj_status st = cj_rtarget_acquire_overwritten(F->r, F->W, F->H, planes, image, &F->target);
     if (st) return st;
     c->img = F->target.img;
     F->pool_workers = cj_raster_thread_count(c->opaque.prep, F->r->opt.render.threads);

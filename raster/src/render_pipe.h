@@ -48,6 +48,7 @@ typedef struct cj_rlight {
     int directional; /* 1: l is constant */
     float I[3];
     double pos[3]; /* point and spot */
+    float pe[3];   /* pos − eye in float (the shading kernels, render_light8.h) */
     float l[3];    /* directional: unit vector towards the light */
     int spot;
     float axis[3]; /* spot: unit direction the light travels */
@@ -105,6 +106,7 @@ typedef struct cj_rctx {
     int width, height, spp, tile_size, tiles_x, threads;
     const double (*pattern)[2];
     double *clip;   /* 4 per vertex */
+    float *pe;      /* 3 per vertex: position − eye in float (Phong shading, render_light8.h) */
     float *gouraud; /* gstride per vertex: (A, S) lit from the front, then (where two-sided
                        Gouraud materials exist, gstride 12) from the back; or NULL */
     int gstride;
@@ -134,9 +136,19 @@ typedef struct cj_rctx {
 /* flip: light the other side (n -> -n). */
 void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const float n_in[3],
                     int flip, float A[3], float S[3]);
+/* Fills c->pe and each light's pe (positions relative to the eye, float). */
+cj_status cj_rshade_prepare_eye(cj_rctx *c, const cj_allocator *a);
+/* render_shade8.c: the Phong kernels, CJ_LANES samples at a time (textured or not). */
+void cj_rshade_phong8(const cj_rctx *c, const cj_tile *t, const uint32_t *idx, size_t n,
+                      float *col);
+void cj_rshade_phong8_tex(const cj_rctx *c, const cj_tile *t, const uint32_t *idx, size_t n,
+                          float *col);
 /* Shades the samples idx[0..n) of the tile with kernel k into col (4 floats per sample). */
 void cj_rshade_kernel(const cj_rctx *c, int k, const cj_tile *t, const uint32_t *idx, size_t n,
                       float *col);
+/* The texture's RGB at a sample (b1, b2) of triangle tri of list L, pixel point (sx, sy). */
+void cj_rshade_tex(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2, double sx,
+                   double sy, float out[3]);
 /* Shades one fragment of list L (transparent pass). */
 void cj_rshade_one(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2, double sx,
                    double sy, float out[4]);

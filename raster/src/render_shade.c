@@ -1,7 +1,7 @@
 /* Deferred shading from the visibility buffer (seed 8-10): the Phong reflectance, flat /
  * Gouraud / Phong interpolation and textures, in one loop per kernel (render_pipe.h). */
 #include "render_pipe.h"
-#include "reflect_model.h"
+#include "render_light8.h"
 
 #include "error_internal.h"
 
@@ -28,88 +28,53 @@ static inline void normalize3f(float a[3]) {
     }
 }
 
-/* A = r_a I_a + r_d Σ I d,  S = c_p r_s Σ I s at world point p, with d and s the diffuse and
- * specular terms of the one reflection model (reflect_model.h).
- * Inlined into the Phong kernels; cj_rlight_eval is the same for the per-triangle and
- * per-vertex set-up. */
-CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const double p[3],
+/* A = r_a I_a + r_d Σ I d,  S = c_p r_s Σ I s at the point pe (position − eye, float), with d
+ * and s the diffuse and specular terms of the one reflection model (reflect_model.h) as the
+ * lane lighting computes them (render_light8.h, one lane here): the scalar paths (flat,
+ * Gouraud, transparent fragments) and the 8-wide Phong kernels give the same values. */
+CJ_INLINE void light_eval(const cj_rctx *c, const cj_rmat *m, const float pe[3],
                           const float n_in[3], int flip, float A[3], float S[3]) {
-    float n[3] = {n_in[0], n_in[1], n_in[2]}, v[3];
-    if (c->view->cam.projection == CJ_PROJ_PERSPECTIVE) {
-        v[0] = (float)(c->view->eye.x - p[0]);
-        v[1] = (float)(c->view->eye.y - p[1]);
-        v[2] = (float)(c->view->eye.z - p[2]);
-        normalize3f(v);
-    } else {
-        v[0] = (float)-c->view->gaze_unit.x;
-        v[1] = (float)-c->view->gaze_unit.y;
-        v[2] = (float)-c->view->gaze_unit.z;
-    }
-    if (flip) {
-        n[0] = -n[0];
-        n[1] = -n[1];
-        n[2] = -n[2];
-    }
-    float sum_d[3] = {0, 0, 0}, sum_s[3] = {0, 0, 0};
-    for (int i = 0; i < c->nlights; ++i) {
-        const cj_rlight *L = &c->lights[i];
-        float l[3], f = 1.0f;
-        if (L->area) {
-            /* diffuse: the exact irradiance of the polygon; specular: its centre (render_pipe.h) */
-            const double nd[3] = {n[0], n[1], n[2]};
-            /* the Lambertian BRDF 1/π times the irradiance */
-            const float e = (float)(cj_reflect_polygon_irradiance(p, nd, L->corner, 4, L->normal) /
-                                    3.14159265358979323846);
-            double to[3] = {L->pos[0] - p[0], L->pos[1] - p[1], L->pos[2] - p[2]};
-            double r2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2];
-            double ct = -(to[0] * L->normal[0] + to[1] * L->normal[1] + to[2] * L->normal[2]);
-            float fs = ct > 0.0 && r2 > 0.0 ? (float)(L->size * ct / (sqrt(r2) * r2)) : 0.0f;
-            l[0] = (float)to[0];
-            l[1] = (float)to[1];
-            l[2] = (float)to[2];
-            normalize3f(l);
-            float d, sp;
-            cj_reflect_terms_f(n, l, v, m->alpha, m->spec_model, c->radiometric, &d, &sp);
-            for (int k = 0; k < 3; ++k) {
-                sum_d[k] += e * L->I[k];
-                sum_s[k] += fs * L->I[k] * sp;
-            }
-            continue;
-        }
-        if (L->directional) {
-            l[0] = L->l[0];
-            l[1] = L->l[1];
-            l[2] = L->l[2];
-        } else {
-            l[0] = (float)(L->pos[0] - p[0]);
-            l[1] = (float)(L->pos[1] - p[1]);
-            l[2] = (float)(L->pos[2] - p[2]);
-            if (L->falloff) {
-                double dx = L->pos[0] - p[0], dy = L->pos[1] - p[1], dz = L->pos[2] - p[2];
-                f = (float)(1.0 / (dx * dx + dy * dy + dz * dz));
-            }
-            normalize3f(l);
-            if (L->spot) {
-                float ct = -dot3f(L->axis, l);
-                f = ct >= L->cos_cut ? f * powf(ct, L->spot_exp) : 0.0f;
-            }
-        }
-        float d, sp;
-        cj_reflect_terms_f(n, l, v, m->alpha, m->spec_model, c->radiometric, &d, &sp);
-        for (int k = 0; k < 3; ++k) {
-            sum_d[k] += f * L->I[k] * d;
-            sum_s[k] += f * L->I[k] * sp;
-        }
-    }
+    cj_lanes b;
+    b.nx[0] = flip ? -n_in[0] : n_in[0];
+    b.ny[0] = flip ? -n_in[1] : n_in[1];
+    b.nz[0] = flip ? -n_in[2] : n_in[2];
+    b.px[0] = pe[0];
+    b.py[0] = pe[1];
+    b.pz[0] = pe[2];
+    b.alpha[0] = m->alpha;
+    b.mirror[0] = m->spec_model == CJ_SPEC_PHONG;
+    cj_lanes_light(c, 1, b.mirror[0], !b.mirror[0], &b);
     for (int k = 0; k < 3; ++k) {
-        A[k] = m->amb[k] + m->kd * sum_d[k];
-        S[k] = m->spec[k] * sum_s[k] + m->emit[k]; /* emission: added, not reflected */
+        A[k] = m->amb[k] + m->kd * b.sd[k][0];
+        S[k] = m->spec[k] * b.ss[k][0] + m->emit[k]; /* emission: added, not reflected */
     }
 }
 
 void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const float n_in[3],
                     int flip, float A[3], float S[3]) {
-    light_eval(c, m, p, n_in, flip, A, S);
+    const float pe[3] = {(float)(p[0] - c->view->eye.x), (float)(p[1] - c->view->eye.y),
+                         (float)(p[2] - c->view->eye.z)};
+    light_eval(c, m, pe, n_in, flip, A, S);
+}
+
+cj_status cj_rshade_prepare_eye(cj_rctx *c, const cj_allocator *a) {
+    const cj_vec3 e = c->view->eye;
+    for (int i = 0; i < c->nlights; ++i) {
+        cj_rlight *L = &c->lights[i];
+        L->pe[0] = (float)(L->pos[0] - e.x);
+        L->pe[1] = (float)(L->pos[1] - e.y);
+        L->pe[2] = (float)(L->pos[2] - e.z);
+    }
+    const size_t nv = c->b->vertex_count;
+    c->pe = cj_ralloc(a, sizeof(float) * 3 * (nv ? nv : 1));
+    if (!c->pe) return cj_fail(CJ_ERR_NOMEM, "eye-relative positions of %zu vertices", nv);
+    const double *p = c->b->pos;
+    for (size_t v = 0; v < nv; ++v) {
+        c->pe[3 * v] = (float)(p[3 * v] - e.x);
+        c->pe[3 * v + 1] = (float)(p[3 * v + 1] - e.y);
+        c->pe[3 * v + 2] = (float)(p[3 * v + 2] - e.z);
+    }
+    return CJ_OK;
 }
 
 /* u, v and their screen derivatives from the triangle's (u,v) plane at pixel point (sx, sy). */
@@ -128,6 +93,23 @@ static inline void uv_derivs(const double *pl, double sx, double sy, double *dud
     *dvdy = (V[1] - v * Q[1]) / s;
 }
 
+/* The texture's RGB at a sample of triangle tri of list L. */
+void cj_rshade_tex(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2, double sx,
+                   double sy, float out[3]) {
+    const uint32_t *tv = L->tris + 3 * (size_t)tri;
+    const float b0 = 1.0f - b1 - b2;
+    const cj_rmat *m = &c->mats[c->obj_mat[L->obj[tri]]];
+    const float *t0 = c->b->uv + 2 * (size_t)tv[0], *t1 = c->b->uv + 2 * (size_t)tv[1],
+                *t2 = c->b->uv + 2 * (size_t)tv[2];
+    double u = (double)(b0 * t0[0] + b1 * t1[0] + b2 * t2[0]);
+    double v = (double)(b0 * t0[1] + b1 * t1[1] + b2 * t2[1]);
+    const cj_tex_sampler *smp = &c->samplers[m->tex];
+    double dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
+    if (smp->needs_deriv && L->uvplane)
+        uv_derivs(L->uvplane + 9 * (size_t)tri, sx, sy, &dudx, &dvdx, &dudy, &dvdy);
+    cj_tex_sample(smp, u, v, dudx, dvdx, dudy, dvdy, out);
+}
+
 /* The shading of one sample; model and tex are compile-time constants in every caller. */
 CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2,
                      double sx, double sy, const int model, const int tex, float out[4]) {
@@ -136,16 +118,8 @@ CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1
     const cj_rmat *m = &c->mats[c->obj_mat[L->obj[tri]]];
     float cr[3] = {m->cr[0], m->cr[1], m->cr[2]};
     if (tex) {
-        const float *t0 = c->b->uv + 2 * (size_t)tv[0], *t1 = c->b->uv + 2 * (size_t)tv[1],
-                    *t2 = c->b->uv + 2 * (size_t)tv[2];
-        double u = (double)(b0 * t0[0] + b1 * t1[0] + b2 * t2[0]);
-        double v = (double)(b0 * t0[1] + b1 * t1[1] + b2 * t2[1]);
-        const cj_tex_sampler *smp = &c->samplers[m->tex];
-        double dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
-        if (smp->needs_deriv && L->uvplane)
-            uv_derivs(L->uvplane + 9 * (size_t)tri, sx, sy, &dudx, &dvdx, &dudy, &dvdy);
         float t[3];
-        cj_tex_sample(smp, u, v, dudx, dvdx, dudy, dvdy, t);
+        cj_rshade_tex(c, L, tri, b1, b2, sx, sy, t);
         cr[0] *= t[0];
         cr[1] *= t[1];
         cr[2] *= t[2];
@@ -170,13 +144,12 @@ CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1
         } else {
             const float *n0 = c->b->nrm + 3 * (size_t)tv[0], *n1 = c->b->nrm + 3 * (size_t)tv[1],
                         *n2 = c->b->nrm + 3 * (size_t)tv[2];
-            const double *p0 = c->b->pos + 3 * (size_t)tv[0], *p1 = c->b->pos + 3 * (size_t)tv[1],
-                         *p2 = c->b->pos + 3 * (size_t)tv[2];
-            float n[3];
-            double p[3], db0 = b0, db1 = b1, db2 = b2;
+            const float *p0 = c->pe + 3 * (size_t)tv[0], *p1 = c->pe + 3 * (size_t)tv[1],
+                        *p2 = c->pe + 3 * (size_t)tv[2];
+            float n[3], p[3];
             for (int k = 0; k < 3; ++k) {
                 n[k] = b0 * n0[k] + b1 * n1[k] + b2 * n2[k];
-                p[k] = db0 * p0[k] + db1 * p1[k] + db2 * p2[k];
+                p[k] = b0 * p0[k] + b1 * p1[k] + b2 * p2[k];
             }
             normalize3f(n);
             light_eval(c, m, p, n, L->back && L->back[tri], A, S);
@@ -187,6 +160,13 @@ CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1
     }
     out[3] = m->opacity;
 }
+
+/* One fragment (the transparent pass). */
+#define CJ_KERNEL_ONE(NAME, MODEL, TEX)                                                            \
+    static void NAME##_one(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2,  \
+                           double sx, double sy, float out[4]) {                                   \
+        shade(c, L, tri, b1, b2, sx, sy, MODEL, TEX, out);                                         \
+    }
 
 /* One loop per kernel over the tile's samples of that kernel. */
 #define CJ_KERNEL_LOOP(NAME, MODEL, TEX)                                                           \
@@ -205,10 +185,7 @@ CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1
             shade(c, &c->opaque, s->tri, s->b1, s->b2, sx, sy, MODEL, TEX, col + 4 * (size_t)i);   \
         }                                                                                          \
     }                                                                                              \
-    static void NAME##_one(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2,  \
-                           double sx, double sy, float out[4]) {                                   \
-        shade(c, L, tri, b1, b2, sx, sy, MODEL, TEX, out);                                         \
-    }
+    CJ_KERNEL_ONE(NAME, MODEL, TEX)
 
 CJ_KERNEL_LOOP(k_unlit, CJ_RM_UNLIT, 0)
 CJ_KERNEL_LOOP(k_unlit_tex, CJ_RM_UNLIT, 1)
@@ -216,14 +193,16 @@ CJ_KERNEL_LOOP(k_flat, CJ_RM_FLAT, 0)
 CJ_KERNEL_LOOP(k_flat_tex, CJ_RM_FLAT, 1)
 CJ_KERNEL_LOOP(k_gouraud, CJ_RM_GOURAUD, 0)
 CJ_KERNEL_LOOP(k_gouraud_tex, CJ_RM_GOURAUD, 1)
-CJ_KERNEL_LOOP(k_phong, CJ_RM_PHONG, 0)
-CJ_KERNEL_LOOP(k_phong_tex, CJ_RM_PHONG, 1)
+CJ_KERNEL_ONE(k_phong, CJ_RM_PHONG, 0)
+CJ_KERNEL_ONE(k_phong_tex, CJ_RM_PHONG, 1)
 
 typedef void (*kernel_fn)(const cj_rctx *, const cj_tile *, const uint32_t *, size_t, float *);
 typedef void (*one_fn)(const cj_rctx *, const cj_rlist *, uint32_t, float, float, double, double,
                        float *);
-static const kernel_fn kernels[CJ_RK_COUNT] = {k_unlit,   k_unlit_tex,   k_flat,  k_flat_tex,
-                                               k_gouraud, k_gouraud_tex, k_phong, k_phong_tex};
+/* Phong: the 8-wide kernels of render_shade8.c (the same values as k_phong_one). */
+static const kernel_fn kernels[CJ_RK_COUNT] = {k_unlit,          k_unlit_tex,         k_flat,
+                                               k_flat_tex,       k_gouraud,           k_gouraud_tex,
+                                               cj_rshade_phong8, cj_rshade_phong8_tex};
 static const one_fn ones[CJ_RK_COUNT] = {k_unlit_one,    k_unlit_tex_one, k_flat_one,
                                          k_flat_tex_one, k_gouraud_one,   k_gouraud_tex_one,
                                          k_phong_one,    k_phong_tex_one};

@@ -198,8 +198,8 @@ cj_render_cache *cj_renderer_cache(const cj_renderer *r) {
     return r->opt.render.cache ? r->opt.render.cache : r->cache;
 }
 
-cj_status cj_rtarget_acquire(cj_renderer *r, int width, int height, unsigned planes,
-                             cj_render_image *const *image, cj_rtarget *t) {
+static cj_status acquire(cj_renderer *r, int width, int height, unsigned planes,
+                         cj_render_image *const *image, cj_rtarget *t, int clear) {
     const cj_render_image *old = *image;
     if (old && old->width == width && old->height == height &&
         (old->ids != NULL) == ((planes & CJ_IMAGE_IDS) != 0) &&
@@ -210,7 +210,17 @@ cj_status cj_rtarget_acquire(cj_renderer *r, int width, int height, unsigned pla
     }
     t->fresh = 1;
     t->img = NULL;
-    return cj_render_image_create(width, height, planes, &r->alloc, &t->img);
+    return cj_render_image_alloc(width, height, planes, &r->alloc, clear, &t->img);
+}
+
+cj_status cj_rtarget_acquire(cj_renderer *r, int width, int height, unsigned planes,
+                             cj_render_image *const *image, cj_rtarget *t) {
+    return acquire(r, width, height, planes, image, t, 1);
+}
+
+cj_status cj_rtarget_acquire_overwritten(cj_renderer *r, int width, int height, unsigned planes,
+                                         cj_render_image *const *image, cj_rtarget *t) {
+    return acquire(r, width, height, planes, image, t, 0);
 }
 
 void cj_rtarget_finish(cj_rtarget *t, cj_render_image **image, cj_status st) {

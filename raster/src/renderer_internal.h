@@ -56,6 +56,12 @@ typedef struct cj_rtarget {
 } cj_rtarget;
 cj_status cj_rtarget_acquire(cj_renderer *r, int width, int height, unsigned planes,
                              cj_render_image *const *image, cj_rtarget *t);
+/* The same for a back end that writes every value of every plane of the image before it
+ * succeeds (the rasterizer: every tile writes its colours, ids and depths): a fresh image is
+ * not cleared first (a 1024² frame is 16 MB of floats). On failure the fresh image is
+ * destroyed (cj_rtarget_finish), so its unwritten values are never seen. */
+cj_status cj_rtarget_acquire_overwritten(cj_renderer *r, int width, int height, unsigned planes,
+                                         cj_render_image *const *image, cj_rtarget *t);
 void cj_rtarget_finish(cj_rtarget *t, cj_render_image **image, cj_status st);
 
 /* Records the stage "frame": the frame number and what the renderer reused (buffers_reused < 0:
