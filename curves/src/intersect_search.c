@@ -42,19 +42,58 @@ static void project(const double lo[][2], const double hi[][2], int n, const dou
     *pmax = mx;
 }
 
-/* 1 if the hulls of the two pieces are proven disjoint. */
+/* min and max of v . x over the control points of a polynomial piece, each within err of
+ * h: the plain products and sums, widened by what the points' errors move the projection
+ * (|v0| e0 + |v1| e1) plus the rounding of the dot products (at most 2.5u (|v0| + |v1|) times
+ * the largest coordinate) and a step outwards. */
+static void project_poly(const cj_qpiece *p, const double v[2], double *pmin, double *pmax) {
+    double mn = INFINITY, mx = -INFINITY;
+    for (int i = 0; i <= p->n; ++i) {
+        double d = v[0] * p->h[i][0] + v[1] * p->h[i][1];
+        mn = d < mn ? d : mn;
+        mx = d > mx ? d : mx;
+    }
+    double mag = cj_max4(fabs(p->blo[0]), fabs(p->bhi[0]), fabs(p->blo[1]), fabs(p->bhi[1]));
+    double av = fabs(v[0]) + fabs(v[1]);
+    double margin = fabs(v[0]) * p->err[0] + fabs(v[1]) * p->err[1] + av * mag * 0x1.4p-52;
+    margin = margin * (1.0 + 0x1p-40) + 0x1p-1060;
+    if (!isfinite(margin) || isnan(mn) || isnan(mx)) {
+        *pmin = -INFINITY;
+        *pmax = INFINITY;
+        return;
+    }
+    *pmin = cj_down(mn - margin);
+    *pmax = cj_up(mx + margin);
+}
+
+/* 1 if the hulls of the two pieces are proven disjoint: their enclosing boxes first, then the
+ * normals of both chords (fat-line exclusion). */
 static int separated(const cj_qpiece *pa, const cj_qpiece *pb) {
+    for (int k = 0; k < 2; ++k)
+        if (pa->bhi[k] < pb->blo[k] || pb->bhi[k] < pa->blo[k]) return 1;
+    int na = pa->n, nb = pb->n;
+    double axes[2][2] = {{-(pa->h[na][1] - pa->h[0][1]), pa->h[na][0] - pa->h[0][0]},
+                         {-(pb->h[nb][1] - pb->h[0][1]), pb->h[nb][0] - pb->h[0][0]}};
+    if (!pa->rational && !pb->rational) {
+        for (int k = 0; k < 2; ++k) {
+            if (!isfinite(axes[k][0]) || !isfinite(axes[k][1])) continue;
+            if (axes[k][0] == 0.0 && axes[k][1] == 0.0) continue;
+            double amin, amax, bmin, bmax;
+            project_poly(pa, axes[k], &amin, &amax);
+            project_poly(pb, axes[k], &bmin, &bmax);
+            if (amax < bmin || bmax < amin) return 1;
+        }
+        return 0;
+    }
     double alo[CJ_QUERY_MAXN + 1][2], ahi[CJ_QUERY_MAXN + 1][2];
     double blo[CJ_QUERY_MAXN + 1][2], bhi[CJ_QUERY_MAXN + 1][2];
     cj_qpiece_boxes(pa, alo, ahi);
     cj_qpiece_boxes(pb, blo, bhi);
-    double axes[4][2] = {{1, 0}, {0, 1}, {0, 0}, {0, 0}};
-    int na = pa->n, nb = pb->n;
-    axes[2][0] = -(alo[na][1] - alo[0][1]);
-    axes[2][1] = alo[na][0] - alo[0][0];
-    axes[3][0] = -(blo[nb][1] - blo[0][1]);
-    axes[3][1] = blo[nb][0] - blo[0][0];
-    for (int k = 0; k < 4; ++k) {
+    axes[0][0] = -(alo[na][1] - alo[0][1]);
+    axes[0][1] = alo[na][0] - alo[0][0];
+    axes[1][0] = -(blo[nb][1] - blo[0][1]);
+    axes[1][1] = blo[nb][0] - blo[0][0];
+    for (int k = 0; k < 2; ++k) {
         if (!isfinite(axes[k][0]) || !isfinite(axes[k][1])) continue;
         if (axes[k][0] == 0.0 && axes[k][1] == 0.0) continue;
         double amin, amax, bmin, bmax;
@@ -172,9 +211,7 @@ void cj_isect_add_leaf(run *R, cj_ivl S, cj_ivl T, double size, int exact) {
 }
 
 double cj_isect_extent(const cj_qpiece *p) {
-    double lo[2], hi[2];
-    cj_qpiece_bbox(p, lo, hi);
-    return fmax(hi[0] - lo[0], hi[1] - lo[1]);
+    return fmax(p->bhi[0] - p->blo[0], p->bhi[1] - p->blo[1]);
 }
 
 /* Tries to settle the box S x T by Krawczyk on the box enlarged by an eighth on each side:
