@@ -106,8 +106,8 @@ typedef struct cj_qctx {
 cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what);
 
 /* Encloses the point c(t) and the derivative c'(t) for every t in the interval T (T may extend
- * a little beyond [0,1]); d may be NULL. Returns 0 if the weight enclosure reaches zero or a
- * bound overflows (nothing certified then). */
+ * a little beyond [0,1]); d may be NULL, and so may p (then only d is enclosed). Returns 0 if the
+ * weight enclosure reaches zero or a bound overflows (nothing certified then). */
 int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]);
 
 /* Encloses c(t), c'(t) and c''(t) for every t in T. Returns 0 as cj_qctx_eval does. */

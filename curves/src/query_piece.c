@@ -94,8 +94,13 @@ static void ideval(const cj_ivl (*c)[3], int m, int dims, cj_ivl T, cj_ivl out[3
 
 int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]) {
     int n = q->n, dims = q->rational ? 3 : 2;
-    cj_ivl H[3], D[3];
-    ideval((const cj_ivl(*)[3])q->h, n, dims, T, H);
+    cj_ivl H[3], D[3], unused[2];
+    if (!p) p = unused;
+    /* a polynomial's derivative does not need the point: one evaluation saved */
+    if (q->rational || p != unused)
+        ideval((const cj_ivl(*)[3])q->h, n, dims, T, H);
+    else
+        H[0] = H[1] = H[2] = cj_iv(0.0);
     if (d) {
         if (n == 0)
             D[0] = D[1] = D[2] = cj_iv(0.0);
