@@ -34,27 +34,49 @@ static double upper_at(const nrun *N, double t, double pt[2]) {
     return cj_up(sqrt(cj_up(cj_up(mx * mx) + cj_up(my * my))));
 }
 
+/* Plain (unproven) c, c' and c'' of a polynomial curve at t by de Casteljau on the control
+ * points: the guesses the proofs start from. d holds x y x' y' x'' y''. */
+static void poly_derivs(const cj_bezier2 *c, double t, double d[6]) {
+    int n = c->degree;
+    double w[CJ_QUERY_MAXN + 1][2];
+    w[0][0] = c->pts[0];
+    w[0][1] = c->pts[1];
+    for (int i = 1; i <= n; ++i) w[i][0] = c->pts[2 * i], w[i][1] = c->pts[2 * i + 1];
+    d[2] = d[3] = d[4] = d[5] = 0.0;
+    double s = 1.0 - t;
+    for (int r = n; r > 0; --r) {
+        if (r == 2)
+            for (int k = 0; k < 2; ++k)
+                d[4 + k] = (double)n * (n - 1) * (w[2][k] - 2.0 * w[1][k] + w[0][k]);
+        if (r == 1)
+            for (int k = 0; k < 2; ++k) d[2 + k] = (double)n * (w[1][k] - w[0][k]);
+        for (int i = 0; i < r; ++i)
+            for (int k = 0; k < 2; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
+    }
+    d[0] = w[0][0];
+    d[1] = w[0][1];
+}
+
 /* Newton on g(t) = (c(t) - q) . c'(t) from t, clamped to [0,1]; returns the polished t. */
 static double polish(const nrun *N, double t) {
     const cj_bezier2 *c = N->c;
     for (int it = 0; it < 8; ++it) {
         double d[6];
-        cj_status st;
         if (c->weights) {
             cj_rbezier r = cj_rbezier_view(c->degree, 2, c->pts, c->weights);
-            st = cj_rbezier_eval_derivs(&r, t, 2, d);
+            if (cj_rbezier_eval_derivs(&r, t, 2, d) != CJ_OK) break;
         } else {
-            cj_bezier b = cj_bezier_view(c->degree, 2, c->pts);
-            st = cj_bezier_eval_derivs(&b, t, 2, d);
+            poly_derivs(c, t, d);
         }
-        if (st != CJ_OK) break;
         double ex = d[0] - N->qp[0], ey = d[1] - N->qp[1];
         double g = ex * d[2] + ey * d[3];
         double gp = d[2] * d[2] + d[3] * d[3] + ex * d[4] + ey * d[5];
         if (!(gp > 0.0)) break;
         double tn = fmin(1.0, fmax(0.0, t - g / gp));
         if (!isfinite(tn) || tn == t) break;
+        int done = fabs(tn - t) <= 0x1p-52;
         t = tn;
+        if (done) break;
     }
     return t;
 }
@@ -281,10 +303,11 @@ static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol
             cj_rbezier r = cj_rbezier_view(c->degree, 2, c->pts, c->weights);
             es = cj_rbezier_eval(&r, t, pt);
         } else {
-            cj_bezier b = cj_bezier_view(c->degree, 2, c->pts);
-            es = cj_bezier_eval(&b, CJ_EVAL_DECASTELJAU, t, pt);
+            double d[6];
+            poly_derivs(c, t, d);
+            pt[0] = d[0], pt[1] = d[1], es = CJ_OK;
         }
-        double dd = hypot(pt[0] - q[0], pt[1] - q[1]);
+        double dd = (pt[0] - q[0]) * (pt[0] - q[0]) + (pt[1] - q[1]) * (pt[1] - q[1]);
         if (es == CJ_OK && dd < d0) d0 = dd, t0 = t;
     }
     offer(&N, t0);
