@@ -110,8 +110,7 @@ int cj_isect_krawczyk(const cj_qctx *qa, const cj_qctx *qb, const cj_ivl X[2], c
     double m[2] = {cj_imid(X[0]), cj_imid(X[1])};
     cj_ivl pa[2], pb[2], da[2], db[2];
     if (!cj_qctx_eval(qa, X[0], NULL, da) || !cj_qctx_eval(qb, X[1], NULL, db)) return 0;
-    if (!cj_qctx_eval(qa, cj_iv(m[0]), pa, NULL) || !cj_qctx_eval(qb, cj_iv(m[1]), pb, NULL))
-        return 0;
+    if (!cj_qctx_point(qa, m[0], pa) || !cj_qctx_point(qb, m[1], pb)) return 0;
     cj_ivl F[2] = {cj_isub(pa[0], pb[0]), cj_isub(pa[1], pb[1])};
     cj_ivl J[2][2] = {{da[0], cj_ineg(db[0])}, {da[1], cj_ineg(db[1])}};
     double Jm[2][2];

@@ -110,6 +110,11 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what);
  * weight enclosure reaches zero or a bound overflows (nothing certified then). */
 int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]);
 
+/* Encloses the point c(t) at the double t: the same as cj_qctx_eval on [t, t], by plain de
+ * Casteljau with a rounding bound for a polynomial curve and t in [0,1] (several times cheaper
+ * than interval arithmetic). */
+int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]);
+
 /* Encloses c(t), c'(t) and c''(t) for every t in T. Returns 0 as cj_qctx_eval does. */
 int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]);
 /* The same with c'''(t) too. */

@@ -128,6 +128,31 @@ int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]) {
     return 1;
 }
 
+int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]) {
+    int n = q->n;
+    if (q->rational || !(t >= 0.0 && t <= 1.0)) return cj_qctx_eval(q, cj_iv(t), p, NULL);
+    /* De Casteljau in doubles on the midpoints of the enclosed control points. With s = 1 - t
+     * (off by at most u) each step s a + t b is off by at most about 3u M (M the largest
+     * magnitude, which the convex combinations never exceed), and errors carried in pass
+     * through the combination unchanged: n steps, 4u M each, plus the control points' own
+     * radius r and the subnormal rounding of the products. */
+    double w[CJ_QUERY_MAXN + 1][2], r = 0.0, M = 0.0, s = 1.0 - t;
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 2; ++k) {
+            cj_ivl v = q->h[i][k];
+            double m = cj_imid(v);
+            w[i][k] = m;
+            r = fmax(r, fmax(m - v.lo, v.hi - m));
+            M = fmax(M, fabs(m));
+        }
+    for (int lev = n; lev > 0; --lev)
+        for (int i = 0; i < lev; ++i)
+            for (int k = 0; k < 2; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
+    double e = (r + (double)n * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
+    for (int k = 0; k < 2; ++k) p[k] = cj_iv2(cj_down(w[0][k] - e), cj_up(w[0][k] + e));
+    return cj_ifinite(p[0]) && cj_ifinite(p[1]);
+}
+
 int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]) {
     int n = q->n, dims = q->rational ? 3 : 2;
     cj_ivl H[3], D[3], DD[3];
