@@ -18,3 +18,6 @@ add_dependencies(test_cli_query casteljau)
 cj_add_test(test_offset SOURCES query/test_offset.c LIBS cj_query_oracle)
 # Nearest point on Bézier patches (surfaces/): exact 256-bit grid distances against the bound.
 cj_add_test(test_patch_nearest SOURCES query/test_patch_nearest.c LIBS cj::surfaces PkgConfig::CJ_MPFR)
+# Plane sections of Bézier patches: exact circles (sphere, paraboloid) and a long-double line
+# oracle on random patches (never missed: every crossing within the proven deviation).
+cj_add_test(test_patch_section SOURCES query/test_patch_section.c LIBS cj::surfaces)
