@@ -52,7 +52,9 @@ static const char nearest_usage[] =
     "  --text  one line per curve: I T X Y DISTANCE LOWER, then 'nearest I T X Y DISTANCE\n"
     "          LOWER' for the nearest of all (LOWER the smallest lower bound)\n"
     "Output: the document with, per panel, the point and its nearest point marked and joined.\n"
-    "Exit status as for intersect.\n";
+    "Exit status as for intersect.\n"
+    "On patches: casteljau nearest --point X,Y,Z (--teapot | --bpt FILE | --patch ... --degree\n"
+    "M,N) [--tol T] (see 'casteljau nearest --point 0,0,0 --teapot --help').\n";
 
 static const char offset_usage[] =
     "usage: casteljau offset --distance D [--tol T] [--text] [FILE|-]\n"
@@ -547,6 +549,11 @@ int cmd_intersect(int argc, char **argv) {
 }
 
 int cmd_nearest(int argc, char **argv) {
+    /* a patch model makes it the 3D query (cmd_section.c) */
+    for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; ++i)
+        if (!strncmp(argv[i], "--teapot", 8) || !strncmp(argv[i], "--bpt", 5) ||
+            !strncmp(argv[i], "--patch", 7))
+            return cmd_nearest_patch(argc, argv);
     return query_main("nearest", nearest_usage, argc, argv, Q_NEAREST);
 }
 
