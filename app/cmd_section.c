@@ -4,6 +4,7 @@
  * reads: --teapot, --bpt FILE, or one --patch with --degree (and --weights). */
 #include "cli.h"
 #include "cli_guard.h"
+#include "file_internal.h"
 
 #include "casteljau/patch.h"
 #include "casteljau/patch_nearest.h"
@@ -24,7 +25,7 @@ static const char section_usage[] =
     "  --plane   the plane's normal (need not be unit) and offset\n"
     "  --tol     default 1e-3 times the model's bounding-box diagonal; vertices come about T\n"
     "            apart (the proof is by cells of that size)\n"
-    "  -o        also write the polylines as an OBJ file of 'v' and 'l' lines\n"
+    "  -o        also write the polylines as an OBJ file of 'v' and 'l' lines (atomically)\n"
     "Stdout, one line each: 'line P K open|closed N' (patch P, polyline K, N points) then the N\n"
     "points 'X Y Z'; 'unresolved P X Y Z' for a cell smaller than T that may hold a tiny loop or\n"
     "a touching point; finally 'section patches P lines L points N unresolved U ambiguous A\n"
@@ -226,9 +227,13 @@ int cmd_section(int argc, char **argv) {
     }
     double tol = o.tol > 0 ? o.tol : 1e-3 * (M.size > 0 ? M.size : 1.0);
     FILE *obj = NULL;
-    if (o.out && !(obj = fopen(o.out, "w"))) {
-        model_free(&M);
-        return cli_error(cmd, "cannot write '%s'", o.out);
+    cj_atomic_file af;
+    if (o.out) { /* written atomically: complete or not at all */
+        if (cj_atomic_open(&af, o.out) != CJ_OK) {
+            model_free(&M);
+            return cli_error(cmd, "%s", cj_last_error());
+        }
+        obj = af.fp;
     }
     long lines = 0, points = 0, unresolved = 0, ambiguous = 0, vbase = 1;
     double deviation = 0, gap = 0;
@@ -267,7 +272,12 @@ int cmd_section(int argc, char **argv) {
         gap = fmax(gap, s.plane_gap);
         cj_patch_section_free(&s);
     }
-    if (obj && fclose(obj) != 0 && rc == 0) rc = cli_error(cmd, "cannot write '%s'", o.out);
+    if (obj) {
+        if (rc != 0)
+            cj_atomic_abandon(&af);
+        else if (cj_atomic_commit(&af) != CJ_OK)
+            rc = cli_error(cmd, "%s", cj_last_error());
+    }
     if (rc == 0)
         printf("section patches %zu lines %ld points %ld unresolved %ld ambiguous %ld deviation "
                "%.3g plane_gap %.3g\n",
