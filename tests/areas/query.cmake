@@ -26,3 +26,6 @@ cj_add_test(test_cli_section SOURCES query/test_cli_section.c)
 target_compile_definitions(test_cli_section PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
   CJ_TMP_DIR="${CMAKE_CURRENT_BINARY_DIR}")
 add_dependencies(test_cli_section casteljau)
+# Trimmed offsets: a circle arc inwards past its radius vanishes, a parabola loses its
+# swallowtail (long-double distance oracle), a loop-free offset comes back unchanged.
+cj_add_test(test_offset_trim SOURCES query/test_offset_trim.c)

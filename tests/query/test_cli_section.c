@@ -89,6 +89,22 @@ int main(void) {
         cj_cli_result_free(&r);
         ++checks;
     }
+    /* offset --trim: the parabola's swallowtail dropped (text: deviation I PIECES DEV CUSPS
+     * DROPPED) */
+    snprintf(cmd, sizeof cmd,
+             "printf '%%s' '{\"items\":[{\"type\":\"bezier\",\"points\":[[-1,1],[0,-1],[1,"
+             "1]]}]}' | %s offset --distance 0.8 --trim --text -",
+             exe);
+    if (cj_cli_shell(cmd, &r) == 0) {
+        const char *s = strstr(r.out, "deviation 0 ");
+        int pieces = 0, cusps = 0, dropped = 0;
+        double dev = 0;
+        if (s) sscanf(s, "deviation 0 %d %lf %d %d", &pieces, &dev, &cusps, &dropped);
+        CHECK(r.status == 0 && pieces > 0 && cusps == 2 && dropped >= 1,
+              "offset --trim: %d pieces, %d cusps, %d dropped\n%s", pieces, cusps, dropped, r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
     struct {
         const char *args, *needle;
     } bad[] = {
@@ -102,6 +118,7 @@ int main(void) {
         {"nearest --point 0,0 --teapot", "--point"},
         {"nearest --point 0,0,nan --teapot", "--point"},
         {"nearest --point 0,0,0 --teapot --plane 0,0,1,0", "does not apply"},
+        {"intersect --trim -", "--trim does not apply"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         snprintf(cmd, sizeof cmd, "%s %s", exe, bad[i].args);
@@ -112,7 +129,8 @@ int main(void) {
         ++checks;
     }
     printf("test_cli_section: %d checks (sphere octant section on its circle within the proven "
-           "deviation, OBJ lines, teapot section, nearest on a patch, %zu bad inputs refused)\n",
+           "deviation, OBJ lines, teapot section, nearest on a patch, offset --trim, %zu bad "
+           "inputs refused)\n",
            checks, sizeof bad / sizeof bad[0]);
     return cj_check_exit();
 }
