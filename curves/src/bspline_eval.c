@@ -48,7 +48,7 @@ cj_status cj_bspline_eval_batch(const cj_bspline *c, const double *ts, size_t nt
 
 /* Homogeneous derivatives 0..kmax of span s at t into h[(kmax+1)*hd]. Returns the first order
  * that overflowed, or -1. */
-static int homogeneous_derivs(const cj_bspline *c, int s, double t, int kmax, double *h) {
+int cj_bsp_homogeneous_derivs(const cj_bspline *c, int s, double t, int kmax, double *h) {
     const int p = c->degree, hd = cj_bsp_hdim(c);
     double diff[CJ_BSP_LOCAL], work[CJ_BSP_LOCAL];
     cj_bsp_local(c, s, diff);
@@ -84,7 +84,7 @@ static int derivs(const cj_bspline *c, double t, int kmax, double *out) {
     const int d = c->dim, hd = cj_bsp_hdim(c);
     const int s = cj_bsp_span(c, t);
     double h[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_BSP_MAX_HDIM];
-    int bad = homogeneous_derivs(c, s, t, kmax, h);
+    int bad = cj_bsp_homogeneous_derivs(c, s, t, kmax, h);
     if (!c->weights) {
         memcpy(out, h, sizeof(double) * (size_t)((kmax + 1) * d));
         return bad;
@@ -184,9 +184,7 @@ cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax,
     if (kmax < 0 || kmax > CJ_BSPLINE_MAX_DERIV)
         return cj_fail(CJ_ERR_ARGUMENT, "derivative order %d is outside 0..%d", kmax,
                        CJ_BSPLINE_MAX_DERIV);
-    if (c->weights)
-        return cj_fail(CJ_ERR_UNSUPPORTED,
-                       "no derivative error bound for a NURBS (only for polynomial B-splines)");
+    if (c->weights) return cj_bsp_nurbs_derivs_bound(c, t, kmax, bound);
     const int p = c->degree, d = c->dim, s = cj_bsp_span(c, t);
     double m[CJ_BSP_LOCAL], work[CJ_BSP_LOCAL];
     cj_bsp_local(c, s, m);

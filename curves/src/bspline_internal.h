@@ -38,6 +38,16 @@ void cj_bsp_deboor(const double *knots, int q, int span, int hd, double *loc, do
 /* Span index of t, which must lie in the domain (already checked). */
 int cj_bsp_span(const cj_bspline *c, double t);
 
+/* Homogeneous derivatives 0..kmax of span s at t into h[(kmax+1)*hd], as
+ * cj_bspline_eval_derivs computes them (bspline_eval.c). Returns the first order that
+ * overflowed, or -1. */
+int cj_bsp_homogeneous_derivs(const cj_bspline *c, int s, double t, int kmax, double *h);
+
+/* The rounding bound of cj_bspline_eval_derivs for a NURBS (bspline_nurbs_bound.c; the
+ * derivation is in bspline.h at cj_bspline_derivs_error_bound). c is validated, t in the
+ * domain, 0 <= kmax <= CJ_BSPLINE_MAX_DERIV. */
+cj_status cj_bsp_nurbs_derivs_bound(const cj_bspline *c, double t, int kmax, double *bound);
+
 /* Multiplicity of the value x in the knot vector. */
 int cj_bsp_multiplicity(const double *knots, int nknots, double x);
 

@@ -161,18 +161,32 @@ void cj_bspline_eval_derivs_unchecked(const cj_bspline *c, double t, int kmax, d
  * huge- and tiny-coordinate curves. bound: dim doubles. */
 cj_status cj_bspline_error_bound(const cj_bspline *c, double t, double *bound);
 
-/* A-priori absolute error bound of cj_bspline_eval_derivs at t for a polynomial B-spline:
- * bound[j*dim + k] for order j = 0..kmax (order 0 is cj_bspline_error_bound's). With the
- * differences taken on magnitudes, m^(0)_i = |d_i,k|, m^(j)_i = (p−j+1)(m^(j−1)_i + m^(j−1)_{i−1})
- * / (t_{i+p+1−j} − t_i), and M_j,k = Σ_i m^(j)_i N_{i,p−j}(t):
+/* A-priori absolute error bound of cj_bspline_eval_derivs at t: bound[j*dim + k] for order
+ * j = 0..kmax, coordinate k.
+ * Polynomial B-spline (order 0 is cj_bspline_error_bound's). With the differences taken on
+ * magnitudes, m^(0)_i = |d_i,k|, m^(j)_i = (p−j+1)(m^(j−1)_i + m^(j−1)_{i−1}) / (t_{i+p+1−j} −
+ * t_i), and M_j,k = Σ_i m^(j)_i N_{i,p−j}(t):
  *     |ĉ^(j)_k − c^(j)_k| <= gamma(5p − j) M_j,k + 8 (p+1) eta (1 + max_i m^(j)_i)   (j <= p),
  * and 0 above p. Derivation: a level of differences rounds four times (the subtraction of the
  * points, that of the knots, the product by p−j+1 and the division), so by induction the
  * computed order-j points are off by at most gamma(4j) m^(j); de Boor of degree p−j then adds
  * gamma(5(p−j)) of the magnitudes, and (1+gamma(a)) gamma(b) + gamma(a) <= gamma(a+b). M is
- * computed by the same recurrences and inflated by 1 + gamma(5p+8). A NURBS is
- * CJ_ERR_UNSUPPORTED (the quotient rule's error is not bounded here). Checked against the MPFR
- * oracle in tests/bspline/test_bspline_eval.c. */
+ * computed by the same recurrences and inflated by 1 + gamma(5p+8).
+ * NURBS. The homogeneous derivatives A^(j) (of Σ w_i d_i N_i) and w^(j) (of Σ w_i N_i) are
+ * bounded as above on the points (w_i d_i, w_i): E_A,j,k with gamma(5p − j + 1) (the products
+ * w_i d_i round once: the exact derivative of the spline of those roundings is at most u M_j)
+ * and E_w,j with gamma(5p − j). The derivatives come from the quotient rule
+ * c^(j) w = A^(j) − Σ_{i=1..j} C(j,i) w^(i) c^(j−i), computed as v = Â^(j) − Σ C ŵ^(i) ĉ^(j−i)
+ * (off by at most gamma(j+2) S_j, S_j = |Â^(j)| + Σ C |ŵ^(i)| |ĉ^(j−i)|; gamma(2j+3) is used)
+ * and ĉ^(j) = v/ŵ (|ĉ ŵ − v| <= u(1+2u)|ĉ| ŵ). Subtracting the exact relation, with
+ * ŵ^(i)ĉ − w^(i)c = (ŵ^(i) − w^(i))ĉ + w^(i)(ĉ − c), |w^(i)| <= |ŵ^(i)| + E_w,i and
+ * |c^(j)| <= |ĉ^(j)| + e_j, the errors e_j = |ĉ^(j)_k − c^(j)_k| satisfy, order by order,
+ *     e_j (ŵ − E_w,0) <= E_A,j + Σ_{i=1..j} C(j,i) (E_w,i |ĉ^(j−i)| + (|ŵ^(i)| + E_w,i) e_{j−i})
+ *                        + gamma(2j+3) S_j + |ĉ^(j)| (E_w,0 + u(1+2u) ŵ),
+ * evaluated on the computed values (each term non-negative, the result inflated by
+ * 1 + gamma(4j+12) for its own roundings). Requires ŵ > 2 E_w,0 (else CJ_ERR_RANGE, as for the
+ * value). Checked against the MPFR oracle in tests/bspline/test_bspline_eval.c (polynomial and
+ * NURBS, orders 0..p+2). */
 cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax, double *bound);
 
 /* ---- knots: insertion, refinement, removal ------------------------------------------- */
