@@ -63,9 +63,12 @@ int cj_bsp_homogeneous_derivs(const cj_bspline *c, int s, double t, int kmax, do
             const double f = (double)(p - j + 1);
             for (int jj = p; jj >= j; --jj) {
                 const int i = s - p + jj;
-                const double den = c->knots[i + p + 1 - j] - c->knots[i];
+                /* one division per point, shared by its coordinates: still four roundings per
+                 * level (the knot difference, the quotient, the point difference, the product),
+                 * as the bound in bspline.h counts */
+                const double g = f / (c->knots[i + p + 1 - j] - c->knots[i]);
                 for (int k = 0; k < hd; ++k)
-                    diff[jj * hd + k] = f * (diff[jj * hd + k] - diff[(jj - 1) * hd + k]) / den;
+                    diff[jj * hd + k] = g * (diff[jj * hd + k] - diff[(jj - 1) * hd + k]);
             }
         }
         const int q = p - j;
