@@ -7,41 +7,15 @@
 #include <string.h>
 
 cj_status cj_bsp_nurbs_derivs_bound(const cj_bspline *c, double t, int kmax, double *bound) {
-    const int p = c->degree, d = c->dim, hd = d + 1, s = cj_bsp_span(c, t);
-    const double eta = 0x1p-1074, u = CJ_UNIT_ROUNDOFF, inflate = 1.0 + cj_gamma(5 * p + 8);
+    const int d = c->dim, hd = d + 1, s = cj_bsp_span(c, t);
+    const double u = CJ_UNIT_ROUNDOFF;
     enum { NJ = CJ_BSPLINE_MAX_DERIV + 1 };
     /* 1. Homogeneous bounds E[j][k] (k = d: the weight), as for a polynomial B-spline of the
      * points (w_i d_i, w_i), one rounding more for the products w_i d_i. */
-    double m[CJ_BSP_LOCAL], work[CJ_BSP_LOCAL], E[NJ][CJ_BSP_MAX_HDIM];
-    cj_bsp_local(c, s, m);
-    for (int i = 0; i < (p + 1) * hd; ++i) m[i] = fabs(m[i]);
-    for (int j = 0; j <= kmax; ++j) {
-        if (j > p) {
-            for (int k = 0; k < hd; ++k) E[j][k] = 0.0; /* the orders above p are exact zeros */
-            continue;
-        }
-        if (j > 0) {
-            const double f = (double)(p - j + 1);
-            for (int jj = p; jj >= j; --jj) {
-                const int i = s - p + jj;
-                const double den = c->knots[i + p + 1 - j] - c->knots[i];
-                for (int k = 0; k < hd; ++k)
-                    m[jj * hd + k] = f * (m[jj * hd + k] + m[(jj - 1) * hd + k]) / den;
-            }
-        }
-        const int q = p - j;
-        double mmax[CJ_BSP_MAX_HDIM] = {0};
-        for (int jj = j; jj <= p; ++jj)
-            for (int k = 0; k < hd; ++k) mmax[k] = fmax(mmax[k], m[jj * hd + k]);
-        memcpy(work, m + j * hd, sizeof(double) * (size_t)((q + 1) * hd));
-        cj_bsp_deboor(c->knots, q, s, hd, work, t, NULL);
-        for (int k = 0; k < hd; ++k) {
-            const double g = cj_gamma(5 * p - j + (k < d));
-            E[j][k] =
-                (g * work[q * hd + k] * inflate + 8.0 * (p + 1) * eta * (1.0 + mmax[k] * inflate)) *
-                (1.0 + 4 * u);
-        }
-    }
+    double Ef[NJ * CJ_BSP_MAX_HDIM], E[NJ][CJ_BSP_MAX_HDIM];
+    cj_bsp_pyramid_bound(c, s, t, kmax, 1, Ef);
+    for (int j = 0; j <= kmax; ++j)
+        for (int k = 0; k < hd; ++k) E[j][k] = Ef[j * hd + k];
     /* 2. The computed homogeneous derivatives and the computed derivatives the caller gets. */
     double h[NJ * CJ_BSP_MAX_HDIM], out[NJ * CJ_MAX_DIM];
     (void)cj_bsp_homogeneous_derivs(c, s, t, kmax, h);
