@@ -24,7 +24,7 @@ typedef struct nrun {
 /* Proven upper bound of |c(t) - q|; pt gets the rounded point. */
 static double upper_at(const nrun *N, double t, double pt[2]) {
     cj_ivl p[2];
-    if (!cj_qctx_eval(N->q, cj_iv(t), p, NULL)) return INFINITY;
+    if (!cj_qctx_point(N->q, t, p)) return INFINITY;
     cj_ivl dx = cj_isub(p[0], cj_iv(N->qp[0])), dy = cj_isub(p[1], cj_iv(N->qp[1]));
     double mx = cj_imag(dx), my = cj_imag(dy);
     if (pt) {
@@ -294,7 +294,7 @@ static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol
     N.lower = INFINITY;
     N.pieces = 0;
     /* a good first upper bound: the best of a few samples, polished */
-    int ns = 4 * c->degree + 4;
+    int ns = 2 * c->degree + 2;
     double t0 = 0.0, d0 = INFINITY;
     for (int i = 0; i <= ns; ++i) { /* plain evaluations pick the start; bounds come later */
         double t = (double)i / ns, pt[2];
