@@ -26,7 +26,7 @@ static const char eval_usage[] =
     "                for compensated)\n"
     "  --curve       evaluate the first B-spline/NURBS item (\"type\": \"bspline\", as 'casteljau\n"
     "                fit' writes it) of this JSON file instead, by de Boor; T must lie in its\n"
-    "                domain; --bound is its a-priori bound (with --derivative: polynomial only)\n"
+    "                domain; --bound is its a-priori bound (also with --derivative, NURBS too)\n"
     "Output: one line per T, in the order given: the coordinates with %.17g separated by one\n"
     "space, and with --bound ' |' and one bound per coordinate. Nothing is printed unless\n"
     "every T evaluates. Exit status 0; 2 for a bad argument or input, or a result that\n"

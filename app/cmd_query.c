@@ -52,16 +52,20 @@ static const char nearest_usage[] =
     "  --text  one line per curve: I T X Y DISTANCE LOWER, then 'nearest I T X Y DISTANCE\n"
     "          LOWER' for the nearest of all (LOWER the smallest lower bound)\n"
     "Output: the document with, per panel, the point and its nearest point marked and joined.\n"
-    "Exit status as for intersect.\n";
+    "Exit status as for intersect.\n"
+    "On patches: casteljau nearest --point X,Y,Z (--teapot | --bpt FILE | --patch ... --degree\n"
+    "M,N) [--tol T] (see 'casteljau nearest --point 0,0,0 --teapot --help').\n";
 
 static const char offset_usage[] =
-    "usage: casteljau offset --distance D [--tol T] [--text] [FILE|-]\n"
+    "usage: casteljau offset --distance D [--tol T] [--trim] [--text] [FILE|-]\n"
     "Offsets the \"bezier\" items of a plot JSON document (as for 'casteljau intersect') by D\n"
     "(positive: to the left of the direction of travel) as cubic Bezier pieces, each proven\n"
     "within T of the exact offset (cusps followed, loops kept: see docs/queries.md).\n"
     "  --tol   default 1e-6 times the size of the curves and D\n"
+    "  --trim  cut the offset at its self-crossings and drop the spans nearer to the curve\n"
+    "          than D (swallowtails of tight bends; an arc offset inwards past its radius)\n"
     "  --text  one line per piece: I K X0 Y0 X1 Y1 X2 Y2 X3 Y3 (item, piece), then\n"
-    "          'deviation I PIECES DEV CUSPS' per curve\n"
+    "          'deviation I PIECES DEV CUSPS [DROPPED]' per curve (DROPPED with --trim)\n"
     "Output: the document with the pieces added as \"bezier\" items (purple). Exit status as\n"
     "for intersect.\n";
 
@@ -236,6 +240,7 @@ typedef struct qopts {
     double line[4];
     double point[2];
     double distance;
+    int trim; /* offset: drop the loops (cj_offset_trim) */
 } qopts;
 
 /* Adds the answers of one result to the panel's marker items. */
@@ -384,8 +389,10 @@ static int offset_panel(cJSON *panel, const char *where, const qopts *o) {
     double dd[1] = {o->distance};
     double tol = o->tol > 0 ? o->tol : 1e-6 * (panel_size(cv, nc, dd, 1) + fabs(o->distance));
     enum { CAP = 1 << 16 };
-    double *pts = malloc(sizeof(double) * 8 * CAP);
-    if (!pts) {
+    double *pts = malloc(sizeof(double) * 8 * CAP), *kept = malloc(sizeof(double) * 8 * CAP);
+    if (!pts || !kept) {
+        free(pts);
+        free(kept);
         free_curves(cv, nc);
         return cli_error("offset", "out of memory");
     }
@@ -398,16 +405,28 @@ static int offset_panel(cJSON *panel, const char *where, const qopts *o) {
             rc = query_fail("offset", where, &cv[i], NULL, st);
             break;
         }
+        int dropped = 0;
+        const double *out = pts;
+        if (o->trim) {
+            int nk = 0;
+            st = cj_offset_trim(&A, o->distance, tol, pts, np, dev, kept, NULL, CAP, &nk, &dropped);
+            if (st) {
+                rc = query_fail("offset", where, &cv[i], NULL, st);
+                break;
+            }
+            np = nk;
+            out = kept;
+        }
         for (int k = 0; k < np; ++k) {
             if (o->text) {
                 printf("%d %d", cv[i].item, k);
-                for (int j = 0; j < 8; ++j) printf(" "), cli_print_double(pts[8 * k + j]);
+                for (int j = 0; j < 8; ++j) printf(" "), cli_print_double(out[8 * k + j]);
                 printf("\n");
             }
             cJSON *it = cJSON_CreateObject(), *pa = cJSON_CreateArray();
             cJSON_AddStringToObject(it, "type", "bezier");
             for (int j = 0; j < 4; ++j)
-                cJSON_AddItemToArray(pa, pair_json(pts[8 * k + 2 * j], pts[8 * k + 2 * j + 1]));
+                cJSON_AddItemToArray(pa, pair_json(out[8 * k + 2 * j], out[8 * k + 2 * j + 1]));
             cJSON_AddItemToObject(it, "points", pa);
             cJSON_AddStringToObject(it, "color", "#9467bd");
             cJSON_AddFalseToObject(it, "control_polygon");
@@ -417,10 +436,13 @@ static int offset_panel(cJSON *panel, const char *where, const qopts *o) {
         if (o->text) {
             printf("deviation %d %d ", cv[i].item, np);
             cli_print_double(dev);
-            printf(" %d\n", cusps);
+            printf(" %d", cusps);
+            if (o->trim) printf(" %d", dropped);
+            printf("\n");
         }
     }
     free(pts);
+    free(kept);
     free_curves(cv, nc);
     return rc;
 }
@@ -488,10 +510,10 @@ static int parse_numbers(const char *cmd, const char *opt, const char *v, double
 enum { Q_INTERSECT, Q_NEAREST, Q_OFFSET };
 
 static int query_main(const char *cmd, const char *usage, int argc, char **argv, int which) {
-    enum { O_TOL, O_SELF, O_LINE, O_TEXT, O_POINT, O_DIST };
-    static const cli_opt opts[] = {{"--tol", NULL, 1},   {"--self", NULL, 0},
-                                   {"--line", NULL, 1},  {"--text", NULL, 0},
-                                   {"--point", NULL, 1}, {"--distance", NULL, 1}};
+    enum { O_TOL, O_SELF, O_LINE, O_TEXT, O_POINT, O_DIST, O_TRIM };
+    static const cli_opt opts[] = {
+        {"--tol", NULL, 1},   {"--self", NULL, 0},     {"--line", NULL, 1}, {"--text", NULL, 0},
+        {"--point", NULL, 1}, {"--distance", NULL, 1}, {"--trim", NULL, 0}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
     qopts o;
@@ -512,6 +534,11 @@ static int query_main(const char *cmd, const char *usage, int argc, char **argv,
                                 cli_quote(v, q, sizeof q));
         } else if (k == O_TEXT) {
             o.text = 1;
+        } else if (k == O_TRIM) {
+            if (which != Q_OFFSET)
+                return cli_fail(cmd, "--trim does not apply to '%s' (try 'casteljau %s --help')",
+                                cmd, cmd);
+            o.trim = 1;
         } else if ((which == Q_NEAREST) != (k == O_POINT) || (which == Q_OFFSET) != (k == O_DIST) ||
                    (which != Q_INTERSECT && (k == O_SELF || k == O_LINE))) {
             return cli_fail(cmd, "%s does not apply to '%s' (try 'casteljau %s --help')",
@@ -547,6 +574,11 @@ int cmd_intersect(int argc, char **argv) {
 }
 
 int cmd_nearest(int argc, char **argv) {
+    /* a patch model makes it the 3D query (cmd_section.c) */
+    for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; ++i)
+        if (!strncmp(argv[i], "--teapot", 8) || !strncmp(argv[i], "--bpt", 5) ||
+            !strncmp(argv[i], "--patch", 7))
+            return cmd_nearest_patch(argc, argv);
     return query_main("nearest", nearest_usage, argc, argv, Q_NEAREST);
 }
 

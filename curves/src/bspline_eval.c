@@ -46,36 +46,61 @@ cj_status cj_bspline_eval_batch(const cj_bspline *c, const double *ts, size_t nt
     return CJ_OK;
 }
 
-/* Homogeneous derivatives 0..kmax of span s at t into h[(kmax+1)*hd]. Returns the first order
- * that overflowed, or -1. */
-static int homogeneous_derivs(const cj_bspline *c, int s, double t, int kmax, double *h) {
-    const int p = c->degree, hd = cj_bsp_hdim(c);
-    double diff[CJ_BSP_LOCAL], work[CJ_BSP_LOCAL];
-    cj_bsp_local(c, s, diff);
-    for (int j = 0; j <= kmax; ++j) {
-        double *dst = h + j * hd;
-        if (j > p) {
-            memset(dst, 0, sizeof(double) * (size_t)hd);
-            continue;
+void cj_bsp_pyramid(const double *knots, int p, int s, int hd, double *loc, double t, int jtop,
+                    int sums, double *out) {
+    double tmp[CJ_BSP_LOCAL], binom[CJ_BSPLINE_MAX_DEGREE + 1];
+    /* C(p, j) by Pascal's rule (exact below 2^53, else off by at most gamma(p)) */
+    binom[0] = 1.0;
+    for (int r = 1; r <= p; ++r) {
+        binom[r] = 1.0;
+        for (int i = r - 1; i > 0; --i) binom[i] += binom[i - 1];
+    }
+    for (int r = 0;; ++r) {
+        const int j = p - r;
+        if (j <= jtop) {
+            /* loc[r..p]: the de Boor points of the degree-j spline x -> B(t^(p-j), x^j) on
+             * points s-j..s; its j-th derivative, times C(p, j), is c^(j)(t) */
+            memcpy(tmp, loc + r * hd, sizeof(double) * (size_t)((j + 1) * hd));
+            for (int l = 1; l <= j; ++l)
+                for (int m = j; m >= l; --m) {
+                    const int i = s - j + m;
+                    const double g = (double)(j - l + 1) / (knots[i + j + 1 - l] - knots[i]);
+                    double *dst = tmp + m * hd;
+                    const double *prev = dst - hd;
+                    if (sums)
+                        for (int k = 0; k < hd; ++k)
+                            dst[k] = g * (dst[k] + prev[k]) + (sums == 2 ? 0x1p-1072 : 0.0);
+                    else
+                        for (int k = 0; k < hd; ++k) dst[k] = g * (dst[k] - prev[k]);
+                }
+            for (int k = 0; k < hd; ++k) out[j * hd + k] = binom[j] * tmp[j * hd + k];
         }
-        if (j > 0) {
-            /* diff[jj] for jj = j..p holds the order-j points of indices s-p+jj. */
-            const double f = (double)(p - j + 1);
-            for (int jj = p; jj >= j; --jj) {
-                const int i = s - p + jj;
-                const double den = c->knots[i + p + 1 - j] - c->knots[i];
-                for (int k = 0; k < hd; ++k)
-                    diff[jj * hd + k] = f * (diff[jj * hd + k] - diff[(jj - 1) * hd + k]) / den;
-            }
-        }
-        const int q = p - j;
-        memcpy(work, diff + j * hd, sizeof(double) * (size_t)((q + 1) * hd));
-        cj_bsp_deboor(c->knots, q, s, hd, work, t, NULL);
-        for (int k = 0; k < hd; ++k) {
-            dst[k] = work[q * hd + k];
-            if (!isfinite(dst[k])) return j;
+        if (r == p) break;
+        /* level r+1 of de Boor, as cj_bsp_deboor runs it */
+        const int R = r + 1;
+        for (int jj = p; jj >= R; --jj) {
+            const int i = s - p + jj;
+            const double lo = knots[i], hi = knots[i + p + 1 - R];
+            const double den = hi - lo;
+            const double a = (t - lo) / den, b = (hi - t) / den;
+            double *dst = loc + jj * hd;
+            const double *prev = dst - hd;
+            for (int k = 0; k < hd; ++k) dst[k] = b * prev[k] + a * dst[k];
         }
     }
+}
+
+/* Homogeneous derivatives 0..kmax of span s at t into h[(kmax+1)*hd], from one de Boor
+ * pyramid (cj_bsp_pyramid). Returns the first order that overflowed, or -1. */
+int cj_bsp_homogeneous_derivs(const cj_bspline *c, int s, double t, int kmax, double *h) {
+    const int p = c->degree, hd = cj_bsp_hdim(c), jtop = kmax < p ? kmax : p;
+    double loc[CJ_BSP_LOCAL];
+    cj_bsp_local(c, s, loc);
+    cj_bsp_pyramid(c->knots, p, s, hd, loc, t, jtop, 0, h);
+    for (int j = jtop + 1; j <= kmax; ++j) memset(h + j * hd, 0, sizeof(double) * (size_t)hd);
+    for (int j = 0; j <= jtop; ++j)
+        for (int k = 0; k < hd; ++k)
+            if (!isfinite(h[j * hd + k])) return j;
     return -1;
 }
 
@@ -84,7 +109,7 @@ static int derivs(const cj_bspline *c, double t, int kmax, double *out) {
     const int d = c->dim, hd = cj_bsp_hdim(c);
     const int s = cj_bsp_span(c, t);
     double h[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_BSP_MAX_HDIM];
-    int bad = homogeneous_derivs(c, s, t, kmax, h);
+    int bad = cj_bsp_homogeneous_derivs(c, s, t, kmax, h);
     if (!c->weights) {
         memcpy(out, h, sizeof(double) * (size_t)((kmax + 1) * d));
         return bad;
@@ -176,6 +201,35 @@ cj_status cj_bspline_error_bound(const cj_bspline *c, double t, double *bound) {
     return CJ_OK;
 }
 
+void cj_bsp_pyramid_bound(const cj_bspline *c, int s, double t, int kmax, int extra, double *out) {
+    const int p = c->degree, hd = cj_bsp_hdim(c), jtop = kmax < p ? kmax : p;
+    const double eta = 0x1p-1074, u = CJ_UNIT_ROUNDOFF, inflate = 1.0 + cj_gamma(6 * p + 8);
+    double mag[CJ_BSP_LOCAL], slack[CJ_BSP_LOCAL], M[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_BSP_MAX_HDIM],
+        S[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_BSP_MAX_HDIM];
+    cj_bsp_local(c, s, mag);
+    double D = 0.0;
+    for (int i = 0; i < (p + 1) * hd; ++i) {
+        mag[i] = fabs(mag[i]);
+        D = fmax(D, mag[i]);
+    }
+    /* absolute (subnormal) slack: de Boor's levels at most 8 (p+1) eta (1 + D) in all (as in
+     * cj_bspline_error_bound), and 4 eta per operation of differences (sums = 2 adds it), carried
+     * by the same recurrences */
+    for (int i = 0; i < (p + 1) * hd; ++i) slack[i] = 8.0 * (p + 1) * eta * (1.0 + D);
+    cj_bsp_pyramid(c->knots, p, s, hd, mag, t, jtop, 1, M);
+    cj_bsp_pyramid(c->knots, p, s, hd, slack, t, jtop, 2, S);
+    for (int j = 0; j <= kmax; ++j)
+        for (int k = 0; k < hd; ++k) {
+            if (j > jtop) {
+                out[j * hd + k] = 0.0; /* exact zeros above the degree */
+                continue;
+            }
+            const double g = cj_gamma(6 * p - j + 2 + (k < c->dim ? extra : 0));
+            out[j * hd + k] =
+                (g * M[j * hd + k] * inflate + S[j * hd + k] * inflate + eta) * (1.0 + 4 * u);
+        }
+}
+
 cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax, double *bound) {
     assert(bound != NULL);
     cj_status st = cj_bspline_check(c);
@@ -184,47 +238,16 @@ cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax,
     if (kmax < 0 || kmax > CJ_BSPLINE_MAX_DERIV)
         return cj_fail(CJ_ERR_ARGUMENT, "derivative order %d is outside 0..%d", kmax,
                        CJ_BSPLINE_MAX_DERIV);
-    if (c->weights)
-        return cj_fail(CJ_ERR_UNSUPPORTED,
-                       "no derivative error bound for a NURBS (only for polynomial B-splines)");
-    const int p = c->degree, d = c->dim, s = cj_bsp_span(c, t);
-    double m[CJ_BSP_LOCAL], work[CJ_BSP_LOCAL];
-    cj_bsp_local(c, s, m);
-    for (int i = 0; i < (p + 1) * d; ++i) m[i] = fabs(m[i]);
-    const double eta = 0x1p-1074, u = CJ_UNIT_ROUNDOFF, inflate = 1.0 + cj_gamma(5 * p + 8);
+    if (c->weights) return cj_bsp_nurbs_derivs_bound(c, t, kmax, bound);
+    const int d = c->dim, s = cj_bsp_span(c, t);
     double out[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_MAX_DIM];
-    for (int j = 0; j <= kmax; ++j) {
-        if (j > p) {
-            for (int k = 0; k < d; ++k) out[j * d + k] = 0.0;
-            continue;
-        }
-        if (j > 0) {
-            const double f = (double)(p - j + 1);
-            for (int jj = p; jj >= j; --jj) {
-                const int i = s - p + jj;
-                const double den = c->knots[i + p + 1 - j] - c->knots[i];
-                for (int k = 0; k < d; ++k)
-                    m[jj * d + k] = f * (m[jj * d + k] + m[(jj - 1) * d + k]) / den;
-            }
-        }
-        const int q = p - j;
-        double mmax[CJ_MAX_DIM] = {0};
-        for (int jj = j; jj <= p; ++jj)
-            for (int k = 0; k < d; ++k) mmax[k] = fmax(mmax[k], m[jj * d + k]);
-        memcpy(work, m + j * d, sizeof(double) * (size_t)((q + 1) * d));
-        cj_bsp_deboor(c->knots, q, s, d, work, t, NULL);
-        const double g = cj_gamma(5 * p - j);
-        for (int k = 0; k < d; ++k) {
-            const double b =
-                (g * work[q * d + k] * inflate + 8.0 * (p + 1) * eta * (1.0 + mmax[k] * inflate)) *
-                (1.0 + 4 * u);
-            if (!isfinite(b))
+    cj_bsp_pyramid_bound(c, s, t, kmax, 0, out);
+    for (int j = 0; j <= kmax; ++j)
+        for (int k = 0; k < d; ++k)
+            if (!isfinite(out[j * d + k]))
                 return cj_fail(CJ_ERR_RANGE,
                                "error bound of derivative %d, coordinate %d at t = %.17g overflows",
                                j, k, t);
-            out[j * d + k] = b;
-        }
-    }
     memcpy(bound, out, sizeof(double) * (size_t)((kmax + 1) * d));
     return CJ_OK;
 }

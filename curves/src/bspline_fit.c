@@ -126,9 +126,14 @@ cj_status cj_bsp_interp_solve(const double *pts, int npts, int dim, int p, const
         U[j + p] = sum / p;
     }
     /* Row layout: Q_0, [c'(0)], Q_1..Q_{N-2}, [c'(1)], Q_{N-1}; band widths from the spans. */
-    int kl = 1, ku = 1;
+    int kl = 1, ku = 1, walk = p;
     for (int k = 1; k < npts - 1; ++k) {
-        const int row = k + s0, s = span_of(U, p, m, ts[k]);
+        /* the parameters increase: the span walks forward (the search only if they do not) */
+        if (ts[k] < ts[k - 1])
+            walk = span_of(U, p, m, ts[k]);
+        else
+            while (walk < m - 1 && U[walk + 1] <= ts[k]) ++walk;
+        const int row = k + s0, s = walk;
         spans[row] = s;
         if (row - (s - p) > kl) kl = row - (s - p);
         if (s - row > ku) ku = s - row;
@@ -166,8 +171,43 @@ cj_status cj_bsp_interp_solve(const double *pts, int npts, int dim, int p, const
         for (int c = 0; c < dim; ++c)
             rhs[(size_t)row + (size_t)c * (size_t)m] = pts[(size_t)k * (size_t)dim + c];
     }
+    /* Without end derivatives the matrix is a B-spline collocation matrix at increasing
+     * parameters: totally nonnegative, so Gaussian elimination without pivoting is stable (de
+     * Boor and Pinkus) and needs no fill beyond the band; it is solved here in place, several
+     * times faster than the general banded LU with pivoting (dgbsv), which the rows of end
+     * derivatives (negative entries) still use. */
+    lapack_int info = 0;
+    if (!s0 && !s1) {
+        for (int j = 0; j < m && info == 0; ++j) {
+            const double piv = AB(j, j);
+            if (!(fabs(piv) > 0.0) || !isfinite(piv)) {
+                info = j + 1;
+                break;
+            }
+            const int imax = j + kl < m - 1 ? j + kl : m - 1,
+                      cmax = j + ku < m - 1 ? j + ku : m - 1;
+            for (int i = j + 1; i <= imax; ++i) {
+                const double f = AB(i, j) / piv;
+                if (f == 0.0) continue;
+                for (int c = j + 1; c <= cmax; ++c) AB(i, c) -= f * AB(j, c);
+                for (int k = 0; k < dim; ++k)
+                    rhs[(size_t)i + (size_t)k * (size_t)m] -=
+                        f * rhs[(size_t)j + (size_t)k * (size_t)m];
+            }
+        }
+        for (int j = m - 1; j >= 0 && info == 0; --j) {
+            const int cmax = j + ku < m - 1 ? j + ku : m - 1;
+            for (int k = 0; k < dim; ++k) {
+                double v = rhs[(size_t)j + (size_t)k * (size_t)m];
+                for (int c = j + 1; c <= cmax; ++c)
+                    v -= AB(j, c) * rhs[(size_t)c + (size_t)k * (size_t)m];
+                rhs[(size_t)j + (size_t)k * (size_t)m] = v / AB(j, j);
+            }
+        }
+    } else {
+        info = LAPACKE_dgbsv(LAPACK_COL_MAJOR, m, kl, ku, dim, ab, ldab, ipiv, rhs, m);
+    }
 #undef AB
-    lapack_int info = LAPACKE_dgbsv(LAPACK_COL_MAJOR, m, kl, ku, dim, ab, ldab, ipiv, rhs, m);
     if (info != 0) {
         st = cj_fail(CJ_ERR_SINGULAR, "interpolation system is singular (LAPACK dgbsv info %d)",
                      (int)info);

@@ -38,6 +38,30 @@ void cj_bsp_deboor(const double *knots, int q, int span, int hd, double *loc, do
 /* Span index of t, which must lie in the domain (already checked). */
 int cj_bsp_span(const cj_bspline *c, double t);
 
+/* One de Boor pyramid of degree p on span s at t over loc[(p+1)*hd] (overwritten), read off at
+ * level p-j for each order j <= jtop: the remaining j+1 points are the de Boor points of the
+ * degree-j spline x -> B(t^(p-j), x^j) (B the blossom), whose j-th derivative (j levels of
+ * differences (j-l+1)(d_i - d_{i-1}) / (t_{i+j+1-l} - t_i)) times C(p, j) is c^(j)(t); into
+ * out[j*hd + k]. sums = 1 runs the same recurrences on magnitudes (sums instead of
+ * differences): the bound's M; sums = 2 adds 4 eta to every sum (the subnormal slack). */
+void cj_bsp_pyramid(const double *knots, int p, int s, int hd, double *loc, double t, int jtop,
+                    int sums, double *out);
+
+/* Homogeneous derivatives 0..kmax of span s at t into h[(kmax+1)*hd], as
+ * cj_bspline_eval_derivs computes them (bspline_eval.c). Returns the first order that
+ * overflowed, or -1. */
+int cj_bsp_homogeneous_derivs(const cj_bspline *c, int s, double t, int kmax, double *h);
+
+/* The rounding bound of cj_bsp_homogeneous_derivs per order and homogeneous coordinate into
+ * out[(kmax+1)*hd]: gamma(6p - j + 2 + extra) M_j inflated, plus the subnormal slack (extra:
+ * roundings more on the point coordinates, 1 for the products w d of a NURBS). */
+void cj_bsp_pyramid_bound(const cj_bspline *c, int s, double t, int kmax, int extra, double *out);
+
+/* The rounding bound of cj_bspline_eval_derivs for a NURBS (bspline_nurbs_bound.c; the
+ * derivation is in bspline.h at cj_bspline_derivs_error_bound). c is validated, t in the
+ * domain, 0 <= kmax <= CJ_BSPLINE_MAX_DERIV. */
+cj_status cj_bsp_nurbs_derivs_bound(const cj_bspline *c, double t, int kmax, double *bound);
+
 /* Multiplicity of the value x in the knot vector. */
 int cj_bsp_multiplicity(const double *knots, int nknots, double x);
 

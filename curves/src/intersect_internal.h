@@ -11,7 +11,7 @@
 #define MAX_OVERLAPS 4
 #define MIN_WIDTH    0x1p-52
 /* Krawczyk is tried once both pieces are this small against their curves */
-#define KRAWCZYK_SIZE 0.0625
+#define KRAWCZYK_SIZE 0.03125
 
 typedef struct root {
     cj_ivl K[2]; /* enclosure */

@@ -42,19 +42,58 @@ static void project(const double lo[][2], const double hi[][2], int n, const dou
     *pmax = mx;
 }
 
-/* 1 if the hulls of the two pieces are proven disjoint. */
+/* min and max of v . x over the control points of a polynomial piece, each within err of
+ * h: the plain products and sums, widened by what the points' errors move the projection
+ * (|v0| e0 + |v1| e1) plus the rounding of the dot products (at most 2.5u (|v0| + |v1|) times
+ * the largest coordinate) and a step outwards. */
+static void project_poly(const cj_qpiece *p, const double v[2], double *pmin, double *pmax) {
+    double mn = INFINITY, mx = -INFINITY;
+    for (int i = 0; i <= p->n; ++i) {
+        double d = v[0] * p->h[i][0] + v[1] * p->h[i][1];
+        mn = d < mn ? d : mn;
+        mx = d > mx ? d : mx;
+    }
+    double mag = cj_max4(fabs(p->blo[0]), fabs(p->bhi[0]), fabs(p->blo[1]), fabs(p->bhi[1]));
+    double av = fabs(v[0]) + fabs(v[1]);
+    double margin = fabs(v[0]) * p->err[0] + fabs(v[1]) * p->err[1] + av * mag * 0x1.4p-52;
+    margin = margin * (1.0 + 0x1p-40) + 0x1p-1060;
+    if (!isfinite(margin) || isnan(mn) || isnan(mx)) {
+        *pmin = -INFINITY;
+        *pmax = INFINITY;
+        return;
+    }
+    *pmin = cj_down(mn - margin);
+    *pmax = cj_up(mx + margin);
+}
+
+/* 1 if the hulls of the two pieces are proven disjoint: their enclosing boxes first, then the
+ * normals of both chords (fat-line exclusion). */
 static int separated(const cj_qpiece *pa, const cj_qpiece *pb) {
+    for (int k = 0; k < 2; ++k)
+        if (pa->bhi[k] < pb->blo[k] || pb->bhi[k] < pa->blo[k]) return 1;
+    int na = pa->n, nb = pb->n;
+    double axes[2][2] = {{-(pa->h[na][1] - pa->h[0][1]), pa->h[na][0] - pa->h[0][0]},
+                         {-(pb->h[nb][1] - pb->h[0][1]), pb->h[nb][0] - pb->h[0][0]}};
+    if (!pa->rational && !pb->rational) {
+        for (int k = 0; k < 2; ++k) {
+            if (!isfinite(axes[k][0]) || !isfinite(axes[k][1])) continue;
+            if (axes[k][0] == 0.0 && axes[k][1] == 0.0) continue;
+            double amin, amax, bmin, bmax;
+            project_poly(pa, axes[k], &amin, &amax);
+            project_poly(pb, axes[k], &bmin, &bmax);
+            if (amax < bmin || bmax < amin) return 1;
+        }
+        return 0;
+    }
     double alo[CJ_QUERY_MAXN + 1][2], ahi[CJ_QUERY_MAXN + 1][2];
     double blo[CJ_QUERY_MAXN + 1][2], bhi[CJ_QUERY_MAXN + 1][2];
     cj_qpiece_boxes(pa, alo, ahi);
     cj_qpiece_boxes(pb, blo, bhi);
-    double axes[4][2] = {{1, 0}, {0, 1}, {0, 0}, {0, 0}};
-    int na = pa->n, nb = pb->n;
-    axes[2][0] = -(alo[na][1] - alo[0][1]);
-    axes[2][1] = alo[na][0] - alo[0][0];
-    axes[3][0] = -(blo[nb][1] - blo[0][1]);
-    axes[3][1] = blo[nb][0] - blo[0][0];
-    for (int k = 0; k < 4; ++k) {
+    axes[0][0] = -(alo[na][1] - alo[0][1]);
+    axes[0][1] = alo[na][0] - alo[0][0];
+    axes[1][0] = -(blo[nb][1] - blo[0][1]);
+    axes[1][1] = blo[nb][0] - blo[0][0];
+    for (int k = 0; k < 2; ++k) {
         if (!isfinite(axes[k][0]) || !isfinite(axes[k][1])) continue;
         if (axes[k][0] == 0.0 && axes[k][1] == 0.0) continue;
         double amin, amax, bmin, bmax;
@@ -69,10 +108,9 @@ static int separated(const cj_qpiece *pa, const cj_qpiece *pb) {
  * lies in the interior of X (exactly one zero in X, and it lies in K), 0 otherwise. */
 int cj_isect_krawczyk(const cj_qctx *qa, const cj_qctx *qb, const cj_ivl X[2], cj_ivl K[2]) {
     double m[2] = {cj_imid(X[0]), cj_imid(X[1])};
-    cj_ivl pa[2], pb[2], da[2], db[2], tmp[2];
-    if (!cj_qctx_eval(qa, X[0], tmp, da) || !cj_qctx_eval(qb, X[1], tmp, db)) return 0;
-    if (!cj_qctx_eval(qa, cj_iv(m[0]), pa, NULL) || !cj_qctx_eval(qb, cj_iv(m[1]), pb, NULL))
-        return 0;
+    cj_ivl pa[2], pb[2], da[2], db[2];
+    if (!cj_qctx_eval(qa, X[0], NULL, da) || !cj_qctx_eval(qb, X[1], NULL, db)) return 0;
+    if (!cj_qctx_point(qa, m[0], pa) || !cj_qctx_point(qb, m[1], pb)) return 0;
     cj_ivl F[2] = {cj_isub(pa[0], pb[0]), cj_isub(pa[1], pb[1])};
     cj_ivl J[2][2] = {{da[0], cj_ineg(db[0])}, {da[1], cj_ineg(db[1])}};
     double Jm[2][2];
@@ -103,8 +141,70 @@ int cj_isect_krawczyk(const cj_qctx *qa, const cj_qctx *qb, const cj_ivl X[2], c
     return 1;
 }
 
-/* Shrinks an enclosure of a zero already proven unique: K <- K(X) ∩ X while it narrows. */
+/* Plain (unproven) point and derivative of the curve at t from the midpoints of its
+ * homogeneous control points: the guesses the proofs start from. */
+static void guess_eval(const cj_qctx *q, double t, double p[2], double d[2]) {
+    int n = q->n, dims = q->rational ? 3 : 2;
+    double w[CJ_QUERY_MAXN + 1][3], H[3] = {0, 0, 1}, D[3] = {0, 0, 0};
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < dims; ++k) w[i][k] = cj_imid(q->h[i][k]);
+    double s = 1.0 - t;
+    for (int r = n; r > 0; --r) {
+        if (r == 1)
+            for (int k = 0; k < dims; ++k) D[k] = (double)n * (w[1][k] - w[0][k]);
+        for (int i = 0; i < r; ++i)
+            for (int k = 0; k < dims; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
+    }
+    for (int k = 0; k < dims; ++k) H[k] = w[0][k];
+    for (int k = 0; k < 2; ++k) {
+        p[k] = H[k] / H[2];
+        d[k] = (D[k] - p[k] * D[2]) / H[2];
+    }
+}
+
+/* Newton on a(s) - b(t) = 0 in plain doubles from m; returns 0 if it did not settle. */
+static int newton_guess(const cj_qctx *qa, const cj_qctx *qb, double m[2]) {
+    for (int it = 0; it < 6; ++it) {
+        double pa[2], da[2], pb[2], db[2];
+        guess_eval(qa, m[0], pa, da);
+        guess_eval(qb, m[1], pb, db);
+        double f0 = pa[0] - pb[0], f1 = pa[1] - pb[1];
+        double det = -da[0] * db[1] + db[0] * da[1];
+        if (!(fabs(det) > 0.0) || !isfinite(det)) return 0;
+        double ds = (-db[1] * f0 + db[0] * f1) / det, dt = (da[0] * f1 - da[1] * f0) / det;
+        if (!isfinite(ds) || !isfinite(dt)) return 0;
+        m[0] -= ds;
+        m[1] -= dt;
+        if (fabs(ds) <= 0x1p-50 * fmax(fabs(m[0]), 0x1p-20) &&
+            fabs(dt) <= 0x1p-50 * fmax(fabs(m[1]), 0x1p-20))
+            return 1;
+    }
+    return 0;
+}
+
+/* Shrinks an enclosure of a zero already proven unique: K <- K(X) ∩ X while it narrows. A
+ * Newton guess in plain doubles is tried first: a tiny box Y around it with K(Y) inside Y holds
+ * a zero, which is the unique one of the caller's box when Y meets X, so one or two proofs
+ * replace the several iterations of K from X. */
 static void refine(const cj_qctx *qa, const cj_qctx *qb, cj_ivl X[2]) {
+    double m[2] = {cj_imid(X[0]), cj_imid(X[1])};
+    if (newton_guess(qa, qb, m) && X[0].lo <= m[0] && m[0] <= X[0].hi && X[1].lo <= m[1] &&
+        m[1] <= X[1].hi) {
+        for (int grow = 0; grow < 2; ++grow) {
+            double r = grow ? 0x1p-36 : 0x1p-46;
+            cj_ivl Y[2], K[2];
+            for (int k = 0; k < 2; ++k) {
+                double w = r * fmax(fabs(m[k]), 0x1p-16);
+                Y[k] = cj_iv2(fmax(X[k].lo, m[k] - w), fmin(X[k].hi, m[k] + w));
+            }
+            if (cj_isect_krawczyk(qa, qb, Y, K) != 1) continue;
+            for (int k = 0; k < 2; ++k) {
+                X[k].lo = fmax(Y[k].lo, K[k].lo);
+                X[k].hi = fmin(Y[k].hi, K[k].hi);
+            }
+            return; /* K(Y) is as narrow as the rounding of the proof allows */
+        }
+    }
     for (int it = 0; it < 12; ++it) {
         cj_ivl K[2];
         int r = cj_isect_krawczyk(qa, qb, X, K);
@@ -172,9 +272,7 @@ void cj_isect_add_leaf(run *R, cj_ivl S, cj_ivl T, double size, int exact) {
 }
 
 double cj_isect_extent(const cj_qpiece *p) {
-    double lo[2], hi[2];
-    cj_qpiece_bbox(p, lo, hi);
-    return fmax(hi[0] - lo[0], hi[1] - lo[1]);
+    return fmax(p->bhi[0] - p->blo[0], p->bhi[1] - p->blo[1]);
 }
 
 /* Tries to settle the box S x T by Krawczyk on the box enlarged by an eighth on each side:

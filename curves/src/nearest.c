@@ -24,7 +24,7 @@ typedef struct nrun {
 /* Proven upper bound of |c(t) - q|; pt gets the rounded point. */
 static double upper_at(const nrun *N, double t, double pt[2]) {
     cj_ivl p[2];
-    if (!cj_qctx_eval(N->q, cj_iv(t), p, NULL)) return INFINITY;
+    if (!cj_qctx_point(N->q, t, p)) return INFINITY;
     cj_ivl dx = cj_isub(p[0], cj_iv(N->qp[0])), dy = cj_isub(p[1], cj_iv(N->qp[1]));
     double mx = cj_imag(dx), my = cj_imag(dy);
     if (pt) {
@@ -34,27 +34,49 @@ static double upper_at(const nrun *N, double t, double pt[2]) {
     return cj_up(sqrt(cj_up(cj_up(mx * mx) + cj_up(my * my))));
 }
 
+/* Plain (unproven) c, c' and c'' of a polynomial curve at t by de Casteljau on the control
+ * points: the guesses the proofs start from. d holds x y x' y' x'' y''. */
+static void poly_derivs(const cj_bezier2 *c, double t, double d[6]) {
+    int n = c->degree;
+    double w[CJ_QUERY_MAXN + 1][2];
+    w[0][0] = c->pts[0];
+    w[0][1] = c->pts[1];
+    for (int i = 1; i <= n; ++i) w[i][0] = c->pts[2 * i], w[i][1] = c->pts[2 * i + 1];
+    d[2] = d[3] = d[4] = d[5] = 0.0;
+    double s = 1.0 - t;
+    for (int r = n; r > 0; --r) {
+        if (r == 2)
+            for (int k = 0; k < 2; ++k)
+                d[4 + k] = (double)n * (n - 1) * (w[2][k] - 2.0 * w[1][k] + w[0][k]);
+        if (r == 1)
+            for (int k = 0; k < 2; ++k) d[2 + k] = (double)n * (w[1][k] - w[0][k]);
+        for (int i = 0; i < r; ++i)
+            for (int k = 0; k < 2; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
+    }
+    d[0] = w[0][0];
+    d[1] = w[0][1];
+}
+
 /* Newton on g(t) = (c(t) - q) . c'(t) from t, clamped to [0,1]; returns the polished t. */
 static double polish(const nrun *N, double t) {
     const cj_bezier2 *c = N->c;
     for (int it = 0; it < 8; ++it) {
         double d[6];
-        cj_status st;
         if (c->weights) {
             cj_rbezier r = cj_rbezier_view(c->degree, 2, c->pts, c->weights);
-            st = cj_rbezier_eval_derivs(&r, t, 2, d);
+            if (cj_rbezier_eval_derivs(&r, t, 2, d) != CJ_OK) break;
         } else {
-            cj_bezier b = cj_bezier_view(c->degree, 2, c->pts);
-            st = cj_bezier_eval_derivs(&b, t, 2, d);
+            poly_derivs(c, t, d);
         }
-        if (st != CJ_OK) break;
         double ex = d[0] - N->qp[0], ey = d[1] - N->qp[1];
         double g = ex * d[2] + ey * d[3];
         double gp = d[2] * d[2] + d[3] * d[3] + ex * d[4] + ey * d[5];
         if (!(gp > 0.0)) break;
         double tn = fmin(1.0, fmax(0.0, t - g / gp));
         if (!isfinite(tn) || tn == t) break;
+        int done = fabs(tn - t) <= 0x1p-52;
         t = tn;
+        if (done) break;
     }
     return t;
 }
@@ -115,11 +137,114 @@ static double piece_lower(const nrun *N, const cj_qpiece *p) {
     return fmax(box, gap);
 }
 
+/* The sign pattern of g(u) = (c(u) - q) . c'(u) over a polynomial piece. g has degree 2n - 1
+ * with Bernstein coefficients
+ *   g_k = sum over i + j = k of C(n,i) C(n-1,j) / C(2n-1,k) (P_i - q) . n (P_{j+1} - P_j),
+ * enclosed here (without the positive factors n / C(2n-1,k)) in interval arithmetic over the
+ * enclosed P. Returns -1 if some g_k has no proven sign, else the number of sign changes of the
+ * sequence, with *first the sign of g_0. By Descartes' rule for the Bernstein basis, 0 changes
+ * means g has no root on the piece (the distance is monotone) and 1 change exactly one. */
+static int g_signs(const nrun *N, const cj_qpiece *p, int *first) {
+    int n = p->n;
+    if (p->rational || n < 1 || n > 24) return -1;
+    cj_ivl A[CJ_QUERY_MAXN + 1][2], D[CJ_QUERY_MAXN][2];
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 2; ++k)
+            A[i][k] = cj_iv2(cj_down(p->h[i][k] - p->err[k]), cj_up(p->h[i][k] + p->err[k]));
+    for (int j = 0; j < n; ++j)
+        for (int k = 0; k < 2; ++k) D[j][k] = cj_isub(A[j + 1][k], A[j][k]);
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 2; ++k) A[i][k] = cj_isub(A[i][k], cj_iv(N->qp[k]));
+    double binom_n[CJ_QUERY_MAXN + 1], binom_m[CJ_QUERY_MAXN + 1];
+    binom_n[0] = binom_m[0] = 1.0; /* exact: C(24, i) < 2^53 */
+    for (int i = 1; i <= n; ++i) {
+        binom_n[i] = binom_n[i - 1] * (n - i + 1) / i;
+        binom_m[i] = i < n ? binom_m[i - 1] * (n - i) / i : 0.0;
+    }
+    int sign = 0, changes = 0;
+    for (int k = 0; k <= 2 * n - 1; ++k) {
+        cj_ivl g = cj_iv(0.0);
+        for (int i = k - (n - 1) > 0 ? k - (n - 1) : 0; i <= n && i <= k; ++i) {
+            int j = k - i;
+            cj_ivl dot = cj_iadd(cj_imul(A[i][0], D[j][0]), cj_imul(A[i][1], D[j][1]));
+            /* C(n,i) C(n-1,j) <= 2^47: the product of two exact integers, enclosed */
+            double w = binom_n[i] * binom_m[j];
+            g = cj_iadd(g, cj_imul(cj_iv2(cj_down(w), cj_up(w)), dot));
+        }
+        int sg = g.lo > 0.0 ? 1 : g.hi < 0.0 ? -1 : 0;
+        if (sg == 0) return -1;
+        if (k == 0)
+            *first = sg;
+        else if (sg != sign)
+            ++changes;
+        sign = sg;
+    }
+    return changes;
+}
+
+/* Enclosure of g(t) = (c(t) - q) . c'(t) at the double t: its sign, 0 if unproven. */
+static int g_sign_at(const nrun *N, double t) {
+    cj_ivl p[2], d[2];
+    if (!cj_qctx_eval(N->q, cj_iv(t), p, d)) return 0;
+    cj_ivl g = cj_iadd(cj_imul(cj_isub(p[0], cj_iv(N->qp[0])), d[0]),
+                       cj_imul(cj_isub(p[1], cj_iv(N->qp[1])), d[1]));
+    return g.lo > 0.0 ? 1 : g.hi < 0.0 ? -1 : 0;
+}
+
+/* Proven lower bound of |x - q| over the box [lo, hi]. */
+static double box_lower(const nrun *N, const double lo[2], const double hi[2]) {
+    double g[2];
+    for (int k = 0; k < 2; ++k) {
+        double below = cj_down(lo[k] - N->qp[k]), above = cj_down(N->qp[k] - hi[k]);
+        g[k] = fmax(0.0, fmax(below, above));
+    }
+    return fmax(0.0,
+                cj_down(sqrt(fmax(0.0, cj_down(cj_down(g[0] * g[0]) + cj_down(g[1] * g[1]))))));
+}
+
 static void search(nrun *N, const cj_qpiece *p, double lb) {
     if (!(lb >= 0.0)) lb = 0.0; /* a NaN bound proves nothing */
     if (++N->pieces > MAX_PIECES || lb >= N->best - N->tol || p->b - p->a <= MIN_WIDTH) {
         N->lower = fmin(N->lower, lb);
         return;
+    }
+    double lb_piece = -1.0; /* a proven lower bound over the piece from the roots of g */
+    int first = 0, changes = g_signs(N, p, &first);
+    if (changes == 0 || (changes == 1 && first > 0)) {
+        /* no local minimum inside: the minimum is at an end, whose control point is c there
+         * within err */
+        lb_piece = INFINITY;
+        for (int e = 0; e <= p->n; e += p->n) {
+            if (changes == 0 && (first > 0) != (e == 0)) continue;
+            offer(N, e == 0 ? p->a : p->b);
+            double lo[2], hi[2];
+            for (int k = 0; k < 2; ++k) {
+                lo[k] = cj_down(p->h[e][k] - p->err[k]);
+                hi[k] = cj_up(p->h[e][k] + p->err[k]);
+            }
+            lb_piece = fmin(lb_piece, box_lower(N, lo, hi));
+        }
+    } else if (changes == 1) {
+        /* exactly one root t* of g, where g goes from - to +: the one minimum of the piece.
+         * A Newton guess, and signs of g proven on both sides of it, enclose t*. */
+        double t = polish(N, 0.5 * (p->a + p->b));
+        for (double delta = 0x1p-40; delta <= 0x1p-20; delta *= 0x1p10) {
+            double lo = fmax(p->a, t - delta), hi = fmin(p->b, t + delta);
+            if (!(lo < hi) || g_sign_at(N, lo) >= 0 || g_sign_at(N, hi) <= 0) continue;
+            offer(N, t);
+            cj_ivl c[2];
+            if (!cj_qctx_eval(N->q, cj_iv2(lo, hi), c, NULL)) break;
+            double blo[2] = {c[0].lo, c[1].lo}, bhi[2] = {c[0].hi, c[1].hi};
+            lb_piece = box_lower(N, blo, bhi);
+            break;
+        }
+    }
+    if (lb_piece >= 0.0) {
+        lb_piece = fmax(lb, lb_piece);
+        if (lb_piece >= N->best - N->tol) {
+            N->lower = fmin(N->lower, lb_piece);
+            return;
+        }
     }
     double m = 0.5 * (p->a + p->b);
     double u = upper_at(N, m, NULL);
@@ -169,7 +294,7 @@ static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol
     N.lower = INFINITY;
     N.pieces = 0;
     /* a good first upper bound: the best of a few samples, polished */
-    int ns = 4 * c->degree + 4;
+    int ns = 2 * c->degree + 2;
     double t0 = 0.0, d0 = INFINITY;
     for (int i = 0; i <= ns; ++i) { /* plain evaluations pick the start; bounds come later */
         double t = (double)i / ns, pt[2];
@@ -178,10 +303,11 @@ static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol
             cj_rbezier r = cj_rbezier_view(c->degree, 2, c->pts, c->weights);
             es = cj_rbezier_eval(&r, t, pt);
         } else {
-            cj_bezier b = cj_bezier_view(c->degree, 2, c->pts);
-            es = cj_bezier_eval(&b, CJ_EVAL_DECASTELJAU, t, pt);
+            double d[6];
+            poly_derivs(c, t, d);
+            pt[0] = d[0], pt[1] = d[1], es = CJ_OK;
         }
-        double dd = hypot(pt[0] - q[0], pt[1] - q[1]);
+        double dd = (pt[0] - q[0]) * (pt[0] - q[0]) + (pt[1] - q[1]) * (pt[1] - q[1]);
         if (es == CJ_OK && dd < d0) d0 = dd, t0 = t;
     }
     offer(&N, t0);

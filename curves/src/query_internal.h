@@ -106,9 +106,14 @@ typedef struct cj_qctx {
 cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what);
 
 /* Encloses the point c(t) and the derivative c'(t) for every t in the interval T (T may extend
- * a little beyond [0,1]); d may be NULL. Returns 0 if the weight enclosure reaches zero or a
- * bound overflows (nothing certified then). */
+ * a little beyond [0,1]); d may be NULL, and so may p (then only d is enclosed). Returns 0 if the
+ * weight enclosure reaches zero or a bound overflows (nothing certified then). */
 int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]);
+
+/* Encloses the point c(t) at the double t: the same as cj_qctx_eval on [t, t], by plain de
+ * Casteljau with a rounding bound for a polynomial curve and t in [0,1] (several times cheaper
+ * than interval arithmetic). */
+int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]);
 
 /* Encloses c(t), c'(t) and c''(t) for every t in T. Returns 0 as cj_qctx_eval does. */
 int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]);
@@ -133,19 +138,21 @@ typedef struct cj_qpiece {
     int n;
     int rational;
     double a, b;
-    double err[3]; /* per homogeneous coordinate (the weight's is 0 for a polynomial) */
+    double err[3];         /* per homogeneous coordinate (the weight's is 0 for a polynomial) */
+    double blo[2], bhi[2]; /* enclosure of the whole piece (cj_qpiece_bbox), set on creation */
     double h[CJ_QUERY_MAXN + 1][3];
 } cj_qpiece;
 
 void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p);
-/* Halves p into left and right (either may alias nothing else; p itself is not modified). */
+/* Halves p into left and right (neither may alias p or the other; p is not modified). Only the
+ * n+1 points in use are written, so the cost follows the degree, not CJ_QUERY_MAXN. */
 void cj_qpiece_halve(const cj_qpiece *p, const double hmag[3], cj_qpiece *left, cj_qpiece *right);
 /* A context for the straight line p + λ d over λ in [-L, L], as a degree-1 curve whose two
  * control points are enclosed exactly (t in [0,1] maps to λ = L (2 t - 1)). */
 void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L);
 /* Boxes of the exact projected control points: lo/hi per point and coordinate. */
 void cj_qpiece_boxes(const cj_qpiece *p, double lo[][2], double hi[][2]);
-/* Enclosure of the whole piece: the box of its control point boxes. */
+/* Enclosure of the whole piece: the box of its control point boxes (cached in blo, bhi). */
 void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]);
 
 /* Max |coordinate| of the control points (finite ones; validation catches the others), the

@@ -94,8 +94,13 @@ static void ideval(const cj_ivl (*c)[3], int m, int dims, cj_ivl T, cj_ivl out[3
 
 int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]) {
     int n = q->n, dims = q->rational ? 3 : 2;
-    cj_ivl H[3], D[3];
-    ideval((const cj_ivl(*)[3])q->h, n, dims, T, H);
+    cj_ivl H[3], D[3], unused[2];
+    if (!p) p = unused;
+    /* a polynomial's derivative does not need the point: one evaluation saved */
+    if (q->rational || p != unused)
+        ideval((const cj_ivl(*)[3])q->h, n, dims, T, H);
+    else
+        H[0] = H[1] = H[2] = cj_iv(0.0);
     if (d) {
         if (n == 0)
             D[0] = D[1] = D[2] = cj_iv(0.0);
@@ -121,6 +126,31 @@ int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]) {
         if (d && !cj_ifinite(d[k])) return 0;
     }
     return 1;
+}
+
+int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]) {
+    int n = q->n;
+    if (q->rational || !(t >= 0.0 && t <= 1.0)) return cj_qctx_eval(q, cj_iv(t), p, NULL);
+    /* De Casteljau in doubles on the midpoints of the enclosed control points. With s = 1 - t
+     * (off by at most u) each step s a + t b is off by at most about 3u M (M the largest
+     * magnitude, which the convex combinations never exceed), and errors carried in pass
+     * through the combination unchanged: n steps, 4u M each, plus the control points' own
+     * radius r and the subnormal rounding of the products. */
+    double w[CJ_QUERY_MAXN + 1][2], r = 0.0, M = 0.0, s = 1.0 - t;
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 2; ++k) {
+            cj_ivl v = q->h[i][k];
+            double m = cj_imid(v);
+            w[i][k] = m;
+            r = fmax(r, fmax(m - v.lo, v.hi - m));
+            M = fmax(M, fabs(m));
+        }
+    for (int lev = n; lev > 0; --lev)
+        for (int i = 0; i < lev; ++i)
+            for (int k = 0; k < 2; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
+    double e = (r + (double)n * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
+    for (int k = 0; k < 2; ++k) p[k] = cj_iv2(cj_down(w[0][k] - e), cj_up(w[0][k] + e));
+    return cj_ifinite(p[0]) && cj_ifinite(p[1]);
 }
 
 int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]) {
@@ -186,63 +216,6 @@ int cj_qctx_eval3(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl d
     return 1;
 }
 
-void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
-    p->n = q->n;
-    p->rational = q->rational;
-    p->a = 0.0;
-    p->b = 1.0;
-    for (int k = 0; k < 3; ++k) {
-        double err = 0.0;
-        for (int i = 0; i <= q->n; ++i) {
-            cj_ivl v = q->h[i][k];
-            double m = cj_imid(v);
-            p->h[i][k] = m;
-            err = fmax(err, fmax(m - v.lo, v.hi - m));
-        }
-        p->err[k] = err > 0.0 ? cj_up(err) : 0.0;
-    }
-}
-
-void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *left, cj_qpiece *right) {
-    int n = p->n;
-    double w[CJ_QUERY_MAXN + 1][3];
-    for (int i = 0; i <= n; ++i)
-        for (int k = 0; k < 3; ++k) w[i][k] = p->h[i][k];
-    cj_qpiece L, R;
-    L.n = R.n = n;
-    L.rational = R.rational = p->rational;
-    for (int k = 0; k < 3; ++k) {
-        L.h[0][k] = w[0][k];
-        R.h[n][k] = w[n][k];
-    }
-    for (int r = n; r > 0; --r) {
-        for (int i = 0; i < r; ++i)
-            for (int k = 0; k < 3; ++k) w[i][k] = 0.5 * (w[i][k] + w[i + 1][k]);
-        for (int k = 0; k < 3; ++k) {
-            L.h[n - r + 1][k] = w[0][k];
-            R.h[r - 1][k] = w[r - 1][k];
-        }
-    }
-    /* Each output point went through at most n averagings, each off by at most u times the
-     * largest magnitude (the addition) plus 2^-1075 (the halving, in the subnormal range);
-     * errors of the inputs pass through averages unchanged. A polynomial's weights stay
-     * exactly 1. */
-    double e[3];
-    for (int k = 0; k < 3; ++k) {
-        e[k] = p->err[k] + (double)n * ((mag[k] + p->err[k]) * 0x1p-53 + 0x1p-1074);
-        e[k] *= 1.0 + 0x1p-40;
-    }
-    if (!p->rational) e[2] = 0.0;
-    double m = 0.5 * (p->a + p->b); /* dyadic: exact */
-    L.a = p->a;
-    L.b = m;
-    R.a = m;
-    R.b = p->b;
-    for (int k = 0; k < 3; ++k) L.err[k] = R.err[k] = e[k];
-    *left = L;
-    *right = R;
-}
-
 void cj_qpiece_boxes(const cj_qpiece *p, double lo[][2], double hi[][2]) {
     const double *e = p->err;
     for (int i = 0; i <= p->n; ++i) {
@@ -266,16 +239,92 @@ void cj_qpiece_boxes(const cj_qpiece *p, double lo[][2], double hi[][2]) {
     }
 }
 
-void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]) {
+/* The enclosure of the whole piece, cached on creation: for a polynomial the control points
+ * are h +- err (weights exactly 1), so min and max of h widened by err and a step outwards;
+ * rational pieces go through the projected boxes. */
+static void set_bbox(cj_qpiece *p) {
+    int n = p->n;
+    if (!p->rational) {
+        for (int k = 0; k < 2; ++k) {
+            double lo = p->h[0][k], hi = lo;
+            for (int i = 1; i <= n; ++i) {
+                double v = p->h[i][k];
+                lo = v < lo ? v : lo;
+                hi = v > hi ? v : hi;
+            }
+            p->blo[k] = cj_down(lo - p->err[k]);
+            p->bhi[k] = cj_up(hi + p->err[k]);
+        }
+        return;
+    }
     double blo[CJ_QUERY_MAXN + 1][2], bhi[CJ_QUERY_MAXN + 1][2];
     cj_qpiece_boxes(p, blo, bhi);
     for (int k = 0; k < 2; ++k) {
-        lo[k] = INFINITY;
-        hi[k] = -INFINITY;
-        for (int i = 0; i <= p->n; ++i) {
-            lo[k] = fmin(lo[k], blo[i][k]);
-            hi[k] = fmax(hi[k], bhi[i][k]);
+        p->blo[k] = INFINITY;
+        p->bhi[k] = -INFINITY;
+        for (int i = 0; i <= n; ++i) {
+            p->blo[k] = fmin(p->blo[k], blo[i][k]);
+            p->bhi[k] = fmax(p->bhi[k], bhi[i][k]);
         }
+    }
+}
+
+void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
+    p->n = q->n;
+    p->rational = q->rational;
+    p->a = 0.0;
+    p->b = 1.0;
+    for (int k = 0; k < 3; ++k) {
+        double err = 0.0;
+        for (int i = 0; i <= q->n; ++i) {
+            cj_ivl v = q->h[i][k];
+            double m = cj_imid(v);
+            p->h[i][k] = m;
+            err = fmax(err, fmax(m - v.lo, v.hi - m));
+        }
+        p->err[k] = err > 0.0 ? cj_up(err) : 0.0;
+    }
+    set_bbox(p);
+}
+
+void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *L, cj_qpiece *R) {
+    int n = p->n, dims = p->rational ? 3 : 2;
+    /* de Casteljau at 1/2 in place in R (its points are the right piece's at the end), the
+     * left piece's points taken off the first column as it goes */
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 3; ++k) R->h[i][k] = p->h[i][k];
+    for (int k = 0; k < 3; ++k) L->h[0][k] = p->h[0][k];
+    for (int r = n; r > 0; --r) {
+        for (int i = 0; i < r; ++i)
+            for (int k = 0; k < dims; ++k) R->h[i][k] = 0.5 * (R->h[i][k] + R->h[i + 1][k]);
+        for (int k = 0; k < 3; ++k) L->h[n - r + 1][k] = R->h[0][k];
+    }
+    /* Each output point went through at most n averagings, each off by at most u times the
+     * largest magnitude (the addition) plus 2^-1075 (the halving, in the subnormal range);
+     * errors of the inputs pass through averages unchanged. A polynomial's weights stay
+     * exactly 1 (they are copied, never averaged). */
+    double e[3];
+    for (int k = 0; k < 3; ++k) {
+        e[k] = p->err[k] + (double)n * ((mag[k] + p->err[k]) * 0x1p-53 + 0x1p-1074);
+        e[k] *= 1.0 + 0x1p-40;
+    }
+    if (!p->rational) e[2] = 0.0;
+    double m = 0.5 * (p->a + p->b); /* dyadic: exact */
+    L->n = R->n = n;
+    L->rational = R->rational = p->rational;
+    L->a = p->a;
+    L->b = m;
+    R->a = m;
+    R->b = p->b;
+    for (int k = 0; k < 3; ++k) L->err[k] = R->err[k] = e[k];
+    set_bbox(L);
+    set_bbox(R);
+}
+
+void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]) {
+    for (int k = 0; k < 2; ++k) {
+        lo[k] = p->blo[k];
+        hi[k] = p->bhi[k];
     }
 }
 

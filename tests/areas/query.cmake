@@ -18,3 +18,14 @@ add_dependencies(test_cli_query casteljau)
 cj_add_test(test_offset SOURCES query/test_offset.c LIBS cj_query_oracle)
 # Nearest point on Bézier patches (surfaces/): exact 256-bit grid distances against the bound.
 cj_add_test(test_patch_nearest SOURCES query/test_patch_nearest.c LIBS cj::surfaces PkgConfig::CJ_MPFR)
+# Plane sections of Bézier patches: exact circles (sphere, paraboloid) and a long-double line
+# oracle on random patches (never missed: every crossing within the proven deviation).
+cj_add_test(test_patch_section SOURCES query/test_patch_section.c LIBS cj::surfaces)
+# Contract of `casteljau section` and `casteljau nearest` on patches: runs the built tool.
+cj_add_test(test_cli_section SOURCES query/test_cli_section.c)
+target_compile_definitions(test_cli_section PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+  CJ_TMP_DIR="${CMAKE_CURRENT_BINARY_DIR}")
+add_dependencies(test_cli_section casteljau)
+# Trimmed offsets: a circle arc inwards past its radius vanishes, a parabola loses its
+# swallowtail (long-double distance oracle), a loop-free offset comes back unchanged.
+cj_add_test(test_offset_trim SOURCES query/test_offset_trim.c)

@@ -123,10 +123,12 @@ void cj_bspline_eval_unchecked(const cj_bspline *c, double t, double *out);
 
 /* Point and derivatives 0..kmax with respect to t: out[j*dim + k] = coordinate k of c^(j)(t),
  * j = 0..kmax (kmax in [0, CJ_BSPLINE_MAX_DERIV], else CJ_ERR_ARGUMENT); orders above p are
- * zero for a polynomial B-spline. Method: the j-th derivative of the span's local spline is the
- * B-spline of degree p-j whose points are the j-th divided differences
- *     d_i^(j) = (p−j+1) (d_i^(j−1) − d_{i−1}^(j−1)) / (t_{i+p+1−j} − t_i),
- * evaluated by de Boor; a NURBS combines the homogeneous derivatives by the quotient rule
+ * zero for a polynomial B-spline. Method: one de Boor pyramid at t, read off at level p−j: the
+ * j+1 points left there are the de Boor points of the degree-j spline x ↦ B(t^(p−j), x^j) (B
+ * the blossom), so c^(j)(t) = C(p,j) times its j-th derivative, j levels of differences
+ *     d_i ← (j−l+1) (d_i − d_{i−1}) / (t_{i+j+1−l} − t_i),   l = 1..j
+ * (the point, order 0, is bit-identical to cj_bspline_eval's); a NURBS combines the homogeneous
+ * derivatives by the quotient rule
  * c^(j) = (A^(j) − Σ_{i=1..j} C(j,i) w^(i) c^(j−i)) / w. At a knot of multiplicity that makes a
  * derivative discontinuous the value is the one from the right (from the left at the domain's
  * right end). A derivative beyond the double range is CJ_ERR_RANGE naming the order. */
@@ -161,18 +163,33 @@ void cj_bspline_eval_derivs_unchecked(const cj_bspline *c, double t, int kmax, d
  * huge- and tiny-coordinate curves. bound: dim doubles. */
 cj_status cj_bspline_error_bound(const cj_bspline *c, double t, double *bound);
 
-/* A-priori absolute error bound of cj_bspline_eval_derivs at t for a polynomial B-spline:
- * bound[j*dim + k] for order j = 0..kmax (order 0 is cj_bspline_error_bound's). With the
- * differences taken on magnitudes, m^(0)_i = |d_i,k|, m^(j)_i = (p−j+1)(m^(j−1)_i + m^(j−1)_{i−1})
- * / (t_{i+p+1−j} − t_i), and M_j,k = Σ_i m^(j)_i N_{i,p−j}(t):
- *     |ĉ^(j)_k − c^(j)_k| <= gamma(5p − j) M_j,k + 8 (p+1) eta (1 + max_i m^(j)_i)   (j <= p),
- * and 0 above p. Derivation: a level of differences rounds four times (the subtraction of the
- * points, that of the knots, the product by p−j+1 and the division), so by induction the
- * computed order-j points are off by at most gamma(4j) m^(j); de Boor of degree p−j then adds
- * gamma(5(p−j)) of the magnitudes, and (1+gamma(a)) gamma(b) + gamma(a) <= gamma(a+b). M is
- * computed by the same recurrences and inflated by 1 + gamma(5p+8). A NURBS is
- * CJ_ERR_UNSUPPORTED (the quotient rule's error is not bounded here). Checked against the MPFR
- * oracle in tests/bspline/test_bspline_eval.c. */
+/* A-priori absolute error bound of cj_bspline_eval_derivs at t: bound[j*dim + k] for order
+ * j = 0..kmax, coordinate k.
+ * Polynomial B-spline. With M_j,k the same pyramid run on magnitudes (|d_i,k| in, de Boor's
+ * convex combinations, sums instead of differences, times C(p,j)) and S_j,k the same recurrences
+ * run on the subnormal slack 8 (p+1) eta (1 + max|d|) with 4 eta added at every sum:
+ *     |ĉ^(j)_k − c^(j)_k| <= gamma(6p − j + 2) M_j,k + S_j,k (+ eta)   (j <= p), 0 above p.
+ * Derivation: de Boor's p−j levels round five times each (as for the value: the computed
+ * points are the exact blossom of points off by gamma(5(p−j)) relatively); a level of
+ * differences rounds four times (the knot difference, the quotient (j−l+1)/den, the point
+ * difference, the product), so j levels add gamma(4j) of the magnitudes; C(p,j) by Pascal's rule
+ * is off by at most gamma(p) and the product by it rounds once; (1+gamma(a)) gamma(b) + gamma(a)
+ * <= gamma(a+b). M and S are computed by the same recurrences and inflated by 1 + gamma(6p+8).
+ * NURBS. The homogeneous derivatives A^(j) (of Σ w_i d_i N_i) and w^(j) (of Σ w_i N_i) are
+ * bounded as above on the points (w_i d_i, w_i): E_A,j,k with gamma(6p − j + 3) (the products
+ * w_i d_i round once: the exact derivative of the spline of those roundings is at most u M_j)
+ * and E_w,j with gamma(6p − j + 2). The derivatives come from the quotient rule
+ * c^(j) w = A^(j) − Σ_{i=1..j} C(j,i) w^(i) c^(j−i), computed as v = Â^(j) − Σ C ŵ^(i) ĉ^(j−i)
+ * (off by at most gamma(j+2) S_j, S_j = |Â^(j)| + Σ C |ŵ^(i)| |ĉ^(j−i)|; gamma(2j+3) is used)
+ * and ĉ^(j) = v/ŵ (|ĉ ŵ − v| <= u(1+2u)|ĉ| ŵ). Subtracting the exact relation, with
+ * ŵ^(i)ĉ − w^(i)c = (ŵ^(i) − w^(i))ĉ + w^(i)(ĉ − c), |w^(i)| <= |ŵ^(i)| + E_w,i and
+ * |c^(j)| <= |ĉ^(j)| + e_j, the errors e_j = |ĉ^(j)_k − c^(j)_k| satisfy, order by order,
+ *     e_j (ŵ − E_w,0) <= E_A,j + Σ_{i=1..j} C(j,i) (E_w,i |ĉ^(j−i)| + (|ŵ^(i)| + E_w,i) e_{j−i})
+ *                        + gamma(2j+3) S_j + |ĉ^(j)| (E_w,0 + u(1+2u) ŵ),
+ * evaluated on the computed values (each term non-negative, the result inflated by
+ * 1 + gamma(4j+12) for its own roundings). Requires ŵ > 2 E_w,0 (else CJ_ERR_RANGE, as for the
+ * value). Checked against the MPFR oracle in tests/bspline/test_bspline_eval.c (polynomial and
+ * NURBS, orders 0..p+2). */
 cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax, double *bound);
 
 /* ---- knots: insertion, refinement, removal ------------------------------------------- */

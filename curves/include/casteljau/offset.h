@@ -43,6 +43,30 @@ extern "C" {
 cj_status cj_offset_curve(const cj_bezier2 *c, double d, double tol, double *pts, double *breaks,
                           int cap_pieces, int *npieces, double *deviation, int *cusps);
 
+/* Trims the raw offset of c at distance d (the np cubic pieces of cj_offset_curve, 8 doubles
+ * each, with its proven `deviation`): the pieces are cut at their crossings with each other
+ * and their own self-intersections (cj_intersect_curves, cj_intersect_self; the joints of
+ * consecutive pieces are not crossings), and each span between consecutive cuts is dropped
+ * when the certified distance from its middle point to c (cj_nearest_curve) is below
+ * |d| - 2 (deviation + tol): there the raw offset ran past the evolute (the swallowtail between
+ * two cusps of a tight bend) or over another part of the curve (an arc offset inwards past its
+ * radius disappears whole). The kept spans come back as cubic pieces in out (8 doubles each, cap
+ * pieces); newline (may be NULL, cap ints) is 1 where a piece does not continue the previous
+ * one: after a removed loop the two sides meet at its crossing and the piece continues,
+ * sharing the previous piece's end point bit for bit. *dropped (may be NULL) counts the dropped
+ * spans. Every kept point lies within `deviation` of the true offset, which is at distance |d|
+ * of c there within deviation + tol.
+ * LIMITS. Validity is decided once per span, at its middle: it changes only at crossings of the
+ * offset, except near the ends of an open curve, where the offset may pass inside the circle
+ * of radius |d| about an end point without crossing itself (no end caps are built).
+ * Errors: CJ_ERR_EMPTY (np < 1), CJ_ERR_NONFINITE (a piece's coordinate or d), CJ_ERR_ARGUMENT
+ * (deviation < 0; tol not finite, <= 0 or below 2^-36 times the pieces' scale), CJ_ERR_BUFFER
+ * (*nout pieces needed), CJ_ERR_NOMEM (the cut list), and those of the intersection and nearest
+ * queries (CJ_ERR_CAP). */
+cj_status cj_offset_trim(const cj_bezier2 *c, double d, double tol, const double *pieces, int np,
+                         double deviation, double *out, int *newline, int cap, int *nout,
+                         int *dropped);
+
 /* Degree reduction: the curve r of degree m < n (any dimension) closest to c in the least-squares
  * sense on the control points of r elevated to degree n, with the end points kept (r(0) = c(0),
  * r(1) = c(1), so reduced pieces still join). out receives (m+1)*dim coordinates; m must be in

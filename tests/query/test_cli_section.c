@@ -1,0 +1,136 @@
+/* Contract of `casteljau section` and `casteljau nearest` on patches: the sphere octant cut at
+ * z = 1/2 gives one open line on the circle of radius sqrt(3)/2 with a deviation within --tol;
+ * the teapot's section and nearest point run; an OBJ of the lines is written; bad input is
+ * refused with exit status 2 and one line naming it. */
+#include "check.h"
+#include "cli_run.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define OCTANT                                                                                     \
+    "--patch '1,0,0;1,1,0;0,1,0;1,0,1;1,1,1;0,1,1;0,0,1;0,0,1;0,0,1' --degree 2,2 --weights "      \
+    "'1;0.70710678118654757;1;0.70710678118654757;0.5;0.70710678118654757;1;0.70710678118654757;"  \
+    "1'"
+
+static int count_prefix(const char *s, const char *prefix) {
+    int n = 0;
+    for (const char *p = s; p && *p;) {
+        if (!strncmp(p, prefix, strlen(prefix))) ++n;
+        p = strchr(p, '\n');
+        if (p) ++p;
+    }
+    return n;
+}
+
+int main(void) {
+    const char *exe = CJ_CLI;
+    char cmd[2048];
+    cj_cli_result r;
+    int checks = 0;
+
+    snprintf(cmd, sizeof cmd, "%s section --plane 0,0,1,0.5 --tol 0.01 -o %s/section.obj " OCTANT,
+             exe, CJ_TMP_DIR);
+    if (cj_cli_shell(cmd, &r) == 0) {
+        CHECK(r.status == 0, "section status %d: %s", r.status, r.err);
+        CHECK(count_prefix(r.out, "line 0 0 open ") == 1, "one open line:\n%.300s", r.out);
+        double worst = 0, dev = -1;
+        int pts = 0;
+        for (const char *p = r.out; p && *p;) {
+            double x, y, z;
+            if (sscanf(p, "%lf %lf %lf", &x, &y, &z) == 3 && strncmp(p, "line", 4) != 0) {
+                worst = fmax(worst, fmax(fabs(hypot(x, y) - sqrt(0.75)), fabs(z - 0.5)));
+                ++pts;
+            }
+            const char *s = strstr(p, "deviation ");
+            if (!strncmp(p, "section ", 8) && s) dev = atof(s + 10);
+            p = strchr(p, '\n');
+            if (p) ++p;
+        }
+        CHECK(pts > 10 && worst < 1e-13 && dev > 0 && dev <= 0.01,
+              "%d points, worst %g off the circle, deviation %g", pts, worst, dev);
+        cj_cli_result_free(&r);
+        snprintf(cmd, sizeof cmd, "grep -c '^l ' %s/section.obj", CJ_TMP_DIR);
+        if (cj_cli_shell(cmd, &r) == 0) {
+            CHECK(r.status == 0 && atoi(r.out) == 1, "OBJ lines: %s", r.out);
+            cj_cli_result_free(&r);
+        }
+        checks += 4;
+    }
+    snprintf(cmd, sizeof cmd, "%s section --plane 0,0,1,1.5 --teapot", exe);
+    if (cj_cli_shell(cmd, &r) == 0) {
+        CHECK(r.status == 0 && count_prefix(r.out, "section patches 32 lines ") == 1,
+              "teapot section: %d\n%s", r.status, r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+    /* the octant seen from its centre (every point at distance 1), and from (2,2,2): the nearest
+     * point is (1,1,1)/sqrt(3) at distance 2 sqrt(3) - 1 */
+    const char *pts[2] = {"0,0,0 --tol 1e-3", "2,2,2 --tol 1e-9"};
+    const double want[2] = {1.0, 2 * sqrt(3.0) - 1}, tols[2] = {1e-3, 1e-9};
+    for (int k = 0; k < 2; ++k) {
+        snprintf(cmd, sizeof cmd, "%s nearest --point %s " OCTANT, exe, pts[k]);
+        if (cj_cli_shell(cmd, &r) != 0) continue;
+        double d = -1, lo = -1, x = 0, y = 0, z = 0;
+        const char *s = strstr(r.out, "nearest 0 ");
+        if (s) {
+            double u, v;
+            if (sscanf(s, "nearest 0 %lf %lf %lf %lf %lf %lf %lf", &u, &v, &x, &y, &z, &d, &lo) !=
+                7)
+                d = -1;
+        }
+        /* the contract: lower <= true distance <= distance, distance - lower <= tol */
+        CHECK(r.status == 0 && lo <= want[k] && want[k] <= d + 1e-15 && d - lo <= tols[k],
+              "octant nearest to %s: distance %.17g lower %.17g\n%s", pts[k], d, lo, r.err);
+        if (k == 1)
+            CHECK(fabs(x - y) < 1e-4 && fabs(y - z) < 1e-4, "nearest point (%g, %g, %g)", x, y, z);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+    /* offset --trim: the parabola's swallowtail dropped (text: deviation I PIECES DEV CUSPS
+     * DROPPED) */
+    snprintf(cmd, sizeof cmd,
+             "printf '%%s' '{\"items\":[{\"type\":\"bezier\",\"points\":[[-1,1],[0,-1],[1,"
+             "1]]}]}' | %s offset --distance 0.8 --trim --text -",
+             exe);
+    if (cj_cli_shell(cmd, &r) == 0) {
+        const char *s = strstr(r.out, "deviation 0 ");
+        int pieces = 0, cusps = 0, dropped = 0;
+        double dev = 0;
+        if (s) sscanf(s, "deviation 0 %d %lf %d %d", &pieces, &dev, &cusps, &dropped);
+        CHECK(r.status == 0 && pieces > 0 && cusps == 2 && dropped >= 1,
+              "offset --trim: %d pieces, %d cusps, %d dropped\n%s", pieces, cusps, dropped, r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+    struct {
+        const char *args, *needle;
+    } bad[] = {
+        {"section --plane 0,0,0,1 --teapot", "normal"},
+        {"section --plane 0,0,1 --teapot", "--plane"},
+        {"section --teapot", "missing --plane"},
+        {"section --plane 0,0,1,1", "no model"},
+        {"section --plane 0,0,1,1 --teapot --tol -1", "--tol"},
+        {"section --plane 0,0,1,1 --patch '0,0,0;1,0,0' --degree 1,1", "--patch"},
+        {"section --plane 0,0,1,1 --teapot -o x.png", ".obj"},
+        {"nearest --point 0,0 --teapot", "--point"},
+        {"nearest --point 0,0,nan --teapot", "--point"},
+        {"nearest --point 0,0,0 --teapot --plane 0,0,1,0", "does not apply"},
+        {"intersect --trim -", "--trim does not apply"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        snprintf(cmd, sizeof cmd, "%s %s", exe, bad[i].args);
+        if (cj_cli_shell(cmd, &r) != 0) continue;
+        CHECK(r.status == 2 && strstr(r.err, bad[i].needle) && count_prefix(r.err, "") == 1,
+              "bad input %zu (%s): status %d, stderr '%s'", i, bad[i].args, r.status, r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+    printf("test_cli_section: %d checks (sphere octant section on its circle within the proven "
+           "deviation, OBJ lines, teapot section, nearest on a patch, offset --trim, %zu bad "
+           "inputs refused)\n",
+           checks, sizeof bad / sizeof bad[0]);
+    return cj_check_exit();
+}
