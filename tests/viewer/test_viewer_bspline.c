@@ -308,7 +308,11 @@ static void test_snap(const char *path, cj_rng *rng) {
               k, on, s.on_curve);
         worst_on = fmax(worst_on, on);
         worst_ratio = fmax(worst_ratio, s.on_curve / ulp);
-        CHECK(s.on_curve <= 64 * ulp, "query %d: on-curve bound %g is not tight", k, s.on_curve);
+        /* nearest.h's proven upper bound carries the evaluation's rounding term, which scales
+         * with the piece's control points rather than with the point itself: tight means within
+         * a few hundred units of the point's size (measured: up to 112 since the Bernstein sign
+         * test settles pieces without subdividing them to the point) */
+        CHECK(s.on_curve <= 256 * ulp, "query %d: on-curve bound %g is not tight", k, s.on_curve);
     }
     printf("snap: %d random points, %zu curves (B-spline, NURBS, rational, line), tol %g: "
            "distance - lower <= tol; no oracle sample (%d per curve, MPFR) beats the certified "
