@@ -1,6 +1,5 @@
 /* Bounding volume hierarchy: binned SAH build, closest/any-hit traversal (see bvh.h). */
 #include "casteljau/bvh.h"
-#include "aabb_internal.h"
 #include "bvh_internal.h"
 #include "ray_triangle_internal.h"
 #include "alloc_internal.h"
@@ -226,30 +225,25 @@ void cj_bvh_destroy(cj_bvh *bvh) {
 
 /* ---- traversal ------------------------------------------------------------------------- */
 
-static cj_vec3 inverse_dir(cj_vec3 d) {
-    return cj_v3(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
-}
-
 #define WIDE_STACK (4 * STACK)
 
 typedef struct wentry {
-    int32_t ref; /* >= 0: wide node; < 0: binary leaf ~ref */
-    double t0;
+    int32_t ref; /* >= 0: wide node; < 0: leaf ~ref, with n primitives */
+    uint32_t n;
+    float t0; /* lower bound of the entry parameter */
 } wentry;
 
-/* Shared traversal of the wide tree; `any` stops at the first hit. tri != NULL: built-in
- * triangles. */
+/* Shared traversal of the wide tree; `any` stops at the first hit. bvh->tri != NULL: built-in
+ * triangles. The walk descends straight into the nearest met child and pushes the others
+ * farthest first; leaves are tested where they are met. */
 static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, void *user,
                     cj_hit *hit, int any, cj_bvh_trav_stats *stats) {
     cj_ray ray = *ray0;
     const cj_bvh4 *w = bvh->wide_;
     cj_bvh4_ray r4;
-    const cj_vec3 inv = inverse_dir(ray.dir);
-    const double oc[3] = {ray.org.x, ray.org.y, ray.org.z}, ic[3] = {inv.x, inv.y, inv.z};
-    for (int k = 0; k < 3; k++) {
-        for (int i = 0; i < 4; i++) r4.o[k][i] = oc[k], r4.id[k][i] = ic[k];
-        r4.neg[k] = signbit(ic[k]) != 0;
-    }
+    cj_bvh4_ray_setup(&ray, &r4);
+    const float tmin_f = cj_f32_down(ray.tmin);
+    float tmax_f = cj_f32_up(ray.tmax);
     cj_ray_tri_pre pre;
     if (bvh->tri) cj_ray_triangle_prepare(&ray, &pre);
     wentry st[WIDE_STACK];
@@ -257,78 +251,76 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
     uint32_t best = 0; /* built-in triangles: the closest so far, its t, edge values and sum */
     double best_t = 0.0, best_e[3] = {0.0, 0.0, 0.0}, best_det = 1.0;
     uint64_t nodes = 0, prims = 0;
-    st[sp++] = (wentry){0, ray.tmin};
+    wentry cur = {0, 0, tmin_f};
     cj_hit h;
-    while (sp > 0) {
-        const wentry e = st[--sp];
-        if (e.t0 > ray.tmax) continue;
-        if (e.ref < 0) {
-            const cj_bvh_node *nd = &bvh->nodes[~e.ref];
-            for (uint32_t i = nd->first; i < nd->first + nd->count; i++) {
-                uint32_t prim = bvh->prims[i];
-                int got;
+    for (;;) {
+        if (cur.ref >= 0) {
+            const cj_bvh4_node *wn = &w->nodes[cur.ref];
+            float t0[4];
+            int mask = cj_bvh4_slab(wn, &r4, tmin_f, tmax_f, t0);
+            nodes += (uint64_t)wn->count;
+            if (mask) {
+                int i = __builtin_ctz((unsigned)mask);
+                mask &= mask - 1;
+                cur = (wentry){wn->child[i], wn->nprim[i], t0[i]};
+                if (!mask) continue;               /* one child met: descend */
+                if (sp + 4 > WIDE_STACK) continue; /* cannot happen: the build bounds depth */
+                /* several: the nearest becomes cur, the others go on the stack farthest first */
+                const int base = sp;
+                st[sp++] = cur;
+                for (; mask; mask &= mask - 1) {
+                    i = __builtin_ctz((unsigned)mask);
+                    const wentry c = {wn->child[i], wn->nprim[i], t0[i]};
+                    int j = sp++;
+                    while (j > base && st[j - 1].t0 < c.t0) {
+                        st[j] = st[j - 1];
+                        j--;
+                    }
+                    st[j] = c;
+                }
+                cur = st[--sp];
+                continue;
+            }
+        } else {
+            const uint32_t first = ~(uint32_t)cur.ref, end = first + cur.n;
+            for (uint32_t i = first; i < end; i++) {
                 prims++;
                 if (bvh->tri) {
                     /* the test alone; the hit record is filled once, for the closest */
-                    const double *v = bvh->tri + 9 * (size_t)i;
                     double t, ev[3], det;
-                    if (!cj_tri_core(&ray, &pre, cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]),
-                                     cj_v3(v[6], v[7], v[8]), &t, ev, &det))
+                    if (!cj_tri_core_v(&ray, &pre, bvh->tri + 9 * (size_t)i, &t, ev, &det))
                         continue;
                     found = 1;
-                    if (any) {
-                        if (stats) {
-                            stats->nodes += nodes;
-                            stats->prims += prims;
-                        }
-                        return 1;
-                    }
+                    if (any) goto done;
                     best = i, best_t = t, best_det = det;
                     memcpy(best_e, ev, sizeof ev);
                     ray.tmax = t;
+                    tmax_f = cj_f32_up(t);
                     continue;
                 }
-                got = fn(user, prim, &ray, &h);
-                if (got && h.t >= ray.tmin && h.t <= ray.tmax) {
+                const uint32_t prim = bvh->prims[i];
+                if (fn(user, prim, &ray, &h) && h.t >= ray.tmin && h.t <= ray.tmax) {
                     found = 1;
-                    if (any) {
-                        if (stats) {
-                            stats->nodes += nodes;
-                            stats->prims += prims;
-                        }
-                        return 1;
-                    }
+                    if (any) goto done;
                     h.prim = prim;
                     *hit = h;
                     ray.tmax = h.t;
+                    tmax_f = cj_f32_up(h.t);
                 }
             }
-            continue;
         }
-        const cj_bvh4_node *wn = &w->nodes[e.ref];
-        double t0[4];
-        int mask = cj_bvh4_slab(wn, &r4, ray.tmin, ray.tmax, t0);
-        nodes += (uint64_t)wn->count;
-        if (!mask) continue;
-        if (sp + 4 > WIDE_STACK) continue; /* cannot happen: depth is bounded by the build */
-        /* push the met children farthest first, so the nearest is visited next */
-        const int base = sp;
-        for (; mask; mask &= mask - 1) {
-            const int i = __builtin_ctz((unsigned)mask);
-            const wentry c = {wn->child[i], t0[i]};
-            int j = sp++;
-            while (j > base && st[j - 1].t0 < c.t0) {
-                st[j] = st[j - 1];
-                j--;
-            }
-            st[j] = c;
-        }
+        /* next: the nearest pending entry that can still hold a closer hit */
+        do {
+            if (sp == 0) goto done;
+            cur = st[--sp];
+        } while (cur.t0 > tmax_f);
     }
+done:
     if (stats) {
         stats->nodes += nodes;
         stats->prims += prims;
     }
-    if (found && bvh->tri) {
+    if (found && !any && bvh->tri) {
         const double *v = bvh->tri + 9 * (size_t)best;
         cj_tri_fill(cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]), cj_v3(v[6], v[7], v[8]),
                     best_t, best_e, best_det, hit);

@@ -1,5 +1,5 @@
-/* The 4-wide BVH that traversal walks: collapsed from the binary SAH tree, boxes unchanged, and
- * its 4-box slab test (bvh_internal.h). */
+/* The 4-wide BVH that traversal walks: collapsed from the binary SAH tree, and
+ * its 4-box slab test (bvh_internal.h), boxes rounded outward to float. */
 #include "bvh_internal.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
@@ -54,22 +54,23 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
             kids[nk++] = bvh->nodes[open].first + 1;
         }
         cj_bvh4_node *wn = &w->nodes[wi];
+        memset(wn, 0, sizeof *wn);
         wn->count = nk;
-        wn->pad_ = 0;
+        wn->valid = (1 << nk) - 1;
         for (int i = 0; i < 4; ++i) {
             for (int k = 0; k < 3; ++k) {
-                wn->lo[k][i] = INFINITY;
-                wn->hi[k][i] = -INFINITY;
+                wn->b[2 * k][i] = INFINITY;
+                wn->b[2 * k + 1][i] = -INFINITY;
             }
-            wn->child[i] = 0;
             if (i >= nk) continue;
             const cj_bvh_node *c = &bvh->nodes[kids[i]];
-            for (int k = 0; k < 3; ++k) {
-                wn->lo[k][i] = c->box.lo[k];
-                wn->hi[k][i] = c->box.hi[k];
+            for (int k = 0; k < 3; ++k) { /* outward: the float box contains the double box */
+                wn->b[2 * k][i] = cj_f32_down(c->box.lo[k]);
+                wn->b[2 * k + 1][i] = cj_f32_up(c->box.hi[k]);
             }
             if (c->count) {
-                wn->child[i] = ~(int32_t)kids[i];
+                wn->child[i] = ~(int32_t)c->first;
+                wn->nprim[i] = (uint8_t)c->count;
             } else {
                 wn->child[i] = (int32_t)nw;
                 todo[ntodo++] = (uint32_t)nw++;
