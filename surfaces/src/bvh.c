@@ -1,6 +1,7 @@
 /* Bounding volume hierarchy: binned SAH build, closest/any-hit traversal (see bvh.h). */
 #include "casteljau/bvh.h"
 #include "bvh_internal.h"
+#include "bvh_leaf_internal.h"
 #include "ray_triangle_internal.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
@@ -282,30 +283,41 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
                 continue;
             }
         } else {
-            const uint32_t first = ~(uint32_t)cur.ref, end = first + cur.n;
-            for (uint32_t i = first; i < end; i++) {
-                prims++;
-                if (bvh->tri) {
-                    /* the test alone; the hit record is filled once, for the closest */
-                    double t, ev[3], det;
-                    if (!cj_tri_core_v(&ray, &pre, bvh->tri + 9 * (size_t)i, &t, ev, &det))
-                        continue;
+            const uint32_t first = ~(uint32_t)cur.ref;
+            if (w->tris) {
+                /* packets of 4 triangles, the test alone; the hit record is filled once, for the
+                 * closest. Within a packet the last lane at the smallest t wins, as the scalar
+                 * loop's "t <= tmax" replaces ties in order. */
+                const cj_bvh4_tris *pk = w->tris + first;
+                prims += cur.n;
+                for (uint32_t j = 0; j < cur.n; j += 4, ++pk) {
+                    cj_bvh4_tri_hits th;
+                    cj_bvh4_tris_test(pk, &ray, &pre, bvh->tri, &th);
+                    if (!th.mask) continue;
                     found = 1;
                     if (any) goto done;
-                    best = i, best_t = t, best_det = det;
-                    memcpy(best_e, ev, sizeof ev);
-                    ray.tmax = t;
-                    tmax_f = cj_f32_up(t);
-                    continue;
+                    int bl = -1;
+                    for (int m = th.mask; m; m &= m - 1) {
+                        const int l = __builtin_ctz((unsigned)m);
+                        if (bl < 0 || th.t[l] <= th.t[bl]) bl = l;
+                    }
+                    best = pk->idx[bl], best_t = th.t[bl], best_det = th.det[bl];
+                    best_e[0] = th.e0[bl], best_e[1] = th.e1[bl], best_e[2] = th.e2[bl];
+                    ray.tmax = best_t;
+                    tmax_f = cj_f32_up(best_t);
                 }
-                const uint32_t prim = bvh->prims[i];
-                if (fn(user, prim, &ray, &h) && h.t >= ray.tmin && h.t <= ray.tmax) {
-                    found = 1;
-                    if (any) goto done;
-                    h.prim = prim;
-                    *hit = h;
-                    ray.tmax = h.t;
-                    tmax_f = cj_f32_up(h.t);
+            } else {
+                for (uint32_t i = first; i < first + cur.n; i++) {
+                    prims++;
+                    const uint32_t prim = bvh->prims[i];
+                    if (fn(user, prim, &ray, &h) && h.t >= ray.tmin && h.t <= ray.tmax) {
+                        found = 1;
+                        if (any) goto done;
+                        h.prim = prim;
+                        *hit = h;
+                        ray.tmax = h.t;
+                        tmax_f = cj_f32_up(h.t);
+                    }
                 }
             }
         }
@@ -371,6 +383,11 @@ cj_status cj_bvh_mesh_build(const double *positions, size_t vertex_count, const 
         for (int c = 0; c < 3; c++)
             memcpy(b->tri + 9 * i + 3 * c, positions + 3 * (size_t)tris[3 * (size_t)t + c],
                    3 * sizeof(double));
+    }
+    st = cj_bvh4_pack_triangles(b);
+    if (st != CJ_OK) {
+        cj_bvh_destroy(b);
+        return st;
     }
     *out = b;
     return CJ_OK;

@@ -28,15 +28,24 @@ typedef struct cj_bvh4_node {
     int32_t pad_;
 } cj_bvh4_node;
 
+typedef struct cj_bvh4_tris cj_bvh4_tris; /* bvh_leaf_internal.h */
+
 typedef struct cj_bvh4 {
     size_t count;
     cj_bvh4_node *nodes; /* nodes[0] is the root */
+    /* mesh BVH only: the triangles in packets of 4 per leaf; then a leaf child's ~child[i] is its
+     * first packet (nprim[i] triangles in ceil(nprim[i] / 4) packets) instead of its first
+     * primitive */
+    cj_bvh4_tris *tris;
+    size_t tris_count;
 } cj_bvh4;
 
 /* Collapses the binary tree of bvh into bvh->wide_ (each wide node takes a binary node's
  * children, then repeatedly the children of its largest inner child, up to 4). */
 cj_status cj_bvh4_build(cj_bvh *bvh);
 void cj_bvh4_destroy(cj_bvh *bvh);
+/* Packs bvh->tri (set) into the leaf packets and re-points the leaf children at them. */
+cj_status cj_bvh4_pack_triangles(cj_bvh *bvh);
 
 /* Rounds a double to float downward / upward (to the nearest float on that side; ±inf beyond the
  * float range on the far side, ±FLT_MAX on the near side): the conversion rounds to nearest, and

@@ -1,6 +1,7 @@
 /* The 4-wide BVH that traversal walks: collapsed from the binary SAH tree, and
  * its 4-box slab test (bvh_internal.h), boxes rounded outward to float. */
 #include "bvh_internal.h"
+#include "bvh_leaf_internal.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
 
@@ -79,14 +80,47 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
         }
     }
     w->count = nw;
+    w->tris = NULL;
+    w->tris_count = 0;
     cj_allocator_free(a, todo);
     bvh->wide_ = w;
+    return CJ_OK;
+}
+
+cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
+    cj_bvh4 *w = bvh->wide_;
+    size_t np = 0;
+    for (size_t n = 0; n < w->count; ++n)
+        for (int i = 0; i < w->nodes[n].count; ++i)
+            if (w->nodes[n].child[i] < 0) np += (w->nodes[n].nprim[i] + 3u) / 4u;
+    w->tris = cj_allocator_alloc(&bvh->alloc_, np * sizeof *w->tris);
+    if (!w->tris) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu triangle packets", np);
+    w->tris_count = np;
+    size_t at = 0;
+    for (size_t n = 0; n < w->count; ++n) {
+        cj_bvh4_node *wn = &w->nodes[n];
+        for (int i = 0; i < wn->count; ++i) {
+            if (wn->child[i] >= 0) continue;
+            const uint32_t first = ~(uint32_t)wn->child[i];
+            wn->child[i] = ~(int32_t)at;
+            for (uint32_t j = 0; j < wn->nprim[i]; j += 4, ++at) {
+                cj_bvh4_tris *p = &w->tris[at];
+                for (int l = 0; l < 4; ++l) {
+                    const int used = j + (uint32_t)l < wn->nprim[i];
+                    p->idx[l] = used ? first + j + (uint32_t)l : UINT32_MAX;
+                    for (int r = 0; r < 9; ++r)
+                        p->v[r][l] = used ? bvh->tri[9 * (size_t)p->idx[l] + (size_t)r] : NAN;
+                }
+            }
+        }
+    }
     return CJ_OK;
 }
 
 void cj_bvh4_destroy(cj_bvh *bvh) {
     cj_bvh4 *w = bvh->wide_;
     if (!w) return;
+    cj_allocator_free(&bvh->alloc_, w->tris);
     cj_allocator_free(&bvh->alloc_, w->nodes);
     cj_allocator_free(&bvh->alloc_, w);
     bvh->wide_ = NULL;
