@@ -94,6 +94,12 @@ static inline float cj_f32_up(double x) {
  * exact sign of the numerator, which is inside/outside the slab conservatively by the two
  * inequalities above. Overflow to ±inf keeps the order (rounding is monotone).
  *
+ * When tmin >= 0 (nearly every ray) the paddings are one-sided: near >= tmin' >= 0, so P(x) =
+ * x (1 - c) - 2^-125 there; and whenever the ray truly meets the box every true exit is >= tmin >=
+ * 0, and then so is every computed one (the directed numerators keep their sign, and rounding keeps
+ * the sign of a product), so Q(x) = x (1 + c) + 2^-125 on the values that matter, while a
+ * negative far value only rejects a box the ray does not meet. One fused multiply-add each.
+ *
  * The argument needs inv finite and nonzero and the origin in float range, so a ray with a
  * direction coordinate 0 < |d_k| < 2^-64 or > 2^64, or an origin coordinate beyond 2^64, is
  * walked EXHAUSTIVELY (inv = NaN: every box of the tree is entered); such rays are never
@@ -103,8 +109,10 @@ typedef struct cj_bvh4_ray {
     size_t near[3], far[3]; /* byte offsets of the near / far plane rows of coordinate k */
 #ifdef __SSE2__
     __m128 onear[3], ofar[3], inv[3]; /* each repeated in 4 lanes */
+    int nonneg;                       /* tmin >= 0: the one-sided paddings suffice */
 #else
     float onear[3], ofar[3], inv[3];
+    int nonneg;
 #endif
 } cj_bvh4_ray;
 
@@ -139,6 +147,7 @@ static inline void cj_bvh4_ray_setup(const cj_ray *ray, cj_bvh4_ray *r) {
         r->inv[k] = inv;
 #endif
     }
+    r->nonneg = ray->tmin >= 0.0;
 }
 
 /* Slab test of the ray against the 4 child boxes of n over [tmin', tmax'] (floats, rounded
@@ -160,8 +169,18 @@ static inline int cj_bvh4_slab(const cj_bvh4_node *n, const cj_bvh4_ray *r, floa
     }
     const __m128 lo = _mm_set1_ps(1.0f - CJ_BVH4_PAD), hi = _mm_set1_ps(1.0f + CJ_BVH4_PAD);
     const __m128 ab = _mm_set1_ps(CJ_BVH4_ABS);
-    vn = _mm_sub_ps(_mm_min_ps(_mm_mul_ps(vn, lo), _mm_mul_ps(vn, hi)), ab);
-    vf = _mm_add_ps(_mm_max_ps(_mm_mul_ps(vf, lo), _mm_mul_ps(vf, hi)), ab);
+    if (r->nonneg) { /* near >= tmin' >= 0; far matters only when >= 0 (see above) */
+#ifdef __FMA__
+        vn = _mm_fmsub_ps(vn, lo, ab);
+        vf = _mm_fmadd_ps(vf, hi, ab);
+#else
+        vn = _mm_sub_ps(_mm_mul_ps(vn, lo), ab);
+        vf = _mm_add_ps(_mm_mul_ps(vf, hi), ab);
+#endif
+    } else {
+        vn = _mm_sub_ps(_mm_min_ps(_mm_mul_ps(vn, lo), _mm_mul_ps(vn, hi)), ab);
+        vf = _mm_add_ps(_mm_max_ps(_mm_mul_ps(vf, lo), _mm_mul_ps(vf, hi)), ab);
+    }
     _mm_storeu_ps(t0, vn);
     return _mm_movemask_ps(_mm_cmple_ps(vn, vf)) & n->valid;
 #else
