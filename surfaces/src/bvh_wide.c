@@ -87,6 +87,16 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
     return CJ_OK;
 }
 
+/* Two equal vertices: the watertight test never hits such a triangle (one edge value is exactly
+ * zero and the other two are exact opposites, so they are of opposite signs or both zero), so its
+ * lane is left empty rather than sent through the scalar tie-break on every ray that reaches it. */
+static int degenerate(const double *v) {
+    const int e01 = v[0] == v[3] && v[1] == v[4] && v[2] == v[5];
+    const int e12 = v[3] == v[6] && v[4] == v[7] && v[5] == v[8];
+    const int e20 = v[6] == v[0] && v[7] == v[1] && v[8] == v[2];
+    return e01 || e12 || e20;
+}
+
 cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
     cj_bvh4 *w = bvh->wide_;
     size_t np = 0;
@@ -106,7 +116,9 @@ cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
             for (uint32_t j = 0; j < wn->nprim[i]; j += 4, ++at) {
                 cj_bvh4_tris *p = &w->tris[at];
                 for (int l = 0; l < 4; ++l) {
-                    const int used = j + (uint32_t)l < wn->nprim[i];
+                    int used = j + (uint32_t)l < wn->nprim[i];
+                    if (used && degenerate(bvh->tri + 9 * (size_t)(first + j + (uint32_t)l)))
+                        used = 0;
                     p->idx[l] = used ? first + j + (uint32_t)l : UINT32_MAX;
                     for (int r = 0; r < 9; ++r)
                         p->v[r][l] = used ? bvh->tri[9 * (size_t)p->idx[l] + (size_t)r] : NAN;
