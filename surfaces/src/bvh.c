@@ -32,9 +32,9 @@ typedef struct wentry {
     float t0; /* lower bound of the entry parameter */
 } wentry;
 
-/* Shared traversal of the wide tree; `any` stops at the first hit. bvh->tri != NULL: built-in
- * triangles. The walk descends straight into the nearest met child and pushes the others
- * farthest first; leaves are tested where they are met. */
+/* Traversal of the wide tree with a callback per primitive; `any` stops at the first hit. The walk
+ * descends straight into the nearest met child and pushes the others farthest first; leaves are
+ * tested where they are met. */
 static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, void *user,
                     cj_hit *hit, int any, cj_bvh_trav_stats *stats) {
     cj_ray ray = *ray0;
@@ -43,12 +43,8 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
     cj_bvh4_ray_setup(&ray, &r4);
     const float tmin_f = cj_f32_down(ray.tmin);
     float tmax_f = cj_f32_up(ray.tmax);
-    cj_ray_tri_pre pre;
-    if (bvh->tri) cj_ray_triangle_prepare(&ray, &pre);
     wentry st[WIDE_STACK];
     int sp = 0, found = 0;
-    uint32_t best = 0; /* built-in triangles: the closest so far, its t, edge values and sum */
-    double best_t = 0.0, best_e[3] = {0.0, 0.0, 0.0}, best_det = 1.0;
     uint64_t nodes = 0, prims = 0;
     wentry cur = {0, 0, tmin_f};
     cj_hit h;
@@ -82,40 +78,16 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
             }
         } else {
             const uint32_t first = ~(uint32_t)cur.ref;
-            if (w->tris) {
-                /* packets of 4 triangles, the test alone; the hit record is filled once, for the
-                 * closest. Within a packet the last lane at the smallest t wins, as the scalar
-                 * loop's "t <= tmax" replaces ties in order. */
-                const cj_bvh4_tris *pk = w->tris + first;
-                prims += cur.n;
-                for (uint32_t j = 0; j < cur.n; j += 4, ++pk) {
-                    cj_bvh4_tri_hits th;
-                    cj_bvh4_tris_test(pk, &ray, &pre, bvh->tri, &th);
-                    if (!th.mask) continue;
+            for (uint32_t i = first; i < first + cur.n; i++) {
+                prims++;
+                const uint32_t prim = bvh->prims[i];
+                if (fn(user, prim, &ray, &h) && h.t >= ray.tmin && h.t <= ray.tmax) {
                     found = 1;
                     if (any) goto done;
-                    int bl = -1;
-                    for (int m = th.mask; m; m &= m - 1) {
-                        const int l = __builtin_ctz((unsigned)m);
-                        if (bl < 0 || th.t[l] <= th.t[bl]) bl = l;
-                    }
-                    best = pk->idx[bl], best_t = th.t[bl], best_det = th.det[bl];
-                    best_e[0] = th.e0[bl], best_e[1] = th.e1[bl], best_e[2] = th.e2[bl];
-                    ray.tmax = best_t;
-                    tmax_f = cj_f32_up(best_t);
-                }
-            } else {
-                for (uint32_t i = first; i < first + cur.n; i++) {
-                    prims++;
-                    const uint32_t prim = bvh->prims[i];
-                    if (fn(user, prim, &ray, &h) && h.t >= ray.tmin && h.t <= ray.tmax) {
-                        found = 1;
-                        if (any) goto done;
-                        h.prim = prim;
-                        *hit = h;
-                        ray.tmax = h.t;
-                        tmax_f = cj_f32_up(h.t);
-                    }
+                    h.prim = prim;
+                    *hit = h;
+                    ray.tmax = h.t;
+                    tmax_f = cj_f32_up(h.t);
                 }
             }
         }
@@ -130,11 +102,111 @@ done:
         stats->nodes += nodes;
         stats->prims += prims;
     }
-    if (found && !any && bvh->tri) {
-        const double *v = bvh->tri + 9 * (size_t)best;
+    return found;
+}
+
+/* The closest hit so far among the built-in triangles: its tree-order index, t, edge values and
+ * their sum (the hit record is filled once, at the end). */
+typedef struct mesh_best {
+    uint32_t i;
+    double t, e[3], det;
+} mesh_best;
+
+/* Tests the packets of one leaf; returns 1 when one hits (for `any`, as soon as one does), with
+ * ray->tmax and *best moved to the closest. Within a packet the last lane at the smallest t wins,
+ * as a scalar loop's "t <= tmax" replaces ties in order. Not inlined: the node loop keeps its
+ * registers. */
+__attribute__((noinline)) static int mesh_leaf(const cj_bvh *bvh, const cj_bvh4_tris *pk,
+                                               uint32_t n, cj_ray *ray, const cj_ray_tri_pre *pre,
+                                               int any, mesh_best *best) {
+    int found = 0;
+    for (uint32_t j = 0; j < n; j += 4, ++pk) {
+        cj_bvh4_tri_hits th;
+        cj_bvh4_tris_test(pk, ray, pre, bvh->tri, &th);
+        if (!th.mask) continue;
+        found = 1;
+        if (any) return 1;
+        int bl = -1;
+        for (int m = th.mask; m; m &= m - 1) {
+            const int l = __builtin_ctz((unsigned)m);
+            if (bl < 0 || th.t[l] <= th.t[bl]) bl = l;
+        }
+        best->i = pk->idx[bl], best->t = th.t[bl], best->det = th.det[bl];
+        best->e[0] = th.e0[bl], best->e[1] = th.e1[bl], best->e[2] = th.e2[bl];
+        ray->tmax = best->t;
+    }
+    return found;
+}
+
+/* The walk over the built-in triangles (packets of 4 per leaf). */
+static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, const cj_ray *ray0,
+                                                           cj_hit *hit, const int any,
+                                                           cj_bvh_trav_stats *stats) {
+    cj_ray ray = *ray0;
+    const cj_bvh4 *w = bvh->wide_;
+    cj_bvh4_ray r4;
+    cj_bvh4_ray_setup(&ray, &r4);
+    const float tmin_f = cj_f32_down(ray.tmin);
+    float tmax_f = cj_f32_up(ray.tmax);
+    cj_ray_tri_pre pre;
+    cj_ray_triangle_prepare(&ray, &pre);
+    wentry st[WIDE_STACK];
+    int sp = 0, found = 0;
+    mesh_best best = {0, 0.0, {0.0, 0.0, 0.0}, 1.0};
+    uint64_t nodes = 0, prims = 0;
+    wentry cur = {0, 0, tmin_f};
+    for (;;) {
+        if (cur.ref >= 0) {
+            const cj_bvh4_node *wn = &w->nodes[cur.ref];
+            float t0[4];
+            int mask = cj_bvh4_slab(wn, &r4, tmin_f, tmax_f, t0);
+            nodes += (uint64_t)wn->count;
+            if (mask) {
+                int i = __builtin_ctz((unsigned)mask);
+                mask &= mask - 1;
+                cur = (wentry){wn->child[i], wn->nprim[i], t0[i]};
+                if (!mask) continue;               /* one child met: descend */
+                if (sp + 4 > WIDE_STACK) continue; /* cannot happen: the build bounds depth */
+                /* several: the nearest becomes cur, the others go on the stack farthest first */
+                const int base = sp;
+                st[sp++] = cur;
+                for (; mask; mask &= mask - 1) {
+                    i = __builtin_ctz((unsigned)mask);
+                    const wentry c = {wn->child[i], wn->nprim[i], t0[i]};
+                    int j = sp++;
+                    while (j > base && st[j - 1].t0 < c.t0) {
+                        st[j] = st[j - 1];
+                        j--;
+                    }
+                    st[j] = c;
+                }
+                cur = st[--sp];
+                continue;
+            }
+        } else {
+            prims += cur.n;
+            if (mesh_leaf(bvh, w->tris + ~(uint32_t)cur.ref, cur.n, &ray, &pre, any, &best)) {
+                found = 1;
+                if (any) break;
+                tmax_f = cj_f32_up(ray.tmax);
+            }
+        }
+        /* next: the nearest pending entry that can still hold a closer hit */
+        do {
+            if (sp == 0) goto done;
+            cur = st[--sp];
+        } while (cur.t0 > tmax_f);
+    }
+done:
+    if (stats) {
+        stats->nodes += nodes;
+        stats->prims += prims;
+    }
+    if (found && !any) {
+        const double *v = bvh->tri + 9 * (size_t)best.i;
         cj_tri_fill(cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]), cj_v3(v[6], v[7], v[8]),
-                    best_t, best_e, best_det, hit);
-        hit->prim = bvh->prims[best];
+                    best.t, best.e, best.det, hit);
+        hit->prim = bvh->prims[best.i];
     }
     return found;
 }
@@ -193,10 +265,10 @@ cj_status cj_bvh_mesh_build(const double *positions, size_t vertex_count, const 
 
 int cj_bvh_mesh_closest(const cj_bvh *bvh, const cj_ray *ray, cj_hit *hit,
                         cj_bvh_trav_stats *stats) {
-    return traverse(bvh, ray, NULL, NULL, hit, 0, stats);
+    return walk_mesh(bvh, ray, hit, 0, stats);
 }
 
 int cj_bvh_mesh_any(const cj_bvh *bvh, const cj_ray *ray, cj_bvh_trav_stats *stats) {
     cj_hit h;
-    return traverse(bvh, ray, NULL, NULL, &h, 1, stats);
+    return walk_mesh(bvh, ray, &h, 1, stats);
 }

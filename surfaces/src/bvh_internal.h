@@ -163,15 +163,20 @@ static inline int cj_bvh4_slab(const cj_bvh4_node *n, const cj_bvh4_ray *r, floa
     const char *base = (const char *)n->b;
 #ifdef __SSE2__
     __m128 vn = _mm_set1_ps(tmin), vf = _mm_set1_ps(tmax);
-    for (int k = 0; k < 3; ++k) {
-        const __m128 tn = _mm_mul_ps(
-            _mm_sub_ps(_mm_loadu_ps((const float *)(base + r->near[k])), r->onear[k]), r->inv[k]);
-        const __m128 tf = _mm_mul_ps(
-            _mm_sub_ps(_mm_loadu_ps((const float *)(base + r->far[k])), r->ofar[k]), r->inv[k]);
-        /* max/min return their second operand when the first is NaN: NaN leaves the bound */
-        vn = _mm_max_ps(tn, vn);
-        vf = _mm_min_ps(tf, vf);
-    }
+    /* max/min return their second operand when the first is NaN: NaN leaves the bound */
+#define CJ_BVH4_AXIS(k)                                                                            \
+    vn = _mm_max_ps(                                                                               \
+        _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps((const float *)(base + r->near[k])), r->onear[k]),      \
+                   r->inv[k]),                                                                     \
+        vn);                                                                                       \
+    vf = _mm_min_ps(                                                                               \
+        _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps((const float *)(base + r->far[k])), r->ofar[k]),        \
+                   r->inv[k]),                                                                     \
+        vf)
+    CJ_BVH4_AXIS(0);
+    CJ_BVH4_AXIS(1);
+    CJ_BVH4_AXIS(2);
+#undef CJ_BVH4_AXIS
     const __m128 lo = _mm_set1_ps(1.0f - CJ_BVH4_PAD), hi = _mm_set1_ps(1.0f + CJ_BVH4_PAD);
     const __m128 ab = _mm_set1_ps(CJ_BVH4_ABS);
     if (r->nonneg) { /* near >= tmin' >= 0; far matters only when >= 0 (see above) */
