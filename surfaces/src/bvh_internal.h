@@ -75,28 +75,28 @@ static inline float cj_f32_up(double x) {
 /* THE FLOAT SLAB TEST AND WHY IT IS CONSERVATIVE.
  *
  * Let the ray be o + t d (double), the box [lo, hi] (double) and lo' <= lo, hi' >= hi its float
- * bounds. Per coordinate the ray setup stores ou = the smallest float >= o, od = the largest
- * float <= o, and inv = float(1/d) (|relative error| <= u + 2^-53, u = 2^-24). Every LOW plane
- * is measured from ou and every HIGH plane from od, whatever the direction's sign:
- *     s_lo = lo' - ou <= lo - o,    s_hi = hi' - od >= hi - o      (as real numbers).
- * So for d > 0 the near parameter's numerator s_lo / d is <= the true (lo - o) / d and the far
- * one s_hi / d is >= the true (hi - o) / d; for d < 0 the planes swap roles and the same holds
- * (dividing by d < 0 reverses the inequalities the right way). The computed
- *     tn' = fl(fl(s) * inv) = (s / d)(1 + θ),   |θ| <= 3.1 u
- * (the float subtraction rounds once, the product once, inv carries its error; a result in the
- * subnormal range adds an absolute error below 2^-149). The box's entry and exit are
- *     near = P(max(tmin', tn'_x, tn'_y, tn'_z)),   far = Q(min(tmax', tf'_x, tf'_y, tf'_z))
- * with tmin' = tmin rounded down, tmax' = tmax rounded up, and the paddings
- *     P(x) = min(x (1 - c), x (1 + c)) - 2^-125,   Q(x) = max(x (1 - c), x (1 + c)) + 2^-125,
- * c = 2^-20 = 16 u. P and Q are nondecreasing (and stay so when rounded), so P(max(...)) =
- * max(P(...)) and Q(min(...)) = min(Q(...)); P(tn') <= s/d <= tn (the shrink by 16 u and the
- * absolute 2^-125 exceed the 3.1 u relative error, the rounding of the padding itself, and any
- * subnormal error), likewise Q(tf') >= tf. Hence when the ray truly meets the double box
- * (max(tmin, tn_k) <= min(tmax, tf_k)) the float test has near <= max(tmin, tn_k) <=
- * min(tmax, tf_k) <= far: it reports the box. NaN (a zero numerator times an infinite inverse:
- * d = 0 with the origin on the plane in float) is skipped by max/min, which drops that slab's
- * constraint, again only more conservative; for d = 0 otherwise the slab gives ±inf with the
- * exact sign of the numerator, which is inside/outside the slab conservatively by the two
+ * bounds. Per coordinate the ray setup stores a float ou >= o and a float od <= o (f = float(o)
+ * rounded to nearest is within half a float spacing of o, and f ± (|f| 2^-23 + 2^-149) rounded to
+ * nearest is at least one spacing away from f, on its side: a branch-free directed rounding, at
+ * most two spacings loose), and inv = float(1/d) (|relative error| <= u + 2^-53, u = 2^-24). Every
+ * LOW plane is measured from ou and every HIGH plane from od, whatever the direction's sign: s_lo =
+ * lo' - ou <= lo - o,    s_hi = hi' - od >= hi - o      (as real numbers). So for d > 0 the near
+ * parameter's numerator s_lo / d is <= the true (lo - o) / d and the far one s_hi / d is >= the
+ * true (hi - o) / d; for d < 0 the planes swap roles and the same holds (dividing by d < 0 reverses
+ * the inequalities the right way). The computed tn' = fl(fl(s) * inv) = (s / d)(1 + θ),   |θ|
+ * <= 3.1 u (the float subtraction rounds once, the product once, inv carries its error; a result in
+ * the subnormal range adds an absolute error below 2^-149). The box's entry and exit are near =
+ * P(max(tmin', tn'_x, tn'_y, tn'_z)),   far = Q(min(tmax', tf'_x, tf'_y, tf'_z)) with tmin' = tmin
+ * rounded down, tmax' = tmax rounded up, and the paddings P(x) = min(x (1 - c), x (1 + c)) -
+ * 2^-125,   Q(x) = max(x (1 - c), x (1 + c)) + 2^-125, c = 2^-20 = 16 u. P and Q are nondecreasing
+ * (and stay so when rounded), so P(max(...)) = max(P(...)) and Q(min(...)) = min(Q(...)); P(tn') <=
+ * s/d <= tn (the shrink by 16 u and the absolute 2^-125 exceed the 3.1 u relative error, the
+ * rounding of the padding itself, and any subnormal error), likewise Q(tf') >= tf. Hence when the
+ * ray truly meets the double box (max(tmin, tn_k) <= min(tmax, tf_k)) the float test has near <=
+ * max(tmin, tn_k) <= min(tmax, tf_k) <= far: it reports the box. NaN (a zero numerator times an
+ * infinite inverse: d = 0 with the origin on the plane in float) is skipped by max/min, which drops
+ * that slab's constraint, again only more conservative; for d = 0 otherwise the slab gives ±inf
+ * with the exact sign of the numerator, which is inside/outside the slab conservatively by the two
  * inequalities above. Overflow to ±inf keeps the order (rounding is monotone).
  *
  * When tmin >= 0 (nearly every ray) the paddings are one-sided: near >= tmin' >= 0, so P(x) =
@@ -130,13 +130,14 @@ static inline void cj_bvh4_ray_setup(const cj_ray *ray, cj_bvh4_ray *r) {
     const double o[3] = {ray->org.x, ray->org.y, ray->org.z};
     const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
     int all = 0;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3; ++k) { /* bitwise, not short-circuit: no branches */
         const double ad = fabs(d[k]);
-        if ((ad != 0.0 && (ad < 0x1p-64 || ad > 0x1p64)) || !(fabs(o[k]) <= 0x1p64)) all = 1;
+        all |= ((ad != 0.0) & ((ad < 0x1p-64) | (ad > 0x1p64))) | !(fabs(o[k]) <= 0x1p64);
     }
     for (int k = 0; k < 3; ++k) {
         const int neg = signbit(d[k]) != 0;
-        const float ou = cj_f32_up(o[k]), od = cj_f32_down(o[k]);
+        const float f = (float)o[k], step = fabsf(f) * 0x1p-23f + 0x1p-149f;
+        const float ou = f + step, od = f - step;
         const float inv = all ? NAN : (float)(1.0 / d[k]);
         /* d >= 0: the near plane is the low one (row 2k), measured from ou; the far plane the
          * high one, from od; d < 0 swaps them */
