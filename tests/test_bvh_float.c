@@ -188,7 +188,7 @@ static void test_packets(uint64_t seed) {
         cj_ray_tri_pre pre;
         cj_ray_triangle_prepare(&ray, &pre);
         cj_bvh4_tri_hits th;
-        cj_bvh4_tris_test(&p, &ray, &pre, tri, &th);
+        cj_bvh4_tris_test(&p, &ray, &pre, &th);
         for (int l = 0; l < 4; ++l) {
             if (p.idx[l] == UINT32_MAX) {
                 differ += (th.mask >> l) & 1;

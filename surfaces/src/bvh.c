@@ -105,10 +105,11 @@ done:
     return found;
 }
 
-/* The closest hit so far among the built-in triangles: its tree-order index, t, edge values and
+/* The closest hit so far among the built-in triangles: where it is, its t, edge values and
  * their sum (the hit record is filled once, at the end). */
 typedef struct mesh_best {
-    uint32_t i;
+    const cj_bvh4_tris *pk; /* its packet and lane: the record is filled from memory just read */
+    int lane;
     double t, e[3], det;
 } mesh_best;
 
@@ -116,13 +117,13 @@ typedef struct mesh_best {
  * ray->tmax and *best moved to the closest. Within a packet the last lane at the smallest t wins,
  * as a scalar loop's "t <= tmax" replaces ties in order. Not inlined: the node loop keeps its
  * registers. */
-__attribute__((noinline)) static int mesh_leaf(const cj_bvh *bvh, const cj_bvh4_tris *pk,
-                                               uint32_t n, cj_ray *ray, const cj_ray_tri_pre *pre,
-                                               int any, mesh_best *best) {
+__attribute__((noinline)) static int mesh_leaf(const cj_bvh4_tris *pk, uint32_t n, cj_ray *ray,
+                                               const cj_ray_tri_pre *pre, int any,
+                                               mesh_best *best) {
     int found = 0;
     for (uint32_t j = 0; j < n; j += 4, ++pk) {
         cj_bvh4_tri_hits th;
-        cj_bvh4_tris_test(pk, ray, pre, bvh->tri, &th);
+        cj_bvh4_tris_test(pk, ray, pre, &th);
         if (!th.mask) continue;
         found = 1;
         if (any) return 1;
@@ -131,7 +132,7 @@ __attribute__((noinline)) static int mesh_leaf(const cj_bvh *bvh, const cj_bvh4_
             const int l = __builtin_ctz((unsigned)m);
             if (bl < 0 || th.t[l] <= th.t[bl]) bl = l;
         }
-        best->i = pk->idx[bl], best->t = th.t[bl], best->det = th.det[bl];
+        best->pk = pk, best->lane = bl, best->t = th.t[bl], best->det = th.det[bl];
         best->e[0] = th.e0[bl], best->e[1] = th.e1[bl], best->e[2] = th.e2[bl];
         ray->tmax = best->t;
     }
@@ -152,7 +153,7 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
     cj_ray_triangle_prepare(&ray, &pre);
     wentry st[WIDE_STACK];
     int sp = 0, found = 0;
-    mesh_best best = {0, 0.0, {0.0, 0.0, 0.0}, 1.0};
+    mesh_best best = {NULL, 0, 0.0, {0.0, 0.0, 0.0}, 1.0};
     uint64_t nodes = 0, prims = 0;
     wentry cur = {0, 0, tmin_f};
     for (;;) {
@@ -167,9 +168,29 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
                 cur = (wentry){wn->child[i], wn->nprim[i], t0[i]};
                 if (!mask) continue;               /* one child met: descend */
                 if (sp + 4 > WIDE_STACK) continue; /* cannot happen: the build bounds depth */
-                /* several: the nearest becomes cur, the others go on the stack farthest first */
+                i = __builtin_ctz((unsigned)mask);
+                mask &= mask - 1;
+                const wentry c2 = {wn->child[i], wn->nprim[i], t0[i]};
+                if (!mask) {               /* two: push the farther, descend into the nearer */
+                    if (c2.t0 <= cur.t0) { /* ties: the later child first, as below */
+                        st[sp++] = cur;
+                        cur = c2;
+                    } else {
+                        st[sp++] = c2;
+                    }
+                    continue;
+                }
+                /* more: the nearest becomes cur, the others go on the stack farthest first */
                 const int base = sp;
                 st[sp++] = cur;
+                {
+                    int j = sp++;
+                    while (j > base && st[j - 1].t0 < c2.t0) {
+                        st[j] = st[j - 1];
+                        j--;
+                    }
+                    st[j] = c2;
+                }
                 for (; mask; mask &= mask - 1) {
                     i = __builtin_ctz((unsigned)mask);
                     const wentry c = {wn->child[i], wn->nprim[i], t0[i]};
@@ -185,7 +206,7 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
             }
         } else {
             prims += cur.n;
-            if (mesh_leaf(bvh, w->tris + ~(uint32_t)cur.ref, cur.n, &ray, &pre, any, &best)) {
+            if (mesh_leaf(w->tris + ~(uint32_t)cur.ref, cur.n, &ray, &pre, any, &best)) {
                 found = 1;
                 if (any) break;
                 tmax_f = cj_f32_up(ray.tmax);
@@ -203,10 +224,11 @@ done:
         stats->prims += prims;
     }
     if (found && !any) {
-        const double *v = bvh->tri + 9 * (size_t)best.i;
+        double v[9];
+        cj_bvh4_tris_lane(best.pk, best.lane, v);
         cj_tri_fill(cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]), cj_v3(v[6], v[7], v[8]),
                     best.t, best.e, best.det, hit);
-        hit->prim = bvh->prims[best.i];
+        hit->prim = best.pk->idx[best.lane];
     }
     return found;
 }

@@ -10,12 +10,17 @@
 #include <stdint.h>
 
 /* 4 triangles, coordinates per lane: v[3 j + k][lane] is coordinate k of vertex j. idx[lane] is
- * the triangle's position in tree order (bvh->tri, bvh->prims); unused lanes hold NaN vertices
+ * the triangle's index in the mesh (hit->prim); unused lanes hold NaN vertices
  * (never hit: every comparison of a NaN edge value is false) and idx UINT32_MAX. */
 typedef struct cj_bvh4_tris {
     double v[9][4];
     uint32_t idx[4];
 } cj_bvh4_tris;
+
+/* The 9 coordinates of lane l. */
+static inline void cj_bvh4_tris_lane(const cj_bvh4_tris *p, int l, double v[9]) {
+    for (int r = 0; r < 9; ++r) v[r] = p->v[r][l];
+}
 
 /* The outcome of one packet: lane bits that hit at t in [tmin, tmax], their t, edge values and
  * sums. */
@@ -46,8 +51,7 @@ static inline __m256d cj_tri_edge_fn4(__m256d px, __m256d py, __m256d qx, __m256
 
 /* Tests the 4 triangles of p against the ray (pre: its shear, o: its origin). */
 static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
-                                     const cj_ray_tri_pre *pre, const double *tri,
-                                     cj_bvh4_tri_hits *out) {
+                                     const cj_ray_tri_pre *pre, cj_bvh4_tri_hits *out) {
     int mask = 0;
 #if defined(__AVX__) && defined(__FMA__)
     const int kx = pre->kx, ky = pre->ky, kz = pre->kz;
@@ -105,8 +109,9 @@ static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
     for (int z = zmask; z; z &= z - 1) {
         const int l = __builtin_ctz((unsigned)z);
         if (p->idx[l] == UINT32_MAX) continue;
-        double t, e[3], det;
-        if (!cj_tri_core_v(ray, pre, tri + 9 * (size_t)p->idx[l], &t, e, &det)) continue;
+        double t, e[3], det, v[9];
+        cj_bvh4_tris_lane(p, l, v);
+        if (!cj_tri_core_v(ray, pre, v, &t, e, &det)) continue;
         mask |= 1 << l;
         out->t[l] = t, out->e0[l] = e[0], out->e1[l] = e[1], out->e2[l] = e[2];
         out->det[l] = det;
@@ -114,8 +119,9 @@ static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
 #else
     for (int l = 0; l < 4; ++l) {
         if (p->idx[l] == UINT32_MAX) continue;
-        double t, e[3], det;
-        if (!cj_tri_core_v(ray, pre, tri + 9 * (size_t)p->idx[l], &t, e, &det)) continue;
+        double t, e[3], det, v[9];
+        cj_bvh4_tris_lane(p, l, v);
+        if (!cj_tri_core_v(ray, pre, v, &t, e, &det)) continue;
         mask |= 1 << l;
         out->t[l] = t, out->e0[l] = e[0], out->e1[l] = e[1], out->e2[l] = e[2];
         out->det[l] = det;

@@ -119,9 +119,10 @@ cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
                     int used = j + (uint32_t)l < wn->nprim[i];
                     if (used && degenerate(bvh->tri + 9 * (size_t)(first + j + (uint32_t)l)))
                         used = 0;
-                    p->idx[l] = used ? first + j + (uint32_t)l : UINT32_MAX;
+                    const size_t at_i = first + j + (uint32_t)l;
+                    p->idx[l] = used ? bvh->prims[at_i] : UINT32_MAX;
                     for (int r = 0; r < 9; ++r)
-                        p->v[r][l] = used ? bvh->tri[9 * (size_t)p->idx[l] + (size_t)r] : NAN;
+                        p->v[r][l] = used ? bvh->tri[9 * at_i + (size_t)r] : NAN;
                 }
             }
         }
