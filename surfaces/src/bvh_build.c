@@ -40,13 +40,14 @@ static inline void box4_grow_centroid(box4 *cb, const box4 *c) {
     _mm256_storeu_pd(cb->lo, _mm256_min_pd(m, _mm256_loadu_pd(cb->lo)));
     _mm256_storeu_pd(cb->hi, _mm256_max_pd(m, _mm256_loadu_pd(cb->hi)));
 }
-/* bin of the centroid along each axis: (c - clo) * scale truncated, clamped to [0, NBINS - 1]
+/* bin of the centroid along each axis: (c - clo) * scale truncated, clamped to [0, nb - 1]
  * (NaN, the centroid of an empty box, lands in bin 0) */
-static inline void bin_of(const box4 *c, const double clo[4], const double scale[4], int j[4]) {
+static inline void bin_of(const box4 *c, const double clo[4], const double scale[4], int nb,
+                          int j[4]) {
     const __m256d m = _mm256_add_pd(_mm256_loadu_pd(c->lo), _mm256_loadu_pd(c->hi));
     const __m256d f = _mm256_mul_pd(_mm256_sub_pd(m, _mm256_loadu_pd(clo)), _mm256_loadu_pd(scale));
     __m128i i = _mm256_cvttpd_epi32(f);
-    i = _mm_max_epi32(_mm_min_epi32(i, _mm_set1_epi32(NBINS - 1)), _mm_setzero_si128());
+    i = _mm_max_epi32(_mm_min_epi32(i, _mm_set1_epi32(nb - 1)), _mm_setzero_si128());
     _mm_storeu_si128((__m128i *)(void *)j, i);
 }
 #else
@@ -67,13 +68,20 @@ static inline void box4_grow_centroid(box4 *cb, const box4 *c) {
         cb->hi[k] = dmax(m, cb->hi[k]);
     }
 }
-static inline void bin_of(const box4 *c, const double clo[4], const double scale[4], int j[4]) {
+static inline void bin_of(const box4 *c, const double clo[4], const double scale[4], int nb,
+                          int j[4]) {
     for (int k = 0; k < 4; ++k) {
         const double f = (c->lo[k] + c->hi[k] - clo[k]) * scale[k];
-        j[k] = f >= NBINS - 1 ? NBINS - 1 : (f > 0.0 ? (int)f : 0);
+        j[k] = f >= nb - 1 ? nb - 1 : (f > 0.0 ? (int)f : 0);
     }
 }
 #endif
+
+/* Area (times 2) of a box known to be non-empty: no emptiness test in the SAH sweeps. */
+static inline double box4_area_ne(const box4 *b) {
+    const double dx = b->hi[0] - b->lo[0], dy = b->hi[1] - b->lo[1], dz = b->hi[2] - b->lo[2];
+    return dx * dy + dy * dz + dz * dx;
+}
 
 static inline double box4_area(const box4 *b) {
     const double dx = b->hi[0] - b->lo[0], dy = b->hi[1] - b->lo[1], dz = b->hi[2] - b->lo[2];
@@ -87,14 +95,14 @@ typedef struct work {
 } work;
 
 typedef struct builder {
-    box4 *ref;     /* primitive boxes, permuted with ids */
-    uint32_t *ids; /* = bvh->prims */
-    int block;
-    double cost_isect; /* one test of a block, in units of one node visit */
+    box4 *ref;                        /* primitive boxes, permuted with ids */
+    uint32_t *ids;                    /* = bvh->prims */
+    uint32_t block_mask, block_shift; /* block = 1 << block_shift */
+    double cost_isect;                /* one test of a block, in units of one node visit */
 } builder;
 
 static inline double blocks(const builder *bd, uint32_t n) {
-    return (double)((n + (uint32_t)bd->block - 1) / (uint32_t)bd->block);
+    return (double)((n + bd->block_mask) >> bd->block_shift);
 }
 
 static inline void swap_refs(builder *bd, uint32_t i, uint32_t j) {
@@ -138,18 +146,19 @@ static void bounds_of(const builder *bd, uint32_t start, uint32_t end, box4 *box
     }
 }
 
-/* Best binned SAH split of w: returns the axis (or -1) with its last left bin and cost. */
-static int best_split(const builder *bd, const work *w, const double scale[4], int *bsplit,
+/* Best binned SAH split of w over nb bins per axis: returns the axis (or -1) with its last left
+ * bin and its cost (areas times 2; only compared with each other and the node's). */
+static int best_split(const builder *bd, const work *w, const double scale[4], int nb, int *bsplit,
                       double *bcost) {
     box4 bb[3][NBINS];
     uint32_t bc[3][NBINS];
     memset(bc, 0, sizeof bc);
     for (int k = 0; k < 3; k++)
-        for (int j = 0; j < NBINS; j++) box4_empty(&bb[k][j]);
+        for (int j = 0; j < nb; j++) box4_empty(&bb[k][j]);
     for (uint32_t i = w->start; i < w->end; i++) {
         int j[4];
         const box4 *r = &bd->ref[i];
-        bin_of(r, w->cbox.lo, scale, j);
+        bin_of(r, w->cbox.lo, scale, nb, j);
         for (int k = 0; k < 3; k++) {
             box4_merge(&bb[k][j[k]], r);
             bc[k][j[k]]++;
@@ -164,19 +173,19 @@ static int best_split(const builder *bd, const work *w, const double scale[4], i
         box4 acc;
         box4_empty(&acc);
         uint32_t cnt = 0;
-        for (int j = NBINS - 1; j > 0; j--) {
+        for (int j = nb - 1; j > 0; j--) {
             box4_merge(&acc, &bb[k][j]);
             cnt += bc[k][j];
-            ra[j] = box4_area(&acc);
             rc[j] = cnt;
+            ra[j] = cnt ? box4_area_ne(&acc) * blocks(bd, cnt) : 0.0;
         }
         box4_empty(&acc);
         cnt = 0;
-        for (int j = 0; j < NBINS - 1; j++) {
+        for (int j = 0; j < nb - 1; j++) {
             box4_merge(&acc, &bb[k][j]);
             cnt += bc[k][j];
             if (cnt == 0 || rc[j + 1] == 0) continue;
-            const double c = box4_area(&acc) * blocks(bd, cnt) + ra[j + 1] * blocks(bd, rc[j + 1]);
+            const double c = box4_area_ne(&acc) * blocks(bd, cnt) + ra[j + 1];
             if (c < best) {
                 best = c;
                 bk = k;
@@ -184,7 +193,7 @@ static int best_split(const builder *bd, const work *w, const double scale[4], i
             }
         }
     }
-    *bcost = best;
+    *bcost = 2.0 * best;
     return bk;
 }
 
@@ -205,7 +214,9 @@ cj_status cj_bvh_build_blocks(const cj_aabb *boxes, size_t count, const cj_alloc
     b->prim_count = count;
     b->nodes = cj_allocator_alloc(&a, (2 * count) * sizeof *b->nodes);
     b->prims = cj_allocator_alloc(&a, count * sizeof *b->prims);
-    builder bd = {cj_allocator_alloc(&a, count * sizeof(box4)), b->prims, block,
+    uint32_t shift = 0; /* block is a power of two (bvh_internal.h) */
+    while ((1u << shift) < (uint32_t)block) shift++;
+    builder bd = {cj_allocator_alloc(&a, count * sizeof(box4)), b->prims, (1u << shift) - 1u, shift,
                   block > 1 ? 2.0 : 1.0};
     work *stack = cj_allocator_alloc(&a, MAX_STACK * sizeof *stack);
     if (!b->nodes || !b->prims || !bd.ref || !stack) {
@@ -255,14 +266,16 @@ cj_status cj_bvh_build_blocks(const cj_aabb *boxes, size_t count, const cj_alloc
         work l = {0}, r = {0};
         int have_bounds = 0;
         if (ext > 0.0 && w.depth < DEEP_SPLIT) {
+            /* fewer bins for small nodes: their fixed cost dominates there */
+            const int nb = n >= NBINS ? NBINS : (n < 4 ? 4 : (int)n);
             double scale[4] = {0, 0, 0, 0};
             for (int k = 0; k < 3; k++) {
                 const double span = w.cbox.hi[k] - w.cbox.lo[k];
-                scale[k] = span > 0.0 ? NBINS / span : 0.0;
+                scale[k] = span > 0.0 ? nb / span : 0.0;
             }
             int bsplit = 0;
             double best;
-            const int bk = best_split(&bd, &w, scale, &bsplit, &best);
+            const int bk = best_split(&bd, &w, scale, nb, &bsplit, &best);
             const double split_cost = area > 0.0 ? 1.0 + bd.cost_isect * best / area : INFINITY;
             if (bk >= 0 && (split_cost < bd.cost_isect * blocks(&bd, n) || n > MAX_LEAF)) {
                 /* partition, accumulating each side's box and centroid bounds */
@@ -270,7 +283,7 @@ cj_status cj_bvh_build_blocks(const cj_aabb *boxes, size_t count, const cj_alloc
                 uint32_t i = w.start, j = w.end;
                 while (i < j) {
                     int bin[4];
-                    bin_of(&bd.ref[i], w.cbox.lo, scale, bin);
+                    bin_of(&bd.ref[i], w.cbox.lo, scale, nb, bin);
                     if (bin[bk] <= bsplit) {
                         box4_merge(&l.box, &bd.ref[i]);
                         box4_grow_centroid(&l.cbox, &bd.ref[i]);

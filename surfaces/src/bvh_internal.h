@@ -40,8 +40,8 @@ typedef struct cj_bvh4 {
     size_t tris_count;
 } cj_bvh4;
 
-/* cj_bvh_build with the leaf cost counted in blocks of `block` primitives (1: cj_bvh_build; 4:
- * the mesh BVH, whose leaves are tested 4 triangles at a time). */
+/* cj_bvh_build with the leaf cost counted in blocks of `block` primitives, a power of two (1:
+ * cj_bvh_build; 4: the mesh BVH, whose leaves are tested 4 triangles at a time). */
 cj_status cj_bvh_build_blocks(const cj_aabb *boxes, size_t count, const cj_allocator *alloc,
                               int block, cj_bvh **out);
 
