@@ -15,6 +15,7 @@
 typedef struct cj_bvh4_tris {
     double v[9][4];
     uint32_t idx[4];
+    uint32_t pad_[4]; /* 320 bytes: 5 whole cache lines when aligned */
 } cj_bvh4_tris;
 
 /* The 9 coordinates of lane l. */

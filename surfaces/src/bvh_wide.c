@@ -8,6 +8,11 @@
 #include <math.h>
 #include <string.h>
 
+/* p rounded up to a multiple of 64 (NULL stays NULL). */
+static void *align64(void *p) {
+    return p ? (void *)(((uintptr_t)p + 63u) & ~(uintptr_t)63u) : NULL;
+}
+
 static double box_area(const cj_aabb *b) {
     const double dx = b->hi[0] - b->lo[0], dy = b->hi[1] - b->lo[1], dz = b->hi[2] - b->lo[2];
     return dx >= 0.0 && dy >= 0.0 && dz >= 0.0 ? dx * dy + dy * dz + dz * dx : 0.0;
@@ -18,10 +23,12 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
     const size_t cap = bvh->node_count; /* each wide node consumes >= 1 binary inner node */
     cj_bvh4 *w = cj_allocator_alloc(a, sizeof *w);
     if (!w) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for the wide nodes");
-    w->nodes = cj_allocator_alloc(a, cap * sizeof *w->nodes);
+    w->nodes_mem_ = cj_allocator_alloc(a, cap * sizeof *w->nodes + 63);
+    w->nodes = align64(w->nodes_mem_);
+    w->tris_mem_ = NULL;
     uint32_t *todo = cj_allocator_alloc(a, 2 * cap * sizeof *todo);
-    if (!w->nodes || !todo) {
-        cj_allocator_free(a, w->nodes);
+    if (!w->nodes_mem_ || !todo) {
+        cj_allocator_free(a, w->nodes_mem_);
         cj_allocator_free(a, todo);
         cj_allocator_free(a, w);
         return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu wide nodes", cap);
@@ -103,8 +110,10 @@ cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
     for (size_t n = 0; n < w->count; ++n)
         for (int i = 0; i < w->nodes[n].count; ++i)
             if (w->nodes[n].child[i] < 0) np += (w->nodes[n].nprim[i] + 3u) / 4u;
-    w->tris = cj_allocator_alloc(&bvh->alloc_, np * sizeof *w->tris);
-    if (!w->tris) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu triangle packets", np);
+    w->tris_mem_ = cj_allocator_alloc(&bvh->alloc_, np * sizeof *w->tris + 63);
+    w->tris = align64(w->tris_mem_);
+    if (!w->tris_mem_)
+        return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu triangle packets", np);
     w->tris_count = np;
     size_t at = 0;
     for (size_t n = 0; n < w->count; ++n) {
@@ -115,6 +124,7 @@ cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
             wn->child[i] = ~(int32_t)at;
             for (uint32_t j = 0; j < wn->nprim[i]; j += 4, ++at) {
                 cj_bvh4_tris *p = &w->tris[at];
+                memset(p->pad_, 0, sizeof p->pad_);
                 for (int l = 0; l < 4; ++l) {
                     int used = j + (uint32_t)l < wn->nprim[i];
                     if (used && degenerate(bvh->tri + 9 * (size_t)(first + j + (uint32_t)l)))
@@ -133,8 +143,8 @@ cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
 void cj_bvh4_destroy(cj_bvh *bvh) {
     cj_bvh4 *w = bvh->wide_;
     if (!w) return;
-    cj_allocator_free(&bvh->alloc_, w->tris);
-    cj_allocator_free(&bvh->alloc_, w->nodes);
+    cj_allocator_free(&bvh->alloc_, w->tris_mem_);
+    cj_allocator_free(&bvh->alloc_, w->nodes_mem_);
     cj_allocator_free(&bvh->alloc_, w);
     bvh->wide_ = NULL;
 }
