@@ -32,7 +32,7 @@ typedef struct cj_bvh4_tris cj_bvh4_tris; /* bvh_leaf_internal.h */
 
 typedef struct cj_bvh4 {
     size_t count;
-    cj_bvh4_node *nodes; /* nodes[0] is the root; 64-byte aligned: a node is 2 cache lines */
+    cj_bvh4_node *nodes; /* nodes[0] is the root; 128-byte aligned: a node is 2 cache lines */
     /* mesh BVH only: the triangles in packets of 4 per leaf; then a leaf child's ~child[i] is its
      * first packet (nprim[i] triangles in ceil(nprim[i] / 4) packets) instead of its first
      * primitive */
