@@ -184,7 +184,8 @@ static void measure(const char *name, const cj_mesh *m) {
                    + 1
 #endif
         ;
-    const char *who[2] = {"casteljau BVH (4-wide, double)", "Embree 3 rtcIntersect1 (float)"};
+    const char *who[2] = {"casteljau BVH (4-wide float boxes, exact double triangles)",
+                          "Embree 3 rtcIntersect1 (float)"};
     double med[2], lo[2], hi[2], bmed[2];
     for (int p = 0; p < np; p++) {
         range(tr[p], ROUNDS, &lo[p], &hi[p]);

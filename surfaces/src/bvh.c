@@ -1,7 +1,8 @@
-/* Bounding volume hierarchy: binned SAH build, closest/any-hit traversal (see bvh.h). */
+/* Bounding volume hierarchy: closest/any-hit traversal and the mesh BVH (see bvh.h); the
+ * builder is bvh_build.c. */
 #include "casteljau/bvh.h"
-#include "aabb_internal.h"
 #include "bvh_internal.h"
+#include "bvh_leaf_internal.h"
 #include "ray_triangle_internal.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
@@ -9,210 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-#define NBINS      16
-#define MAX_LEAF   8
-#define DEEP_SPLIT 48 /* below this depth always split at the median: depth stays bounded */
-#define STACK      128
-
-typedef struct work {
-    uint32_t node, start, end;
-    int depth;
-} work;
-
-static cj_vec3 centroid(const cj_aabb *b) {
-    return cj_v3(0.5 * (b->lo[0] + b->hi[0]), 0.5 * (b->lo[1] + b->hi[1]),
-                 0.5 * (b->lo[2] + b->hi[2]));
-}
-
-static double ccomp(const double *c3, uint32_t i, int k) {
-    return c3[3 * (size_t)i + k];
-}
-
-/* Median split of prims[start, end) along axis k by centroid: quickselect (Lomuto partition
- * around the middle element) until position `mid` holds its sorted value. */
-static void median_split(uint32_t *prims, const double *cen, uint32_t start, uint32_t end, int k,
-                         uint32_t mid) {
-    size_t lo = start, hi = end - 1;
-    while (lo < hi) {
-        size_t pi = lo + (hi - lo) / 2;
-        uint32_t s = prims[pi];
-        prims[pi] = prims[hi];
-        prims[hi] = s;
-        double pivot = ccomp(cen, prims[hi], k);
-        size_t store = lo;
-        for (size_t i = lo; i < hi; i++)
-            if (ccomp(cen, prims[i], k) < pivot) {
-                s = prims[i];
-                prims[i] = prims[store];
-                prims[store] = s;
-                store++;
-            }
-        s = prims[store];
-        prims[store] = prims[hi];
-        prims[hi] = s;
-        if (store == mid) return;
-        if (mid < store)
-            hi = store - 1;
-        else
-            lo = store + 1;
-    }
-}
-
-cj_status cj_bvh_build(const cj_aabb *boxes, size_t count, const cj_allocator *alloc,
-                       cj_bvh **out) {
-    if (count == 0) return cj_fail(CJ_ERR_EMPTY, "BVH over no primitives");
-    if (count > 0x7fffffffu)
-        return cj_fail(CJ_ERR_CAP, "BVH over %zu primitives (cap 2^31)", count);
-    for (size_t i = 0; i < count; i++)
-        for (int k = 0; k < 3; k++)
-            if (isnan(boxes[i].lo[k]) || isnan(boxes[i].hi[k]))
-                return cj_fail(CJ_ERR_NONFINITE, "BVH: box of primitive %zu is NaN", i);
-    cj_allocator a = cj_allocator_resolve(alloc);
-    cj_bvh *b = cj_allocator_alloc(&a, sizeof *b);
-    if (!b) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory");
-    memset(b, 0, sizeof *b);
-    b->alloc_ = a;
-    b->prim_count = count;
-    b->nodes = cj_allocator_alloc(&a, (2 * count) * sizeof *b->nodes);
-    b->prims = cj_allocator_alloc(&a, count * sizeof *b->prims);
-    double *cen = cj_allocator_alloc(&a, 3 * count * sizeof *cen);
-    work *stack = cj_allocator_alloc(&a, (2 * count + 1) * sizeof *stack);
-    if (!b->nodes || !b->prims || !cen || !stack) {
-        cj_allocator_free(&a, cen);
-        cj_allocator_free(&a, stack);
-        cj_bvh_destroy(b);
-        return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu primitives", count);
-    }
-    for (size_t i = 0; i < count; i++) {
-        b->prims[i] = (uint32_t)i;
-        cj_vec3 c = boxes[i].lo[0] <= boxes[i].hi[0] ? centroid(&boxes[i]) : cj_v3(0, 0, 0);
-        cen[3 * i] = c.x;
-        cen[3 * i + 1] = c.y;
-        cen[3 * i + 2] = c.z;
-    }
-    size_t nn = 1;
-    int sp = 0;
-    stack[sp++] = (work){0, 0, (uint32_t)count, 1};
-    double cost_sum = 0.0, root_area = 0.0;
-    while (sp > 0) {
-        work w = stack[--sp];
-        cj_bvh_node *node = &b->nodes[w.node];
-        cj_aabb box = cj_aabb_empty(), cbox = cj_aabb_empty();
-        for (uint32_t i = w.start; i < w.end; i++) {
-            cj_aabb_merge(&box, &boxes[b->prims[i]]);
-            cj_aabb_grow(&cbox,
-                         cj_v3(cen[3 * (size_t)b->prims[i]], cen[3 * (size_t)b->prims[i] + 1],
-                               cen[3 * (size_t)b->prims[i] + 2]));
-        }
-        node->box = box;
-        if (w.depth > b->depth) b->depth = w.depth;
-        uint32_t n = w.end - w.start;
-        double area = cj_aabb_area(&box);
-        if (w.node == 0) root_area = area > 0.0 ? area : 1.0;
-        int axis = 0;
-        double ext = -1.0;
-        for (int k = 0; k < 3; k++)
-            if (cbox.hi[k] - cbox.lo[k] > ext) {
-                ext = cbox.hi[k] - cbox.lo[k];
-                axis = k;
-            }
-        uint32_t mid = 0;
-        if (n <= 1 || (ext <= 0.0 && n <= MAX_LEAF)) {
-            node->first = w.start;
-            node->count = n;
-            cost_sum += n * area;
-            continue;
-        }
-        if (ext > 0.0 && w.depth < DEEP_SPLIT) {
-            /* Binned SAH over the three axes. */
-            double best = INFINITY;
-            int bk = -1, bsplit = 0;
-            for (int k = 0; k < 3; k++) {
-                double lo = cbox.lo[k], span = cbox.hi[k] - lo;
-                if (!(span > 0.0)) continue;
-                cj_aabb bb[NBINS];
-                uint32_t bc[NBINS] = {0};
-                for (int j = 0; j < NBINS; j++) bb[j] = cj_aabb_empty();
-                double scale = NBINS / span;
-                for (uint32_t i = w.start; i < w.end; i++) {
-                    int j = (int)((ccomp(cen, b->prims[i], k) - lo) * scale);
-                    if (j >= NBINS) j = NBINS - 1;
-                    if (j < 0) j = 0;
-                    bc[j]++;
-                    cj_aabb_merge(&bb[j], &boxes[b->prims[i]]);
-                }
-                double ra[NBINS];
-                uint32_t rc[NBINS];
-                cj_aabb acc = cj_aabb_empty();
-                uint32_t cnt = 0;
-                for (int j = NBINS - 1; j > 0; j--) {
-                    cj_aabb_merge(&acc, &bb[j]);
-                    cnt += bc[j];
-                    ra[j] = cj_aabb_area(&acc);
-                    rc[j] = cnt;
-                }
-                acc = cj_aabb_empty();
-                cnt = 0;
-                for (int j = 0; j < NBINS - 1; j++) {
-                    cj_aabb_merge(&acc, &bb[j]);
-                    cnt += bc[j];
-                    if (cnt == 0 || rc[j + 1] == 0) continue;
-                    double c = cj_aabb_area(&acc) * cnt + ra[j + 1] * rc[j + 1];
-                    if (c < best) {
-                        best = c;
-                        bk = k;
-                        bsplit = j;
-                    }
-                }
-            }
-            double split_cost = area > 0.0 ? 1.0 + best / area : INFINITY;
-            if (bk >= 0 && (split_cost < (double)n || n > MAX_LEAF)) {
-                double lo = cbox.lo[bk], scale = NBINS / (cbox.hi[bk] - lo);
-                uint32_t i = w.start, j = w.end;
-                while (i < j) {
-                    int bin = (int)((ccomp(cen, b->prims[i], bk) - lo) * scale);
-                    if (bin >= NBINS) bin = NBINS - 1;
-                    if (bin <= bsplit)
-                        i++;
-                    else {
-                        j--;
-                        uint32_t s = b->prims[i];
-                        b->prims[i] = b->prims[j];
-                        b->prims[j] = s;
-                    }
-                }
-                mid = i;
-            } else if (n <= MAX_LEAF) {
-                node->first = w.start;
-                node->count = n;
-                cost_sum += n * area;
-                continue;
-            }
-        }
-        if (mid <= w.start || mid >= w.end) {
-            mid = w.start + n / 2;
-            median_split(b->prims, cen, w.start, w.end, axis, mid);
-        }
-        node->first = (uint32_t)nn;
-        node->count = 0;
-        cost_sum += area;
-        uint32_t left = (uint32_t)nn;
-        nn += 2;
-        stack[sp++] = (work){left + 1, mid, w.end, w.depth + 1};
-        stack[sp++] = (work){left, w.start, mid, w.depth + 1};
-    }
-    b->node_count = nn;
-    b->sah_cost = cost_sum / root_area;
-    cj_allocator_free(&a, cen);
-    cj_allocator_free(&a, stack);
-    const cj_status wst = cj_bvh4_build(b);
-    if (wst) {
-        cj_bvh_destroy(b);
-        return wst;
-    }
-    *out = b;
-    return CJ_OK;
-}
+#define STACK 128
 
 void cj_bvh_destroy(cj_bvh *bvh) {
     if (!bvh) return;
@@ -226,113 +24,211 @@ void cj_bvh_destroy(cj_bvh *bvh) {
 
 /* ---- traversal ------------------------------------------------------------------------- */
 
-static cj_vec3 inverse_dir(cj_vec3 d) {
-    return cj_v3(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
-}
-
 #define WIDE_STACK (4 * STACK)
 
 typedef struct wentry {
-    int32_t ref; /* >= 0: wide node; < 0: binary leaf ~ref */
-    double t0;
+    int32_t ref; /* >= 0: wide node; < 0: leaf ~ref, with n primitives */
+    uint32_t n;
+    float t0; /* lower bound of the entry parameter */
 } wentry;
 
-/* Shared traversal of the wide tree; `any` stops at the first hit. tri != NULL: built-in
- * triangles. */
+/* Traversal of the wide tree with a callback per primitive; `any` stops at the first hit. The walk
+ * descends straight into the nearest met child and pushes the others farthest first; leaves are
+ * tested where they are met. */
 static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, void *user,
                     cj_hit *hit, int any, cj_bvh_trav_stats *stats) {
     cj_ray ray = *ray0;
     const cj_bvh4 *w = bvh->wide_;
     cj_bvh4_ray r4;
-    const cj_vec3 inv = inverse_dir(ray.dir);
-    const double oc[3] = {ray.org.x, ray.org.y, ray.org.z}, ic[3] = {inv.x, inv.y, inv.z};
-    for (int k = 0; k < 3; k++) {
-        for (int i = 0; i < 4; i++) r4.o[k][i] = oc[k], r4.id[k][i] = ic[k];
-        r4.neg[k] = signbit(ic[k]) != 0;
-    }
-    cj_ray_tri_pre pre;
-    if (bvh->tri) cj_ray_triangle_prepare(&ray, &pre);
+    cj_bvh4_ray_setup(&ray, &r4);
+    const float tmin_f = cj_f32_down(ray.tmin);
+    float tmax_f = cj_f32_up(ray.tmax);
     wentry st[WIDE_STACK];
     int sp = 0, found = 0;
-    uint32_t best = 0; /* built-in triangles: the closest so far, its t, edge values and sum */
-    double best_t = 0.0, best_e[3] = {0.0, 0.0, 0.0}, best_det = 1.0;
     uint64_t nodes = 0, prims = 0;
-    st[sp++] = (wentry){0, ray.tmin};
+    wentry cur = {0, 0, tmin_f};
     cj_hit h;
-    while (sp > 0) {
-        const wentry e = st[--sp];
-        if (e.t0 > ray.tmax) continue;
-        if (e.ref < 0) {
-            const cj_bvh_node *nd = &bvh->nodes[~e.ref];
-            for (uint32_t i = nd->first; i < nd->first + nd->count; i++) {
-                uint32_t prim = bvh->prims[i];
-                int got;
-                prims++;
-                if (bvh->tri) {
-                    /* the test alone; the hit record is filled once, for the closest */
-                    const double *v = bvh->tri + 9 * (size_t)i;
-                    double t, ev[3], det;
-                    if (!cj_tri_core(&ray, &pre, cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]),
-                                     cj_v3(v[6], v[7], v[8]), &t, ev, &det))
-                        continue;
-                    found = 1;
-                    if (any) {
-                        if (stats) {
-                            stats->nodes += nodes;
-                            stats->prims += prims;
-                        }
-                        return 1;
+    for (;;) {
+        if (cur.ref >= 0) {
+            const cj_bvh4_node *wn = &w->nodes[cur.ref];
+            float t0[4];
+            int mask = cj_bvh4_slab(wn, &r4, tmin_f, tmax_f, t0);
+            nodes += (uint64_t)wn->count;
+            if (mask) {
+                int i = __builtin_ctz((unsigned)mask);
+                mask &= mask - 1;
+                cur = (wentry){wn->child[i], wn->nprim[i], t0[i]};
+                if (!mask) continue;               /* one child met: descend */
+                if (sp + 4 > WIDE_STACK) continue; /* cannot happen: the build bounds depth */
+                /* several: the nearest becomes cur, the others go on the stack farthest first */
+                const int base = sp;
+                st[sp++] = cur;
+                for (; mask; mask &= mask - 1) {
+                    i = __builtin_ctz((unsigned)mask);
+                    const wentry c = {wn->child[i], wn->nprim[i], t0[i]};
+                    int j = sp++;
+                    while (j > base && st[j - 1].t0 < c.t0) {
+                        st[j] = st[j - 1];
+                        j--;
                     }
-                    best = i, best_t = t, best_det = det;
-                    memcpy(best_e, ev, sizeof ev);
-                    ray.tmax = t;
-                    continue;
+                    st[j] = c;
                 }
-                got = fn(user, prim, &ray, &h);
-                if (got && h.t >= ray.tmin && h.t <= ray.tmax) {
+                cur = st[--sp];
+                continue;
+            }
+        } else {
+            const uint32_t first = ~(uint32_t)cur.ref;
+            for (uint32_t i = first; i < first + cur.n; i++) {
+                prims++;
+                const uint32_t prim = bvh->prims[i];
+                if (fn(user, prim, &ray, &h) && h.t >= ray.tmin && h.t <= ray.tmax) {
                     found = 1;
-                    if (any) {
-                        if (stats) {
-                            stats->nodes += nodes;
-                            stats->prims += prims;
-                        }
-                        return 1;
-                    }
+                    if (any) goto done;
                     h.prim = prim;
                     *hit = h;
                     ray.tmax = h.t;
+                    tmax_f = cj_f32_up(h.t);
                 }
             }
-            continue;
         }
-        const cj_bvh4_node *wn = &w->nodes[e.ref];
-        double t0[4];
-        int mask = cj_bvh4_slab(wn, &r4, ray.tmin, ray.tmax, t0);
-        nodes += (uint64_t)wn->count;
-        if (!mask) continue;
-        if (sp + 4 > WIDE_STACK) continue; /* cannot happen: depth is bounded by the build */
-        /* push the met children farthest first, so the nearest is visited next */
-        const int base = sp;
-        for (; mask; mask &= mask - 1) {
-            const int i = __builtin_ctz((unsigned)mask);
-            const wentry c = {wn->child[i], t0[i]};
-            int j = sp++;
-            while (j > base && st[j - 1].t0 < c.t0) {
-                st[j] = st[j - 1];
-                j--;
-            }
-            st[j] = c;
-        }
+        /* next: the nearest pending entry that can still hold a closer hit */
+        do {
+            if (sp == 0) goto done;
+            cur = st[--sp];
+        } while (cur.t0 > tmax_f);
     }
+done:
     if (stats) {
         stats->nodes += nodes;
         stats->prims += prims;
     }
-    if (found && bvh->tri) {
-        const double *v = bvh->tri + 9 * (size_t)best;
+    return found;
+}
+
+/* The closest hit so far among the built-in triangles: where it is, its t, edge values and
+ * their sum (the hit record is filled once, at the end). */
+typedef struct mesh_best {
+    const cj_bvh4_tris *pk; /* its packet and lane: the record is filled from memory just read */
+    int lane;
+    double t, e[3], det;
+} mesh_best;
+
+/* Tests the packets of one leaf; returns 1 when one hits (for `any`, as soon as one does), with
+ * ray->tmax and *best moved to the closest. Within a packet the last lane at the smallest t wins,
+ * as a scalar loop's "t <= tmax" replaces ties in order. Not inlined: the node loop keeps its
+ * registers. */
+__attribute__((noinline)) static int mesh_leaf(const cj_bvh4_tris *pk, uint32_t n, cj_ray *ray,
+                                               const cj_ray_tri_pre *pre, int any,
+                                               mesh_best *best) {
+    int found = 0;
+    for (uint32_t j = 0; j < n; j += 4, ++pk) {
+        cj_bvh4_tri_hits th;
+        cj_bvh4_tris_test(pk, ray, pre, &th);
+        if (!th.mask) continue;
+        found = 1;
+        if (any) return 1;
+        int bl = -1;
+        for (int m = th.mask; m; m &= m - 1) {
+            const int l = __builtin_ctz((unsigned)m);
+            if (bl < 0 || th.t[l] <= th.t[bl]) bl = l;
+        }
+        best->pk = pk, best->lane = bl, best->t = th.t[bl], best->det = th.det[bl];
+        best->e[0] = th.e0[bl], best->e[1] = th.e1[bl], best->e[2] = th.e2[bl];
+        ray->tmax = best->t;
+    }
+    return found;
+}
+
+/* The walk over the built-in triangles (packets of 4 per leaf). */
+static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, const cj_ray *ray0,
+                                                           cj_hit *hit, const int any,
+                                                           cj_bvh_trav_stats *stats) {
+    cj_ray ray = *ray0;
+    const cj_bvh4 *w = bvh->wide_;
+    cj_bvh4_ray r4;
+    cj_bvh4_ray_setup(&ray, &r4);
+    const float tmin_f = cj_f32_down(ray.tmin);
+    float tmax_f = cj_f32_up(ray.tmax);
+    cj_ray_tri_pre pre;
+    cj_ray_triangle_prepare(&ray, &pre);
+    wentry st[WIDE_STACK];
+    int sp = 0, found = 0;
+    mesh_best best = {NULL, 0, 0.0, {0.0, 0.0, 0.0}, 1.0};
+    uint64_t nodes = 0, prims = 0;
+    wentry cur = {0, 0, tmin_f};
+    for (;;) {
+        if (cur.ref >= 0) {
+            const cj_bvh4_node *wn = &w->nodes[cur.ref];
+            float t0[4];
+            int mask = cj_bvh4_slab(wn, &r4, tmin_f, tmax_f, t0);
+            nodes += (uint64_t)wn->count;
+            if (mask) {
+                int i = __builtin_ctz((unsigned)mask);
+                mask &= mask - 1;
+                cur = (wentry){wn->child[i], wn->nprim[i], t0[i]};
+                if (!mask) continue;               /* one child met: descend */
+                if (sp + 4 > WIDE_STACK) continue; /* cannot happen: the build bounds depth */
+                i = __builtin_ctz((unsigned)mask);
+                mask &= mask - 1;
+                const wentry c2 = {wn->child[i], wn->nprim[i], t0[i]};
+                if (!mask) {               /* two: push the farther, descend into the nearer */
+                    if (c2.t0 <= cur.t0) { /* ties: the later child first, as below */
+                        st[sp++] = cur;
+                        cur = c2;
+                    } else {
+                        st[sp++] = c2;
+                    }
+                    continue;
+                }
+                /* more: the nearest becomes cur, the others go on the stack farthest first */
+                const int base = sp;
+                st[sp++] = cur;
+                {
+                    int j = sp++;
+                    while (j > base && st[j - 1].t0 < c2.t0) {
+                        st[j] = st[j - 1];
+                        j--;
+                    }
+                    st[j] = c2;
+                }
+                for (; mask; mask &= mask - 1) {
+                    i = __builtin_ctz((unsigned)mask);
+                    const wentry c = {wn->child[i], wn->nprim[i], t0[i]};
+                    int j = sp++;
+                    while (j > base && st[j - 1].t0 < c.t0) {
+                        st[j] = st[j - 1];
+                        j--;
+                    }
+                    st[j] = c;
+                }
+                cur = st[--sp];
+                continue;
+            }
+        } else {
+            prims += cur.n;
+            if (mesh_leaf(w->tris + ~(uint32_t)cur.ref, cur.n, &ray, &pre, any, &best)) {
+                found = 1;
+                if (any) break;
+                tmax_f = cj_f32_up(ray.tmax);
+            }
+        }
+        /* next: the nearest pending entry that can still hold a closer hit */
+        do {
+            if (sp == 0) goto done;
+            cur = st[--sp];
+        } while (cur.t0 > tmax_f);
+    }
+done:
+    if (stats) {
+        stats->nodes += nodes;
+        stats->prims += prims;
+    }
+    if (found && !any) {
+        double v[9];
+        cj_bvh4_tris_lane(best.pk, best.lane, v);
         cj_tri_fill(cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]), cj_v3(v[6], v[7], v[8]),
-                    best_t, best_e, best_det, hit);
-        hit->prim = bvh->prims[best];
+                    best.t, best.e, best.det, hit);
+        hit->prim = best.pk->idx[best.lane];
     }
     return found;
 }
@@ -366,7 +262,7 @@ cj_status cj_bvh_mesh_build(const double *positions, size_t vertex_count, const 
                                     cj_v3(p2[0], p2[1], p2[2]));
     }
     cj_bvh *b;
-    cj_status st = cj_bvh_build(boxes, tri_count, &a, &b);
+    cj_status st = cj_bvh_build_blocks(boxes, tri_count, &a, 4, &b);
     cj_allocator_free(&a, boxes);
     if (st != CJ_OK) return st;
     b->tri = cj_allocator_alloc(&a, 9 * tri_count * sizeof *b->tri);
@@ -380,16 +276,21 @@ cj_status cj_bvh_mesh_build(const double *positions, size_t vertex_count, const 
             memcpy(b->tri + 9 * i + 3 * c, positions + 3 * (size_t)tris[3 * (size_t)t + c],
                    3 * sizeof(double));
     }
+    st = cj_bvh4_pack_triangles(b);
+    if (st != CJ_OK) {
+        cj_bvh_destroy(b);
+        return st;
+    }
     *out = b;
     return CJ_OK;
 }
 
 int cj_bvh_mesh_closest(const cj_bvh *bvh, const cj_ray *ray, cj_hit *hit,
                         cj_bvh_trav_stats *stats) {
-    return traverse(bvh, ray, NULL, NULL, hit, 0, stats);
+    return walk_mesh(bvh, ray, hit, 0, stats);
 }
 
 int cj_bvh_mesh_any(const cj_bvh *bvh, const cj_ray *ray, cj_bvh_trav_stats *stats) {
     cj_hit h;
-    return traverse(bvh, ray, NULL, NULL, &h, 1, stats);
+    return walk_mesh(bvh, ray, &h, 1, stats);
 }

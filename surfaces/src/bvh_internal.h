@@ -1,79 +1,218 @@
-/* Private: the 4-wide form of a BVH that traversal walks (bvh_wide.c). */
+/* Private: the 4-wide form of a BVH that traversal walks (bvh_wide.c), with float child boxes
+ * rounded outward and a float slab test that provably never loses a box the ray meets. */
 #ifndef CASTELJAU_BVH_INTERNAL_H
 #define CASTELJAU_BVH_INTERNAL_H
 
 #include "casteljau/bvh.h"
 
-#ifdef __AVX__
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#ifdef __SSE2__
 #include <immintrin.h>
 #endif
 
-/* Up to 4 children, their boxes stored per coordinate (structure of arrays) so that one ray
- * meets all four in one pass. child[i] >= 0: a wide node; < 0: the binary leaf ~child[i]
- * (bvh->nodes). Unused slots have the box lo = +inf, hi = -inf, which the slab test never
- * hits. The boxes are the binary tree's double boxes, unchanged. */
+/* Up to 4 children, their boxes stored per plane (structure of arrays) so that one ray meets all
+ * four in one pass: b[2k][i] is the low bound of coordinate k of child i, b[2k+1][i] the high
+ * one, each the binary tree's double bound rounded OUTWARD to float (low bounds down, high bounds
+ * up), so the float box contains the double box. child[i] >= 0: a wide node; < 0: a leaf whose
+ * primitives are prims[~child[i] .. ~child[i] + nprim[i] - 1]. Unused slots (i >= count) have
+ * lo = +inf, hi = -inf and are masked out by `valid`. 128 bytes: two cache lines. */
 typedef struct cj_bvh4_node {
-    double lo[3][4], hi[3][4];
+    float b[6][4];
     int32_t child[4];
+    uint8_t nprim[4];
     int32_t count; /* used slots */
+    int32_t valid; /* (1 << count) - 1 */
     int32_t pad_;
 } cj_bvh4_node;
 
+typedef struct cj_bvh4_tris cj_bvh4_tris; /* bvh_leaf_internal.h */
+
 typedef struct cj_bvh4 {
     size_t count;
-    cj_bvh4_node *nodes; /* nodes[0] is the root */
+    cj_bvh4_node *nodes; /* nodes[0] is the root; 128-byte aligned: a node is 2 cache lines */
+    /* mesh BVH only: the triangles in packets of 4 per leaf; then a leaf child's ~child[i] is its
+     * first packet (nprim[i] triangles in ceil(nprim[i] / 4) packets) instead of its first
+     * primitive */
+    cj_bvh4_tris *tris; /* 64-byte aligned */
+    size_t tris_count;
+    void *nodes_mem_, *tris_mem_; /* the allocations the aligned arrays live in */
 } cj_bvh4;
+
+/* cj_bvh_build with the leaf cost counted in blocks of `block` primitives, a power of two (1:
+ * cj_bvh_build; 4: the mesh BVH, whose leaves are tested 4 triangles at a time). */
+cj_status cj_bvh_build_blocks(const cj_aabb *boxes, size_t count, const cj_allocator *alloc,
+                              int block, cj_bvh **out);
 
 /* Collapses the binary tree of bvh into bvh->wide_ (each wide node takes a binary node's
  * children, then repeatedly the children of its largest inner child, up to 4). */
 cj_status cj_bvh4_build(cj_bvh *bvh);
 void cj_bvh4_destroy(cj_bvh *bvh);
+/* Packs bvh->tri (set) into the leaf packets and re-points the leaf children at them. */
+cj_status cj_bvh4_pack_triangles(cj_bvh *bvh);
 
-/* The ray data of the wide slab test, each coordinate repeated in 4 lanes. */
+/* Rounds a double to float downward / upward (to the nearest float on that side; ±inf beyond the
+ * float range on the far side, ±FLT_MAX on the near side): the conversion rounds to nearest, and
+ * when that landed on the wrong side one step of the float's bit pattern moves it back. */
+static inline float cj_f32_step(float f, int up) {
+    if (f == 0.0f) return up ? FLT_TRUE_MIN : -FLT_TRUE_MIN;
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    u += ((f > 0.0f) == (up != 0)) ? 1u : (uint32_t)-1;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+static inline float cj_f32_down(double x) {
+    const float f = (float)x;
+    return (double)f > x ? cj_f32_step(f, 0) : f;
+}
+static inline float cj_f32_up(double x) {
+    const float f = (float)x;
+    return (double)f < x ? cj_f32_step(f, 1) : f;
+}
+
+/* THE FLOAT SLAB TEST AND WHY IT IS CONSERVATIVE.
+ *
+ * Let the ray be o + t d (double), the box [lo, hi] (double) and lo' <= lo, hi' >= hi its float
+ * bounds. Per coordinate the ray setup stores a float ou >= o and a float od <= o (f = float(o)
+ * rounded to nearest is within half a float spacing of o, and f ± (|f| 2^-23 + 2^-149) rounded to
+ * nearest is at least one spacing away from f, on its side: a branch-free directed rounding, at
+ * most two spacings loose), and inv = float(1/d) (|relative error| <= u + 2^-53, u = 2^-24). Every
+ * LOW plane is measured from ou and every HIGH plane from od, whatever the direction's sign: s_lo =
+ * lo' - ou <= lo - o,    s_hi = hi' - od >= hi - o      (as real numbers). So for d > 0 the near
+ * parameter's numerator s_lo / d is <= the true (lo - o) / d and the far one s_hi / d is >= the
+ * true (hi - o) / d; for d < 0 the planes swap roles and the same holds (dividing by d < 0 reverses
+ * the inequalities the right way). The computed tn' = fl(fl(s) * inv) = (s / d)(1 + θ),   |θ|
+ * <= 3.1 u (the float subtraction rounds once, the product once, inv carries its error; a result in
+ * the subnormal range adds an absolute error below 2^-149). The box's entry and exit are near =
+ * P(max(tmin', tn'_x, tn'_y, tn'_z)),   far = Q(min(tmax', tf'_x, tf'_y, tf'_z)) with tmin' = tmin
+ * rounded down, tmax' = tmax rounded up, and the paddings P(x) = min(x (1 - c), x (1 + c)) -
+ * 2^-125,   Q(x) = max(x (1 - c), x (1 + c)) + 2^-125, c = 2^-20 = 16 u. P and Q are nondecreasing
+ * (and stay so when rounded), so P(max(...)) = max(P(...)) and Q(min(...)) = min(Q(...)); P(tn') <=
+ * s/d <= tn (the shrink by 16 u and the absolute 2^-125 exceed the 3.1 u relative error, the
+ * rounding of the padding itself, and any subnormal error), likewise Q(tf') >= tf. Hence when the
+ * ray truly meets the double box (max(tmin, tn_k) <= min(tmax, tf_k)) the float test has near <=
+ * max(tmin, tn_k) <= min(tmax, tf_k) <= far: it reports the box. NaN (a zero numerator times an
+ * infinite inverse: d = 0 with the origin on the plane in float) is skipped by max/min, which drops
+ * that slab's constraint, again only more conservative; for d = 0 otherwise the slab gives ±inf
+ * with the exact sign of the numerator, which is inside/outside the slab conservatively by the two
+ * inequalities above. Overflow to ±inf keeps the order (rounding is monotone).
+ *
+ * When tmin >= 0 (nearly every ray) the paddings are one-sided: near >= tmin' >= 0, so P(x) =
+ * x (1 - c) - 2^-125 there; and whenever the ray truly meets the box every true exit is >= tmin >=
+ * 0, and then so is every computed one (the directed numerators keep their sign, and rounding keeps
+ * the sign of a product), so Q(x) = x (1 + c) + 2^-125 on the values that matter, while a
+ * negative far value only rejects a box the ray does not meet. One fused multiply-add each.
+ *
+ * The argument needs inv finite and nonzero and the origin in float range, so a ray with a
+ * direction coordinate 0 < |d_k| < 2^-64 or > 2^64, or an origin coordinate beyond 2^64, is
+ * walked EXHAUSTIVELY (inv = NaN: every box of the tree is entered); such rays are never
+ * produced by the camera or the tracer's secondary rays in practice, and they stay exact, only
+ * slow. */
 typedef struct cj_bvh4_ray {
-    double o[3][4], id[3][4];
-    int neg[3]; /* id[k] has its sign bit set: the near plane is hi */
+    size_t near[3], far[3]; /* byte offsets of the near / far plane rows of coordinate k */
+#ifdef __SSE2__
+    __m128 onear[3], ofar[3], inv[3]; /* each repeated in 4 lanes */
+    int nonneg;                       /* tmin >= 0: the one-sided paddings suffice */
+#else
+    float onear[3], ofar[3], inv[3];
+    int nonneg;
+#endif
 } cj_bvh4_ray;
 
-/* Slab test of the ray against the 4 child boxes of n over [tmin, tmax]: bit i of the result is
- * set when child i is met, with its entry parameter in t0[i]. Exactly cj_aabb_slab's arithmetic
- * per box (same products, the far distance widened by 1 + 2γ(3), NaN from 0 * inf ignored), the
- * near plane chosen by the direction's sign instead of a swap. Inline: it is the walk's inner
- * step. */
-static inline int cj_bvh4_slab(const cj_bvh4_node *n, const cj_bvh4_ray *r, double tmin,
-                               double tmax, double t0[4]) {
-    const double widen = 1.0 + 2.0 * 3.3306690738754716e-16; /* 1 + 2γ(3), as cj_aabb_slab */
-#ifdef __AVX__
-    __m256d vmin = _mm256_set1_pd(tmin), vmax = _mm256_set1_pd(tmax);
-    const __m256d vw = _mm256_set1_pd(widen);
-    for (int k = 0; k < 3; ++k) {
-        const double *nearp = r->neg[k] ? n->hi[k] : n->lo[k];
-        const double *farp = r->neg[k] ? n->lo[k] : n->hi[k];
-        const __m256d o = _mm256_loadu_pd(r->o[k]), id = _mm256_loadu_pd(r->id[k]);
-        const __m256d tn = _mm256_mul_pd(_mm256_sub_pd(_mm256_loadu_pd(nearp), o), id);
-        const __m256d tf =
-            _mm256_mul_pd(_mm256_mul_pd(_mm256_sub_pd(_mm256_loadu_pd(farp), o), id), vw);
-        /* max/min return their second operand when the first is NaN: NaN leaves the bound */
-        vmin = _mm256_max_pd(tn, vmin);
-        vmax = _mm256_min_pd(tf, vmax);
+#define CJ_BVH4_PAD 0x1p-20f
+#define CJ_BVH4_ABS 0x1p-125f
+
+/* The exhaustive walk is inv = NaN in every coordinate: every slab is then skipped and each used
+ * slot is entered. */
+static inline void cj_bvh4_ray_setup(const cj_ray *ray, cj_bvh4_ray *r) {
+    const double o[3] = {ray->org.x, ray->org.y, ray->org.z};
+    const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
+    int all = 0;
+    for (int k = 0; k < 3; ++k) { /* bitwise, not short-circuit: no branches */
+        const double ad = fabs(d[k]);
+        all |= ((ad != 0.0) & ((ad < 0x1p-64) | (ad > 0x1p64))) | !(fabs(o[k]) <= 0x1p64);
     }
-    _mm256_storeu_pd(t0, vmin);
-    return _mm256_movemask_pd(_mm256_cmp_pd(vmin, vmax, _CMP_LE_OQ));
+    for (int k = 0; k < 3; ++k) {
+        const int neg = signbit(d[k]) != 0;
+        const float f = (float)o[k], step = fabsf(f) * 0x1p-23f + 0x1p-149f;
+        const float ou = f + step, od = f - step;
+        const float inv = all ? NAN : (float)(1.0 / d[k]);
+        /* d >= 0: the near plane is the low one (row 2k), measured from ou; the far plane the
+         * high one, from od; d < 0 swaps them */
+        r->near[k] = (size_t)(2 * k + neg) * 4 * sizeof(float);
+        r->far[k] = (size_t)(2 * k + !neg) * 4 * sizeof(float);
+#ifdef __SSE2__
+        r->onear[k] = _mm_set1_ps(neg ? od : ou);
+        r->ofar[k] = _mm_set1_ps(neg ? ou : od);
+        r->inv[k] = _mm_set1_ps(inv);
+#else
+        r->onear[k] = neg ? od : ou;
+        r->ofar[k] = neg ? ou : od;
+        r->inv[k] = inv;
+#endif
+    }
+    r->nonneg = ray->tmin >= 0.0;
+}
+
+/* Slab test of the ray against the 4 child boxes of n over [tmin', tmax'] (floats, rounded
+ * outward by the caller): bit i of the result is set when child i may be met, with a lower
+ * bound of its entry parameter in t0[i]. */
+static inline int cj_bvh4_slab(const cj_bvh4_node *n, const cj_bvh4_ray *r, float tmin, float tmax,
+                               float t0[4]) {
+    const char *base = (const char *)n->b;
+#ifdef __SSE2__
+    __m128 vn = _mm_set1_ps(tmin), vf = _mm_set1_ps(tmax);
+    /* max/min return their second operand when the first is NaN: NaN leaves the bound */
+#define CJ_BVH4_AXIS(k)                                                                            \
+    vn = _mm_max_ps(                                                                               \
+        _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps((const float *)(base + r->near[k])), r->onear[k]),      \
+                   r->inv[k]),                                                                     \
+        vn);                                                                                       \
+    vf = _mm_min_ps(                                                                               \
+        _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps((const float *)(base + r->far[k])), r->ofar[k]),        \
+                   r->inv[k]),                                                                     \
+        vf)
+    CJ_BVH4_AXIS(0);
+    CJ_BVH4_AXIS(1);
+    CJ_BVH4_AXIS(2);
+#undef CJ_BVH4_AXIS
+    const __m128 lo = _mm_set1_ps(1.0f - CJ_BVH4_PAD), hi = _mm_set1_ps(1.0f + CJ_BVH4_PAD);
+    const __m128 ab = _mm_set1_ps(CJ_BVH4_ABS);
+    if (r->nonneg) { /* near >= tmin' >= 0; far matters only when >= 0 (see above) */
+#ifdef __FMA__
+        vn = _mm_fmsub_ps(vn, lo, ab);
+        vf = _mm_fmadd_ps(vf, hi, ab);
+#else
+        vn = _mm_sub_ps(_mm_mul_ps(vn, lo), ab);
+        vf = _mm_add_ps(_mm_mul_ps(vf, hi), ab);
+#endif
+    } else {
+        vn = _mm_sub_ps(_mm_min_ps(_mm_mul_ps(vn, lo), _mm_mul_ps(vn, hi)), ab);
+        vf = _mm_add_ps(_mm_max_ps(_mm_mul_ps(vf, lo), _mm_mul_ps(vf, hi)), ab);
+    }
+    _mm_storeu_ps(t0, vn);
+    return _mm_movemask_ps(_mm_cmple_ps(vn, vf)) & n->valid;
 #else
     int mask = 0;
     for (int i = 0; i < 4; ++i) {
-        double lo = tmin, hi = tmax;
+        float vn = tmin, vf = tmax;
         for (int k = 0; k < 3; ++k) {
-            const double tn = ((r->neg[k] ? n->hi[k][i] : n->lo[k][i]) - r->o[k][0]) * r->id[k][0];
-            const double tf =
-                ((r->neg[k] ? n->lo[k][i] : n->hi[k][i]) - r->o[k][0]) * r->id[k][0] * widen;
-            if (tn > lo) lo = tn;
-            if (tf < hi) hi = tf;
+            const float tn = (((const float *)(base + r->near[k]))[i] - r->onear[k]) * r->inv[k];
+            const float tf = (((const float *)(base + r->far[k]))[i] - r->ofar[k]) * r->inv[k];
+            if (tn > vn) vn = tn;
+            if (tf < vf) vf = tf;
         }
-        t0[i] = lo;
-        if (lo <= hi) mask |= 1 << i;
+        const float a = vn * (1.0f - CJ_BVH4_PAD), b = vn * (1.0f + CJ_BVH4_PAD);
+        const float c = vf * (1.0f - CJ_BVH4_PAD), e = vf * (1.0f + CJ_BVH4_PAD);
+        vn = (a < b ? a : b) - CJ_BVH4_ABS;
+        vf = (c > e ? c : e) + CJ_BVH4_ABS;
+        t0[i] = vn;
+        if (vn <= vf) mask |= 1 << i;
     }
-    return mask;
+    return mask & n->valid;
 #endif
 }
 

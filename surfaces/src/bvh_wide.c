@@ -1,11 +1,17 @@
-/* The 4-wide BVH that traversal walks: collapsed from the binary SAH tree, boxes unchanged, and
- * its 4-box slab test (bvh_internal.h). */
+/* The 4-wide BVH that traversal walks: collapsed from the binary SAH tree, and
+ * its 4-box slab test (bvh_internal.h), boxes rounded outward to float. */
 #include "bvh_internal.h"
+#include "bvh_leaf_internal.h"
 #include "alloc_internal.h"
 #include "error_internal.h"
 
 #include <math.h>
 #include <string.h>
+
+/* p rounded up to a multiple of a (a power of two; NULL stays NULL). */
+static void *align_up(void *p, uintptr_t a) {
+    return p ? (void *)(((uintptr_t)p + a - 1u) & ~(a - 1u)) : NULL;
+}
 
 static double box_area(const cj_aabb *b) {
     const double dx = b->hi[0] - b->lo[0], dy = b->hi[1] - b->lo[1], dz = b->hi[2] - b->lo[2];
@@ -17,10 +23,14 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
     const size_t cap = bvh->node_count; /* each wide node consumes >= 1 binary inner node */
     cj_bvh4 *w = cj_allocator_alloc(a, sizeof *w);
     if (!w) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for the wide nodes");
-    w->nodes = cj_allocator_alloc(a, cap * sizeof *w->nodes);
+    /* 128-byte aligned: a node is one aligned pair of cache lines, which the processor's
+     * adjacent-line prefetch fetches together */
+    w->nodes_mem_ = cj_allocator_alloc(a, cap * sizeof *w->nodes + 127);
+    w->nodes = align_up(w->nodes_mem_, 128);
+    w->tris_mem_ = NULL;
     uint32_t *todo = cj_allocator_alloc(a, 2 * cap * sizeof *todo);
-    if (!w->nodes || !todo) {
-        cj_allocator_free(a, w->nodes);
+    if (!w->nodes_mem_ || !todo) {
+        cj_allocator_free(a, w->nodes_mem_);
         cj_allocator_free(a, todo);
         cj_allocator_free(a, w);
         return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu wide nodes", cap);
@@ -54,22 +64,23 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
             kids[nk++] = bvh->nodes[open].first + 1;
         }
         cj_bvh4_node *wn = &w->nodes[wi];
+        memset(wn, 0, sizeof *wn);
         wn->count = nk;
-        wn->pad_ = 0;
+        wn->valid = (1 << nk) - 1;
         for (int i = 0; i < 4; ++i) {
             for (int k = 0; k < 3; ++k) {
-                wn->lo[k][i] = INFINITY;
-                wn->hi[k][i] = -INFINITY;
+                wn->b[2 * k][i] = INFINITY;
+                wn->b[2 * k + 1][i] = -INFINITY;
             }
-            wn->child[i] = 0;
             if (i >= nk) continue;
             const cj_bvh_node *c = &bvh->nodes[kids[i]];
-            for (int k = 0; k < 3; ++k) {
-                wn->lo[k][i] = c->box.lo[k];
-                wn->hi[k][i] = c->box.hi[k];
+            for (int k = 0; k < 3; ++k) { /* outward: the float box contains the double box */
+                wn->b[2 * k][i] = cj_f32_down(c->box.lo[k]);
+                wn->b[2 * k + 1][i] = cj_f32_up(c->box.hi[k]);
             }
             if (c->count) {
-                wn->child[i] = ~(int32_t)kids[i];
+                wn->child[i] = ~(int32_t)c->first;
+                wn->nprim[i] = (uint8_t)c->count;
             } else {
                 wn->child[i] = (int32_t)nw;
                 todo[ntodo++] = (uint32_t)nw++;
@@ -78,15 +89,64 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
         }
     }
     w->count = nw;
+    w->tris = NULL;
+    w->tris_count = 0;
     cj_allocator_free(a, todo);
     bvh->wide_ = w;
+    return CJ_OK;
+}
+
+/* Two equal vertices: the watertight test never hits such a triangle (one edge value is exactly
+ * zero and the other two are exact opposites, so they are of opposite signs or both zero), so its
+ * lane is left empty rather than sent through the scalar tie-break on every ray that reaches it. */
+static int degenerate(const double *v) {
+    const int e01 = v[0] == v[3] && v[1] == v[4] && v[2] == v[5];
+    const int e12 = v[3] == v[6] && v[4] == v[7] && v[5] == v[8];
+    const int e20 = v[6] == v[0] && v[7] == v[1] && v[8] == v[2];
+    return e01 || e12 || e20;
+}
+
+cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
+    cj_bvh4 *w = bvh->wide_;
+    size_t np = 0;
+    for (size_t n = 0; n < w->count; ++n)
+        for (int i = 0; i < w->nodes[n].count; ++i)
+            if (w->nodes[n].child[i] < 0) np += (w->nodes[n].nprim[i] + 3u) / 4u;
+    w->tris_mem_ = cj_allocator_alloc(&bvh->alloc_, np * sizeof *w->tris + 63);
+    w->tris = align_up(w->tris_mem_, 64);
+    if (!w->tris_mem_)
+        return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu triangle packets", np);
+    w->tris_count = np;
+    size_t at = 0;
+    for (size_t n = 0; n < w->count; ++n) {
+        cj_bvh4_node *wn = &w->nodes[n];
+        for (int i = 0; i < wn->count; ++i) {
+            if (wn->child[i] >= 0) continue;
+            const uint32_t first = ~(uint32_t)wn->child[i];
+            wn->child[i] = ~(int32_t)at;
+            for (uint32_t j = 0; j < wn->nprim[i]; j += 4, ++at) {
+                cj_bvh4_tris *p = &w->tris[at];
+                memset(p->pad_, 0, sizeof p->pad_);
+                for (int l = 0; l < 4; ++l) {
+                    int used = j + (uint32_t)l < wn->nprim[i];
+                    if (used && degenerate(bvh->tri + 9 * (size_t)(first + j + (uint32_t)l)))
+                        used = 0;
+                    const size_t at_i = first + j + (uint32_t)l;
+                    p->idx[l] = used ? bvh->prims[at_i] : UINT32_MAX;
+                    for (int r = 0; r < 9; ++r)
+                        p->v[r][l] = used ? bvh->tri[9 * at_i + (size_t)r] : NAN;
+                }
+            }
+        }
+    }
     return CJ_OK;
 }
 
 void cj_bvh4_destroy(cj_bvh *bvh) {
     cj_bvh4 *w = bvh->wide_;
     if (!w) return;
-    cj_allocator_free(&bvh->alloc_, w->nodes);
+    cj_allocator_free(&bvh->alloc_, w->tris_mem_);
+    cj_allocator_free(&bvh->alloc_, w->nodes_mem_);
     cj_allocator_free(&bvh->alloc_, w);
     bvh->wide_ = NULL;
 }

@@ -8,10 +8,6 @@
 
 #include <math.h>
 
-static inline double cj_tri_comp(cj_vec3 a, int k) {
-    return k == 0 ? a.x : (k == 1 ? a.y : a.z);
-}
-
 /* px*qy − py*qx with the exact sign: the plain product difference when it exceeds its rounding
  * bound, else Kahan's fma form (w = py*qx, e = w − py*qx exactly, f = px*qy − w rounded once:
  * f + e has relative error <= 2u, so its sign is exact, and it is exactly 0 when px qy = py qx). */
@@ -38,22 +34,17 @@ static inline int cj_tri_owns_zero(double px, double py, double qx, double qy, i
     return dy < 0.0 || (dy == 0.0 && dx < 0.0);
 }
 
-/* The test without the hit record: 1 when the ray meets the triangle at t in [tmin, tmax], with
- * the (scaled) barycentric edge values e[3] and their sum *det for cj_tri_fill. Inline, so the
- * BVH walk can test a leaf's triangles and fill the record once, for the closest. */
-static inline int cj_tri_core(const cj_ray *ray, const cj_ray_tri_pre *pre, cj_vec3 v0, cj_vec3 v1,
-                              cj_vec3 v2, double *tout, double e[3], double *dout) {
+/* The test without the hit record: 1 when the ray meets the triangle v (its three vertices, 9
+ * doubles, x y z each) at t in [tmin, tmax], with the (scaled) barycentric edge values e[3] and
+ * their sum *det for cj_tri_fill. Inline, so the BVH walk can test a leaf's triangles straight
+ * from its vertex array and fill the record once, for the closest. */
+static inline int cj_tri_core_v(const cj_ray *ray, const cj_ray_tri_pre *pre, const double *v,
+                                double *tout, double e[3], double *dout) {
     const int kx = pre->kx, ky = pre->ky, kz = pre->kz;
-    cj_vec3 o = ray->org;
-    double a[3] = {cj_tri_comp(v0, kx) - cj_tri_comp(o, kx),
-                   cj_tri_comp(v0, ky) - cj_tri_comp(o, ky),
-                   cj_tri_comp(v0, kz) - cj_tri_comp(o, kz)};
-    double b[3] = {cj_tri_comp(v1, kx) - cj_tri_comp(o, kx),
-                   cj_tri_comp(v1, ky) - cj_tri_comp(o, ky),
-                   cj_tri_comp(v1, kz) - cj_tri_comp(o, kz)};
-    double c[3] = {cj_tri_comp(v2, kx) - cj_tri_comp(o, kx),
-                   cj_tri_comp(v2, ky) - cj_tri_comp(o, ky),
-                   cj_tri_comp(v2, kz) - cj_tri_comp(o, kz)};
+    const double o[3] = {ray->org.x, ray->org.y, ray->org.z};
+    double a[3] = {v[kx] - o[kx], v[ky] - o[ky], v[kz] - o[kz]};
+    double b[3] = {v[3 + kx] - o[kx], v[3 + ky] - o[ky], v[3 + kz] - o[kz]};
+    double c[3] = {v[6 + kx] - o[kx], v[6 + ky] - o[ky], v[6 + kz] - o[kz]};
     double ax = a[0] - pre->sx * a[2], ay = a[1] - pre->sy * a[2];
     double bx = b[0] - pre->sx * b[2], by = b[1] - pre->sy * b[2];
     double cx = c[0] - pre->sx * c[2], cy = c[1] - pre->sy * c[2];
@@ -79,6 +70,13 @@ static inline int cj_tri_core(const cj_ray *ray, const cj_ray_tri_pre *pre, cj_v
     e[0] = e0, e[1] = e1, e[2] = e2;
     *dout = det;
     return 1;
+}
+
+/* The same test on three vertices. */
+static inline int cj_tri_core(const cj_ray *ray, const cj_ray_tri_pre *pre, cj_vec3 v0, cj_vec3 v1,
+                              cj_vec3 v2, double *tout, double e[3], double *dout) {
+    const double v[9] = {v0.x, v0.y, v0.z, v1.x, v1.y, v1.z, v2.x, v2.y, v2.z};
+    return cj_tri_core_v(ray, pre, v, tout, e, dout);
 }
 
 /* The hit record of a triangle the core test met: point, its rounding bound, normal,

@@ -22,3 +22,6 @@ if(TARGET cj::raster)
   cj_add_test(test_trace_sampling SOURCES test_trace_sampling.c LIBS cj::raster cj::scene)
   target_include_directories(test_trace_sampling PRIVATE ${PROJECT_SOURCE_DIR}/raster/src)
 endif()
+# The float slab test and the triangle packets of the BVH walk against exact oracles (issue 20).
+cj_add_test(test_bvh_float SOURCES test_bvh_float.c LIBS cj::surfaces gmp)
+target_include_directories(test_bvh_float PRIVATE ${PROJECT_SOURCE_DIR}/surfaces/src)

@@ -2,25 +2,36 @@
  * the triangles of a mesh, the patches of a patch set, the objects of a scene.
  *
  * BUILD. Top-down, binned SAH (Wald 2007): at each node the primitives' centroids are binned
- * in 16 bins along each axis and the split minimising
- *     C = C_trav + (A_left N_left + A_right N_right) / A_node     (C_trav = 1, one unit per
- * primitive test) is taken if it beats a leaf (cost N); a node with more than 8 primitives
- * that SAH would keep as a leaf, or whose centroids coincide, is split at the median. The
- * tree is stored flat (children of an inner node adjacent); the primitive order is the
- * permutation `prims` (leaf k holds prims[first .. first+count-1]). Build is O(n log n).
+ * along each axis (16 bins, or one per primitive below 16) and the split minimising
+ *     C = C_trav + C_isect (A_left B_left + A_right B_right) / A_node
+ * is taken if it beats a leaf (cost C_isect B, B = blocks of primitives); a node with more than
+ * 8 primitives that SAH would keep as a leaf, or whose centroids coincide, is split at the
+ * median. cj_bvh_build counts one block per primitive with C_isect = C_trav = 1;
+ * cj_bvh_mesh_build counts blocks of 4 triangles (its leaves are tested 4 at a time) with
+ * C_isect = 2 (a 4-triangle test costs about two node visits). Primitive references are
+ * partitioned in place; the tree is stored flat (children of an inner node adjacent); the
+ * primitive order is the permutation `prims` (leaf k holds prims[first .. first+count-1]).
+ * Build is O(n log n).
  *
  * TRAVERSAL. The binary tree is collapsed into a 4-wide one (each wide node takes a node's
- * children, then the children of its largest inner child, up to 4; the boxes are the same
- * double boxes). One visit tests the ray against the 4 child boxes at once (AVX when the
- * build targets it), with the rounding-safe slab test of ray.h lane by lane, so exactly the
- * boxes the binary walk would enter are entered; closest hit visits the met children nearest
- * first and skips boxes beyond the best hit so far, so a ray costs O(log n) box tests on
- * well-distributed scenes; any hit (shadow rays) stops at the first hit. Statistics count the
- * boxes tested (the used slots of each visited wide node).
+ * children, then the children of its largest inner child, up to 4). The 4 child boxes are
+ * stored in float, rounded OUTWARD from the double boxes, and one visit tests the ray against
+ * all 4 at once (SSE) with a float slab test whose origin rounding is directed and whose
+ * entry/exit are padded so that it provably reports every box the ray meets in exact
+ * arithmetic (the proof is in surfaces/src/bvh_internal.h; test_bvh_float checks it against
+ * rational arithmetic). A box is entered at worst slightly early, never missed, so the hits
+ * found are exactly those of an exact walk. Closest hit descends into the nearest met child and
+ * pushes the others farthest first, skipping boxes beyond the best hit so far, so a ray costs
+ * O(log n) box tests on well-distributed scenes; any hit (shadow rays) stops at the first hit.
+ * Statistics count the boxes tested (the used slots of each visited wide node).
  *
  * Primitives are intersected by a callback, or by the built-in watertight triangle test of
- * cj_bvh_mesh_* (vertex positions copied in tree order, so a leaf reads contiguous memory).
- * Nothing in traversal allocates; a BVH is read-only after build and may be shared by threads.
+ * cj_bvh_mesh_* : the triangles of each leaf are stored in packets of 4 (double coordinates,
+ * one lane per triangle) and tested together in AVX lanes with exactly the scalar test's
+ * arithmetic, so each answer, and the hit record filled once for the closest, is bit-identical
+ * to cj_ray_triangle on that triangle. The vertex positions are also kept in `tri` in tree
+ * order. Nothing in traversal allocates; a BVH is read-only after build and may be shared by
+ * threads.
  *
  * Status codes: CJ_ERR_EMPTY (no primitives), CJ_ERR_NONFINITE (a box with a NaN, named),
  * CJ_ERR_CAP (more than 2^31 primitives), CJ_ERR_NOMEM, CJ_ERR_RANGE (a triangle index out of

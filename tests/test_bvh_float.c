@@ -1,0 +1,224 @@
+/* The float BVH walk's two private pieces against exact oracles (surfaces/src/bvh_internal.h,
+ * bvh_leaf_internal.h):
+ *  - the float slab test of the 4-wide nodes (boxes rounded outward, directed origin rounding,
+ *    padded entry/exit) never misses a box that the ray meets in exact rational arithmetic
+ *    (GMP mpq): random boxes of several scales, rays aimed exactly at corners, edge points and
+ *    face points (and one float step outside them), axis-parallel and nearly parallel
+ *    directions, tmax exactly at the box. The same cases through a naive float test (origin
+ *    rounded to nearest, no padding) do miss some, so the cases can catch a lost box;
+ *  - the 4-lane triangle packet test gives, lane by lane, bit-identical answers (hit, t, edge
+ *    values, their sum) to the scalar watertight test, on random triangles and on triangles
+ *    through which the ray passes exactly along an edge or a vertex (edge values of zero). */
+#include "bvh_internal.h"
+#include "bvh_leaf_internal.h"
+#include "check.h"
+#include "rng.h"
+
+#include <gmp.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Exact: does o + t d, t in [tmin, tmax], meet the closed box [lo, hi]? Each slab gives an
+ * interval of t (rational); the ray meets the box when the intersection is not empty. */
+static int exact_hit(const double lo[3], const double hi[3], const double o[3], const double d[3],
+                     double tmin, double tmax) {
+    mpq_t a, b, t0, t1, x;
+    mpq_inits(a, b, t0, t1, x, NULL);
+    int lo_inf = isinf(tmin), hi_inf = isinf(tmax), hit = 1;
+    if (!lo_inf) mpq_set_d(t0, tmin);
+    if (!hi_inf) mpq_set_d(t1, tmax);
+    for (int k = 0; k < 3 && hit; ++k) {
+        if (d[k] == 0.0) {
+            if (!(lo[k] <= o[k] && o[k] <= hi[k])) hit = 0;
+            continue;
+        }
+        mpq_set_d(a, lo[k]);
+        mpq_set_d(x, o[k]);
+        mpq_sub(a, a, x);
+        mpq_set_d(b, hi[k]);
+        mpq_sub(b, b, x);
+        mpq_set_d(x, d[k]);
+        mpq_div(a, a, x);
+        mpq_div(b, b, x);
+        if (d[k] < 0) mpq_swap(a, b);
+        if (lo_inf || mpq_cmp(a, t0) > 0) mpq_set(t0, a), lo_inf = 0;
+        if (hi_inf || mpq_cmp(b, t1) < 0) mpq_set(t1, b), hi_inf = 0;
+        if (!lo_inf && !hi_inf && mpq_cmp(t0, t1) > 0) hit = 0;
+    }
+    mpq_clears(a, b, t0, t1, x, NULL);
+    return hit;
+}
+
+/* The naive float test the padding replaces: origin and bounds rounded to nearest, no margin. */
+static int naive_hit(const double lo[3], const double hi[3], const double o[3], const double d[3],
+                     double tmin, double tmax) {
+    float vn = (float)tmin, vf = (float)tmax;
+    for (int k = 0; k < 3; ++k) {
+        const float inv = (float)(1.0 / d[k]), of = (float)o[k];
+        float tn = ((float)lo[k] - of) * inv, tf = ((float)hi[k] - of) * inv;
+        if (tn > tf) {
+            const float s = tn;
+            tn = tf;
+            tf = s;
+        }
+        if (tn > vn) vn = tn;
+        if (tf < vf) vf = tf;
+    }
+    return vn <= vf;
+}
+
+static int float_hit(const double lo[3], const double hi[3], const cj_ray *ray) {
+    cj_bvh4_node n;
+    memset(&n, 0, sizeof n);
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) n.b[2 * k][i] = INFINITY, n.b[2 * k + 1][i] = -INFINITY;
+    for (int k = 0; k < 3; ++k) {
+        n.b[2 * k][1] = cj_f32_down(lo[k]);
+        n.b[2 * k + 1][1] = cj_f32_up(hi[k]);
+    }
+    n.count = 4;
+    n.valid = 0xf;
+    cj_bvh4_ray r;
+    cj_bvh4_ray_setup(ray, &r);
+    float t0[4];
+    const int m = cj_bvh4_slab(&n, &r, cj_f32_down(ray->tmin), cj_f32_up(ray->tmax), t0);
+    return (m >> 1) & 1;
+}
+
+static double step_out(double x, double dir) {
+    return nextafter(x, dir > 0 ? INFINITY : -INFINITY);
+}
+
+static void test_slab(uint64_t seed) {
+    cj_rng rng;
+    cj_rng_init(&rng, seed);
+    long cases = 0, exact_hits = 0, lost = 0, naive_lost = 0;
+    const double scales[4] = {1.0, 1e-3, 1e3, 1e7};
+    for (int it = 0; it < 200000; ++it) {
+        const double s = scales[it % 4];
+        const double off = s * cj_rng_range(&rng, -100, 100);
+        double lo[3], hi[3], o[3], d[3], p[3];
+        for (int k = 0; k < 3; ++k) {
+            const double a = off + s * cj_rng_range(&rng, -1, 1);
+            const double w = (it % 7 == 0 && k == 1) ? 0.0 : s * cj_rng_range(&rng, 0, 1);
+            lo[k] = a, hi[k] = a + w; /* flat boxes too */
+            o[k] = off + s * cj_rng_range(&rng, -20, 20);
+        }
+        /* a target on the boundary: corner, edge point, face point, or a step outside it */
+        const int kind = cj_rng_int(&rng, 0, 3);
+        for (int k = 0; k < 3; ++k) {
+            const int on_bound = kind == 0 || k < kind;
+            p[k] = on_bound ? (cj_rng_int(&rng, 0, 1) ? lo[k] : hi[k])
+                            : lo[k] + cj_rng_unit(&rng) * (hi[k] - lo[k]);
+        }
+        if (cj_rng_int(&rng, 0, 3) == 0) { /* one double step outside in a bound coordinate */
+            const int k = cj_rng_int(&rng, 0, 2);
+            p[k] = step_out(p[k], p[k] == lo[k] ? -1 : 1);
+        }
+        for (int k = 0; k < 3; ++k) d[k] = p[k] - o[k];
+        const int par = cj_rng_int(&rng, 0, 5);
+        if (par == 0) { /* parallel to an axis plane: origin coordinate on the target's */
+            const int k = cj_rng_int(&rng, 0, 2);
+            o[k] = p[k];
+            d[k] = 0.0;
+        } else if (par == 1) { /* nearly parallel */
+            const int k = cj_rng_int(&rng, 0, 2);
+            d[k] = s * 1e-12 * cj_rng_range(&rng, -1, 1);
+        }
+        if (d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0) continue;
+        double tmin = 0.0, tmax = INFINITY;
+        const int tk = cj_rng_int(&rng, 0, 3);
+        if (tk == 1) tmax = 1.0; /* the target exactly at tmax */
+        if (tk == 2) tmin = 1.0; /* the target exactly at tmin */
+        if (tk == 3) tmin = -INFINITY, tmax = cj_rng_range(&rng, -2, 2);
+        const cj_ray ray = {cj_v3(o[0], o[1], o[2]), cj_v3(d[0], d[1], d[2]), tmin, tmax};
+        const int ex = exact_hit(lo, hi, o, d, tmin, tmax);
+        ++cases;
+        if (!ex) continue;
+        ++exact_hits;
+        if (!float_hit(lo, hi, &ray)) {
+            if (++lost <= 5)
+                fprintf(stderr, "lost box: o (%a %a %a) d (%a %a %a) box (%a %a %a)-(%a %a %a)\n",
+                        o[0], o[1], o[2], d[0], d[1], d[2], lo[0], lo[1], lo[2], hi[0], hi[1],
+                        hi[2]);
+        }
+        naive_lost += !naive_hit(lo, hi, o, d, tmin, tmax);
+    }
+    printf("float slab test: %ld rays, %ld meet their box exactly; lost by the float test: %ld; "
+           "lost by a naive float test: %ld\n",
+           cases, exact_hits, lost, naive_lost);
+    CHECK(lost == 0, "%ld boxes lost", lost);
+    CHECK(naive_lost > 0, "the cases cannot tell a naive float test from a conservative one");
+    CHECK(exact_hits > cases / 4, "too few hits (%ld of %ld) to test anything", exact_hits, cases);
+}
+
+/* Scalar watertight test against the packet test, lane by lane. */
+static void test_packets(uint64_t seed) {
+    cj_rng rng;
+    cj_rng_init(&rng, seed);
+    long lanes = 0, hits = 0, zero_lanes = 0, differ = 0;
+    for (int it = 0; it < 50000; ++it) {
+        double tri[36];
+        cj_bvh4_tris p;
+        const int grid = it % 2; /* integer grid: edge values of exactly zero */
+        for (int l = 0; l < 4; ++l) {
+            for (int r = 0; r < 9; ++r) {
+                tri[9 * l + r] = grid ? (double)cj_rng_int(&rng, -3, 3) : cj_rng_range(&rng, -1, 1);
+                p.v[r][l] = tri[9 * l + r];
+            }
+            p.idx[l] = (uint32_t)l;
+        }
+        const int unused = cj_rng_int(&rng, 0, 4); /* a lane left empty, as in a short leaf */
+        if (unused < 4) {
+            p.idx[unused] = UINT32_MAX;
+            for (int r = 0; r < 9; ++r) p.v[r][unused] = NAN;
+        }
+        cj_ray ray;
+        if (grid) { /* through grid points, along grid lines */
+            ray.org = cj_v3(cj_rng_int(&rng, -3, 3), cj_rng_int(&rng, -3, 3), -10);
+            ray.dir = cj_v3(cj_rng_int(&rng, -1, 1), cj_rng_int(&rng, -1, 1), 1);
+        } else {
+            ray.org = cj_v3(cj_rng_range(&rng, -1, 1), cj_rng_range(&rng, -1, 1), -5);
+            ray.dir = cj_v3(cj_rng_range(&rng, -0.2, 0.2), cj_rng_range(&rng, -0.2, 0.2), 1);
+        }
+        ray.tmin = 0.0;
+        ray.tmax = cj_rng_int(&rng, 0, 1) ? INFINITY : cj_rng_range(&rng, 0, 12);
+        cj_ray_tri_pre pre;
+        cj_ray_triangle_prepare(&ray, &pre);
+        cj_bvh4_tri_hits th;
+        cj_bvh4_tris_test(&p, &ray, &pre, &th);
+        for (int l = 0; l < 4; ++l) {
+            if (p.idx[l] == UINT32_MAX) {
+                differ += (th.mask >> l) & 1;
+                continue;
+            }
+            ++lanes;
+            double t, e[3], det;
+            const int got = cj_tri_core_v(&ray, &pre, tri + 9 * l, &t, e, &det);
+            const int lane = (th.mask >> l) & 1;
+            hits += got;
+            const double ev[3] = {e[0], e[1], e[2]};
+            if (got) zero_lanes += ev[0] == 0.0 || ev[1] == 0.0 || ev[2] == 0.0;
+            int same = got == lane;
+            if (same && got)
+                same = !memcmp(&t, &th.t[l], 8) && !memcmp(&e[0], &th.e0[l], 8) &&
+                       !memcmp(&e[1], &th.e1[l], 8) && !memcmp(&e[2], &th.e2[l], 8) &&
+                       !memcmp(&det, &th.det[l], 8);
+            differ += !same;
+        }
+    }
+    printf("triangle packets: %ld lanes, %ld hits (%ld with an edge value of exactly zero), %ld "
+           "differ from the scalar test bit for bit\n",
+           lanes, hits, zero_lanes, differ);
+    CHECK(differ == 0, "%ld lanes differ", differ);
+    CHECK(zero_lanes > 100, "only %ld tie-break hits exercised", zero_lanes);
+}
+
+int main(void) {
+    const uint64_t seed = cj_test_seed("test_bvh_float", 20261126u);
+    test_slab(seed);
+    test_packets(seed + 1);
+    return cj_check_exit();
+}
