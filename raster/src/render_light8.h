@@ -154,7 +154,7 @@ CJ_LANE_INLINE void cj_lanes_light(const cj_rctx *c, int n, int any_mirror, int 
                                      c->view->eye.z + (double)b->pz[j]};
                 const double nd[3] = {b->nx[j], b->ny[j], b->nz[j]};
                 const float e =
-                    (float)(cj_reflect_polygon_irradiance(p, nd, L->corner, 4, L->normal) /
+                    (float)(cj_reflect_polygon_irradiance(p, nd, L->corner, L->ncorner, L->normal) /
                             3.14159265358979323846);
                 double to[3] = {L->pos[0] - p[0], L->pos[1] - p[1], L->pos[2] - p[2]};
                 double r2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2];
