@@ -58,6 +58,11 @@ typedef struct cj_rlight {
     /* radiometric area light (I = L_e): the diffuse term takes the polygon's exact irradiance
      * (reflect_model.h), the specular one its centre pos as a point of intensity L_e A cos θ′.
      * A disc light is the polygon of cj_reflect_disc_polygon (its area, πR², in size). */
+    /* radiometric sphere light (I = π R² L_e, a point at its centre): exact wherever the sphere
+     * is wholly above the receiver's horizon; where it is partly below, the diffuse term takes
+     * the polygon path with the disc that fills the same cone (cj_lanes_sphere_horizon) */
+    int sphere;
+    double radius;
     int area, ncorner;
     double corner[CJ_REFLECT_POLY_MAX][3], normal[3], size; /* size: the area A */
 } cj_rlight;

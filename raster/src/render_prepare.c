@@ -88,6 +88,8 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
              * radiometric, a sphere of intensity π R² L_e (exact wherever the sphere is wholly
              * above the receiver's horizon) */
             r->falloff = radiometric;
+            r->sphere = radiometric && L->kind == CJ_LIGHT_SPHERE;
+            r->radius = L->radius;
             if (radiometric) {
                 const float proj = (float)(3.14159265358979323846 * L->radius * L->radius);
                 for (int k = 0; k < 3; ++k) r->I[k] *= proj;
