@@ -135,6 +135,44 @@ CJ_LANE_INLINE void cj_lanes_normalize(int n, float *x, float *y, float *z) {
     }
 }
 
+/* A radiometric sphere light L (render_pipe.h) on lanes whose horizon cuts its cone (|cos θ| <
+ * sin θ_max, θ the angle of its centre above the horizon, sin θ_max = R/dist): the point
+ * path's cos θ / π is replaced by the exact clipped irradiance, by the polygon path, of the
+ * disc that fills the same cone (the sphere's tangent circle: centre at (dist² − R²)/dist from
+ * p towards the centre, radius R √(dist² − R²)/dist, facing p), over the point's f = 1/dist² and
+ * I = π R² L_e. l: unit directions to the centre; f: 1/dist²; d: the point path's terms. A point
+ * inside the sphere is left to the point path. */
+CJ_LANE_INLINE void cj_lanes_sphere_horizon(const cj_rctx *c, int n, const cj_lanes *b,
+                                            const cj_rlight *L, const float *lx, const float *ly,
+                                            const float *lz, const float *f, float *d) {
+    int any = 0;
+    const float r2 = (float)(L->radius * L->radius);
+    for (int j = 0; j < n; ++j) {
+        const float ct = b->nx[j] * lx[j] + b->ny[j] * ly[j] + b->nz[j] * lz[j];
+        any |= ct * ct < r2 * f[j];
+    }
+    if (!any) return;
+    for (int j = 0; j < n; ++j) {
+        const double p[3] = {c->view->eye.x + (double)b->px[j], c->view->eye.y + (double)b->py[j],
+                             c->view->eye.z + (double)b->pz[j]};
+        const double nd[3] = {b->nx[j], b->ny[j], b->nz[j]};
+        const double u[3] = {L->pos[0] - p[0], L->pos[1] - p[1], L->pos[2] - p[2]};
+        const double dist2 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], R2 = L->radius * L->radius;
+        if (!(dist2 > R2)) continue;
+        const double dist = sqrt(dist2), ct = (u[0] * nd[0] + u[1] * nd[1] + u[2] * nd[2]) / dist;
+        if (!(ct * ct * dist2 < R2)) continue;
+        const double t = 1.0 - R2 / dist2,
+                     o[3] = {p[0] + t * u[0], p[1] + t * u[1], p[2] + t * u[2]};
+        const double facing[3] = {-u[0] / dist, -u[1] / dist, -u[2] / dist};
+        double poly[CJ_REFLECT_DISC_SIDES][3];
+        cj_reflect_disc_polygon(o, facing, L->radius * sqrt(t), poly);
+        const double e = cj_reflect_polygon_irradiance(p, nd, (const double(*)[3])poly,
+                                                       CJ_REFLECT_DISC_SIDES, facing);
+        /* f I d = L_e E / π with I = π R² L_e, f = 1/dist² */
+        d[j] = (float)(e * dist2 / (3.14159265358979323846 * 3.14159265358979323846 * R2));
+    }
+}
+
 /* The lights of the frame on lanes j < n: fills b->sd and b->ss. any_mirror / any_half: some
  * lane uses the mirror (Phong) / the half-vector (Blinn) lobe. */
 CJ_LANE_INLINE void cj_lanes_light(const cj_rctx *c, int n, int any_mirror, int any_half,
@@ -154,7 +192,7 @@ CJ_LANE_INLINE void cj_lanes_light(const cj_rctx *c, int n, int any_mirror, int 
                                      c->view->eye.z + (double)b->pz[j]};
                 const double nd[3] = {b->nx[j], b->ny[j], b->nz[j]};
                 const float e =
-                    (float)(cj_reflect_polygon_irradiance(p, nd, L->corner, 4, L->normal) /
+                    (float)(cj_reflect_polygon_irradiance(p, nd, L->corner, L->ncorner, L->normal) /
                             3.14159265358979323846);
                 double to[3] = {L->pos[0] - p[0], L->pos[1] - p[1], L->pos[2] - p[2]};
                 double r2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2];
@@ -202,6 +240,7 @@ CJ_LANE_INLINE void cj_lanes_light(const cj_rctx *c, int n, int any_mirror, int 
             }
         }
         cj_lanes_terms(n, c->radiometric, any_mirror, any_half, b, lx, ly, lz, vx, vy, vz, d, s);
+        if (L->sphere) cj_lanes_sphere_horizon(c, n, b, L, lx, ly, lz, f, d);
         for (int k = 0; k < 3; ++k)
             for (int j = 0; j < n; ++j) {
                 b->sd[k][j] += f[j] * L->I[k] * d[j];

@@ -19,6 +19,7 @@
 #define CASTELJAU_RENDER_PIPE_H
 
 #include "raster3d_internal.h"
+#include "reflect_model.h"
 #include "render_internal.h"
 #include "texture_internal.h"
 
@@ -55,9 +56,15 @@ typedef struct cj_rlight {
     float cos_cut, spot_exp;
     int falloff; /* radiometric point and spot: I is an intensity, divided by r² */
     /* radiometric area light (I = L_e): the diffuse term takes the polygon's exact irradiance
-     * (reflect_model.h), the specular one its centre pos as a point of intensity L_e A cos θ′ */
-    int area;
-    double corner[4][3], normal[3], size; /* size: the area A */
+     * (reflect_model.h), the specular one its centre pos as a point of intensity L_e A cos θ′.
+     * A disc light is the polygon of cj_reflect_disc_polygon (its area, πR², in size). */
+    /* radiometric sphere light (I = π R² L_e, a point at its centre): exact wherever the sphere
+     * is wholly above the receiver's horizon; where it is partly below, the diffuse term takes
+     * the polygon path with the disc that fills the same cone (cj_lanes_sphere_horizon) */
+    int sphere;
+    double radius;
+    int area, ncorner;
+    double corner[CJ_REFLECT_POLY_MAX][3], normal[3], size; /* size: the area A */
 } cj_rlight;
 
 typedef struct cj_rmat {

@@ -51,6 +51,7 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
                                   cj_v3_add(cj_v3_add(L->position, L->edge_u), L->edge_v),
                                   cj_v3_add(L->position, L->edge_v)};
             r->area = 1;
+            r->ncorner = 4;
             r->size = cj_v3_norm(nrm);
             nrm = cj_v3_normalize(nrm);
             r->normal[0] = nrm.x;
@@ -61,6 +62,17 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
                 r->corner[j][1] = q[j].y;
                 r->corner[j][2] = q[j].z;
             }
+        } else if (radiometric && L->kind == CJ_LIGHT_DISC) {
+            /* the disc's irradiance by the polygon path (cj_reflect_disc_polygon); the specular
+             * term its centre as a point of intensity L_e π R² cos θ′, as before */
+            const cj_vec3 nrm = cj_v3_normalize(L->direction);
+            r->area = 1;
+            r->ncorner = CJ_REFLECT_DISC_SIDES;
+            r->size = 3.14159265358979323846 * L->radius * L->radius;
+            r->normal[0] = nrm.x;
+            r->normal[1] = nrm.y;
+            r->normal[2] = nrm.z;
+            cj_reflect_disc_polygon(r->pos, r->normal, L->radius, r->corner);
         } else if (L->kind == CJ_LIGHT_SPOT) {
             cj_vec3 a = cj_v3_normalize(L->direction);
             r->spot = 1;
@@ -71,23 +83,16 @@ static void prepare_lights(const cj_scene *scene, cj_rctx *c, float Ia[3], cj_rf
             r->spot_exp = (float)L->spot_exponent;
         }
         r->falloff = radiometric && (L->kind == CJ_LIGHT_POINT || L->kind == CJ_LIGHT_SPOT);
-        if (L->kind == CJ_LIGHT_DISC || L->kind == CJ_LIGHT_SPHERE) {
+        if (L->kind == CJ_LIGHT_SPHERE || (L->kind == CJ_LIGHT_DISC && !radiometric)) {
             /* the far-field point at the centre (scene.h): legacy, a point of strength I;
-             * radiometric, an intensity π R² L_e, times cos θ′ for a disc (a spot of exponent 1
-             * over the half space its normal points to) */
+             * radiometric, a sphere of intensity π R² L_e (exact wherever the sphere is wholly
+             * above the receiver's horizon) */
             r->falloff = radiometric;
+            r->sphere = radiometric && L->kind == CJ_LIGHT_SPHERE;
+            r->radius = L->radius;
             if (radiometric) {
                 const float proj = (float)(3.14159265358979323846 * L->radius * L->radius);
                 for (int k = 0; k < 3; ++k) r->I[k] *= proj;
-            }
-            if (radiometric && L->kind == CJ_LIGHT_DISC) {
-                cj_vec3 a = cj_v3_normalize(L->direction);
-                r->spot = 1;
-                r->axis[0] = (float)a.x;
-                r->axis[1] = (float)a.y;
-                r->axis[2] = (float)a.z;
-                r->cos_cut = 0.0f;
-                r->spot_exp = 1.0f;
             }
         }
     }

@@ -165,10 +165,14 @@ typedef struct cj_light {
  *     disc, sphere I is the radiance L_e of a Lambertian emitter: a disc emits on the side its
  *                  normal `direction` points to, a sphere outwards. The tracer samples a disc by
  *                  area (pdf 1/(π R²)) and a sphere by the solid angle of its cone from the point
- *                  (pdf 1/(2π (1 − cos θ_max)), sin θ_max = R/d); the rasterizer draws both as
- *                  their far-field point at the centre: a sphere as intensity π R² L_e (its
- *                  exact irradiance wherever all of it is above the horizon), a disc as
- *                  π R² L_e cos θ′ (off by a factor 1 + R²/h² on its axis at height h).
+ *                  (pdf 1/(2π (1 − cos θ_max)), sin θ_max = R/d). The rasterizer takes a
+ *                  disc's diffuse term as that of the regular 32-gon of its area (Lambert's
+ *                  formula, clipped to the horizon: within 2·10⁻⁵ of the on-axis irradiance
+ *                  wherever the receiver is at least R/4 from the disc's plane) and its specular
+ *                  one from its centre as a point of intensity π R² L_e cos θ′; a sphere as its
+ *                  centre of intensity π R² L_e (exact wherever all of it is above the
+ *                  horizon), and where the horizon cuts it by the clipped polygon of the disc
+ *                  filling the same cone (docs/light.md).
  *   The reflected radiance is then Σ f_r E with the material's BRDF
  *     f_r = r_d c_r / π + r_s c_p f_s
  *   (f_s the energy-conserving form of the specular lobe of cj_specular_model:
