@@ -37,16 +37,19 @@
  * above, and the few the bound rejects (the h^2 law undershoots near inflections) are shortened
  * until certified, the walk resuming from there towards the next planned point.
  *
- * Rounding: the break points and derivatives come from one de Casteljau triangle on the scaled
- * control points (|coordinates| < 1): each is within ~3n u of the exact value relative to the
- * largest coordinate, the computed Hermite control points within ~(6n+2) u, and the chord
- * arithmetic adds a few u. The curve with the computed control points is within that distance
- * of the true piece (a convex combination), so the bound plus fc->slack = 32 (n+2) u max|coord|
- * holds for the true piece; the general bound's subcurve ends differ from our break points by
- * as little, also inside the slack. */
+ * Rounding: the break points and derivatives come from the Bernstein sums of eval_pd on the
+ * scaled control points (|coordinates| < 1), whose weights are positive products of s = 1 - t
+ * (rounded once) and t: each weight is within ~4 u of its exact value relative to itself, so a
+ * point is within ~(n+7) u and a derivative within ~(n+7) u of n max|b_{i+1} - b_i| of the
+ * exact values (the de Casteljau triangle's ~3n u, for about half its operations), the computed
+ * Hermite control points within ~(6n+2) u, and the chord arithmetic adds a few u. The curve with
+ * the computed control points is within that distance of the true piece (a convex combination), so
+ * the bound plus fc->slack = 32 (n+2) u max|coord| holds for the true piece; the general bound's
+ * subcurve ends differ from our break points by as little, also inside the slack. */
 #include "flatten_internal.h"
 
 #include <math.h>
+#include <stdint.h>
 
 /* Exponent range where 2^escale and 2^-escale are normal doubles, so that scaling by them is an
  * exact multiplication. */
@@ -57,16 +60,23 @@ int cj_fl_fast_applies(const cj_fl_curve *fc) {
            fc->escale >= -FAST_MAX_ESCALE && fc->escale <= FAST_MAX_ESCALE;
 }
 
+/* 2^e for |e| <= FAST_MAX_ESCALE (a normal double), built from its bits (no libm call). */
+static inline double pow2(int e) {
+    const union {
+        uint64_t u;
+        double d;
+    } v = {(uint64_t)(1023 + e) << 52};
+    return v.d;
+}
+
 typedef struct fpt {
     double x, y, dx, dy; /* c(t), c'(t) in the scaled coordinates */
 } fpt;
 
 /* Point and first derivative at t in Bernstein form: c(t) = Σ B_i(t) b_i and
  * c'(t) = Σ B^(n-1)_i(t) q_i with q_i = n (b_{i+1} - b_i) (computed once per curve, in dq). The
- * weights are products of s = 1 - t and t, positive and summing to 1 up to rounding, so the point
- * is within ~(n+3) u max|b| of the exact one and the derivative within ~(n+2) u max|q| plus the
- * rounding of q (2 u max|q|): no more than the de Casteljau triangle's ~3n u, for about half its
- * operations. */
+ * weights are products of s = 1 - t and t, positive and summing to 1 up to rounding, so the
+ * errors stay within the few u of the top comment's rounding paragraph. */
 /* a * b + c, fused where the hardware has it (one rounding instead of two; the bounds above
  * count two). */
 #ifdef __FMA__
@@ -463,8 +473,8 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
     cx->p = fc->hom;
     cx->n = fc->n;
     cx->inv_n = 1.0 / (double)fc->n;
-    cx->down = ldexp(1.0, -fc->escale);
-    fr.up = ldexp(1.0, fc->escale);
+    cx->down = pow2(-fc->escale);
+    fr.up = pow2(fc->escale);
     fr.em = em;
     fr.worst2 = 0.0;
     cx->tol_eff = tol_eff;
