@@ -37,16 +37,19 @@
  * above, and the few the bound rejects (the h^2 law undershoots near inflections) are shortened
  * until certified, the walk resuming from there towards the next planned point.
  *
- * Rounding: the break points and derivatives come from one de Casteljau triangle on the scaled
- * control points (|coordinates| < 1): each is within ~3n u of the exact value relative to the
- * largest coordinate, the computed Hermite control points within ~(6n+2) u, and the chord
- * arithmetic adds a few u. The curve with the computed control points is within that distance
- * of the true piece (a convex combination), so the bound plus fc->slack = 32 (n+2) u max|coord|
- * holds for the true piece; the general bound's subcurve ends differ from our break points by
- * as little, also inside the slack. */
+ * Rounding: the break points and derivatives come from the Bernstein sums of eval_pd on the
+ * scaled control points (|coordinates| < 1), whose weights are positive products of s = 1 - t
+ * (rounded once) and t: each weight is within ~4 u of its exact value relative to itself, so a
+ * point is within ~(n+7) u and a derivative within ~(n+7) u of n max|b_{i+1} - b_i| of the
+ * exact values (the de Casteljau triangle's ~3n u, for about half its operations), the computed
+ * Hermite control points within ~(6n+2) u, and the chord arithmetic adds a few u. The curve with
+ * the computed control points is within that distance of the true piece (a convex combination), so
+ * the bound plus fc->slack = 32 (n+2) u max|coord| holds for the true piece; the general bound's
+ * subcurve ends differ from our break points by as little, also inside the slack. */
 #include "flatten_internal.h"
 
 #include <math.h>
+#include <stdint.h>
 
 /* Exponent range where 2^escale and 2^-escale are normal doubles, so that scaling by them is an
  * exact multiplication. */
@@ -57,31 +60,48 @@ int cj_fl_fast_applies(const cj_fl_curve *fc) {
            fc->escale >= -FAST_MAX_ESCALE && fc->escale <= FAST_MAX_ESCALE;
 }
 
+/* 2^e for |e| <= FAST_MAX_ESCALE (a normal double), built from its bits (no libm call). */
+static inline double pow2(int e) {
+    const union {
+        uint64_t u;
+        double d;
+    } v = {(uint64_t)(1023 + e) << 52};
+    return v.d;
+}
+
 typedef struct fpt {
     double x, y, dx, dy; /* c(t), c'(t) in the scaled coordinates */
 } fpt;
 
-/* Point and first derivative at t (one de Casteljau triangle). */
-static inline __attribute__((always_inline)) void eval_pd(const double *p, int n, double t,
-                                                          fpt *o) {
+/* Point and first derivative at t in Bernstein form: c(t) = Σ B_i(t) b_i and
+ * c'(t) = Σ B^(n-1)_i(t) q_i with q_i = n (b_{i+1} - b_i) (computed once per curve, in dq). The
+ * weights are products of s = 1 - t and t, positive and summing to 1 up to rounding, so the
+ * errors stay within the few u of the top comment's rounding paragraph. */
+/* a * b + c, fused where the hardware has it (one rounding instead of two; the bounds above
+ * count two). */
+#ifdef __FMA__
+#define FAST_MADD(a, b, c) fma(a, b, c)
+#else
+#define FAST_MADD(a, b, c) ((a) * (b) + (c))
+#endif
+
+static inline __attribute__((always_inline)) void eval_pd(const double *p, const double *dq, int n,
+                                                          double t, fpt *o) {
     const double s = 1.0 - t;
+    const double ss = s * s, st = s * t, tt = t * t;
     if (n == 3) {
-        const double ax0 = s * p[0] + t * p[2], ay0 = s * p[1] + t * p[3];
-        const double ax1 = s * p[2] + t * p[4], ay1 = s * p[3] + t * p[5];
-        const double ax2 = s * p[4] + t * p[6], ay2 = s * p[5] + t * p[7];
-        const double bx0 = s * ax0 + t * ax1, by0 = s * ay0 + t * ay1;
-        const double bx1 = s * ax1 + t * ax2, by1 = s * ay1 + t * ay2;
-        o->x = s * bx0 + t * bx1;
-        o->y = s * by0 + t * by1;
-        o->dx = 3.0 * (bx1 - bx0);
-        o->dy = 3.0 * (by1 - by0);
+        const double w0 = ss * s, w1 = 3.0 * (ss * t), w2 = 3.0 * (st * t), w3 = tt * t;
+        const double v1 = 2.0 * st;
+        o->x = FAST_MADD(w3, p[6], FAST_MADD(w2, p[4], FAST_MADD(w1, p[2], w0 * p[0])));
+        o->y = FAST_MADD(w3, p[7], FAST_MADD(w2, p[5], FAST_MADD(w1, p[3], w0 * p[1])));
+        o->dx = FAST_MADD(tt, dq[4], FAST_MADD(v1, dq[2], ss * dq[0]));
+        o->dy = FAST_MADD(tt, dq[5], FAST_MADD(v1, dq[3], ss * dq[1]));
     } else {
-        const double ax0 = s * p[0] + t * p[2], ay0 = s * p[1] + t * p[3];
-        const double ax1 = s * p[2] + t * p[4], ay1 = s * p[3] + t * p[5];
-        o->x = s * ax0 + t * ax1;
-        o->y = s * ay0 + t * ay1;
-        o->dx = 2.0 * (ax1 - ax0);
-        o->dy = 2.0 * (ay1 - ay0);
+        const double w1 = 2.0 * st;
+        o->x = FAST_MADD(tt, p[4], FAST_MADD(w1, p[2], ss * p[0]));
+        o->y = FAST_MADD(tt, p[5], FAST_MADD(w1, p[3], ss * p[1]));
+        o->dx = FAST_MADD(t, dq[2], s * dq[0]);
+        o->dy = FAST_MADD(t, dq[3], s * dq[1]);
     }
 }
 
@@ -108,7 +128,9 @@ static inline double hump_max(double A, double B) {
 typedef struct fast_ctx {
     const cj_fl_curve *fc;
     const double *p; /* scaled control points, stride 2 */
+    double dq[6];    /* n (b_{i+1} - b_i), the derivative's control points, stride 2 */
     int n;
+    double inv_n; /* 1 / n */
     double down;  /* 2^-escale: caller units -> scaled */
     double tol_s; /* tol_eff in scaled units */
     double lo_s;  /* accept_lo in scaled units */
@@ -131,7 +153,7 @@ static __attribute__((noinline)) double general_dev(const fast_ctx *cx, double a
  * most about the curve's size, so inside the slack. Returns +INFINITY only on overflow. */
 static inline __attribute__((always_inline)) double
 piece_dev2(const fast_ctx *cx, double a, double b, const fpt *P, const fpt *Q) {
-    const double h = b - a, k = h / (double)cx->n;
+    const double k = (b - a) * cx->inv_n;
     const double vx = Q->x - P->x, vy = Q->y - P->y;
     const double L2 = vx * vx + vy * vy;
     const double u1x = k * P->dx, u1y = k * P->dy; /* b_1 - b_0 */
@@ -238,6 +260,10 @@ typedef struct fast_quad {
     double inv_val; /* 1 / val (0 when val is) */
     double a0, da;  /* F(x0), F(x1) - F(x0) */
     double y0, ysc; /* F^-1(a0), 1 / (F^-1(a1) - F^-1(a0)) */
+    /* Filled by plan_init: planned point j (its target j step of the integral) lies on this
+     * quadratic while j < jlim, at t = c0 + c1 F^-1(alpha + j beta), clamped to [t0, t0 + dt]. */
+    double alpha, beta, c0, c1;
+    size_t jlim;
 } fast_quad;
 
 /* The model parabola through P (at t0) and Q (at t0 + dt). */
@@ -273,35 +299,21 @@ static void quad_params(const fpt *P, const fpt *Q, int n, double t0, double dt,
     q->y0 = y0, q->ysc = 1.0 / (y1 - y0);
 }
 
-/* Parameter on the cubic where the model's integral reaches share s in [0,1] of q's. */
-static inline double quad_t(const fast_quad *q, double s) {
-    const double u = (approx_f_inv(q->a0 + s * q->da) - q->y0) * q->ysc;
-    return q->t0 + (u < 0.0 ? 0.0 : (u > 1.0 ? 1.0 : u)) * q->dt;
-}
-
 /* ---- certification ------------------------------------------------------------------------ */
 
 typedef struct fast_run {
     fast_ctx cx;
     cj_fl_emitter *em;
     double up;
-    double worst2; /* square of the largest certified deviation (scaled units) */
+    int direct;        /* inner points go straight into em->out (no sink) */
+    size_t direct_end; /* while em->count is below this (room and the segment cap) */
+    double worst2;     /* square of the largest certified deviation (scaled units) */
 } fast_run;
 
-static inline cj_status emit_break(fast_run *fr, double b, const fpt *Q) {
+/* Emits the end point or a point into a sink (cj_fl_emit's checks); out of line. */
+static __attribute__((noinline)) cj_status emit_slow(fast_run *fr, double b, const fpt *Q) {
     cj_fl_emitter *e = fr->em;
     double pt[2];
-    if (b < 1.0 && !e->sink && !e->skip_equal && e->count < e->max_points) {
-        /* inner points into a buffer: cj_fl_emit's work without its checks for the first point
-         * of a sequence piece and without tracking the last point (the end point, emitted
-         * below, sets it) */
-        if (e->out && e->count < e->cap_points) {
-            e->out[2 * e->count] = Q->x * fr->up;
-            e->out[2 * e->count + 1] = Q->y * fr->up;
-        }
-        e->count++;
-        return CJ_OK;
-    }
     if (b == 1.0) {
         cj_fl_end(fr->cx.fc, fr->cx.n, pt);
     } else {
@@ -310,6 +322,21 @@ static inline cj_status emit_break(fast_run *fr, double b, const fpt *Q) {
     }
     if (cj_fl_emit(e, pt, b)) return cj_fl_cap_fail(e, "near-optimal");
     return CJ_OK;
+}
+
+static inline __attribute__((always_inline)) cj_status emit_break(fast_run *fr, double b,
+                                                                  const fpt *Q) {
+    cj_fl_emitter *e = fr->em;
+    if (b < 1.0 && fr->direct && e->count < fr->direct_end) {
+        /* inner points into the caller's buffer, where it has room: cj_fl_emit's work without
+         * its checks for the first point of a sequence piece (the first point is emitted
+         * before) and without tracking the last point (the end point, emitted last, sets it) */
+        e->out[2 * e->count] = Q->x * fr->up;
+        e->out[2 * e->count + 1] = Q->y * fr->up;
+        e->count++;
+        return CJ_OK;
+    }
+    return emit_slow(fr, b, Q);
 }
 
 #define FAST_MAX_SPLIT_DEPTH 64
@@ -342,7 +369,7 @@ static cj_status certify(fast_run *fr, double a, const fpt *P, double b, const f
         if (i == parts)
             R = *Q;
         else
-            eval_pd(fr->cx.p, fr->cx.n, tb, &R);
+            eval_pd(fr->cx.p, fr->cx.dq, fr->cx.n, tb, &R);
         const cj_status st = certify(fr, ta, &L, tb, &R, depth + 1);
         if (st) return st;
         L = R;
@@ -353,26 +380,51 @@ static cj_status certify(fast_run *fr, double a, const fpt *P, double b, const f
 
 /* The planned break points: equal steps of the model's integral over the quadratics. */
 typedef struct fast_plan {
-    const fast_quad *qs;
+    fast_quad *qs;
     int nq;
-    double step;
-    size_t m;      /* planned segments */
-    int qi;        /* quadratic of the last target */
-    double qstart; /* integral before quadratic qi */
+    size_t m; /* planned segments */
+    int qi;   /* quadratic of the last target */
 } fast_plan;
+
+/* Turns the share of the integral on each quadratic into a closed form in the point's index:
+ * target j step lies on quadratic i while it is below the sum of the integrals up to i, at
+ * share s = (j step - start) / val of it, parameter t0 + dt (F^-1(a0 + s da) - y0) ysc. */
+static void plan_init(fast_plan *pl, fast_quad *qs, int nq, size_t m, double step) {
+    pl->qs = qs;
+    pl->nq = nq;
+    pl->m = m;
+    pl->qi = 0;
+    double start = 0.0;
+    for (int i = 0; i < nq; ++i) {
+        fast_quad *q = &qs[i];
+        const double end = start + q->val;
+        /* the first j whose target reaches the end (every j for the last quadratic) */
+        double jl = i == nq - 1 ? (double)m : ceil(end / step);
+        while (jl > 0.0 && step * (jl - 1.0) >= end) jl -= 1.0;
+        while (step * jl < end && jl < (double)m) jl += 1.0;
+        q->jlim = i == nq - 1 ? m : (size_t)jl;
+        if (q->val > 0.0) {
+            const double r = q->da * q->inv_val;
+            q->alpha = q->a0 - start * r;
+            q->beta = step * r;
+            q->c1 = q->dt * q->ysc;
+            q->c0 = q->t0 - q->y0 * q->c1;
+        } else {
+            q->alpha = q->beta = q->c1 = 0.0;
+            q->c0 = q->t0 + q->dt;
+        }
+        start = end;
+    }
+}
 
 /* Planned point j (1 <= j; m and later are the end, 1.0). Called with increasing j. */
 static inline double plan_next(fast_plan *pl, size_t j) {
     if (j >= pl->m) return 1.0;
-    const double target = pl->step * (double)j;
-    while (pl->qi < pl->nq - 1 && target >= pl->qstart + pl->qs[pl->qi].val)
-        pl->qstart += pl->qs[pl->qi++].val;
+    while (j >= pl->qs[pl->qi].jlim && pl->qi < pl->nq - 1) pl->qi++;
     const fast_quad *q = &pl->qs[pl->qi];
-    if (!(q->val > 0.0)) return q->t0 + q->dt;
-    double s = (target - pl->qstart) * q->inv_val;
-    if (s > 1.0) s = 1.0;
-    const double t = quad_t(q, s);
-    return t < 1.0 ? t : 1.0;
+    const double t = q->c0 + q->c1 * approx_f_inv(q->alpha + (double)j * q->beta);
+    const double hi = q->t0 + q->dt;
+    return t < q->t0 ? q->t0 : (t < hi ? (t < 1.0 ? t : 1.0) : (hi < 1.0 ? hi : 1.0));
 }
 
 #define FAST_REPAIR_TRIES 6
@@ -387,14 +439,16 @@ static cj_status repair(fast_run *fr, double *pa, fpt *P, double b, const fpt *Q
     const double a = *pa, goal2 = 0.96 * 0.96 * cx->tol_s * cx->tol_s;
     double h = b - a;
     for (int it = 0; it < FAST_REPAIR_TRIES; ++it) {
-        double f = pow(goal2 / D2, 0.2);
+        /* (goal / D)^(1/2): the h^2 law's step, shorter than the h^2.5 law's (goal / D)^(2/5)
+         * by a few percent, at one square root instead of a pow */
+        double f = sqrt(sqrt(goal2 / D2));
         if (!(f <= 0.97)) f = 0.97;
         if (f < 0.1) f = 0.1;
         h *= f;
         const double bn = a + h;
         if (!(bn > a)) break;
         fpt R;
-        eval_pd(cx->p, cx->n, bn, &R);
+        eval_pd(cx->p, cx->dq, cx->n, bn, &R);
         D2 = piece_dev2(cx, a, bn, P, &R);
         if (D2 <= cx->tol_s * cx->tol_s) {
             if (D2 > fr->worst2) fr->worst2 = D2;
@@ -418,8 +472,9 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
     cx->fc = fc;
     cx->p = fc->hom;
     cx->n = fc->n;
-    cx->down = ldexp(1.0, -fc->escale);
-    fr.up = ldexp(1.0, fc->escale);
+    cx->inv_n = 1.0 / (double)fc->n;
+    cx->down = pow2(-fc->escale);
+    fr.up = pow2(fc->escale);
     fr.em = em;
     fr.worst2 = 0.0;
     cx->tol_eff = tol_eff;
@@ -429,7 +484,10 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
     double pt[2];
     cj_fl_end(fc, 0, pt);
     if (cj_fl_emit(em, pt, 0.0)) return cj_fl_cap_fail(em, "near-optimal");
+    fr.direct = !em->sink && em->out != NULL;
+    fr.direct_end = em->cap_points < em->max_points ? em->cap_points : em->max_points;
     const double *p = cx->p;
+    for (int i = 0; i < 2 * cx->n; ++i) cx->dq[i] = (double)cx->n * (p[i + 2] - p[i]);
     /* The model: nq equal parameter pieces, as many as the cubic's third difference asks for
      * (a quadratic models a piece with error ~ |Δ^3 b| h^3 / 20; the pieces need not be within
      * the tolerance, only close enough for the curvature estimate). */
@@ -444,12 +502,12 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
     fast_quad qs[FAST_MAX_QUADS];
     fpt brk[FAST_MAX_QUADS + 1];
     double total = 0.0;
-    eval_pd(p, cx->n, 0.0, &brk[0]);
+    eval_pd(p, cx->dq, cx->n, 0.0, &brk[0]);
     for (int i = 1; i <= nq; ++i) {
         if (i == nq)
             end_point(cx, &brk[i]);
         else
-            eval_pd(p, cx->n, (double)i / nq, &brk[i]);
+            eval_pd(p, cx->dq, cx->n, (double)i / nq, &brk[i]);
         quad_params(&brk[i - 1], &brk[i], cx->n, (double)(i - 1) / nq, 1.0 / nq, &qs[i - 1]);
         total += qs[i - 1].val;
     }
@@ -459,7 +517,8 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
     if (!(mf >= 1.0)) mf = 1.0;
     if (!(mf <= (double)em->max_points)) return cj_fl_cap_fail(em, "near-optimal");
     const size_t m = (size_t)mf;
-    fast_plan pl = {qs, nq, total / mf, m, 0, 0.0};
+    fast_plan pl;
+    plan_init(&pl, qs, nq, m, total / mf);
     double a = 0.0, prev = 0.0;
     fpt P = brk[0];
     size_t j = 1;
@@ -475,7 +534,7 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
         if (bj == 1.0)
             Q = brk[nq];
         else
-            eval_pd(p, cx->n, bj, &Q);
+            eval_pd(p, cx->dq, cx->n, bj, &Q);
         const double D2 = piece_dev2(cx, a, bj, &P, &Q);
         if (D2 <= cx->tol_s * cx->tol_s) {
             if (D2 > fr.worst2) fr.worst2 = D2;
