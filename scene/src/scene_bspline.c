@@ -194,6 +194,27 @@ int cj_scene_bspline_in_sync_(const cj_scene *scene, int index) {
     return same;
 }
 
+/* Copies the patches of `c` listed in which[0..n) (all when which is NULL) that differ from the
+ * geometry's into it; the differing ones go to changed[0..cap); returns how many differed. */
+static int rewrite(cj_geometry *g, const converted *c, size_t per, const int *which, int n,
+                   int *changed, int cap) {
+    int nc = 0;
+    for (int m = 0; m < n; ++m) {
+        const int k = which ? which[m] : m;
+        const cj_patch *p = &g->u.patches.patches[k];
+        const double *np = c->pts + 3 * per * (size_t)k;
+        const double *nw = c->w ? c->w + per * (size_t)k : NULL;
+        if (!memcmp(p->pts, np, 3 * per * sizeof(double)) &&
+            (!nw || !memcmp(p->weights, nw, per * sizeof(double))))
+            continue;
+        memcpy((double *)p->pts, np, 3 * per * sizeof(double));
+        if (nw) memcpy((double *)p->weights, nw, per * sizeof(double));
+        if (changed && nc < cap) changed[nc] = k;
+        ++nc;
+    }
+    return nc;
+}
+
 cj_status cj_scene_bspline_set_point(cj_scene *scene, int index, int i, int j, const double xyz[3],
                                      double weight, int *changed, int cap, int *nchanged) {
     assert(scene && xyz);
@@ -235,21 +256,28 @@ cj_status cj_scene_bspline_set_point(cj_scene *scene, int index, int i, int j, c
     int support[(CJ_PATCH_MAX_DEGREE + 1) * (CJ_PATCH_MAX_DEGREE + 1)];
     const int ns = cj_scene_bspline_support(scene, index, i, j, support,
                                             (int)(sizeof support / sizeof *support));
-    const cj_geometry *g = &scene->geoms[index];
     const size_t per = (size_t)(s->deg_u + 1) * (size_t)(s->deg_v + 1);
-    int nc = 0;
-    for (int m = 0; m < ns; ++m) {
-        const cj_patch *p = &g->u.patches.patches[support[m]];
-        const double *np = c.pts + 3 * per * (size_t)support[m];
-        const double *nw = c.w ? c.w + per * (size_t)support[m] : NULL;
-        const int differs = memcmp(p->pts, np, 3 * per * sizeof(double)) ||
-                            (nw && memcmp(p->weights, nw, per * sizeof(double)));
-        if (!differs) continue;
-        memcpy((double *)p->pts, np, 3 * per * sizeof(double));
-        if (nw) memcpy((double *)p->weights, nw, per * sizeof(double));
-        if (changed && nc < cap) changed[nc] = support[m];
-        ++nc;
+    const int nc = rewrite(&scene->geoms[index], &c, per, support, ns, changed, cap);
+    converted_free(&c);
+    if (nchanged) *nchanged = nc;
+    return CJ_OK;
+}
+
+cj_status cj_scene_bspline_refresh(cj_scene *scene, int index, int *changed, int cap,
+                                   int *nchanged) {
+    struct cj_scene_bspline_ *b = kept(scene, index);
+    if (!b) return cj_fail(CJ_ERR_ARGUMENT, "geometry %d has no B-spline form", index);
+    cj_status st = cj_bspline_surface_check(&b->surf);
+    if (st) {
+        char msg[400];
+        snprintf(msg, sizeof msg, "%s", cj_last_error());
+        return cj_fail(st, "geometries[%d]: %s", index, msg);
     }
+    converted c;
+    if ((st = convert(&b->surf, &c))) return st;
+    cj_geometry *g = &scene->geoms[index];
+    const size_t per = (size_t)(b->surf.deg_u + 1) * (size_t)(b->surf.deg_v + 1);
+    const int nc = rewrite(g, &c, per, NULL, c.count, changed, cap);
     converted_free(&c);
     if (nchanged) *nchanged = nc;
     return CJ_OK;

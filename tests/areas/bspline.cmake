@@ -41,3 +41,10 @@ else()
   message(STATUS "OpenCASCADE not found: test_occt_bspline is not built")
 endif()
 cj_add_test(test_bspline_cxx SOURCES bspline/test_bspline_cxx.cpp LIBS cj::surfaces)
+# The 3D editor moving B-spline net points: local re-derivation, tessellation, undo, save, pixels.
+if(TARGET cj::viz AND TARGET cj::scene AND TARGET cj::raster)
+  cj_add_test(test_viewer_bsurf SOURCES bspline/test_viewer_bsurf.c
+    LIBS cj::viz cj::raster cj::scene cj::surfaces)
+  target_compile_definitions(test_viewer_bsurf PRIVATE
+    CJ_SCENE_FILE="${PROJECT_SOURCE_DIR}/scenes/bsplines.json")
+endif()

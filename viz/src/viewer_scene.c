@@ -2,6 +2,8 @@
  * picking, drags on the camera-facing plane or along an axis, the undo log, the orbit camera. */
 #include "casteljau/viewer_scene.h"
 
+#include "casteljau/scene_bspline.h"
+
 #include "error_internal.h"
 #include "viewer_internal.h"
 
@@ -19,6 +21,7 @@ typedef struct vpt {
  * shared corner is several entries, undone and redone together). */
 typedef struct vmove {
     double *p;
+    int geom; /* the geometry the point belongs to (a B-spline surface re-derives its patches) */
     double from[3], to[3];
     unsigned long cmd;
 } vmove;
@@ -56,8 +59,13 @@ static cj_status collect(cj_vscene *vs) {
         if (st) return st;
         if (node->geometry < 0 || !cj_scene_node_shown(vs->scene, (int)n)) continue;
         cj_geometry *g = cj_scene_geometry_mut(vs->scene, node->geometry);
+        /* A B-spline / NURBS surface is edited through its own control net (scene_bspline.h):
+         * its Bezier patches are re-derived from it after every move. */
+        const cj_bspline_surface *bsp = cj_scene_geometry_bspline(vs->scene, node->geometry);
         size_t add = 0;
-        if (g->kind == CJ_GEOM_PATCHES)
+        if (bsp)
+            add = (size_t)bsp->npts_u * (size_t)bsp->npts_v;
+        else if (g->kind == CJ_GEOM_PATCHES)
             for (size_t k = 0; k < g->u.patches.count; ++k)
                 add += cj_patch_point_count(&g->u.patches.patches[k]);
         else if (g->kind == CJ_GEOM_CURVE)
@@ -73,7 +81,10 @@ static cj_status collect(cj_vscene *vs) {
         }
         /* The scene owns these arrays (cj_scene_add_geometry copied them); the editor writes
          * through the mutable geometry it was handed. */
-        if (g->kind == CJ_GEOM_PATCHES) {
+        if (bsp) {
+            for (size_t i = 0; i < add; ++i)
+                vs->pts[vs->npts++] = (vpt){(int)n, node->geometry, (double *)bsp->pts + 3 * i};
+        } else if (g->kind == CJ_GEOM_PATCHES) {
             for (size_t k = 0; k < g->u.patches.count; ++k) {
                 const cj_patch *pa = &g->u.patches.patches[k];
                 for (size_t i = 0; i < cj_patch_point_count(pa); ++i)
@@ -262,9 +273,16 @@ int cj_vscene_pick(const cj_vscene *vs, int width, int height, const float *dept
     return found;
 }
 
-/* Moves the n points of vs->grp to `to`: one command, or the continuation of the drag's
- * command when the same points moved last. */
-static cj_status log_moves(cj_vscene *vs, size_t n, const double to[3]) {
+/* After points of geometry `geom` moved: a B-spline surface re-derives the patches that
+ * changed (the others keep their bits, so the tessellation cache rebuilds only those). */
+static cj_status moved(cj_vscene *vs, int geom) {
+    if (!cj_scene_geometry_bspline(vs->scene, geom)) return CJ_OK;
+    return cj_scene_bspline_refresh(vs->scene, geom, NULL, 0, NULL);
+}
+
+/* Moves the n points of vs->grp (of geometry `geom`) to `to`: one command, or the
+ * continuation of the drag's command when the same points moved last. */
+static cj_status log_moves(cj_vscene *vs, int geom, size_t n, const double to[3]) {
     int merge = vs->drag_merge && vs->pos == vs->nlog && vs->pos >= n;
     for (size_t i = 0; merge && i < n; ++i) {
         const vmove *m = &vs->log[vs->pos - n + i];
@@ -276,7 +294,7 @@ static cj_status log_moves(cj_vscene *vs, size_t n, const double to[3]) {
             memcpy(vs->log[vs->pos - n + i].to, to, 3 * sizeof *to);
             memcpy(vs->grp[i], to, 3 * sizeof *to);
         }
-        return CJ_OK;
+        return moved(vs, geom);
     }
     vs->nlog = vs->pos;
     if (vs->nlog + n > vs->cap) {
@@ -291,6 +309,7 @@ static cj_status log_moves(cj_vscene *vs, size_t n, const double to[3]) {
     for (size_t i = 0; i < n; ++i) {
         vmove *m = &vs->log[vs->nlog++];
         m->p = vs->grp[i];
+        m->geom = geom;
         m->cmd = cmd;
         memcpy(m->from, m->p, sizeof m->from);
         memcpy(m->to, to, sizeof m->to);
@@ -298,7 +317,7 @@ static cj_status log_moves(cj_vscene *vs, size_t n, const double to[3]) {
     }
     vs->pos = vs->nlog;
     vs->drag_merge = vs->drag_open;
-    return CJ_OK;
+    return moved(vs, geom);
 }
 
 cj_status cj_vscene_set_point(cj_vscene *vs, size_t k, cj_vec3 world) {
@@ -312,7 +331,7 @@ cj_status cj_vscene_set_point(cj_vscene *vs, size_t k, cj_vec3 world) {
     cj_status st = cj_xform3_apply_point(&vs->inv[vs->pts[k].node], world, &local);
     if (st) return st;
     const double to[3] = {local.x, local.y, local.z};
-    return log_moves(vs, group_of(vs, k), to);
+    return log_moves(vs, vs->pts[k].geom, group_of(vs, k), to);
 }
 
 void cj_vscene_begin_drag(cj_vscene *vs) {
@@ -394,23 +413,27 @@ cj_status cj_vscene_update(cj_vscene *vs) {
 cj_status cj_vscene_undo(cj_vscene *vs) {
     if (!vs->pos) return cj_fail(CJ_ERR_EMPTY, "viewer: nothing to undo");
     const unsigned long cmd = vs->log[vs->pos - 1].cmd;
+    cj_status st = CJ_OK;
     while (vs->pos && vs->log[vs->pos - 1].cmd == cmd) {
         const vmove *m = &vs->log[--vs->pos];
         memcpy(m->p, m->from, sizeof m->from);
+        if (!st) st = moved(vs, m->geom);
     }
     vs->drag_merge = 0;
-    return CJ_OK;
+    return st;
 }
 
 cj_status cj_vscene_redo(cj_vscene *vs) {
     if (vs->pos == vs->nlog) return cj_fail(CJ_ERR_EMPTY, "viewer: nothing to redo");
     const unsigned long cmd = vs->log[vs->pos].cmd;
+    cj_status st = CJ_OK;
     while (vs->pos < vs->nlog && vs->log[vs->pos].cmd == cmd) {
         const vmove *m = &vs->log[vs->pos++];
         memcpy(m->p, m->to, sizeof m->to);
+        if (!st) st = moved(vs, m->geom);
     }
     vs->drag_merge = 0;
-    return CJ_OK;
+    return st;
 }
 
 /* ---- camera ---------------------------------------------------------------------------- */

@@ -54,6 +54,16 @@ int cj_scene_bspline_support(const cj_scene *scene, int index, int i, int j, int
 cj_status cj_scene_bspline_set_point(cj_scene *scene, int index, int i, int j, const double xyz[3],
                                      double weight, int *changed, int cap, int *nchanged);
 
+/* For editors that write the kept points or weights in place (the 3D viewer's undo log holds
+ * pointers into cj_scene_geometry_bspline(...)->pts): re-derives the patches of geometry `index`
+ * from its kept form, writing only the patches whose bits change, listed as in
+ * cj_scene_bspline_set_point (cap >= the patch count always suffices). After it the patches
+ * equal cj_bspline_surface_to_patches of the kept form bit for bit. Errors: CJ_ERR_ARGUMENT (no
+ * B-spline form), those of cj_bspline_surface_check (the edited net, e.g. a NaN point or a
+ * weight <= 0), CJ_ERR_NOMEM; on failure the patches are left as they were. */
+cj_status cj_scene_bspline_refresh(cj_scene *scene, int index, int *changed, int cap,
+                                   int *nchanged);
+
 #ifdef __cplusplus
 }
 #endif
