@@ -124,6 +124,54 @@ int main(void) {
     CHECK(!cj_vscene_redo(vs), "redo");
     double *redone = snapshot(g, &len);
     CHECK(!memcmp(redone, after, len * sizeof(double)), "redo does not restore the move");
+    /* a weight of the NURBS torus: net point (1, 0) lies on the seam row v = 0, which the last
+     * row repeats, so with linking its copy (1, 8) changes too and the torus stays closed */
+    int tg = -1;
+    size_t tfirst = (size_t)-1;
+    for (size_t q = 0; q < cj_vscene_point_count(vs) && tg < 0; ++q) {
+        const int gq = cj_scene_node(s, cj_vscene_point_node(vs, q))->geometry;
+        const cj_bspline_surface *tb = cj_scene_geometry_bspline(s, gq);
+        if (tb && tb->weights) tg = gq, tfirst = q;
+    }
+    const cj_bspline_surface *tb = tg >= 0 ? cj_scene_geometry_bspline(s, tg) : NULL;
+    int wchanged = -1, wsame = 0;
+    double w0 = 0, wsheet = 0;
+    CHECK(!cj_vscene_point_weight(vs, k, &wsheet) &&
+              cj_vscene_set_weight(vs, k, 2.0) == CJ_ERR_ARGUMENT,
+          "a polynomial sheet's point has no weight to set");
+    if (tb) {
+        const size_t kt = tfirst + 1, nt = (size_t)(tb->npts_u * tb->npts_v);
+        const cj_geometry *tgeo = cj_scene_geometry(s, tg);
+        const size_t np = tgeo->u.patches.count;
+        double *tb0 = malloc(nt * sizeof(double)), *pw0 = malloc(9 * np * sizeof(double));
+        memcpy(tb0, tb->weights, nt * sizeof(double));
+        for (size_t p = 0; p < np; ++p)
+            memcpy(pw0 + 9 * p, tgeo->u.patches.patches[p].weights, 9 * sizeof(double));
+        CHECK(cj_vscene_point_weight(vs, kt, &w0), "torus point has a weight");
+        st = cj_vscene_set_weight(vs, kt, w0 * 1.25);
+        CHECK(st == CJ_OK, "weight: %s", cj_last_error());
+        const size_t last = (size_t)(tb->npts_v - 1) * (size_t)tb->npts_u + 1;
+        wsame = tb->weights[1] == w0 * 1.25 && tb->weights[last] == w0 * 1.25;
+        CHECK(wsame, "the seam copies' weights: %.17g and %.17g (want %.17g)", tb->weights[1],
+              tb->weights[last], w0 * 1.25);
+        wchanged = 0;
+        for (size_t p = 0; p < np; ++p)
+            wchanged +=
+                memcmp(pw0 + 9 * p, tgeo->u.patches.patches[p].weights, 9 * sizeof(double)) != 0;
+        const int s1 = cj_scene_bspline_support(s, tg, 1, 0, NULL, 0);
+        const int s2 = cj_scene_bspline_support(s, tg, 1, tb->npts_v - 1, NULL, 0);
+        CHECK(wchanged == s1 + s2 && wchanged == 2,
+              "the weight changed %d torus patches (supports %d + %d, want 2)", wchanged, s1, s2);
+        int stale = -1;
+        CHECK(cj_scene_bspline_refresh(s, tg, NULL, 0, &stale) == CJ_OK && stale == 0,
+              "the torus patches were not up to date after the weight change (%d)", stale);
+        CHECK(!cj_vscene_undo(vs), "undo weight");
+        CHECK(!memcmp(tb0, tb->weights, nt * sizeof(double)), "undo does not restore weights");
+        CHECK(!cj_vscene_redo(vs), "redo weight");
+        free(tb0);
+        free(pw0);
+    }
+    CHECK(tb != NULL, "no NURBS surface in the scene");
     /* save, reload: the same net; the same pixels */
     const char *file = "test_viewer_bsurf.json";
     st = cj_scene_save_json(s, file);
@@ -156,9 +204,12 @@ int main(void) {
     printf("3D editor on %s: the bicubic sheet's %zu net points are the editable points; moving "
            "point (1, 1) changed %d of %zu patches (its support, (p+1)(q+1) = 16 at most), the "
            "tessellation cache re-planned %zu of them (first frame %zu), the patches equal a "
-           "fresh conversion, undo/redo restore bit for bit, and the saved bspline_surface "
-           "reloads to the same net and renders to the same pixels (%ld values differ)\n",
-           CJ_SCENE_FILE, nsheet, changed, g->u.patches.count, planned1, planned0, differ);
+           "fresh conversion, undo/redo restore bit for bit; weight x1.25 of torus point (1, 0) "
+           "also set its seam copy (1, 8) and changed %d rational patches; the saved scene reloads "
+           "to the same nets and "
+           "renders to the same pixels (%ld values differ)\n",
+           CJ_SCENE_FILE, nsheet, changed, g->u.patches.count, planned1, planned0, wchanged,
+           differ);
     free(before);
     free(after);
     free(undone);

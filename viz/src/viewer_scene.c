@@ -15,12 +15,14 @@
 typedef struct vpt {
     int node, geom;
     double *p; /* 3 coordinates inside the scene's geometry */
+    double *w; /* its weight (a NURBS surface's net point), or NULL */
 } vpt;
 
 /* One moved point; the consecutive entries of one command share `cmd` (a linked move of a
  * shared corner is several entries, undone and redone together). */
 typedef struct vmove {
-    double *p;
+    double *p; /* 3 coordinates, or one weight (dim 1) */
+    int dim;
     int geom; /* the geometry the point belongs to (a B-spline surface re-derives its patches) */
     double from[3], to[3];
     unsigned long cmd;
@@ -83,17 +85,19 @@ static cj_status collect(cj_vscene *vs) {
          * through the mutable geometry it was handed. */
         if (bsp) {
             for (size_t i = 0; i < add; ++i)
-                vs->pts[vs->npts++] = (vpt){(int)n, node->geometry, (double *)bsp->pts + 3 * i};
+                vs->pts[vs->npts++] = (vpt){(int)n, node->geometry, (double *)bsp->pts + 3 * i,
+                                            bsp->weights ? (double *)bsp->weights + i : NULL};
         } else if (g->kind == CJ_GEOM_PATCHES) {
             for (size_t k = 0; k < g->u.patches.count; ++k) {
                 const cj_patch *pa = &g->u.patches.patches[k];
                 for (size_t i = 0; i < cj_patch_point_count(pa); ++i)
-                    vs->pts[vs->npts++] = (vpt){(int)n, node->geometry, (double *)pa->pts + 3 * i};
+                    vs->pts[vs->npts++] =
+                        (vpt){(int)n, node->geometry, (double *)pa->pts + 3 * i, NULL};
             }
         } else {
             for (size_t i = 0; i < g->u.curve.count; ++i)
                 vs->pts[vs->npts++] =
-                    (vpt){(int)n, node->geometry, (double *)g->u.curve.pts + 3 * i};
+                    (vpt){(int)n, node->geometry, (double *)g->u.curve.pts + 3 * i, NULL};
         }
     }
     return CJ_OK;
@@ -282,17 +286,17 @@ static cj_status moved(cj_vscene *vs, int geom) {
 
 /* Moves the n points of vs->grp (of geometry `geom`) to `to`: one command, or the
  * continuation of the drag's command when the same points moved last. */
-static cj_status log_moves(cj_vscene *vs, int geom, size_t n, const double to[3]) {
+static cj_status log_moves(cj_vscene *vs, int geom, int dim, size_t n, const double *to) {
     int merge = vs->drag_merge && vs->pos == vs->nlog && vs->pos >= n;
     for (size_t i = 0; merge && i < n; ++i) {
         const vmove *m = &vs->log[vs->pos - n + i];
-        merge = m->p == vs->grp[i] && m->cmd == vs->log[vs->pos - 1].cmd &&
+        merge = m->p == vs->grp[i] && m->dim == dim && m->cmd == vs->log[vs->pos - 1].cmd &&
                 (vs->pos == n || vs->log[vs->pos - n - 1].cmd != m->cmd);
     }
     if (merge) {
         for (size_t i = 0; i < n; ++i) {
-            memcpy(vs->log[vs->pos - n + i].to, to, 3 * sizeof *to);
-            memcpy(vs->grp[i], to, 3 * sizeof *to);
+            memcpy(vs->log[vs->pos - n + i].to, to, (size_t)dim * sizeof *to);
+            memcpy(vs->grp[i], to, (size_t)dim * sizeof *to);
         }
         return moved(vs, geom);
     }
@@ -310,10 +314,11 @@ static cj_status log_moves(cj_vscene *vs, int geom, size_t n, const double to[3]
         vmove *m = &vs->log[vs->nlog++];
         m->p = vs->grp[i];
         m->geom = geom;
+        m->dim = dim;
         m->cmd = cmd;
-        memcpy(m->from, m->p, sizeof m->from);
-        memcpy(m->to, to, sizeof m->to);
-        memcpy(m->p, to, sizeof m->to);
+        memcpy(m->from, m->p, (size_t)dim * sizeof *to);
+        memcpy(m->to, to, (size_t)dim * sizeof *to);
+        memcpy(m->p, to, (size_t)dim * sizeof *to);
     }
     vs->pos = vs->nlog;
     vs->drag_merge = vs->drag_open;
@@ -331,7 +336,34 @@ cj_status cj_vscene_set_point(cj_vscene *vs, size_t k, cj_vec3 world) {
     cj_status st = cj_xform3_apply_point(&vs->inv[vs->pts[k].node], world, &local);
     if (st) return st;
     const double to[3] = {local.x, local.y, local.z};
-    return log_moves(vs, vs->pts[k].geom, group_of(vs, k), to);
+    return log_moves(vs, vs->pts[k].geom, 3, group_of(vs, k), to);
+}
+
+int cj_vscene_point_weight(const cj_vscene *vs, size_t k, double *w) {
+    if (k >= vs->npts || !vs->pts[k].w) return 0;
+    *w = *vs->pts[k].w;
+    return 1;
+}
+
+cj_status cj_vscene_set_weight(cj_vscene *vs, size_t k, double w) {
+    if (k >= vs->npts || !vs->pts[k].w)
+        return cj_fail(CJ_ERR_ARGUMENT,
+                       "viewer: control point %zu has no weight (not a NURBS "
+                       "surface's net point)",
+                       k);
+    if (!isfinite(w) || !(w > 0.0))
+        return cj_fail(CJ_ERR_ARGUMENT, "viewer: weight %g of control point %zu must be > 0", w, k);
+    /* the weights of the points moved with k: group_of lists positions, each maps to its own
+     * weight */
+    const size_t n = group_of(vs, k);
+    for (size_t g = 0; g < n; ++g)
+        for (size_t i = 0; i < vs->npts; ++i)
+            if (vs->pts[i].p == vs->grp[g]) {
+                vs->grp[g] = vs->pts[i].w;
+                break;
+            }
+    vs->drag_merge = 0;
+    return log_moves(vs, vs->pts[k].geom, 1, n, &w);
 }
 
 void cj_vscene_begin_drag(cj_vscene *vs) {
@@ -416,7 +448,7 @@ cj_status cj_vscene_undo(cj_vscene *vs) {
     cj_status st = CJ_OK;
     while (vs->pos && vs->log[vs->pos - 1].cmd == cmd) {
         const vmove *m = &vs->log[--vs->pos];
-        memcpy(m->p, m->from, sizeof m->from);
+        memcpy(m->p, m->from, (size_t)m->dim * sizeof *m->from);
         if (!st) st = moved(vs, m->geom);
     }
     vs->drag_merge = 0;
@@ -429,7 +461,7 @@ cj_status cj_vscene_redo(cj_vscene *vs) {
     cj_status st = CJ_OK;
     while (vs->pos < vs->nlog && vs->log[vs->pos].cmd == cmd) {
         const vmove *m = &vs->log[vs->pos++];
-        memcpy(m->p, m->to, sizeof m->to);
+        memcpy(m->p, m->to, (size_t)m->dim * sizeof *m->to);
         if (!st) st = moved(vs, m->geom);
     }
     vs->drag_merge = 0;
