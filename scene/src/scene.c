@@ -82,6 +82,7 @@ static void free_geometry(cj_scene *s, size_t i) {
     cj_geometry *g = &s->geoms[i];
     if (g->kind == CJ_GEOM_MESH) cj_mesh_destroy(g->u.mesh);
     for (int k = 0; k < 3; ++k) cj_scene_free_(s, s->gstore[i].block[k]);
+    cj_scene_free_(s, s->gstore[i].bspline);
 }
 
 void cj_scene_destroy(cj_scene *s) {

@@ -8,7 +8,17 @@
 /* Memory a geometry owns besides its cj_geometry value (released on destroy). */
 typedef struct cj_geom_store {
     void *block[3];
+    struct cj_scene_bspline_ *bspline; /* the kept B-spline form (scene_bspline.c) or NULL */
 } cj_geom_store;
+
+/* Adds B-spline surface `s` as a patches geometry keeping its B-spline form; messages name
+ * `path` (the JSON reader's path, or "geometries[n]"). */
+struct cj_bspline_surface;
+cj_status cj_scene_add_bspline_surface_at_(cj_scene *scene, const struct cj_bspline_surface *s,
+                                           const char *path, int *index);
+/* Whether the patches of geometry `index` are still exactly those of its B-spline form
+ * (0 also when it has none or memory ran out). */
+int cj_scene_bspline_in_sync_(const cj_scene *scene, int index);
 
 struct cj_scene {
     cj_allocator alloc;

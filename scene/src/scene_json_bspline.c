@@ -3,7 +3,8 @@
  * "knots_u": [...], "knots_v": [...] (optional: clamped uniform on [0, 1]), "weights": [...]
  * (required for nurbs_surface, refused for bspline_surface)}. The surface is converted to its
  * Bézier patches at load (cj_bspline_surface_to_patches), so it is a "patches" geometry for
- * every renderer, the tracer and tessellation. */
+ * every renderer, the tracer and tessellation, and the scene keeps its B-spline form
+ * (casteljau/scene_bspline.h) for editors and for cj_scene_save_json. */
 #include "scene_json_internal.h"
 #include "scene_internal.h"
 
@@ -58,8 +59,7 @@ cj_status cj_json_read_bspline_surface_(jctx *c, const cJSON *obj, const char *p
         return cj_json_fail(&c->json, sn, 0, CJ_ERR_RANGE,
                             "%s must be two integers >= 2 with at most 1e6 points in all", pk);
     const int nu = (int)su, nv = (int)sv;
-    double *pts = NULL, *w = NULL, *ku = NULL, *kv = NULL, *pp = NULL, *pw = NULL;
-    cj_patch *patches = NULL;
+    double *pts = NULL, *w = NULL, *ku = NULL, *kv = NULL;
     cj_status st;
     cj_json_join(pk, p, "points");
     st = cj_json_numbers(&c->json, pn, pk, 3, CJ_JSON_ANY, 0, (size_t)nu * (size_t)nv, &pts, &cnt);
@@ -94,38 +94,13 @@ cj_status cj_json_read_bspline_surface_(jctx *c, const cJSON *obj, const char *p
         snprintf(msg, sizeof msg, "%s", cj_last_error());
         st = cj_json_fail(&c->json, obj, 0, st, "%s: %s", p, msg);
     }
-    const size_t per = (size_t)(dp + 1) * (size_t)(dq + 1);
     if (!st) {
-        pp = malloc(sizeof(double) * 3 * per * (size_t)np);
-        pw = w ? malloc(sizeof(double) * per * (size_t)np) : NULL;
-        patches = calloc((size_t)np, sizeof *patches);
-        if (!pp || !patches || (w && !pw))
-            st = cj_json_fail(&c->json, obj, 0, CJ_ERR_NOMEM, "%s: out of memory", p);
-    }
-    if (!st && (st = cj_bspline_surface_to_patches(&s, pp, pw, NULL, NULL, np, NULL))) {
-        char msg[400];
-        snprintf(msg, sizeof msg, "%s", cj_last_error());
-        st = cj_json_fail(&c->json, obj, 0, st, "%s: %s", p, msg);
-    }
-    if (!st) {
-        for (int i = 0; i < np; ++i)
-            patches[i] =
-                cj_patch_view(dp, dq, pp + 3 * per * (size_t)i, pw ? pw + per * (size_t)i : NULL);
-        cj_geometry g;
-        memset(&g, 0, sizeof g);
-        g.kind = CJ_GEOM_PATCHES;
-        g.u.patches.count = (size_t)np;
-        g.u.patches.patches = patches;
-        st = cj_scene_check_geometry_(&g, p);
-        if (!st) st = cj_scene_add_geometry(c->scene, &g, index);
+        st = cj_scene_add_bspline_surface_at_(c->scene, &s, p, index);
         if (st) st = cj_json_relabel(&c->json, obj, st);
     }
     free(pts);
     free(w);
     free(ku);
     free(kv);
-    free(pp);
-    free(pw);
-    free(patches);
     return st;
 }

@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "scene_internal.h"
 
+#include "casteljau/scene_bspline.h"
 #include "casteljau/scene_json.h"
 #include "error_internal.h"
 #include "json_write_internal.h"
@@ -319,11 +320,31 @@ static void write_curve(emitter *e, const cj_geometry *g) {
     rgb(e, "color", g->u.curve.color);
 }
 
-static void write_geometry(emitter *e, const cj_geometry *g, int i) {
+/* A geometry that keeps its B-spline form, written as that form (knots always explicit, so a
+ * load of the file rebuilds the same surface bit for bit). */
+static void write_bspline_surface(emitter *e, const cj_bspline_surface *b) {
+    const size_t n = (size_t)b->npts_u * (size_t)b->npts_v;
+    string(e, "type", b->weights ? "nurbs_surface" : "bspline_surface");
+    pair(e, "degree", b->deg_u, b->deg_v);
+    pair(e, "size", b->npts_u, b->npts_v);
+    points(e, "points", b->pts, n, 3);
+    nums(e, "knots_u", b->knots_u, (size_t)(b->npts_u + b->deg_u + 1));
+    nums(e, "knots_v", b->knots_v, (size_t)(b->npts_v + b->deg_v + 1));
+    weights(e, b->weights, n);
+}
+
+static void write_geometry(emitter *e, const cj_scene *s, int i) {
+    const cj_geometry *g = cj_scene_geometry(s, i);
     char name[32];
     snprintf(name, sizeof name, "geometry%d", i);
     open_c(e, NULL, '{');
     string(e, "name", name);
+    const cj_bspline_surface *bsp = cj_scene_geometry_bspline(s, i);
+    if (bsp && cj_scene_bspline_in_sync_(s, i)) {
+        write_bspline_surface(e, bsp);
+        close_c(e, '}');
+        return;
+    }
     switch (g->kind) {
     case CJ_GEOM_PATCHES:
         string(e, "type", "patches");
@@ -460,7 +481,7 @@ static void write_scene(emitter *e, const cj_scene *s) {
     for (size_t i = 0; i < s->nmaterials; ++i) write_material(e, s, (int)i);
     close_c(e, ']');
     open_c(e, "geometries", '[');
-    for (size_t i = 0; i < s->ngeoms; ++i) write_geometry(e, &s->geoms[i], (int)i);
+    for (size_t i = 0; i < s->ngeoms; ++i) write_geometry(e, s, (int)i);
     close_c(e, ']');
     open_c(e, "objects", '[');
     for (size_t i = 0; i < s->nnodes; ++i)

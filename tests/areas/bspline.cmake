@@ -24,6 +24,10 @@ if(TARGET cj::scene)
   cj_add_test(test_scene_bspline SOURCES bspline/test_scene_bspline.c LIBS cj::scene)
   target_compile_definitions(test_scene_bspline PRIVATE
     CJ_SCENE_FILE="${PROJECT_SOURCE_DIR}/scenes/bsplines.json")
+  # Kept B-spline form: round trip, local re-derivation of patches on a control point move.
+  cj_add_test(test_scene_bspline_edit SOURCES bspline/test_scene_bspline_edit.c LIBS cj::scene)
+  target_compile_definitions(test_scene_bspline_edit PRIVATE
+    CJ_SCENE_FILE="${PROJECT_SOURCE_DIR}/scenes/bsplines.json")
 endif()
 # Cross-check against OpenCASCADE (Debian libocct-foundation-dev, libocct-modeling-data-dev,
 # libocct-modeling-algorithms-dev; scripts/setup.sh installs them). Skipped when not installed.
@@ -37,3 +41,10 @@ else()
   message(STATUS "OpenCASCADE not found: test_occt_bspline is not built")
 endif()
 cj_add_test(test_bspline_cxx SOURCES bspline/test_bspline_cxx.cpp LIBS cj::surfaces)
+# The 3D editor moving B-spline net points: local re-derivation, tessellation, undo, save, pixels.
+if(TARGET cj::viz AND TARGET cj::scene AND TARGET cj::raster)
+  cj_add_test(test_viewer_bsurf SOURCES bspline/test_viewer_bsurf.c
+    LIBS cj::viz cj::raster cj::scene cj::surfaces)
+  target_compile_definitions(test_viewer_bsurf PRIVATE
+    CJ_SCENE_FILE="${PROJECT_SOURCE_DIR}/scenes/bsplines.json")
+endif()

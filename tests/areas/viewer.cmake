@@ -11,7 +11,8 @@ if(CJ_HAVE_VIEWER AND TARGET casteljau)
   target_include_directories(test_viewer_window PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_compile_definitions(test_viewer_window PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
     CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt"
-    CJ_ANIM_PATH="${PROJECT_SOURCE_DIR}/scenes/anim_flyby.json")
+    CJ_ANIM_PATH="${PROJECT_SOURCE_DIR}/scenes/anim_flyby.json"
+    CJ_BSPLINES_PATH="${PROJECT_SOURCE_DIR}/scenes/bsplines.json")
   add_dependencies(test_viewer_window casteljau)
   # ~10 s of CPU in RelWithDebInfo; the sanitizer build on a busy machine needs the margin
   set_tests_properties(test_viewer_window PROPERTIES TIMEOUT 900)

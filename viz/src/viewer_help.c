@@ -27,6 +27,7 @@ static const char *const help_3d[] = {
     "N  control nets    W  wireframe    G  shading flat/Gouraud/Phong",
     "+ / -  screen tolerance x2 / /2    R  ray-traced view (refines while still)",
     "L  shared corners and edge points move together (on) / alone",
+    "W / shift+W with a NURBS net point selected  weight x1.25 / /1.25",
     "Space  play/pause the animation (an animation document: one frame per picture)",
     "ctrl+Z  undo    ctrl+Y or ctrl+shift+Z  redo    ctrl+S  save    F5  reload",
     "O  text overlay on/off    F1  this help    Esc/Q  quit",

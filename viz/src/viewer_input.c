@@ -224,7 +224,7 @@ static void set_all_overlays(cj_viewer *v, unsigned flag) {
     }
 }
 
-static void key_3d(cj_viewer *v, int key) {
+static void key_3d(cj_viewer *v, int key, int mods) {
     cj_scene *s = cj_vscene_scene(v->vs);
     cj_scene_settings set = *cj_scene_get_settings(s);
     switch (key) {
@@ -232,10 +232,19 @@ static void key_3d(cj_viewer *v, int key) {
         set_all_overlays(v, CJ_OVERLAY_CONTROL_NET);
         say(v, "control nets", CJ_OK);
         break;
-    case GLFW_KEY_W:
+    case GLFW_KEY_W: {
+        /* a selected NURBS net point: its weight, as W / shift+W in the 2D editor */
+        double w;
+        if (v->sel3 >= 0 && cj_vscene_point_weight(v->vs, (size_t)v->sel3, &w)) {
+            say(v, "weight",
+                cj_vscene_set_weight(v->vs, (size_t)v->sel3,
+                                     (mods & VIEW_MOD_SHIFT) ? w / 1.25 : w * 1.25));
+            break;
+        }
         set_all_overlays(v, CJ_OVERLAY_WIREFRAME);
         say(v, "wireframe", CJ_OK);
         break;
+    }
     case GLFW_KEY_G: {
         const cj_shading next =
             (cj_shading)((cj_scene_material(s, 0) ? cj_scene_material(s, 0)->shading + 1 : 0) % 3);
@@ -317,7 +326,7 @@ void cj_viewer_key(cj_viewer *v, int key, int mods) {
         break;
     }
     if (v->mode3d)
-        key_3d(v, key);
+        key_3d(v, key, mods);
     else
         key_2d(v, key, mods);
 }

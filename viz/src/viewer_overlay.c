@@ -394,7 +394,12 @@ static void overlay_3d(cj_viewer *v, panel *p) {
         const size_t shared = cj_vscene_shared_count(v->vs, (size_t)v->sel3);
         char with[48] = "";
         if (shared > 1) snprintf(with, sizeof with, " (moves with %zu others)", shared - 1);
-        add(p, "point %ld: (%.6g, %.6g, %.6g)%s", v->sel3, w.x, w.y, w.z, with);
+        double wt;
+        if (cj_vscene_point_weight(v->vs, (size_t)v->sel3, &wt))
+            add(p, "point %ld: (%.6g, %.6g, %.6g) weight %.6g (W, shift+W)%s", v->sel3, w.x, w.y,
+                w.z, wt, with);
+        else
+            add(p, "point %ld: (%.6g, %.6g, %.6g)%s", v->sel3, w.x, w.y, w.z, with);
     }
     if (v->anim)
         add(p, "animation: frame %ld of %d..%d (%s, Space)", v->anim_frame, v->anim->frame_first,

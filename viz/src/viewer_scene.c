@@ -2,6 +2,8 @@
  * picking, drags on the camera-facing plane or along an axis, the undo log, the orbit camera. */
 #include "casteljau/viewer_scene.h"
 
+#include "casteljau/scene_bspline.h"
+
 #include "error_internal.h"
 #include "viewer_internal.h"
 
@@ -13,12 +15,15 @@
 typedef struct vpt {
     int node, geom;
     double *p; /* 3 coordinates inside the scene's geometry */
+    double *w; /* its weight (a NURBS surface's net point), or NULL */
 } vpt;
 
 /* One moved point; the consecutive entries of one command share `cmd` (a linked move of a
  * shared corner is several entries, undone and redone together). */
 typedef struct vmove {
-    double *p;
+    double *p; /* 3 coordinates, or one weight (dim 1) */
+    int dim;
+    int geom; /* the geometry the point belongs to (a B-spline surface re-derives its patches) */
     double from[3], to[3];
     unsigned long cmd;
 } vmove;
@@ -56,8 +61,13 @@ static cj_status collect(cj_vscene *vs) {
         if (st) return st;
         if (node->geometry < 0 || !cj_scene_node_shown(vs->scene, (int)n)) continue;
         cj_geometry *g = cj_scene_geometry_mut(vs->scene, node->geometry);
+        /* A B-spline / NURBS surface is edited through its own control net (scene_bspline.h):
+         * its Bezier patches are re-derived from it after every move. */
+        const cj_bspline_surface *bsp = cj_scene_geometry_bspline(vs->scene, node->geometry);
         size_t add = 0;
-        if (g->kind == CJ_GEOM_PATCHES)
+        if (bsp)
+            add = (size_t)bsp->npts_u * (size_t)bsp->npts_v;
+        else if (g->kind == CJ_GEOM_PATCHES)
             for (size_t k = 0; k < g->u.patches.count; ++k)
                 add += cj_patch_point_count(&g->u.patches.patches[k]);
         else if (g->kind == CJ_GEOM_CURVE)
@@ -73,16 +83,21 @@ static cj_status collect(cj_vscene *vs) {
         }
         /* The scene owns these arrays (cj_scene_add_geometry copied them); the editor writes
          * through the mutable geometry it was handed. */
-        if (g->kind == CJ_GEOM_PATCHES) {
+        if (bsp) {
+            for (size_t i = 0; i < add; ++i)
+                vs->pts[vs->npts++] = (vpt){(int)n, node->geometry, (double *)bsp->pts + 3 * i,
+                                            bsp->weights ? (double *)bsp->weights + i : NULL};
+        } else if (g->kind == CJ_GEOM_PATCHES) {
             for (size_t k = 0; k < g->u.patches.count; ++k) {
                 const cj_patch *pa = &g->u.patches.patches[k];
                 for (size_t i = 0; i < cj_patch_point_count(pa); ++i)
-                    vs->pts[vs->npts++] = (vpt){(int)n, node->geometry, (double *)pa->pts + 3 * i};
+                    vs->pts[vs->npts++] =
+                        (vpt){(int)n, node->geometry, (double *)pa->pts + 3 * i, NULL};
             }
         } else {
             for (size_t i = 0; i < g->u.curve.count; ++i)
                 vs->pts[vs->npts++] =
-                    (vpt){(int)n, node->geometry, (double *)g->u.curve.pts + 3 * i};
+                    (vpt){(int)n, node->geometry, (double *)g->u.curve.pts + 3 * i, NULL};
         }
     }
     return CJ_OK;
@@ -262,21 +277,28 @@ int cj_vscene_pick(const cj_vscene *vs, int width, int height, const float *dept
     return found;
 }
 
-/* Moves the n points of vs->grp to `to`: one command, or the continuation of the drag's
- * command when the same points moved last. */
-static cj_status log_moves(cj_vscene *vs, size_t n, const double to[3]) {
+/* After points of geometry `geom` moved: a B-spline surface re-derives the patches that
+ * changed (the others keep their bits, so the tessellation cache rebuilds only those). */
+static cj_status moved(cj_vscene *vs, int geom) {
+    if (!cj_scene_geometry_bspline(vs->scene, geom)) return CJ_OK;
+    return cj_scene_bspline_refresh(vs->scene, geom, NULL, 0, NULL);
+}
+
+/* Moves the n points of vs->grp (of geometry `geom`) to `to`: one command, or the
+ * continuation of the drag's command when the same points moved last. */
+static cj_status log_moves(cj_vscene *vs, int geom, int dim, size_t n, const double *to) {
     int merge = vs->drag_merge && vs->pos == vs->nlog && vs->pos >= n;
     for (size_t i = 0; merge && i < n; ++i) {
         const vmove *m = &vs->log[vs->pos - n + i];
-        merge = m->p == vs->grp[i] && m->cmd == vs->log[vs->pos - 1].cmd &&
+        merge = m->p == vs->grp[i] && m->dim == dim && m->cmd == vs->log[vs->pos - 1].cmd &&
                 (vs->pos == n || vs->log[vs->pos - n - 1].cmd != m->cmd);
     }
     if (merge) {
         for (size_t i = 0; i < n; ++i) {
-            memcpy(vs->log[vs->pos - n + i].to, to, 3 * sizeof *to);
-            memcpy(vs->grp[i], to, 3 * sizeof *to);
+            memcpy(vs->log[vs->pos - n + i].to, to, (size_t)dim * sizeof *to);
+            memcpy(vs->grp[i], to, (size_t)dim * sizeof *to);
         }
-        return CJ_OK;
+        return moved(vs, geom);
     }
     vs->nlog = vs->pos;
     if (vs->nlog + n > vs->cap) {
@@ -291,14 +313,16 @@ static cj_status log_moves(cj_vscene *vs, size_t n, const double to[3]) {
     for (size_t i = 0; i < n; ++i) {
         vmove *m = &vs->log[vs->nlog++];
         m->p = vs->grp[i];
+        m->geom = geom;
+        m->dim = dim;
         m->cmd = cmd;
-        memcpy(m->from, m->p, sizeof m->from);
-        memcpy(m->to, to, sizeof m->to);
-        memcpy(m->p, to, sizeof m->to);
+        memcpy(m->from, m->p, (size_t)dim * sizeof *to);
+        memcpy(m->to, to, (size_t)dim * sizeof *to);
+        memcpy(m->p, to, (size_t)dim * sizeof *to);
     }
     vs->pos = vs->nlog;
     vs->drag_merge = vs->drag_open;
-    return CJ_OK;
+    return moved(vs, geom);
 }
 
 cj_status cj_vscene_set_point(cj_vscene *vs, size_t k, cj_vec3 world) {
@@ -312,7 +336,34 @@ cj_status cj_vscene_set_point(cj_vscene *vs, size_t k, cj_vec3 world) {
     cj_status st = cj_xform3_apply_point(&vs->inv[vs->pts[k].node], world, &local);
     if (st) return st;
     const double to[3] = {local.x, local.y, local.z};
-    return log_moves(vs, group_of(vs, k), to);
+    return log_moves(vs, vs->pts[k].geom, 3, group_of(vs, k), to);
+}
+
+int cj_vscene_point_weight(const cj_vscene *vs, size_t k, double *w) {
+    if (k >= vs->npts || !vs->pts[k].w) return 0;
+    *w = *vs->pts[k].w;
+    return 1;
+}
+
+cj_status cj_vscene_set_weight(cj_vscene *vs, size_t k, double w) {
+    if (k >= vs->npts || !vs->pts[k].w)
+        return cj_fail(CJ_ERR_ARGUMENT,
+                       "viewer: control point %zu has no weight (not a NURBS "
+                       "surface's net point)",
+                       k);
+    if (!isfinite(w) || !(w > 0.0))
+        return cj_fail(CJ_ERR_ARGUMENT, "viewer: weight %g of control point %zu must be > 0", w, k);
+    /* the weights of the points moved with k: group_of lists positions, each maps to its own
+     * weight */
+    const size_t n = group_of(vs, k);
+    for (size_t g = 0; g < n; ++g)
+        for (size_t i = 0; i < vs->npts; ++i)
+            if (vs->pts[i].p == vs->grp[g]) {
+                vs->grp[g] = vs->pts[i].w;
+                break;
+            }
+    vs->drag_merge = 0;
+    return log_moves(vs, vs->pts[k].geom, 1, n, &w);
 }
 
 void cj_vscene_begin_drag(cj_vscene *vs) {
@@ -394,23 +445,27 @@ cj_status cj_vscene_update(cj_vscene *vs) {
 cj_status cj_vscene_undo(cj_vscene *vs) {
     if (!vs->pos) return cj_fail(CJ_ERR_EMPTY, "viewer: nothing to undo");
     const unsigned long cmd = vs->log[vs->pos - 1].cmd;
+    cj_status st = CJ_OK;
     while (vs->pos && vs->log[vs->pos - 1].cmd == cmd) {
         const vmove *m = &vs->log[--vs->pos];
-        memcpy(m->p, m->from, sizeof m->from);
+        memcpy(m->p, m->from, (size_t)m->dim * sizeof *m->from);
+        if (!st) st = moved(vs, m->geom);
     }
     vs->drag_merge = 0;
-    return CJ_OK;
+    return st;
 }
 
 cj_status cj_vscene_redo(cj_vscene *vs) {
     if (vs->pos == vs->nlog) return cj_fail(CJ_ERR_EMPTY, "viewer: nothing to redo");
     const unsigned long cmd = vs->log[vs->pos].cmd;
+    cj_status st = CJ_OK;
     while (vs->pos < vs->nlog && vs->log[vs->pos].cmd == cmd) {
         const vmove *m = &vs->log[vs->pos++];
-        memcpy(m->p, m->to, sizeof m->to);
+        memcpy(m->p, m->to, (size_t)m->dim * sizeof *m->to);
+        if (!st) st = moved(vs, m->geom);
     }
     vs->drag_merge = 0;
-    return CJ_OK;
+    return st;
 }
 
 /* ---- camera ---------------------------------------------------------------------------- */

@@ -76,6 +76,14 @@ cj_status cj_vscene_drag(cj_vscene *vs, size_t k, int width, int height, double 
 /* Sets point k to a world position (one command). */
 cj_status cj_vscene_set_point(cj_vscene *vs, size_t k, cj_vec3 world);
 
+/* The weight of point k when it is a point of a NURBS surface's net (scene_bspline.h):
+ * 1 and *w set; else 0 (a patch corner, a curve point, a polynomial B-spline surface). */
+int cj_vscene_point_weight(const cj_vscene *vs, size_t k, double *w);
+/* Sets the weight of NURBS net point k (and, with linking on, of the net points at the same
+ * place, so a closed surface stays closed) as one command, re-deriving the changed patches.
+ * CJ_ERR_ARGUMENT: k out of range, not a NURBS net point, or w not finite and > 0. */
+cj_status cj_vscene_set_weight(cj_vscene *vs, size_t k, double w);
+
 /* Linking of coincident points (see above): on (1) by default. */
 void cj_vscene_set_linked(cj_vscene *vs, int on);
 int cj_vscene_linked(const cj_vscene *vs);
