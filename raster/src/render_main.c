@@ -29,6 +29,7 @@ static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
     cj_rfree(a, c->mats);
     cj_rfree(a, c->obj_mat);
     cj_rfree(a, c->lights);
+    cj_rfree(a, c->emitters);
     for (int i = 0; i < c->nsamplers; ++i) cj_tex_sampler_free(&c->samplers[i]);
     cj_rfree(a, c->samplers);
     cj_rlines_free(&c->lines, a);
