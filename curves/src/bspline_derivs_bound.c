@@ -65,12 +65,8 @@ static cj_status nurbs_derivs_bound(const cj_bspline *c, double t, int kmax, dou
 
 cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax, double *bound) {
     assert(bound != NULL);
-    cj_status st = cj_bspline_check(c);
+    cj_status st = cj_bsp_check_derivs(c, t, kmax);
     if (st) return st;
-    if ((st = cj_bsp_check_param(c, t, "parameter t"))) return st;
-    if (kmax < 0 || kmax > CJ_BSPLINE_MAX_DERIV)
-        return cj_fail(CJ_ERR_ARGUMENT, "derivative order %d is outside 0..%d", kmax,
-                       CJ_BSPLINE_MAX_DERIV);
     if (c->weights) return nurbs_derivs_bound(c, t, kmax, bound);
     const int d = c->dim, s = cj_bsp_span(c, t);
     double out[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_MAX_DIM];

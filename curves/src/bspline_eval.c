@@ -141,14 +141,20 @@ void cj_bspline_eval_derivs_unchecked(const cj_bspline *c, double t, int kmax, d
     (void)derivs(c, t, kmax, out);
 }
 
-cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double *out) {
-    assert(out != NULL);
+cj_status cj_bsp_check_derivs(const cj_bspline *c, double t, int kmax) {
     cj_status st = cj_bspline_check(c);
     if (st) return st;
     if ((st = cj_bsp_check_param(c, t, "parameter t"))) return st;
     if (kmax < 0 || kmax > CJ_BSPLINE_MAX_DERIV)
         return cj_fail(CJ_ERR_ARGUMENT, "derivative order %d is outside 0..%d", kmax,
                        CJ_BSPLINE_MAX_DERIV);
+    return CJ_OK;
+}
+
+cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double *out) {
+    assert(out != NULL);
+    cj_status st = cj_bsp_check_derivs(c, t, kmax);
+    if (st) return st;
     double res[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_MAX_DIM];
     const int bad = derivs(c, t, kmax, res);
     if (bad >= 0)
