@@ -1,4 +1,4 @@
-#define _POSIX_C_SOURCE 200809L /* readlink */
+#define _POSIX_C_SOURCE 200809L /* readlink, clock_gettime */
 #include "cli.h"
 #include "cli_progress.h"
 
@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 /* Escapes control characters (and DEL) so that echoed input cannot break a message's line. */
@@ -88,6 +89,17 @@ const char *cli_quote(const char *s, char *out, size_t out_size) {
 #ifndef CJ_VERSION
 #define CJ_VERSION "0.1.0"
 #endif
+
+/* The parser's state that the progress line reads (cli_progress.h): kept here, beside the parser
+ * that sets it, so that cli_progress.c calls this file and not the other way round. */
+int cli_quiet = 0;
+double cli_started = 0.0;
+
+double cli_now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 const char *cli_version(void) {
     return "casteljau " CJ_VERSION;

@@ -1,4 +1,4 @@
-#define _POSIX_C_SOURCE 200809L /* sigaction, clock_gettime */
+#define _POSIX_C_SOURCE 200809L /* sigaction */
 #include "cli_progress.h"
 
 #include "cli.h"
@@ -7,11 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
-
-int cli_quiet = 0;
-double cli_started = 0.0;
 
 static volatile sig_atomic_t interrupted = 0;
 static struct sigaction previous_sigint;
@@ -20,12 +16,6 @@ static int sigint_caught = 0;
 static void on_sigint(int sig) {
     (void)sig;
     interrupted = 1;
-}
-
-double cli_now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 void cli_progress_begin(cli_progress *p, const char *cmd, const char *unit) {

@@ -17,7 +17,8 @@ extern int cli_quiet;
 /* When the command started (set by cli_parser_init), on the cli_now clock. */
 extern double cli_started;
 
-/* Seconds on the monotonic clock (for the summary's time). */
+/* Seconds on the monotonic clock (for the summary's time). These three live beside the parser
+ * (cli_common.c), which sets cli_quiet and cli_started. */
 double cli_now(void);
 
 typedef struct cli_progress {

@@ -33,37 +33,34 @@ static const char render_usage[] =
 #include "casteljau/render.h"
 #include "casteljau/renderer.h"
 
+enum { O_SPP = CLI_SO_COUNT, O_TOL };
+
+/* render's own options (cli_own_option_fn). */
+static int render_option(const char *cmd, int k, const char *v, void *ctx, cj_render_options *opt) {
+    (void)ctx;
+    long n;
+    if (k == O_SPP) {
+        if (cli_parse_int(v, 1, 16, &n) || (n != 1 && n != 4 && n != 16))
+            return cli_fail(cmd, "--spp '%s' must be 1, 4 or 16", v);
+        opt->spp = (int)n;
+    } else if (cli_parse_double(v, &opt->tol_px) || !(opt->tol_px > 0.0)) { /* O_TOL */
+        return cli_fail(cmd, "--tol-px '%s' is not a positive finite number", v);
+    }
+    return 0;
+}
+
 int cmd_render(int argc, char **argv) {
     const char *cmd = "render";
-    enum { O_SPP = CLI_SO_COUNT, O_TOL };
     static const cli_opt opts[] = {CLI_SCENE_OPTIONS, {"--spp", NULL, 1}, {"--tol-px", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, render_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
-    cli_scene_args a = {NULL, NULL, 0, 0, 0};
-    const char *v;
-    long n;
+    cli_scene_args a;
     cj_render_options opt = cj_render_options_defaults();
-    int k, status;
-    while (cli_next_arg(&ps, &k, &v, &status)) {
-        switch (k) {
-        case O_SPP:
-            if (cli_parse_int(v, 1, 16, &n) || (n != 1 && n != 4 && n != 16))
-                return cli_fail(cmd, "--spp '%s' must be 1, 4 or 16", v);
-            opt.spp = (int)n;
-            break;
-        case O_TOL:
-            if (cli_parse_double(v, &opt.tol_px) || !(opt.tol_px > 0.0))
-                return cli_fail(cmd, "--tol-px '%s' is not a positive finite number", v);
-            break;
-        default: /* the scene file and the options render and trace share */
-            if (cli_scene_arg(cmd, k, v, &a, &opt)) return CLI_EXIT_USAGE;
-            break;
-        }
-    }
-    if (status >= 0) return status;
     cj_scene *scene = NULL;
-    int exr, rc = cli_open_scene(cmd, &a, cj_render_demo_scene, &exr, &scene);
-    if (rc) return rc;
+    int exr;
+    const int rc = cli_scene_command_args(&ps, render_option, NULL, cj_render_demo_scene, &a, &opt,
+                                          &exr, &scene);
+    if (rc >= 0) return rc;
     cj_renderer_options ro = cj_renderer_options_defaults();
     ro.render = opt;
     return cli_render_scene(cmd, &a, exr, scene, ro, CJ_BACKEND_RASTER, 0, 1.0, NULL);

@@ -62,70 +62,76 @@ static void colour_ids(cj_render_image *img) {
     for (size_t i = 0; i < npx; ++i) id_colour(img->ids[i], img->rgba + 4 * i);
 }
 
+enum { O_SIGNATURE = CLI_SO_COUNT, O_SPP, O_DEPTH, O_SEED, O_INDIRECT, O_INTEGRATOR };
+
+/* What trace's own options set besides the render options. */
+typedef struct trace_args {
+    int signature;
+    cj_trace_options topt;
+} trace_args;
+
+/* trace's own options (cli_own_option_fn). */
+static int trace_option(const char *cmd, int k, const char *v, void *ctx, cj_render_options *opt) {
+    trace_args *t = ctx;
+    long n;
+    switch (k) {
+    case O_SIGNATURE:
+        t->signature = 1;
+        break;
+    case O_SPP:
+        if (cli_parse_int(v, 1, 65536, &n))
+            return cli_fail(cmd, "--spp '%s' is not an integer in 1..65536", v);
+        opt->spp = (int)n;
+        break;
+    case O_DEPTH:
+        if (cli_parse_int(v, 0, 64, &n))
+            return cli_fail(cmd, "--max-depth '%s' is not an integer in 0..64", v);
+        opt->max_depth = n ? (int)n : -1; /* 0 means "the scene's" in the options: see below */
+        break;
+    case O_SEED: {
+        char *end;
+        errno = 0;
+        unsigned long long sd = strtoull(v, &end, 10);
+        if (end == v || *end || v[0] == '-' || v[0] == '+' || errno == ERANGE)
+            return cli_fail(cmd, "--seed '%s' is not an integer in 0..18446744073709551615", v);
+        opt->use_seed = 1;
+        opt->seed = (uint64_t)sd;
+        break;
+    }
+    case O_INDIRECT:
+        if (cli_parse_int(v, 0, 4096, &n))
+            return cli_fail(cmd, "--indirect '%s' is not an integer in 0..4096", v);
+        t->topt.indirect_samples = (int)n;
+        break;
+    default: /* O_INTEGRATOR */
+        if (!strcmp(v, "whitted"))
+            t->topt.integrator = CJ_INTEGRATOR_WHITTED;
+        else if (!strcmp(v, "path"))
+            t->topt.integrator = CJ_INTEGRATOR_PATH;
+        else
+            return cli_fail(cmd, "--integrator '%s' is neither whitted nor path", v);
+        break;
+    }
+    return 0;
+}
+
 int cmd_trace(int argc, char **argv) {
     const char *cmd = "trace";
-    enum { O_SIGNATURE = CLI_SO_COUNT, O_SPP, O_DEPTH, O_SEED, O_INDIRECT, O_INTEGRATOR };
     static const cli_opt opts[] = {CLI_SCENE_OPTIONS,        {"--signature", NULL, 0},
                                    {"--spp", NULL, 1},       {"--max-depth", NULL, 1},
                                    {"--seed", NULL, 1},      {"--indirect", NULL, 1},
                                    {"--integrator", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, trace_usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
-    cli_scene_args a = {NULL, NULL, 0, 0, 0};
-    const char *v;
-    int signature = 0;
-    long n;
+    cli_scene_args a;
+    trace_args t;
+    memset(&t, 0, sizeof t);
     cj_render_options opt = cj_render_options_defaults();
-    cj_trace_options topt;
-    memset(&topt, 0, sizeof topt);
-    int k, status;
-    while (cli_next_arg(&ps, &k, &v, &status)) {
-        switch (k) {
-        case O_SIGNATURE:
-            signature = 1;
-            break;
-        case O_SPP:
-            if (cli_parse_int(v, 1, 65536, &n))
-                return cli_fail(cmd, "--spp '%s' is not an integer in 1..65536", v);
-            opt.spp = (int)n;
-            break;
-        case O_DEPTH:
-            if (cli_parse_int(v, 0, 64, &n))
-                return cli_fail(cmd, "--max-depth '%s' is not an integer in 0..64", v);
-            opt.max_depth = n ? (int)n : -1; /* 0 means "the scene's" in the options: see below */
-            break;
-        case O_SEED: {
-            char *end;
-            errno = 0;
-            unsigned long long sd = strtoull(v, &end, 10);
-            if (end == v || *end || v[0] == '-' || v[0] == '+' || errno == ERANGE)
-                return cli_fail(cmd, "--seed '%s' is not an integer in 0..18446744073709551615", v);
-            opt.use_seed = 1;
-            opt.seed = (uint64_t)sd;
-            break;
-        }
-        case O_INDIRECT:
-            if (cli_parse_int(v, 0, 4096, &n))
-                return cli_fail(cmd, "--indirect '%s' is not an integer in 0..4096", v);
-            topt.indirect_samples = (int)n;
-            break;
-        case O_INTEGRATOR:
-            if (!strcmp(v, "whitted"))
-                topt.integrator = CJ_INTEGRATOR_WHITTED;
-            else if (!strcmp(v, "path"))
-                topt.integrator = CJ_INTEGRATOR_PATH;
-            else
-                return cli_fail(cmd, "--integrator '%s' is neither whitted nor path", v);
-            break;
-        default: /* the scene file and the options render and trace share */
-            if (cli_scene_arg(cmd, k, v, &a, &opt)) return CLI_EXIT_USAGE;
-            break;
-        }
-    }
-    if (status >= 0) return status;
     cj_scene *scene = NULL;
-    int exr, rc = cli_open_scene(cmd, &a, cj_trace_demo_scene, &exr, &scene);
-    if (rc) return rc;
+    int exr;
+    const int rc =
+        cli_scene_command_args(&ps, trace_option, &t, cj_trace_demo_scene, &a, &opt, &exr, &scene);
+    if (rc >= 0) return rc;
     if (opt.max_depth < 0) {
         /* --max-depth 0: primary rays only; the options use 0 for "the scene's" */
         cj_scene_settings s = *cj_scene_get_settings(scene);
@@ -135,9 +141,10 @@ int cmd_trace(int argc, char **argv) {
     }
     cj_renderer_options ro = cj_renderer_options_defaults();
     ro.render = opt;
-    ro.trace = topt;
-    return cli_render_scene(cmd, &a, exr, scene, ro, CJ_BACKEND_TRACE, signature ? CJ_IMAGE_IDS : 0,
-                            1.0 + topt.indirect_samples, signature ? colour_ids : NULL);
+    ro.trace = t.topt;
+    return cli_render_scene(cmd, &a, exr, scene, ro, CJ_BACKEND_TRACE,
+                            t.signature ? CJ_IMAGE_IDS : 0, 1.0 + t.topt.indirect_samples,
+                            t.signature ? colour_ids : NULL);
 }
 
 #else

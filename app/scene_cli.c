@@ -164,3 +164,19 @@ int cli_render_scene(const char *cmd, const cli_scene_args *a, int exr, cj_scene
     if (touch) touch(img);
     return cli_finish_render(cmd, a->out, exr, img, a->report ? &rep : NULL, t0);
 }
+
+int cli_scene_command_args(cli_parser *ps, cli_own_option_fn own_option, void *ctx,
+                           cli_demo_scene_fn make_demo, cli_scene_args *a, cj_render_options *opt,
+                           int *exr, cj_scene **scene) {
+    const char *v;
+    int k, status;
+    memset(a, 0, sizeof *a);
+    while (cli_next_arg(ps, &k, &v, &status)) {
+        const int bad = k >= CLI_SO_COUNT ? own_option(ps->cmd, k, v, ctx, opt)
+                                          : cli_scene_arg(ps->cmd, k, v, a, opt);
+        if (bad) return bad;
+    }
+    if (status >= 0) return status;
+    const int rc = cli_open_scene(ps->cmd, a, make_demo, exr, scene);
+    return rc ? rc : -1;
+}

@@ -80,6 +80,22 @@ int cli_draw_scene(const char *cmd, const char *name, cj_renderer_options ro, co
                    cj_backend backend, unsigned planes, double ray_factor, cj_render_image **img,
                    cj_stage_report *rep);
 
+struct cli_parser; /* cli.h */
+
+/* A command's own option: k (>= CLI_SO_COUNT) of its table with its value v (NULL for a flag),
+ * into ctx (the command's) or opt. Returns 0, or CLI_EXIT_USAGE after a one-line message. */
+typedef int (*cli_own_option_fn)(const char *cmd, int k, const char *v, void *ctx,
+                                 cj_render_options *opt);
+
+/* The whole first half of render and trace, written once: the argument loop over ps (a table
+ * that starts with CLI_SCENE_OPTIONS; cli.h's parser), the shared arguments through
+ * cli_scene_arg into *a and opt, the command's own through own_option; then cli_open_scene.
+ * Returns -1 when the command goes on (*scene, *exr set), else the exit status to return now
+ * (0 after --help or --version, CLI_EXIT_USAGE after a message; nothing to free). */
+int cli_scene_command_args(struct cli_parser *ps, cli_own_option_fn own_option, void *ctx,
+                           cli_demo_scene_fn make_demo, cli_scene_args *a, cj_render_options *opt,
+                           int *exr, cj_scene **scene);
+
 /* The whole second half of render and trace, written once: draws the scene opened by
  * cli_open_scene with a renderer made from ro (cli_draw_scene), destroys the scene, hands the
  * image to `touch` when not NULL (trace --signature recolours the object ids), then

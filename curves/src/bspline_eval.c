@@ -1,5 +1,6 @@
 /* B-spline and NURBS evaluation: de Boor, derivatives by divided differences of the span's
- * points, and the a-priori error bound. See casteljau/bspline.h. */
+ * points, and the a-priori error bound of the value and the pieces of the derivatives' bound
+ * (bspline_derivs_bound.c puts them together). See casteljau/bspline.h. */
 #include "bspline_internal.h"
 #include "error_internal.h"
 
@@ -140,14 +141,20 @@ void cj_bspline_eval_derivs_unchecked(const cj_bspline *c, double t, int kmax, d
     (void)derivs(c, t, kmax, out);
 }
 
-cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double *out) {
-    assert(out != NULL);
+cj_status cj_bsp_check_derivs(const cj_bspline *c, double t, int kmax) {
     cj_status st = cj_bspline_check(c);
     if (st) return st;
     if ((st = cj_bsp_check_param(c, t, "parameter t"))) return st;
     if (kmax < 0 || kmax > CJ_BSPLINE_MAX_DERIV)
         return cj_fail(CJ_ERR_ARGUMENT, "derivative order %d is outside 0..%d", kmax,
                        CJ_BSPLINE_MAX_DERIV);
+    return CJ_OK;
+}
+
+cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double *out) {
+    assert(out != NULL);
+    cj_status st = cj_bsp_check_derivs(c, t, kmax);
+    if (st) return st;
     double res[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_MAX_DIM];
     const int bad = derivs(c, t, kmax, res);
     if (bad >= 0)
@@ -228,26 +235,4 @@ void cj_bsp_pyramid_bound(const cj_bspline *c, int s, double t, int kmax, int ex
             out[j * hd + k] =
                 (g * M[j * hd + k] * inflate + S[j * hd + k] * inflate + eta) * (1.0 + 4 * u);
         }
-}
-
-cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax, double *bound) {
-    assert(bound != NULL);
-    cj_status st = cj_bspline_check(c);
-    if (st) return st;
-    if ((st = cj_bsp_check_param(c, t, "parameter t"))) return st;
-    if (kmax < 0 || kmax > CJ_BSPLINE_MAX_DERIV)
-        return cj_fail(CJ_ERR_ARGUMENT, "derivative order %d is outside 0..%d", kmax,
-                       CJ_BSPLINE_MAX_DERIV);
-    if (c->weights) return cj_bsp_nurbs_derivs_bound(c, t, kmax, bound);
-    const int d = c->dim, s = cj_bsp_span(c, t);
-    double out[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_MAX_DIM];
-    cj_bsp_pyramid_bound(c, s, t, kmax, 0, out);
-    for (int j = 0; j <= kmax; ++j)
-        for (int k = 0; k < d; ++k)
-            if (!isfinite(out[j * d + k]))
-                return cj_fail(CJ_ERR_RANGE,
-                               "error bound of derivative %d, coordinate %d at t = %.17g overflows",
-                               j, k, t);
-    memcpy(bound, out, sizeof(double) * (size_t)((kmax + 1) * d));
-    return CJ_OK;
 }

@@ -52,15 +52,14 @@ void cj_bsp_pyramid(const double *knots, int p, int s, int hd, double *loc, doub
  * overflowed, or -1. */
 int cj_bsp_homogeneous_derivs(const cj_bspline *c, int s, double t, int kmax, double *h);
 
+/* The arguments of cj_bspline_eval_derivs and cj_bspline_derivs_error_bound (bspline_eval.c): a
+ * valid curve, t in its domain, 0 <= kmax <= CJ_BSPLINE_MAX_DERIV; the error names the fault. */
+cj_status cj_bsp_check_derivs(const cj_bspline *c, double t, int kmax);
+
 /* The rounding bound of cj_bsp_homogeneous_derivs per order and homogeneous coordinate into
  * out[(kmax+1)*hd]: gamma(6p - j + 2 + extra) M_j inflated, plus the subnormal slack (extra:
  * roundings more on the point coordinates, 1 for the products w d of a NURBS). */
 void cj_bsp_pyramid_bound(const cj_bspline *c, int s, double t, int kmax, int extra, double *out);
-
-/* The rounding bound of cj_bspline_eval_derivs for a NURBS (bspline_nurbs_bound.c; the
- * derivation is in bspline.h at cj_bspline_derivs_error_bound). c is validated, t in the
- * domain, 0 <= kmax <= CJ_BSPLINE_MAX_DERIV. */
-cj_status cj_bsp_nurbs_derivs_bound(const cj_bspline *c, double t, int kmax, double *bound);
 
 /* Multiplicity of the value x in the knot vector. */
 int cj_bsp_multiplicity(const double *knots, int nknots, double x);

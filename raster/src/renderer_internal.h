@@ -36,6 +36,11 @@ struct cj_renderer {
 cj_status cj_renderer_create_once(const cj_renderer_options *opt, const cj_allocator *alloc,
                                   cj_renderer **out);
 
+/* ---- the services the back ends call (renderer_services.c) ---- */
+
+/* Frees the shading buffers below (the renderer keeps none afterwards). */
+void cj_renderer_free_shade_buffers(cj_renderer *r);
+
 /* The pool with at least `workers` workers (kept when it has them: *reused = 1). */
 cj_status cj_renderer_pool(cj_renderer *r, int workers, int *reused);
 
@@ -68,6 +73,8 @@ void cj_rtarget_finish(cj_rtarget *t, cj_render_image **image, cj_status st);
  * the back end keeps no tile buffers, left out). */
 void cj_renderer_report_frame(const cj_renderer *r, cj_stage_report *R, int pool_workers,
                               int pool_reused, int buffers_reused, int image_reused);
+
+/* ---- the back ends (render_main.c, trace_main.c), called by cj_renderer_draw ---- */
 
 /* The back ends: one frame of a checked scene, after the scene pass. */
 cj_status cj_rraster_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,

@@ -34,6 +34,16 @@ cj_status cj_json_read_objects_(jctx *c, const cJSON *arr);
 cj_status cj_json_read_material_(jctx *c, const cJSON *obj, const char *p, int named, int *index);
 /* Builds the geometry described by obj and adds it to the scene; *index receives it. */
 cj_status cj_json_read_geometry_(jctx *c, const cJSON *obj, const char *path, int *index);
+/* A "mesh" (keys already checked by the dispatch) and a "curve" (scene_json_mesh.c). */
+cj_status cj_json_read_mesh_(jctx *c, const cJSON *obj, const char *path, int *index);
+cj_status cj_json_read_curve_(jctx *c, const cJSON *obj, const char *path, int named, int *index);
+/* The geometry readers' kit (scene_json_geom_kit.c): every key of the NULL-terminated list must
+ * be present in obj; g checked and added to the scene (*index receives it), a failure relabelled
+ * with obj's line. */
+cj_status cj_json_geom_need_(const jctx *c, const cJSON *obj, const char *path,
+                             const char *const *keys);
+cj_status cj_json_geom_add_(jctx *c, const cJSON *obj, const char *path, const cj_geometry *g,
+                            int *index);
 /* "bspline_surface" (nurbs = 0) / "nurbs_surface" (nurbs = 1), converted to Bézier patches at
  * load (scene_json_bspline.c). named: the object is an entry of "geometries" (may have "name"). */
 cj_status cj_json_read_bspline_surface_(jctx *c, const cJSON *obj, const char *path, int named,

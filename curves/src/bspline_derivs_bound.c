@@ -1,12 +1,15 @@
-/* The a-priori rounding bound of a NURBS's derivatives (cj_bspline_derivs_error_bound for a
- * curve with weights; derivation in casteljau/bspline.h). */
+/* The a-priori rounding bound of a B-spline's derivatives, cj_bspline_derivs_error_bound: the
+ * pyramid bound of bspline_eval.c for a polynomial curve, and for a NURBS (a curve with weights)
+ * the homogeneous bound carried through the quotient rule (derivation in casteljau/bspline.h). */
 #include "bspline_internal.h"
 #include "error_internal.h"
 
+#include <assert.h>
 #include <math.h>
 #include <string.h>
 
-cj_status cj_bsp_nurbs_derivs_bound(const cj_bspline *c, double t, int kmax, double *bound) {
+/* A NURBS: c is validated, t in the domain, 0 <= kmax <= CJ_BSPLINE_MAX_DERIV. */
+static cj_status nurbs_derivs_bound(const cj_bspline *c, double t, int kmax, double *bound) {
     const int d = c->dim, hd = d + 1, s = cj_bsp_span(c, t);
     const double u = CJ_UNIT_ROUNDOFF;
     enum { NJ = CJ_BSPLINE_MAX_DERIV + 1 };
@@ -57,5 +60,23 @@ cj_status cj_bsp_nurbs_derivs_bound(const cj_bspline *c, double t, int kmax, dou
         }
     }
     memcpy(bound, e, sizeof(double) * (size_t)((kmax + 1) * d));
+    return CJ_OK;
+}
+
+cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax, double *bound) {
+    assert(bound != NULL);
+    cj_status st = cj_bsp_check_derivs(c, t, kmax);
+    if (st) return st;
+    if (c->weights) return nurbs_derivs_bound(c, t, kmax, bound);
+    const int d = c->dim, s = cj_bsp_span(c, t);
+    double out[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_MAX_DIM];
+    cj_bsp_pyramid_bound(c, s, t, kmax, 0, out);
+    for (int j = 0; j <= kmax; ++j)
+        for (int k = 0; k < d; ++k)
+            if (!isfinite(out[j * d + k]))
+                return cj_fail(CJ_ERR_RANGE,
+                               "error bound of derivative %d, coordinate %d at t = %.17g overflows",
+                               j, k, t);
+    memcpy(bound, out, sizeof(double) * (size_t)((kmax + 1) * d));
     return CJ_OK;
 }
