@@ -19,8 +19,8 @@
 static const char plot_usage[] =
     "usage: casteljau plot FILE.json -o OUT.png [--width W] [--height H]\n"
     "       casteljau plot --demo -o OUT.png [--width W] [--height H]\n"
-    "Renders a plot described in JSON (see the README; '-' reads standard input) or the\n"
-    "built-in gallery (--demo).\n"
+    "Renders a plot described in JSON ('-' reads standard input; the format is in\n"
+    "  " CJ_DOC_DIR "/README.md) or the built-in gallery (--demo).\n"
     "  -o, --output  the image; its extension chooses the format, through OpenImageIO:\n"
     "                .png, .jpg/.jpeg (no alpha: composited over black), .tif, .exr, .bmp, ...\n"
     "                or vector graphics with the same layout, drawn by cairo: .svg, .pdf\n"
