@@ -49,6 +49,16 @@ configure_package_config_file(cmake/casteljauConfig.cmake.in
   ${PROJECT_BINARY_DIR}/casteljauConfig.cmake
   INSTALL_DESTINATION ${CJ_CMAKE_INSTALL_DIR}
   PATH_VARS CJ_DATA_DIR_FOR_CONFIG)
+# In the build tree the config reads casteljauBuildTree.cmake (not installed): its data folder is
+# <build>/share/casteljau, laid out as installed with links into the sources.
+set(cj_build_data ${PROJECT_BINARY_DIR}/share/casteljau)
+file(MAKE_DIRECTORY ${cj_build_data})
+file(CREATE_LINK ${PROJECT_SOURCE_DIR}/scenes ${cj_build_data}/scenes SYMBOLIC)
+file(CREATE_LINK ${PROJECT_SOURCE_DIR}/data/teapot.bpt ${cj_build_data}/teapot.bpt SYMBOLIC)
+file(CREATE_LINK ${PROJECT_SOURCE_DIR}/data/fit_points.txt ${cj_build_data}/fit_points.txt SYMBOLIC)
+file(WRITE ${PROJECT_BINARY_DIR}/casteljauBuildTree.cmake
+  "# Written by cmake/CjInstall.cmake: the build tree used as a package.\n"
+  "set(casteljau_DATA_DIR \"${cj_build_data}\")\n")
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/casteljauConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/casteljauConfig.cmake
