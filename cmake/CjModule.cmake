@@ -10,7 +10,15 @@
 # leave a library (cmake/casteljau.map); the rest (file-local helpers of several files,
 # inlined C++ templates) are local. CJ_BUILD_SHARED=OFF builds and installs static archives
 # instead (the .pc files carry Libs.private/Requires.private for that flavour).
-option(CJ_BUILD_SHARED "Build the module libraries as shared libraries (else static)" ON)
+# (The libFuzzer build, CI's second pass, stays static: its coverage instrumentation and
+# sanitizer runtimes then live in one executable, and CI builds both flavours.)
+if(CJ_FUZZ)
+  set(cj_shared_default OFF)
+else()
+  set(cj_shared_default ON)
+endif()
+option(CJ_BUILD_SHARED "Build the module libraries as shared libraries (else static)"
+  ${cj_shared_default})
 # 0.x releases promise nothing across minor versions (casteljauConfigVersion.cmake says
 # SameMinorVersion), so the SONAME carries major.minor until 1.0, then the major alone.
 if(PROJECT_VERSION_MAJOR EQUAL 0)

@@ -180,8 +180,12 @@ foreach(p IN LISTS pc_programs)
   list(GET p 0 key)
   list(GET p 1 module)
   list(GET p 2 src)
+  set(static_arg)
+  if(NOT CJ_SHARED)
+    set(static_arg --static) # static archives: the private libraries too
+  endif()
   run("pkg-config --cflags --libs casteljau-${module}" ${PKG_CONFIG_EXECUTABLE} --cflags --libs
-    casteljau-${module})
+    ${static_arg} casteljau-${module})
   separate_arguments(flags UNIX_COMMAND "${run_out}")
   string(TOUPPER ${key} KEY)
   run("compiling ${key} with pkg-config casteljau-${module}" ${CJ_C_COMPILER} ${extra} -std=c11
@@ -248,12 +252,12 @@ if(MAN)
 endif()
 
 # ---- 6. Python from the installed tree ----
-if(CJ_PYTHON AND CJ_SHARED)
+if(CJ_PYTHON)
   set(py [=[
 import os, casteljau
 b = casteljau.Bezier([[0, 0], [1, 2], [2, 0]])
 p = b.eval(0.5)
-maps = [l.split()[-1] for l in open("/proc/self/maps") if "libcasteljau_curves" in l]
+maps = [l.split()[-1] for l in open("/proc/self/maps") if "libcasteljau_curves" in l] + ["(static)"]
 print("module", os.path.realpath(casteljau.__file__))
 print("library", os.path.realpath(maps[0]))
 print("eval", float(p[0]), float(p[1]))
@@ -263,7 +267,9 @@ print("teapot patches", len(casteljau.teapot()))
     PYTHONPATH=${prefix}/${CJ_PYTHON_DIR} PYTHONDONTWRITEBYTECODE=1 ${CJ_PYTHON} -c "${py}")
   file(REAL_PATH "${prefix}" real_prefix)
   expect("python3 (installed)" "${run_out}" "module ${real_prefix}/${CJ_PYTHON_DIR}/casteljau/")
-  expect("python3 (installed)" "${run_out}" "library ${real_prefix}/${CJ_LIBDIR}/libcasteljau_curves")
+  if(CJ_SHARED)
+    expect("python3 (installed)" "${run_out}" "library ${real_prefix}/${CJ_LIBDIR}/libcasteljau_curves")
+  endif()
   expect("python3 (installed)" "${run_out}" "eval 1(\\.0)? 1(\\.0)?\nteapot patches 32")
   message(STATUS "python3: import casteljau from ${CJ_PYTHON_DIR}, the installed library, teapot found")
 endif()
