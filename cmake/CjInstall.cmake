@@ -72,7 +72,7 @@ install(FILES ${PROJECT_BINARY_DIR}/casteljauConfig.cmake
 # headers build on (so `pkg-config --libs casteljau-raster` links everything a program using
 # raster's headers calls); Requires.private / Libs.private the outside libraries and the
 # modules it uses privately, which only a static link (`pkg-config --static`) needs.
-# casteljau.pc requires every module.
+# casteljau.pc requires every module but vtk.
 function(cj_pc_dir var dir)
   if(IS_ABSOLUTE "${dir}")
     set(${var} "${dir}" PARENT_SCOPE)
@@ -115,7 +115,11 @@ foreach(m IN LISTS CJ_MODULES)
   string(JOIN " " CJ_PC_REQUIRES_PRIVATE ${req_priv})
   string(JOIN " " CJ_PC_LIBS_PRIVATE ${libs_priv})
   configure_file(cmake/casteljau.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/casteljau-${m}.pc @ONLY)
-  list(APPEND cj_pc_all casteljau-${m})
+  # The umbrella leaves out the VTK adapter: `pkg-config --libs casteljau` must not make every
+  # program load VTK; its users ask for casteljau-vtk.
+  if(NOT m STREQUAL "vtk")
+    list(APPEND cj_pc_all casteljau-${m})
+  endif()
 endforeach()
 set(CJ_PC_NAME casteljau)
 set(CJ_PC_DESCRIPTION

@@ -192,6 +192,23 @@ foreach(p IN LISTS pc_programs)
     -DCJ_PART_${KEY} ${src} -o ${CJ_WORK_DIR}/pc-${key} ${flags})
   run_program("pkg-config program ${key}" ${CJ_WORK_DIR}/pc-${key} ${key})
 endforeach()
+# The umbrella casteljau.pc: everything but the VTK adapter.
+if("viz" IN_LIST all_parts)
+  run("pkg-config --cflags --libs casteljau" ${PKG_CONFIG_EXECUTABLE} --cflags --libs ${static_arg}
+    casteljau)
+  separate_arguments(flags UNIX_COMMAND "${run_out}")
+  run("compiling render_scene with pkg-config casteljau" ${CJ_C_COMPILER} ${extra} -std=c11
+    ${CJ_EXAMPLES_DIR}/render_scene.c -o ${CJ_WORK_DIR}/pc-umbrella ${flags})
+  run_program("pkg-config program (casteljau.pc)" ${CJ_WORK_DIR}/pc-umbrella render_scene)
+  list(APPEND pc_programs umbrella)
+  find_program(LDD ldd)
+  if(CJ_SHARED AND LDD)
+    run("ldd pc-umbrella" ${LDD} ${CJ_WORK_DIR}/pc-umbrella)
+    if(run_out MATCHES "libvtk|libcasteljau_vtk")
+      message(FATAL_ERROR "a program linked with `pkg-config --libs casteljau` loads VTK:\n${run_out}")
+    endif()
+  endif()
+endif()
 list(LENGTH pc_programs npc)
 message(STATUS "pkg-config: ${npc} programs compiled with plain `pkg-config --cflags --libs casteljau-<component>` and run")
 
