@@ -32,5 +32,6 @@ add_test(NAME test_install COMMAND ${CMAKE_COMMAND}
   -DCJ_GENERATOR=${CMAKE_GENERATOR} -DCJ_CONFIG=$<CONFIG> -DCJ_EXTRA_FLAGS=${cj_install_flags}
   -DCJ_SOVERSION=${CJ_SOVERSION} "-DCJ_MODULES=${cj_pkg_modules}" -DCJ_SHARED=${CJ_BUILD_SHARED}
   -DCJ_PYTHON=${cj_install_python} -DCJ_PYTHON_DIR=${CJ_PYTHON_INSTALL_DIR}
+  -DCJ_COMPLETION_CHECK=${CMAKE_CURRENT_SOURCE_DIR}/completion_check.sh
   -P ${CMAKE_CURRENT_SOURCE_DIR}/install/run_install_test.cmake)
 set_tests_properties(test_install PROPERTIES TIMEOUT 600 RESOURCE_LOCK cj_install)

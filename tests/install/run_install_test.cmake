@@ -10,13 +10,14 @@
 #     `pkg-config --cflags --libs casteljau-<component>` (shared libraries: no --static);
 #  4. ldd: the installed casteljau resolves every library, ours from the prefix and no VTK;
 #     a curves-only program needs no libGL, X11, GLFW, VTK, expat, LZ4 or LZMA;
-#  5. `man -l` renders an installed page; 6. `import casteljau` from the installed tree loads
+#  5. `man -l` renders an installed page, and the installed bash completion completes; 6. `import casteljau` from the installed tree loads
 #     the installed libraries and finds the installed teapot; 7. the installed tool renders a
 #     shipped scene (its texture found relative to the scene).
 #
 # Inputs (-D): CJ_BUILD_DIR CJ_WORK_DIR CJ_CONSUMER_DIR CJ_EXAMPLES_DIR CJ_LIBDIR CJ_DATADIR
 #              CJ_MANDIR CJ_C_COMPILER CJ_GENERATOR CJ_CONFIG CJ_EXTRA_FLAGS CJ_SOVERSION
 #              CJ_MODULES CJ_PYTHON (empty: no Python module) CJ_PYTHON_DIR CJ_SHARED
+#              CJ_COMPLETION_CHECK (tests/completion_check.sh)
 cmake_minimum_required(VERSION 3.20)
 foreach(v CJ_BUILD_DIR CJ_WORK_DIR CJ_CONSUMER_DIR CJ_EXAMPLES_DIR CJ_LIBDIR CJ_DATADIR
           CJ_MANDIR CJ_C_COMPILER CJ_GENERATOR CJ_MODULES)
@@ -266,6 +267,15 @@ if(MAN)
     ${MAN} -l ${prefix}/${CJ_MANDIR}/man1/casteljau-render.1)
   expect("man -l casteljau-render.1" "${run_out}" "casteljau-render +- +render +a +3D.*SYNOPSIS.*casteljau render.*--width")
   message(STATUS "man -l: casteljau-render(1) renders (NAME, SYNOPSIS, options)")
+endif()
+
+# ---- 5b. the installed bash completion, driving the installed tool ----
+find_program(BASH bash)
+if(BASH AND CJ_COMPLETION_CHECK)
+  run("installed bash completion" ${BASH} ${CJ_COMPLETION_CHECK}
+    ${prefix}/${CJ_DATADIR}/bash-completion/completions/casteljau ${prefix}/bin/casteljau)
+  expect("installed bash completion" "${run_out}" "ok: casteljau ren -> 'render'")
+  message(STATUS "bash completion: the installed file completes the installed tool's commands and options")
 endif()
 
 # ---- 6. Python from the installed tree ----
