@@ -16,8 +16,14 @@ endif()
 # with find_package and with pkg-config, and run; ldd, man -l, Python from the installed tree
 # (tests/install/run_install_test.cmake).
 set(cj_install_flags "")
+set(cj_install_link_flags "")
 if(CJ_SANITIZE)
   set(cj_install_flags "-fsanitize=address,undefined")
+  if(CMAKE_C_COMPILER_ID MATCHES "Clang")
+    # The image plug-in is C++: a C program that loads it needs UBSan's C++ runtime (vptr
+    # checks), which clang links into C programs only when asked (app/ links as C++ instead).
+    set(cj_install_link_flags "-fsanitize-link-c++-runtime -lstdc++")
+  endif()
 endif()
 set(cj_install_python "")
 if(TARGET casteljau_python)
@@ -30,6 +36,7 @@ add_test(NAME test_install COMMAND ${CMAKE_COMMAND}
   -DCJ_LIBDIR=${CMAKE_INSTALL_LIBDIR} -DCJ_DATADIR=${CMAKE_INSTALL_DATADIR}
   -DCJ_MANDIR=${CMAKE_INSTALL_MANDIR} -DCJ_C_COMPILER=${CMAKE_C_COMPILER}
   -DCJ_GENERATOR=${CMAKE_GENERATOR} -DCJ_CONFIG=$<CONFIG> -DCJ_EXTRA_FLAGS=${cj_install_flags}
+  -DCJ_EXTRA_LINK_FLAGS=${cj_install_link_flags}
   -DCJ_SOVERSION=${CJ_SOVERSION} "-DCJ_MODULES=${cj_pkg_modules}" -DCJ_SHARED=${CJ_BUILD_SHARED}
   -DCJ_PYTHON=${cj_install_python} -DCJ_PYTHON_DIR=${CJ_PYTHON_INSTALL_DIR}
   -DCJ_COMPLETION_CHECK=${CMAKE_CURRENT_SOURCE_DIR}/completion_check.sh

@@ -83,7 +83,8 @@ message(STATUS "installed: ${nheaders} headers, ${npages} man pages, modules ${C
 # ---- 2. find_package consumers: curves alone, then every component ----
 set(flag_args)
 if(CJ_EXTRA_FLAGS)
-  set(flag_args "-DCMAKE_C_FLAGS=${CJ_EXTRA_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${CJ_EXTRA_FLAGS}")
+  set(flag_args "-DCMAKE_C_FLAGS=${CJ_EXTRA_FLAGS}"
+    "-DCMAKE_EXE_LINKER_FLAGS=${CJ_EXTRA_FLAGS} ${CJ_EXTRA_LINK_FLAGS}")
 endif()
 set(all_parts ${CJ_MODULES})
 list(REMOVE_ITEM all_parts vtk) # (its programs need a display; the cross-check tests cover it)
@@ -163,6 +164,7 @@ if(NOT pkgdatadir STREQUAL want_datadir)
   message(FATAL_ERROR "pkgdatadir is '${pkgdatadir}', expected '${want_datadir}'")
 endif()
 separate_arguments(extra UNIX_COMMAND "${CJ_EXTRA_FLAGS}")
+separate_arguments(extra_link UNIX_COMMAND "${CJ_EXTRA_LINK_FLAGS}")
 # A non-system prefix: the loader is told where, as a user of such a prefix would.
 set(ENV{LD_LIBRARY_PATH} ${libdir})
 set(pc_programs "consumer curves ${CJ_CONSUMER_DIR}/main.c"
@@ -190,7 +192,7 @@ foreach(p IN LISTS pc_programs)
   separate_arguments(flags UNIX_COMMAND "${run_out}")
   string(TOUPPER ${key} KEY)
   run("compiling ${key} with pkg-config casteljau-${module}" ${CJ_C_COMPILER} ${extra} -std=c11
-    -DCJ_PART_${KEY} ${src} -o ${CJ_WORK_DIR}/pc-${key} ${flags})
+    -DCJ_PART_${KEY} ${src} -o ${CJ_WORK_DIR}/pc-${key} ${flags} ${extra_link})
   run_program("pkg-config program ${key}" ${CJ_WORK_DIR}/pc-${key} ${key})
 endforeach()
 # The umbrella casteljau.pc: everything but the VTK adapter.
@@ -199,7 +201,7 @@ if("viz" IN_LIST all_parts)
     casteljau)
   separate_arguments(flags UNIX_COMMAND "${run_out}")
   run("compiling render_scene with pkg-config casteljau" ${CJ_C_COMPILER} ${extra} -std=c11
-    ${CJ_EXAMPLES_DIR}/render_scene.c -o ${CJ_WORK_DIR}/pc-umbrella ${flags})
+    ${CJ_EXAMPLES_DIR}/render_scene.c -o ${CJ_WORK_DIR}/pc-umbrella ${flags} ${extra_link})
   run_program("pkg-config program (casteljau.pc)" ${CJ_WORK_DIR}/pc-umbrella render_scene)
   list(APPEND pc_programs umbrella)
   find_program(LDD ldd)
