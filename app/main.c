@@ -37,8 +37,9 @@ static void usage(FILE *f) {
     fprintf(f, "\n'casteljau <command> --help' describes a command (its options, defaults and\n"
                "output); 'casteljau --version' prints the version. Exit status: 0 success, 2 a\n"
                "bad argument or input (one line on stderr), 1 a failure to write or allocate.\n"
-               "\nManual pages: casteljau(1) and casteljau-<command>(1). Documentation:\n"
-               "" CJ_DOC_DIR "; example scenes: " CJ_DATA_DIR "/scenes.\n");
+               "\nManual pages: casteljau(1) and casteljau-<command>(1).\n"
+               "Documentation: " CJ_DOC_DIR "\n"
+               "Example scenes: " CJ_DATA_DIR "/scenes\n");
 }
 
 int main(int argc, char **argv) {
