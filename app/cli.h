@@ -91,6 +91,14 @@ const char *cli_teapot_path(void);
 
 /* The version line "casteljau X.Y.Z". */
 const char *cli_version(void);
+/* Where `make install` puts the documentation and the shipped scenes (app/CMakeLists.txt sets
+   both to the configured prefix's folders); help texts name these, not source paths. */
+#ifndef CJ_DOC_DIR
+#define CJ_DOC_DIR "/usr/local/share/doc/casteljau"
+#endif
+#ifndef CJ_DATA_DIR
+#define CJ_DATA_DIR "/usr/local/share/casteljau"
+#endif
 
 /* Parses a whole number in [lo, hi] (decimal); 0 on success, -1 otherwise. */
 int cli_parse_int(const char *s, long lo, long hi, long *out);

@@ -295,14 +295,14 @@ int cmd_fit(int argc, char **argv) {
             rc = cli_error("fit", "%s", cj_last_error());
             goto done;
         }
-        if (plot_json_print_fit(f.fp, &c, data, n, title)) {
+        if (cj_plot_json_print_fit(f.fp, &c, data, n, title)) {
             rc = cli_error("fit", "%s", cj_last_error());
             cj_atomic_abandon(&f);
         } else if (cj_atomic_commit(&f)) {
             rc = cli_error("fit", "%s", cj_last_error());
         }
     } else {
-        if (plot_json_print_fit(stdout, &c, data, n, title) || fflush(stdout) != 0 ||
+        if (cj_plot_json_print_fit(stdout, &c, data, n, title) || fflush(stdout) != 0 ||
             ferror(stdout))
             rc = cli_error("fit", "cannot write the output");
     }

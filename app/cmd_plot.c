@@ -19,8 +19,8 @@
 static const char plot_usage[] =
     "usage: casteljau plot FILE.json -o OUT.png [--width W] [--height H]\n"
     "       casteljau plot --demo -o OUT.png [--width W] [--height H]\n"
-    "Renders a plot described in JSON (see the README; '-' reads standard input) or the\n"
-    "built-in gallery (--demo).\n"
+    "Renders a plot described in JSON ('-' reads standard input; the format is in\n"
+    "  " CJ_DOC_DIR "/README.md) or the built-in gallery (--demo).\n"
     "  -o, --output  the image; its extension chooses the format, through OpenImageIO:\n"
     "                .png, .jpg/.jpeg (no alpha: composited over black), .tif, .exr, .bmp, ...\n"
     "                or vector graphics with the same layout, drawn by cairo: .svg, .pdf\n"
@@ -214,8 +214,8 @@ int cmd_plot(int argc, char **argv) {
         free(text);
         return CLI_EXIT_USAGE;
     }
-    plot_doc doc;
-    int rc = plot_json_parse(demo ? demo_json : text, &doc, why, sizeof why);
+    cj_plot_doc doc;
+    int rc = cj_plot_json_parse(demo ? demo_json : text, &doc, why, sizeof why);
     free(text);
     if (rc) return cli_fail("plot", "%s: %s", demo ? "demo" : input, why);
     if (width) doc.width = width;
@@ -235,16 +235,16 @@ int cmd_plot(int argc, char **argv) {
         else
             printf("wrote %s (%d x %d)\n", output, doc.width, doc.height);
         cj_font_close(font);
-        plot_doc_free(&doc);
+        cj_plot_doc_free(&doc);
         return status;
     }
     if (!status && (st = cj_framebuffer_create(doc.width, doc.height, 0, NULL, &fb)))
         status = cli_error("plot", "%s", cj_last_error());
-    if (!status && (st = plot_doc_render(&doc, fb, font))) {
+    if (!status && (st = cj_plot_doc_render(&doc, fb, font))) {
         /* Rendering fails only on data it cannot draw (e.g. a panel too small for its text). */
         const int usage = st != CJ_ERR_NOMEM && st != CJ_ERR_IO;
         status = (usage ? cli_fail : cli_error)("plot", "%s: cannot render %s: %s",
-                                                demo ? "demo" : input, plot_doc_where(&doc),
+                                                demo ? "demo" : input, cj_plot_doc_where(&doc),
                                                 cj_last_error());
     }
     if (!status && (st = cj_image_write(output, fb->width, fb->height, (const uint8_t *)fb->pixels,
@@ -254,7 +254,7 @@ int cmd_plot(int argc, char **argv) {
     if (!status) printf("wrote %s (%d x %d)\n", output, fb->width, fb->height);
     cj_framebuffer_destroy(fb);
     cj_font_close(font);
-    plot_doc_free(&doc);
+    cj_plot_doc_free(&doc);
     return status;
 }
 

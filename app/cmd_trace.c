@@ -30,7 +30,7 @@ static const char trace_usage[] =
     "                  hit (default 0: off)\n"
     "  --integrator    whitted (default): local shading, mirror and refraction rays; path: a\n"
     "                  path tracer (next-event estimation, MIS, Russian roulette; lights read\n"
-    "                  radiometrically; docs/light.md)\n"
+    "                  radiometrically; " CJ_DOC_DIR "/light.md)\n"
     "  --signature     write the scene signature image instead: each object id its colour\n"
     "  --stage-report  print the stage report (JSON) on stdout\n"
     "  On a terminal, stderr shows the progress (tiles done, time left) and a summary line;\n"

@@ -37,14 +37,14 @@ int eval_bspline_run(const char *path, int derivative, int want_bound, char **ta
     free(text);
     if (!doc) return cli_fail("eval", "--curve: '%s' is not valid JSON", path);
     char ipath[96];
-    const cJSON *item = bsp_json_find(doc, ipath, sizeof ipath);
-    bsp_json b;
+    const cJSON *item = cj_bsp_json_find(doc, ipath, sizeof ipath);
+    cj_bsp_json b;
     int rc = 0;
     if (!item) {
         cJSON_Delete(doc);
         return cli_fail("eval", "--curve: '%s' has no item of type \"bspline\"", path);
     }
-    if (bsp_json_parse(item, ipath, NULL, 50000000, &b, why, sizeof why)) {
+    if (cj_bsp_json_parse(item, ipath, NULL, 50000000, &b, why, sizeof why)) {
         cJSON_Delete(doc);
         return cli_fail("eval", "--curve: %s", why);
     }
@@ -72,7 +72,7 @@ int eval_bspline_run(const char *path, int derivative, int want_bound, char **ta
     } else if (eval_read_params(stdin, &ts, &nt, &rc)) {
         goto done;
     }
-    const cj_bspline c = bsp_json_view(&b);
+    const cj_bspline c = cj_bsp_json_view(&b);
     const int dim = c.dim;
     vals = malloc(sizeof(double) * nt * (size_t)dim * 2);
     double *der = malloc(sizeof(double) * (size_t)(derivative + 1) * (size_t)dim);
@@ -118,6 +118,6 @@ int eval_bspline_run(const char *path, int derivative, int want_bound, char **ta
 done:
     free(ts);
     free(vals);
-    bsp_json_free(&b);
+    cj_bsp_json_free(&b);
     return rc;
 }

@@ -37,7 +37,10 @@ static void usage(FILE *f) {
         fprintf(f, "  %-11s %s\n", commands[i].name, commands[i].summary);
     fprintf(f, "\n'casteljau <command> --help' describes a command (its options, defaults and\n"
                "output); 'casteljau --version' prints the version. Exit status: 0 success, 2 a\n"
-               "bad argument or input (one line on stderr), 1 a failure to write or allocate.\n");
+               "bad argument or input (one line on stderr), 1 a failure to write or allocate.\n"
+               "\nManual pages: casteljau(1) and casteljau-<command>(1).\n"
+               "Documentation: " CJ_DOC_DIR "\n"
+               "Example scenes: " CJ_DATA_DIR "/scenes\n");
 }
 
 int main(int argc, char **argv) {

@@ -1,4 +1,4 @@
-/* Vector plots, the program's side: the layout of plot_doc_render painted through the cairo
+/* Vector plots, the program's side: the layout of cj_plot_doc_render painted through the cairo
  * module (plot_vector_cairo.c, libcasteljau_cairo.so, opened only for an SVG or PDF so that
  * no other launch maps cairo and the X11 libraries it brings), into a temporary file renamed
  * into place when complete. */
@@ -87,7 +87,8 @@ int plot_vector_check(const char *path, char *why, size_t why_size) {
     return 0;
 }
 
-int plot_vector_write(plot_doc *doc, cj_font *font, const char *path, char *why, size_t why_size) {
+int plot_vector_write(cj_plot_doc *doc, cj_font *font, const char *path, char *why,
+                      size_t why_size) {
     const plot_vector_plugin *cairo = load_cairo(why, why_size);
     if (!cairo) return CJ_ERR_UNSUPPORTED;
     const int format = plot_vector_format(path);
@@ -109,7 +110,7 @@ int plot_vector_write(plot_doc *doc, cj_font *font, const char *path, char *why,
         return CJ_ERR_IO;
     }
 
-    /* As plot_doc_render: the background, then a grid of panels split exactly in pixels. */
+    /* As cj_plot_doc_render: the background, then a grid of panels split exactly in pixels. */
     const double page[8] = {0, 0, W, 0, W, H, 0, H};
     painter.fill(painter.user, page, 4, doc->background);
     const int cols = doc->columns > 0 ? doc->columns : 1;
@@ -128,7 +129,8 @@ int plot_vector_write(plot_doc *doc, cj_font *font, const char *path, char *why,
         cairo->unclip(surface);
         if (st) {
             doc->failed = i;
-            snprintf(why, why_size, "cannot render %s: %s", plot_doc_where(doc), cj_last_error());
+            snprintf(why, why_size, "cannot render %s: %s", cj_plot_doc_where(doc),
+                     cj_last_error());
         }
     }
     char end_why[512] = "";

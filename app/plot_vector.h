@@ -20,6 +20,7 @@ int plot_vector_check(const char *path, char *why, size_t why_size);
  * existing file is kept on failure); chart panels ("kind": "chart") too. Returns CJ_OK or a status
  * with the reason in why: CJ_ERR_IO, CJ_ERR_NOMEM (the writer), or the status of a panel that
  * cannot be drawn. */
-int plot_vector_write(plot_doc *doc, cj_font *font, const char *path, char *why, size_t why_size);
+int plot_vector_write(cj_plot_doc *doc, cj_font *font, const char *path, char *why,
+                      size_t why_size);
 
 #endif

@@ -15,18 +15,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (!text) return 0;
     memcpy(text, data, size);
     text[size] = '\0';
-    plot_doc doc;
+    cj_plot_doc doc;
     char why[512];
-    if (plot_json_parse(text, &doc, why, sizeof why) == 0) {
+    if (cj_plot_json_parse(text, &doc, why, sizeof why) == 0) {
         cj_framebuffer *fb = NULL;
         /* a small image whatever the document asks for: layout and drawing, not pixels */
         if (cj_framebuffer_create(96, 80, 0, NULL, &fb) == CJ_OK) {
             doc.width = 96;
             doc.height = 80;
-            (void)plot_doc_render(&doc, fb, NULL);
+            (void)cj_plot_doc_render(&doc, fb, NULL);
             cj_framebuffer_destroy(fb);
         }
-        plot_doc_free(&doc);
+        cj_plot_doc_free(&doc);
     }
     free(text);
     return 0;

@@ -61,3 +61,16 @@ s/\bcj_renderer_options_get\b/cj_renderer_get_options/g
 # Private names whose function moved to its own layer (rerun after merging others' callers):
 # the figures of a stage are the stage report's (scene/), not the rasterizer's.
 s/\bcj_rframe_figures\b/cj_stage_report_figures/g
+#
+# The tracer's two helpers a test calls are exported under the library's prefix now that the
+# shared libraries export cj_ symbols only (issue 25).
+s/\btr_permute\b/cj_trace_permute/g
+s/\btr_mix\b/cj_trace_mix/g
+#
+# formats/ is a shared library like the others and exports cj_ symbols only (issue 25): its
+# readers and writers take the prefix (types too; a file name such as plot_json_curve.c keeps
+# its name, hence the guard on a following dot).
+s/\bplot_doc(_free|_render|_where)?\b([^.]|$)/cj_plot_doc\1\2/g
+s/\bplot_json_(parse|curve_add|page_free|read_page|write_page|print_fit|page|curve)\b([^.]|$)/cj_plot_json_\1\2/g
+s/\bbsp_json(_find|_free|_item|_parse|_view)?\b([^.]|$)/cj_bsp_json\1\2/g
+s/\bchart_json_parse\b([^.]|$)/cj_chart_json_parse\1/g

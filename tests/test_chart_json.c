@@ -22,15 +22,15 @@ static void test_chart_document(void **state) {
         "   \"color\": \"#ff0000\", \"marker\": \"square\", \"marker_radius\": 6, \"line_width\": "
         "0}],"
         " \"annotations\": [{\"at\": [10, 1e-3], \"text\": \"cheap\"}]}";
-    plot_doc doc;
+    cj_plot_doc doc;
     char why[256] = "";
-    assert_int_equal(plot_json_parse(doc_text, &doc, why, sizeof why), 0);
+    assert_int_equal(cj_plot_json_parse(doc_text, &doc, why, sizeof why), 0);
     assert_int_equal((int)doc.npanels, 1);
     assert_non_null(doc.charts[0]);
     assert_null(doc.panels[0]);
     cj_framebuffer *fb = NULL;
     assert_int_equal(cj_framebuffer_create(doc.width, doc.height, 0, NULL, &fb), CJ_OK);
-    assert_int_equal(plot_doc_render(&doc, fb, NULL), CJ_OK);
+    assert_int_equal(cj_plot_doc_render(&doc, fb, NULL), CJ_OK);
     /* without a font: plot area [12, 388] x [12, 288]; x log over [1, 1000], y whole decades
      * [1e-3, 1e-1] */
     const double px = 12 + (1.0 / 3) * 376, py = 12 + 1.0 * 276;
@@ -42,20 +42,20 @@ static void test_chart_document(void **state) {
     assert_true(m.r > 200 && m.g < 60 && m.b < 60); /* inside the 6 px square at (10, 1e-3) */
     printf("chart document: square marker at the documented log position\n");
     cj_framebuffer_destroy(fb);
-    plot_doc_free(&doc);
+    cj_plot_doc_free(&doc);
 }
 
 static void test_chart_panel_and_errors(void **state) {
     (void)state;
-    plot_doc doc;
+    cj_plot_doc doc;
     char why[256] = "";
     const char *mixed = "{\"panels\": [{\"items\": [{\"type\": \"points\", \"points\": [[0,0]]}]},"
                         " {\"kind\": \"chart\", \"series\": [{\"points\": [[1, 2], [3, 4]]}]}]}";
-    assert_int_equal(plot_json_parse(mixed, &doc, why, sizeof why), 0);
+    assert_int_equal(cj_plot_json_parse(mixed, &doc, why, sizeof why), 0);
     assert_int_equal((int)doc.npanels, 2);
     assert_non_null(doc.panels[0]);
     assert_non_null(doc.charts[1]);
-    plot_doc_free(&doc);
+    cj_plot_doc_free(&doc);
     static const struct {
         const char *text, *expect;
     } bad[] = {
@@ -79,7 +79,7 @@ static void test_chart_panel_and_errors(void **state) {
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         why[0] = 0;
-        assert_int_equal(plot_json_parse(bad[i].text, &doc, why, sizeof why), -1);
+        assert_int_equal(cj_plot_json_parse(bad[i].text, &doc, why, sizeof why), -1);
         if (!strstr(why, bad[i].expect))
             fail_msg("case %zu: '%s' lacks '%s'", i, why, bad[i].expect);
     }

@@ -111,9 +111,9 @@ static void test_bad_documents(void **state) {
     (void)state;
     const size_t n = sizeof bad_cases / sizeof bad_cases[0];
     for (size_t i = 0; i < n; ++i) {
-        plot_doc doc;
+        cj_plot_doc doc;
         char why[512] = "";
-        int rc = plot_json_parse(bad_cases[i].json, &doc, why, sizeof why);
+        int rc = cj_plot_json_parse(bad_cases[i].json, &doc, why, sizeof why);
         if (rc != -1 || !strstr(why, bad_cases[i].expect) || strchr(why, '\n')) {
             printf("case %zu: rc %d, message '%s', expected '%s'\n", i, rc, why,
                    bad_cases[i].expect);
@@ -141,13 +141,13 @@ static void test_named_colours(void **state) {
                  "{\"background\": \"%s\", \"items\": [{\"type\": \"points\", "
                  "\"points\": [[0,0],[1,1]]}]}",
                  cases[i].name);
-        plot_doc doc;
-        assert_int_equal(plot_json_parse(json, &doc, why, sizeof why), 0);
+        cj_plot_doc doc;
+        assert_int_equal(cj_plot_json_parse(json, &doc, why, sizeof why), 0);
         assert_int_equal(doc.background.r, cases[i].r);
         assert_int_equal(doc.background.g, cases[i].g);
         assert_int_equal(doc.background.b, cases[i].b);
         assert_int_equal(doc.background.a, cases[i].a);
-        plot_doc_free(&doc);
+        cj_plot_doc_free(&doc);
     }
     printf("test_plot_json: named colours (red, Navy, GREY, orange, transparent) give their "
            "CSS values; 'bleu' is refused naming the accepted forms\n");
@@ -171,9 +171,9 @@ static void test_good_documents(void **state) {
         " {\"type\": \"polyline\", \"points\": [[0,0],[1,1]], \"closed\": true, \"markers\": "
         "true},"
         " {\"type\": \"points\", \"points\": [[0.5, 0.5]], \"radius\": 3}]}";
-    plot_doc doc;
+    cj_plot_doc doc;
     char why[512] = "";
-    assert_int_equal(plot_json_parse(single, &doc, why, sizeof why), 0);
+    assert_int_equal(cj_plot_json_parse(single, &doc, why, sizeof why), 0);
     assert_int_equal(doc.width, 300);
     assert_int_equal(doc.height, 200);
     assert_int_equal(doc.npanels, 1);
@@ -181,22 +181,22 @@ static void test_good_documents(void **state) {
     assert_int_equal(doc.background.r, 0xfa);
     cj_framebuffer *fb = NULL;
     assert_int_equal(cj_framebuffer_create(doc.width, doc.height, 0, NULL, &fb), CJ_OK);
-    assert_int_equal(plot_doc_render(&doc, fb, NULL), CJ_OK);
+    assert_int_equal(cj_plot_doc_render(&doc, fb, NULL), CJ_OK);
     assert_int_equal(fb->pixels[0].r, 0xfa); /* corner: background */
     cj_framebuffer_destroy(fb);
-    plot_doc_free(&doc);
+    cj_plot_doc_free(&doc);
 
     const char *multi = "{\"columns\": 3, \"panels\": ["
                         " {\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]},"
                         " {\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]},"
                         " {\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]},"
                         " {\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]}]}";
-    assert_int_equal(plot_json_parse(multi, &doc, why, sizeof why), 0);
+    assert_int_equal(cj_plot_json_parse(multi, &doc, why, sizeof why), 0);
     assert_int_equal(doc.npanels, 4);
     assert_int_equal(doc.columns, 3);
     assert_int_equal(doc.width, 800);
     assert_int_equal(doc.height, 600);
-    plot_doc_free(&doc);
+    cj_plot_doc_free(&doc);
     printf("test_plot_json: every item kind and option accepted; single and multi-panel "
            "documents parse and render\n");
 }

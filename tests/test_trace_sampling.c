@@ -1,5 +1,5 @@
 /* The ray tracer's stratified sampling of area lights (raster/src/trace_shade.c):
- *  - tr_permute is a permutation of [0, n) for every n up to 1100 and for 4096 and 65536,
+ *  - cj_trace_permute is a permutation of [0, n) for every n up to 1100 and for 4096 and 65536,
  *    under many keys, and its pairings are not one fixed shift;
  *  - stratified soft shadows converge: the RMSE between two renders with different seeds
  *    falls at least like 1/sqrt(spp) from 16 to 256 spp (a fixed pairing of pixel and light
@@ -31,10 +31,10 @@ static void test_permute_is_bijective(void **state) {
     for (uint32_t n = 1; n <= 1100 + 2; n++) {
         uint32_t m = n <= 1100 ? n : big[n - 1101];
         for (int k = 0; k < 8; k++) {
-            uint64_t key = tr_mix(0x1234u + 977u * m + (uint64_t)k);
+            uint64_t key = cj_trace_mix(0x1234u + 977u * m + (uint64_t)k);
             memset(seen, 0, m);
             for (uint32_t i = 0; i < m; i++) {
-                uint32_t p = tr_permute(i, m, key);
+                uint32_t p = cj_trace_permute(i, m, key);
                 assert_true(p < m);
                 assert_int_equal(seen[p], 0);
                 seen[p] = 1;
@@ -42,13 +42,14 @@ static void test_permute_is_bijective(void **state) {
             if (m >= 4) { /* a cyclic shift maps i + 1 to p(i) + 1 for every i */
                 int shift = 1;
                 for (uint32_t i = 0; i + 1 < m && shift; i++)
-                    shift = tr_permute(i + 1, m, key) == (tr_permute(i, m, key) + 1) % m;
+                    shift =
+                        cj_trace_permute(i + 1, m, key) == (cj_trace_permute(i, m, key) + 1) % m;
                 shifts += shift;
                 tried++;
             }
         }
     }
-    printf("  tr_permute: a permutation for n = 1..1100, 4096, 65536 under 8 keys each; "
+    printf("  cj_trace_permute: a permutation for n = 1..1100, 4096, 65536 under 8 keys each; "
            "%d of %d are cyclic shifts\n",
            shifts, tried);
     assert_true(shifts * 100 < tried);

@@ -13,30 +13,30 @@
 #include <stddef.h>
 #include <stdio.h>
 
-typedef struct bsp_json {
+typedef struct cj_bsp_json {
     int degree, dim, npts;
     double *pts, *weights, *knots; /* owned; weights NULL for a polynomial B-spline */
-} bsp_json;
+} cj_bsp_json;
 
 /* Parses item (at JSON path `path`) into out. extra_keys: NULL-terminated field names also
  * allowed (drawing options of plot), may be NULL. Returns 0, or -1 with a one-line reason
  * naming the path into why. max_points caps the control points. */
-int bsp_json_parse(const cJSON *item, const char *path, const char *const *extra_keys,
-                   size_t max_points, bsp_json *out, char *why, size_t why_size);
+int cj_bsp_json_parse(const cJSON *item, const char *path, const char *const *extra_keys,
+                      size_t max_points, cj_bsp_json *out, char *why, size_t why_size);
 
-void bsp_json_free(bsp_json *b);
+void cj_bsp_json_free(cj_bsp_json *b);
 
-static inline cj_bspline bsp_json_view(const bsp_json *b) {
+static inline cj_bspline cj_bsp_json_view(const cj_bsp_json *b) {
     return cj_bspline_view(b->degree, b->dim, b->npts, b->pts, b->weights, b->knots);
 }
 
 /* The first "bspline" item of a document: the object itself, or in its "items", or in the
  * "items" of one of its "panels". Writes its JSON path to path[path_size]; NULL if none. */
-const cJSON *bsp_json_find(const cJSON *doc, char *path, size_t path_size);
+const cJSON *cj_bsp_json_find(const cJSON *doc, char *path, size_t path_size);
 
 /* The item as a cJSON tree (the caller deletes it): numbers in their shortest exact form, so
  * that it reads back bit-identical; printed with cJSON's printer by whoever writes the document
- * (plot_json_print_fit). NULL when out of memory. */
-cJSON *bsp_json_item(const cj_bspline *c);
+ * (cj_plot_json_print_fit). NULL when out of memory. */
+cJSON *cj_bsp_json_item(const cj_bspline *c);
 
 #endif

@@ -20,7 +20,7 @@
 /* Largest JSON file read, in bytes. */
 #define PLOT_JSON_MAX_BYTES ((size_t)64 << 20)
 
-typedef struct plot_doc {
+typedef struct cj_plot_doc {
     int width, height; /* image size in pixels */
     cj_rgba background;
     int columns; /* panels per row */
@@ -28,28 +28,28 @@ typedef struct plot_doc {
     cj_plot *panels[PLOT_JSON_MAX_PANELS];
     cj_chart *charts[PLOT_JSON_MAX_PANELS]; /* a chart panel ("kind": "chart"): panels[i] NULL */
     int single;                             /* the document is one plot (no "panels") */
-    size_t failed;  /* set by plot_doc_render on failure: the panel that failed */
-    char where[32]; /* plot_doc_where's text */
-} plot_doc;
+    size_t failed;  /* set by cj_plot_doc_render on failure: the panel that failed */
+    char where[32]; /* cj_plot_doc_where's text */
+} cj_plot_doc;
 
-/* Parses a whole document. On success returns 0 and fills *doc (free with plot_doc_free). On
+/* Parses a whole document. On success returns 0 and fills *doc (free with cj_plot_doc_free). On
  * failure returns -1, leaves nothing allocated, and writes a one-line reason naming the JSON
  * path of the bad field ("items[2].points[3] is not a pair of numbers") to why. */
-int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size);
+int cj_plot_json_parse(const char *text, cj_plot_doc *doc, char *why, size_t why_size);
 
-void plot_doc_free(plot_doc *doc);
+void cj_plot_doc_free(cj_plot_doc *doc);
 
 /* Renders every panel into fb (doc->width x doc->height), a grid of doc->columns columns.
  * font may be NULL. Returns CJ_OK or the first failing status (cj_last_error explains; the
- * panel is recorded for plot_doc_where). */
-cj_status plot_doc_render(plot_doc *doc, cj_framebuffer *fb, cj_font *font);
+ * panel is recorded for cj_plot_doc_where). */
+cj_status cj_plot_doc_render(cj_plot_doc *doc, cj_framebuffer *fb, cj_font *font);
 
 /* ---- single-plot pages of curves: the documents the viewer edits ----
  * The one reader of "bezier", "catmull-rom" and "bspline" items (plot_json_curve.c,
  * plot_json_bspline.c) fills this model; the
- * plot reader above draws what it read, the viewer edits it, and plot_json_write_page (the one
+ * plot reader above draws what it read, the viewer edits it, and cj_plot_json_write_page (the one
  * writer of the plot format, plot_json_write.c) writes it back. */
-typedef struct plot_json_curve {
+typedef struct cj_plot_json_curve {
     int spline;     /* 0: a "bezier" item, 1: a "catmull-rom" item */
     double *points; /* 2 * count coordinates (malloc'd, owned) */
     size_t count;
@@ -64,9 +64,9 @@ typedef struct plot_json_curve {
     int degree;          /* bspline: the degree */
     double *knot_vector; /* bspline: count + degree + 1 knots (malloc'd, owned) */
     cj_plot_bspline_opts bspline_opts; /* bspline: its drawing options */
-} plot_json_curve;
+} cj_plot_json_curve;
 
-typedef struct plot_json_page {
+typedef struct cj_plot_json_page {
     int width, height; /* pixels, PLOT_JSON_MIN_SIDE..PLOT_JSON_MAX_SIDE (default 800 x 600) */
     cj_rgba background;
     int axes;      /* default 1 */
@@ -75,36 +75,36 @@ typedef struct plot_json_page {
     int have_view; /* view[] = x0, y0, x1, y1 given */
     double view[4];
     size_t ncurves;
-    plot_json_curve *curves; /* malloc'd, owned */
-} plot_json_page;
+    cj_plot_json_curve *curves; /* malloc'd, owned */
+} cj_plot_json_page;
 
 /* Reads a single-plot document whose items are all "bezier", "catmull-rom" or 2D "bspline" (with
- * the same checks and messages as plot_json_parse; a document with panels, a chart or another kind
- * of item is refused, naming it). Returns 0 and fills *page (free with plot_json_page_free), or -1
- * with nothing allocated and a one-line reason in why. */
-int plot_json_read_page(const char *text, plot_json_page *page, char *why, size_t why_size);
+ * the same checks and messages as cj_plot_json_parse; a document with panels, a chart or another
+ * kind of item is refused, naming it). Returns 0 and fills *page (free with
+ * cj_plot_json_page_free), or -1 with nothing allocated and a one-line reason in why. */
+int cj_plot_json_read_page(const char *text, cj_plot_json_page *page, char *why, size_t why_size);
 
-void plot_json_page_free(plot_json_page *page);
+void cj_plot_json_page_free(cj_plot_json_page *page);
 
 /* Draws curve k into plot as the plot reader does (cj_plot_add_bezier, _rbezier, _spline or
  * _bspline):
  * their status (cj_last_error explains a failure). */
-cj_status plot_json_curve_add(cj_plot *plot, const plot_json_curve *k);
+cj_status cj_plot_json_curve_add(cj_plot *plot, const cj_plot_json_curve *k);
 
 /* Writes page as a plot document with cJSON's printer, every number in the shortest form that
  * reads back to the same double, atomically (the old file stays whole on failure): what
- * plot_json_read_page reads back bit-identical and `casteljau plot` draws. Errors:
+ * cj_plot_json_read_page reads back bit-identical and `casteljau plot` draws. Errors:
  * CJ_ERR_UNSUPPORTED (a Kochanek-Bartels spline, which the format cannot describe; the message
  * names the curve), CJ_ERR_NOMEM, CJ_ERR_IO (naming path). */
-cj_status plot_json_write_page(const plot_json_page *page, const char *path);
+cj_status cj_plot_json_write_page(const cj_plot_json_page *page, const char *path);
 
 /* The document of `casteljau fit` for a curve: a plot with the title, the fitted B-spline item
  * and (2D data) the n data points as a "points" item, printed with cJSON onto f, numbers in
  * their shortest exact form. Errors: CJ_ERR_NOMEM, CJ_ERR_IO (the stream's error flag). */
-cj_status plot_json_print_fit(FILE *f, const cj_bspline *c, const double *data, int n,
-                              const char *title);
+cj_status cj_plot_json_print_fit(FILE *f, const cj_bspline *c, const double *data, int n,
+                                 const char *title);
 
-/* After plot_doc_render failed: the JSON path of the panel ("panels[3]" or "the plot"). */
-const char *plot_doc_where(plot_doc *doc);
+/* After cj_plot_doc_render failed: the JSON path of the panel ("panels[3]" or "the plot"). */
+const char *cj_plot_doc_where(cj_plot_doc *doc);
 
 #endif

@@ -36,8 +36,8 @@ static int numbers(const cJSON *v, const char *path, const char *name, double **
     return 0;
 }
 
-int bsp_json_parse(const cJSON *item, const char *path, const char *const *extra_keys,
-                   size_t max_points, bsp_json *out, char *why, size_t why_size) {
+int cj_bsp_json_parse(const cJSON *item, const char *path, const char *const *extra_keys,
+                      size_t max_points, cj_bsp_json *out, char *why, size_t why_size) {
     static const char *const keys[] = {"type", "degree", "points", "knots", "weights", NULL};
     memset(out, 0, sizeof *out);
     if (!cJSON_IsObject(item)) return fail(why, why_size, "%s is not an object", path);
@@ -72,14 +72,14 @@ int bsp_json_parse(const cJSON *item, const char *path, const char *const *extra
     int i = 0;
     for (const cJSON *e = pv->child; e; e = e->next, ++i) {
         if (!cJSON_IsArray(e) || cJSON_GetArraySize(e) != dim) {
-            bsp_json_free(out);
+            cj_bsp_json_free(out);
             return fail(why, why_size, "%s.points[%d] does not have %d coordinates like points[0]",
                         path, i, dim);
         }
         int k = 0;
         for (const cJSON *x = e->child; x; x = x->next, ++k) {
             if (!cJSON_IsNumber(x) || !isfinite(x->valuedouble)) {
-                bsp_json_free(out);
+                cj_bsp_json_free(out);
                 return fail(why, why_size, "%s.points[%d][%d] is not a finite number", path, i, k);
             }
             out->pts[(size_t)i * (size_t)dim + (size_t)k] = x->valuedouble;
@@ -90,11 +90,11 @@ int bsp_json_parse(const cJSON *item, const char *path, const char *const *extra
     int nk = 0;
     if (kv) {
         if (numbers(kv, path, "knots", &out->knots, &nk, why, why_size)) {
-            bsp_json_free(out);
+            cj_bsp_json_free(out);
             return -1;
         }
         if (nk != nk_want) {
-            bsp_json_free(out);
+            cj_bsp_json_free(out);
             return fail(why, why_size,
                         "%s.knots has %d values; %d points of degree %d need %d (points + degree "
                         "+ 1)",
@@ -103,7 +103,7 @@ int bsp_json_parse(const cJSON *item, const char *path, const char *const *extra
     } else {
         out->knots = malloc(sizeof(double) * (size_t)nk_want);
         if (!out->knots || cj_bspline_uniform_knots(np, out->degree, 0.0, 1.0, 1, out->knots)) {
-            bsp_json_free(out);
+            cj_bsp_json_free(out);
             return fail(why, why_size, "%s: %d points are too few for degree %d", path, np,
                         out->degree);
         }
@@ -112,24 +112,24 @@ int bsp_json_parse(const cJSON *item, const char *path, const char *const *extra
     if (wv) {
         int nw = 0;
         if (numbers(wv, path, "weights", &out->weights, &nw, why, why_size)) {
-            bsp_json_free(out);
+            cj_bsp_json_free(out);
             return -1;
         }
         if (nw != np) {
-            bsp_json_free(out);
+            cj_bsp_json_free(out);
             return fail(why, why_size, "%s.weights has %d values for %d points", path, nw, np);
         }
     }
-    const cj_bspline c = bsp_json_view(out);
+    const cj_bspline c = cj_bsp_json_view(out);
     if (cj_bspline_check(&c)) {
         fail(why, why_size, "%s: %s", path, cj_last_error());
-        bsp_json_free(out);
+        cj_bsp_json_free(out);
         return -1;
     }
     return 0;
 }
 
-void bsp_json_free(bsp_json *b) {
+void cj_bsp_json_free(cj_bsp_json *b) {
     free(b->pts);
     free(b->weights);
     free(b->knots);
@@ -153,7 +153,7 @@ static const cJSON *in_items(const cJSON *o, const char *prefix, char *path, siz
     return NULL;
 }
 
-const cJSON *bsp_json_find(const cJSON *doc, char *path, size_t n) {
+const cJSON *cj_bsp_json_find(const cJSON *doc, char *path, size_t n) {
     if (is_bspline(doc)) {
         snprintf(path, n, "document");
         return doc;
@@ -171,7 +171,7 @@ const cJSON *bsp_json_find(const cJSON *doc, char *path, size_t n) {
     return NULL;
 }
 
-cJSON *bsp_json_item(const cj_bspline *c) {
+cJSON *cj_bsp_json_item(const cj_bspline *c) {
     cJSON *it = cJSON_CreateObject(), *pts = cj_json_point_array(c->pts, (size_t)c->npts, c->dim);
     int bad = !it || !pts || !cJSON_AddStringToObject(it, "type", "bspline") ||
               cj_json_add_number(it, "degree", c->degree);

@@ -131,8 +131,8 @@ static int parse_note(pj_ctx *c, const cJSON *a, const char *path, cj_chart *ch)
     return cj_chart_annotate(ch, at[0], at[1], text, col) ? pj_lib_fail(c, path) : 0;
 }
 
-int chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path, const char *const *extra_keys,
-                     cj_chart **out) {
+int cj_chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path,
+                        const char *const *extra_keys, cj_chart **out) {
     static const char *const base[] = {"kind",   "title",  "x",          "y",
                                        "legend", "series", "annotations"};
     const char *keys[16];

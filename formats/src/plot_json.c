@@ -52,9 +52,9 @@
 /* "bezier" and "catmull-rom" items: read by the one curve reader (plot_json_curve.c). */
 static int parse_curve(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, int spline,
                        cj_rgba color) {
-    plot_json_curve k;
+    cj_plot_json_curve k;
     if (pj_read_curve(c, it, path, spline, color, &k)) return -1;
-    const cj_status st = plot_json_curve_add(plot, &k);
+    const cj_status st = cj_plot_json_curve_add(plot, &k);
     pj_curve_free(&k);
     return st ? pj_lib_fail(c, path) : 0;
 }
@@ -303,7 +303,7 @@ static int parse_panel(pj_ctx *c, const cJSON *obj, const char *prefix, cj_rgba 
     return 0;
 }
 
-void plot_doc_free(plot_doc *doc) {
+void cj_plot_doc_free(cj_plot_doc *doc) {
     for (size_t i = 0; i < doc->npanels; ++i) {
         cj_plot_destroy(doc->panels[i]);
         cj_chart_destroy(doc->charts[i]);
@@ -347,7 +347,7 @@ static int is_chart(const cJSON *obj) {
     return k && cJSON_IsString(k) && !strcmp(k->valuestring, "chart");
 }
 
-int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size) {
+int cj_plot_json_parse(const char *text, cj_plot_doc *doc, char *why, size_t why_size) {
     pj_ctx c = {why, why_size, 0, 0, 0.0};
     memset(doc, 0, sizeof *doc);
     const char *end = NULL;
@@ -371,7 +371,7 @@ int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size)
     panels = pj_field(root, "panels");
     if (!panels && is_chart(root)) { /* the whole document is one chart */
         static const char *const doc_keys[] = {"width", "height", "background", NULL};
-        if (chart_json_parse(&c, root, "document", doc_keys, &doc->charts[0])) goto done;
+        if (cj_chart_json_parse(&c, root, "document", doc_keys, &doc->charts[0])) goto done;
         doc->npanels = 1;
     }
     if (!doc->npanels && pj_check_keys(&c, root, "document", panels ? multi : single)) goto done;
@@ -417,7 +417,7 @@ int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size)
                 goto done;
             }
             if (is_chart(pn)) {
-                if (chart_json_parse(&c, pn, p, NULL, &doc->charts[doc->npanels])) goto done;
+                if (cj_chart_json_parse(&c, pn, p, NULL, &doc->charts[doc->npanels])) goto done;
                 doc->npanels++;
                 continue;
             }
@@ -436,12 +436,12 @@ int plot_json_parse(const char *text, plot_doc *doc, char *why, size_t why_size)
     }
     rc = 0;
 done:
-    if (rc) plot_doc_free(doc);
+    if (rc) cj_plot_doc_free(doc);
     cJSON_Delete(root);
     return rc;
 }
 
-const char *plot_doc_where(plot_doc *doc) {
+const char *cj_plot_doc_where(cj_plot_doc *doc) {
     if (doc->single)
         snprintf(doc->where, sizeof doc->where, "the plot");
     else
@@ -449,7 +449,7 @@ const char *plot_doc_where(plot_doc *doc) {
     return doc->where;
 }
 
-cj_status plot_doc_render(plot_doc *doc, cj_framebuffer *fb, cj_font *font) {
+cj_status cj_plot_doc_render(cj_plot_doc *doc, cj_framebuffer *fb, cj_font *font) {
     cj_framebuffer_clear(fb, doc->background);
     const int cols = doc->columns > 0 ? doc->columns : 1;
     const int rows = (int)((doc->npanels + (size_t)cols - 1) / (size_t)cols);

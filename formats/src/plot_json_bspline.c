@@ -10,12 +10,12 @@
 #include <string.h>
 
 int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
-                    plot_json_curve *out) {
+                    cj_plot_json_curve *out) {
     static const char *const extra[] = {"color",          "width",        "control_polygon",
                                         "control_points", "knot_markers", NULL};
-    bsp_json b;
+    cj_bsp_json b;
     char why[400];
-    if (bsp_json_parse(it, path, extra, PLOT_JSON_MAX_POINTS - c->points, &b, why, sizeof why))
+    if (cj_bsp_json_parse(it, path, extra, PLOT_JSON_MAX_POINTS - c->points, &b, why, sizeof why))
         return pj_fail(c, "%s", why);
     cj_plot_bspline_opts o = cj_plot_bspline_defaults();
     o.color = color;
@@ -37,7 +37,7 @@ int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
         r = pj_fail(c, "%s.points: a plotted B-spline needs 2D points, not %d coordinates", path,
                     b.dim);
     if (r) {
-        bsp_json_free(&b);
+        cj_bsp_json_free(&b);
         return -1;
     }
     c->points += (size_t)b.npts;
@@ -56,9 +56,9 @@ int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
 }
 
 int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color) {
-    plot_json_curve k;
+    cj_plot_json_curve k;
     if (pj_read_bspline(c, it, path, color, &k)) return -1;
-    const int r = plot_json_curve_add(plot, &k) ? pj_lib_fail(c, path) : 0;
+    const int r = cj_plot_json_curve_add(plot, &k) ? pj_lib_fail(c, path) : 0;
     pj_curve_free(&k);
     return r ? -1 : 0;
 }

@@ -1,7 +1,7 @@
 /* The one reader of the plot format's editable curve items ("bezier" and "catmull-rom"; "bspline"
  * in plot_json_bspline.c) into
- * plot_json_curve, used by the plot reader (plot_json.c, which draws them) and by the reader of
- * single-plot pages (plot_json_read_page, the viewer's documents). Formats in plot_json.c. */
+ * cj_plot_json_curve, used by the plot reader (plot_json.c, which draws them) and by the reader of
+ * single-plot pages (cj_plot_json_read_page, the viewer's documents). Formats in plot_json.c. */
 #include "plot_json_internal.h"
 
 #include "weights.h"
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-void pj_curve_free(plot_json_curve *k) {
+void pj_curve_free(cj_plot_json_curve *k) {
     free(k->points);
     free(k->weights);
     free(k->knot_vector);
@@ -70,7 +70,7 @@ static int read_weights(pj_ctx *c, const cJSON *wv, const char *path, size_t n, 
     return 0;
 }
 
-static int read_bezier(pj_ctx *c, const cJSON *it, const char *path, plot_json_curve *k) {
+static int read_bezier(pj_ctx *c, const cJSON *it, const char *path, cj_plot_json_curve *k) {
     static const char *const keys[] = {
         "type", "points",         "color",    "width",   "control_polygon", "control_points",
         "hull", "construction_t", "frames_t", "normals", "weights",         NULL};
@@ -95,7 +95,7 @@ static int read_bezier(pj_ctx *c, const cJSON *it, const char *path, plot_json_c
     return 0;
 }
 
-static int read_spline(pj_ctx *c, const cJSON *it, const char *path, plot_json_curve *k) {
+static int read_spline(pj_ctx *c, const cJSON *it, const char *path, cj_plot_json_curve *k) {
     static const char *const keys[] = {"type", "points", "color", "width", "tension",
                                        "kind", "closed", "knots", NULL};
     if (pj_check_keys(c, it, path, keys)) return -1;
@@ -125,8 +125,8 @@ static int read_spline(pj_ctx *c, const cJSON *it, const char *path, plot_json_c
 }
 
 int pj_read_curve(pj_ctx *c, const cJSON *it, const char *path, int spline, cj_rgba color,
-                  plot_json_curve *out) {
-    plot_json_curve k;
+                  cj_plot_json_curve *out) {
+    cj_plot_json_curve k;
     memset(&k, 0, sizeof k);
     k.spline = spline;
     k.bezier = cj_plot_bezier_defaults();
@@ -139,7 +139,7 @@ int pj_read_curve(pj_ctx *c, const cJSON *it, const char *path, int spline, cj_r
     return 0;
 }
 
-cj_status plot_json_curve_add(cj_plot *plot, const plot_json_curve *k) {
+cj_status cj_plot_json_curve_add(cj_plot *plot, const cj_plot_json_curve *k) {
     if (k->bspline) {
         const cj_bspline b =
             cj_bspline_view(k->degree, 2, (int)k->count, k->points, k->weights, k->knot_vector);
@@ -158,7 +158,7 @@ cj_status plot_json_curve_add(cj_plot *plot, const plot_json_curve *k) {
 
 /* ---- single-plot pages -------------------------------------------------------------------- */
 
-void plot_json_page_free(plot_json_page *page) {
+void cj_plot_json_page_free(cj_plot_json_page *page) {
     for (size_t i = 0; i < page->ncurves; ++i) pj_curve_free(&page->curves[i]);
     free(page->curves);
     free(page->title);
@@ -167,7 +167,7 @@ void plot_json_page_free(plot_json_page *page) {
     page->ncurves = 0;
 }
 
-static int read_page(pj_ctx *c, const cJSON *root, plot_json_page *page) {
+static int read_page(pj_ctx *c, const cJSON *root, cj_plot_json_page *page) {
     static const char *const keys[] = {"width",  "height", "background", "title", "axes",
                                        "margin", "view",   "items",      NULL};
     if (!cJSON_IsObject(root)) return pj_fail(c, "document is not a JSON object");
@@ -233,7 +233,7 @@ static int read_page(pj_ctx *c, const cJSON *root, plot_json_page *page) {
     return 0;
 }
 
-int plot_json_read_page(const char *text, plot_json_page *page, char *why, size_t why_size) {
+int cj_plot_json_read_page(const char *text, cj_plot_json_page *page, char *why, size_t why_size) {
     pj_ctx c = {why, why_size, 0, 0, 0.0};
     memset(page, 0, sizeof *page);
     page->width = 800;
@@ -249,6 +249,6 @@ int plot_json_read_page(const char *text, plot_json_page *page, char *why, size_
     }
     const int rc = read_page(&c, root, page);
     cJSON_Delete(root);
-    if (rc) plot_json_page_free(page);
+    if (rc) cj_plot_json_page_free(page);
     return rc;
 }

@@ -61,18 +61,18 @@ void pj_syntax_error(pj_ctx *c, const char *text, const char *at);
 /* A "bezier" (spline 0) or "catmull-rom" (spline 1) item at path into *out (plot_json_curve.c;
  * free with pj_curve_free); color is its default colour. */
 int pj_read_curve(pj_ctx *c, const cJSON *it, const char *path, int spline, cj_rgba color,
-                  plot_json_curve *out);
-void pj_curve_free(plot_json_curve *k);
+                  cj_plot_json_curve *out);
+void pj_curve_free(cj_plot_json_curve *k);
 
 /* A chart panel ("kind": "chart", format in chart_json.c) at path; extra_keys (NULL-terminated,
  * may be NULL) are also accepted (the document's own fields when the chart is the document). */
-int chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path, const char *const *extra_keys,
-                     cj_chart **out);
+int cj_chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path,
+                        const char *const *extra_keys, cj_chart **out);
 
 /* A 2D "bspline" item at path into *out (plot_json_bspline.c; free with pj_curve_free); color
  * is its default colour. */
 int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
-                    plot_json_curve *out);
+                    cj_plot_json_curve *out);
 /* A "bspline" item read and drawn into plot. */
 int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color);
 

@@ -1,7 +1,7 @@
 /* The one writer of the plot format (plot_json.c documents it): a single-plot page of curves,
  * built as a cJSON tree and printed by cJSON with the JSON writing kit
  * (scene/src/json_write_internal.h), so every number is in its shortest exact form and the file
- * is replaced atomically. What it writes, plot_json_read_page reads back bit-identical. */
+ * is replaced atomically. What it writes, cj_plot_json_read_page reads back bit-identical. */
 #include "plot_json_internal.h"
 
 #include "bspline_json.h"
@@ -24,10 +24,10 @@ static int add(cJSON *obj, const char *key, cJSON *item) {
 }
 
 /* A "bspline" item: the B-spline item's own writer, then the plot's drawing options. */
-static cJSON *bspline_json(const plot_json_curve *k) {
+static cJSON *bspline_json(const cj_plot_json_curve *k) {
     const cj_bspline b =
         cj_bspline_view(k->degree, 2, (int)k->count, k->points, k->weights, k->knot_vector);
-    cJSON *it = bsp_json_item(&b);
+    cJSON *it = cj_bsp_json_item(&b);
     if (!it) return NULL;
     const cj_plot_bspline_opts *o = &k->bspline_opts;
     int bad = add(it, "control_polygon", cJSON_CreateBool(o->control_polygon));
@@ -42,7 +42,7 @@ static cJSON *bspline_json(const plot_json_curve *k) {
     return it;
 }
 
-static cJSON *curve_json(const plot_json_curve *k) {
+static cJSON *curve_json(const cj_plot_json_curve *k) {
     static const char *const kinds[] = {"uniform", "centripetal", "chordal"};
     const cj_plot_bezier_opts *o = &k->bezier;
     if (k->bspline) return bspline_json(k);
@@ -75,7 +75,7 @@ static cJSON *curve_json(const plot_json_curve *k) {
 }
 
 /* The page's settings first, then its items. */
-static cJSON *page_json(const plot_json_page *page) {
+static cJSON *page_json(const cj_plot_json_page *page) {
     cJSON *root = cJSON_CreateObject(), *items = cJSON_CreateArray();
     int bad = !root || !items;
     if (!bad) {
@@ -106,7 +106,7 @@ static cJSON *page_json(const plot_json_page *page) {
     return root;
 }
 
-cj_status plot_json_write_page(const plot_json_page *page, const char *path) {
+cj_status cj_plot_json_write_page(const cj_plot_json_page *page, const char *path) {
     for (size_t i = 0; i < page->ncurves; ++i)
         if (page->curves[i].spline &&
             page->curves[i].spline_options.kind != CJ_SPLINE_CATMULL_ROM &&
@@ -123,10 +123,10 @@ cj_status plot_json_write_page(const plot_json_page *page, const char *path) {
     return st;
 }
 
-cj_status plot_json_print_fit(FILE *f, const cj_bspline *c, const double *data, int n,
-                              const char *title) {
+cj_status cj_plot_json_print_fit(FILE *f, const cj_bspline *c, const double *data, int n,
+                                 const char *title) {
     cJSON *root = cJSON_CreateObject(), *items = cJSON_CreateArray();
-    cJSON *curve = bsp_json_item(c);
+    cJSON *curve = cj_bsp_json_item(c);
     int bad = !root || !items || !curve || add(root, "title", cJSON_CreateString(title)) ||
               !cJSON_AddItemToArray(items, curve);
     if (!bad) curve = NULL; /* owned by items */

@@ -40,12 +40,12 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
     size_t pix = (size_t)y * (size_t)j->w + (size_t)x;
     double acc[3] = {0, 0, 0}, wsum = 0.0, wcov = 0.0;
     int covered = 0;
-    uint64_t pkey = tr_mix(j->seed ^ tr_mix((uint64_t)pix));
+    uint64_t pkey = cj_trace_mix(j->seed ^ cj_trace_mix((uint64_t)pix));
     sh->perm = (uint32_t)(pkey >> 40);
-    sh->perm_key = tr_mix(pkey ^ 0x5851f42d4c957f2dull);
+    sh->perm_key = cj_trace_mix(pkey ^ 0x5851f42d4c957f2dull);
     for (int s = 0; s < j->spp; s++) {
         sh->sample = (uint32_t)s;
-        sh->rng.key = tr_mix(pkey + (uint64_t)s);
+        sh->rng.key = cj_trace_mix(pkey + (uint64_t)s);
         sh->rng.n = 0;
         double px = x + 0.5, py = y + 0.5;
         if (j->spp > 1 && j->random) {
@@ -76,7 +76,8 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
             if (j->spp > 1 && !j->random) {
                 uint32_t ns = (uint32_t)j->spp;
                 uint32_t si =
-                    (tr_permute((uint32_t)s, ns, sh->perm_key ^ 0x9e3779b97f4a7c15ull) + sh->perm) %
+                    (cj_trace_permute((uint32_t)s, ns, sh->perm_key ^ 0x9e3779b97f4a7c15ull) +
+                     sh->perm) %
                     ns;
                 tu = (si + tu) / ns;
             }
@@ -88,7 +89,8 @@ static void render_pixel(tr_job *j, tr_shade *sh, int x, int y) {
             if (j->spp > 1 && !j->random) {
                 uint32_t ns = (uint32_t)j->spp, k = (uint32_t)j->strata;
                 uint32_t si =
-                    (tr_permute((uint32_t)s, ns, sh->perm_key ^ 0x2545f4914f6cdd1dull) + sh->perm) %
+                    (cj_trace_permute((uint32_t)s, ns, sh->perm_key ^ 0x2545f4914f6cdd1dull) +
+                     sh->perm) %
                     ns;
                 if (k * k == ns) {
                     lu = ((si % k) + lu) / k;

@@ -92,7 +92,7 @@ static void strat2(tr_shade *sh, int first, uint64_t salt, double *u, double *v)
         return;
     }
     const uint32_t ns = (uint32_t)sh->spp, k = (uint32_t)sh->strata;
-    const uint32_t si = (tr_permute(sh->sample, ns, sh->perm_key ^ salt) + sh->perm) % ns;
+    const uint32_t si = (cj_trace_permute(sh->sample, ns, sh->perm_key ^ salt) + sh->perm) % ns;
     if (k * k == ns) {
         *u = ((si % k) + a) / k;
         *v = ((si / k) + b) / k;

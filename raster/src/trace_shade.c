@@ -19,7 +19,7 @@ static double now(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-uint64_t tr_mix(uint64_t z) {
+uint64_t cj_trace_mix(uint64_t z) {
     z += 0x9e3779b97f4a7c15ull;
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
@@ -27,11 +27,11 @@ uint64_t tr_mix(uint64_t z) {
 }
 
 double tr_rand(tr_rng *r) {
-    uint64_t v = tr_mix(r->key ^ tr_mix(r->n++));
+    uint64_t v = cj_trace_mix(r->key ^ cj_trace_mix(r->n++));
     return (double)(v >> 11) * 0x1p-53;
 }
 
-uint32_t tr_permute(uint32_t i, uint32_t n, uint64_t key) {
+uint32_t cj_trace_permute(uint32_t i, uint32_t n, uint64_t key) {
     /* Each step is a bijection of the b-bit integers (xor, add, odd multiply, xor-shift), so
      * their composition permutes [0, 2^b); walking the cycle until the value falls below n
      * restricts it to a permutation of [0, n). */
@@ -143,7 +143,7 @@ static cj_rgb local_light(tr_shade *sh, const cj_material *m, const cj_hit *h, c
              * stratum uniform over the pixels, so the estimate stays unbiased. */
             if (depth == 0 && !sh->random) {
                 uint32_t ns = (uint32_t)sh->spp;
-                uint32_t si = (tr_permute(sh->sample, ns, sh->perm_key) + sh->perm) % ns;
+                uint32_t si = (cj_trace_permute(sh->sample, ns, sh->perm_key) + sh->perm) % ns;
                 uint32_t k = (uint32_t)sh->strata;
                 if (k * k == ns) {
                     s = ((si % k) + tr_rand(&sh->rng)) / k;

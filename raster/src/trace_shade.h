@@ -12,10 +12,10 @@ typedef struct tr_rng {
     uint64_t n;
 } tr_rng;
 
-uint64_t tr_mix(uint64_t z);
+uint64_t cj_trace_mix(uint64_t z);
 double tr_rand(tr_rng *r);
 /* A pseudo-random permutation of [0, n) chosen by key: i -> its image, for i < n, n >= 1. */
-uint32_t tr_permute(uint32_t i, uint32_t n, uint64_t key);
+uint32_t cj_trace_permute(uint32_t i, uint32_t n, uint64_t key);
 
 typedef struct tr_lights {
     int unlit;       /* the scene has no light at all: colour shown flat, as the rasterizer does */

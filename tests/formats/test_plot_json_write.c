@@ -130,7 +130,7 @@ static int same_doubles(const double *a, const double *b, size_t n) {
     return !n || !memcmp(a, b, n * sizeof *a);
 }
 
-static int same_curve(const plot_json_curve *a, const plot_json_curve *b) {
+static int same_curve(const cj_plot_json_curve *a, const cj_plot_json_curve *b) {
     const cj_plot_bezier_opts *x = &a->bezier, *y = &b->bezier;
     int same = a->spline == b->spline && a->count == b->count &&
                same_doubles(a->points, b->points, 2 * a->count) && !a->weights == !b->weights &&
@@ -148,7 +148,7 @@ static int same_curve(const plot_json_curve *a, const plot_json_curve *b) {
            x->nframes == y->nframes && same_doubles(x->frames_t, y->frames_t, x->nframes);
 }
 
-static int same_page(const plot_json_page *a, const plot_json_page *b) {
+static int same_page(const cj_plot_json_page *a, const cj_plot_json_page *b) {
     int same = a->width == b->width && a->height == b->height &&
                !memcmp(&a->background, &b->background, sizeof a->background) &&
                a->axes == b->axes && same_doubles(&a->margin, &b->margin, 1) &&
@@ -163,7 +163,7 @@ static void test_round_trip(const char *dir) {
     double bez[] = {0.1, 0.2, 5.6, 1.0 / 3.0, 1e-300, -2.5, DBL_TRUE_MIN, 123456.789};
     double w[] = {1.0, 0.30000000000000004, 1.75, 1.0 / 7.0};
     double spl[] = {0, 0, 1, 2.0 / 3.0, 2, -0.1, 3, 1e10};
-    plot_json_curve curves[2];
+    cj_plot_json_curve curves[2];
     memset(curves, 0, sizeof curves);
     curves[0].points = bez;
     curves[0].count = 4;
@@ -188,26 +188,26 @@ static void test_round_trip(const char *dir) {
     curves[1].spline_options.closed = 1;
     curves[1].knots = 0;
     char title[] = "a \"quoted\" \\ title\twith\ncontrol \x01 characters";
-    plot_json_page page = {640,   480, {250, 251, 252, 128},        0, 0.5,
-                           title, 1,   {-1.1, 0.2, 5.6, 7.0 / 3.0}, 2, curves};
+    cj_plot_json_page page = {640,   480, {250, 251, 252, 128},        0, 0.5,
+                              title, 1,   {-1.1, 0.2, 5.6, 7.0 / 3.0}, 2, curves};
     char p1[512], p2[512];
     snprintf(p1, sizeof p1, "%s/page1.json", dir);
     snprintf(p2, sizeof p2, "%s/page2.json", dir);
-    CHECK(plot_json_write_page(&page, p1) == CJ_OK, "write: %s", cj_last_error());
+    CHECK(cj_plot_json_write_page(&page, p1) == CJ_OK, "write: %s", cj_last_error());
     char *t1 = read_text(p1);
     CHECK(t1 && strstr(t1, "5.6") && !strstr(t1, "5.5999"), "5.6 not in its shortest form:\n%s",
           t1 ? t1 : "(unreadable)");
-    plot_json_page back;
+    cj_plot_json_page back;
     char why[512] = "";
-    const int rc = plot_json_read_page(t1 ? t1 : "", &back, why, sizeof why);
+    const int rc = cj_plot_json_read_page(t1 ? t1 : "", &back, why, sizeof why);
     CHECK(rc == 0, "read back: %s", why);
     if (!rc) {
         CHECK(same_page(&page, &back), "the page read back differs from the page written");
-        CHECK(plot_json_write_page(&back, p2) == CJ_OK, "write again: %s", cj_last_error());
+        CHECK(cj_plot_json_write_page(&back, p2) == CJ_OK, "write again: %s", cj_last_error());
         char *t2 = read_text(p2);
         CHECK(t1 && t2 && !strcmp(t1, t2), "the second file differs from the first");
         free(t2);
-        plot_json_page_free(&back);
+        cj_plot_json_page_free(&back);
     }
     free(t1);
     remove(p2);
@@ -216,19 +216,19 @@ static void test_round_trip(const char *dir) {
 
     /* refusals */
     curves[1].spline_options.kind = CJ_SPLINE_KOCHANEK_BARTELS;
-    CHECK(plot_json_write_page(&page, p2) == CJ_ERR_UNSUPPORTED, "a Kochanek-Bartels spline");
+    CHECK(cj_plot_json_write_page(&page, p2) == CJ_ERR_UNSUPPORTED, "a Kochanek-Bartels spline");
     CHECK(strstr(cj_last_error(), "curve 1"), "message: %s", cj_last_error());
     CHECK(access(p2, F_OK) != 0, "a refused page left a file");
     curves[1].spline_options.kind = CJ_SPLINE_CHORDAL;
     char bad[600];
     snprintf(bad, sizeof bad, "%s/no-such-folder/page.json", dir);
-    CHECK(plot_json_write_page(&page, bad) == CJ_ERR_IO, "a missing folder");
+    CHECK(cj_plot_json_write_page(&page, bad) == CJ_ERR_IO, "a missing folder");
     t1 = read_text(p1);
     page.width = 100;
     curves[0].bezier.construction_t = 0.9;
     char ro[600];
     snprintf(ro, sizeof ro, "%s/page1.json", dir);
-    CHECK(plot_json_write_page(&page, ro) == CJ_OK, "overwrite: %s", cj_last_error());
+    CHECK(cj_plot_json_write_page(&page, ro) == CJ_OK, "overwrite: %s", cj_last_error());
     char *t3 = read_text(ro);
     CHECK(t1 && t3 && strcmp(t1, t3) && strstr(t3, "\"width\":\t100"),
           "the file was not replaced:\n%s", t3 ? t3 : "");

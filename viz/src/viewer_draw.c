@@ -27,7 +27,7 @@ static cj_status render_2d(cj_viewer *v) {
     cj_plot *plot = NULL;
     cj_status st = cj_vdoc_build_plot(v->doc, &v->view, &v->disp, &plot);
     if (st) return st;
-    /* as plot_doc_render: clear to the background, then the one panel over the whole image */
+    /* as cj_plot_doc_render: clear to the background, then the one panel over the whole image */
     cj_framebuffer_clear(v->pic, v->disp.background);
     st = cj_plot_render(plot, v->pic, 0, 0, v->width, v->height, v->font);
     cj_plot_destroy(plot);

@@ -1,6 +1,6 @@
 /* Curve documents of the viewer as plot pages: the plot format's one reader and one writer
  * (formats/, plot_json.h) do the JSON; this file only converts between the editor's cj_vdoc and
- * the format's plot_json_page (B-splines and NURBS included). The plot the viewer draws is built
+ * the format's cj_plot_json_page (B-splines and NURBS included). The plot the viewer draws is built
  * from the same conversion, with the same calls the plot reader makes for the written file, so the
  * two pictures are the same pixels. */
 #include "casteljau/viewer_model.h"
@@ -14,8 +14,8 @@
 
 /* The plot item of curve c (pts and weights are views into c, not copies). sel: the curve the
  * display's parameter t is shown on. */
-static plot_json_curve to_curve(const cj_vcurve *c, const cj_vdoc_display *d, int sel) {
-    plot_json_curve k;
+static cj_plot_json_curve to_curve(const cj_vcurve *c, const cj_vdoc_display *d, int sel) {
+    cj_plot_json_curve k;
     memset(&k, 0, sizeof k);
     if (c->kind == CJ_VCURVE_BSPLINE) {
         k.bspline = 1;
@@ -59,7 +59,7 @@ static plot_json_curve to_curve(const cj_vcurve *c, const cj_vdoc_display *d, in
 /* The page of the document: no axes, no margin, the view box. page->curves is allocated (free
  * it alone: the points are the document's). */
 static cj_status to_page(const cj_vdoc *doc, const cj_vview *v, const cj_vdoc_display *disp,
-                         plot_json_page *page) {
+                         cj_plot_json_page *page) {
     memset(page, 0, sizeof *page);
     page->width = v->width;
     page->height = v->height;
@@ -76,7 +76,7 @@ static cj_status to_page(const cj_vdoc *doc, const cj_vview *v, const cj_vdoc_di
 
 cj_status cj_vdoc_build_plot(const cj_vdoc *doc, const cj_vview *v, const cj_vdoc_display *disp,
                              cj_plot **out) {
-    plot_json_page page;
+    cj_plot_json_page page;
     cj_status st = to_page(doc, v, disp, &page);
     if (st) return st;
     cj_plot *plot = NULL;
@@ -88,7 +88,7 @@ cj_status cj_vdoc_build_plot(const cj_vdoc *doc, const cj_vview *v, const cj_vdo
     }
     if (!st) st = cj_plot_set_view(plot, v->x0, v->y0, v->x1, v->y1);
     for (size_t i = 0; !st && i < page.ncurves; ++i)
-        st = plot_json_curve_add(plot, &page.curves[i]);
+        st = cj_plot_json_curve_add(plot, &page.curves[i]);
     free(page.curves);
     if (st) {
         cj_plot_destroy(plot);
@@ -100,12 +100,12 @@ cj_status cj_vdoc_build_plot(const cj_vdoc *doc, const cj_vview *v, const cj_vdo
 
 cj_status cj_vdoc_save_json(const cj_vdoc *doc, const cj_vview *v, const cj_vdoc_display *disp,
                             const char *path) {
-    plot_json_page page;
+    cj_plot_json_page page;
     cj_status st = to_page(doc, v, disp, &page);
     if (!st) {
         page.axes = 0;
         page.margin = 0.0;
-        st = plot_json_write_page(&page, path);
+        st = cj_plot_json_write_page(&page, path);
     }
     free(page.curves);
     return st;
@@ -116,16 +116,16 @@ cj_status cj_vdoc_load_json(const char *path, cj_vdoc **out, cj_vview *v, cj_vdo
     size_t len = 0;
     cj_status st = cj_file_read_all(path, CJ_FILE_MAX_BYTES, "viewer document", &text, &len);
     if (st) return st;
-    plot_json_page page;
+    cj_plot_json_page page;
     char why[512];
-    const int rc = plot_json_read_page(text, &page, why, sizeof why);
+    const int rc = cj_plot_json_read_page(text, &page, why, sizeof why);
     free(text);
     if (rc) return cj_fail(CJ_ERR_PARSE, "%s: %s", path, why);
     cj_vdoc *doc = NULL;
     cj_vdoc_display d = {page.background, -1, 0.5, 0, 0};
     st = cj_vdoc_create(&doc);
     for (size_t i = 0; !st && i < page.ncurves; ++i) {
-        const plot_json_curve *k = &page.curves[i];
+        const cj_plot_json_curve *k = &page.curves[i];
         if (k->bspline) {
             cj_vcurve c = cj_vcurve_init(CJ_VCURVE_BSPLINE, k->count, k->points, k->weights);
             c.degree = k->degree;
@@ -169,7 +169,7 @@ cj_status cj_vdoc_load_json(const char *path, cj_vdoc **out, cj_vview *v, cj_vdo
     if (have_view)
         view.x0 = page.view[0], view.y0 = page.view[1], view.x1 = page.view[2],
         view.y1 = page.view[3];
-    plot_json_page_free(&page);
+    cj_plot_json_page_free(&page);
     if (st) {
         cj_vdoc_destroy(doc);
         return st;

@@ -224,7 +224,7 @@ typedef struct cj_vdoc_display {
 } cj_vdoc_display;
 
 /* Writes the document as a plot JSON file (the format of `casteljau plot`) through the format's
- * one writer (formats/, plot_json_write_page): width, height, background, "axes": false,
+ * one writer (formats/, cj_plot_json_write_page): width, height, background, "axes": false,
  * "margin": 0, the view, and one item per curve ("bezier" with weights for rational curves,
  * "catmull-rom", "bspline" with its knots, weights and drawing options), every number in the
  * shortest form that reads back bit-identical, printed by cJSON. Atomic: a temporary file beside
@@ -234,7 +234,7 @@ cj_status cj_vdoc_save_json(const cj_vdoc *doc, const cj_vview *v, const cj_vdoc
                             const char *path);
 
 /* Reads a plot JSON file of one plot (no "panels") whose items are "bezier", "catmull-rom" or
- * (2D) "bspline" through the format's one reader (formats/, plot_json_read_page: the checks and
+ * (2D) "bspline" through the format's one reader (formats/, cj_plot_json_read_page: the checks and
  * messages of `casteljau plot`; rational Bézier weights scaled so the largest is in [1, 2),
  * B-spline weights kept as written) into a new document (empty log), its view (the file's
  * "view", else fitted with a 10 % border; width/height from the file, else 800 × 600) and
