@@ -59,8 +59,7 @@ static void test_demo_and_report(void **state) {
     assert_string_equal(r.err, "");
     assert_true(!strncmp(r.out, "{\"renderer\":\"trace\",", 20));
     const char *must[] = {"\"primary_rays\",\"ran\":true", "\"shadow_rays\",\"ran\":true",
-                          "\"reflection_rays\",\"ran\":true",
-                          "\"refraction_rays\",\"ran\":true",
+                          "\"reflection_rays\",\"ran\":true", "\"refraction_rays\",\"ran\":true",
                           "\"transparency_rays\",\"ran\":false"};
     for (int i = 0; i < 5; i++) {
         if (!strstr(r.out, must[i])) fprintf(stderr, "missing %s in\n%s\n", must[i], r.out);

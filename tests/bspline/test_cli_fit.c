@@ -208,8 +208,8 @@ int main(void) {
     cj_cli_result_free(&r);
     snprintf(cmd, sizeof cmd, "'%s' eval --curve '%s' --derivative 1 --bound 0.5", CJ_CLI, cfile);
     /* a NURBS's derivatives have a proven bound too (the quotient rule's recurrence) */
-    CHECK(run(cmd, &r) == 0 && strstr(r.out, " | "), "derivative bound of a NURBS: %d %s",
-          r.status, r.err);
+    CHECK(run(cmd, &r) == 0 && strstr(r.out, " | "), "derivative bound of a NURBS: %d %s", r.status,
+          r.err);
     cj_cli_result_free(&r);
     snprintf(cmd, sizeof cmd, "'%s' eval --curve '%s' --derivative 1 --bound 0.5", CJ_CLI,
              json_path);

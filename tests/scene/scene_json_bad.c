@@ -18,7 +18,7 @@ typedef struct bad_case {
     const char *message; /* "%s" (if any) stands for the test's temporary folder */
 } bad_case;
 
-#define OBJ1   "{\"objects\": [{\"geometry\": {\"type\": \"sphere\", \"radius\": 1}}],\n"
+#define OBJ1 "{\"objects\": [{\"geometry\": {\"type\": \"sphere\", \"radius\": 1}}],\n"
 
 static const bad_case BAD[] = {
     /* syntax */
