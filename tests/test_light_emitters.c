@@ -31,6 +31,7 @@
 #include "casteljau/render.h"
 #include "casteljau/scene.h"
 #include "casteljau/trace.h"
+#include "light_floor.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -50,38 +51,8 @@ static const double SC[3] = {-0.3, 0.2, 1.0}, SR = 0.3, SL = 2.0; /* sphere */
 static const double EM = 1.25; /* radiance of an emissive surface */
 
 static cj_scene *floor_scene(void) {
-    cj_scene *s;
-    assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_camera cam = cj_camera_defaults();
-    cam.projection = CJ_PROJ_ORTHOGRAPHIC;
-    cam.ortho_height = 2 * HALF;
-    cam.eye = cj_v3(0, 0, 10);
-    cam.gaze = cj_v3(0, 0, -1);
-    cam.up = cj_v3(0, 1, 0);
-    assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
-    cj_scene_settings st = cj_scene_settings_defaults();
-    st.width = W;
-    st.height = H;
-    st.spp = 1;
-    st.light_model = CJ_LIGHT_RADIOMETRIC;
-    assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
-    cj_material m = cj_material_defaults();
-    m.color = cj_rgb_make(RHO, RHO, RHO);
-    m.ka = 0.0;
-    m.kd = 1.0;
-    m.ks = 0.0;
-    m.two_sided = 1;
-    int mi, gi;
-    assert_int_equal(cj_scene_add_material(s, &m, &mi), CJ_OK);
-    cj_geometry g;
-    memset(&g, 0, sizeof g);
-    g.kind = CJ_GEOM_PLANAR;
-    assert_int_equal(cj_planar_patch_init(&g.u.planar, cj_v3(-HALF, -HALF, 0),
-                                          cj_v3(2 * HALF, 0, 0), cj_v3(0, 2 * HALF, 0)),
-                     CJ_OK);
-    assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
-    cj_node n = cj_node_defaults(gi, mi);
-    assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
+    cj_scene *s = cj_test_light_floor(W, H, HALF, 0.0, 10.0, RHO, CJ_LIGHT_RADIOMETRIC);
+    assert_non_null(s);
     return s;
 }
 

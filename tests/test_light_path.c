@@ -23,6 +23,7 @@
 #include "casteljau/scene.h"
 #include "casteljau/stage_report.h"
 #include "casteljau/trace.h"
+#include "light_floor.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -118,37 +119,11 @@ static const double RECT[4] = {-0.7, 0.5, -0.4, 0.8}, RH = 0.8, LE = 3.0, RHO = 
 #define FW 48
 
 static cj_scene *emitter_scene(double cam_z) {
-    cj_scene *s;
-    assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_camera cam = cj_camera_defaults();
-    cam.projection = CJ_PROJ_ORTHOGRAPHIC;
-    cam.ortho_height = 4.0;
-    cam.eye = cj_v3(0, 0, cam_z);
-    cam.gaze = cj_v3(0, 0, -1);
-    cam.up = cj_v3(0, 1, 0);
-    assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
-    cj_scene_settings st = cj_scene_settings_defaults();
-    st.width = FW;
-    st.height = FW;
+    cj_scene *s = cj_test_light_floor(FW, FW, 2.0, 0.0, cam_z, RHO, CJ_LIGHT_RADIOMETRIC);
+    assert_non_null(s);
+    cj_scene_settings st = *cj_scene_get_settings(s);
     st.max_depth = 8;
-    st.light_model = CJ_LIGHT_RADIOMETRIC;
     assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
-    cj_material m = cj_material_defaults();
-    m.color = cj_rgb_make(RHO, RHO, RHO);
-    m.ka = 0.0;
-    m.kd = 1.0;
-    m.ks = 0.0;
-    m.two_sided = 1;
-    int mi, gi;
-    assert_int_equal(cj_scene_add_material(s, &m, &mi), CJ_OK);
-    cj_geometry g;
-    memset(&g, 0, sizeof g);
-    g.kind = CJ_GEOM_PLANAR;
-    assert_int_equal(
-        cj_planar_patch_init(&g.u.planar, cj_v3(-2, -2, 0), cj_v3(4, 0, 0), cj_v3(0, 4, 0)), CJ_OK);
-    assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
-    cj_node n = cj_node_defaults(gi, mi);
-    assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
     cj_light a = cj_light_defaults(CJ_LIGHT_AREA);
     a.intensity = LE;
     a.position = cj_v3(RECT[0], RECT[2], RH);

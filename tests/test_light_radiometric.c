@@ -25,6 +25,7 @@
 #include "casteljau/render.h"
 #include "casteljau/scene.h"
 #include "casteljau/trace.h"
+#include "light_floor.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -42,38 +43,8 @@ static const double RHO = 0.6, HALF = 2.0; /* floor albedo; floor [-HALF, HALF]Â
 
 /* The floor seen from above by an orthographic camera covering it exactly. */
 static cj_scene *floor_scene(cj_light_model model, double floor_z) {
-    cj_scene *s;
-    assert_int_equal(cj_scene_create(NULL, &s), CJ_OK);
-    cj_camera cam = cj_camera_defaults();
-    cam.projection = CJ_PROJ_ORTHOGRAPHIC;
-    cam.ortho_height = 2 * HALF;
-    cam.eye = cj_v3(0, 0, 10);
-    cam.gaze = cj_v3(0, 0, -1);
-    cam.up = cj_v3(0, 1, 0);
-    assert_int_equal(cj_scene_set_camera(s, &cam), CJ_OK);
-    cj_scene_settings st = cj_scene_settings_defaults();
-    st.width = W;
-    st.height = H;
-    st.spp = 1;
-    st.light_model = model;
-    assert_int_equal(cj_scene_set_settings(s, &st), CJ_OK);
-    cj_material m = cj_material_defaults();
-    m.color = cj_rgb_make(RHO, RHO, RHO);
-    m.ka = 0.0;
-    m.kd = 1.0;
-    m.ks = 0.0;
-    m.two_sided = 1;
-    int mi, gi;
-    assert_int_equal(cj_scene_add_material(s, &m, &mi), CJ_OK);
-    cj_geometry g;
-    memset(&g, 0, sizeof g);
-    g.kind = CJ_GEOM_PLANAR;
-    assert_int_equal(cj_planar_patch_init(&g.u.planar, cj_v3(-HALF, -HALF, floor_z),
-                                          cj_v3(2 * HALF, 0, 0), cj_v3(0, 2 * HALF, 0)),
-                     CJ_OK);
-    assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
-    cj_node n = cj_node_defaults(gi, mi);
-    assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);
+    cj_scene *s = cj_test_light_floor(W, H, HALF, floor_z, 10.0, RHO, model);
+    assert_non_null(s);
     return s;
 }
 

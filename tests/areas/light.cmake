@@ -6,7 +6,7 @@ endif()
 # Radiometric lights against closed forms: inverse square, directional irradiance, a rectangular
 # emitter's form factor (both renderers), one-sided emitters, legacy unchanged.
 if(TARGET cj::raster)
-  cj_add_test(test_light_radiometric SOURCES test_light_radiometric.c LIBS cj::raster cj::scene)
+  cj_add_test(test_light_radiometric SOURCES test_light_radiometric.c support/light_floor.c LIBS cj::raster cj::scene)
 endif()
 # EXR output: 32-bit float by default, half on request, no infinity ever written.
 if(CJ_WITH_OIIO AND TARGET cj::viz)
@@ -21,7 +21,7 @@ endif()
 # The path tracer: furnace, NEE + MIS against the form factor, emitters seen by camera rays,
 # RMSE against spp, thread invariance.
 if(TARGET cj::raster)
-  cj_add_test(test_light_path SOURCES test_light_path.c LIBS cj::raster cj::scene)
+  cj_add_test(test_light_path SOURCES test_light_path.c support/light_floor.c LIBS cj::raster cj::scene)
 endif()
 # The thin lens: circle of confusion against its formula.
 if(TARGET cj::raster)
@@ -37,7 +37,7 @@ if(TARGET cj::raster)
 endif()
 # Disc and sphere emitters against their closed-form irradiance, in every renderer.
 if(TARGET cj::raster)
-  cj_add_test(test_light_emitters SOURCES test_light_emitters.c LIBS cj::raster cj::scene)
+  cj_add_test(test_light_emitters SOURCES test_light_emitters.c support/light_floor.c LIBS cj::raster cj::scene)
 endif()
 # Emissive surfaces sampled as lights by the path tracer: against the form factor, and the
 # variance drop against finding them by chance.
