@@ -35,6 +35,13 @@ __all__ = [
     "teapot",
     "Scene",
     "Image",
+    "BSpline",
+    "BSplineSurface",
+    "Intersection",
+    "Nearest",
+    "intersect",
+    "nearest",
+    "offset",
 ]
 
 _METHODS = {
@@ -657,3 +664,15 @@ class Scene:
         refraction; any spp >= 1; seed overrides the scene's sampling seed."""
         return self._image(lib.cj_render_trace, "cj_render_trace", width, height, spp,
                            threads, seed)
+
+
+# B-splines, NURBS and the plane-curve queries live in splines.py (it uses the helpers above).
+from casteljau.splines import (  # noqa: E402
+    BSpline,
+    BSplineSurface,
+    Intersection,
+    Nearest,
+    intersect,
+    nearest,
+    offset,
+)
