@@ -1,4 +1,5 @@
-"""casteljau for Python: Bézier and rational curves, patches, scenes and renderers.
+"""casteljau for Python: Bézier, rational and B-spline/NURBS curves, patches and B-spline
+surfaces, certified plane-curve queries, scenes and renderers.
 
 A thin layer over the C library's public API (compiled through cffi into the extension
 module casteljau._casteljau_cffi). NumPy arrays go in and come out; every failure of the
