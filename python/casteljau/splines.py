@@ -334,12 +334,20 @@ class _Plane:
         return a + (b - a) * x
 
     def enclose(self, j, lo, hi):
-        """The piece's local interval mapped to the curve's parameter, widened by one ulp
-        each side for the rounding of the map (exact for a single Bézier curve)."""
+        """The piece's local interval mapped to the curve's parameter and widened by a bound of
+        the rounding of that map (three roundings of a + (b - a) x: at most 4 u (|a| + |b - a| x)
+        with room to spare, then one ulp outward), clipped to the piece's own parameter range,
+        which holds it exactly. A single Bézier curve on [0, 1] is returned unchanged."""
         if len(self.pieces) == 1 and self.breaks[0] == 0.0 and self.breaks[1] == 1.0:
             return lo, hi
-        return (max(np.nextafter(self.param(j, lo), -np.inf), self.breaks[j]),
-                min(np.nextafter(self.param(j, hi), np.inf), self.breaks[j + 1]))
+        a, b = self.breaks[j], self.breaks[j + 1]
+        u = 2.0 ** -53
+
+        def margin(x):
+            return 4 * u * (abs(a) + abs(b - a) * abs(x)) + 2.0 ** -1074
+
+        return (max(np.nextafter(self.param(j, lo) - margin(lo), -np.inf), a),
+                min(np.nextafter(self.param(j, hi) + margin(hi), np.inf), b))
 
 
 class Intersection:
