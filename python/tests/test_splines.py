@@ -220,3 +220,19 @@ def test_errors_carry_the_library_message():
     with pytest.raises(cj.CasteljauError, match="tol"):
         cj.nearest(c, [0, 1], tol=0)
     print(f"errors raised with the library's messages, e.g. {str(err.value)!r}")
+
+
+def test_cdef_struct_layouts_match_the_headers():
+    """The structs build_cffi.py declares in full are checked by cffi against the compiler's
+    layout only when their fields are first looked at: look at every one, so a declaration
+    that drifted from its header ("wrong offset for field ...") fails here, not in a call."""
+    from casteljau._casteljau_cffi import ffi
+
+    names = ["cj_bezier", "cj_rbezier", "cj_patch", "cj_bspline", "cj_bspline_surface",
+             "cj_bezier2", "cj_isect", "cj_nearest", "cj_vec3", "cj_rgb"]
+    fields = 0
+    for name in names:
+        for field, _ in ffi.typeof(name).fields:
+            assert ffi.offsetof(name, field) < ffi.sizeof(name)
+            fields += 1
+    print(f"{fields} fields of {len(names)} structs laid out as the compiler lays them out")
