@@ -71,6 +71,66 @@ cj_status cj_flatten_bezier(const cj_bezier *c, const cj_flatten_opts *opts, dou
 cj_status cj_flatten_rbezier(const cj_rbezier *c, const cj_flatten_opts *opts, double *out,
                              size_t cap_points, size_t *npoints, cj_flatten_stats *stats);
 
+/* curves: bspline.h, bspline_fit.h */
+#define CJ_BSPLINE_MAX_DEGREE ...
+#define CJ_BSPLINE_MAX_DERIV ...
+typedef struct cj_bspline {
+    int degree; int dim; int npts; const double *pts; const double *weights;
+    const double *knots;
+} cj_bspline;
+cj_status cj_bspline_check(const cj_bspline *c);
+cj_status cj_bspline_domain(const cj_bspline *c, double *t0, double *t1);
+cj_status cj_bspline_uniform_knots(int npts, int degree, double a, double b, int clamped,
+                                   double *knots);
+cj_status cj_bspline_eval_batch(const cj_bspline *c, const double *ts, size_t nt, double *out);
+cj_status cj_bspline_eval_derivs(const cj_bspline *c, double t, int kmax, double *out);
+cj_status cj_bspline_error_bound(const cj_bspline *c, double t, double *bound);
+cj_status cj_bspline_derivs_error_bound(const cj_bspline *c, double t, int kmax, double *bound);
+cj_status cj_bspline_insert_knot(const cj_bspline *c, double x, int r, double *out_pts,
+                                 double *out_w, double *out_knots);
+cj_status cj_bspline_bezier_count(const cj_bspline *c, int *npieces);
+cj_status cj_bspline_to_bezier(const cj_bspline *c, double *pts, double *w, double *breaks,
+                               int cap_pieces, int *npieces);
+typedef enum cj_fit_param { CJ_FIT_UNIFORM, CJ_FIT_CHORD, CJ_FIT_CENTRIPETAL } cj_fit_param;
+cj_status cj_bspline_interpolate(const double *pts, int npts, int dim, int degree,
+                                 cj_fit_param kind, const double *d_start, const double *d_end,
+                                 double *out_pts, double *out_knots, int *npts_out,
+                                 double *residual);
+cj_status cj_bspline_approximate(const double *pts, int npts, int dim, int degree,
+                                 cj_fit_param kind, double tol, int max_pts, double *out_pts,
+                                 double *out_knots, int *npts_out, double *max_dev);
+
+/* curves: intersect.h, nearest.h, offset.h */
+#define CJ_QUERY_MAX_DEGREE ...
+typedef struct cj_bezier2 { int degree; const double *pts; const double *weights; } cj_bezier2;
+typedef enum cj_isect_kind { CJ_ISECT_CROSSING, CJ_ISECT_CONTACT, CJ_ISECT_OVERLAP } cj_isect_kind;
+typedef struct cj_isect {
+    cj_isect_kind kind; double s, t; double s_lo, s_hi; double t_lo, t_hi; double point[2];
+    double deviation; int at_end;
+} cj_isect;
+const char *cj_isect_kind_name(cj_isect_kind kind);
+cj_status cj_intersect_curves(const cj_bezier2 *a, const cj_bezier2 *b, double tol, cj_isect *out,
+                              int cap, int *count);
+typedef struct cj_nearest {
+    double t; double point[2]; double distance; double lower; long pieces;
+} cj_nearest;
+cj_status cj_nearest_curve(const cj_bezier2 *c, const double q[2], double tol, cj_nearest *out);
+cj_status cj_offset_curve(const cj_bezier2 *c, double d, double tol, double *pts, double *breaks,
+                          int cap_pieces, int *npieces, double *deviation, int *cusps);
+
+/* surfaces: bspline_surface.h */
+typedef struct cj_bspline_surface {
+    int deg_u, deg_v; int npts_u, npts_v; const double *pts; const double *weights;
+    const double *knots_u; const double *knots_v;
+} cj_bspline_surface;
+cj_status cj_bspline_surface_check(const cj_bspline_surface *s);
+cj_status cj_bspline_surface_eval(const cj_bspline_surface *s, double u, double v, double *out);
+cj_status cj_bspline_surface_error_bound(const cj_bspline_surface *s, double u, double v,
+                                         double *bound);
+cj_status cj_bspline_surface_patch_count(const cj_bspline_surface *s, int *count);
+cj_status cj_bspline_surface_to_patches(const cj_bspline_surface *s, double *pts, double *weights,
+                                        double *ub, double *vb, int cap, int *count);
+
 /* surfaces: patch.h, mesh.h, tessellate.h, patchset.h */
 typedef struct cj_patch {
     int deg_u; int deg_v; const double *pts; const double *weights;
@@ -187,8 +247,14 @@ cj_node cj_node_defaults(int geometry, int material);
 # union inside cj_geometry, so two small helpers (static, in the module only) do it.
 SOURCE = r"""
 #include "casteljau/bezier.h"
+#include "casteljau/bspline.h"
+#include "casteljau/bspline_fit.h"
+#include "casteljau/bspline_surface.h"
 #include "casteljau/flatten.h"
+#include "casteljau/intersect.h"
 #include "casteljau/mesh.h"
+#include "casteljau/nearest.h"
+#include "casteljau/offset.h"
 #include "casteljau/patch.h"
 #include "casteljau/patchset.h"
 #include "casteljau/rational.h"

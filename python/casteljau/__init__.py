@@ -1,4 +1,5 @@
-"""casteljau for Python: Bézier and rational curves, patches, scenes and renderers.
+"""casteljau for Python: Bézier, rational and B-spline/NURBS curves, patches and B-spline
+surfaces, certified plane-curve queries, scenes and renderers.
 
 A thin layer over the C library's public API (compiled through cffi into the extension
 module casteljau._casteljau_cffi). NumPy arrays go in and come out; every failure of the
@@ -35,6 +36,13 @@ __all__ = [
     "teapot",
     "Scene",
     "Image",
+    "BSpline",
+    "BSplineSurface",
+    "Intersection",
+    "Nearest",
+    "intersect",
+    "nearest",
+    "offset",
 ]
 
 _METHODS = {
@@ -657,3 +665,15 @@ class Scene:
         refraction; any spp >= 1; seed overrides the scene's sampling seed."""
         return self._image(lib.cj_render_trace, "cj_render_trace", width, height, spp,
                            threads, seed)
+
+
+# B-splines, NURBS and the plane-curve queries live in splines.py (it uses the helpers above).
+from casteljau.splines import (  # noqa: E402
+    BSpline,
+    BSplineSurface,
+    Intersection,
+    Nearest,
+    intersect,
+    nearest,
+    offset,
+)
