@@ -81,6 +81,44 @@ cj_status cj_bspline_surface_to_patches(const cj_bspline_surface *s, double *pts
 cj_status cj_bspline_surface_insert_knot(const cj_bspline_surface *s, int dir, double x, int r,
                                          double *out_pts, double *out_w, double *out_knots);
 
+/* Removes up to r copies of the interior knot x of direction dir (0: u, 1: v) while the surface
+ * moves by at most tol >= 0: one copy at a time, every row (column) at once, as
+ * cj_bspline_remove_knot does for a curve, on the wide curve whose points are whole rows of
+ * homogeneous points; a copy goes only if every row (column) can lose it within what is left
+ * of tol. Each removal's rigorous bound comes from re-inserting x and comparing the nets
+ * (e = largest Euclidean distance between corresponding homogeneous points, convex hull):
+ *     polynomial: e;   NURBS: e (1 + P) / w_min
+ * (P = max |d'_ij| of the new net, w_min the smallest weight before the removal), from
+ * A/W − A'/W' = (A − A')/W − (A'/W')(W − W')/W with |A − A'|, |W − W'| <= e. *removed gets the
+ * count (0..r), *error (may be NULL) the sum of the bounds: |S − S'| <= *error everywhere on the
+ * domain, plus the rounding of the re-refinement (about gamma(5p) of the coordinates). Outputs:
+ * out_pts, out_w (NURBS; else NULL) and out_knots (the changed direction's knot vector) as large
+ * as the input's; nothing removed: the input bit for bit. x not inside the domain: CJ_ERR_RANGE;
+ * not a knot: CJ_ERR_ARGUMENT; tol NaN: CJ_ERR_NONFINITE, negative: CJ_ERR_ARGUMENT. Allocates
+ * its work space (CJ_ERR_NOMEM). */
+cj_status cj_bspline_surface_remove_knot(const cj_bspline_surface *s, int dir, double x, int r,
+                                         double tol, double *out_pts, double *out_w,
+                                         double *out_knots, int *removed, double *error);
+
+/* Number of points along dir after elevating that degree by r: the rule of
+ * cj_bspline_elevate_count, (p + r + 1) + Σ_interior (m_j + r). Degree 0: CJ_ERR_DEGREE;
+ * p + r above CJ_PATCH_MAX_DEGREE: CJ_ERR_DEGREE; an interior knot of multiplicity p + 1 (a
+ * jump): CJ_ERR_ARGUMENT; r < 0: CJ_ERR_ARGUMENT. */
+cj_status cj_bspline_surface_elevate_count(const cj_bspline_surface *s, int dir, int r,
+                                           int *npts_out);
+
+/* Degree elevation by r in direction dir (0: u, 1: v), the same surface: the wide curve of whole
+ * rows (columns) of homogeneous points split into Bézier pieces, every row of every piece elevated
+ * by cj_bezier_elevate, joined, and the p − m extra copies of every interior knot removed again
+ * (exact in exact arithmetic). *error (may be NULL) receives the sum of the removal bounds of
+ * cj_bspline_surface_remove_knot (a few rounding units of the coordinates, times (1 + P)/w_min for
+ * a NURBS). An unclamped direction comes out clamped over the same domain. Outputs:
+ * out_pts[3 * npts_out * other], out_w (NURBS; else NULL) likewise, out_knots[npts_out + p + r + 1]
+ * with npts_out from cj_bspline_surface_elevate_count (errors as there). Allocates its work space
+ * (CJ_ERR_NOMEM). */
+cj_status cj_bspline_surface_elevate(const cj_bspline_surface *s, int dir, int r, double *out_pts,
+                                     double *out_w, double *out_knots, double *error);
+
 /* Interpolation through a grid of nu × nv points Q_ij (same layout as pts) with degrees (p, q):
  * parameters per direction are the average over the rows (columns) of cj_fit_params of each
  * row (column); knots by averaging as in bspline_fit.h; every row is interpolated in u, then
