@@ -55,6 +55,41 @@ cj_status cj_bspline_surface_eval(const cj_bspline_surface *s, double u, double 
 cj_status cj_bspline_surface_error_bound(const cj_bspline_surface *s, double u, double v,
                                          double *bound);
 
+/* Largest derivative order per direction of cj_bspline_surface_eval_derivs. */
+#define CJ_BSPLINE_SURFACE_MAX_DERIV 16
+
+/* Partial derivatives S_{u^k v^l}(u, v) for k = 0..ku, l = 0..kv (each in
+ * [0, CJ_BSPLINE_SURFACE_MAX_DERIV], else CJ_ERR_ARGUMENT) into out[3 * ((k (kv+1) + l)) + c]
+ * ((0, 0): the point). Method: the curve derivative pyramid of cj_bspline_eval_derivs on the q+1
+ * rows of the v-span in u (homogeneous points), then on each order's q+1 row values in v;
+ * a NURBS then takes the two-variable quotient rule
+ *     S^(k,l) W = A^(k,l) − Σ_{(a,b) != (0,0), a<=k, b<=l} C(k,a) C(l,b) W^(a,b) S^(k−a,l−b).
+ * Order (0, 0) is bit-identical to cj_bspline_surface_eval (the same de Boor levels). Orders
+ * above a degree are zero for a polynomial surface. At a knot the value is the one from
+ * the right (from the left at the domain's right end), as for curves. (u, v) outside the
+ * domain: CJ_ERR_RANGE; NaN: CJ_ERR_NONFINITE; a derivative beyond the double range:
+ * CJ_ERR_RANGE naming the order. Allocates nothing. */
+cj_status cj_bspline_surface_eval_derivs(const cj_bspline_surface *s, double u, double v, int ku,
+                                         int kv, double *out);
+
+/* A-priori absolute error bound of cj_bspline_surface_eval_derivs, same layout (bound[3 * (k
+ * (kv+1) + l) + c]), built from the curve bound of cj_bspline_derivs_error_bound:
+ *   - u pass: row jj's computed order-k value R̂_jj^(k) is within δ_jj <= the curve bound of the
+ *     row (gamma(6p − k + 2 (+1 NURBS)) times the magnitude pyramid, plus the subnormal slack);
+ *   - v pass: the computed order-l value is within the curve bound of the spline whose points
+ *     are the R̂^(k) (gamma(6q − l + 2) on their magnitudes) of that spline's exact derivative,
+ *     which differs from the true one by Σ δ_jj N_jj^(l)(v), at most the magnitude pyramid run on
+ *     the δ (sums instead of differences), inflated by 1 + gamma(6q + 8);
+ *   - NURBS: the curve's quotient-rule recurrence with the sum over (a, b), order by order,
+ *     e_kl (Ŵ − E_W) <= E_A,kl + Σ C(k,a) C(l,b) (E_W,ab |Ŝ_{k−a,l−b}| + (|Ŵ_ab| + E_W,ab)
+ *     e_{k−a,l−b}) + gamma(2m+3) T_kl + |Ŝ_kl| (E_W + u (1+2u) Ŵ)   (m = (k+1)(l+1) − 1 terms,
+ *     T_kl the sum of the magnitudes of the terms), inflated by 1 + gamma(4m + 12); requires
+ *     Ŵ > 2 E_W (else CJ_ERR_RANGE).
+ * Checked against the tensor MPFR oracle (basis derivatives in 2300-bit arithmetic) in
+ * tests/bspline/test_bspline_surface_ops.c. Errors as cj_bspline_surface_eval_derivs. */
+cj_status cj_bspline_surface_derivs_error_bound(const cj_bspline_surface *s, double u, double v,
+                                                int ku, int kv, double *bound);
+
 /* Number of Bézier patches: non-empty u spans times non-empty v spans. */
 cj_status cj_bspline_surface_patch_count(const cj_bspline_surface *s, int *count);
 
