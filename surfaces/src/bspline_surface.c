@@ -3,6 +3,7 @@
  * wide curve. See casteljau/bspline_surface.h. */
 #include "casteljau/bspline_surface.h"
 #include "bspline_internal.h"
+#include "bspline_surface_internal.h"
 #include "error_internal.h"
 
 #include <assert.h>
@@ -135,7 +136,7 @@ cj_status cj_bspline_surface_error_bound(const cj_bspline_surface *s, double u, 
     return CJ_OK;
 }
 
-static int spans(const double *knots, int npts, int p) {
+int cj_bsurf_spans(const double *knots, int npts, int p) {
     int n = 0;
     for (int i = p; i < npts; ++i) n += knots[i] < knots[i + 1];
     return n;
@@ -145,13 +146,14 @@ cj_status cj_bspline_surface_patch_count(const cj_bspline_surface *s, int *count
     assert(count != NULL);
     cj_status st = cj_bspline_surface_check(s);
     if (st) return st;
-    *count = spans(s->knots_u, s->npts_u, s->deg_u) * spans(s->knots_v, s->npts_v, s->deg_v);
+    *count = cj_bsurf_spans(s->knots_u, s->npts_u, s->deg_u) *
+             cj_bsurf_spans(s->knots_v, s->npts_v, s->deg_v);
     return CJ_OK;
 }
 
 /* The surface as a wide curve in direction dir: point i (along dir) holds the homogeneous
  * points of its whole row/column, in order of the other index. */
-static cj_status wide(const cj_bspline_surface *s, int dir, cj_bsp_h *w, int extra) {
+cj_status cj_bsurf_wide(const cj_bspline_surface *s, int dir, cj_bsp_h *w, int extra) {
     const int hd = s->weights ? 4 : 3;
     const int n = dir ? s->npts_v : s->npts_u, other = dir ? s->npts_u : s->npts_v;
     const int p = dir ? s->deg_v : s->deg_u;
@@ -168,7 +170,7 @@ static cj_status wide(const cj_bspline_surface *s, int dir, cj_bsp_h *w, int ext
 
 /* Writes wide homogeneous points back (point a along dir, b across) to the cj_patch-like
  * layout with n along dir. */
-static void unwide(const cj_bsp_h *w, int dir, int other, int rational, double *pts, double *wt) {
+void cj_bsurf_unwide(const cj_bsp_h *w, int dir, int other, int rational, double *pts, double *wt) {
     const int hd = rational ? 4 : 3, n = w->n1, nu = dir ? other : n;
     for (int a = 0; a < n; ++a)
         for (int b = 0; b < other; ++b) {
@@ -202,7 +204,7 @@ cj_status cj_bspline_surface_insert_knot(const cj_bspline_surface *s, int dir, d
                        "the degree %d",
                        dir ? "v" : "u", x, r, m + r, p);
     cj_bsp_h a = {0}, b = {0};
-    if ((st = wide(s, dir, &a, r)) || (st = cj_bsp_h_alloc(&b, p, a.dim, 0, n + r))) {
+    if ((st = cj_bsurf_wide(s, dir, &a, r)) || (st = cj_bsp_h_alloc(&b, p, a.dim, 0, n + r))) {
         cj_bsp_h_free(&a);
         return st;
     }
@@ -212,7 +214,7 @@ cj_status cj_bspline_surface_insert_knot(const cj_bspline_surface *s, int dir, d
         a = b;
         b = t;
     }
-    unwide(&a, dir, dir ? s->npts_u : s->npts_v, s->weights != NULL, out_pts, out_w);
+    cj_bsurf_unwide(&a, dir, dir ? s->npts_u : s->npts_v, s->weights != NULL, out_pts, out_w);
     memcpy(out_knots, a.u, sizeof(double) * (size_t)(n + r + p + 1));
     cj_bsp_h_free(&a);
     cj_bsp_h_free(&b);
@@ -232,10 +234,10 @@ cj_status cj_bspline_surface_to_patches(const cj_bspline_surface *s, double *pts
         return cj_fail(CJ_ERR_BUFFER, "the surface has %d Bézier patches, the buffer holds %d",
                        total, cap);
     const int p = s->deg_u, q = s->deg_v, nv = s->npts_v, hd = s->weights ? 4 : 3;
-    const int su = spans(s->knots_u, s->npts_u, p), sv = spans(s->knots_v, nv, q);
+    const int su = cj_bsurf_spans(s->knots_u, s->npts_u, p), sv = cj_bsurf_spans(s->knots_v, nv, q);
     cj_bsp_h w = {0}, col = {0};
     double *upieces = NULL, *vpieces = NULL;
-    if ((st = wide(s, 0, &w, 0))) return st;
+    if ((st = cj_bsurf_wide(s, 0, &w, 0))) return st;
     const size_t wide_u = (size_t)nv * (size_t)hd; /* coordinates of one wide u-point */
     upieces = malloc(sizeof(double) * (size_t)su * (size_t)(p + 1) * wide_u);
     if ((st = cj_bsp_h_alloc(&col, q, hd * (p + 1), 0, nv))) goto done;
@@ -355,231 +357,5 @@ cj_status cj_bspline_surface_interpolate(const double *grid, int nu, int nv, int
     free(tv);
     free(rows);
     free(tmp);
-    return st;
-}
-
-/* Distinct knot values strictly inside the domain and their multiplicities; returns the count. */
-static int interior_breaks(const double *knots, int n, int p, double *vals, int *mult) {
-    int nb = 0;
-    for (int i = p + 1; i < n; ++i) {
-        const double x = knots[i];
-        if (!(x > knots[p] && x < knots[n])) continue;
-        if (nb > 0 && vals[nb - 1] == x)
-            ++mult[nb - 1];
-        else {
-            vals[nb] = x;
-            mult[nb++] = 1;
-        }
-    }
-    return nb;
-}
-
-/* Bound of the surface's move when the wide homogeneous net cur becomes next with every wide
- * point within e (Euclidean over the whole row/column): polynomial, e (convex combinations);
- * NURBS, from A/W − A'/W' = (A − A')/W − (A'/W')(W − W')/W with |A − A'|, |W − W'| <= e,
- * W >= min w of cur and |A'/W'| <= P = max |d'| of next: e (1 + P) / wmin. Infinite if a weight
- * of next is not positive. */
-static double move_bound(const cj_bsp_h *cur, const cj_bsp_h *next, int rational, double e) {
-    if (!rational) return e;
-    const size_t ncur = (size_t)cur->n1 * (size_t)cur->dim / 4;
-    const size_t nnext = (size_t)next->n1 * (size_t)next->dim / 4;
-    double wmin = INFINITY, pmax = 0.0;
-    for (size_t k = 0; k < ncur; ++k) wmin = fmin(wmin, cur->h[4 * k + 3]);
-    for (size_t k = 0; k < nnext; ++k) {
-        const double *h = next->h + 4 * k;
-        if (!(h[3] > 0.0)) return INFINITY;
-        const double x = h[0] / h[3], y = h[1] / h[3], z = h[2] / h[3];
-        pmax = fmax(pmax, sqrt(x * x + y * y + z * z));
-    }
-    return e * (1.0 + pmax) * (1.0 + 8 * CJ_UNIT_ROUNDOFF) / wmin * (1.0 + 2 * CJ_UNIT_ROUNDOFF);
-}
-
-static cj_status check_dir_out(const cj_bspline_surface *s, int dir, const double *out_w) {
-    if (dir != 0 && dir != 1)
-        return cj_fail(CJ_ERR_ARGUMENT, "direction %d is not 0 (u) or 1 (v)", dir);
-    if ((s->weights != NULL) != (out_w != NULL))
-        return cj_fail(CJ_ERR_ARGUMENT, "output weights %s for a %s surface",
-                       out_w ? "given" : "missing", s->weights ? "NURBS" : "polynomial");
-    return CJ_OK;
-}
-
-cj_status cj_bspline_surface_remove_knot(const cj_bspline_surface *s, int dir, double x, int r,
-                                         double tol, double *out_pts, double *out_w,
-                                         double *out_knots, int *removed, double *error) {
-    assert(out_pts != NULL && out_knots != NULL && removed != NULL);
-    cj_status st = cj_bspline_surface_check(s);
-    if (!st) st = check_dir_out(s, dir, out_w);
-    if (st) return st;
-    const char *name = dir ? "v" : "u";
-    if (!isfinite(x)) return cj_fail(CJ_ERR_NONFINITE, "%s knot to remove is not finite", name);
-    if (isnan(tol)) return cj_fail(CJ_ERR_NONFINITE, "removal tolerance is NaN");
-    if (!(tol >= 0.0)) return cj_fail(CJ_ERR_ARGUMENT, "removal tolerance %g is negative", tol);
-    if (r < 0) return cj_fail(CJ_ERR_ARGUMENT, "removal count %d is negative", r);
-    const int n = dir ? s->npts_v : s->npts_u, p = dir ? s->deg_v : s->deg_u;
-    const int other = dir ? s->npts_u : s->npts_v, rational = s->weights != NULL;
-    const double *knots = dir ? s->knots_v : s->knots_u;
-    if (!(x > knots[p] && x < knots[n]))
-        return cj_fail(CJ_ERR_RANGE,
-                       "%s knot %.17g to remove is not inside the domain (%.17g, %.17g)", name, x,
-                       knots[p], knots[n]);
-    const int mult = cj_bsp_multiplicity(knots, n + p + 1, x);
-    if (mult == 0)
-        return cj_fail(CJ_ERR_ARGUMENT, "%s knot %.17g is not in the knot vector", name, x);
-    if (r > mult) r = mult;
-    cj_bsp_h cur = {0}, next = {0}, scratch = {0};
-    const int hd = rational ? 4 : 3;
-    if ((st = wide(s, dir, &cur, 1)) || (st = cj_bsp_h_alloc(&next, p, hd * other, 0, n + 1)) ||
-        (st = cj_bsp_h_alloc(&scratch, p, hd * other, 0, n + 1)))
-        goto done;
-    double total = 0.0;
-    int count = 0;
-    while (count < r) {
-        double e;
-        if (cj_bsp_remove_once(&cur, x, &next, &scratch, &e) != 0) break;
-        const double b = move_bound(&cur, &next, rational, e);
-        if (!(total + b <= tol)) break;
-        total += b;
-        ++count;
-        cj_bsp_h t = cur;
-        cur = next;
-        next = t;
-    }
-    if (count > 0) {
-        unwide(&cur, dir, other, rational, out_pts, out_w);
-        memcpy(out_knots, cur.u, sizeof(double) * (size_t)(n - count + p + 1));
-    } else { /* the input bit for bit */
-        memcpy(out_pts, s->pts, sizeof(double) * 3 * (size_t)n * (size_t)other);
-        if (out_w) memcpy(out_w, s->weights, sizeof(double) * (size_t)n * (size_t)other);
-        memcpy(out_knots, knots, sizeof(double) * (size_t)(n + p + 1));
-    }
-    *removed = count;
-    if (error) *error = total;
-done:
-    cj_bsp_h_free(&cur);
-    cj_bsp_h_free(&next);
-    cj_bsp_h_free(&scratch);
-    return st;
-}
-
-cj_status cj_bspline_surface_elevate_count(const cj_bspline_surface *s, int dir, int r,
-                                           int *npts_out) {
-    assert(npts_out != NULL);
-    cj_status st = cj_bspline_surface_check(s);
-    if (st) return st;
-    if (dir != 0 && dir != 1)
-        return cj_fail(CJ_ERR_ARGUMENT, "direction %d is not 0 (u) or 1 (v)", dir);
-    const int n = dir ? s->npts_v : s->npts_u, p = dir ? s->deg_v : s->deg_u;
-    const double *knots = dir ? s->knots_v : s->knots_u;
-    if (r < 0) return cj_fail(CJ_ERR_ARGUMENT, "elevation count %d is negative", r);
-    if (p == 0)
-        return cj_fail(CJ_ERR_DEGREE, "%s degree 0 (piecewise constant) cannot be elevated",
-                       dir ? "v" : "u");
-    if (p + r > CJ_PATCH_MAX_DEGREE)
-        return cj_fail(CJ_ERR_DEGREE, "elevated %s degree %d exceeds the limit of %d",
-                       dir ? "v" : "u", p + r, CJ_PATCH_MAX_DEGREE);
-    int total = p + r + 1;
-    for (int i = p + 1; i < n; ++i) {
-        const double x = knots[i];
-        if (!(x > knots[p] && x < knots[n])) continue;
-        const int m = cj_bsp_multiplicity(knots, n + p + 1, x);
-        if (m > p)
-            return cj_fail(CJ_ERR_ARGUMENT,
-                           "%s knot %d (%.17g) of multiplicity %d = degree + 1 is a jump; "
-                           "elevation needs a continuous surface",
-                           dir ? "v" : "u", i, x, m);
-        if (knots[i - 1] != x) total += m + r;
-    }
-    *npts_out = total;
-    return CJ_OK;
-}
-
-cj_status cj_bspline_surface_elevate(const cj_bspline_surface *s, int dir, int r, double *out_pts,
-                                     double *out_w, double *out_knots, double *error) {
-    assert(out_pts != NULL && out_knots != NULL);
-    int nout;
-    cj_status st = cj_bspline_surface_elevate_count(s, dir, r, &nout);
-    if (!st) st = check_dir_out(s, dir, out_w);
-    if (st) return st;
-    const int n = dir ? s->npts_v : s->npts_u, p = dir ? s->deg_v : s->deg_u, q = p + r;
-    const int other = dir ? s->npts_u : s->npts_v, rational = s->weights != NULL;
-    const int hd = rational ? 4 : 3, wd = hd * other;
-    const double *knots = dir ? s->knots_v : s->knots_u;
-    const int np = spans(knots, n, p), cap = np * q + 2;
-    double *pieces = malloc(sizeof(double) * (size_t)np * (size_t)(p + 1) * (size_t)wd);
-    double *breaks = malloc(sizeof(double) * ((size_t)np + 1));
-    double *vals = malloc(sizeof(double) * (size_t)n);
-    int *mult = malloc(sizeof(int) * (size_t)n);
-    cj_bsp_h src = {0}, cur = {0}, next = {0}, scratch = {0};
-    if (!pieces || !breaks || !vals || !mult) {
-        st = cj_fail(CJ_ERR_NOMEM, "no memory to elevate a surface of %d x %d points", s->npts_u,
-                     s->npts_v);
-        goto done;
-    }
-    if ((st = wide(s, dir, &src, 0)) || (st = cj_bsp_h_alloc(&cur, q, wd, 0, cap)) ||
-        (st = cj_bsp_h_alloc(&next, q, wd, 0, cap)) ||
-        (st = cj_bsp_h_alloc(&scratch, q, wd, 0, cap)))
-        goto done;
-    int got;
-    if ((st = cj_bsp_h_decompose(&src, pieces, breaks, &got))) goto done;
-    assert(got == np);
-    /* Elevate every row of every piece as a Bézier curve (exact in exact arithmetic), writing
-     * the joined net: clamped, interior knots of multiplicity q. */
-    double in[(CJ_PATCH_MAX_DEGREE + 1) * 4], el[(CJ_PATCH_MAX_DEGREE + 1) * 4];
-    int o = 0;
-    for (int j = 0; j < np; ++j) {
-        const int last = j == np - 1 ? q : q - 1;
-        const double *pc = pieces + (size_t)j * (size_t)(p + 1) * (size_t)wd;
-        for (int b = 0; b < other; ++b) {
-            for (int i = 0; i <= p; ++i)
-                memcpy(in + i * hd, pc + (size_t)i * (size_t)wd + (size_t)b * (size_t)hd,
-                       sizeof(double) * (size_t)hd);
-            const cj_bezier piece = cj_bezier_view(p, hd, in);
-            if ((st = cj_bezier_elevate(&piece, r, el))) goto done;
-            for (int i = 0; i <= last; ++i)
-                memcpy(cur.h + (size_t)(o + i) * (size_t)wd + (size_t)b * (size_t)hd, el + i * hd,
-                       sizeof(double) * (size_t)hd);
-        }
-        o += last + 1;
-    }
-    cur.n1 = o;
-    int k = 0;
-    for (int i = 0; i <= q; ++i) cur.u[k++] = breaks[0];
-    for (int j = 1; j < np; ++j)
-        for (int i = 0; i < q; ++i) cur.u[k++] = breaks[j];
-    for (int i = 0; i <= q; ++i) cur.u[k++] = breaks[np];
-    /* Back to the original continuity: p − m copies of every interior break removed. */
-    double total = 0.0;
-    const int nb = interior_breaks(knots, n, p, vals, mult);
-    for (int v = 0; v < nb; ++v)
-        for (int c = 0; c < p - mult[v]; ++c) {
-            double e;
-            if (cj_bsp_remove_once(&cur, vals[v], &next, &scratch, &e) != 0) {
-                st = cj_fail(CJ_ERR_RANGE, "elevation lost the surface removing %s knot %.17g",
-                             dir ? "v" : "u", vals[v]);
-                goto done;
-            }
-            total += move_bound(&cur, &next, rational, e);
-            cj_bsp_h t = cur;
-            cur = next;
-            next = t;
-        }
-    assert(cur.n1 == nout);
-    if (!isfinite(total)) {
-        st = cj_fail(CJ_ERR_RANGE, "elevation of the surface in %s lost a positive weight",
-                     dir ? "v" : "u");
-        goto done;
-    }
-    unwide(&cur, dir, other, rational, out_pts, out_w);
-    memcpy(out_knots, cur.u, sizeof(double) * (size_t)(nout + q + 1));
-    if (error) *error = total;
-done:
-    free(pieces);
-    free(breaks);
-    free(vals);
-    free(mult);
-    cj_bsp_h_free(&src);
-    cj_bsp_h_free(&cur);
-    cj_bsp_h_free(&next);
-    cj_bsp_h_free(&scratch);
     return st;
 }

@@ -147,10 +147,11 @@ cj_status cj_bspline_surface_elevate_count(const cj_bspline_surface *s, int dir,
  * by cj_bezier_elevate, joined, and the p − m extra copies of every interior knot removed again
  * (exact in exact arithmetic). *error (may be NULL) receives the sum of the removal bounds of
  * cj_bspline_surface_remove_knot (a few rounding units of the coordinates, times (1 + P)/w_min for
- * a NURBS). An unclamped direction comes out clamped over the same domain. Outputs:
- * out_pts[3 * npts_out * other], out_w (NURBS; else NULL) likewise, out_knots[npts_out + p + r + 1]
- * with npts_out from cj_bspline_surface_elevate_count (errors as there). Allocates its work space
- * (CJ_ERR_NOMEM). */
+ * a NURBS; the rounding of the Bézier split and the elevation, a few hundred units of the
+ * coordinates, comes on top). An unclamped direction comes out clamped over the same domain.
+ * Outputs: out_pts[3 * npts_out * other], out_w (NURBS; else NULL) likewise, out_knots[npts_out + p
+ * + r + 1] with npts_out from cj_bspline_surface_elevate_count (errors as there). Allocates its
+ * work space (CJ_ERR_NOMEM). */
 cj_status cj_bspline_surface_elevate(const cj_bspline_surface *s, int dir, int r, double *out_pts,
                                      double *out_w, double *out_knots, double *error);
 
