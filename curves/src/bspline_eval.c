@@ -209,29 +209,36 @@ cj_status cj_bspline_error_bound(const cj_bspline *c, double t, double *bound) {
 }
 
 void cj_bsp_pyramid_bound(const cj_bspline *c, int s, double t, int kmax, int extra, double *out) {
-    const int p = c->degree, hd = cj_bsp_hdim(c), jtop = kmax < p ? kmax : p;
+    double loc[CJ_BSP_LOCAL];
+    cj_bsp_local(c, s, loc);
+    cj_bsp_local_pyramid_bound(c->knots, c->degree, s, cj_bsp_hdim(c), c->dim, loc, t, kmax, extra,
+                               out);
+}
+
+void cj_bsp_local_pyramid_bound(const double *knots, int p, int s, int hd, int dim,
+                                const double *loc, double t, int kmax, int extra, double *out) {
+    const int jtop = kmax < p ? kmax : p;
     const double eta = 0x1p-1074, u = CJ_UNIT_ROUNDOFF, inflate = 1.0 + cj_gamma(6 * p + 8);
     double mag[CJ_BSP_LOCAL], slack[CJ_BSP_LOCAL], M[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_BSP_MAX_HDIM],
         S[(CJ_BSPLINE_MAX_DERIV + 1) * CJ_BSP_MAX_HDIM];
-    cj_bsp_local(c, s, mag);
     double D = 0.0;
     for (int i = 0; i < (p + 1) * hd; ++i) {
-        mag[i] = fabs(mag[i]);
+        mag[i] = fabs(loc[i]);
         D = fmax(D, mag[i]);
     }
     /* absolute (subnormal) slack: de Boor's levels at most 8 (p+1) eta (1 + D) in all (as in
      * cj_bspline_error_bound), and 4 eta per operation of differences (sums = 2 adds it), carried
      * by the same recurrences */
     for (int i = 0; i < (p + 1) * hd; ++i) slack[i] = 8.0 * (p + 1) * eta * (1.0 + D);
-    cj_bsp_pyramid(c->knots, p, s, hd, mag, t, jtop, 1, M);
-    cj_bsp_pyramid(c->knots, p, s, hd, slack, t, jtop, 2, S);
+    cj_bsp_pyramid(knots, p, s, hd, mag, t, jtop, 1, M);
+    cj_bsp_pyramid(knots, p, s, hd, slack, t, jtop, 2, S);
     for (int j = 0; j <= kmax; ++j)
         for (int k = 0; k < hd; ++k) {
             if (j > jtop) {
                 out[j * hd + k] = 0.0; /* exact zeros above the degree */
                 continue;
             }
-            const double g = cj_gamma(6 * p - j + 2 + (k < c->dim ? extra : 0));
+            const double g = cj_gamma(6 * p - j + 2 + (k < dim ? extra : 0));
             out[j * hd + k] =
                 (g * M[j * hd + k] * inflate + S[j * hd + k] * inflate + eta) * (1.0 + 4 * u);
         }

@@ -61,6 +61,12 @@ cj_status cj_bsp_check_derivs(const cj_bspline *c, double t, int kmax);
  * roundings more on the point coordinates, 1 for the products w d of a NURBS). */
 void cj_bsp_pyramid_bound(const cj_bspline *c, int s, double t, int kmax, int extra, double *out);
 
+/* cj_bsp_pyramid_bound on given local points loc[(p+1)*hd] of span s (knots: the whole vector),
+ * extra roundings on coordinates k < dim: for callers whose points are not a cj_bspline view
+ * (the rows of a surface). */
+void cj_bsp_local_pyramid_bound(const double *knots, int p, int s, int hd, int dim,
+                                const double *loc, double t, int kmax, int extra, double *out);
+
 /* Multiplicity of the value x in the knot vector. */
 int cj_bsp_multiplicity(const double *knots, int nknots, double x);
 

@@ -3,6 +3,7 @@
  * wide curve. See casteljau/bspline_surface.h. */
 #include "casteljau/bspline_surface.h"
 #include "bspline_internal.h"
+#include "bspline_surface_internal.h"
 #include "error_internal.h"
 
 #include <assert.h>
@@ -135,7 +136,7 @@ cj_status cj_bspline_surface_error_bound(const cj_bspline_surface *s, double u, 
     return CJ_OK;
 }
 
-static int spans(const double *knots, int npts, int p) {
+int cj_bsurf_spans(const double *knots, int npts, int p) {
     int n = 0;
     for (int i = p; i < npts; ++i) n += knots[i] < knots[i + 1];
     return n;
@@ -145,13 +146,14 @@ cj_status cj_bspline_surface_patch_count(const cj_bspline_surface *s, int *count
     assert(count != NULL);
     cj_status st = cj_bspline_surface_check(s);
     if (st) return st;
-    *count = spans(s->knots_u, s->npts_u, s->deg_u) * spans(s->knots_v, s->npts_v, s->deg_v);
+    *count = cj_bsurf_spans(s->knots_u, s->npts_u, s->deg_u) *
+             cj_bsurf_spans(s->knots_v, s->npts_v, s->deg_v);
     return CJ_OK;
 }
 
 /* The surface as a wide curve in direction dir: point i (along dir) holds the homogeneous
  * points of its whole row/column, in order of the other index. */
-static cj_status wide(const cj_bspline_surface *s, int dir, cj_bsp_h *w, int extra) {
+cj_status cj_bsurf_wide(const cj_bspline_surface *s, int dir, cj_bsp_h *w, int extra) {
     const int hd = s->weights ? 4 : 3;
     const int n = dir ? s->npts_v : s->npts_u, other = dir ? s->npts_u : s->npts_v;
     const int p = dir ? s->deg_v : s->deg_u;
@@ -168,7 +170,7 @@ static cj_status wide(const cj_bspline_surface *s, int dir, cj_bsp_h *w, int ext
 
 /* Writes wide homogeneous points back (point a along dir, b across) to the cj_patch-like
  * layout with n along dir. */
-static void unwide(const cj_bsp_h *w, int dir, int other, int rational, double *pts, double *wt) {
+void cj_bsurf_unwide(const cj_bsp_h *w, int dir, int other, int rational, double *pts, double *wt) {
     const int hd = rational ? 4 : 3, n = w->n1, nu = dir ? other : n;
     for (int a = 0; a < n; ++a)
         for (int b = 0; b < other; ++b) {
@@ -202,7 +204,7 @@ cj_status cj_bspline_surface_insert_knot(const cj_bspline_surface *s, int dir, d
                        "the degree %d",
                        dir ? "v" : "u", x, r, m + r, p);
     cj_bsp_h a = {0}, b = {0};
-    if ((st = wide(s, dir, &a, r)) || (st = cj_bsp_h_alloc(&b, p, a.dim, 0, n + r))) {
+    if ((st = cj_bsurf_wide(s, dir, &a, r)) || (st = cj_bsp_h_alloc(&b, p, a.dim, 0, n + r))) {
         cj_bsp_h_free(&a);
         return st;
     }
@@ -212,7 +214,7 @@ cj_status cj_bspline_surface_insert_knot(const cj_bspline_surface *s, int dir, d
         a = b;
         b = t;
     }
-    unwide(&a, dir, dir ? s->npts_u : s->npts_v, s->weights != NULL, out_pts, out_w);
+    cj_bsurf_unwide(&a, dir, dir ? s->npts_u : s->npts_v, s->weights != NULL, out_pts, out_w);
     memcpy(out_knots, a.u, sizeof(double) * (size_t)(n + r + p + 1));
     cj_bsp_h_free(&a);
     cj_bsp_h_free(&b);
@@ -232,10 +234,10 @@ cj_status cj_bspline_surface_to_patches(const cj_bspline_surface *s, double *pts
         return cj_fail(CJ_ERR_BUFFER, "the surface has %d Bézier patches, the buffer holds %d",
                        total, cap);
     const int p = s->deg_u, q = s->deg_v, nv = s->npts_v, hd = s->weights ? 4 : 3;
-    const int su = spans(s->knots_u, s->npts_u, p), sv = spans(s->knots_v, nv, q);
+    const int su = cj_bsurf_spans(s->knots_u, s->npts_u, p), sv = cj_bsurf_spans(s->knots_v, nv, q);
     cj_bsp_h w = {0}, col = {0};
     double *upieces = NULL, *vpieces = NULL;
-    if ((st = wide(s, 0, &w, 0))) return st;
+    if ((st = cj_bsurf_wide(s, 0, &w, 0))) return st;
     const size_t wide_u = (size_t)nv * (size_t)hd; /* coordinates of one wide u-point */
     upieces = malloc(sizeof(double) * (size_t)su * (size_t)(p + 1) * wide_u);
     if ((st = cj_bsp_h_alloc(&col, q, hd * (p + 1), 0, nv))) goto done;

@@ -48,3 +48,6 @@ if(TARGET cj::viz AND TARGET cj::scene AND TARGET cj::raster)
   target_compile_definitions(test_viewer_bsurf PRIVATE
     CJ_SCENE_FILE="${PROJECT_SOURCE_DIR}/scenes/bsplines.json")
 endif()
+# Surface degree elevation, knot removal and partial derivatives against the MPFR oracle.
+cj_add_test(test_bspline_surface_ops SOURCES bspline/test_bspline_surface_ops.c
+  LIBS cj_test_bspline_oracle cj::surfaces)

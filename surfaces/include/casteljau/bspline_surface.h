@@ -55,6 +55,41 @@ cj_status cj_bspline_surface_eval(const cj_bspline_surface *s, double u, double 
 cj_status cj_bspline_surface_error_bound(const cj_bspline_surface *s, double u, double v,
                                          double *bound);
 
+/* Largest derivative order per direction of cj_bspline_surface_eval_derivs. */
+#define CJ_BSPLINE_SURFACE_MAX_DERIV 16
+
+/* Partial derivatives S_{u^k v^l}(u, v) for k = 0..ku, l = 0..kv (each in
+ * [0, CJ_BSPLINE_SURFACE_MAX_DERIV], else CJ_ERR_ARGUMENT) into out[3 * ((k (kv+1) + l)) + c]
+ * ((0, 0): the point). Method: the curve derivative pyramid of cj_bspline_eval_derivs on the q+1
+ * rows of the v-span in u (homogeneous points), then on each order's q+1 row values in v;
+ * a NURBS then takes the two-variable quotient rule
+ *     S^(k,l) W = A^(k,l) − Σ_{(a,b) != (0,0), a<=k, b<=l} C(k,a) C(l,b) W^(a,b) S^(k−a,l−b).
+ * Order (0, 0) is bit-identical to cj_bspline_surface_eval (the same de Boor levels). Orders
+ * above a degree are zero for a polynomial surface. At a knot the value is the one from
+ * the right (from the left at the domain's right end), as for curves. (u, v) outside the
+ * domain: CJ_ERR_RANGE; NaN: CJ_ERR_NONFINITE; a derivative beyond the double range:
+ * CJ_ERR_RANGE naming the order. Allocates nothing. */
+cj_status cj_bspline_surface_eval_derivs(const cj_bspline_surface *s, double u, double v, int ku,
+                                         int kv, double *out);
+
+/* A-priori absolute error bound of cj_bspline_surface_eval_derivs, same layout (bound[3 * (k
+ * (kv+1) + l) + c]), built from the curve bound of cj_bspline_derivs_error_bound:
+ *   - u pass: row jj's computed order-k value R̂_jj^(k) is within δ_jj <= the curve bound of the
+ *     row (gamma(6p − k + 2 (+1 NURBS)) times the magnitude pyramid, plus the subnormal slack);
+ *   - v pass: the computed order-l value is within the curve bound of the spline whose points
+ *     are the R̂^(k) (gamma(6q − l + 2) on their magnitudes) of that spline's exact derivative,
+ *     which differs from the true one by Σ δ_jj N_jj^(l)(v), at most the magnitude pyramid run on
+ *     the δ (sums instead of differences), inflated by 1 + gamma(6q + 8);
+ *   - NURBS: the curve's quotient-rule recurrence with the sum over (a, b), order by order,
+ *     e_kl (Ŵ − E_W) <= E_A,kl + Σ C(k,a) C(l,b) (E_W,ab |Ŝ_{k−a,l−b}| + (|Ŵ_ab| + E_W,ab)
+ *     e_{k−a,l−b}) + gamma(2m+3) T_kl + |Ŝ_kl| (E_W + u (1+2u) Ŵ)   (m = (k+1)(l+1) − 1 terms,
+ *     T_kl the sum of the magnitudes of the terms), inflated by 1 + gamma(4m + 12); requires
+ *     Ŵ > 2 E_W (else CJ_ERR_RANGE).
+ * Checked against the tensor MPFR oracle (basis derivatives in 2300-bit arithmetic) in
+ * tests/bspline/test_bspline_surface_ops.c. Errors as cj_bspline_surface_eval_derivs. */
+cj_status cj_bspline_surface_derivs_error_bound(const cj_bspline_surface *s, double u, double v,
+                                                int ku, int kv, double *bound);
+
 /* Number of Bézier patches: non-empty u spans times non-empty v spans. */
 cj_status cj_bspline_surface_patch_count(const cj_bspline_surface *s, int *count);
 
@@ -80,6 +115,45 @@ cj_status cj_bspline_surface_to_patches(const cj_bspline_surface *s, double *pts
  * insertion above the degree: CJ_ERR_ARGUMENT naming x; x outside the domain: CJ_ERR_RANGE. */
 cj_status cj_bspline_surface_insert_knot(const cj_bspline_surface *s, int dir, double x, int r,
                                          double *out_pts, double *out_w, double *out_knots);
+
+/* Removes up to r copies of the interior knot x of direction dir (0: u, 1: v) while the surface
+ * moves by at most tol >= 0: one copy at a time, every row (column) at once, as
+ * cj_bspline_remove_knot does for a curve, on the wide curve whose points are whole rows of
+ * homogeneous points; a copy goes only if every row (column) can lose it within what is left
+ * of tol. Each removal's rigorous bound comes from re-inserting x and comparing the nets
+ * (e = largest Euclidean distance between corresponding homogeneous points, convex hull):
+ *     polynomial: e;   NURBS: e (1 + P) / w_min
+ * (P = max |d'_ij| of the new net, w_min the smallest weight before the removal), from
+ * A/W − A'/W' = (A − A')/W − (A'/W')(W − W')/W with |A − A'|, |W − W'| <= e. *removed gets the
+ * count (0..r), *error (may be NULL) the sum of the bounds: |S − S'| <= *error everywhere on the
+ * domain, plus the rounding of the re-refinement (about gamma(5p) of the coordinates). Outputs:
+ * out_pts, out_w (NURBS; else NULL) and out_knots (the changed direction's knot vector) as large
+ * as the input's; nothing removed: the input bit for bit. x not inside the domain: CJ_ERR_RANGE;
+ * not a knot: CJ_ERR_ARGUMENT; tol NaN: CJ_ERR_NONFINITE, negative: CJ_ERR_ARGUMENT. Allocates
+ * its work space (CJ_ERR_NOMEM). */
+cj_status cj_bspline_surface_remove_knot(const cj_bspline_surface *s, int dir, double x, int r,
+                                         double tol, double *out_pts, double *out_w,
+                                         double *out_knots, int *removed, double *error);
+
+/* Number of points along dir after elevating that degree by r: the rule of
+ * cj_bspline_elevate_count, (p + r + 1) + Σ_interior (m_j + r). Degree 0: CJ_ERR_DEGREE;
+ * p + r above CJ_PATCH_MAX_DEGREE: CJ_ERR_DEGREE; an interior knot of multiplicity p + 1 (a
+ * jump): CJ_ERR_ARGUMENT; r < 0: CJ_ERR_ARGUMENT. */
+cj_status cj_bspline_surface_elevate_count(const cj_bspline_surface *s, int dir, int r,
+                                           int *npts_out);
+
+/* Degree elevation by r in direction dir (0: u, 1: v), the same surface: the wide curve of whole
+ * rows (columns) of homogeneous points split into Bézier pieces, every row of every piece elevated
+ * by cj_bezier_elevate, joined, and the p − m extra copies of every interior knot removed again
+ * (exact in exact arithmetic). *error (may be NULL) receives the sum of the removal bounds of
+ * cj_bspline_surface_remove_knot (a few rounding units of the coordinates, times (1 + P)/w_min for
+ * a NURBS; the rounding of the Bézier split and the elevation, a few hundred units of the
+ * coordinates, comes on top). An unclamped direction comes out clamped over the same domain.
+ * Outputs: out_pts[3 * npts_out * other], out_w (NURBS; else NULL) likewise, out_knots[npts_out + p
+ * + r + 1] with npts_out from cj_bspline_surface_elevate_count (errors as there). Allocates its
+ * work space (CJ_ERR_NOMEM). */
+cj_status cj_bspline_surface_elevate(const cj_bspline_surface *s, int dir, int r, double *out_pts,
+                                     double *out_w, double *out_knots, double *error);
 
 /* Interpolation through a grid of nu × nv points Q_ij (same layout as pts) with degrees (p, q):
  * parameters per direction are the average over the rows (columns) of cj_fit_params of each
