@@ -114,6 +114,7 @@ static cj_scene *scene_with_emitter(int as_mesh) {
                          CJ_OK);
     }
     assert_int_equal(cj_scene_add_geometry(s, &g, &gi), CJ_OK);
+    if (as_mesh) cj_mesh_destroy(g.u.mesh); /* the scene keeps a deep copy */
     n = cj_node_defaults(gi, emi);
     if (as_mesh) n.local.translate = cj_v3(RECT[0], RECT[2], EH);
     assert_int_equal(cj_scene_add_node(s, &n, NULL), CJ_OK);

@@ -400,6 +400,8 @@ static void plan_init(fast_plan *pl, fast_quad *qs, int nq, size_t m, double ste
         const double end = start + q->val;
         /* the first j whose target reaches the end (every j for the last quadratic) */
         double jl = i == nq - 1 ? (double)m : ceil(end / step);
+        if (!(jl <= (double)m)) jl = (double)m; /* also NaN: 0 / 0 on a curve of no length */
+        if (jl < 0.0) jl = 0.0;
         while (jl > 0.0 && step * (jl - 1.0) >= end) jl -= 1.0;
         while (step * jl < end && jl < (double)m) jl += 1.0;
         q->jlim = i == nq - 1 ? m : (size_t)jl;

@@ -136,7 +136,8 @@ void cj_tess_patch_densities(ptess *P, double tol, double *rho_u, double *rho_v,
                     cj_patch_derivs_unchecked(P->p, P->h, 4, (a + 0.5) / S, (b + 0.5) / S, 2, 2,
                                               centre);
                     for (int o = 0; o < 5; ++o) { /* its four corners and its centre */
-                        const double *c = corner[(b + (o >> 1)) * S1 + a + (o & 1)];
+                        /* o = 4 is the centre: no corner row exists for it (b + 2) */
+                        const double *c = o < 4 ? corner[(b + (o >> 1)) * S1 + a + (o & 1)] : NULL;
                         const double *d = centre;
                         const double suu =
                             o < 4 ? c[0] : sqrt(d[18] * d[18] + d[19] * d[19] + d[20] * d[20]);
