@@ -32,6 +32,17 @@ typedef struct wentry {
     float t0; /* lower bound of the entry parameter */
 } wentry;
 
+/* Inserts c into the stack segment st[base..*sp) kept sorted farthest first (nearest on top);
+ * a tie goes below the entries already there, so the later child is popped first. */
+static inline void push_sorted(wentry *st, int *sp, int base, wentry c) {
+    int j = (*sp)++;
+    while (j > base && st[j - 1].t0 < c.t0) {
+        st[j] = st[j - 1];
+        j--;
+    }
+    st[j] = c;
+}
+
 /* Traversal of the wide tree with a callback per primitive; `any` stops at the first hit. The walk
  * descends straight into the nearest met child and pushes the others farthest first; leaves are
  * tested where they are met. */
@@ -65,13 +76,7 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
                 st[sp++] = cur;
                 for (; mask; mask &= mask - 1) {
                     i = __builtin_ctz((unsigned)mask);
-                    const wentry c = {wn->child[i], wn->nprim[i], t0[i]};
-                    int j = sp++;
-                    while (j > base && st[j - 1].t0 < c.t0) {
-                        st[j] = st[j - 1];
-                        j--;
-                    }
-                    st[j] = c;
+                    push_sorted(st, &sp, base, (wentry){wn->child[i], wn->nprim[i], t0[i]});
                 }
                 cur = st[--sp];
                 continue;
@@ -183,23 +188,10 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
                 /* more: the nearest becomes cur, the others go on the stack farthest first */
                 const int base = sp;
                 st[sp++] = cur;
-                {
-                    int j = sp++;
-                    while (j > base && st[j - 1].t0 < c2.t0) {
-                        st[j] = st[j - 1];
-                        j--;
-                    }
-                    st[j] = c2;
-                }
+                push_sorted(st, &sp, base, c2);
                 for (; mask; mask &= mask - 1) {
                     i = __builtin_ctz((unsigned)mask);
-                    const wentry c = {wn->child[i], wn->nprim[i], t0[i]};
-                    int j = sp++;
-                    while (j > base && st[j - 1].t0 < c.t0) {
-                        st[j] = st[j - 1];
-                        j--;
-                    }
-                    st[j] = c;
+                    push_sorted(st, &sp, base, (wentry){wn->child[i], wn->nprim[i], t0[i]});
                 }
                 cur = st[--sp];
                 continue;
