@@ -102,6 +102,9 @@ const char *cli_version(void);
 
 /* Parses a whole number in [lo, hi] (decimal); 0 on success, -1 otherwise. */
 int cli_parse_int(const char *s, long lo, long hi, long *out);
+/* --degree M,N of a patch: two integers in [0, CJ_PATCH_MAX_DEGREE] separated by a comma;
+ * 0 or -1 when malformed or out of range. */
+int cli_parse_degree(const char *text, int *m, int *n);
 
 /* Parses one number with strtod (decimal or C99 hex float); the whole string must be consumed
  * and the value finite. Returns 0 on success, -1 otherwise. */

@@ -2,6 +2,8 @@
 #include "cli.h"
 #include "cli_progress.h"
 
+#include "casteljau/patch.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -437,4 +439,19 @@ const char *cli_teapot_path(void) {
         }
     }
     return access(CJ_TEAPOT_SOURCE, R_OK) == 0 ? CJ_TEAPOT_SOURCE : CJ_TEAPOT_INSTALLED;
+}
+
+int cli_parse_degree(const char *text, int *m, int *n) {
+    const char *comma = strchr(text, ',');
+    char tmp[64];
+    long a, b;
+    if (!comma || (size_t)(comma - text) >= sizeof tmp) return -1;
+    memcpy(tmp, text, (size_t)(comma - text));
+    tmp[comma - text] = '\0';
+    if (cli_parse_int(tmp, 0, CJ_PATCH_MAX_DEGREE, &a) ||
+        cli_parse_int(comma + 1, 0, CJ_PATCH_MAX_DEGREE, &b))
+        return -1;
+    *m = (int)a;
+    *n = (int)b;
+    return 0;
 }

@@ -57,21 +57,6 @@ static void model_free(model *M) {
     free(M->weights);
 }
 
-static int parse_degree(const char *text, int *m, int *n) {
-    const char *comma = strchr(text, ',');
-    char tmp[64];
-    long a, b;
-    if (!comma || (size_t)(comma - text) >= sizeof tmp) return -1;
-    memcpy(tmp, text, (size_t)(comma - text));
-    tmp[comma - text] = '\0';
-    if (cli_parse_int(tmp, 0, CJ_PATCH_MAX_DEGREE, &a) ||
-        cli_parse_int(comma + 1, 0, CJ_PATCH_MAX_DEGREE, &b))
-        return -1;
-    *m = (int)a;
-    *n = (int)b;
-    return 0;
-}
-
 /* Loads the one model given; returns 0 or the exit status (the message printed). */
 static int model_load(const char *cmd, int teapot, const char *bpt, const char *patch_text,
                       const char *degree_text, const char *weights_text, model *M) {
@@ -95,7 +80,7 @@ static int model_load(const char *cmd, int teapot, const char *bpt, const char *
         return 0;
     }
     int m, n;
-    if (parse_degree(degree_text, &m, &n))
+    if (cli_parse_degree(degree_text, &m, &n))
         return cli_fail(cmd, "--degree '%s': M and N must be integers in 0..%d", degree_text,
                         CJ_PATCH_MAX_DEGREE);
     size_t npts;

@@ -56,22 +56,6 @@ static cj_status load_teapot(cj_patchset **set) {
     return cj_patchset_load_bpt(cli_teapot_path(), NULL, set);
 }
 
-/* Parses --degree M,N. */
-static int parse_degree(const char *text, int *m, int *n) {
-    const char *comma = strchr(text, ',');
-    char tmp[64];
-    long a, b;
-    if (!comma || (size_t)(comma - text) >= sizeof tmp) return -1;
-    memcpy(tmp, text, (size_t)(comma - text));
-    tmp[comma - text] = '\0';
-    if (cli_parse_int(tmp, 0, CJ_PATCH_MAX_DEGREE, &a) ||
-        cli_parse_int(comma + 1, 0, CJ_PATCH_MAX_DEGREE, &b))
-        return -1;
-    *m = (int)a;
-    *n = (int)b;
-    return 0;
-}
-
 int cmd_tessellate(int argc, char **argv) {
     const char *cmd = "tessellate";
     int teapot = 0, have_tol = 0, uniform = 0;
@@ -207,7 +191,7 @@ int cmd_tessellate(int argc, char **argv) {
         }
     } else {
         int m, n;
-        if (parse_degree(degree_text, &m, &n))
+        if (cli_parse_degree(degree_text, &m, &n))
             return cli_fail(cmd, "--degree '%s': M and N must be integers in 0..%d", degree_text,
                             CJ_PATCH_MAX_DEGREE);
         size_t npts;
