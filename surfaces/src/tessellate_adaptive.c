@@ -79,7 +79,10 @@ static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, gr
         P->bound_known = known != NULL && !P->rational;
         if (!P->bounds_only) cj_mesh_truncate(P->mesh, vs, ts);
         P->abort_over = tol; /* a failing build is never kept: stop it early */
-        st = cj_tess_build_patch(P, nu, ub, nv, vb, k);
+        if (!real && !P->rational && P->pm)
+            st = cj_tess_slab_trial(P, nu, ub, nv, vb, k); /* the same bound, without triangles */
+        else
+            st = cj_tess_build_patch(P, nu, ub, nv, vb, k);
         P->abort_over = 0.0;
         P->bounds_only = 0;
         P->predict = 0;
@@ -99,6 +102,31 @@ static cj_status try_grid(ptess *P, const double *rho_u, const double *rho_v, gr
 static void keep_known(const ptess *P, double known[4]) {
     known[0] = P->bound;
     memcpy(known + 1, P->worst_terms, 3 * sizeof(double));
+}
+
+/* The polynomial patch's proven bounds per slab cell (P->pm, for planning's trials): the 16
+ * strips restricted and walked once. */
+static void slab_table(ptess *P) {
+    const int S = CJ_TESS_SLABS, S2 = CJ_TESS_SLABS * CJ_TESS_SLABS;
+    const int walk = cj_tess_walkable(P);
+    for (int b = 0; b < S; ++b) {
+        cj_tess_strip_restrict(P, (double)b / S, (double)(b + 1) / S, &P->strip);
+        if (walk) cj_tess_line(P, &P->strip, 0.0, &P->lines[0]);
+        for (int a = 0; a < S; ++a) {
+            dbounds cb;
+            if (walk) {
+                tess_line *A = &P->lines[a & 1], *B = &P->lines[(a + 1) & 1];
+                cj_tess_line(P, &P->strip, (double)(a + 1) / S, B);
+                cb = cj_tess_cell_walk(P, A, B);
+            } else {
+                cb = cj_tess_cell_bounds(P, &P->strip, (double)a / S, (double)(a + 1) / S);
+            }
+            P->pm[b * S + a] = cb.uu;
+            P->pm[S2 + b * S + a] = cb.uv;
+            P->pm[2 * S2 + b * S + a] = cb.vv;
+        }
+    }
+    P->bands_valid = 0;
 }
 
 /* Grid densities of the set-up patch: sqrt of the second-derivative bound on CJ_TESS_SLABS slabs
@@ -168,28 +196,7 @@ void cj_tess_patch_densities(ptess *P, double tol, double *rho_u, double *rho_v,
                     rho_v[b] = fmax(rho_v[b], fmin(fv, CJ_TESS_SLABS * sqrt(fmax(qb[2], qb[1]))));
                 }
         } else {
-            if (P->pm) { /* proven bounds per slab cell, for planning's trials */
-                const int S = CJ_TESS_SLABS, S2 = CJ_TESS_SLABS * CJ_TESS_SLABS;
-                const int walk = cj_tess_walkable(P);
-                for (int b = 0; b < S; ++b) {
-                    cj_tess_strip_restrict(P, (double)b / S, (double)(b + 1) / S, &P->strip);
-                    if (walk) cj_tess_line(P, &P->strip, 0.0, &P->lines[0]);
-                    for (int a = 0; a < S; ++a) {
-                        dbounds cb;
-                        if (walk) {
-                            tess_line *A = &P->lines[a & 1], *B = &P->lines[(a + 1) & 1];
-                            cj_tess_line(P, &P->strip, (double)(a + 1) / S, B);
-                            cb = cj_tess_cell_walk(P, A, B);
-                        } else {
-                            cb = cj_tess_cell_bounds(P, &P->strip, (double)a / S,
-                                                     (double)(a + 1) / S);
-                        }
-                        P->pm[b * S + a] = cb.uu;
-                        P->pm[S2 + b * S + a] = cb.uv;
-                        P->pm[2 * S2 + b * S + a] = cb.vv;
-                    }
-                }
-            }
+            if (P->pm) slab_table(P);
             for (int a = 0; a < CJ_TESS_SLABS; ++a) {
                 const dbounds bu = cj_tess_strip_bounds(P, (double)a / CJ_TESS_SLABS,
                                                         (double)(a + 1) / CJ_TESS_SLABS, 0.0, 1.0);
@@ -251,7 +258,17 @@ cj_status cj_tess_adaptive_patch(ptess *P, double tol, int cap, size_t q, const 
              * passing trial computed this build's bound */
             st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 1, dens->known, &pass);
         } else {
-            if ((st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 0, NULL, &pass)))
+            if (!P->rational) {
+                /* a neighbour raised a side count: the slab table's trial first (proven, and
+                 * about 1/5 of the cost of the walked cells' trial); if it misses tol, the
+                 * walked cells' exact trial decides, so the table alone never refines a patch */
+                P->pm = P->pmbuf;
+                slab_table(P);
+                if ((st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 0, NULL, &pass)))
+                    return st;
+                P->pm = NULL;
+            }
+            if (!pass && (st = try_grid(P, rho_u, rho_v, *hint, k, tol, q, vs, ts, 0, NULL, &pass)))
                 return st;
             if (pass && !P->rational) { /* the bounds-only trial passed: build it once */
                 const double known[4] = {P->bound, P->worst_terms[0], P->worst_terms[1],

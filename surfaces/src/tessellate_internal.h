@@ -99,6 +99,7 @@ typedef struct ptess {
      * predicts its bound from them (planning only, see tessellate_adaptive.c) */
     double *pm;
     int predict;
+    int bands_valid;   /* slab_bands holds the bands of the current pm (tess_trial.c) */
     double abort_over; /* > 0: stop a build as soon as its bound exceeds this (it fails) */
     int aborted;       /* the last build stopped early */
     /* results of one build */
@@ -109,6 +110,9 @@ typedef struct ptess {
     double h[CJ_PATCH_NET_MAX];
     double pmbuf[6 * CJ_TESS_SLABS * CJ_TESS_SLABS + 1]; /* rational planning: pm points here */
     edge_info e[4];
+    /* polynomial planning (tess_trial.c): per slab row b and slab column a, the largest Muu,
+     * Muv, Mvv of pm over rows [b, b] ([0]) and [b, b+1] ([1]) */
+    double slab_bands[2][CJ_TESS_SLABS][CJ_TESS_SLABS][3];
     /* polynomial patches: difference nets (tess_bounds_poly.c) */
     double duu[CJ_TESS_DNET_MAX], duv[CJ_TESS_DNET_MAX], dvv[CJ_TESS_DNET_MAX];
     double cellnet[CJ_PATCH_NET_MAX], trinet[CJ_PATCH_NET_MAX];
@@ -149,6 +153,15 @@ dbounds cj_tess_cell_walk(const ptess *P, const tess_line *A, const tess_line *B
  * cells [v0,v1] of it (the zippers of the sides u = 0 and u = 1). */
 void cj_tess_ustrip_restrict(const ptess *P, double u0, double u1, tess_strip *s);
 dbounds cj_tess_ucell_bounds(const ptess *P, const tess_strip *s, double v0, double v1);
+
+/* ---- tess_trial.c ---------------------------------------------------------------------- */
+
+/* Planning's bounds-only trial of a polynomial patch on its slab table (P->pm): the bound and
+ * triangle count of the build on lines ub[0..nu] x vb[0..nv] with side counts k, bit for bit
+ * those of the triangle-by-triangle trial (P->predict in cj_tess_build_patch), without
+ * enumerating the interior cells. */
+cj_status cj_tess_slab_trial(ptess *P, int nu, const double *ub, int nv, const double *vb,
+                             const int k[4]);
 
 /* ---- tess_grid_eval.c ------------------------------------------------------------------ */
 

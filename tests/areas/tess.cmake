@@ -11,3 +11,7 @@ target_compile_definitions(test_render_tess_cache PRIVATE CJ_TEAPOT_PATH="${PROJ
 cj_add_test(test_tess_cancel SOURCES test_tess_cancel.c LIBS cj::raster cj::scene cj::surfaces)
 target_include_directories(test_tess_cancel PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
 target_compile_definitions(test_tess_cancel PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+# Planning's slab-table trial without triangles == the triangle-by-triangle trial, bit for bit.
+cj_add_test(test_tess_trial SOURCES test_tess_trial.c LIBS cj::surfaces)
+target_include_directories(test_tess_trial PRIVATE ${PROJECT_SOURCE_DIR}/surfaces/src ${PROJECT_SOURCE_DIR}/curves/src)
+target_compile_definitions(test_tess_trial PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
