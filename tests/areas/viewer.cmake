@@ -43,3 +43,15 @@ if(CJ_HAVE_VIEWER AND TARGET casteljau)
   target_compile_definitions(test_viewer_module PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")
   add_dependencies(test_viewer_module casteljau)
 endif()
+# A real mouse drag of a teapot control point (xdotool): drag frames still tessellating give way
+# to newer drag states (never two in a row), and the still view equals `casteljau render`.
+if(CJ_HAVE_VIEWER AND TARGET casteljau)
+  find_package(X11 REQUIRED)
+  cj_add_test(test_viewer_drag SOURCES viewer/test_viewer_drag.c support/xvfb.c
+    LIBS cj::viz cj::raster cj::scene cj::surfaces X11::X11)
+  target_include_directories(test_viewer_drag PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(test_viewer_drag PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+  add_dependencies(test_viewer_drag casteljau)
+  set_tests_properties(test_viewer_drag PROPERTIES TIMEOUT 600)
+endif()

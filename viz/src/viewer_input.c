@@ -1,6 +1,7 @@
 /* The viewer's input: keys, mouse buttons, cursor motion and the wheel, turned into editor
  * commands. Real GLFW events and replayed ones arrive here alike. */
 #include "viewer_app.h"
+#include "viewer_render.h"
 
 #include "casteljau/rational.h"
 #include "casteljau/scene.h"
@@ -380,6 +381,7 @@ void cj_viewer_button(cj_viewer *v, int button, int press, int mods, double x, d
             v->sel3 = (long)k;
             v->drag = VIEW_DRAG_POINT;
             cj_vscene_begin_drag(v->vs);
+            cj_vrender_log(v->rt, "drag point %zu", k);
             (void)mods;
         } else {
             v->drag = button == VIEW_BUTTON_LEFT ? VIEW_DRAG_ORBIT : VIEW_DRAG_PAN;

@@ -35,10 +35,15 @@ struct cj_vrender {
     /* under `lock` */
     cj_vjob pending;
     int has_pending, running, running_cancellable, quit, frame_new;
+    /* a drag frame may be dropped while it tessellates (running_droppable) when a newer drag
+     * state arrives, unless the drag frame before it was dropped (last_dropped): so at least
+     * every other drag frame is shown however fast the events come */
+    int running_droppable, last_dropped;
     cj_vframe frames[3]; /* [work] drawn into by the thread, [done] newest finished, [shown] */
     int work, done, shown;
     /* set by the window's thread, read by the progress callback */
     atomic_int cancel;
+    atomic_int drop; /* a newer drag state: drop the running drag frame if still preparing */
     atomic_uint_fast64_t tiles_done, tiles_total;
     /* the render thread's own: one renderer for the viewer's lifetime (its pool, tile buffers,
      * BVHs and image live across frames and passes), and the tessellation cache it is given */
@@ -96,10 +101,15 @@ cj_status cj_vscene_snapshot(const cj_scene *src, cj_scene **out) {
 
 /* ---- drawing ------------------------------------------------------------------------------- */
 
+/* The renderer's progress: (0, 0) while it prepares the frame (the tessellation cache asks
+ * before each patch it plans or builds), then tiles done of total. A drag frame is dropped only
+ * while it prepares: the cache keeps every patch finished, so the next frame resumes the work;
+ * once tiles are drawn it is cheaper to finish and show it. */
 static int on_progress(void *user, uint64_t done, uint64_t total) {
     cj_vrender *r = user;
     atomic_store(&r->tiles_done, done);
     atomic_store(&r->tiles_total, total);
+    if (total == 0 && atomic_load(&r->drop)) return 1;
     return atomic_load(&r->cancel);
 }
 
@@ -212,6 +222,7 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
     for (size_t i = 0; i < w * h; ++i) f->rgba8[4 * i + 3] = 255;
     if (img->depth && f->depth) memcpy(f->depth, img->depth, w * h * sizeof *f->depth);
     f->triangles = 0;
+    f->planned = f->built = 0;
     f->bound_px = 0;
     for (int i = 0; i < rep.count; ++i) {
         const cj_stage *s = &rep.stages[i];
@@ -219,6 +230,10 @@ static cj_status draw(cj_vrender *r, const cj_vjob *job, int pass, cj_vframe *f)
         for (int k = 0; k < s->extra_count; ++k)
             if (!strcmp(s->extra[k].key, "bound_px") && s->extra[k].value > f->bound_px)
                 f->bound_px = s->extra[k].value;
+            else if (!strcmp(s->extra[k].key, "patches_planned"))
+                f->planned += (size_t)s->extra[k].value;
+            else if (!strcmp(s->extra[k].key, "patches_built"))
+                f->built += (size_t)s->extra[k].value;
     }
     return st;
 }
@@ -243,7 +258,9 @@ static void *thread_main(void *arg) {
         r->has_pending = 0;
         r->running = 1;
         r->running_cancellable = job.trace || !job.interactive;
+        r->running_droppable = !job.trace && job.interactive && !r->last_dropped;
         atomic_store(&r->cancel, 0);
+        atomic_store(&r->drop, 0);
         pthread_mutex_unlock(&r->lock);
         for (int pass = job.first_pass; pass <= job.last_pass; ++pass) {
             cj_vframe *f = &r->frames[r->work]; /* only this thread touches [work] */
@@ -254,9 +271,13 @@ static void *thread_main(void *arg) {
             const cj_status st = draw(r, &job, pass, f);
             const uint64_t done = atomic_load(&r->tiles_done), total = atomic_load(&r->tiles_total);
             if (st == CJ_ERR_CANCELLED) {
-                cj_vrender_log(r, "cancelled gen %lu pass %d tiles %llu/%llu", job.gen,
+                const int dropped = !atomic_load(&r->cancel) && atomic_load(&r->drop);
+                cj_vrender_log(r, "cancelled gen %lu pass %d tiles %llu/%llu%s", job.gen,
                                job.trace ? pass : 0, (unsigned long long)done,
-                               (unsigned long long)total);
+                               (unsigned long long)total, dropped ? " preparing drag" : "");
+                pthread_mutex_lock(&r->lock);
+                r->last_dropped = dropped;
+                pthread_mutex_unlock(&r->lock);
                 break;
             }
             f->gen = job.gen;
@@ -265,10 +286,12 @@ static void *thread_main(void *arg) {
             f->status = st;
             f->tiles = done;
             snprintf(f->msg, sizeof f->msg, "%s", st ? cj_last_error() : "");
-            cj_vrender_log(r, "done gen %lu pass %d tiles %llu/%llu in %.3f s", job.gen, f->pass,
-                           (unsigned long long)done, (unsigned long long)total, f->seconds);
+            cj_vrender_log(r, "done gen %lu pass %d tiles %llu/%llu in %.3f s patches %zu/%zu",
+                           job.gen, f->pass, (unsigned long long)done, (unsigned long long)total,
+                           f->seconds, f->planned, f->built);
             pthread_mutex_lock(&r->lock);
             publish(r);
+            r->last_dropped = 0;
             const int stop = r->has_pending || r->quit || st;
             pthread_mutex_unlock(&r->lock);
             if (r->wake) r->wake();
@@ -295,6 +318,7 @@ cj_status cj_vrender_create(int width, int height, int threads, FILE *timeline, 
     pthread_mutex_init(&r->log_lock, NULL);
     pthread_cond_init(&r->changed, NULL);
     atomic_init(&r->cancel, 0);
+    atomic_init(&r->drop, 0);
     atomic_init(&r->tiles_done, 0);
     atomic_init(&r->tiles_total, 0);
     const size_t n = (size_t)width * (size_t)height;
@@ -347,9 +371,11 @@ void cj_vrender_submit(cj_vrender *r, const cj_vjob *job) {
     if (r->has_pending) dropped = r->pending.scene;
     r->pending = *job;
     r->has_pending = 1;
-    /* a drag lets the drag frame in flight finish (frames keep coming while the mouse moves);
-     * anything else is stale the moment a new state exists */
+    /* a drag lets the drag frame in flight finish once it draws tiles (frames keep coming
+     * while the mouse moves); anything else is stale the moment a new state exists */
     if (r->running && (r->running_cancellable || !job->interactive)) atomic_store(&r->cancel, 1);
+    /* a newer drag state: the drag frame in flight gives way if it is still tessellating */
+    if (r->running && job->interactive && r->running_droppable) atomic_store(&r->drop, 1);
     pthread_cond_broadcast(&r->changed);
     pthread_mutex_unlock(&r->lock);
     cj_scene_destroy(dropped);

@@ -54,6 +54,7 @@ typedef struct cj_vframe {
     float *depth;   /* raster: pseudodepth plane; NULL for traced frames */
     double seconds; /* wall time of the render */
     size_t triangles;
+    size_t planned, built; /* raster: patches the tessellation cache planned and built */
     double bound_px;
     uint64_t tiles; /* tiles drawn */
 } cj_vframe;
