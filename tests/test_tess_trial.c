@@ -3,7 +3,9 @@
  * triangle bounded with the slab cells its box meets): the same bound bit for bit and the same
  * triangle count, on every teapot patch and on seeded random polynomial patches (degrees 1..4),
  * for random increasing grid lines (fine and coarse against the 16 slabs, lines on slab
- * boundaries) and random side counts, regular grids included. */
+ * boundaries) and random side counts, regular grids included. Also: the normals of the
+ * teapot's side points, now taken from grid columns, equal cj_patch_normal at their (u,v) bit for
+ * bit. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -11,6 +13,7 @@
 #include <cmocka.h>
 
 #include "casteljau/patchset.h"
+#include "casteljau/tessellate.h"
 #include "rng.h"
 #include "tessellate_internal.h"
 
@@ -125,11 +128,49 @@ static void test_random_patches(void **state) {
            compared, regular_grids);
 }
 
+static void test_side_normals(void **state) {
+    (void)state;
+    cj_patchset *set;
+    assert_int_equal(cj_patchset_load_bpt(CJ_TEAPOT_PATH, NULL, &set), CJ_OK);
+    cj_mesh *m;
+    assert_int_equal(cj_mesh_create(NULL, &m), CJ_OK);
+    cj_tess_options o;
+    memset(&o, 0, sizeof o);
+    o.tol = 1e-3;
+    assert_int_equal(cj_tessellate_patches(set->patches, set->count, &o, m, NULL), CJ_OK);
+    int *patch_of = malloc(sizeof(int) * m->vertex_count);
+    assert_non_null(patch_of);
+    for (size_t i = 0; i < m->vertex_count; ++i) patch_of[i] = -1;
+    for (size_t t = 0; t < m->triangle_count; ++t)
+        for (int k = 0; k < 3; ++k) patch_of[m->triangles[3 * t + k]] = m->triangle_patch[t];
+    size_t side = 0;
+    for (size_t i = 0; i < m->vertex_count; ++i) {
+        const double u = m->uvs[2 * i], v = m->uvs[2 * i + 1];
+        if (patch_of[i] < 0 || !(u == 0.0 || u == 1.0 || v == 0.0 || v == 1.0)) continue;
+        double n[3];
+        if (cj_patch_normal(&set->patches[patch_of[i]], u, v, n, NULL) != CJ_OK)
+            n[0] = n[1] = n[2] = 0.0;
+        if (memcmp(n, m->normals + 3 * i, sizeof n) != 0)
+            fail_msg("patch %d side point (%.17g, %.17g): normal (%.17g %.17g %.17g), "
+                     "cj_patch_normal (%.17g %.17g %.17g)",
+                     patch_of[i], u, v, m->normals[3 * i], m->normals[3 * i + 1],
+                     m->normals[3 * i + 2], n[0], n[1], n[2]);
+        ++side;
+    }
+    assert_true(side > 1000);
+    printf("teapot at 1e-3: the normals of %zu side points == cj_patch_normal, bit for bit\n",
+           side);
+    free(patch_of);
+    cj_mesh_destroy(m);
+    cj_patchset_destroy(set);
+}
+
 int main(void) {
     seed = cj_test_seed("test_tess_trial", 19);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_teapot),
         cmocka_unit_test(test_random_patches),
+        cmocka_unit_test(test_side_normals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
