@@ -294,6 +294,61 @@ static void test_render_cancelled(void **state) {
     cj_scene_destroy(s);
 }
 
+static double stage_value(const cj_stage_report *r, const char *key) {
+    const cj_stage *s = cj_stage_report_find(r, "tessellate_patches");
+    assert_non_null(s);
+    for (int i = 0; i < s->extra_count; ++i)
+        if (!strcmp(s->extra[i].key, key)) return s->extra[i].value;
+    fail_msg("tessellate_patches has no value %s", key);
+    return 0.0;
+}
+
+/* A frame within the tolerance band (the viewer's drag frames): the cache tessellated at 0.5 px,
+ * the frame needs 0.8 px (kept at the cached tolerance) after a control point moved; cancelled
+ * in its preparation, the next frame resumes at the band's tolerance: it plans only the edited
+ * patch (a cancel used to forget the band, and the next frame re-planned every patch at the
+ * exact needed tolerance). */
+static void test_render_cancelled_in_band(void **state) {
+    (void)state;
+    cj_scene *s = NULL;
+    assert_int_equal(cj_render_demo_scene(CJ_TEAPOT_PATH, NULL, &s), CJ_OK);
+    cj_scene_node_mut(s, 0)->overlay.flags = 0;
+    cj_geometry *g = cj_scene_geometry_mut(s, cj_scene_node(s, 0)->geometry);
+    assert_int_equal(g->kind, CJ_GEOM_PATCHES);
+    const size_t np = g->u.patches.count;
+    cj_render_options oc = cj_render_options_defaults();
+    oc.width = 160;
+    oc.height = 120;
+    oc.tol_px = 0.5;
+    assert_int_equal(cj_render_cache_create(NULL, &oc.cache), CJ_OK);
+    cj_stage_report rep;
+    cj_render_image_destroy(render(s, &oc, 0, &rep)); /* cold, at 0.5 px */
+    assert_true(stage_value(&rep, "patches_planned") == (double)np);
+    /* an interior point of patch 0 (moved alone: no other patch changes) */
+    ((double *)g->u.patches.patches[0].pts)[3 * 5 + 2] += 0.05;
+    oc.tol_px = 0.8;
+    frame_cancel f = {0, 0, 1};
+    oc.progress = on_progress;
+    oc.progress_user = &f;
+    cj_render_image *img = NULL;
+    assert_int_equal(cj_render_raster(s, &oc, 0, NULL, &img, &rep), CJ_ERR_CANCELLED);
+    assert_null(img);
+    oc.progress = NULL;
+    cj_render_image_destroy(render(s, &oc, 0, &rep));
+    const double planned = stage_value(&rep, "patches_planned");
+    const double reused = stage_value(&rep, "patches_reused");
+    if (planned != 1.0)
+        fail_msg("the frame after a cancelled one in the band planned %g patches (reused %g): "
+                 "want only the edited one",
+                 planned, reused);
+    printf("renderer with a cache, teapot 160x120 cached at 0.5 px: a frame needing 0.8 px after "
+           "an edit, cancelled at its first patch, then the next frame: %g patch planned, %g "
+           "reused (the band's tolerance kept across the cancel)\n",
+           planned, reused);
+    cj_render_cache_destroy(oc.cache);
+    cj_scene_destroy(s);
+}
+
 int main(void) {
     seed = cj_test_seed("test_tess_cancel", 25);
     const struct CMUnitTest tests[] = {
@@ -301,6 +356,7 @@ int main(void) {
         cmocka_unit_test(test_teapot_edits_cancelled),
         cmocka_unit_test(test_torus_edits_cancelled),
         cmocka_unit_test(test_render_cancelled),
+        cmocka_unit_test(test_render_cancelled_in_band),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -90,6 +90,9 @@ cj_status cj_rcache_tessellate(cj_render_cache *c, int node, const cj_patch *pat
     cj_tess_cache_set_progress(e->tess, c->progress ? tess_progress : NULL, c);
     const cj_status st = cj_tess_cache_update(e->tess, patches, count, opt, mesh, rep, stats);
     cj_tess_cache_set_progress(e->tess, NULL, NULL);
-    e->tol = st ? 0.0 : opt->tol;
+    /* a cancelled update keeps its finished patches and the earlier ones (tess_cache.h): keep
+     * the tolerance they were made at, so the next frame in the band resumes that work instead
+     * of re-tessellating every patch at the exact needed tolerance */
+    e->tol = st && st != CJ_ERR_CANCELLED ? 0.0 : opt->tol;
     return st;
 }

@@ -134,6 +134,8 @@ static unsigned *grab(Display *dpy, Window win) {
  * between them. */
 typedef struct drag_stats {
     int interactive, dropped, done_tess, shown_drag, consecutive_drops;
+    int whole;      /* drag frames that re-planned all 32 patches (the tolerance left its band) */
+    size_t planned; /* patches planned by drag frames */
     unsigned long last_interactive;
 } drag_stats;
 
@@ -164,6 +166,7 @@ static void scan(const char *tl, long from, drag_stats *ds) {
                                 &g, &d, &t, &planned, &built) == 5) {
             dropped_last = 0;
             if (inter[g & 0xffff] && built > 0) ++ds->done_tess;
+            if (inter[g & 0xffff]) ds->planned += planned, ds->whole += planned >= 32;
         } else if (ev && sscanf(ev, " shown gen %lu", &g) == 1 && inter[g & 0xffff]) {
             ++ds->shown_drag;
         }
@@ -306,11 +309,12 @@ static void test_drag_drops_preparing_frames(void **state) {
     assert_int_equal(diff, 0);
     printf("real drag of a teapot control point (%d drag%s of 40 moves): %d drag states, %d drag "
            "frames dropped while tessellating (never two in a row), %d drag frames re-tessellated "
-           "and drawn, %d presentations of drag frames; the still view after the release == "
+           "and drawn (%zu patches planned in all, %d frames re-planning all 32), %d presentations "
+           "of drag frames; the still view after the release == "
            "`casteljau render` of the "
            "saved scene, 0 of %d pixels differ\n",
-           tries, tries > 1 ? "s" : "", all.interactive, all.dropped, all.done_tess, all.shown_drag,
-           W * H);
+           tries, tries > 1 ? "s" : "", all.interactive, all.dropped, all.done_tess, all.planned,
+           all.whole, all.shown_drag, W * H);
 }
 
 int main(void) {
