@@ -1,6 +1,7 @@
 /* Vertices of a patch's grid, column by column: the u stage of the tensor de Casteljau once per
  * grid column, then each vertex's v stage, and (polynomial patches) S_u, S_v and the normal
- * from the same levels. Split from tessellate_build.c, which uses them. */
+ * from the same levels, also for the normals of the side points. Split from tessellate_build.c,
+ * which uses them. */
 #include "casteljau/tessellate.h"
 #include "patch_internal.h"
 #include "tessellate_internal.h"
@@ -78,4 +79,25 @@ void cj_tess_grid_normal(const ptess *P, const double su[3], const double sv[3],
     }
     if (cj_patch_normal_unchecked(P->p, P->h, P->hd, u, v, nrm, NULL) != CJ_OK)
         nrm[0] = nrm[1] = nrm[2] = 0.0; /* a patch collapsed to a curve: no normal */
+}
+
+/* The normals of a polynomial patch's side points o[s][1..k[s]-1] (side parameters tout) as a
+ * grid vertex's (cj_tess_grid_normal: S_u x S_v from the grid columns, the regular-case test of
+ * cj_patch_normal_unchecked, which stays the fallback). Sides u = 0 and u = 1 are one column
+ * each; a point of the sides v = 0 and v = 1 is its own column. */
+void cj_tess_side_normals(ptess *P, uint32_t *const o[4], double *const tout[4], const int k[4],
+                          double *col, double *dcol) {
+    for (int s = 0; s < 4; ++s) {
+        const int along_u = !(s & 1);
+        const double fixed = s == 1 || s == 2 ? 1.0 : 0.0;
+        if (!along_u) cj_tess_eval_column(P, fixed, col, dcol);
+        for (int a = 1; a < k[s]; ++a) {
+            const double t = tout[s][a], u = along_u ? t : fixed, v = along_u ? fixed : t;
+            if (along_u) cj_tess_eval_column(P, u, col, dcol);
+            double pt[3], su[3], sv[3];
+            cj_tess_eval_in_column(P, col, v, pt, sv);
+            cj_tess_eval_du(P, dcol, v, su);
+            cj_tess_grid_normal(P, su, sv, u, v, P->mesh->normals + 3 * (size_t)o[s][a]);
+        }
+    }
 }

@@ -99,27 +99,6 @@ static cj_status add_vertex(ptess *P, const double pos[3], double u, double v, i
     return cj_mesh_add_vertex(P->mesh, pos, nrm, uv, idx);
 }
 
-/* The normals of a polynomial patch's side points o[s][1..k[s]-1] (side parameters tout) as a
- * grid vertex's (cj_tess_grid_normal: S_u x S_v from the grid columns, the regular-case test of
- * cj_patch_normal_unchecked, which stays the fallback). Sides u = 0 and u = 1 are one column
- * each; a point of the sides v = 0 and v = 1 is its own column. */
-static void side_normals(ptess *P, uint32_t *const o[4], double *const tout[4], const int k[4],
-                         double *col, double *dcol) {
-    for (int s = 0; s < 4; ++s) {
-        const int along_u = !(s & 1);
-        const double fixed = s == 1 || s == 2 ? 1.0 : 0.0;
-        if (!along_u) cj_tess_eval_column(P, fixed, col, dcol);
-        for (int a = 1; a < k[s]; ++a) {
-            const double t = tout[s][a], u = along_u ? t : fixed, v = along_u ? fixed : t;
-            if (along_u) cj_tess_eval_column(P, u, col, dcol);
-            double pt[3], su[3], sv[3];
-            cj_tess_eval_in_column(P, col, v, pt, sv);
-            cj_tess_eval_du(P, dcol, v, su);
-            cj_tess_grid_normal(P, su, sv, u, v, P->mesh->normals + 3 * (size_t)o[s][a]);
-        }
-    }
-}
-
 /* Index of t among the zipper walk's breakpoints, or -1. */
 static int zip_find(const ptess *P, double t) {
     int lo = 0, hi = P->zip_n - 1;
@@ -489,7 +468,7 @@ cj_status cj_tess_build_patch(ptess *P, int nu, const double *ub, int nv, const 
             if ((st = add_vertex(P, pos, u, v, side_later, &o[s][a]))) goto done;
         }
     }
-    if (side_later) side_normals(P, o, tout, k, col, dcol);
+    if (side_later) cj_tess_side_normals(P, o, tout, k, col, dcol);
     /* grid vertices column by column (the u stage shared), stored row by row as before */
     for (int j = 1; j < nv; ++j)
         for (int i = 1; i < nu; ++i) {

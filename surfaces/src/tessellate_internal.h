@@ -176,6 +176,10 @@ void cj_tess_eval_du(const ptess *P, const double *dcol, double v, double du[3])
 /* The unit normal at a grid vertex from S_u, S_v (polynomial), else cj_patch_normal_unchecked. */
 void cj_tess_grid_normal(const ptess *P, const double su[3], const double sv[3], double u, double v,
                          double nrm[3]);
+/* The normals of a polynomial patch's side points o[s][1..k[s]-1] (side parameters tout) from
+ * grid columns, into the mesh; col, dcol: scratch of one column. */
+void cj_tess_side_normals(ptess *P, uint32_t *const o[4], double *const tout[4], const int k[4],
+                          double *col, double *dcol);
 
 /* ---- tessellate_bounds.c -------------------------------------------------------------- */
 /* Homogeneous rational bound of a box from its homogeneous sub-net (see the RATIONAL BOUND
