@@ -33,3 +33,6 @@ cj_add_test(test_offset_trim SOURCES query/test_offset_trim.c)
 # the teapot, a B-spline surface's patches, against long-double crossings and Newton projections.
 cj_add_test(test_section_curves SOURCES query/test_section_curves.c LIBS cj::surfaces)
 target_compile_definitions(test_section_curves PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+if(CJ_WITH_OIIO AND TARGET cj::viz)
+  target_compile_definitions(test_cli_section PRIVATE CJ_HAVE_PLOT=1)
+endif()

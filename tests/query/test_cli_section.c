@@ -1,7 +1,9 @@
 /* Contract of `casteljau section` and `casteljau nearest` on patches: the sphere octant cut at
- * z = 1/2 gives one open line on the circle of radius sqrt(3)/2 with a deviation within --tol;
- * the teapot's section and nearest point run; an OBJ of the lines is written; bad input is
- * refused with exit status 2 and one line naming it. */
+ * z = 1/2 gives one open curve of cubic pieces on the circle of radius sqrt(3)/2 within the
+ * reported deviation <= --tol; the teapot cut at z = 1.5 gives three closed curves (joined across
+ * its patches), --json a plot document that plot draws; an OBJ of the lines is written; nearest
+ * on the octant from its centre is certified at tol 1e-9; bad input is refused with exit status 2
+ * and one line naming it. */
 #include "check.h"
 #include "cli_run.h"
 
@@ -35,22 +37,31 @@ int main(void) {
              exe, CJ_TMP_DIR);
     if (cj_cli_shell(cmd, &r) == 0) {
         CHECK(r.status == 0, "section status %d: %s", r.status, r.err);
-        CHECK(count_prefix(r.out, "line 0 0 open ") == 1, "one open line:\n%.300s", r.out);
+        CHECK(count_prefix(r.out, "curve 0 open ") == 1, "one open curve:\n%.300s", r.out);
+        /* every piece (12 numbers: 4 control points) sampled: on the circle of radius
+         * sqrt(3)/2 at z = 1/2 within the reported deviation */
         double worst = 0, dev = -1;
-        int pts = 0;
+        int pieces = 0;
         for (const char *p = r.out; p && *p;) {
-            double x, y, z;
-            if (sscanf(p, "%lf %lf %lf", &x, &y, &z) == 3 && strncmp(p, "line", 4) != 0) {
-                worst = fmax(worst, fmax(fabs(hypot(x, y) - sqrt(0.75)), fabs(z - 0.5)));
-                ++pts;
+            double B[12];
+            if (sscanf(p, "%lf %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf", B, B + 1, B + 2, B + 3,
+                       B + 4, B + 5, B + 6, B + 7, B + 8, B + 9, B + 10, B + 11) == 12) {
+                for (int i = 0; i <= 16; ++i) {
+                    double t = i / 16.0, s = 1 - t, x[3];
+                    for (int k = 0; k < 3; ++k)
+                        x[k] = s * s * s * B[k] + 3 * s * s * t * B[3 + k] +
+                               3 * s * t * t * B[6 + k] + t * t * t * B[9 + k];
+                    worst = fmax(worst, hypot(hypot(x[0], x[1]) - sqrt(0.75), x[2] - 0.5));
+                }
+                ++pieces;
             }
             const char *s = strstr(p, "deviation ");
             if (!strncmp(p, "section ", 8) && s) dev = atof(s + 10);
             p = strchr(p, '\n');
             if (p) ++p;
         }
-        CHECK(pts > 10 && worst < 1e-13 && dev > 0 && dev <= 0.01,
-              "%d points, worst %g off the circle, deviation %g", pts, worst, dev);
+        CHECK(pieces >= 1 && worst <= dev && dev > 0 && dev <= 0.01,
+              "%d pieces, worst %g off the circle, deviation %g", pieces, worst, dev);
         cj_cli_result_free(&r);
         snprintf(cmd, sizeof cmd, "grep -c '^l ' %s/section.obj", CJ_TMP_DIR);
         if (cj_cli_shell(cmd, &r) == 0) {
@@ -59,17 +70,38 @@ int main(void) {
         }
         checks += 4;
     }
+    /* the teapot cut at z = 1.5: body, spout and handle, three closed curves joined over the
+     * patches */
     snprintf(cmd, sizeof cmd, "%s section --plane 0,0,1,1.5 --teapot", exe);
     if (cj_cli_shell(cmd, &r) == 0) {
-        CHECK(r.status == 0 && count_prefix(r.out, "section patches 32 lines ") == 1,
-              "teapot section: %d\n%s", r.status, r.err);
+        CHECK(r.status == 0 && count_prefix(r.out, "section patches 32 curves 3 closed 3 ") == 1,
+              "teapot section: %d\n%s%s", r.status, r.err, strstr(r.out, "section patches"));
         cj_cli_result_free(&r);
         ++checks;
     }
+    /* --json: a plot document of three cubic B-spline items, which plot reads */
+    snprintf(cmd, sizeof cmd,
+             "%s section --plane 0,0,1,1.5 --teapot --json > %s/section.json && grep -c "
+             "'\"bspline\"' %s/section.json",
+             exe, CJ_TMP_DIR, CJ_TMP_DIR);
+    if (cj_cli_shell(cmd, &r) == 0) {
+        CHECK(r.status == 0 && atoi(r.out) == 3, "section --json: %s %s", r.out, r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+#ifdef CJ_HAVE_PLOT
+    snprintf(cmd, sizeof cmd, "%s plot %s/section.json -o %s/section.png", exe, CJ_TMP_DIR,
+             CJ_TMP_DIR);
+    if (cj_cli_shell(cmd, &r) == 0) {
+        CHECK(r.status == 0, "plot of the section: %s", r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+#endif
     /* the octant seen from its centre (every point at distance 1), and from (2,2,2): the nearest
      * point is (1,1,1)/sqrt(3) at distance 2 sqrt(3) - 1 */
-    const char *pts[2] = {"0,0,0 --tol 1e-3", "2,2,2 --tol 1e-9"};
-    const double want[2] = {1.0, 2 * sqrt(3.0) - 1}, tols[2] = {1e-3, 1e-9};
+    const char *pts[2] = {"0,0,0 --tol 1e-9", "2,2,2 --tol 1e-9"};
+    const double want[2] = {1.0, 2 * sqrt(3.0) - 1}, tols[2] = {1e-9, 1e-9};
     for (int k = 0; k < 2; ++k) {
         snprintf(cmd, sizeof cmd, "%s nearest --point %s " OCTANT, exe, pts[k]);
         if (cj_cli_shell(cmd, &r) != 0) continue;
@@ -114,7 +146,9 @@ int main(void) {
         {"section --plane 0,0,1,1", "no model"},
         {"section --plane 0,0,1,1 --teapot --tol -1", "--tol"},
         {"section --plane 0,0,1,1 --patch '0,0,0;1,0,0' --degree 1,1", "--patch"},
-        {"section --plane 0,0,1,1 --teapot -o x.png", ".obj"},
+        {"section --plane 0,0,1,1 --teapot -o x.png", ".obj or .json"},
+        {"section --plane 0,0,1,1 --surface /nonexistent.json", "--surface"},
+        {"section --plane 0,0,1,1 --teapot --surface x.json", "give one of"},
         {"nearest --point 0,0 --teapot", "--point"},
         {"nearest --point 0,0,nan --teapot", "--point"},
         {"nearest --point 0,0,0 --teapot --plane 0,0,1,0", "does not apply"},
@@ -129,7 +163,8 @@ int main(void) {
         ++checks;
     }
     printf("test_cli_section: %d checks (sphere octant section on its circle within the proven "
-           "deviation, OBJ lines, teapot section, nearest on a patch, offset --trim, %zu bad "
+           "deviation, OBJ lines, the teapot's three closed curves, --json and plot, nearest on a "
+           "patch, offset --trim, %zu bad "
            "inputs refused)\n",
            checks, sizeof bad / sizeof bad[0]);
     return cj_check_exit();
