@@ -70,6 +70,20 @@ static const char offset_usage[] =
     "Output: the document with the pieces added as \"bezier\" items (purple). Exit status as\n"
     "for intersect.\n";
 
+static const char reduce_usage[] =
+    "usage: casteljau reduce (--degree M | --tol T) [--text] [FILE|-]\n"
+    "Lowers the degree of the polynomial \"bezier\" items of a plot JSON document (as for\n"
+    "'casteljau intersect'): least squares on the control points, end points kept, with a PROVEN\n"
+    "bound on max |c(t) - r(t)| (both curves written in the higher degree are convex\n"
+    "combinations of their control points with the same weights; see\n"
+    "  " CJ_DOC_DIR "/queries.md).\n"
+    "  --degree  the degree M to reduce to (curves of degree <= M are left as they are)\n"
+    "  --tol     instead: the lowest degree whose proven bound is <= T (a curve that no lower\n"
+    "            degree represents within T is left as it is)\n"
+    "  --text    one line per curve: 'reduced I FROM TO BOUND' then the TO+1 points X Y\n"
+    "Output: the document with each reduced curve added as a \"bezier\" item (orange). Rational\n"
+    "items are refused naming them. Exit status as for intersect.\n";
+
 typedef struct qcurve {
     int item; /* index in the panel's items */
     int degree;
@@ -236,7 +250,8 @@ static void print_isect(const cj_isect *r, int i, int j) {
 }
 
 typedef struct qopts {
-    double tol; /* 0: default */
+    int reduce_to; /* reduce: --degree M (0: by --tol) */
+    double tol;    /* 0: default */
     int self, have_line, text;
     double line[4];
     double point[2];
@@ -448,6 +463,59 @@ static int offset_panel(cJSON *panel, const char *where, const qopts *o) {
     return rc;
 }
 
+static int reduce_panel(cJSON *panel, const char *where, const qopts *o) {
+    cJSON *items = cJSON_GetObjectItemCaseSensitive(panel, "items");
+    qcurve cv[QUERY_MAX_CURVES];
+    int rc = 0, nc = read_curves("reduce", items, where, cv, &rc);
+    if (nc < 0) return rc;
+    double out[2 * (CJ_QUERY_MAX_DEGREE + 1)];
+    for (int i = 0; i < nc && !rc; ++i) {
+        if (cv[i].w) {
+            rc = cli_fail("reduce", "%sitems[%d]: a rational curve (weights) is not reduced", where,
+                          cv[i].item);
+            break;
+        }
+        int n = cv[i].degree, to = n;
+        double bound = 0.0;
+        cj_bezier c = cj_bezier_view(n, 2, cv[i].pts);
+        for (int m = o->reduce_to ? o->reduce_to : 1; m < n; ++m) {
+            double b;
+            cj_status st = cj_bezier_reduce(&c, m, out, &b);
+            if (st) {
+                rc = query_fail("reduce", where, &cv[i], NULL, st);
+                break;
+            }
+            if (o->reduce_to || b <= o->tol) {
+                to = m, bound = b;
+                break;
+            }
+        }
+        if (rc) break;
+        if (to == n) memcpy(out, cv[i].pts, sizeof(double) * 2 * (size_t)(n + 1));
+        if (o->text) {
+            printf("reduced %d %d %d ", cv[i].item, n, to);
+            cli_print_double(bound);
+            printf("\n");
+            for (int j = 0; j <= to; ++j) {
+                cli_print_double(out[2 * j]);
+                printf(" ");
+                cli_print_double(out[2 * j + 1]);
+                printf("\n");
+            }
+        }
+        if (to == n) continue;
+        cJSON *it = cJSON_CreateObject(), *pa = cJSON_CreateArray();
+        cJSON_AddStringToObject(it, "type", "bezier");
+        for (int j = 0; j <= to; ++j)
+            cJSON_AddItemToArray(pa, pair_json(out[2 * j], out[2 * j + 1]));
+        cJSON_AddItemToObject(it, "points", pa);
+        cJSON_AddStringToObject(it, "color", "#ff7f0e");
+        cJSON_AddItemToArray(items, it);
+    }
+    free_curves(cv, nc);
+    return rc;
+}
+
 static int run_doc(const char *cmd, const char *path, const qopts *o,
                    int (*panel_fn)(cJSON *, const char *, const qopts *)) {
     int rc = 0;
@@ -508,13 +576,13 @@ static int parse_numbers(const char *cmd, const char *opt, const char *v, double
     return 0;
 }
 
-enum { Q_INTERSECT, Q_NEAREST, Q_OFFSET };
+enum { Q_INTERSECT, Q_NEAREST, Q_OFFSET, Q_REDUCE };
 
 static int query_main(const char *cmd, const char *usage, int argc, char **argv, int which) {
-    enum { O_TOL, O_SELF, O_LINE, O_TEXT, O_POINT, O_DIST, O_TRIM };
+    enum { O_TOL, O_SELF, O_LINE, O_TEXT, O_POINT, O_DIST, O_TRIM, O_DEGREE };
     static const cli_opt opts[] = {
         {"--tol", NULL, 1},   {"--self", NULL, 0},     {"--line", NULL, 1}, {"--text", NULL, 0},
-        {"--point", NULL, 1}, {"--distance", NULL, 1}, {"--trim", NULL, 0}};
+        {"--point", NULL, 1}, {"--distance", NULL, 1}, {"--trim", NULL, 0}, {"--degree", NULL, 1}};
     cli_parser ps;
     cli_parser_init(&ps, cmd, usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
     qopts o;
@@ -535,6 +603,15 @@ static int query_main(const char *cmd, const char *usage, int argc, char **argv,
                                 cli_quote(v, q, sizeof q));
         } else if (k == O_TEXT) {
             o.text = 1;
+        } else if (k == O_DEGREE) {
+            if (which != Q_REDUCE)
+                return cli_fail(cmd, "--degree does not apply to '%s' (try 'casteljau %s --help')",
+                                cmd, cmd);
+            long m;
+            if (cli_parse_int(v, 1, CJ_QUERY_MAX_DEGREE, &m))
+                return cli_fail(cmd, "--degree '%s' is not an integer in 1..%d",
+                                cli_quote(v, q, sizeof q), CJ_QUERY_MAX_DEGREE);
+            o.reduce_to = (int)m;
         } else if (k == O_TRIM) {
             if (which != Q_OFFSET)
                 return cli_fail(cmd, "--trim does not apply to '%s' (try 'casteljau %s --help')",
@@ -564,9 +641,12 @@ static int query_main(const char *cmd, const char *usage, int argc, char **argv,
     if (status >= 0) return status;
     if (which == Q_NEAREST && !have_point) return cli_fail(cmd, "missing --point X,Y");
     if (which == Q_OFFSET && !have_dist) return cli_fail(cmd, "missing --distance D");
+    if (which == Q_REDUCE && (o.reduce_to > 0) == (o.tol > 0))
+        return cli_fail(cmd, "give one of --degree M or --tol T");
     return run_doc(cmd, path ? path : "-", &o,
                    which == Q_NEAREST  ? nearest_panel
                    : which == Q_OFFSET ? offset_panel
+                   : which == Q_REDUCE ? reduce_panel
                                        : intersect_panel);
 }
 
@@ -578,11 +658,15 @@ int cmd_nearest(int argc, char **argv) {
     /* a patch model makes it the 3D query (cmd_section.c) */
     for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; ++i)
         if (!strncmp(argv[i], "--teapot", 8) || !strncmp(argv[i], "--bpt", 5) ||
-            !strncmp(argv[i], "--patch", 7))
+            !strncmp(argv[i], "--patch", 7) || !strncmp(argv[i], "--surface", 9))
             return cmd_nearest_patch(argc, argv);
     return query_main("nearest", nearest_usage, argc, argv, Q_NEAREST);
 }
 
 int cmd_offset(int argc, char **argv) {
     return query_main("offset", offset_usage, argc, argv, Q_OFFSET);
+}
+
+int cmd_reduce(int argc, char **argv) {
+    return query_main("reduce", reduce_usage, argc, argv, Q_REDUCE);
 }

@@ -46,7 +46,7 @@ static const char section_usage[] =
     "Exit status 0; 2 for a bad argument or input, naming it.\n";
 
 static const char nearest_patch_usage[] =
-    "usage: casteljau nearest --point X,Y,Z (--teapot | --bpt FILE |\n"
+    "usage: casteljau nearest --point X,Y,Z (--teapot | --bpt FILE | --surface FILE.json |\n"
     "                         --patch \"x,y,z;...\" --degree M,N [--weights \"w;...\"]) [--tol T]\n"
     "The certified nearest point of the patches to (X,Y,Z): branch and bound with proven lower\n"
     "bounds, so the answer is the global minimum within T (default 1e-9 times the size).\n"

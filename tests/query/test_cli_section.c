@@ -137,6 +137,62 @@ int main(void) {
         cj_cli_result_free(&r);
         ++checks;
     }
+    /* reduce: a cubic elevated to degree 5 comes back as a cubic at --tol 1e-9 (bound at rounding
+     * level); a wavy quintic reduced to degree 3: the proven bound is never below the distance
+     * between the two curves at 2001 parameters */
+    snprintf(cmd, sizeof cmd,
+             "printf '%%s' '{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[0.6,1.2],[1.2,1.8],"
+             "[1.8,1.8],[2.4,1.2],[3,0]]},{\"type\":\"bezier\",\"points\":[[0,0],[1,2],[2,-1],[3,"
+             "1],[4,0],[5,1]]}]}' | %s reduce --tol 1e-9 --text - && printf '%%s' "
+             "'{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,2],[2,-1],[3,1],[4,0],[5,"
+             "1]]}]}' | %s reduce --degree 3 --text -",
+             exe, exe);
+    if (cj_cli_shell(cmd, &r) == 0) {
+        int item = -1, from = 0, to = 0, seen = 0;
+        double bound = -1, q[6][2];
+        const double quintic[6][2] = {{0, 0}, {1, 2}, {2, -1}, {3, 1}, {4, 0}, {5, 1}};
+        for (const char *p = r.out; p && *p;) {
+            if (sscanf(p, "reduced %d %d %d %lf", &item, &from, &to, &bound) == 4) {
+                const char *l = p;
+                for (int j = 0; j <= to && j < 6; ++j) {
+                    l = strchr(l, '\n');
+                    if (!l || sscanf(++l, "%lf %lf", &q[j][0], &q[j][1]) != 2) break;
+                }
+                if (seen == 0) /* the elevated cubic */
+                    CHECK(to == 3 && bound < 1e-12, "elevated cubic: to %d bound %g", to, bound);
+                if (seen == 1) /* the quintic: no degree below 5 within 1e-9 */
+                    CHECK(to == 5 && bound == 0, "quintic at 1e-9: to %d bound %g", to, bound);
+                if (seen == 2 && to == 3) { /* the quintic reduced to a cubic */
+                    double worst = 0;
+                    for (int i = 0; i <= 2000; ++i) {
+                        double t = i / 2000.0, a[6][2], b[4][2];
+                        memcpy(a, quintic, sizeof a);
+                        memcpy(b, q, sizeof b);
+                        for (int rr = 5; rr > 0; --rr)
+                            for (int j = 0; j < rr; ++j)
+                                for (int k = 0; k < 2; ++k)
+                                    a[j][k] = (1 - t) * a[j][k] + t * a[j + 1][k];
+                        for (int rr = 3; rr > 0; --rr)
+                            for (int j = 0; j < rr; ++j)
+                                for (int k = 0; k < 2; ++k)
+                                    b[j][k] = (1 - t) * b[j][k] + t * b[j + 1][k];
+                        worst = fmax(worst, hypot(a[0][0] - b[0][0], a[0][1] - b[0][1]));
+                    }
+                    CHECK(worst <= bound && worst > 0, "quintic -> cubic: distance %g, bound %g",
+                          worst, bound);
+                    printf("reduce: quintic -> cubic, proven bound %.4g, sampled distance %.4g\n",
+                           bound, worst);
+                }
+                ++seen;
+            }
+            p = strchr(p, '\n');
+            if (p) ++p;
+        }
+        CHECK(r.status == 0 && seen == 3, "reduce: status %d, %d curves\n%s", r.status, seen,
+              r.err);
+        cj_cli_result_free(&r);
+        checks += 4;
+    }
     struct {
         const char *args, *needle;
     } bad[] = {
@@ -153,6 +209,9 @@ int main(void) {
         {"nearest --point 0,0,nan --teapot", "--point"},
         {"nearest --point 0,0,0 --teapot --plane 0,0,1,0", "does not apply"},
         {"intersect --trim -", "--trim does not apply"},
+        {"reduce docs/none.json", "give one of --degree M or --tol T"},
+        {"reduce --degree 0 -", "--degree '0'"},
+        {"offset --degree 2 --distance 1 -", "--degree does not apply"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         snprintf(cmd, sizeof cmd, "%s %s", exe, bad[i].args);
@@ -164,7 +223,7 @@ int main(void) {
     }
     printf("test_cli_section: %d checks (sphere octant section on its circle within the proven "
            "deviation, OBJ lines, the teapot's three closed curves, --json and plot, nearest on a "
-           "patch, offset --trim, %zu bad "
+           "patch, offset --trim, reduce against sampled distances, %zu bad "
            "inputs refused)\n",
            checks, sizeof bad / sizeof bad[0]);
     return cj_check_exit();
