@@ -137,9 +137,9 @@ int main(void) {
         cj_cli_result_free(&r);
         ++checks;
     }
-    /* reduce: a cubic elevated to degree 5 comes back as a cubic at --tol 1e-9 (bound at rounding
-     * level); a wavy quintic reduced to degree 3: the proven bound is never below the distance
-     * between the two curves at 2001 parameters */
+    /* reduce: a parabola elevated to degree 5 comes back as degree 2 at --tol 1e-9 (bound at
+     * rounding level); a wavy quintic reduced to degree 3: the proven bound is never below the
+     * distance between the two curves at 2001 parameters */
     snprintf(cmd, sizeof cmd,
              "printf '%%s' '{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[0.6,1.2],[1.2,1.8],"
              "[1.8,1.8],[2.4,1.2],[3,0]]},{\"type\":\"bezier\",\"points\":[[0,0],[1,2],[2,-1],[3,"
@@ -158,8 +158,8 @@ int main(void) {
                     l = strchr(l, '\n');
                     if (!l || sscanf(++l, "%lf %lf", &q[j][0], &q[j][1]) != 2) break;
                 }
-                if (seen == 0) /* the elevated cubic */
-                    CHECK(to == 3 && bound < 1e-12, "elevated cubic: to %d bound %g", to, bound);
+                if (seen == 0) /* the elevated parabola */
+                    CHECK(to == 2 && bound < 1e-12, "elevated parabola: to %d bound %g", to, bound);
                 if (seen == 1) /* the quintic: no degree below 5 within 1e-9 */
                     CHECK(to == 5 && bound == 0, "quintic at 1e-9: to %d bound %g", to, bound);
                 if (seen == 2 && to == 3) { /* the quintic reduced to a cubic */
