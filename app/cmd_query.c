@@ -57,7 +57,9 @@ static const char nearest_usage[] =
     "M,N) [--tol T] (see 'casteljau nearest --point 0,0,0 --teapot --help').\n";
 
 static const char offset_usage[] =
-    "usage: casteljau offset --distance D [--tol T] [--trim] [--text] [FILE|-]\n"
+    "usage: casteljau offset --distance D [--tol T] [--trim | --outline [--cap "
+    "butt|round|square]]\n"
+    "                        [--text] [FILE|-]\n"
     "Offsets the \"bezier\" items of a plot JSON document (as for 'casteljau intersect') by D\n"
     "(positive: to the left of the direction of travel) as cubic Bezier pieces, each proven\n"
     "within T of the exact offset (cusps followed, loops kept: see\n"
@@ -65,6 +67,11 @@ static const char offset_usage[] =
     "  --tol   default 1e-6 times the size of the curves and D\n"
     "  --trim  cut the offset at its self-crossings and drop the spans nearer to the curve\n"
     "          than D (swallowtails of tight bends; an arc offset inwards past its radius)\n"
+    "  --outline  the outline of the stroke of half-width |D| instead: the offsets at +|D| and\n"
+    "          -|D| joined by end caps into one closed loop (an open curve), or two closed loops\n"
+    "          (a closed curve: round joins at a corner of the seam)\n"
+    "  --cap   the end caps of --outline: butt (default), round (a proven half circle) or square\n"
+    "A cusp of a curve (its derivative vanishes) is completed by an arc of radius |D| about it.\n"
     "  --text  one line per piece: I K X0 Y0 X1 Y1 X2 Y2 X3 Y3 (item, piece), then\n"
     "          'deviation I PIECES DEV CUSPS [DROPPED]' per curve (DROPPED with --trim)\n"
     "Output: the document with the pieces added as \"bezier\" items (purple). Exit status as\n"
@@ -251,6 +258,7 @@ static void print_isect(const cj_isect *r, int i, int j) {
 
 typedef struct qopts {
     int reduce_to; /* reduce: --degree M (0: by --tol) */
+    int outline;   /* offset --outline: 1 + the cap (cj_offset_cap) */
     double tol;    /* 0: default */
     int self, have_line, text;
     double line[4];
@@ -416,7 +424,11 @@ static int offset_panel(cJSON *panel, const char *where, const qopts *o) {
         cj_bezier2 A = cj_bezier2_view(cv[i].degree, cv[i].pts, cv[i].w);
         int np = 0, cusps = 0;
         double dev = 0;
-        cj_status st = cj_offset_curve(&A, o->distance, tol, pts, NULL, CAP, &np, &dev, &cusps);
+        cj_status st =
+            o->outline
+                ? cj_offset_outline(&A, fabs(o->distance), tol, (cj_offset_cap)(o->outline - 1),
+                                    pts, NULL, CAP, &np, &dev, &cusps)
+                : cj_offset_curve(&A, o->distance, tol, pts, NULL, CAP, &np, &dev, &cusps);
         if (st) {
             rc = query_fail("offset", where, &cv[i], NULL, st);
             break;
@@ -579,10 +591,12 @@ static int parse_numbers(const char *cmd, const char *opt, const char *v, double
 enum { Q_INTERSECT, Q_NEAREST, Q_OFFSET, Q_REDUCE };
 
 static int query_main(const char *cmd, const char *usage, int argc, char **argv, int which) {
-    enum { O_TOL, O_SELF, O_LINE, O_TEXT, O_POINT, O_DIST, O_TRIM, O_DEGREE };
+    enum { O_TOL, O_SELF, O_LINE, O_TEXT, O_POINT, O_DIST, O_TRIM, O_DEGREE, O_OUTLINE, O_CAP };
     static const cli_opt opts[] = {
-        {"--tol", NULL, 1},   {"--self", NULL, 0},     {"--line", NULL, 1}, {"--text", NULL, 0},
-        {"--point", NULL, 1}, {"--distance", NULL, 1}, {"--trim", NULL, 0}, {"--degree", NULL, 1}};
+        {"--tol", NULL, 1},     {"--self", NULL, 0},     {"--line", NULL, 1}, {"--text", NULL, 0},
+        {"--point", NULL, 1},   {"--distance", NULL, 1}, {"--trim", NULL, 0}, {"--degree", NULL, 1},
+        {"--outline", NULL, 0}, {"--cap", NULL, 1}};
+    const char *cap_name = NULL;
     cli_parser ps;
     cli_parser_init(&ps, cmd, usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
     qopts o;
@@ -612,6 +626,18 @@ static int query_main(const char *cmd, const char *usage, int argc, char **argv,
                 return cli_fail(cmd, "--degree '%s' is not an integer in 1..%d",
                                 cli_quote(v, q, sizeof q), CJ_QUERY_MAX_DEGREE);
             o.reduce_to = (int)m;
+        } else if (k == O_OUTLINE || k == O_CAP) {
+            if (which != Q_OFFSET)
+                return cli_fail(cmd, "%s does not apply to '%s' (try 'casteljau %s --help')",
+                                opts[k].name, cmd, cmd);
+            if (k == O_OUTLINE) {
+                o.outline = o.outline ? o.outline : 1;
+            } else if (!strcmp(v, "butt") || !strcmp(v, "round") || !strcmp(v, "square")) {
+                cap_name = v;
+            } else {
+                return cli_fail(cmd, "--cap '%s' is not butt, round or square",
+                                cli_quote(v, q, sizeof q));
+            }
         } else if (k == O_TRIM) {
             if (which != Q_OFFSET)
                 return cli_fail(cmd, "--trim does not apply to '%s' (try 'casteljau %s --help')",
@@ -641,6 +667,13 @@ static int query_main(const char *cmd, const char *usage, int argc, char **argv,
     if (status >= 0) return status;
     if (which == Q_NEAREST && !have_point) return cli_fail(cmd, "missing --point X,Y");
     if (which == Q_OFFSET && !have_dist) return cli_fail(cmd, "missing --distance D");
+    if (cap_name && !o.outline) return cli_fail(cmd, "--cap needs --outline");
+    if (o.outline && o.trim) return cli_fail(cmd, "give --trim or --outline, not both");
+    if (o.outline && o.distance == 0) return cli_fail(cmd, "--outline needs --distance D != 0");
+    if (cap_name)
+        o.outline = 1 + (!strcmp(cap_name, "round")    ? CJ_OFFSET_CAP_ROUND
+                         : !strcmp(cap_name, "square") ? CJ_OFFSET_CAP_SQUARE
+                                                       : CJ_OFFSET_CAP_BUTT);
     if (which == Q_REDUCE && (o.reduce_to > 0) == (o.tol > 0))
         return cli_fail(cmd, "give one of --degree M or --tol T");
     return run_doc(cmd, path ? path : "-", &o,
