@@ -36,3 +36,6 @@ target_compile_definitions(test_section_curves PRIVATE CJ_TEAPOT_PATH="${PROJECT
 if(CJ_WITH_OIIO AND TARGET cj::viz)
   target_compile_definitions(test_cli_section PRIVATE CJ_HAVE_PLOT=1)
 endif()
+# Stroke outlines (butt/round/square caps, closed curves) and offsets through a cusp, against the
+# exact offsets and caps in long double, both ways.
+cj_add_test(test_offset_outline SOURCES query/test_offset_outline.c)
