@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "cli_guard.h"
 #include "file_internal.h"
+#include "query_doc.h"
 
 #include "casteljau/bezier.h"
 #include "casteljau/intersect.h"
@@ -20,7 +21,6 @@
 #include <string.h>
 
 #define QUERY_MAX_BYTES   ((size_t)64 << 20)
-#define QUERY_MAX_CURVES  256
 #define QUERY_MAX_RESULTS 4096
 
 static const char intersect_usage[] =
@@ -55,47 +55,6 @@ static const char nearest_usage[] =
     "Exit status as for intersect.\n"
     "On patches: casteljau nearest --point X,Y,Z (--teapot | --bpt FILE | --patch ... --degree\n"
     "M,N) [--tol T] (see 'casteljau nearest --point 0,0,0 --teapot --help').\n";
-
-static const char offset_usage[] =
-    "usage: casteljau offset --distance D [--tol T] [--trim | --outline [--cap "
-    "butt|round|square]]\n"
-    "                        [--text] [FILE|-]\n"
-    "Offsets the \"bezier\" items of a plot JSON document (as for 'casteljau intersect') by D\n"
-    "(positive: to the left of the direction of travel) as cubic Bezier pieces, each proven\n"
-    "within T of the exact offset (cusps followed, loops kept: see\n"
-    "  " CJ_DOC_DIR "/queries.md).\n"
-    "  --tol   default 1e-6 times the size of the curves and D\n"
-    "  --trim  cut the offset at its self-crossings and drop the spans nearer to the curve\n"
-    "          than D (swallowtails of tight bends; an arc offset inwards past its radius)\n"
-    "  --outline  the outline of the stroke of half-width |D| instead: the offsets at +|D| and\n"
-    "          -|D| joined by end caps into one closed loop (an open curve), or two closed loops\n"
-    "          (a closed curve: round joins at a corner of the seam)\n"
-    "  --cap   the end caps of --outline: butt (default), round (a proven half circle) or square\n"
-    "A cusp of a curve (its derivative vanishes) is completed by an arc of radius |D| about it.\n"
-    "  --text  one line per piece: I K X0 Y0 X1 Y1 X2 Y2 X3 Y3 (item, piece), then\n"
-    "          'deviation I PIECES DEV CUSPS [DROPPED]' per curve (DROPPED with --trim)\n"
-    "Output: the document with the pieces added as \"bezier\" items (purple). Exit status as\n"
-    "for intersect.\n";
-
-static const char reduce_usage[] =
-    "usage: casteljau reduce (--degree M | --tol T) [--text] [FILE|-]\n"
-    "Lowers the degree of the polynomial \"bezier\" items of a plot JSON document (as for\n"
-    "'casteljau intersect'): least squares on the control points, end points kept, with a PROVEN\n"
-    "bound on max |c(t) - r(t)| (both curves written in the higher degree are convex\n"
-    "combinations of their control points with the same weights; see\n"
-    "  " CJ_DOC_DIR "/queries.md).\n"
-    "  --degree  the degree M to reduce to (curves of degree <= M are left as they are)\n"
-    "  --tol     instead: the lowest degree whose proven bound is <= T (a curve that no lower\n"
-    "            degree represents within T is left as it is)\n"
-    "  --text    one line per curve: 'reduced I FROM TO BOUND' then the TO+1 points X Y\n"
-    "Output: the document with each reduced curve added as a \"bezier\" item (orange). Rational\n"
-    "items are refused naming them. Exit status as for intersect.\n";
-
-typedef struct qcurve {
-    int item; /* index in the panel's items */
-    int degree;
-    double *pts, *w;
-} qcurve;
 
 static char *read_all(const char *cmd, const char *path, int *rc) {
     char q[160];
@@ -137,15 +96,14 @@ static char *read_all(const char *cmd, const char *path, int *rc) {
 }
 
 /* The bezier items of one panel's "items" array. Returns the count, or -1 with a message. */
-static void free_curves(qcurve *cv, int nc) {
+void free_curves(qcurve *cv, int nc) {
     for (int i = 0; i < nc; ++i) {
         free(cv[i].pts);
         free(cv[i].w);
     }
 }
 
-static int read_curves(const char *cmd, const cJSON *items, const char *where, qcurve *cv,
-                       int *rc) {
+int read_curves(const char *cmd, const cJSON *items, const char *where, qcurve *cv, int *rc) {
     int nc = 0, idx = 0;
     for (const cJSON *it = items ? items->child : NULL; it; it = it->next, ++idx) {
         const cJSON *t = cJSON_GetObjectItemCaseSensitive(it, "type");
@@ -207,7 +165,7 @@ fail: /* the caller sees only -1: the curves read before the bad item are freed 
 }
 
 /* Size of a panel: max |coordinate| of its curves (and extra points), at least tiny. */
-static double panel_size(const qcurve *cv, int nc, const double *extra, int nextra) {
+double panel_size(const qcurve *cv, int nc, const double *extra, int nextra) {
     double s = 0.0;
     for (int i = 0; i < nc; ++i)
         for (int k = 0; k < 2 * (cv[i].degree + 1); ++k)
@@ -217,7 +175,7 @@ static double panel_size(const qcurve *cv, int nc, const double *extra, int next
     return s > 0 ? s : 1.0;
 }
 
-static cJSON *pair_json(double x, double y) {
+cJSON *pair_json(double x, double y) {
     cJSON *p = cJSON_CreateArray();
     cJSON_AddItemToArray(p, cJSON_CreateNumber(x));
     cJSON_AddItemToArray(p, cJSON_CreateNumber(y));
@@ -234,8 +192,7 @@ static cJSON *points_item(const char *color, double radius) {
 }
 
 /* Message of a failed query, naming the panel and items. */
-static int query_fail(const char *cmd, const char *where, const qcurve *a, const qcurve *b,
-                      cj_status st) {
+int query_fail(const char *cmd, const char *where, const qcurve *a, const qcurve *b, cj_status st) {
     char items[64];
     if (b && b != a)
         snprintf(items, sizeof items, "items[%d] and items[%d]", a->item, b->item);
@@ -255,17 +212,6 @@ static void print_isect(const cj_isect *r, int i, int j) {
     }
     printf("\n");
 }
-
-typedef struct qopts {
-    int reduce_to; /* reduce: --degree M (0: by --tol) */
-    int outline;   /* offset --outline: 1 + the cap (cj_offset_cap) */
-    double tol;    /* 0: default */
-    int self, have_line, text;
-    double line[4];
-    double point[2];
-    double distance;
-    int trim; /* offset: drop the loops (cj_offset_trim) */
-} qopts;
 
 /* Adds the answers of one result to the panel's marker items. */
 static void mark(cJSON *items, cJSON *cross, cJSON *contact, const cj_isect *r, const qcurve *a) {
@@ -403,129 +349,6 @@ static int nearest_panel(cJSON *panel, const char *where, const qopts *o) {
     cJSON_AddItemToArray(items, q);
     cJSON_AddItemToArray(items, n);
     return 0;
-}
-
-static int offset_panel(cJSON *panel, const char *where, const qopts *o) {
-    cJSON *items = cJSON_GetObjectItemCaseSensitive(panel, "items");
-    qcurve cv[QUERY_MAX_CURVES];
-    int rc = 0, nc = read_curves("offset", items, where, cv, &rc);
-    if (nc < 0) return rc;
-    double dd[1] = {o->distance};
-    double tol = o->tol > 0 ? o->tol : 1e-6 * (panel_size(cv, nc, dd, 1) + fabs(o->distance));
-    enum { CAP = 1 << 16 };
-    double *pts = malloc(sizeof(double) * 8 * CAP), *kept = malloc(sizeof(double) * 8 * CAP);
-    if (!pts || !kept) {
-        free(pts);
-        free(kept);
-        free_curves(cv, nc);
-        return cli_error("offset", "out of memory");
-    }
-    for (int i = 0; i < nc && !rc; ++i) {
-        cj_bezier2 A = cj_bezier2_view(cv[i].degree, cv[i].pts, cv[i].w);
-        int np = 0, cusps = 0;
-        double dev = 0;
-        cj_status st =
-            o->outline
-                ? cj_offset_outline(&A, fabs(o->distance), tol, (cj_offset_cap)(o->outline - 1),
-                                    pts, NULL, CAP, &np, &dev, &cusps)
-                : cj_offset_curve(&A, o->distance, tol, pts, NULL, CAP, &np, &dev, &cusps);
-        if (st) {
-            rc = query_fail("offset", where, &cv[i], NULL, st);
-            break;
-        }
-        int dropped = 0;
-        const double *out = pts;
-        if (o->trim) {
-            int nk = 0;
-            st = cj_offset_trim(&A, o->distance, tol, pts, np, dev, kept, NULL, CAP, &nk, &dropped);
-            if (st) {
-                rc = query_fail("offset", where, &cv[i], NULL, st);
-                break;
-            }
-            np = nk;
-            out = kept;
-        }
-        for (int k = 0; k < np; ++k) {
-            if (o->text) {
-                printf("%d %d", cv[i].item, k);
-                for (int j = 0; j < 8; ++j) printf(" "), cli_print_double(out[8 * k + j]);
-                printf("\n");
-            }
-            cJSON *it = cJSON_CreateObject(), *pa = cJSON_CreateArray();
-            cJSON_AddStringToObject(it, "type", "bezier");
-            for (int j = 0; j < 4; ++j)
-                cJSON_AddItemToArray(pa, pair_json(out[8 * k + 2 * j], out[8 * k + 2 * j + 1]));
-            cJSON_AddItemToObject(it, "points", pa);
-            cJSON_AddStringToObject(it, "color", "#9467bd");
-            cJSON_AddFalseToObject(it, "control_polygon");
-            cJSON_AddFalseToObject(it, "control_points");
-            cJSON_AddItemToArray(items, it);
-        }
-        if (o->text) {
-            printf("deviation %d %d ", cv[i].item, np);
-            cli_print_double(dev);
-            printf(" %d", cusps);
-            if (o->trim) printf(" %d", dropped);
-            printf("\n");
-        }
-    }
-    free(pts);
-    free(kept);
-    free_curves(cv, nc);
-    return rc;
-}
-
-static int reduce_panel(cJSON *panel, const char *where, const qopts *o) {
-    cJSON *items = cJSON_GetObjectItemCaseSensitive(panel, "items");
-    qcurve cv[QUERY_MAX_CURVES];
-    int rc = 0, nc = read_curves("reduce", items, where, cv, &rc);
-    if (nc < 0) return rc;
-    double out[2 * (CJ_QUERY_MAX_DEGREE + 1)];
-    for (int i = 0; i < nc && !rc; ++i) {
-        if (cv[i].w) {
-            rc = cli_fail("reduce", "%sitems[%d]: a rational curve (weights) is not reduced", where,
-                          cv[i].item);
-            break;
-        }
-        int n = cv[i].degree, to = n;
-        double bound = 0.0;
-        cj_bezier c = cj_bezier_view(n, 2, cv[i].pts);
-        for (int m = o->reduce_to ? o->reduce_to : 1; m < n; ++m) {
-            double b;
-            cj_status st = cj_bezier_reduce(&c, m, out, &b);
-            if (st) {
-                rc = query_fail("reduce", where, &cv[i], NULL, st);
-                break;
-            }
-            if (o->reduce_to || b <= o->tol) {
-                to = m, bound = b;
-                break;
-            }
-        }
-        if (rc) break;
-        if (to == n) memcpy(out, cv[i].pts, sizeof(double) * 2 * (size_t)(n + 1));
-        if (o->text) {
-            printf("reduced %d %d %d ", cv[i].item, n, to);
-            cli_print_double(bound);
-            printf("\n");
-            for (int j = 0; j <= to; ++j) {
-                cli_print_double(out[2 * j]);
-                printf(" ");
-                cli_print_double(out[2 * j + 1]);
-                printf("\n");
-            }
-        }
-        if (to == n) continue;
-        cJSON *it = cJSON_CreateObject(), *pa = cJSON_CreateArray();
-        cJSON_AddStringToObject(it, "type", "bezier");
-        for (int j = 0; j <= to; ++j)
-            cJSON_AddItemToArray(pa, pair_json(out[2 * j], out[2 * j + 1]));
-        cJSON_AddItemToObject(it, "points", pa);
-        cJSON_AddStringToObject(it, "color", "#ff7f0e");
-        cJSON_AddItemToArray(items, it);
-    }
-    free_curves(cv, nc);
-    return rc;
 }
 
 static int run_doc(const char *cmd, const char *path, const qopts *o,
