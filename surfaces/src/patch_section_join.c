@@ -159,6 +159,68 @@ static int fit_run(const cj_patch *p, const cj_patch_section *s, int k, int back
     return pieces->nomem ? -1 : 0;
 }
 
+static void bez3(const double *B, double t, double x[3]) {
+    double s = 1.0 - t;
+    for (int k = 0; k < 3; ++k)
+        x[k] = s * s * s * B[k] + 3 * s * s * t * B[3 + k] + 3 * s * t * t * B[6 + k] +
+               t * t * t * B[9 + k];
+}
+
+/* Upper bound of the distance from x to piece B: 16 samples, then golden section about the
+ * best (every value the distance to an evaluated point). */
+static double piece_dist(const double *B, const double x[3]) {
+    int bs = 0;
+    double bd = INFINITY, p[3];
+    for (int i = 0; i <= 16; ++i) {
+        bez3(B, i / 16.0, p);
+        double dd = dist3(p, x);
+        if (dd < bd) bd = dd, bs = i;
+    }
+    double a = fmax(0.0, (bs - 1) / 16.0), b = fmin(1.0, (bs + 1) / 16.0);
+    for (int it = 0; it < 40; ++it) {
+        double m1 = a + 0.381966 * (b - a), m2 = b - 0.381966 * (b - a), p1[3], p2[3];
+        bez3(B, m1, p1);
+        bez3(B, m2, p2);
+        double d1 = dist3(p1, x), d2 = dist3(p2, x);
+        bd = fmin(bd, fmin(d1, d2));
+        if (d1 < d2)
+            b = m2;
+        else
+            a = m1;
+    }
+    return bd;
+}
+
+/* An unresolved cell (its centre x, every section point of it within poly_deviation of x)
+ * whose centre lies within tol - poly_deviation of a piece is covered by the pieces: dropped,
+ * the deviation raised to poly_deviation + that distance if needed (still <= tol). This is the
+ * edge of a patch lying in the plane (the teapot's y = 0), found as a polyline by the patch on
+ * one side and as unresolved cells by the patch on the other. */
+static void absorb_unresolved(cj_section_curves *out, double tol, double margin) {
+    double budget = tol - out->poly_deviation - margin;
+    int kept = 0;
+    for (int u = 0; u < out->nunresolved; ++u) {
+        const double *x = out->unresolved + 3 * u;
+        double best = INFINITY;
+        for (int k = 0; k < out->npieces && best > budget; ++k) {
+            const double *B = out->ctrl + 12 * k;
+            int near = 1;
+            for (int q = 0; q < 3 && near; ++q) {
+                double lo = fmin(fmin(B[q], B[3 + q]), fmin(B[6 + q], B[9 + q]));
+                double hi = fmax(fmax(B[q], B[3 + q]), fmax(B[6 + q], B[9 + q]));
+                near = x[q] >= lo - budget && x[q] <= hi + budget;
+            }
+            if (near) best = fmin(best, piece_dist(B, x));
+        }
+        if (best <= budget) {
+            out->deviation = fmax(out->deviation, out->poly_deviation + best + margin);
+            continue;
+        }
+        memmove(out->unresolved + 3 * kept++, x, 3 * sizeof(double));
+    }
+    out->nunresolved = kept;
+}
+
 cj_status cj_patches_section_curves(const cj_patch *patches, size_t count, const double n[3],
                                     double d, double tol, cj_section_curves *out) {
     assert(patches && n && out);
@@ -324,6 +386,7 @@ cj_status cj_patches_section_curves(const cj_patch *patches, size_t count, const
         out->plane_gap = fmax(out->plane_gap, secs[i].plane_gap);
     }
     out->deviation = out->poly_deviation + pieces.worst;
+    absorb_unresolved(out, tol, margin);
     st = CJ_OK;
     goto done;
 nomem:

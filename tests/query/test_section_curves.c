@@ -8,8 +8,9 @@
  *    point, found by long-double Newton along the section (f = 0 to 1e-17) from the nearest
  *    oracle crossing;
  *  - structure: consecutive pieces share end points bit for bit, closed chains close bit for
- *    bit; the sphere made of 8 rational octants cut by z = 1/2 and x = 0.3 gives ONE closed chain
- *    (joined over 4 patches) on the exact circle; the teapot cut by z = 1.5 and y = 0.2 and a
+ *    bit; the teapot cut by y = 0, a plane holding patch edges, comes out as 6 curves with nothing
+ *    unresolved; the sphere made of 8 rational octants cut by z = 1/2 and x = 0.3 gives ONE closed
+ * chain (joined over 4 patches) on the exact circle; the teapot cut by z = 1.5 and y = 0.2 and a
  *    random bicubic B-spline surface (9 patches) give joined chains, not one per patch; bad
  *    input refused. */
 #include "casteljau/bspline_surface.h"
@@ -356,6 +357,19 @@ static void check_teapot(void) {
         if (t == 0) /* body, spout and handle are tubes: every chain closes */
             CHECK(closed == s.nchains && s.nchains >= 3, "%s: %d of %d chains closed", what, closed,
                   s.nchains);
+        cj_section_curves_free(&s);
+    }
+    /* y = 0 contains patch edges (the teapot is made of quarters): the patches on one side find
+     * the edge as polylines, those on the other side only unresolved cells on it, which the
+     * pieces cover (absorbed): the profile comes out as curves, nothing left unresolved */
+    {
+        cj_section_curves s;
+        const double y0[3] = {0, 1, 0};
+        check_model("teapot, plane y = 0 (along patch edges)", set->patches, set->count, y0, 0,
+                    2e-3, 60, &s);
+        CHECK(s.nunresolved == 0 && s.nchains == 6 && s.deviation <= 2e-3,
+              "teapot y = 0: %d unresolved, %d chains, deviation %g", s.nunresolved, s.nchains,
+              s.deviation);
         cj_section_curves_free(&s);
     }
     cj_patchset_destroy(set);

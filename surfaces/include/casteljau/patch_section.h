@@ -94,8 +94,12 @@ void cj_patch_section_free(cj_patch_section *s);
  * poly_deviation + max(e_v, e_s) (every point of the section is within poly_deviation of a
  * vertex of its cell, and every polyline point within poly_deviation of the section). The bound
  * is <= tol unless a range of one segment still misses it (then it is a straight piece and the
- * bound says how far it is). Rounding in the distance evaluations (~1e-16 of the size) is
- * added as 2^-44 times the model's size.
+ * bound says how far it is). An unresolved cell whose centre lies within tol - poly_deviation of a
+ * piece is covered by the pieces (its section points are within poly_deviation of its centre): it
+ * is dropped and the deviation raised to cover it, still <= tol (a plane holding a patch edge: the
+ * patch on one side finds the edge as a polyline, the one on the other side only such cells).
+ * Rounding in the distance evaluations (~1e-16 of the size) is added as 2^-44 times the model's
+ * size.
  *
  * Output (owned, released by cj_section_curves_free): piece k has control points
  * ctrl[12k .. 12k+11] (4 points x y z); chain c is pieces piece_starts[c] .. piece_starts[c+1]-1
