@@ -142,6 +142,7 @@ int cmd_fit(int argc, char **argv);
 int cmd_intersect(int argc, char **argv);
 int cmd_nearest(int argc, char **argv);
 int cmd_offset(int argc, char **argv);
+int cmd_reduce(int argc, char **argv);
 int cmd_section(int argc, char **argv);
 /* nearest with a patch model (--teapot, --bpt, --patch): cmd_nearest hands over. */
 int cmd_nearest_patch(int argc, char **argv);

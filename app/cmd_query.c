@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "cli_guard.h"
 #include "file_internal.h"
+#include "query_doc.h"
 
 #include "casteljau/bezier.h"
 #include "casteljau/intersect.h"
@@ -20,7 +21,6 @@
 #include <string.h>
 
 #define QUERY_MAX_BYTES   ((size_t)64 << 20)
-#define QUERY_MAX_CURVES  256
 #define QUERY_MAX_RESULTS 4096
 
 static const char intersect_usage[] =
@@ -55,26 +55,6 @@ static const char nearest_usage[] =
     "Exit status as for intersect.\n"
     "On patches: casteljau nearest --point X,Y,Z (--teapot | --bpt FILE | --patch ... --degree\n"
     "M,N) [--tol T] (see 'casteljau nearest --point 0,0,0 --teapot --help').\n";
-
-static const char offset_usage[] =
-    "usage: casteljau offset --distance D [--tol T] [--trim] [--text] [FILE|-]\n"
-    "Offsets the \"bezier\" items of a plot JSON document (as for 'casteljau intersect') by D\n"
-    "(positive: to the left of the direction of travel) as cubic Bezier pieces, each proven\n"
-    "within T of the exact offset (cusps followed, loops kept: see\n"
-    "  " CJ_DOC_DIR "/queries.md).\n"
-    "  --tol   default 1e-6 times the size of the curves and D\n"
-    "  --trim  cut the offset at its self-crossings and drop the spans nearer to the curve\n"
-    "          than D (swallowtails of tight bends; an arc offset inwards past its radius)\n"
-    "  --text  one line per piece: I K X0 Y0 X1 Y1 X2 Y2 X3 Y3 (item, piece), then\n"
-    "          'deviation I PIECES DEV CUSPS [DROPPED]' per curve (DROPPED with --trim)\n"
-    "Output: the document with the pieces added as \"bezier\" items (purple). Exit status as\n"
-    "for intersect.\n";
-
-typedef struct qcurve {
-    int item; /* index in the panel's items */
-    int degree;
-    double *pts, *w;
-} qcurve;
 
 static char *read_all(const char *cmd, const char *path, int *rc) {
     char q[160];
@@ -116,15 +96,14 @@ static char *read_all(const char *cmd, const char *path, int *rc) {
 }
 
 /* The bezier items of one panel's "items" array. Returns the count, or -1 with a message. */
-static void free_curves(qcurve *cv, int nc) {
+void free_curves(qcurve *cv, int nc) {
     for (int i = 0; i < nc; ++i) {
         free(cv[i].pts);
         free(cv[i].w);
     }
 }
 
-static int read_curves(const char *cmd, const cJSON *items, const char *where, qcurve *cv,
-                       int *rc) {
+int read_curves(const char *cmd, const cJSON *items, const char *where, qcurve *cv, int *rc) {
     int nc = 0, idx = 0;
     for (const cJSON *it = items ? items->child : NULL; it; it = it->next, ++idx) {
         const cJSON *t = cJSON_GetObjectItemCaseSensitive(it, "type");
@@ -186,7 +165,7 @@ fail: /* the caller sees only -1: the curves read before the bad item are freed 
 }
 
 /* Size of a panel: max |coordinate| of its curves (and extra points), at least tiny. */
-static double panel_size(const qcurve *cv, int nc, const double *extra, int nextra) {
+double panel_size(const qcurve *cv, int nc, const double *extra, int nextra) {
     double s = 0.0;
     for (int i = 0; i < nc; ++i)
         for (int k = 0; k < 2 * (cv[i].degree + 1); ++k)
@@ -196,7 +175,7 @@ static double panel_size(const qcurve *cv, int nc, const double *extra, int next
     return s > 0 ? s : 1.0;
 }
 
-static cJSON *pair_json(double x, double y) {
+cJSON *pair_json(double x, double y) {
     cJSON *p = cJSON_CreateArray();
     cJSON_AddItemToArray(p, cJSON_CreateNumber(x));
     cJSON_AddItemToArray(p, cJSON_CreateNumber(y));
@@ -213,8 +192,7 @@ static cJSON *points_item(const char *color, double radius) {
 }
 
 /* Message of a failed query, naming the panel and items. */
-static int query_fail(const char *cmd, const char *where, const qcurve *a, const qcurve *b,
-                      cj_status st) {
+int query_fail(const char *cmd, const char *where, const qcurve *a, const qcurve *b, cj_status st) {
     char items[64];
     if (b && b != a)
         snprintf(items, sizeof items, "items[%d] and items[%d]", a->item, b->item);
@@ -234,15 +212,6 @@ static void print_isect(const cj_isect *r, int i, int j) {
     }
     printf("\n");
 }
-
-typedef struct qopts {
-    double tol; /* 0: default */
-    int self, have_line, text;
-    double line[4];
-    double point[2];
-    double distance;
-    int trim; /* offset: drop the loops (cj_offset_trim) */
-} qopts;
 
 /* Adds the answers of one result to the panel's marker items. */
 static void mark(cJSON *items, cJSON *cross, cJSON *contact, const cj_isect *r, const qcurve *a) {
@@ -382,72 +351,6 @@ static int nearest_panel(cJSON *panel, const char *where, const qopts *o) {
     return 0;
 }
 
-static int offset_panel(cJSON *panel, const char *where, const qopts *o) {
-    cJSON *items = cJSON_GetObjectItemCaseSensitive(panel, "items");
-    qcurve cv[QUERY_MAX_CURVES];
-    int rc = 0, nc = read_curves("offset", items, where, cv, &rc);
-    if (nc < 0) return rc;
-    double dd[1] = {o->distance};
-    double tol = o->tol > 0 ? o->tol : 1e-6 * (panel_size(cv, nc, dd, 1) + fabs(o->distance));
-    enum { CAP = 1 << 16 };
-    double *pts = malloc(sizeof(double) * 8 * CAP), *kept = malloc(sizeof(double) * 8 * CAP);
-    if (!pts || !kept) {
-        free(pts);
-        free(kept);
-        free_curves(cv, nc);
-        return cli_error("offset", "out of memory");
-    }
-    for (int i = 0; i < nc && !rc; ++i) {
-        cj_bezier2 A = cj_bezier2_view(cv[i].degree, cv[i].pts, cv[i].w);
-        int np = 0, cusps = 0;
-        double dev = 0;
-        cj_status st = cj_offset_curve(&A, o->distance, tol, pts, NULL, CAP, &np, &dev, &cusps);
-        if (st) {
-            rc = query_fail("offset", where, &cv[i], NULL, st);
-            break;
-        }
-        int dropped = 0;
-        const double *out = pts;
-        if (o->trim) {
-            int nk = 0;
-            st = cj_offset_trim(&A, o->distance, tol, pts, np, dev, kept, NULL, CAP, &nk, &dropped);
-            if (st) {
-                rc = query_fail("offset", where, &cv[i], NULL, st);
-                break;
-            }
-            np = nk;
-            out = kept;
-        }
-        for (int k = 0; k < np; ++k) {
-            if (o->text) {
-                printf("%d %d", cv[i].item, k);
-                for (int j = 0; j < 8; ++j) printf(" "), cli_print_double(out[8 * k + j]);
-                printf("\n");
-            }
-            cJSON *it = cJSON_CreateObject(), *pa = cJSON_CreateArray();
-            cJSON_AddStringToObject(it, "type", "bezier");
-            for (int j = 0; j < 4; ++j)
-                cJSON_AddItemToArray(pa, pair_json(out[8 * k + 2 * j], out[8 * k + 2 * j + 1]));
-            cJSON_AddItemToObject(it, "points", pa);
-            cJSON_AddStringToObject(it, "color", "#9467bd");
-            cJSON_AddFalseToObject(it, "control_polygon");
-            cJSON_AddFalseToObject(it, "control_points");
-            cJSON_AddItemToArray(items, it);
-        }
-        if (o->text) {
-            printf("deviation %d %d ", cv[i].item, np);
-            cli_print_double(dev);
-            printf(" %d", cusps);
-            if (o->trim) printf(" %d", dropped);
-            printf("\n");
-        }
-    }
-    free(pts);
-    free(kept);
-    free_curves(cv, nc);
-    return rc;
-}
-
 static int run_doc(const char *cmd, const char *path, const qopts *o,
                    int (*panel_fn)(cJSON *, const char *, const qopts *)) {
     int rc = 0;
@@ -508,13 +411,15 @@ static int parse_numbers(const char *cmd, const char *opt, const char *v, double
     return 0;
 }
 
-enum { Q_INTERSECT, Q_NEAREST, Q_OFFSET };
+enum { Q_INTERSECT, Q_NEAREST, Q_OFFSET, Q_REDUCE };
 
 static int query_main(const char *cmd, const char *usage, int argc, char **argv, int which) {
-    enum { O_TOL, O_SELF, O_LINE, O_TEXT, O_POINT, O_DIST, O_TRIM };
+    enum { O_TOL, O_SELF, O_LINE, O_TEXT, O_POINT, O_DIST, O_TRIM, O_DEGREE, O_OUTLINE, O_CAP };
     static const cli_opt opts[] = {
-        {"--tol", NULL, 1},   {"--self", NULL, 0},     {"--line", NULL, 1}, {"--text", NULL, 0},
-        {"--point", NULL, 1}, {"--distance", NULL, 1}, {"--trim", NULL, 0}};
+        {"--tol", NULL, 1},     {"--self", NULL, 0},     {"--line", NULL, 1}, {"--text", NULL, 0},
+        {"--point", NULL, 1},   {"--distance", NULL, 1}, {"--trim", NULL, 0}, {"--degree", NULL, 1},
+        {"--outline", NULL, 0}, {"--cap", NULL, 1}};
+    const char *cap_name = NULL;
     cli_parser ps;
     cli_parser_init(&ps, cmd, usage, argc, argv, opts, sizeof opts / sizeof opts[0]);
     qopts o;
@@ -535,6 +440,27 @@ static int query_main(const char *cmd, const char *usage, int argc, char **argv,
                                 cli_quote(v, q, sizeof q));
         } else if (k == O_TEXT) {
             o.text = 1;
+        } else if (k == O_DEGREE) {
+            if (which != Q_REDUCE)
+                return cli_fail(cmd, "--degree does not apply to '%s' (try 'casteljau %s --help')",
+                                cmd, cmd);
+            long m;
+            if (cli_parse_int(v, 1, CJ_QUERY_MAX_DEGREE, &m))
+                return cli_fail(cmd, "--degree '%s' is not an integer in 1..%d",
+                                cli_quote(v, q, sizeof q), CJ_QUERY_MAX_DEGREE);
+            o.reduce_to = (int)m;
+        } else if (k == O_OUTLINE || k == O_CAP) {
+            if (which != Q_OFFSET)
+                return cli_fail(cmd, "%s does not apply to '%s' (try 'casteljau %s --help')",
+                                opts[k].name, cmd, cmd);
+            if (k == O_OUTLINE) {
+                o.outline = o.outline ? o.outline : 1;
+            } else if (!strcmp(v, "butt") || !strcmp(v, "round") || !strcmp(v, "square")) {
+                cap_name = v;
+            } else {
+                return cli_fail(cmd, "--cap '%s' is not butt, round or square",
+                                cli_quote(v, q, sizeof q));
+            }
         } else if (k == O_TRIM) {
             if (which != Q_OFFSET)
                 return cli_fail(cmd, "--trim does not apply to '%s' (try 'casteljau %s --help')",
@@ -564,9 +490,19 @@ static int query_main(const char *cmd, const char *usage, int argc, char **argv,
     if (status >= 0) return status;
     if (which == Q_NEAREST && !have_point) return cli_fail(cmd, "missing --point X,Y");
     if (which == Q_OFFSET && !have_dist) return cli_fail(cmd, "missing --distance D");
+    if (cap_name && !o.outline) return cli_fail(cmd, "--cap needs --outline");
+    if (o.outline && o.trim) return cli_fail(cmd, "give --trim or --outline, not both");
+    if (o.outline && o.distance == 0) return cli_fail(cmd, "--outline needs --distance D != 0");
+    if (cap_name)
+        o.outline = 1 + (!strcmp(cap_name, "round")    ? CJ_OFFSET_CAP_ROUND
+                         : !strcmp(cap_name, "square") ? CJ_OFFSET_CAP_SQUARE
+                                                       : CJ_OFFSET_CAP_BUTT);
+    if (which == Q_REDUCE && (o.reduce_to > 0) == (o.tol > 0))
+        return cli_fail(cmd, "give one of --degree M or --tol T");
     return run_doc(cmd, path ? path : "-", &o,
                    which == Q_NEAREST  ? nearest_panel
                    : which == Q_OFFSET ? offset_panel
+                   : which == Q_REDUCE ? reduce_panel
                                        : intersect_panel);
 }
 
@@ -578,11 +514,15 @@ int cmd_nearest(int argc, char **argv) {
     /* a patch model makes it the 3D query (cmd_section.c) */
     for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; ++i)
         if (!strncmp(argv[i], "--teapot", 8) || !strncmp(argv[i], "--bpt", 5) ||
-            !strncmp(argv[i], "--patch", 7))
+            !strncmp(argv[i], "--patch", 7) || !strncmp(argv[i], "--surface", 9))
             return cmd_nearest_patch(argc, argv);
     return query_main("nearest", nearest_usage, argc, argv, Q_NEAREST);
 }
 
 int cmd_offset(int argc, char **argv) {
     return query_main("offset", offset_usage, argc, argv, Q_OFFSET);
+}
+
+int cmd_reduce(int argc, char **argv) {
+    return query_main("reduce", reduce_usage, argc, argv, Q_REDUCE);
 }

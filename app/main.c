@@ -28,7 +28,9 @@ static const command commands[] = {
     {"intersect", cmd_intersect, "certified intersections of the curves of a plot JSON document"},
     {"nearest", cmd_nearest, "certified nearest point on the curves of a plot JSON document"},
     {"offset", cmd_offset, "offset curves of a plot JSON document, proven within a tolerance"},
-    {"section", cmd_section, "plane sections of Bezier patches as polylines, proven deviation"},
+    {"reduce", cmd_reduce, "degree reduction of the curves of a plot JSON document, proven bound"},
+    {"section", cmd_section,
+     "plane sections of patch models as joined cubic curves, proven deviation"},
 };
 
 static void usage(FILE *f) {

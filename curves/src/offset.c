@@ -4,6 +4,7 @@
 #include "casteljau/offset.h"
 #include "casteljau/rational.h"
 #include "error_internal.h"
+#include "offset_internal.h"
 
 #include <assert.h>
 #include <lapacke.h>
@@ -233,6 +234,127 @@ static void piece(orun *R, double a, double b, const double oa[2], const double 
     piece(R, m, b, om, odm, depth + 1);
 }
 
+/* Cusps of a polynomial curve: the local minima of |c'|^2 over 64 n samples, refined by golden
+ * section, where |c'| <= 2^-24 n times the control points' extent (a cusp to the resolution at
+ * which the proofs fail). At most 8, sorted. */
+static int find_cusps(const cj_bezier2 *c, double ext, double *cusp) {
+    int n = c->degree, ns = 64 * n, count = 0;
+    cj_bezier b = cj_bezier_view(n, 2, c->pts);
+    double prev2 = INFINITY, prev = INFINITY, v[4];
+    for (int i = 0; i <= ns + 1 && count < 8; ++i) {
+        double g = INFINITY;
+        if (i <= ns && cj_bezier_eval_derivs(&b, (double)i / ns, 1, v) == CJ_OK)
+            g = v[2] * v[2] + v[3] * v[3];
+        if (i >= 2 && prev <= prev2 && prev <= g && i - 1 > 0 && i - 1 < ns) {
+            double lo = (double)(i - 2) / ns, hi = (double)i / ns;
+            for (int it = 0; it < 80; ++it) {
+                double m1 = lo + 0.381966011250105 * (hi - lo),
+                       m2 = hi - 0.381966011250105 * (hi - lo);
+                double g1 = INFINITY, g2 = INFINITY;
+                if (cj_bezier_eval_derivs(&b, m1, 1, v) == CJ_OK) g1 = v[2] * v[2] + v[3] * v[3];
+                if (cj_bezier_eval_derivs(&b, m2, 1, v) == CJ_OK) g2 = v[2] * v[2] + v[3] * v[3];
+                if (g1 < g2)
+                    hi = m2;
+                else
+                    lo = m1;
+            }
+            double t = 0.5 * (lo + hi);
+            if (cj_bezier_eval_derivs(&b, t, 1, v) == CJ_OK &&
+                sqrt(v[2] * v[2] + v[3] * v[3]) <= 0x1p-24 * n * ext &&
+                (count == 0 || t > cusp[count - 1]))
+                cusp[count++] = t;
+        }
+        prev2 = prev;
+        prev = g;
+    }
+    return count;
+}
+
+/* The offset of a polynomial curve with cusps t_k (where c' = 0 and N flips): the proven pieces
+ * on [0, t_1 - δ], [t_1 + δ, t_2 - δ], ..., and between them the arc of radius |d| about c(t_k)
+ * from o(t_k - δ) to o(t_k + δ), turning the way the curve turns there (the sign of its
+ * curvature on both sides), as proven cubic arcs (offset_internal.h). δ keeps c within tol / 4
+ * of c(t_k) on [t_k - δ, t_k + δ]: |c(t) - c(t_k)| <= δ |c'(t_k)| + δ^2 M2 / 2, M2 = n (n - 1)
+ * max |Δ^2 P| bounding |c''|. The true offset there lies within that of the circle about c(t_k),
+ * so the arc stands for it (completing the jump of N at an exact cusp), within its radial bound
+ * plus tol / 4. Restarts the run R; CJ_ERR_DEGENERATE when no cusp explains the failure. */
+static cj_status offset_cusps(orun *R, double tol) {
+    const cj_bezier2 *c = R->c;
+    int n = c->degree;
+    double ext = 0.0, M2 = 0.0;
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k < 2; ++k) ext = fmax(ext, fabs(c->pts[2 * i + k] - c->pts[k]));
+    for (int i = 0; i + 2 <= n; ++i)
+        M2 = fmax(M2, hypot(c->pts[2 * i + 4] - 2 * c->pts[2 * i + 2] + c->pts[2 * i],
+                            c->pts[2 * i + 5] - 2 * c->pts[2 * i + 3] + c->pts[2 * i + 1]));
+    M2 *= n * (n - 1) * (1.0 + 0x1p-40);
+    double cusp[8];
+    int nc = find_cusps(c, ext, cusp);
+    if (nc == 0 || !(M2 > 0.0)) return CJ_ERR_DEGENERATE;
+    cj_bezier b = cj_bezier_view(n, 2, c->pts);
+    double lo_t[9], hi_t[9], delta[8];
+    for (int k = 0; k < nc; ++k) {
+        double v[4];
+        if (cj_bezier_eval_derivs(&b, cusp[k], 1, v) != CJ_OK) return CJ_ERR_DEGENERATE;
+        double g = hypot(v[2], v[3]) * (1.0 + 0x1p-40), eps = 0.25 * tol;
+        /* the largest δ with δ g + δ^2 M2 / 2 <= eps */
+        delta[k] = (-g + sqrt(g * g + 2.0 * M2 * eps)) / M2 * (1.0 - 0x1p-30);
+        if (!(delta[k] > 0.0)) return CJ_ERR_DEGENERATE;
+    }
+    for (int k = 0; k < nc; ++k) {
+        lo_t[k] = k == 0 ? 0.0 : cusp[k - 1] + delta[k - 1];
+        hi_t[k] = cusp[k] - delta[k];
+        if (!(hi_t[k] > lo_t[k])) return CJ_ERR_DEGENERATE; /* a cusp at an end, or two too close */
+    }
+    lo_t[nc] = cusp[nc - 1] + delta[nc - 1];
+    hi_t[nc] = 1.0;
+    if (!(hi_t[nc] > lo_t[nc])) return CJ_ERR_DEGENERATE;
+    R->count = 0;
+    R->deviation = 0.0;
+    R->cusps = 0;
+    R->status = CJ_OK;
+    for (int k = 0; k <= nc; ++k) {
+        double oa[2], oda[2], sa;
+        if (!offset_at(R, lo_t[k], oa, oda, &sa)) return CJ_ERR_DEGENERATE;
+        if (k > 0) { /* the arc from the previous span's end to this one's start */
+            double A[2], C[2], kap = 0.0;
+            if (R->count >= 1 && R->count <= R->cap && R->pts)
+                memcpy(A, R->pts + 8 * (size_t)(R->count - 1) + 6, sizeof A);
+            else {
+                double od[2], s;
+                offset_at(R, hi_t[k - 1], A, od, &s);
+            }
+            cj_bezier_eval(&b, CJ_EVAL_DECASTELJAU, cusp[k - 1], C);
+            for (int side = 0; side < 2; ++side) {
+                double w[6];
+                double t = side ? lo_t[k] : hi_t[k - 1];
+                if (cj_bezier_eval_derivs(&b, t, 2, w) == CJ_OK) {
+                    double sp = hypot(w[2], w[3]);
+                    kap += (w[2] * w[5] - w[3] * w[4]) / (sp * sp * sp);
+                }
+            }
+            double a0[2] = {A[0] - C[0], A[1] - C[1]}, b0[2] = {oa[0] - C[0], oa[1] - C[1]};
+            double ang = atan2(a0[0] * b0[1] - a0[1] * b0[0], a0[0] * b0[0] + a0[1] * b0[1]);
+            const double two_pi = 6.283185307179586;
+            if (kap >= 0 && ang <= 0) ang += two_pi;
+            if (kap < 0 && ang >= 0) ang -= two_pi;
+            double arc[8 * CJ_OFFSET_ARC_MAX], bound;
+            int na = cj_offset_arc(C, fabs(R->d), A, oa, ang, 0.75 * tol, arc, &bound);
+
+            for (int i = 0; i < na; ++i) {
+                double t0 = hi_t[k - 1] + (lo_t[k] - hi_t[k - 1]) * i / na;
+                double t1 =
+                    i + 1 == na ? lo_t[k] : hi_t[k - 1] + (lo_t[k] - hi_t[k - 1]) * (i + 1) / na;
+                emit(R, arc + 8 * i, bound + 0.25 * tol, t0, t1, 0.0);
+            }
+            /* the next span starts at the arc's end, which is oa bit for bit */
+        }
+        piece(R, lo_t[k], hi_t[k], oa, oda, 0);
+        if (R->status != CJ_OK) return R->status;
+    }
+    return CJ_OK;
+}
+
 cj_status cj_offset_curve(const cj_bezier2 *c, double d, double tol, double *pts, double *breaks,
                           int cap_pieces, int *npieces, double *deviation, int *cusps) {
     assert(c && npieces && deviation && (pts || cap_pieces == 0));
@@ -265,6 +387,14 @@ cj_status cj_offset_curve(const cj_bezier2 *c, double d, double tol, double *pts
     R.last_sign = s0 > 0 ? 1.0 : s0 < 0 ? -1.0 : 0.0;
     /* the first split at the curve's own inflections and extremes is left to the adaptivity */
     piece(&R, 0.0, 1.0, o0, od0, 0);
+    if ((R.status == CJ_ERR_DEGENERATE || R.status == CJ_ERR_CAP) && !c->weights) {
+        /* a cusp of the curve itself: offset around it and join by an arc (offset_cusps) */
+        double bad = R.bad_t;
+        cj_status cs = offset_cusps(&R, tol);
+        if (cs == CJ_OK) goto done;
+        R.status = cs == CJ_ERR_BUFFER ? CJ_ERR_CAP : R.status;
+        R.bad_t = bad;
+    }
     if (R.status == CJ_ERR_DEGENERATE)
         return cj_fail(CJ_ERR_DEGENERATE,
                        "curve: the derivative vanishes near t = %.17g, where "
@@ -275,6 +405,7 @@ cj_status cj_offset_curve(const cj_bezier2 *c, double d, double tol, double *pts
                        "offset: no proof within %g after %d halvings near t = %.17g "
                        "(a cusp of the curve, or tol too small for its curvature)",
                        tol, MAX_DEPTH, R.bad_t);
+done:
     *npieces = R.count;
     *deviation = R.deviation;
     if (cusps) *cusps = R.cusps;

@@ -1,5 +1,6 @@
 /* Certified nearest point on a Bézier patch: branch and bound (patch_nearest.h). */
 #include "casteljau/patch_nearest.h"
+#include "binomial_internal.h"
 #include "error_internal.h"
 #include "query_internal.h"
 
@@ -134,6 +135,57 @@ static double piece_lower(const prun *R, const spatch *s) {
     return fmax(box, cj_down(mn / vn));
 }
 
+/* Proven lower bound of min |S - q| over the sub-patch from the Bernstein form of the squared
+ * distance: |S - q|^2 = N / D with N = sum_k (P_k - q_k W)^2 and D = W^2, both of degree
+ * (2m, 2n). Their coefficients N_IJ, D_IJ are sums over i + i' = I, j + j' = J of
+ * C(m,i) C(m,i') C(n,j) C(n,j') times the products of the net's entries, all divided by the same
+ * C(2m,I) C(2n,J), which cancels in N_IJ / D_IJ and is left out. With every D_IJ > 0, N / D is
+ * a convex combination of the N_IJ / D_IJ, so it is at least their minimum. Unlike the box of the
+ * control points this bound is exact for a patch whose every point is equally far from q (the
+ * coefficients of N - r^2 D all vanish): a sphere patch seen from its centre is settled at once
+ * instead of being halved until its pieces are flatter than tol. */
+static double bern_lower(const prun *R, const spatch *s) {
+    int m = R->m, n = R->n, mm = 2 * m + 1, nn = 2 * n + 1;
+    const double *bm = cj_binomial_row(m), *bn = cj_binomial_row(n);
+    cj_ivl E[MAXP * MAXP][3], W[MAXP * MAXP];
+    static const cj_ivl zero = {0.0, 0.0};
+    for (int i = 0; i < (m + 1) * (n + 1); ++i) {
+        W[i] = cj_iv2(cj_down(s->h[i][3] - s->err[3]), cj_up(s->h[i][3] + s->err[3]));
+        for (int k = 0; k < 3; ++k) {
+            cj_ivl X = cj_iv2(cj_down(s->h[i][k] - s->err[k]), cj_up(s->h[i][k] + s->err[k]));
+            E[i][k] = cj_isub(X, R->rational ? cj_imul(cj_iv(R->q[k]), W[i]) : cj_iv(R->q[k]));
+        }
+    }
+    cj_ivl N[(2 * MAXP - 1) * (2 * MAXP - 1)], D[(2 * MAXP - 1) * (2 * MAXP - 1)];
+    for (int i = 0; i < mm * nn; ++i) N[i] = D[i] = zero;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= m; ++i) {
+            int a = j * (m + 1) + i;
+            for (int j2 = j; j2 <= n; ++j2)
+                for (int i2 = j2 == j ? i : 0; i2 <= m; ++i2) {
+                    int b = j2 * (m + 1) + i2, I = i + i2, J = j + j2;
+                    double c = bm[i] * bm[i2] * bn[j] * bn[j2] * (a == b ? 1.0 : 2.0);
+                    cj_ivl e =
+                        a == b
+                            ? cj_iadd(cj_iadd(cj_isqr(E[a][0]), cj_isqr(E[a][1])), cj_isqr(E[a][2]))
+                            : cj_iadd(cj_iadd(cj_imul(E[a][0], E[b][0]), cj_imul(E[a][1], E[b][1])),
+                                      cj_imul(E[a][2], E[b][2]));
+                    N[J * mm + I] = cj_iadd(N[J * mm + I], cj_imul(cj_iv(c), e));
+                    if (R->rational)
+                        D[J * mm + I] =
+                            cj_iadd(D[J * mm + I], cj_imul(cj_iv(c), cj_imul(W[a], W[b])));
+                    else /* exact: integers below 2^53 */
+                        D[J * mm + I].lo += c, D[J * mm + I].hi += c;
+                }
+        }
+    double lo2 = INFINITY;
+    for (int i = 0; i < mm * nn; ++i) {
+        if (!(D[i].lo > 0.0) || !cj_ifinite(N[i]) || !cj_ifinite(D[i])) return 0.0;
+        lo2 = fmin(lo2, N[i].lo > 0.0 ? cj_down(N[i].lo / D[i].hi) : 0.0);
+    }
+    return lo2 > 0.0 ? cj_down(sqrt(lo2)) : 0.0;
+}
+
 /* Halves s along u (dir 0) or v (dir 1) into a and b, tracking the rounding as in curves. */
 static void halve(const prun *R, const spatch *s, int dir, spatch *a, spatch *b) {
     int m = R->m, n = R->n;
@@ -173,6 +225,9 @@ static void halve(const prun *R, const spatch *s, int dir, spatch *a, spatch *b)
 
 static void search(prun *R, const spatch *s, double lb, int level) {
     if (!(lb >= 0.0)) lb = 0.0; /* a NaN bound proves nothing */
+    /* the Bernstein bound costs (m+1)^2 (n+1)^2 / 2 interval products: used where the box bound
+     * has not pruned after a few levels (nearly equidistant pieces), and at the root */
+    if (level % 4 == 0 && lb < R->best - R->tol) lb = fmax(lb, bern_lower(R, s));
     double wu = s->u1 - s->u0, wv = s->v1 - s->v0;
     if (++R->pieces > CJ_PATCH_NEAREST_MAX_PIECES || lb >= R->best - R->tol || level >= MAX_LEVEL ||
         (wu <= MIN_WIDTH && wv <= MIN_WIDTH)) {

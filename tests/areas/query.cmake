@@ -29,3 +29,13 @@ add_dependencies(test_cli_section casteljau)
 # Trimmed offsets: a circle arc inwards past its radius vanishes, a parabola loses its
 # swallowtail (long-double distance oracle), a loop-free offset comes back unchanged.
 cj_add_test(test_offset_trim SOURCES query/test_offset_trim.c)
+# Plane sections of models as joined cubic chains (cj_patches_section_curves): sphere octants,
+# the teapot, a B-spline surface's patches, against long-double crossings and Newton projections.
+cj_add_test(test_section_curves SOURCES query/test_section_curves.c LIBS cj::surfaces)
+target_compile_definitions(test_section_curves PRIVATE CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+if(CJ_WITH_OIIO AND TARGET cj::viz)
+  target_compile_definitions(test_cli_section PRIVATE CJ_HAVE_PLOT=1)
+endif()
+# Stroke outlines (butt/round/square caps, closed curves) and offsets through a cusp, against the
+# exact offsets and caps in long double, both ways.
+cj_add_test(test_offset_outline SOURCES query/test_offset_outline.c)

@@ -1,7 +1,9 @@
 /* Contract of `casteljau section` and `casteljau nearest` on patches: the sphere octant cut at
- * z = 1/2 gives one open line on the circle of radius sqrt(3)/2 with a deviation within --tol;
- * the teapot's section and nearest point run; an OBJ of the lines is written; bad input is
- * refused with exit status 2 and one line naming it. */
+ * z = 1/2 gives one open curve of cubic pieces on the circle of radius sqrt(3)/2 within the
+ * reported deviation <= --tol; the teapot cut at z = 1.5 gives three closed curves (joined across
+ * its patches), --json a plot document that plot draws; an OBJ of the lines is written; nearest
+ * on the octant from its centre is certified at tol 1e-9; bad input is refused with exit status 2
+ * and one line naming it. */
 #include "check.h"
 #include "cli_run.h"
 
@@ -35,22 +37,31 @@ int main(void) {
              exe, CJ_TMP_DIR);
     if (cj_cli_shell(cmd, &r) == 0) {
         CHECK(r.status == 0, "section status %d: %s", r.status, r.err);
-        CHECK(count_prefix(r.out, "line 0 0 open ") == 1, "one open line:\n%.300s", r.out);
+        CHECK(count_prefix(r.out, "curve 0 open ") == 1, "one open curve:\n%.300s", r.out);
+        /* every piece (12 numbers: 4 control points) sampled: on the circle of radius
+         * sqrt(3)/2 at z = 1/2 within the reported deviation */
         double worst = 0, dev = -1;
-        int pts = 0;
+        int pieces = 0;
         for (const char *p = r.out; p && *p;) {
-            double x, y, z;
-            if (sscanf(p, "%lf %lf %lf", &x, &y, &z) == 3 && strncmp(p, "line", 4) != 0) {
-                worst = fmax(worst, fmax(fabs(hypot(x, y) - sqrt(0.75)), fabs(z - 0.5)));
-                ++pts;
+            double B[12];
+            if (sscanf(p, "%lf %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf", B, B + 1, B + 2, B + 3,
+                       B + 4, B + 5, B + 6, B + 7, B + 8, B + 9, B + 10, B + 11) == 12) {
+                for (int i = 0; i <= 16; ++i) {
+                    double t = i / 16.0, s = 1 - t, x[3];
+                    for (int k = 0; k < 3; ++k)
+                        x[k] = s * s * s * B[k] + 3 * s * s * t * B[3 + k] +
+                               3 * s * t * t * B[6 + k] + t * t * t * B[9 + k];
+                    worst = fmax(worst, hypot(hypot(x[0], x[1]) - sqrt(0.75), x[2] - 0.5));
+                }
+                ++pieces;
             }
             const char *s = strstr(p, "deviation ");
             if (!strncmp(p, "section ", 8) && s) dev = atof(s + 10);
             p = strchr(p, '\n');
             if (p) ++p;
         }
-        CHECK(pts > 10 && worst < 1e-13 && dev > 0 && dev <= 0.01,
-              "%d points, worst %g off the circle, deviation %g", pts, worst, dev);
+        CHECK(pieces >= 1 && worst <= dev && dev > 0 && dev <= 0.01,
+              "%d pieces, worst %g off the circle, deviation %g", pieces, worst, dev);
         cj_cli_result_free(&r);
         snprintf(cmd, sizeof cmd, "grep -c '^l ' %s/section.obj", CJ_TMP_DIR);
         if (cj_cli_shell(cmd, &r) == 0) {
@@ -59,17 +70,38 @@ int main(void) {
         }
         checks += 4;
     }
+    /* the teapot cut at z = 1.5: body, spout and handle, three closed curves joined over the
+     * patches */
     snprintf(cmd, sizeof cmd, "%s section --plane 0,0,1,1.5 --teapot", exe);
     if (cj_cli_shell(cmd, &r) == 0) {
-        CHECK(r.status == 0 && count_prefix(r.out, "section patches 32 lines ") == 1,
-              "teapot section: %d\n%s", r.status, r.err);
+        CHECK(r.status == 0 && count_prefix(r.out, "section patches 32 curves 3 closed 3 ") == 1,
+              "teapot section: %d\n%s%s", r.status, r.err, strstr(r.out, "section patches"));
         cj_cli_result_free(&r);
         ++checks;
     }
+    /* --json: a plot document of three cubic B-spline items, which plot reads */
+    snprintf(cmd, sizeof cmd,
+             "%s section --plane 0,0,1,1.5 --teapot --json > %s/section.json && grep -c "
+             "'\"bspline\"' %s/section.json",
+             exe, CJ_TMP_DIR, CJ_TMP_DIR);
+    if (cj_cli_shell(cmd, &r) == 0) {
+        CHECK(r.status == 0 && atoi(r.out) == 3, "section --json: %s %s", r.out, r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+#ifdef CJ_HAVE_PLOT
+    snprintf(cmd, sizeof cmd, "%s plot %s/section.json -o %s/section.png", exe, CJ_TMP_DIR,
+             CJ_TMP_DIR);
+    if (cj_cli_shell(cmd, &r) == 0) {
+        CHECK(r.status == 0, "plot of the section: %s", r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+#endif
     /* the octant seen from its centre (every point at distance 1), and from (2,2,2): the nearest
      * point is (1,1,1)/sqrt(3) at distance 2 sqrt(3) - 1 */
-    const char *pts[2] = {"0,0,0 --tol 1e-3", "2,2,2 --tol 1e-9"};
-    const double want[2] = {1.0, 2 * sqrt(3.0) - 1}, tols[2] = {1e-3, 1e-9};
+    const char *pts[2] = {"0,0,0 --tol 1e-9", "2,2,2 --tol 1e-9"};
+    const double want[2] = {1.0, 2 * sqrt(3.0) - 1}, tols[2] = {1e-9, 1e-9};
     for (int k = 0; k < 2; ++k) {
         snprintf(cmd, sizeof cmd, "%s nearest --point %s " OCTANT, exe, pts[k]);
         if (cj_cli_shell(cmd, &r) != 0) continue;
@@ -105,6 +137,62 @@ int main(void) {
         cj_cli_result_free(&r);
         ++checks;
     }
+    /* reduce: a parabola elevated to degree 5 comes back as degree 2 at --tol 1e-9 (bound at
+     * rounding level); a wavy quintic reduced to degree 3: the proven bound is never below the
+     * distance between the two curves at 2001 parameters */
+    snprintf(cmd, sizeof cmd,
+             "printf '%%s' '{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[0.6,1.2],[1.2,1.8],"
+             "[1.8,1.8],[2.4,1.2],[3,0]]},{\"type\":\"bezier\",\"points\":[[0,0],[1,2],[2,-1],[3,"
+             "1],[4,0],[5,1]]}]}' | %s reduce --tol 1e-9 --text - && printf '%%s' "
+             "'{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,2],[2,-1],[3,1],[4,0],[5,"
+             "1]]}]}' | %s reduce --degree 3 --text -",
+             exe, exe);
+    if (cj_cli_shell(cmd, &r) == 0) {
+        int item = -1, from = 0, to = 0, seen = 0;
+        double bound = -1, q[6][2];
+        const double quintic[6][2] = {{0, 0}, {1, 2}, {2, -1}, {3, 1}, {4, 0}, {5, 1}};
+        for (const char *p = r.out; p && *p;) {
+            if (sscanf(p, "reduced %d %d %d %lf", &item, &from, &to, &bound) == 4) {
+                const char *l = p;
+                for (int j = 0; j <= to && j < 6; ++j) {
+                    l = strchr(l, '\n');
+                    if (!l || sscanf(++l, "%lf %lf", &q[j][0], &q[j][1]) != 2) break;
+                }
+                if (seen == 0) /* the elevated parabola */
+                    CHECK(to == 2 && bound < 1e-12, "elevated parabola: to %d bound %g", to, bound);
+                if (seen == 1) /* the quintic: no degree below 5 within 1e-9 */
+                    CHECK(to == 5 && bound == 0, "quintic at 1e-9: to %d bound %g", to, bound);
+                if (seen == 2 && to == 3) { /* the quintic reduced to a cubic */
+                    double worst = 0;
+                    for (int i = 0; i <= 2000; ++i) {
+                        double t = i / 2000.0, a[6][2], b[4][2];
+                        memcpy(a, quintic, sizeof a);
+                        memcpy(b, q, sizeof b);
+                        for (int rr = 5; rr > 0; --rr)
+                            for (int j = 0; j < rr; ++j)
+                                for (int k = 0; k < 2; ++k)
+                                    a[j][k] = (1 - t) * a[j][k] + t * a[j + 1][k];
+                        for (int rr = 3; rr > 0; --rr)
+                            for (int j = 0; j < rr; ++j)
+                                for (int k = 0; k < 2; ++k)
+                                    b[j][k] = (1 - t) * b[j][k] + t * b[j + 1][k];
+                        worst = fmax(worst, hypot(a[0][0] - b[0][0], a[0][1] - b[0][1]));
+                    }
+                    CHECK(worst <= bound && worst > 0, "quintic -> cubic: distance %g, bound %g",
+                          worst, bound);
+                    printf("reduce: quintic -> cubic, proven bound %.4g, sampled distance %.4g\n",
+                           bound, worst);
+                }
+                ++seen;
+            }
+            p = strchr(p, '\n');
+            if (p) ++p;
+        }
+        CHECK(r.status == 0 && seen == 3, "reduce: status %d, %d curves\n%s", r.status, seen,
+              r.err);
+        cj_cli_result_free(&r);
+        checks += 4;
+    }
     struct {
         const char *args, *needle;
     } bad[] = {
@@ -114,11 +202,16 @@ int main(void) {
         {"section --plane 0,0,1,1", "no model"},
         {"section --plane 0,0,1,1 --teapot --tol -1", "--tol"},
         {"section --plane 0,0,1,1 --patch '0,0,0;1,0,0' --degree 1,1", "--patch"},
-        {"section --plane 0,0,1,1 --teapot -o x.png", ".obj"},
+        {"section --plane 0,0,1,1 --teapot -o x.png", ".obj or .json"},
+        {"section --plane 0,0,1,1 --surface /nonexistent.json", "--surface"},
+        {"section --plane 0,0,1,1 --teapot --surface x.json", "give one of"},
         {"nearest --point 0,0 --teapot", "--point"},
         {"nearest --point 0,0,nan --teapot", "--point"},
         {"nearest --point 0,0,0 --teapot --plane 0,0,1,0", "does not apply"},
         {"intersect --trim -", "--trim does not apply"},
+        {"reduce docs/none.json", "give one of --degree M or --tol T"},
+        {"reduce --degree 0 -", "--degree '0'"},
+        {"offset --degree 2 --distance 1 -", "--degree does not apply"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         snprintf(cmd, sizeof cmd, "%s %s", exe, bad[i].args);
@@ -129,7 +222,8 @@ int main(void) {
         ++checks;
     }
     printf("test_cli_section: %d checks (sphere octant section on its circle within the proven "
-           "deviation, OBJ lines, teapot section, nearest on a patch, offset --trim, %zu bad "
+           "deviation, OBJ lines, the teapot's three closed curves, --json and plot, nearest on a "
+           "patch, offset --trim, reduce against sampled distances, %zu bad "
            "inputs refused)\n",
            checks, sizeof bad / sizeof bad[0]);
     return cj_check_exit();

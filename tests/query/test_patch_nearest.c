@@ -123,6 +123,34 @@ int main(void) {
     check_query(&C, (double[]){0, 0, 1}, 1e-9, 30, "cylinder axis", &r);
     CHECK(fabs(r.distance - 1) < 1e-9 && r.lower > 1 - 2e-9, "cylinder: %.17g [%.17g]", r.distance,
           r.lower);
+    /* a rational sphere octant seen from its centre: every point at distance 1, so no piece of
+     * any size is prunable by its control box (this hit the work cap before the Bernstein bound
+     * of the squared distance); also from a point just off the centre, nearly equidistant */
+    {
+        const double a[3][2] = {{1, 0}, {1, 1}, {0, 1}}, wa[3] = {1, c, 1};
+        double sp[27], sw[9];
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) {
+                int idx = j * 3 + i;
+                sp[3 * idx] = a[j][0] * a[i][0];
+                sp[3 * idx + 1] = a[j][0] * a[i][1];
+                sp[3 * idx + 2] = a[j][1];
+                sw[idx] = wa[i] * wa[j];
+            }
+        cj_patch S = cj_patch_view(2, 2, sp, sw);
+        check_query(&S, (double[]){0, 0, 0}, 1e-9, 30, "sphere centre", &r);
+        CHECK(fabs(r.distance - 1) < 1e-9 && r.lower > 1 - 1e-9 && r.pieces < 100,
+              "sphere centre: %.17g [%.17g] in %ld pieces", r.distance, r.lower, r.pieces);
+        printf("sphere octant from its centre, tol 1e-9: distance %.17g, lower %.17g, %ld "
+               "sub-patches\n",
+               r.distance, r.lower, r.pieces);
+        check_query(&S, (double[]){1e-7, -2e-7, 3e-8}, 1e-9, 30, "sphere near centre", &r);
+        printf("sphere octant from (1e-7, -2e-7, 3e-8), tol 1e-9: distance %.17g, lower %.17g, "
+               "%ld sub-patches\n",
+               r.distance, r.lower, r.pieces);
+        check_query(&S, (double[]){0, 0, 0}, 2e-11, 12, "sphere centre tol 2e-11", &r);
+        CHECK(r.pieces < 100, "sphere centre tol 2e-11: %ld pieces", r.pieces);
+    }
     /* a point of the patch: its corner */
     double flat[3 * 16];
     for (int i = 0; i < 3 * 16; ++i) flat[i] = cj_rng_range(&rng, -1, 1);

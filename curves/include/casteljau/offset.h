@@ -19,8 +19,18 @@
  * counts the sign changes of 1 - d κ between consecutive piece ends (each is at least one cusp
  * inside that piece). Past such cusps the offset runs backwards and forms loops (the "swallowtails"
  * of a tight bend): they are returned as part of the raw offset, not trimmed. cj_intersect_curves
- * on pairs of pieces finds their crossings, which is what a trim needs. A curve whose derivative
- * vanishes (a cusp of c itself, where N is undefined) is CJ_ERR_DEGENERATE naming the parameter.
+ * on pairs of pieces finds their crossings, which is what a trim needs.
+ *
+ * Cusps of c itself (c' = 0 inside (0,1), N flips there; polynomial curves): found as the local
+ * minima of |c'| where it is below 2^-24 n times the control points' extent, when the plain run
+ * cannot prove a piece near one. The pieces then cover [0, t - δ] and [t + δ, 1], with δ such
+ * that c stays within tol/4 of c(t) on [t - δ, t + δ], and between them the offset is COMPLETED by
+ * the arc of radius |d| about c(t) from o(t - δ) to o(t + δ), turning the way the curve turns
+ * there (the sign of its curvature on both sides: the outer offset goes round the tip, the inner
+ * one through the inside of the cusp, where a trim removes it). The arc is proven cubic pieces
+ * (within tol of the circle); *deviation bounds the distance to that completed offset; breaks
+ * give the arc's pieces equal shares of [t - δ, t + δ]. A rational curve whose derivative
+ * vanishes, or a cusp at an end (c'(0) = 0), is CJ_ERR_DEGENERATE naming the parameter.
  *
  * Parameters: d finite (CJ_ERR_NONFINITE); tol finite, > 0 and >= 2^-40 (scale + |d|)
  * (CJ_ERR_ARGUMENT naming tol); pts receives 8 doubles (4 points) per piece, cap_pieces the
@@ -66,6 +76,35 @@ cj_status cj_offset_curve(const cj_bezier2 *c, double d, double tol, double *pts
 cj_status cj_offset_trim(const cj_bezier2 *c, double d, double tol, const double *pieces, int np,
                          double deviation, double *out, int *newline, int cap, int *nout,
                          int *dropped);
+
+/* The OUTLINE of the stroke of c with half-width w > 0 (the boundary of the region swept by a
+ * disc of radius w along c, before removing its overlaps): closed loops of cubic pieces.
+ * Open curve (c(0) != c(1)): ONE loop: the offset at +w from t = 0 to 1, the end cap at c(1),
+ * the offset at -w from t = 1 back to 0, the start cap at c(0). Caps (tangent T at the end,
+ * pointing out of the curve):
+ *   CJ_OFFSET_CAP_BUTT    the segment between the two offset ends;
+ *   CJ_OFFSET_CAP_ROUND   the half circle of radius w about the end point, through end + w T
+ *                         (cubic arcs, proven as in the cusp completion above);
+ *   CJ_OFFSET_CAP_SQUARE  the three segments out to end + w T and back (the half square).
+ * Closed curve (c(0) == c(1) bit for bit): TWO loops, the offsets at +w and -w (the second
+ * reversed), each closed at the seam: snapped when the two ends of the offset meet (a smooth
+ * closure, the gap added to the deviation), else by a round join about c(0) on the convex side
+ * of the corner and through c(0) (two segments, inside the stroke) on the concave side.
+ * Cusps of c are completed as in cj_offset_curve. Consecutive pieces of a loop share their end
+ * points bit for bit and every loop closes bit for bit; newline (may be NULL, cap ints) is 1 at
+ * the first piece of each loop. *deviation: the largest proven bound of the offsets and the
+ * arcs; *cusps the total of both offsets. Errors as cj_offset_curve (w <= 0: CJ_ERR_ARGUMENT;
+ * cap_pieces too small: CJ_ERR_BUFFER with *npieces the count needed; an unknown cap:
+ * CJ_ERR_ARGUMENT). No allocation. */
+typedef enum cj_offset_cap {
+    CJ_OFFSET_CAP_BUTT = 0,
+    CJ_OFFSET_CAP_ROUND = 1,
+    CJ_OFFSET_CAP_SQUARE = 2
+} cj_offset_cap;
+
+cj_status cj_offset_outline(const cj_bezier2 *c, double w, double tol, cj_offset_cap cap,
+                            double *pts, int *newline, int cap_pieces, int *npieces,
+                            double *deviation, int *cusps);
 
 /* Degree reduction: the curve r of degree m < n (any dimension) closest to c in the least-squares
  * sense on the control points of r elevated to degree n, with the end points kept (r(0) = c(0),

@@ -7,7 +7,12 @@
  * enclosed control points and the gap along the direction from q to the mean of its corners,
  * in outward-rounded interval arithmetic) is at least the best distance found minus tol. Upper
  * bounds are enclosed evaluations (interval de Casteljau) at sub-patch centres, polished by
- * Gauss-Newton steps. The result carries lower <= min |S - q| <= distance, distance - lower <=
+ * Gauss-Newton steps. At the root and every fourth level a second lower bound is taken from the
+ * Bernstein form of the squared distance, N/D with N = sum_k (P_k - q_k W)^2 and D = W^2 of
+ * degree (2m, 2n): N/D >= min_IJ N_IJ / D_IJ. It is exact for a patch whose points are all
+ * equally far from q (a sphere patch seen from its centre: every ratio is r^2 to rounding), so
+ * such a patch, where no box bound can ever prune, is certified at once: any point is nearest
+ * within tol. The result carries lower <= min |S - q| <= distance, distance - lower <=
  * tol, and distance bounds |S(u,v) - q| at the reported (u,v).
  *
  * Degrees up to CJ_PATCH_NEAREST_MAX_DEGREE in each direction (CJ_ERR_DEGREE above); tol

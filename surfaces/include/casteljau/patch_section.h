@@ -43,6 +43,8 @@
 #include "casteljau/patch.h"
 #include "casteljau/status.h"
 
+#include <stddef.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -69,6 +71,67 @@ cj_status cj_patch_section_plane(const cj_patch *p, const double n[3], double d,
 
 /* Releases what cj_patch_section_plane allocated and zeroes the result (NULL is fine). */
 void cj_patch_section_free(cj_patch_section *s);
+
+/* The section of a MODEL (count patches, e.g. the teapot or a B-spline surface's Bézier
+ * patches) by the plane n . x = d, as chains of cubic Bézier pieces joined across the patches.
+ *
+ * Each patch is cut by cj_patch_section_plane at tol / 4. The open polylines end on patch
+ * edges; two ends of different polylines (or of one) within join_eps = tol / 256 of each other
+ * are the same point of the section seen from two patches sharing an edge, and are joined,
+ * closest pairs first; the joined point is one point, bit for bit, in both chains' data.
+ * A chain that comes back to its first end is closed. Every polyline of a patch between two
+ * joins (a "run") is fitted by cubic Bézier pieces: end points at polyline vertices (which lie on
+ * the section to rounding), end tangents along n x N (N the surface normal at the vertex),
+ * tangent lengths by least squares on the chord-length parameters of the vertices between,
+ * halving the vertex range until the piece is within the allowed error. Consecutive pieces share
+ * their end point bit for bit (also across patch edges and where a closed chain closes).
+ *
+ * WHAT IS PROVEN: deviation bounds the distance between the cubic pieces and the true section,
+ * both ways. Per piece, with e_v the largest distance from a vertex of its range to the cubic
+ * (at an evaluated point of the cubic, so an upper bound) and e_s the largest distance of S
+ * samples of the cubic to the polyline of its range, plus 3L/(2S) (L the largest control
+ * polygon leg: the cubic moves at most that far between samples), the piece's bound is
+ * poly_deviation + max(e_v, e_s) (every point of the section is within poly_deviation of a
+ * vertex of its cell, and every polyline point within poly_deviation of the section). The bound
+ * is <= tol unless a range of one segment still misses it (then it is a straight piece and the
+ * bound says how far it is). An unresolved cell whose centre lies within tol - poly_deviation of a
+ * piece is covered by the pieces (its section points are within poly_deviation of its centre): it
+ * is dropped and the deviation raised to cover it, still <= tol (a plane holding a patch edge: the
+ * patch on one side finds the edge as a polyline, the one on the other side only such cells).
+ * Rounding in the distance evaluations (~1e-16 of the size) is added as 2^-44 times the model's
+ * size.
+ *
+ * Output (owned, released by cj_section_curves_free): piece k has control points
+ * ctrl[12k .. 12k+11] (4 points x y z); chain c is pieces piece_starts[c] .. piece_starts[c+1]-1
+ * and polyline vertices pt_starts[c] .. pt_starts[c+1]-1 of pts (joined; a closed chain's first
+ * point is not repeated); closed[c] flags a closed chain. unresolved as cj_patch_section (points
+ * of all patches); ambiguous and cells summed; plane_gap the largest over the patches;
+ * join_gap the largest distance between two joined ends before they were made one.
+ *
+ * Errors: as cj_patch_section_plane for each patch (the message names the patch index); count
+ * = 0: CJ_ERR_ARGUMENT; no memory: CJ_ERR_NOMEM (nothing written). */
+typedef struct cj_section_curves {
+    double *ctrl; /* npieces x 4 points x 3 */
+    int *piece_starts;
+    double *pts; /* npts polyline vertices x 3, chains joined */
+    int *pt_starts;
+    unsigned char *closed;
+    int npieces, nchains, npts;
+    double *unresolved;
+    int nunresolved;
+    int ambiguous, joins;
+    long cells;
+    double deviation;      /* proven: cubic pieces vs the true section, both ways */
+    double poly_deviation; /* proven: polylines vs the true section (largest over the patches) */
+    double join_gap;       /* largest distance between two ends joined into one point */
+    double plane_gap;      /* measured: largest distance of a vertex to the plane */
+} cj_section_curves;
+
+cj_status cj_patches_section_curves(const cj_patch *patches, size_t count, const double n[3],
+                                    double d, double tol, cj_section_curves *out);
+
+/* Releases what cj_patches_section_curves allocated and zeroes it (NULL is fine). */
+void cj_section_curves_free(cj_section_curves *s);
 
 #ifdef __cplusplus
 }
