@@ -431,6 +431,10 @@ static inline double plan_next(fast_plan *pl, size_t j) {
 
 #define FAST_REPAIR_TRIES 6
 
+static inline int e_count_lt(const cj_fl_emitter *e, size_t lim) {
+    return e->count < lim;
+}
+
 /* [a, b] failed with squared bound D2: the model underestimated the deviation there (near
  * inflections the h^2 law of the sqrt(κ) integral undershoots by up to ~15 %). The segment is
  * shortened (deviation ~ h^2.5 between the arc's h^2 and an inflection's h^3) until it is
@@ -521,34 +525,72 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
     const size_t m = (size_t)mf;
     fast_plan pl;
     plan_init(&pl, qs, nq, m, total / mf);
-    double a = 0.0, prev = 0.0;
+    const double tol2 = cx->tol_s * cx->tol_s;
+    /* inner points go straight into the caller's buffer below this count */
+    const size_t dend = fr.direct ? fr.direct_end : 0;
+    double a = 0.0, prev = 0.0, worst2 = 0.0;
     fpt P = brk[0];
     size_t j = 1;
-    double bj = plan_next(&pl, j);
-    while (a < 1.0) {
-        /* the next planned point at least half a planned step ahead (later ones when a
-         * repair below moved the start forward) */
-        while (bj < 1.0 && !(bj - a >= 0.5 * (bj - prev))) {
-            prev = bj;
-            bj = plan_next(&pl, ++j);
-        }
-        fpt Q;
-        if (bj == 1.0)
-            Q = brk[nq];
-        else
-            eval_pd(p, cx->dq, cx->n, bj, &Q);
-        const double D2 = piece_dev2(cx, a, bj, &P, &Q);
-        if (D2 <= cx->tol_s * cx->tol_s) {
-            if (D2 > fr.worst2) fr.worst2 = D2;
-            const cj_status st = emit_break(&fr, bj, &Q);
-            if (st) return st;
-            a = bj;
+    int qi = 0;
+    while (j < m) {
+        while (j >= qs[qi].jlim && qi < nq - 1) qi++;
+        const fast_quad *q = &qs[qi];
+        const double lo = q->t0, hi = q->t0 + q->dt < 1.0 ? q->t0 + q->dt : 1.0;
+        const size_t jend = q->jlim;
+        /* The planned points on this quadratic: one square root, one evaluation and the
+         * certificate each; the branch to the repair is rarely taken. */
+        for (; j < jend; ++j) {
+            double t = q->c0 + q->c1 * approx_f_inv(q->alpha + (double)j * q->beta);
+            t = t > lo ? t : lo;
+            t = t < hi ? t : hi;
+            if (t >= 1.0) {
+                j = m;
+                break;
+            }
+            fpt Q;
+            eval_pd(p, cx->dq, cx->n, t, &Q);
+            const double D2 = piece_dev2(cx, a, t, &P, &Q);
+            if (__builtin_expect(D2 > tol2, 0)) {
+                fr.worst2 = fr.worst2 > worst2 ? fr.worst2 : worst2;
+                const cj_status st = repair(&fr, &a, &P, t, &Q, D2);
+                if (st) return st;
+                worst2 = fr.worst2;
+                /* resume at the next planned point at least half a planned step ahead */
+                pl.qi = qi;
+                double bj = t;
+                while (bj < 1.0 && !(bj - a >= 0.5 * (bj - prev))) {
+                    prev = bj;
+                    bj = plan_next(&pl, ++j);
+                }
+                if (bj >= 1.0) j = m;
+                break;
+            }
+            worst2 = D2 > worst2 ? D2 : worst2;
+            if (e_count_lt(em, dend)) {
+                em->out[2 * em->count] = Q.x * fr.up;
+                em->out[2 * em->count + 1] = Q.y * fr.up;
+                em->count++;
+            } else {
+                const cj_status st = emit_slow(&fr, t, &Q);
+                if (st) return st;
+            }
+            a = t;
+            prev = t;
             P = Q;
-            prev = bj;
-            bj = plan_next(&pl, ++j);
-            continue;
         }
-        const cj_status st = repair(&fr, &a, &P, bj, &Q, D2);
+    }
+    fr.worst2 = fr.worst2 > worst2 ? fr.worst2 : worst2;
+    /* the last segment, to the exact end point */
+    while (a < 1.0) {
+        const fpt Q = brk[nq];
+        const double D2 = piece_dev2(cx, a, 1.0, &P, &Q);
+        if (D2 <= tol2) {
+            if (D2 > fr.worst2) fr.worst2 = D2;
+            const cj_status st = emit_break(&fr, 1.0, &Q);
+            if (st) return st;
+            break;
+        }
+        const cj_status st = repair(&fr, &a, &P, 1.0, &Q, D2);
         if (st) return st;
     }
     *bound = sqrt(fr.worst2) * fr.up + fc->slack;
