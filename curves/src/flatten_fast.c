@@ -156,31 +156,30 @@ piece_dev2(const fast_ctx *cx, double a, double b, const fpt *P, const fpt *Q) {
     const double k = (b - a) * cx->inv_n;
     const double vx = Q->x - P->x, vy = Q->y - P->y;
     const double L2 = vx * vx + vy * vy;
-    const double u1x = k * P->dx, u1y = k * P->dy; /* b_1 - b_0 */
-    const double c1 = vx * u1y - vy * u1x, d1 = vx * u1x + vy * u1y;
-    double A, B, dmin = d1 < 0.0 ? d1 : 0.0, dmax = d1 > L2 ? d1 : L2;
+    /* b_1 - b_0 = k c'(a): cross and dot with v */
+    const double c1 = k * (vx * P->dy - vy * P->dx), d1 = k * (vx * P->dx + vy * P->dy);
+    double A, B, d2;
     if (cx->n == 3) {
-        const double u2x = k * Q->dx, u2y = k * Q->dy; /* b_3 - b_2 */
-        const double c2 = vx * u2y - vy * u2x, d2 = L2 - (vx * u2x + vy * u2y);
-        /* b_2 - b_0 = v - u2: cross -c2, dot d2 */
-        if (d2 < dmin) dmin = d2;
-        if (d2 > dmax) dmax = d2;
+        /* b_3 - b_2 = k c'(b); b_2 - b_0 = v - (b_3 - b_2): cross -c2, dot d2 */
+        const double c2 = k * (vx * Q->dy - vy * Q->dx);
+        d2 = L2 - k * (vx * Q->dx + vy * Q->dy);
         A = 3.0 * c1;
         B = -3.0 * c2;
     } else {
+        d2 = d1;
         A = B = 2.0 * c1;
     }
     if (!(L2 > 0.0)) {
         const double g = general_dev(cx, a, b);
         return g * g;
     }
-    const double margin = 16.0 * CJ_UNIT_ROUNDOFF * (fabs(A) + fabs(B));
-    const int inside = dmin >= 0.0 && dmax <= L2;
+    const int inside = d1 >= 0.0 && d1 <= L2 && d2 >= 0.0 && d2 <= L2;
     if (inside) {
         /* max |t(1-t)(A(1-t) + B t)| <= max(|A|, |B|) / 4: exact when A = B (an arc symmetric
-         * about its chord), and enough for most pieces; the exact maximum otherwise. */
+         * about its chord), and enough for most pieces; the exact maximum otherwise. The
+         * rounding margin 16 u (|A| + |B|) <= 32 u max(|A|, |B|) is folded into the factor. */
         const double aA = fabs(A), aB = fabs(B);
-        const double M = 0.25 * (aA > aB ? aA : aB) + margin;
+        const double M = (0.25 + 32.0 * CJ_UNIT_ROUNDOFF) * (aA > aB ? aA : aB);
         const double D2 = M * M / L2;
         if (D2 <= cx->tol_s * cx->tol_s) return D2;
     }
@@ -191,6 +190,8 @@ piece_dev2(const fast_ctx *cx, double a, double b, const fpt *P, const fpt *Q) {
      * chord's line, is a lower bound; the projection parameter is a polynomial with Bernstein
      * coefficients d_i / L2, so the curve reaches at most O = max(-dmin, dmax - L2) / |v| past
      * an end, and sqrt(E^2 + O^2) bounds the distance to the segment. */
+    const double dmin = d1 < d2 ? (d1 < 0.0 ? d1 : 0.0) : (d2 < 0.0 ? d2 : 0.0);
+    const double dmax = d1 > d2 ? (d1 > L2 ? d1 : L2) : (d2 > L2 ? d2 : L2);
     const double O = -dmin > dmax - L2 ? -dmin : dmax - L2;
     const double EO2 = (E * E + O * O) / L2 * (1.0 + 16.0 * CJ_UNIT_ROUNDOFF);
     if (EO2 <= cx->tol_s * cx->tol_s) return EO2;
@@ -234,6 +235,11 @@ static inline void end_point(const fast_ctx *cx, fpt *o) {
 /* Segments are placed for this share of the tolerance (their estimated deviation): a little
  * below 1 so that the estimate's spread rarely fails the certificate. */
 #define FAST_TARGET 0.90
+/* Plans of at least FAST_MANY segments aim lower: there the per-segment work dominates the time
+ * and the count's whole-number rounding costs nothing, so fewer rejected segments (one in nine
+ * at 0.90, near inflections) are worth 1 % more segments. */
+#define FAST_MANY        64
+#define FAST_TARGET_MANY 0.88
 
 static inline double approx_f_inv(double a) {
     return a * (1.0 - FAST_F_K + sqrt(FAST_F_K * FAST_F_K + a * a * (1.0 / 16.0)));
@@ -472,6 +478,129 @@ static cj_status repair(fast_run *fr, double *pa, fpt *P, double b, const fpt *Q
     return CJ_OK;
 }
 
+/* ---- few segments: a measured second placement --------------------------------------------
+ *
+ * With few segments per curve the whole-number count and the model's spread cost most (a long
+ * segment's deviation strays further from the parabola model's estimate: across an inflection it
+ * is far below it), and the per-curve set-up dominates the time, so a second placement pays:
+ * the planned points are certified first without emitting, and each bound D_k tells how many
+ * segments of deviation FAST_SMALL_TARGET tol its piece needs, sqrt(D_k / (FAST_SMALL_TARGET
+ * tol)) by the h^2 law. When their sum asks for fewer segments than planned, the points are
+ * placed again at equal steps of that measure (linear in t within each planned piece) and
+ * certified as usual; otherwise the planned points, already certified, are emitted. */
+
+/* Plans of at most this many segments take the measured second placement. */
+#define FAST_SMALL_MAX    24
+#define FAST_SMALL_TARGET 0.99
+
+/* Walks the break points ts[1..M] (ts[M] = 1; points pts; d2s[k] the squared bound of
+ * [ts[k-1], ts[k]] when already known, else negative): certified segments are emitted, rejected
+ * ones repaired, the walk resuming at the next point at least half a step ahead. */
+static cj_status walk_list(fast_run *fr, const double *ts, const fpt *pts, const double *d2s,
+                           size_t M) {
+    const fast_ctx *cx = &fr->cx;
+    const double tol2 = cx->tol_s * cx->tol_s;
+    double a = 0.0, prev = 0.0;
+    fpt P = pts[0];
+    size_t k = 1;
+    while (a < 1.0) {
+        const double b = ts[k];
+        const double D2 =
+            d2s[k] >= 0.0 && a == ts[k - 1] ? d2s[k] : piece_dev2(cx, a, b, &P, &pts[k]);
+        if (D2 <= tol2) {
+            if (D2 > fr->worst2) fr->worst2 = D2;
+            const cj_status st = emit_break(fr, b, &pts[k]);
+            if (st) return st;
+            a = b;
+            P = pts[k];
+            prev = b;
+            ++k;
+            continue;
+        }
+        const cj_status st = repair(fr, &a, &P, b, &pts[k], D2);
+        if (st) return st;
+        while (k < M && !(ts[k] - a >= 0.5 * (ts[k] - prev))) {
+            prev = ts[k];
+            ++k;
+        }
+    }
+    return CJ_OK;
+}
+
+/* The plan pl of m (2 <= m <= FAST_SMALL_MAX) segments between the break points first (t = 0)
+ * and last (t = 1), measured and placed again as above. */
+static cj_status run_small(fast_run *fr, fast_plan *pl, const fpt *first, const fpt *last,
+                           size_t m) {
+    const fast_ctx *cx = &fr->cx;
+    double ts[FAST_SMALL_MAX + 1], d2s[FAST_SMALL_MAX + 1], need[FAST_SMALL_MAX + 1];
+    fpt pts[FAST_SMALL_MAX + 1];
+    ts[0] = 0.0;
+    pts[0] = *first;
+    size_t M = m;
+    for (size_t k = 1; k < m; ++k) {
+        const double t = plan_next(pl, k);
+        if (t >= 1.0) {
+            M = k;
+            break;
+        }
+        ts[k] = t;
+        eval_pd(cx->p, cx->dq, cx->n, t, &pts[k]);
+    }
+    ts[M] = 1.0;
+    pts[M] = *last;
+    /* need[k]: segments of deviation FAST_SMALL_TARGET tol the pieces up to k ask for */
+    const double inv_goal = 1.0 / sqrt(FAST_SMALL_TARGET * cx->tol_s);
+    const double tol2 = cx->tol_s * cx->tol_s;
+    int all_certified = 1;
+    double worst2 = fr->worst2;
+    need[0] = 0.0;
+    d2s[0] = -1.0;
+    for (size_t k = 1; k <= M; ++k) {
+        const double D2 = piece_dev2(cx, ts[k - 1], ts[k], &pts[k - 1], &pts[k]);
+        d2s[k] = D2;
+        all_certified &= D2 <= tol2;
+        worst2 = D2 > worst2 ? D2 : worst2;
+        need[k] = need[k - 1] + sqrt(sqrt(D2)) * inv_goal;
+    }
+    const double total = need[M];
+    const double m2f = ceil(total);
+    if (!(m2f < (double)M) || !(m2f >= 1.0)) { /* no fewer: the planned points */
+        if (!all_certified) return walk_list(fr, ts, pts, d2s, M);
+        fr->worst2 = worst2;
+        for (size_t k = 1; k <= M; ++k) {
+            const cj_status st = emit_break(fr, ts[k], &pts[k]);
+            if (st) return st;
+        }
+        return CJ_OK;
+    }
+    const size_t m2 = (size_t)m2f;
+    double ts2[FAST_SMALL_MAX + 1], d2n[FAST_SMALL_MAX + 1];
+    fpt pts2[FAST_SMALL_MAX + 1];
+    ts2[0] = 0.0;
+    pts2[0] = *first;
+    d2n[0] = -1.0;
+    size_t k = 1, M2 = m2;
+    for (size_t i = 1; i < m2; ++i) {
+        const double target = total * (double)i / (double)m2;
+        while (k < M && need[k] <= target) ++k;
+        const double span = need[k] - need[k - 1];
+        double t =
+            span > 0.0 ? ts[k - 1] + (target - need[k - 1]) / span * (ts[k] - ts[k - 1]) : ts[k];
+        if (!(t > ts2[i - 1])) t = ts[k]; /* rounding: keep the parameters increasing */
+        if (!(t > ts2[i - 1]) || t >= 1.0) {
+            M2 = i;
+            break;
+        }
+        ts2[i] = t;
+        d2n[i] = -1.0;
+        eval_pd(cx->p, cx->dq, cx->n, t, &pts2[i]);
+    }
+    ts2[M2] = 1.0;
+    pts2[M2] = *last;
+    d2n[M2] = -1.0;
+    return walk_list(fr, ts2, pts2, d2n, M2);
+}
+
 cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *em, double *bound) {
     fast_run fr;
     fast_ctx *cx = &fr.cx;
@@ -518,13 +647,20 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
         total += qs[i - 1].val;
     }
     /* ∫ sqrt(κ) ds = m sqrt(8 dev) for m equal segments of deviation dev */
-    const double per = sqrt(8.0 * FAST_TARGET * cx->tol_s);
+    double per = sqrt(8.0 * FAST_TARGET * cx->tol_s);
+    if (total >= (double)FAST_MANY * per) per = sqrt(8.0 * FAST_TARGET_MANY * cx->tol_s);
     double mf = ceil(total / per);
     if (!(mf >= 1.0)) mf = 1.0;
     if (!(mf <= (double)em->max_points)) return cj_fl_cap_fail(em, "near-optimal");
     const size_t m = (size_t)mf;
     fast_plan pl;
     plan_init(&pl, qs, nq, m, total / mf);
+    if (m >= 2 && m <= FAST_SMALL_MAX) {
+        const cj_status st = run_small(&fr, &pl, &brk[0], &brk[nq], m);
+        if (st) return st;
+        *bound = sqrt(fr.worst2) * fr.up + fc->slack;
+        return CJ_OK;
+    }
     const double tol2 = cx->tol_s * cx->tol_s;
     /* inner points go straight into the caller's buffer below this count */
     const size_t dend = fr.direct ? fr.direct_end : 0;
