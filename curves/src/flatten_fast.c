@@ -46,7 +46,7 @@
  * the computed control points is within that distance of the true piece (a convex combination), so
  * the bound plus fc->slack = 32 (n+2) u max|coord| holds for the true piece; the general bound's
  * subcurve ends differ from our break points by as little, also inside the slack. */
-#include "flatten_internal.h"
+#include "flatten_fast_internal.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -69,134 +69,14 @@ static inline double pow2(int e) {
     return v.d;
 }
 
-typedef struct fpt {
-    double x, y, dx, dy; /* c(t), c'(t) in the scaled coordinates */
-} fpt;
-
-/* Point and first derivative at t in Bernstein form: c(t) = Σ B_i(t) b_i and
- * c'(t) = Σ B^(n-1)_i(t) q_i with q_i = n (b_{i+1} - b_i) (computed once per curve, in dq). The
- * weights are products of s = 1 - t and t, positive and summing to 1 up to rounding, so the
- * errors stay within the few u of the top comment's rounding paragraph. */
-/* a * b + c, fused where the hardware has it (one rounding instead of two; the bounds above
- * count two). */
-#ifdef __FMA__
-#define FAST_MADD(a, b, c) fma(a, b, c)
-#else
-#define FAST_MADD(a, b, c) ((a) * (b) + (c))
-#endif
-
-static inline __attribute__((always_inline)) void eval_pd(const double *p, const double *dq, int n,
-                                                          double t, fpt *o) {
-    const double s = 1.0 - t;
-    const double ss = s * s, st = s * t, tt = t * t;
-    if (n == 3) {
-        const double w0 = ss * s, w1 = 3.0 * (ss * t), w2 = 3.0 * (st * t), w3 = tt * t;
-        const double v1 = 2.0 * st;
-        o->x = FAST_MADD(w3, p[6], FAST_MADD(w2, p[4], FAST_MADD(w1, p[2], w0 * p[0])));
-        o->y = FAST_MADD(w3, p[7], FAST_MADD(w2, p[5], FAST_MADD(w1, p[3], w0 * p[1])));
-        o->dx = FAST_MADD(tt, dq[4], FAST_MADD(v1, dq[2], ss * dq[0]));
-        o->dy = FAST_MADD(tt, dq[5], FAST_MADD(v1, dq[3], ss * dq[1]));
-    } else {
-        const double w1 = 2.0 * st;
-        o->x = FAST_MADD(tt, p[4], FAST_MADD(w1, p[2], ss * p[0]));
-        o->y = FAST_MADD(tt, p[5], FAST_MADD(w1, p[3], ss * p[1]));
-        o->dx = FAST_MADD(t, dq[2], s * dq[0]);
-        o->dy = FAST_MADD(t, dq[3], s * dq[1]);
-    }
-}
-
-/* max over t in [0,1] of |t(1-t)(A(1-t) + B t)| plus the rounding margin (see the top). */
-static inline double hump_max(double A, double B) {
-    const double R = sqrt(A * A - A * B + B * B);
-    const double m2 = 2.0 * A - B;
-    const double q = m2 + (m2 >= 0.0 ? R : -R);
-    double best = 0.0;
-    if (q != 0.0) {
-        const double a3 = 3.0 * (A - B);
-        const double r[2] = {a3 != 0.0 ? q / a3 : -1.0, A / q};
-        for (int i = 0; i < 2; ++i) {
-            const double t = r[i];
-            if (t > 0.0 && t < 1.0) {
-                const double e = fabs(t * (1.0 - t) * (A + (B - A) * t));
-                if (e > best) best = e;
-            }
-        }
-    }
-    return best + 16.0 * CJ_UNIT_ROUNDOFF * (fabs(A) + fabs(B));
-}
-
-typedef struct fast_ctx {
-    const cj_fl_curve *fc;
-    const double *p; /* scaled control points, stride 2 */
-    double dq[6];    /* n (b_{i+1} - b_i), the derivative's control points, stride 2 */
-    int n;
-    double inv_n; /* 1 / n */
-    double down;  /* 2^-escale: caller units -> scaled */
-    double tol_s; /* tol_eff in scaled units */
-    double lo_s;  /* accept_lo in scaled units */
-    double tol_eff, accept_lo;
-} fast_ctx;
-
 /* The general bounds (a)-(d) on the de Casteljau subcurve on [a,b], in scaled units. Kept out of
  * line: its work space is large, and the common path should not pay for the stack frame. */
-static __attribute__((noinline)) double general_dev(const fast_ctx *cx, double a, double b) {
+__attribute__((noinline)) double cj_fl_fast_general_dev(const fast_ctx *cx, double a, double b) {
     double sub[CJ_FL_WORK];
     cj_fl_subcurve(cx->fc, a, b, sub);
     const double D = cj_fl_piece_bound_refined(cx->fc, sub, cx->accept_lo, INFINITY,
                                                CJ_FL_REFINE_GAIN, cx->tol_eff);
     return D * cx->down;
-}
-
-/* Square of a deviation bound (scaled units) of the piece [a,b] between the break points P (at
- * a) and Q (at b). Squares and one division instead of square roots: the common case costs
- * no root at all. Squaring and the division add a few u relative to the deviation, which is at
- * most about the curve's size, so inside the slack. Returns +INFINITY only on overflow. */
-static inline __attribute__((always_inline)) double
-piece_dev2(const fast_ctx *cx, double a, double b, const fpt *P, const fpt *Q) {
-    const double k = (b - a) * cx->inv_n;
-    const double vx = Q->x - P->x, vy = Q->y - P->y;
-    const double L2 = vx * vx + vy * vy;
-    /* b_1 - b_0 = k c'(a): cross and dot with v */
-    const double c1 = k * (vx * P->dy - vy * P->dx), d1 = k * (vx * P->dx + vy * P->dy);
-    double A, B, d2;
-    if (cx->n == 3) {
-        /* b_3 - b_2 = k c'(b); b_2 - b_0 = v - (b_3 - b_2): cross -c2, dot d2 */
-        const double c2 = k * (vx * Q->dy - vy * Q->dx);
-        d2 = L2 - k * (vx * Q->dx + vy * Q->dy);
-        A = 3.0 * c1;
-        B = -3.0 * c2;
-    } else {
-        d2 = d1;
-        A = B = 2.0 * c1;
-    }
-    if (!(L2 > 0.0)) {
-        const double g = general_dev(cx, a, b);
-        return g * g;
-    }
-    const int inside = d1 >= 0.0 && d1 <= L2 && d2 >= 0.0 && d2 <= L2;
-    if (inside) {
-        /* max |t(1-t)(A(1-t) + B t)| <= max(|A|, |B|) / 4: exact when A = B (an arc symmetric
-         * about its chord), and enough for most pieces; the exact maximum otherwise. The
-         * rounding margin 16 u (|A| + |B|) <= 32 u max(|A|, |B|) is folded into the factor. */
-        const double aA = fabs(A), aB = fabs(B);
-        const double M = (0.25 + 32.0 * CJ_UNIT_ROUNDOFF) * (aA > aB ? aA : aB);
-        const double D2 = M * M / L2;
-        if (D2 <= cx->tol_s * cx->tol_s) return D2;
-    }
-    const double E = hump_max(A, B);
-    const double E2 = E * E / L2;
-    if (inside || E2 > cx->tol_s * cx->tol_s) return E2;
-    /* Some control point projects beyond an end of the chord. E, the largest distance from the
-     * chord's line, is a lower bound; the projection parameter is a polynomial with Bernstein
-     * coefficients d_i / L2, so the curve reaches at most O = max(-dmin, dmax - L2) / |v| past
-     * an end, and sqrt(E^2 + O^2) bounds the distance to the segment. */
-    const double dmin = d1 < d2 ? (d1 < 0.0 ? d1 : 0.0) : (d2 < 0.0 ? d2 : 0.0);
-    const double dmax = d1 > d2 ? (d1 > L2 ? d1 : L2) : (d2 > L2 ? d2 : L2);
-    const double O = -dmin > dmax - L2 ? -dmin : dmax - L2;
-    const double EO2 = (E * E + O * O) / L2 * (1.0 + 16.0 * CJ_UNIT_ROUNDOFF);
-    if (EO2 <= cx->tol_s * cx->tol_s) return EO2;
-    const double g = general_dev(cx, a, b);
-    return g * g;
 }
 
 static inline void end_point(const fast_ctx *cx, fpt *o) {
@@ -228,7 +108,6 @@ static inline void end_point(const fast_ctx *cx, fpt *o) {
  * (b0 + b3)/2 + h (c'(a) - c'(b))/4 (the parameter correspondence is linear). */
 
 #define FAST_F_R       2.2
-#define FAST_F_K       0.38
 #define FAST_MAX_QUADS 16
 /* Share of the tolerance a model quadratic may miss its piece of the cubic by. */
 #define FAST_QUAD_TOL 0.3
@@ -240,10 +119,6 @@ static inline void end_point(const fast_ctx *cx, fpt *o) {
  * at 0.90, near inflections) are worth 1 % more segments. */
 #define FAST_MANY        64
 #define FAST_TARGET_MANY 0.88
-
-static inline double approx_f_inv(double a) {
-    return a * (1.0 - FAST_F_K + sqrt(FAST_F_K * FAST_F_K + a * a * (1.0 / 16.0)));
-}
 
 /* The exact inverse of approx_f_inv (to 2e-4 relative): the closed form for F as a start,
  * then one Newton step on approx_f_inv. Placing points by approx_f_inv between end values from
@@ -259,18 +134,6 @@ static inline double approx_f(double x) {
     }
     return a;
 }
-
-typedef struct fast_quad {
-    double t0, dt;  /* cubic parameters: t = t0 + u dt */
-    double val;     /* ∫ sqrt(κ) ds of the model (scaled units) */
-    double inv_val; /* 1 / val (0 when val is) */
-    double a0, da;  /* F(x0), F(x1) - F(x0) */
-    double y0, ysc; /* F^-1(a0), 1 / (F^-1(a1) - F^-1(a0)) */
-    /* Filled by plan_init: planned point j (its target j step of the integral) lies on this
-     * quadratic while j < jlim, at t = c0 + c1 F^-1(alpha + j beta), clamped to [t0, t0 + dt]. */
-    double alpha, beta, c0, c1;
-    size_t jlim;
-} fast_quad;
 
 /* The model parabola through P (at t0) and Q (at t0 + dt). */
 static void quad_params(const fpt *P, const fpt *Q, int n, double t0, double dt, fast_quad *q) {
@@ -307,17 +170,8 @@ static void quad_params(const fpt *P, const fpt *Q, int n, double t0, double dt,
 
 /* ---- certification ------------------------------------------------------------------------ */
 
-typedef struct fast_run {
-    fast_ctx cx;
-    cj_fl_emitter *em;
-    double up;
-    int direct;        /* inner points go straight into em->out (no sink) */
-    size_t direct_end; /* while em->count is below this (room and the segment cap) */
-    double worst2;     /* square of the largest certified deviation (scaled units) */
-} fast_run;
-
 /* Emits the end point or a point into a sink (cj_fl_emit's checks); out of line. */
-static __attribute__((noinline)) cj_status emit_slow(fast_run *fr, double b, const fpt *Q) {
+__attribute__((noinline)) cj_status cj_fl_fast_emit_slow(fast_run *fr, double b, const fpt *Q) {
     cj_fl_emitter *e = fr->em;
     double pt[2];
     if (b == 1.0) {
@@ -328,21 +182,6 @@ static __attribute__((noinline)) cj_status emit_slow(fast_run *fr, double b, con
     }
     if (cj_fl_emit(e, pt, b)) return cj_fl_cap_fail(e, "near-optimal");
     return CJ_OK;
-}
-
-static inline __attribute__((always_inline)) cj_status emit_break(fast_run *fr, double b,
-                                                                  const fpt *Q) {
-    cj_fl_emitter *e = fr->em;
-    if (b < 1.0 && fr->direct && e->count < fr->direct_end) {
-        /* inner points into the caller's buffer, where it has room: cj_fl_emit's work without
-         * its checks for the first point of a sequence piece (the first point is emitted
-         * before) and without tracking the last point (the end point, emitted last, sets it) */
-        e->out[2 * e->count] = Q->x * fr->up;
-        e->out[2 * e->count + 1] = Q->y * fr->up;
-        e->count++;
-        return CJ_OK;
-    }
-    return emit_slow(fr, b, Q);
 }
 
 #define FAST_MAX_SPLIT_DEPTH 64
@@ -384,14 +223,6 @@ static cj_status certify(fast_run *fr, double a, const fpt *P, double b, const f
     return CJ_OK;
 }
 
-/* The planned break points: equal steps of the model's integral over the quadratics. */
-typedef struct fast_plan {
-    fast_quad *qs;
-    int nq;
-    size_t m; /* planned segments */
-    int qi;   /* quadratic of the last target */
-} fast_plan;
-
 /* Turns the share of the integral on each quadratic into a closed form in the point's index:
  * target j step lies on quadratic i while it is below the sum of the integrals up to i, at
  * share s = (j step - start) / val of it, parameter t0 + dt (F^-1(a0 + s da) - y0) ysc. */
@@ -425,16 +256,6 @@ static void plan_init(fast_plan *pl, fast_quad *qs, int nq, size_t m, double ste
     }
 }
 
-/* Planned point j (1 <= j; m and later are the end, 1.0). Called with increasing j. */
-static inline double plan_next(fast_plan *pl, size_t j) {
-    if (j >= pl->m) return 1.0;
-    while (j >= pl->qs[pl->qi].jlim && pl->qi < pl->nq - 1) pl->qi++;
-    const fast_quad *q = &pl->qs[pl->qi];
-    const double t = q->c0 + q->c1 * approx_f_inv(q->alpha + (double)j * q->beta);
-    const double hi = q->t0 + q->dt;
-    return t < q->t0 ? q->t0 : (t < hi ? (t < 1.0 ? t : 1.0) : (hi < 1.0 ? hi : 1.0));
-}
-
 #define FAST_REPAIR_TRIES 6
 
 static inline int e_count_lt(const cj_fl_emitter *e, size_t lim) {
@@ -446,7 +267,7 @@ static inline int e_count_lt(const cj_fl_emitter *e, size_t lim) {
  * shortened (deviation ~ h^2.5 between the arc's h^2 and an inflection's h^3) until it is
  * certified, and emitted; the caller resumes from its end towards the next planned point. After
  * FAST_REPAIR_TRIES the piece is cut into certified equal parts instead (cusps). */
-static cj_status repair(fast_run *fr, double *pa, fpt *P, double b, const fpt *Q, double D2) {
+cj_status cj_fl_fast_repair(fast_run *fr, double *pa, fpt *P, double b, const fpt *Q, double D2) {
     const fast_ctx *cx = &fr->cx;
     const double a = *pa, goal2 = 0.96 * 0.96 * cx->tol_s * cx->tol_s;
     double h = b - a;
@@ -476,129 +297,6 @@ static cj_status repair(fast_run *fr, double *pa, fpt *P, double b, const fpt *Q
     *pa = b;
     *P = *Q;
     return CJ_OK;
-}
-
-/* ---- few segments: a measured second placement --------------------------------------------
- *
- * With few segments per curve the whole-number count and the model's spread cost most (a long
- * segment's deviation strays further from the parabola model's estimate: across an inflection it
- * is far below it), and the per-curve set-up dominates the time, so a second placement pays:
- * the planned points are certified first without emitting, and each bound D_k tells how many
- * segments of deviation FAST_SMALL_TARGET tol its piece needs, sqrt(D_k / (FAST_SMALL_TARGET
- * tol)) by the h^2 law. When their sum asks for fewer segments than planned, the points are
- * placed again at equal steps of that measure (linear in t within each planned piece) and
- * certified as usual; otherwise the planned points, already certified, are emitted. */
-
-/* Plans of at most this many segments take the measured second placement. */
-#define FAST_SMALL_MAX    24
-#define FAST_SMALL_TARGET 0.99
-
-/* Walks the break points ts[1..M] (ts[M] = 1; points pts; d2s[k] the squared bound of
- * [ts[k-1], ts[k]] when already known, else negative): certified segments are emitted, rejected
- * ones repaired, the walk resuming at the next point at least half a step ahead. */
-static cj_status walk_list(fast_run *fr, const double *ts, const fpt *pts, const double *d2s,
-                           size_t M) {
-    const fast_ctx *cx = &fr->cx;
-    const double tol2 = cx->tol_s * cx->tol_s;
-    double a = 0.0, prev = 0.0;
-    fpt P = pts[0];
-    size_t k = 1;
-    while (a < 1.0) {
-        const double b = ts[k];
-        const double D2 =
-            d2s[k] >= 0.0 && a == ts[k - 1] ? d2s[k] : piece_dev2(cx, a, b, &P, &pts[k]);
-        if (D2 <= tol2) {
-            if (D2 > fr->worst2) fr->worst2 = D2;
-            const cj_status st = emit_break(fr, b, &pts[k]);
-            if (st) return st;
-            a = b;
-            P = pts[k];
-            prev = b;
-            ++k;
-            continue;
-        }
-        const cj_status st = repair(fr, &a, &P, b, &pts[k], D2);
-        if (st) return st;
-        while (k < M && !(ts[k] - a >= 0.5 * (ts[k] - prev))) {
-            prev = ts[k];
-            ++k;
-        }
-    }
-    return CJ_OK;
-}
-
-/* The plan pl of m (2 <= m <= FAST_SMALL_MAX) segments between the break points first (t = 0)
- * and last (t = 1), measured and placed again as above. */
-static cj_status run_small(fast_run *fr, fast_plan *pl, const fpt *first, const fpt *last,
-                           size_t m) {
-    const fast_ctx *cx = &fr->cx;
-    double ts[FAST_SMALL_MAX + 1], d2s[FAST_SMALL_MAX + 1], need[FAST_SMALL_MAX + 1];
-    fpt pts[FAST_SMALL_MAX + 1];
-    ts[0] = 0.0;
-    pts[0] = *first;
-    size_t M = m;
-    for (size_t k = 1; k < m; ++k) {
-        const double t = plan_next(pl, k);
-        if (t >= 1.0) {
-            M = k;
-            break;
-        }
-        ts[k] = t;
-        eval_pd(cx->p, cx->dq, cx->n, t, &pts[k]);
-    }
-    ts[M] = 1.0;
-    pts[M] = *last;
-    /* need[k]: segments of deviation FAST_SMALL_TARGET tol the pieces up to k ask for */
-    const double inv_goal = 1.0 / sqrt(FAST_SMALL_TARGET * cx->tol_s);
-    const double tol2 = cx->tol_s * cx->tol_s;
-    int all_certified = 1;
-    double worst2 = fr->worst2;
-    need[0] = 0.0;
-    d2s[0] = -1.0;
-    for (size_t k = 1; k <= M; ++k) {
-        const double D2 = piece_dev2(cx, ts[k - 1], ts[k], &pts[k - 1], &pts[k]);
-        d2s[k] = D2;
-        all_certified &= D2 <= tol2;
-        worst2 = D2 > worst2 ? D2 : worst2;
-        need[k] = need[k - 1] + sqrt(sqrt(D2)) * inv_goal;
-    }
-    const double total = need[M];
-    const double m2f = ceil(total);
-    if (!(m2f < (double)M) || !(m2f >= 1.0)) { /* no fewer: the planned points */
-        if (!all_certified) return walk_list(fr, ts, pts, d2s, M);
-        fr->worst2 = worst2;
-        for (size_t k = 1; k <= M; ++k) {
-            const cj_status st = emit_break(fr, ts[k], &pts[k]);
-            if (st) return st;
-        }
-        return CJ_OK;
-    }
-    const size_t m2 = (size_t)m2f;
-    double ts2[FAST_SMALL_MAX + 1], d2n[FAST_SMALL_MAX + 1];
-    fpt pts2[FAST_SMALL_MAX + 1];
-    ts2[0] = 0.0;
-    pts2[0] = *first;
-    d2n[0] = -1.0;
-    size_t k = 1, M2 = m2;
-    for (size_t i = 1; i < m2; ++i) {
-        const double target = total * (double)i / (double)m2;
-        while (k < M && need[k] <= target) ++k;
-        const double span = need[k] - need[k - 1];
-        double t =
-            span > 0.0 ? ts[k - 1] + (target - need[k - 1]) / span * (ts[k] - ts[k - 1]) : ts[k];
-        if (!(t > ts2[i - 1])) t = ts[k]; /* rounding: keep the parameters increasing */
-        if (!(t > ts2[i - 1]) || t >= 1.0) {
-            M2 = i;
-            break;
-        }
-        ts2[i] = t;
-        d2n[i] = -1.0;
-        eval_pd(cx->p, cx->dq, cx->n, t, &pts2[i]);
-    }
-    ts2[M2] = 1.0;
-    pts2[M2] = *last;
-    d2n[M2] = -1.0;
-    return walk_list(fr, ts2, pts2, d2n, M2);
 }
 
 cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *em, double *bound) {
@@ -656,7 +354,7 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
     fast_plan pl;
     plan_init(&pl, qs, nq, m, total / mf);
     if (m >= 2 && m <= FAST_SMALL_MAX) {
-        const cj_status st = run_small(&fr, &pl, &brk[0], &brk[nq], m);
+        const cj_status st = cj_fl_fast_run_small(&fr, &pl, &brk[0], &brk[nq], m);
         if (st) return st;
         *bound = sqrt(fr.worst2) * fr.up + fc->slack;
         return CJ_OK;
@@ -688,7 +386,7 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
             const double D2 = piece_dev2(cx, a, t, &P, &Q);
             if (__builtin_expect(D2 > tol2, 0)) {
                 fr.worst2 = fr.worst2 > worst2 ? fr.worst2 : worst2;
-                const cj_status st = repair(&fr, &a, &P, t, &Q, D2);
+                const cj_status st = cj_fl_fast_repair(&fr, &a, &P, t, &Q, D2);
                 if (st) return st;
                 worst2 = fr.worst2;
                 /* resume at the next planned point at least half a planned step ahead */
@@ -707,7 +405,7 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
                 em->out[2 * em->count + 1] = Q.y * fr.up;
                 em->count++;
             } else {
-                const cj_status st = emit_slow(&fr, t, &Q);
+                const cj_status st = cj_fl_fast_emit_slow(&fr, t, &Q);
                 if (st) return st;
             }
             a = t;
@@ -726,7 +424,7 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
             if (st) return st;
             break;
         }
-        const cj_status st = repair(&fr, &a, &P, 1.0, &Q, D2);
+        const cj_status st = cj_fl_fast_repair(&fr, &a, &P, 1.0, &Q, D2);
         if (st) return st;
     }
     *bound = sqrt(fr.worst2) * fr.up + fc->slack;
