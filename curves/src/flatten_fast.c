@@ -35,7 +35,9 @@
  * closed-form estimate of ∫ sqrt(|κ|) ds (the parabola model), aiming at FAST_TARGET tol per
  * segment, so the spacing follows ∫ sqrt(|κ|/(8 tol)) ds; each segment is then certified as
  * above, and the few the bound rejects (the h^2 law undershoots near inflections) are shortened
- * until certified, the walk resuming from there towards the next planned point.
+ * until certified, the walk resuming from there towards the next planned point. Plans of few
+ * segments are certified first and placed again from the measured bounds
+ * (flatten_fast_small.c).
  *
  * Rounding: the break points and derivatives come from the Bernstein sums of eval_pd on the
  * scaled control points (|coordinates| < 1), whose weights are positive products of s = 1 - t
