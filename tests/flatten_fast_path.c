@@ -52,7 +52,8 @@ static double measure_refined(int n, const double *pts, const poly *p, int per) 
 /* Near-optimal flattening of a planar quadratic or cubic: bound <= tol, refined sampled
  * deviation <= bound (up to rounding of these coordinates), exact end points, increasing
  * parameters, vertices on the curve. Returns the deviation / bound ratio. */
-static double check_fast(int n, const double *pts, double tol, const char *what) {
+static double check_fast_stats(int n, const double *pts, double tol, const char *what,
+                               cj_flatten_stats *stats_out) {
     double scale = 0;
     for (int i = 0; i < (n + 1) * 2; ++i) scale = fmax(scale, fabs(pts[i]));
     cj_flatten_opts o = cj_flatten_defaults(CJ_FLATTEN_NEAR_OPTIMAL, tol);
@@ -72,7 +73,13 @@ static double check_fast(int n, const double *pts, double tol, const char *what)
     assert_true(p.pts[2 * (p.n - 1)] == pts[2 * n] && p.pts[2 * (p.n - 1) + 1] == pts[2 * n + 1]);
     for (size_t j = 0; j + 1 < p.n; ++j) assert_true(p.ts[j] < p.ts[j + 1]);
     poly_free(&p);
+    *stats_out = st;
     return st.bound > 0 ? dev / st.bound : 1.0;
+}
+
+static double check_fast(int n, const double *pts, double tol, const char *what) {
+    cj_flatten_stats st;
+    return check_fast_stats(n, pts, tol, what, &st);
 }
 
 void test_fast_path_hard(void **state) {
@@ -142,4 +149,49 @@ void test_fast_path_hard(void **state) {
            "coordinates 1e-200..1e200: bound <= tol and refined sampled deviation <= bound "
            "(largest deviation/bound %.6f)\n",
            count, worst_ratio);
+}
+
+/* Few segments per curve (2 to about 30): the measured second placement of the fast path
+ * (flatten_fast_small.c) with its repairs, on random quadratics and cubics, near-cusps and
+ * S-curves (an inflection inside), the tolerance 10^-1 .. 10^-3 of the curve's size. */
+void test_fast_path_few(void **state) {
+    (void)state;
+    const uint64_t seed = cj_test_seed("test_flatten_fast_few", 2026);
+    cj_rng r;
+    cj_rng_init(&r, seed);
+    char what[160];
+    int count = 0;
+    double worst_ratio = 0;
+    size_t segments = 0;
+    for (int c = 0; c < 240; ++c) {
+        double pts[8];
+        const int kind = c % 4, n = kind == 1 ? 2 : 3;
+        const double size = cj_rng_range(&r, 1, 1000);
+        if (kind <= 1) { /* random cubic or quadratic */
+            for (int i = 0; i < (n + 1) * 2; ++i) pts[i] = cj_rng_range(&r, 0, size);
+        } else if (kind == 2) { /* near-cusp: the cusp's end point moved by 10^-1 .. 10^-6 */
+            const double base[8] = {0, 0, 1, 1, 0, 1, 1, 0};
+            for (int i = 0; i < 8; ++i) pts[i] = base[i] * size;
+            const double eps = pow(10.0, -cj_rng_range(&r, 1, 6)) * size;
+            pts[6] += cj_rng_range(&r, -eps, eps);
+            pts[7] += cj_rng_range(&r, -eps, eps);
+        } else { /* S-curve: inner points on opposite sides of the chord */
+            const double h1 = cj_rng_range(&r, 0.1, 1) * size, h2 = cj_rng_range(&r, 0.1, 1) * size;
+            const double q[8] = {
+                0,    0, cj_rng_range(&r, 0, 0.6) * size, h1, cj_rng_range(&r, 0.4, 1) * size, -h2,
+                size, 0};
+            for (int i = 0; i < 8; ++i) pts[i] = q[i];
+        }
+        const double tol = size * pow(10.0, -cj_rng_range(&r, 1, 3));
+        snprintf(what, sizeof what, "seed %llu few-segments kind %d case %d (tol %.3g)",
+                 (unsigned long long)seed, kind, c, tol);
+        cj_flatten_stats st;
+        worst_ratio = fmax(worst_ratio, check_fast_stats(n, pts, tol, what, &st));
+        segments += st.segments;
+        ++count;
+    }
+    printf("fast path, few segments: %d curves (random, near-cusps, S-curves), %zu segments: "
+           "bound <= tol and refined sampled deviation <= bound (largest deviation/bound "
+           "%.6f)\n",
+           count, segments, worst_ratio);
 }

@@ -32,5 +32,6 @@ double measure(int n, int d, const double *pts, const double *w, const poly *p, 
 
 /* flatten_fast_path.c */
 void test_fast_path_hard(void **state);
+void test_fast_path_few(void **state);
 
 #endif

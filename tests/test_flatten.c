@@ -480,6 +480,7 @@ int main(void) {
         cmocka_unit_test(test_bounds_direct),
         cmocka_unit_test(test_refined_bound),
         cmocka_unit_test(test_fast_path_hard),
+        cmocka_unit_test(test_fast_path_few),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

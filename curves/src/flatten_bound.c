@@ -2,8 +2,18 @@
 #include "flatten_internal.h"
 
 #include <assert.h>
+#include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <string.h>
+
+/* 2^e for -1022 <= e <= 1023 (a normal double), built from its bits. */
+static inline double pow2_normal(int e) {
+    const uint64_t bits = (uint64_t)(1023 + e) << 52;
+    double v;
+    memcpy(&v, &bits, sizeof v);
+    return v;
+}
 
 cj_status cj_fl_init(cj_fl_curve *fc, const cj_bezier *c, const double *weights) {
     assert(fc != NULL && c != NULL);
@@ -29,7 +39,7 @@ cj_status cj_fl_init(cj_fl_curve *fc, const cj_bezier *c, const double *weights)
     fc->d = d;
     fc->rational = weights != NULL;
     fc->pts = c->pts;
-    fc->s2 = ldexp(1.0, 1 - n);
+    fc->s2 = n <= 1000 ? pow2_normal(1 - n) : ldexp(1.0, 1 - n);
     fc->D = d + (weights != NULL);
     /* Coordinates and weights are scaled by powers of two (exact) to magnitudes near 1, so
      * that squared distances in the bounds neither overflow nor underflow; results are scaled
@@ -42,11 +52,19 @@ cj_status cj_fl_init(cj_fl_curve *fc, const cj_bezier *c, const double *weights)
     }
     int ew = 0;
     fc->escale = 0;
-    if (maxabs > 0.0) (void)frexp(maxabs, &fc->escale);
-    (void)frexp(wmaxs, &ew);
+    if (maxabs >= DBL_MIN) {
+        /* frexp's exponent read from the bits (maxabs is normal, possibly infinite; a
+         * non-finite coordinate was rejected above) */
+        uint64_t bits;
+        memcpy(&bits, &maxabs, sizeof bits);
+        fc->escale = (int)((bits >> 52) & 0x7ff) - 1022;
+    } else if (maxabs > 0.0) {
+        (void)frexp(maxabs, &fc->escale);
+    }
+    if (weights) (void)frexp(wmaxs, &ew);
     if (!weights && fc->escale > -1000 && fc->escale < 1000) {
         /* 2^-escale is a normal double here, so the product is exactly ldexp's result. */
-        const double f = ldexp(1.0, -fc->escale);
+        const double f = pow2_normal(-fc->escale);
         for (int i = 0; i < (n + 1) * d; ++i) fc->hom[i] = c->pts[i] * f;
     } else {
         for (int i = 0; i <= n; ++i) {

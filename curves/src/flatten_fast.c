@@ -35,7 +35,9 @@
  * closed-form estimate of ∫ sqrt(|κ|) ds (the parabola model), aiming at FAST_TARGET tol per
  * segment, so the spacing follows ∫ sqrt(|κ|/(8 tol)) ds; each segment is then certified as
  * above, and the few the bound rejects (the h^2 law undershoots near inflections) are shortened
- * until certified, the walk resuming from there towards the next planned point.
+ * until certified, the walk resuming from there towards the next planned point. Plans of few
+ * segments are certified first and placed again from the measured bounds
+ * (flatten_fast_small.c).
  *
  * Rounding: the break points and derivatives come from the Bernstein sums of eval_pd on the
  * scaled control points (|coordinates| < 1), whose weights are positive products of s = 1 - t
@@ -46,7 +48,7 @@
  * the computed control points is within that distance of the true piece (a convex combination), so
  * the bound plus fc->slack = 32 (n+2) u max|coord| holds for the true piece; the general bound's
  * subcurve ends differ from our break points by as little, also inside the slack. */
-#include "flatten_internal.h"
+#include "flatten_fast_internal.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -69,133 +71,14 @@ static inline double pow2(int e) {
     return v.d;
 }
 
-typedef struct fpt {
-    double x, y, dx, dy; /* c(t), c'(t) in the scaled coordinates */
-} fpt;
-
-/* Point and first derivative at t in Bernstein form: c(t) = Σ B_i(t) b_i and
- * c'(t) = Σ B^(n-1)_i(t) q_i with q_i = n (b_{i+1} - b_i) (computed once per curve, in dq). The
- * weights are products of s = 1 - t and t, positive and summing to 1 up to rounding, so the
- * errors stay within the few u of the top comment's rounding paragraph. */
-/* a * b + c, fused where the hardware has it (one rounding instead of two; the bounds above
- * count two). */
-#ifdef __FMA__
-#define FAST_MADD(a, b, c) fma(a, b, c)
-#else
-#define FAST_MADD(a, b, c) ((a) * (b) + (c))
-#endif
-
-static inline __attribute__((always_inline)) void eval_pd(const double *p, const double *dq, int n,
-                                                          double t, fpt *o) {
-    const double s = 1.0 - t;
-    const double ss = s * s, st = s * t, tt = t * t;
-    if (n == 3) {
-        const double w0 = ss * s, w1 = 3.0 * (ss * t), w2 = 3.0 * (st * t), w3 = tt * t;
-        const double v1 = 2.0 * st;
-        o->x = FAST_MADD(w3, p[6], FAST_MADD(w2, p[4], FAST_MADD(w1, p[2], w0 * p[0])));
-        o->y = FAST_MADD(w3, p[7], FAST_MADD(w2, p[5], FAST_MADD(w1, p[3], w0 * p[1])));
-        o->dx = FAST_MADD(tt, dq[4], FAST_MADD(v1, dq[2], ss * dq[0]));
-        o->dy = FAST_MADD(tt, dq[5], FAST_MADD(v1, dq[3], ss * dq[1]));
-    } else {
-        const double w1 = 2.0 * st;
-        o->x = FAST_MADD(tt, p[4], FAST_MADD(w1, p[2], ss * p[0]));
-        o->y = FAST_MADD(tt, p[5], FAST_MADD(w1, p[3], ss * p[1]));
-        o->dx = FAST_MADD(t, dq[2], s * dq[0]);
-        o->dy = FAST_MADD(t, dq[3], s * dq[1]);
-    }
-}
-
-/* max over t in [0,1] of |t(1-t)(A(1-t) + B t)| plus the rounding margin (see the top). */
-static inline double hump_max(double A, double B) {
-    const double R = sqrt(A * A - A * B + B * B);
-    const double m2 = 2.0 * A - B;
-    const double q = m2 + (m2 >= 0.0 ? R : -R);
-    double best = 0.0;
-    if (q != 0.0) {
-        const double a3 = 3.0 * (A - B);
-        const double r[2] = {a3 != 0.0 ? q / a3 : -1.0, A / q};
-        for (int i = 0; i < 2; ++i) {
-            const double t = r[i];
-            if (t > 0.0 && t < 1.0) {
-                const double e = fabs(t * (1.0 - t) * (A + (B - A) * t));
-                if (e > best) best = e;
-            }
-        }
-    }
-    return best + 16.0 * CJ_UNIT_ROUNDOFF * (fabs(A) + fabs(B));
-}
-
-typedef struct fast_ctx {
-    const cj_fl_curve *fc;
-    const double *p; /* scaled control points, stride 2 */
-    double dq[6];    /* n (b_{i+1} - b_i), the derivative's control points, stride 2 */
-    int n;
-    double inv_n; /* 1 / n */
-    double down;  /* 2^-escale: caller units -> scaled */
-    double tol_s; /* tol_eff in scaled units */
-    double lo_s;  /* accept_lo in scaled units */
-    double tol_eff, accept_lo;
-} fast_ctx;
-
 /* The general bounds (a)-(d) on the de Casteljau subcurve on [a,b], in scaled units. Kept out of
  * line: its work space is large, and the common path should not pay for the stack frame. */
-static __attribute__((noinline)) double general_dev(const fast_ctx *cx, double a, double b) {
+__attribute__((noinline)) double cj_fl_fast_general_dev(const fast_ctx *cx, double a, double b) {
     double sub[CJ_FL_WORK];
     cj_fl_subcurve(cx->fc, a, b, sub);
     const double D = cj_fl_piece_bound_refined(cx->fc, sub, cx->accept_lo, INFINITY,
                                                CJ_FL_REFINE_GAIN, cx->tol_eff);
     return D * cx->down;
-}
-
-/* Square of a deviation bound (scaled units) of the piece [a,b] between the break points P (at
- * a) and Q (at b). Squares and one division instead of square roots: the common case costs
- * no root at all. Squaring and the division add a few u relative to the deviation, which is at
- * most about the curve's size, so inside the slack. Returns +INFINITY only on overflow. */
-static inline __attribute__((always_inline)) double
-piece_dev2(const fast_ctx *cx, double a, double b, const fpt *P, const fpt *Q) {
-    const double k = (b - a) * cx->inv_n;
-    const double vx = Q->x - P->x, vy = Q->y - P->y;
-    const double L2 = vx * vx + vy * vy;
-    const double u1x = k * P->dx, u1y = k * P->dy; /* b_1 - b_0 */
-    const double c1 = vx * u1y - vy * u1x, d1 = vx * u1x + vy * u1y;
-    double A, B, dmin = d1 < 0.0 ? d1 : 0.0, dmax = d1 > L2 ? d1 : L2;
-    if (cx->n == 3) {
-        const double u2x = k * Q->dx, u2y = k * Q->dy; /* b_3 - b_2 */
-        const double c2 = vx * u2y - vy * u2x, d2 = L2 - (vx * u2x + vy * u2y);
-        /* b_2 - b_0 = v - u2: cross -c2, dot d2 */
-        if (d2 < dmin) dmin = d2;
-        if (d2 > dmax) dmax = d2;
-        A = 3.0 * c1;
-        B = -3.0 * c2;
-    } else {
-        A = B = 2.0 * c1;
-    }
-    if (!(L2 > 0.0)) {
-        const double g = general_dev(cx, a, b);
-        return g * g;
-    }
-    const double margin = 16.0 * CJ_UNIT_ROUNDOFF * (fabs(A) + fabs(B));
-    const int inside = dmin >= 0.0 && dmax <= L2;
-    if (inside) {
-        /* max |t(1-t)(A(1-t) + B t)| <= max(|A|, |B|) / 4: exact when A = B (an arc symmetric
-         * about its chord), and enough for most pieces; the exact maximum otherwise. */
-        const double aA = fabs(A), aB = fabs(B);
-        const double M = 0.25 * (aA > aB ? aA : aB) + margin;
-        const double D2 = M * M / L2;
-        if (D2 <= cx->tol_s * cx->tol_s) return D2;
-    }
-    const double E = hump_max(A, B);
-    const double E2 = E * E / L2;
-    if (inside || E2 > cx->tol_s * cx->tol_s) return E2;
-    /* Some control point projects beyond an end of the chord. E, the largest distance from the
-     * chord's line, is a lower bound; the projection parameter is a polynomial with Bernstein
-     * coefficients d_i / L2, so the curve reaches at most O = max(-dmin, dmax - L2) / |v| past
-     * an end, and sqrt(E^2 + O^2) bounds the distance to the segment. */
-    const double O = -dmin > dmax - L2 ? -dmin : dmax - L2;
-    const double EO2 = (E * E + O * O) / L2 * (1.0 + 16.0 * CJ_UNIT_ROUNDOFF);
-    if (EO2 <= cx->tol_s * cx->tol_s) return EO2;
-    const double g = general_dev(cx, a, b);
-    return g * g;
 }
 
 static inline void end_point(const fast_ctx *cx, fpt *o) {
@@ -227,17 +110,17 @@ static inline void end_point(const fast_ctx *cx, fpt *o) {
  * (b0 + b3)/2 + h (c'(a) - c'(b))/4 (the parameter correspondence is linear). */
 
 #define FAST_F_R       2.2
-#define FAST_F_K       0.38
 #define FAST_MAX_QUADS 16
 /* Share of the tolerance a model quadratic may miss its piece of the cubic by. */
 #define FAST_QUAD_TOL 0.3
 /* Segments are placed for this share of the tolerance (their estimated deviation): a little
  * below 1 so that the estimate's spread rarely fails the certificate. */
 #define FAST_TARGET 0.90
-
-static inline double approx_f_inv(double a) {
-    return a * (1.0 - FAST_F_K + sqrt(FAST_F_K * FAST_F_K + a * a * (1.0 / 16.0)));
-}
+/* Plans of at least FAST_MANY segments aim lower: there the per-segment work dominates the time
+ * and the count's whole-number rounding costs nothing, so fewer rejected segments (one in nine
+ * at 0.90, near inflections) are worth 1 % more segments. */
+#define FAST_MANY        64
+#define FAST_TARGET_MANY 0.88
 
 /* The exact inverse of approx_f_inv (to 2e-4 relative): the closed form for F as a start,
  * then one Newton step on approx_f_inv. Placing points by approx_f_inv between end values from
@@ -253,18 +136,6 @@ static inline double approx_f(double x) {
     }
     return a;
 }
-
-typedef struct fast_quad {
-    double t0, dt;  /* cubic parameters: t = t0 + u dt */
-    double val;     /* ∫ sqrt(κ) ds of the model (scaled units) */
-    double inv_val; /* 1 / val (0 when val is) */
-    double a0, da;  /* F(x0), F(x1) - F(x0) */
-    double y0, ysc; /* F^-1(a0), 1 / (F^-1(a1) - F^-1(a0)) */
-    /* Filled by plan_init: planned point j (its target j step of the integral) lies on this
-     * quadratic while j < jlim, at t = c0 + c1 F^-1(alpha + j beta), clamped to [t0, t0 + dt]. */
-    double alpha, beta, c0, c1;
-    size_t jlim;
-} fast_quad;
 
 /* The model parabola through P (at t0) and Q (at t0 + dt). */
 static void quad_params(const fpt *P, const fpt *Q, int n, double t0, double dt, fast_quad *q) {
@@ -301,17 +172,8 @@ static void quad_params(const fpt *P, const fpt *Q, int n, double t0, double dt,
 
 /* ---- certification ------------------------------------------------------------------------ */
 
-typedef struct fast_run {
-    fast_ctx cx;
-    cj_fl_emitter *em;
-    double up;
-    int direct;        /* inner points go straight into em->out (no sink) */
-    size_t direct_end; /* while em->count is below this (room and the segment cap) */
-    double worst2;     /* square of the largest certified deviation (scaled units) */
-} fast_run;
-
 /* Emits the end point or a point into a sink (cj_fl_emit's checks); out of line. */
-static __attribute__((noinline)) cj_status emit_slow(fast_run *fr, double b, const fpt *Q) {
+__attribute__((noinline)) cj_status cj_fl_fast_emit_slow(fast_run *fr, double b, const fpt *Q) {
     cj_fl_emitter *e = fr->em;
     double pt[2];
     if (b == 1.0) {
@@ -322,21 +184,6 @@ static __attribute__((noinline)) cj_status emit_slow(fast_run *fr, double b, con
     }
     if (cj_fl_emit(e, pt, b)) return cj_fl_cap_fail(e, "near-optimal");
     return CJ_OK;
-}
-
-static inline __attribute__((always_inline)) cj_status emit_break(fast_run *fr, double b,
-                                                                  const fpt *Q) {
-    cj_fl_emitter *e = fr->em;
-    if (b < 1.0 && fr->direct && e->count < fr->direct_end) {
-        /* inner points into the caller's buffer, where it has room: cj_fl_emit's work without
-         * its checks for the first point of a sequence piece (the first point is emitted
-         * before) and without tracking the last point (the end point, emitted last, sets it) */
-        e->out[2 * e->count] = Q->x * fr->up;
-        e->out[2 * e->count + 1] = Q->y * fr->up;
-        e->count++;
-        return CJ_OK;
-    }
-    return emit_slow(fr, b, Q);
 }
 
 #define FAST_MAX_SPLIT_DEPTH 64
@@ -378,14 +225,6 @@ static cj_status certify(fast_run *fr, double a, const fpt *P, double b, const f
     return CJ_OK;
 }
 
-/* The planned break points: equal steps of the model's integral over the quadratics. */
-typedef struct fast_plan {
-    fast_quad *qs;
-    int nq;
-    size_t m; /* planned segments */
-    int qi;   /* quadratic of the last target */
-} fast_plan;
-
 /* Turns the share of the integral on each quadratic into a closed form in the point's index:
  * target j step lies on quadratic i while it is below the sum of the integrals up to i, at
  * share s = (j step - start) / val of it, parameter t0 + dt (F^-1(a0 + s da) - y0) ysc. */
@@ -419,24 +258,18 @@ static void plan_init(fast_plan *pl, fast_quad *qs, int nq, size_t m, double ste
     }
 }
 
-/* Planned point j (1 <= j; m and later are the end, 1.0). Called with increasing j. */
-static inline double plan_next(fast_plan *pl, size_t j) {
-    if (j >= pl->m) return 1.0;
-    while (j >= pl->qs[pl->qi].jlim && pl->qi < pl->nq - 1) pl->qi++;
-    const fast_quad *q = &pl->qs[pl->qi];
-    const double t = q->c0 + q->c1 * approx_f_inv(q->alpha + (double)j * q->beta);
-    const double hi = q->t0 + q->dt;
-    return t < q->t0 ? q->t0 : (t < hi ? (t < 1.0 ? t : 1.0) : (hi < 1.0 ? hi : 1.0));
-}
-
 #define FAST_REPAIR_TRIES 6
+
+static inline int e_count_lt(const cj_fl_emitter *e, size_t lim) {
+    return e->count < lim;
+}
 
 /* [a, b] failed with squared bound D2: the model underestimated the deviation there (near
  * inflections the h^2 law of the sqrt(κ) integral undershoots by up to ~15 %). The segment is
  * shortened (deviation ~ h^2.5 between the arc's h^2 and an inflection's h^3) until it is
  * certified, and emitted; the caller resumes from its end towards the next planned point. After
  * FAST_REPAIR_TRIES the piece is cut into certified equal parts instead (cusps). */
-static cj_status repair(fast_run *fr, double *pa, fpt *P, double b, const fpt *Q, double D2) {
+cj_status cj_fl_fast_repair(fast_run *fr, double *pa, fpt *P, double b, const fpt *Q, double D2) {
     const fast_ctx *cx = &fr->cx;
     const double a = *pa, goal2 = 0.96 * 0.96 * cx->tol_s * cx->tol_s;
     double h = b - a;
@@ -514,41 +347,86 @@ cj_status cj_fl_run_fast(const cj_fl_curve *fc, double tol_eff, cj_fl_emitter *e
         total += qs[i - 1].val;
     }
     /* ∫ sqrt(κ) ds = m sqrt(8 dev) for m equal segments of deviation dev */
-    const double per = sqrt(8.0 * FAST_TARGET * cx->tol_s);
+    double per = sqrt(8.0 * FAST_TARGET * cx->tol_s);
+    if (total >= (double)FAST_MANY * per) per = sqrt(8.0 * FAST_TARGET_MANY * cx->tol_s);
     double mf = ceil(total / per);
     if (!(mf >= 1.0)) mf = 1.0;
     if (!(mf <= (double)em->max_points)) return cj_fl_cap_fail(em, "near-optimal");
     const size_t m = (size_t)mf;
     fast_plan pl;
     plan_init(&pl, qs, nq, m, total / mf);
-    double a = 0.0, prev = 0.0;
+    if (m >= 2 && m <= FAST_SMALL_MAX) {
+        const cj_status st = cj_fl_fast_run_small(&fr, &pl, &brk[0], &brk[nq], m);
+        if (st) return st;
+        *bound = sqrt(fr.worst2) * fr.up + fc->slack;
+        return CJ_OK;
+    }
+    const double tol2 = cx->tol_s * cx->tol_s;
+    /* inner points go straight into the caller's buffer below this count */
+    const size_t dend = fr.direct ? fr.direct_end : 0;
+    double a = 0.0, prev = 0.0, worst2 = 0.0;
     fpt P = brk[0];
     size_t j = 1;
-    double bj = plan_next(&pl, j);
-    while (a < 1.0) {
-        /* the next planned point at least half a planned step ahead (later ones when a
-         * repair below moved the start forward) */
-        while (bj < 1.0 && !(bj - a >= 0.5 * (bj - prev))) {
-            prev = bj;
-            bj = plan_next(&pl, ++j);
-        }
-        fpt Q;
-        if (bj == 1.0)
-            Q = brk[nq];
-        else
-            eval_pd(p, cx->dq, cx->n, bj, &Q);
-        const double D2 = piece_dev2(cx, a, bj, &P, &Q);
-        if (D2 <= cx->tol_s * cx->tol_s) {
-            if (D2 > fr.worst2) fr.worst2 = D2;
-            const cj_status st = emit_break(&fr, bj, &Q);
-            if (st) return st;
-            a = bj;
+    int qi = 0;
+    while (j < m) {
+        while (j >= qs[qi].jlim && qi < nq - 1) qi++;
+        const fast_quad *q = &qs[qi];
+        const double lo = q->t0, hi = q->t0 + q->dt < 1.0 ? q->t0 + q->dt : 1.0;
+        const size_t jend = q->jlim;
+        /* The planned points on this quadratic: one square root, one evaluation and the
+         * certificate each; the branch to the repair is rarely taken. */
+        for (; j < jend; ++j) {
+            double t = q->c0 + q->c1 * approx_f_inv(q->alpha + (double)j * q->beta);
+            t = t > lo ? t : lo;
+            t = t < hi ? t : hi;
+            if (t >= 1.0) {
+                j = m;
+                break;
+            }
+            fpt Q;
+            eval_pd(p, cx->dq, cx->n, t, &Q);
+            const double D2 = piece_dev2(cx, a, t, &P, &Q);
+            if (__builtin_expect(D2 > tol2, 0)) {
+                fr.worst2 = fr.worst2 > worst2 ? fr.worst2 : worst2;
+                const cj_status st = cj_fl_fast_repair(&fr, &a, &P, t, &Q, D2);
+                if (st) return st;
+                worst2 = fr.worst2;
+                /* resume at the next planned point at least half a planned step ahead */
+                pl.qi = qi;
+                double bj = t;
+                while (bj < 1.0 && !(bj - a >= 0.5 * (bj - prev))) {
+                    prev = bj;
+                    bj = plan_next(&pl, ++j);
+                }
+                if (bj >= 1.0) j = m;
+                break;
+            }
+            worst2 = D2 > worst2 ? D2 : worst2;
+            if (e_count_lt(em, dend)) {
+                em->out[2 * em->count] = Q.x * fr.up;
+                em->out[2 * em->count + 1] = Q.y * fr.up;
+                em->count++;
+            } else {
+                const cj_status st = cj_fl_fast_emit_slow(&fr, t, &Q);
+                if (st) return st;
+            }
+            a = t;
+            prev = t;
             P = Q;
-            prev = bj;
-            bj = plan_next(&pl, ++j);
-            continue;
         }
-        const cj_status st = repair(&fr, &a, &P, bj, &Q, D2);
+    }
+    fr.worst2 = fr.worst2 > worst2 ? fr.worst2 : worst2;
+    /* the last segment, to the exact end point */
+    while (a < 1.0) {
+        const fpt Q = brk[nq];
+        const double D2 = piece_dev2(cx, a, 1.0, &P, &Q);
+        if (D2 <= tol2) {
+            if (D2 > fr.worst2) fr.worst2 = D2;
+            const cj_status st = emit_break(&fr, 1.0, &Q);
+            if (st) return st;
+            break;
+        }
+        const cj_status st = cj_fl_fast_repair(&fr, &a, &P, 1.0, &Q, D2);
         if (st) return st;
     }
     *bound = sqrt(fr.worst2) * fr.up + fc->slack;
