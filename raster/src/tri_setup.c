@@ -12,6 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 /* ---- sample patterns --------------------------------------------------------------------- */
 
 /* spp 4: rotated grid; spp 16: 4 × 4 cells, one sample per cell, every x and every y distinct
@@ -117,6 +121,7 @@ static int64_t snap(double ndc, double half) {
     return (int64_t)((v + magic) - magic);
 }
 
+#if !defined(__AVX2__)
 /* The plane through (px_k, py_k, val_k); inv_det = 1/((p1 − p0) × (p2 − p0)). */
 static cj_tri_plane plane_of(const pvert *v[3], const double px[3], const double py[3],
                              double inv_det, double val0, double val1, double val2) {
@@ -130,6 +135,7 @@ static cj_tri_plane plane_of(const pvert *v[3], const double px[3], const double
     p.v0 = val0 + p.va * ((double)v[0]->X - px[0]) + p.vb * ((double)v[0]->Y - py[0]);
     return p;
 }
+#endif
 
 /* Sets up the screen triangle (a, b, c) of source triangle `src`. Returns 0 when it has zero
  * area after snapping, or its orientation disagrees with `want` (+1/−1, 0 = any: a piece of
@@ -149,8 +155,8 @@ static int setup_tri(const cj_raster_prep *p, const pvert *a, const pvert *b, co
         const pvert *p0 = v[k], *p1 = v[k == 2 ? 0 : k + 1];
         const int64_t dx = p1->X - p0->X, dy = p1->Y - p0->Y;
         const int owned = dy < 0 || (dy == 0 && dx < 0);
-        s->ea[k] = -dy;
-        s->eb[k] = dx;
+        s->ea[k] = (int32_t)-dy;
+        s->eb[k] = (int32_t)dx;
         s->ec[k] = dy * p0->X - dx * p0->Y - (owned ? 0 : 1);
         if (p1->X < minX) minX = p1->X;
         if (p1->X > maxX) maxX = p1->X;
@@ -164,6 +170,8 @@ static int setup_tri(const cj_raster_prep *p, const pvert *a, const pvert *b, co
     if (x1 > p->width - 1) x1 = p->width - 1;
     if (y1 > p->height - 1) y1 = p->height - 1;
     if (x0 > x1 || y0 > y1) return 0;
+    const int64_t lim = (int64_t)1 << 14;
+    s->small = maxX - minX <= lim && maxY - minY <= lim; /* each |ea_k| <= H, |eb_k| <= W */
     s->minx = (int)x0;
     s->maxx = (int)x1;
     s->miny = (int)y0;
@@ -187,10 +195,36 @@ static int setup_tri(const cj_raster_prep *p, const pvert *a, const pvert *b, co
         det = (double)area;
     }
     const double inv = 1.0 / det;
+#if defined(__AVX2__)
+    /* The four planes (z, r, q1, q2 lie side by side in pvert) in the four lanes: lane by lane
+     * the operations of plane_of, in its order, so the same doubles. */
+    const __m256d d1x = _mm256_set1_pd(px[1] - px[0]), d1y = _mm256_set1_pd(py[1] - py[0]);
+    const __m256d d2x = _mm256_set1_pd(px[2] - px[0]), d2y = _mm256_set1_pd(py[2] - py[0]);
+    const __m256d vinv = _mm256_set1_pd(inv);
+    const __m256d val0 = _mm256_loadu_pd(&v[0]->z);
+    const __m256d e1 = _mm256_sub_pd(_mm256_loadu_pd(&v[1]->z), val0);
+    const __m256d e2 = _mm256_sub_pd(_mm256_loadu_pd(&v[2]->z), val0);
+    const __m256d va =
+        _mm256_mul_pd(_mm256_sub_pd(_mm256_mul_pd(e1, d2y), _mm256_mul_pd(e2, d1y)), vinv);
+    const __m256d vb =
+        _mm256_mul_pd(_mm256_sub_pd(_mm256_mul_pd(e2, d1x), _mm256_mul_pd(e1, d2x)), vinv);
+    const __m256d v0 = _mm256_add_pd(
+        _mm256_add_pd(val0, _mm256_mul_pd(va, _mm256_set1_pd((double)v[0]->X - px[0]))),
+        _mm256_mul_pd(vb, _mm256_set1_pd((double)v[0]->Y - py[0])));
+    double l0[4], la[4], lb[4];
+    _mm256_storeu_pd(l0, v0);
+    _mm256_storeu_pd(la, va);
+    _mm256_storeu_pd(lb, vb);
+    s->z = (cj_tri_plane){l0[0], la[0], lb[0]};
+    at->r = (cj_tri_plane){l0[1], la[1], lb[1]};
+    at->q1 = (cj_tri_plane){l0[2], la[2], lb[2]};
+    at->q2 = (cj_tri_plane){l0[3], la[3], lb[3]};
+#else
     s->z = plane_of(v, px, py, inv, v[0]->z, v[1]->z, v[2]->z);
     at->r = plane_of(v, px, py, inv, v[0]->r, v[1]->r, v[2]->r);
     at->q1 = plane_of(v, px, py, inv, v[0]->q1, v[1]->q1, v[2]->q1);
     at->q2 = plane_of(v, px, py, inv, v[0]->q2, v[1]->q2, v[2]->q2);
+#endif
     return 1;
 }
 
@@ -217,6 +251,21 @@ static const vcache *vertex(vcache *cache, const double *clip, uint32_t i, doubl
               (unsigned)!(gy * w - y >= 0.0) << 4 | (unsigned)!(gy * w + y >= 0.0) << 5 |
               (unsigned)!(w > 0.0) << 6;
     if (e->code) return e;
+#if defined(__AVX2__)
+    /* The same IEEE operations as the scalar path, four divisions at once; the snap reads the
+     * integer out of the bit pattern of v + 1.5·2^52 (the sum is exact in the binade
+     * [2^52, 2^53), whose unit is 1, so its bits minus those of 1.5·2^52 are rint(v)). */
+    const __m256d num = _mm256_blend_pd(_mm256_loadu_pd(c), _mm256_set1_pd(1.0), 8);
+    const __m256d q = _mm256_div_pd(num, _mm256_set1_pd(w)); /* x/w, y/w, z/w, 1/w */
+    const __m128d sxy =
+        _mm_mul_pd(_mm_add_pd(_mm256_castpd256_pd128(q), _mm_set1_pd(1.0)), _mm_setr_pd(hw, hh));
+    const __m128d big = _mm_add_pd(_mm_mul_pd(_mm_set1_pd(256.0), sxy), _mm_set1_pd(0x1.8p52));
+    const __m128i XY = _mm_sub_epi64(_mm_castpd_si128(big), _mm_set1_epi64x(0x4338000000000000));
+    _mm_storeu_pd(&e->v.sx, sxy);
+    e->v.X = _mm_cvtsi128_si64(XY);
+    e->v.Y = _mm_extract_epi64(XY, 1);
+    _mm_storeu_pd(&e->v.z, _mm256_extractf128_pd(q, 1));
+#else
     const double xn = x / w, yn = y / w;
     e->v.sx = (xn + 1.0) * hw;
     e->v.sy = (yn + 1.0) * hh;
@@ -224,6 +273,7 @@ static const vcache *vertex(vcache *cache, const double *clip, uint32_t i, doubl
     e->v.Y = snap(yn, hh);
     e->v.z = z / w;
     e->v.r = 1.0 / w;
+#endif
     e->v.q1 = e->v.q2 = 0.0;
     return e;
 }
