@@ -151,6 +151,37 @@ static int setup_tri(const cj_raster_prep *p, const pvert *a, const pvert *b, co
         v[2] = b;
     }
     int64_t minX = v[0]->X, maxX = v[0]->X, minY = v[0]->Y, maxY = v[0]->Y;
+#if defined(__AVX2__)
+    /* The three edges in three 64-bit lanes. Snapped coordinates and their differences are
+     * below 2^29 in magnitude (the guard band), so _mm256_mul_epi32, a product of the low 32
+     * bits as signed integers, forms dy·X and dx·Y exactly. */
+    const __m256i X = _mm256_setr_epi64x(v[0]->X, v[1]->X, v[2]->X, 0);
+    const __m256i Y = _mm256_setr_epi64x(v[0]->Y, v[1]->Y, v[2]->Y, 0);
+    const __m256i dx = _mm256_sub_epi64(_mm256_permute4x64_epi64(X, 0xC9), X); /* 1,2,0,3 */
+    const __m256i dy = _mm256_sub_epi64(_mm256_permute4x64_epi64(Y, 0xC9), Y);
+    const __m256i zero = _mm256_setzero_si256();
+    const __m256i owned = _mm256_or_si256(
+        _mm256_cmpgt_epi64(zero, dy),
+        _mm256_and_si256(_mm256_cmpeq_epi64(dy, zero), _mm256_cmpgt_epi64(zero, dx)));
+    /* ec = dy·X − dx·Y − (owned ? 0 : 1), with owned = −1 or 0 */
+    const __m256i ec = _mm256_sub_epi64(
+        _mm256_sub_epi64(_mm256_sub_epi64(_mm256_mul_epi32(dy, X), _mm256_mul_epi32(dx, Y)),
+                         _mm256_set1_epi64x(1)),
+        owned);
+    int64_t ldx[4], ldy[4], lec[4];
+    _mm256_storeu_si256((__m256i *)ldx, dx);
+    _mm256_storeu_si256((__m256i *)ldy, dy);
+    _mm256_storeu_si256((__m256i *)lec, ec);
+    for (int k = 0; k < 3; ++k) {
+        s->ea[k] = (int32_t)-ldy[k];
+        s->eb[k] = (int32_t)ldx[k];
+        s->ec[k] = lec[k];
+        if (v[k]->X < minX) minX = v[k]->X;
+        if (v[k]->X > maxX) maxX = v[k]->X;
+        if (v[k]->Y < minY) minY = v[k]->Y;
+        if (v[k]->Y > maxY) maxY = v[k]->Y;
+    }
+#else
     for (int k = 0; k < 3; ++k) {
         const pvert *p0 = v[k], *p1 = v[k == 2 ? 0 : k + 1];
         const int64_t dx = p1->X - p0->X, dy = p1->Y - p0->Y;
@@ -163,6 +194,7 @@ static int setup_tri(const cj_raster_prep *p, const pvert *a, const pvert *b, co
         if (p1->Y < minY) minY = p1->Y;
         if (p1->Y > maxY) maxY = p1->Y;
     }
+#endif
     /* Pixels whose samples can lie in the bounding box (floor division by 256). */
     int64_t x0 = minX >> 8, x1 = maxX >> 8, y0 = minY >> 8, y1 = maxY >> 8;
     if (x0 < 0) x0 = 0;
@@ -246,10 +278,23 @@ static const vcache *vertex(vcache *cache, const double *clip, uint32_t i, doubl
     const double *c = clip + 4 * (size_t)i;
     const double x = c[0], y = c[1], z = c[2], w = c[3];
     e->tag = i;
+#if defined(__AVX2__)
+    /* The six plane values of the scalar outcode below in two vectors (a − b is a + (−b) and
+     * products commute: the same doubles), their signs read by two compares. */
+    const __m256d xxyy = _mm256_setr_pd(-x, x, -y, y);
+    const __m256d guard =
+        _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(w), _mm256_setr_pd(gx, gx, gy, gy)), xxyy);
+    const __m128d nearfar = _mm_add_pd(_mm_setr_pd(z, -z), _mm_set1_pd(w));
+    e->code = (unsigned)_mm_movemask_pd(_mm_cmp_pd(nearfar, _mm_setzero_pd(), _CMP_NGE_UQ)) |
+              (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(guard, _mm256_setzero_pd(), _CMP_NGE_UQ))
+                  << 2 |
+              (unsigned)!(w > 0.0) << 6;
+#else
     e->code = (unsigned)!(z + w >= 0.0) | (unsigned)!(w - z >= 0.0) << 1 |
               (unsigned)!(gx * w - x >= 0.0) << 2 | (unsigned)!(gx * w + x >= 0.0) << 3 |
               (unsigned)!(gy * w - y >= 0.0) << 4 | (unsigned)!(gy * w + y >= 0.0) << 5 |
               (unsigned)!(w > 0.0) << 6;
+#endif
     if (e->code) return e;
 #if defined(__AVX2__)
     /* The same IEEE operations as the scalar path, four divisions at once; the snap reads the
@@ -402,10 +447,23 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
                        CJ_FRAMEBUFFER_MAX_SIDE);
     if (in->tri_count > (size_t)1 << 28)
         return cj_fail(CJ_ERR_RANGE, "raster: %zu triangles exceed the limit 2^28", in->tri_count);
-    for (size_t i = 0; i < 3 * in->tri_count; ++i)
-        if (in->tris[i] >= in->vertex_count)
-            return cj_fail(CJ_ERR_ARGUMENT, "raster: triangle %zu names vertex %u of %zu", i / 3,
-                           (unsigned)in->tris[i], in->vertex_count);
+    /* The largest index first (a loop without exits, which vectorizes), the culprit after. */
+    uint32_t top = 0;
+    size_t i0 = 0;
+#if defined(__AVX2__)
+    __m256i vtop = _mm256_setzero_si256();
+    for (; i0 + 8 <= 3 * in->tri_count; i0 += 8)
+        vtop = _mm256_max_epu32(vtop, _mm256_loadu_si256((const __m256i *)(in->tris + i0)));
+    uint32_t lanes[8];
+    _mm256_storeu_si256((__m256i *)lanes, vtop);
+    for (int k = 0; k < 8; ++k) top = lanes[k] > top ? lanes[k] : top;
+#endif
+    for (size_t i = i0; i < 3 * in->tri_count; ++i) top = in->tris[i] > top ? in->tris[i] : top;
+    if (in->tri_count && (size_t)top >= in->vertex_count)
+        for (size_t i = 0; i < 3 * in->tri_count; ++i)
+            if (in->tris[i] >= in->vertex_count)
+                return cj_fail(CJ_ERR_ARGUMENT, "raster: triangle %zu names vertex %u of %zu",
+                               i / 3, (unsigned)in->tris[i], in->vertex_count);
 
     cj_allocator a;
     if (alloc)
@@ -443,7 +501,26 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     const double gx = 2.0 * CJ_TRI_GUARD_PX / in->width, gy = 2.0 * CJ_TRI_GUARD_PX / in->height;
     setup_list list = {&p->alloc, NULL, NULL, 0, 0};
     cj_status status = CJ_OK;
-    for (size_t i = 0; i < 4 * in->vertex_count && status == CJ_OK; ++i)
+    /* Whether any coordinate is NaN or infinite (all exponent bits set), in a loop without
+     * exits; the culprit is looked for only then. */
+    uint64_t nonfinite = 0;
+    size_t c0 = 0;
+#if defined(__AVX2__)
+    const __m256i expo = _mm256_set1_epi64x(0x7ff0000000000000ll);
+    __m256i vbad = _mm256_setzero_si256();
+    for (; c0 < 4 * in->vertex_count; c0 += 4) {
+        const __m256i bits =
+            _mm256_and_si256(_mm256_castpd_si256(_mm256_loadu_pd(in->clip + c0)), expo);
+        vbad = _mm256_or_si256(vbad, _mm256_cmpeq_epi64(bits, expo));
+    }
+    nonfinite = !_mm256_testz_si256(vbad, vbad);
+#endif
+    for (size_t i = c0; i < 4 * in->vertex_count; ++i) {
+        uint64_t bits;
+        memcpy(&bits, &in->clip[i], sizeof bits);
+        nonfinite |= (uint64_t)((bits & 0x7ff0000000000000ull) == 0x7ff0000000000000ull);
+    }
+    for (size_t i = 0; nonfinite && i < 4 * in->vertex_count && status == CJ_OK; ++i)
         if (!isfinite(in->clip[i]))
             status = cj_fail(CJ_ERR_NONFINITE, "raster: clip coordinate %zu of vertex %zu is %g",
                              i % 4, i / 4, in->clip[i]);
