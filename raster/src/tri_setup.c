@@ -327,28 +327,29 @@ typedef struct setup_list {
     const cj_allocator *alloc;
     cj_tri_setup *v;
     cj_tri_attr *a;
+    uint32_t *src;        /* a[i].src again, compact (what the resolve reads) */
+    uint16_t (*range)[4]; /* tile range tx0, tx1, ty0, ty1 of each set-up */
     size_t n, cap;
 } setup_list;
+
+static int grow(const cj_allocator *al, void **arr, size_t n, size_t cap, size_t size) {
+    void *na = xalloc(al, cap * size);
+    if (!na) return 0;
+    if (n) memcpy(na, *arr, n * size);
+    al->free(al->user, *arr);
+    *arr = na;
+    return 1;
+}
 
 static int list_reserve(setup_list *l, size_t need) {
     if (need <= l->cap) return 1;
     size_t cap = l->cap ? 2 * l->cap : 1024;
     if (cap < need) cap = need;
-    cj_tri_setup *nv = xalloc(l->alloc, cap * sizeof *nv);
-    cj_tri_attr *na = xalloc(l->alloc, cap * sizeof *na);
-    if (!nv || !na) {
-        l->alloc->free(l->alloc->user, nv);
-        l->alloc->free(l->alloc->user, na);
+    if (!grow(l->alloc, (void **)&l->v, l->n, cap, sizeof *l->v) ||
+        !grow(l->alloc, (void **)&l->a, l->n, cap, sizeof *l->a) ||
+        !grow(l->alloc, (void **)&l->src, l->n, cap, sizeof *l->src) ||
+        !grow(l->alloc, (void **)&l->range, l->n, cap, sizeof *l->range))
         return 0;
-    }
-    if (l->n) {
-        memcpy(nv, l->v, l->n * sizeof *nv);
-        memcpy(na, l->a, l->n * sizeof *na);
-    }
-    l->alloc->free(l->alloc->user, l->v);
-    l->alloc->free(l->alloc->user, l->a);
-    l->v = nv;
-    l->a = na;
     l->cap = cap;
     return 1;
 }
@@ -366,52 +367,44 @@ static int tile_hit(const cj_raster_prep *p, const cj_tri_setup *s, int tx, int 
     return 1;
 }
 
-static cj_status bin(cj_raster_prep *p) {
+/* Counts set-up i into the bins of the tiles it touches (bin_start[t + 1]) and keeps its tile
+ * range, right after the set-up, while its record is still in the cache: the fill pass then
+ * rereads only the records of triangles over several tiles. */
+static void count_bins(const cj_raster_prep *p, setup_list *l, size_t i, int shift) {
+    const cj_tri_setup *s = &l->v[i];
+    int tx0, tx1, ty0, ty1;
+    if (shift >= 0) {
+        tx0 = s->minx >> shift;
+        tx1 = s->maxx >> shift;
+        ty0 = s->miny >> shift;
+        ty1 = s->maxy >> shift;
+    } else {
+        tx0 = s->minx / p->tile_size;
+        tx1 = s->maxx / p->tile_size;
+        ty0 = s->miny / p->tile_size;
+        ty1 = s->maxy / p->tile_size;
+    }
+    l->range[i][0] = (uint16_t)tx0;
+    l->range[i][1] = (uint16_t)tx1;
+    l->range[i][2] = (uint16_t)ty0;
+    l->range[i][3] = (uint16_t)ty1;
+    if (tx0 == tx1 && ty0 == ty1) {
+        p->bin_start[(size_t)ty0 * p->tiles_x + tx0 + 1]++;
+        return;
+    }
+    for (int ty = ty0; ty <= ty1; ++ty)
+        for (int tx = tx0; tx <= tx1; ++tx)
+            if (tile_hit(p, s, tx, ty)) p->bin_start[(size_t)ty * p->tiles_x + tx + 1]++;
+}
+
+/* The bins from the counts of count_bins: offsets, then the set-ups in input order. */
+static cj_status bin(cj_raster_prep *p, uint16_t (*range)[4]) {
     const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
-    p->bin_start = xalloc(&p->alloc, (tiles + 1) * sizeof *p->bin_start);
-    /* Tile range of each set-up (4 × 16 bits): the fill pass need not reread the set-ups. */
-    uint16_t(*range)[4] = xalloc(&p->alloc, (p->setup_count + 1) * sizeof *range);
-    if (!p->bin_start || !range) {
-        p->alloc.free(p->alloc.user, range);
-        return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu tile bins", tiles);
-    }
-    memset(p->bin_start, 0, (tiles + 1) * sizeof *p->bin_start);
-    int shift = -1; /* tile sizes that are powers of two divide by a shift */
-    for (int k = 0; k < 16; ++k)
-        if (p->tile_size == 1 << k) shift = k;
-    for (size_t i = 0; i < p->setup_count; ++i) {
-        const cj_tri_setup *s = &p->setups[i];
-        int tx0, tx1, ty0, ty1;
-        if (shift >= 0) {
-            tx0 = s->minx >> shift;
-            tx1 = s->maxx >> shift;
-            ty0 = s->miny >> shift;
-            ty1 = s->maxy >> shift;
-        } else {
-            tx0 = s->minx / p->tile_size;
-            tx1 = s->maxx / p->tile_size;
-            ty0 = s->miny / p->tile_size;
-            ty1 = s->maxy / p->tile_size;
-        }
-        range[i][0] = (uint16_t)tx0;
-        range[i][1] = (uint16_t)tx1;
-        range[i][2] = (uint16_t)ty0;
-        range[i][3] = (uint16_t)ty1;
-        if (tx0 == tx1 && ty0 == ty1) {
-            p->bin_start[(size_t)ty0 * p->tiles_x + tx0 + 1]++;
-            continue;
-        }
-        for (int ty = ty0; ty <= ty1; ++ty)
-            for (int tx = tx0; tx <= tx1; ++tx)
-                if (tile_hit(p, s, tx, ty)) p->bin_start[(size_t)ty * p->tiles_x + tx + 1]++;
-    }
     for (size_t t = 0; t < tiles; ++t) p->bin_start[t + 1] += p->bin_start[t];
     p->bin_items = xalloc(&p->alloc, (p->bin_start[tiles] + 1) * sizeof *p->bin_items);
-    if (!p->bin_items) {
-        p->alloc.free(p->alloc.user, range);
+    if (!p->bin_items)
         return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu binned triangles",
                        p->bin_start[tiles]);
-    }
     for (size_t i = 0; i < p->setup_count; ++i) {
         const int tx0 = range[i][0], tx1 = range[i][1], ty0 = range[i][2], ty1 = range[i][3];
         if (tx0 == tx1 && ty0 == ty1) {
@@ -426,7 +419,6 @@ static cj_status bin(cj_raster_prep *p) {
     /* The fill advanced each start to the next bin's start: shift back. */
     for (size_t t = tiles; t > 0; --t) p->bin_start[t] = p->bin_start[t - 1];
     p->bin_start[0] = 0;
-    p->alloc.free(p->alloc.user, range);
     return CJ_OK;
 }
 
@@ -499,8 +491,17 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     st.tris_in = in->tri_count;
     const double hw = 0.5 * in->width, hh = 0.5 * in->height;
     const double gx = 2.0 * CJ_TRI_GUARD_PX / in->width, gy = 2.0 * CJ_TRI_GUARD_PX / in->height;
-    setup_list list = {&p->alloc, NULL, NULL, 0, 0};
+    setup_list list = {&p->alloc, NULL, NULL, NULL, NULL, 0, 0};
     cj_status status = CJ_OK;
+    const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
+    p->bin_start = xalloc(&p->alloc, (tiles + 1) * sizeof *p->bin_start);
+    if (!p->bin_start)
+        status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu tile bins", tiles);
+    else
+        memset(p->bin_start, 0, (tiles + 1) * sizeof *p->bin_start);
+    int shift = -1; /* tile sizes that are powers of two divide by a shift */
+    for (int k = 0; k < 16; ++k)
+        if (p->tile_size == 1 << k) shift = k;
     /* Whether any coordinate is NaN or infinite (all exponent bits set), in a loop without
      * exits; the culprit is looked for only then. */
     uint64_t nonfinite = 0;
@@ -549,7 +550,8 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
             pv[2].q2 = pv[2].r;
             if (setup_tri(p, &pv[0], &pv[1], &pv[2], (uint32_t)t, 0, &list.v[list.n],
                           &list.a[list.n])) {
-                list.n++;
+                list.src[list.n] = (uint32_t)t;
+                count_bins(p, &list, list.n++, shift);
                 st.tris_setup++;
             } else {
                 st.tris_rejected++;
@@ -607,7 +609,8 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
                 }
                 if (setup_tri(p, &pv[0], &pv[k], &pv[k + 1], (uint32_t)t, want, &list.v[list.n],
                               &list.a[list.n])) {
-                    list.n++;
+                    list.src[list.n] = (uint32_t)t;
+                    count_bins(p, &list, list.n++, shift);
                     made++;
                 }
             }
@@ -618,15 +621,10 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     p->alloc.free(p->alloc.user, cache);
     p->setups = list.v;
     p->attrs = list.a;
+    p->src = list.src;
     p->setup_count = list.n;
-    if (status == CJ_OK) {
-        p->src = xalloc(&p->alloc, (list.n ? list.n : 1) * sizeof *p->src);
-        if (!p->src)
-            status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu set-ups", list.n);
-        else
-            for (size_t i = 0; i < list.n; ++i) p->src[i] = list.a[i].src;
-    }
-    if (status == CJ_OK) status = bin(p);
+    if (status == CJ_OK) status = bin(p, list.range);
+    p->alloc.free(p->alloc.user, list.range);
     if (status != CJ_OK) {
         cj_raster_prep_destroy(p);
         return status;
