@@ -292,8 +292,8 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
     const size_t b0 = p->bin_start[t->index], b1 = p->bin_start[t->index + 1];
     for (size_t b = b0; b < b1; ++b) {
         /* Binned triangles are scattered over the set-up array: fetch ahead. */
-        if (b + 4 < b1) {
-            const char *ahead = (const char *)&p->setups[p->bin_items[b + 4]];
+        if (b + 12 < b1) {
+            const char *ahead = (const char *)&p->setups[p->bin_items[b + 12]];
             __builtin_prefetch(ahead);
             __builtin_prefetch(ahead + 64);
         }
@@ -303,7 +303,9 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
     if (!resolve) return;
     /* Resolve the winners into the tile's samples (pixel-major): source index and, unless
      * switched off, barycentrics, once per visible sample. Sample row by sample row, so the
-     * planes are read in order. */
+     * planes are read in order. Along a row the winner changes rarely: its planes' row parts
+     * v0 + vb·dy (the first operation of plane_at, the same doubles) are kept while it lasts,
+     * leaving + va·dx and the two divisions per sample. */
     const int bary = p->barycentrics;
     const uint32_t *src = p->src;
     const float *dpl = sc->depth;
@@ -315,19 +317,44 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
             const float *dr = dpl + (size_t)q * plane + row;
             const uint32_t *ir = ipl + (size_t)q * plane + row;
             cj_vis_sample *o = out + row * spp + q;
+            const int64_t Y = (int64_t)y * 256 + p->oy[q];
+            const int64_t X0 = (int64_t)t->x0 * 256 + p->ox[q];
+            uint32_t last = CJ_RASTER_NO_TRI, last_src = CJ_RASTER_NO_TRI;
+            int64_t xr = 0;
+            double rr = 0, r1 = 0, r2 = 0, ra = 0, a1 = 0, a2 = 0;
             for (int i = 0; i < tw; ++i, o += spp) {
                 const uint32_t id = ir[i];
                 o->depth = dr[i];
-                o->tri = id == CJ_RASTER_NO_TRI ? CJ_RASTER_NO_TRI : src[id];
-                o->b1 = o->b2 = 0.0f;
-            }
-            if (!bary) continue;
-            o = out + row * spp + q;
-            for (int i = 0; i < tw; ++i, o += spp) {
-                const uint32_t id = ir[i];
-                if (id == CJ_RASTER_NO_TRI) continue;
-                cj_tri_bary_at(&p->setups[id], &p->attrs[id], (int64_t)(t->x0 + i) * 256 + p->ox[q],
-                               (int64_t)y * 256 + p->oy[q], &o->b1, &o->b2);
+                if (id == CJ_RASTER_NO_TRI) {
+                    o->tri = CJ_RASTER_NO_TRI;
+                    o->b1 = o->b2 = 0.0f;
+                    continue;
+                }
+                if (id != last) {
+                    last = id;
+                    last_src = src[id];
+                    if (bary) {
+                        const cj_tri_setup *st = &p->setups[id];
+                        const cj_tri_attr *at = &p->attrs[id];
+                        const double dy = (double)(Y - st->yr);
+                        xr = st->xr;
+                        rr = at->r.v0 + at->r.vb * dy;
+                        r1 = at->q1.v0 + at->q1.vb * dy;
+                        r2 = at->q2.v0 + at->q2.vb * dy;
+                        ra = at->r.va;
+                        a1 = at->q1.va;
+                        a2 = at->q2.va;
+                    }
+                }
+                o->tri = last_src;
+                if (!bary) {
+                    o->b1 = o->b2 = 0.0f;
+                    continue;
+                }
+                const double dx = (double)(X0 + 256 * (int64_t)i - xr);
+                const double r = rr + ra * dx;
+                o->b1 = (float)((r1 + a1 * dx) / r);
+                o->b2 = (float)((r2 + a2 * dx) / r);
             }
         }
     }
