@@ -185,25 +185,24 @@ static void raster_small(const cj_raster_prep *p, const cj_tri_setup *s, uint32_
     const __m256d va = _mm256_set1_pd(s->z.va);
     const __m256d lane_dx0 = _mm256_setr_pd(0.0, 256.0, 512.0, 768.0);
     const __m256d lane_dx1 = _mm256_setr_pd(1024.0, 1280.0, 1536.0, 1792.0);
-    /* Per-lane step of each edge (256 ea per pixel) and per-row step (256 eb). */
-    const __m256i lx0 =
-        _mm256_mullo_epi32(lane, _mm256_set1_epi32((int32_t)(256 * (int64_t)s->ea[0])));
-    const __m256i lx1 =
-        _mm256_mullo_epi32(lane, _mm256_set1_epi32((int32_t)(256 * (int64_t)s->ea[1])));
-    const __m256i lx2 =
-        _mm256_mullo_epi32(lane, _mm256_set1_epi32((int32_t)(256 * (int64_t)s->ea[2])));
+    /* Per-row step of each edge (256 eb; the per-lane step 256 ea is formed per sample, which
+     * keeps the kernel's vectors within the 16 registers). */
     const __m256i ry0 = _mm256_set1_epi32((int32_t)(256 * (int64_t)s->eb[0]));
     const __m256i ry1 = _mm256_set1_epi32((int32_t)(256 * (int64_t)s->eb[1]));
     const __m256i ry2 = _mm256_set1_epi32((int32_t)(256 * (int64_t)s->eb[2]));
+    const __m256i lane256 = _mm256_slli_epi32(lane, 8);
     uint64_t written = 0;
     for (int q = 0; q < spp; ++q) {
         const int64_t X = (int64_t)xa * 256 + p->ox[q], Y = (int64_t)ya * 256 + p->oy[q];
-        __m256i e0 = _mm256_add_epi32(
-            _mm256_set1_epi32((int32_t)(s->ea[0] * X + s->eb[0] * Y + s->ec[0])), lx0);
-        __m256i e1 = _mm256_add_epi32(
-            _mm256_set1_epi32((int32_t)(s->ea[1] * X + s->eb[1] * Y + s->ec[1])), lx1);
-        __m256i e2 = _mm256_add_epi32(
-            _mm256_set1_epi32((int32_t)(s->ea[2] * X + s->eb[2] * Y + s->ec[2])), lx2);
+        __m256i e0 =
+            _mm256_add_epi32(_mm256_set1_epi32((int32_t)(s->ea[0] * X + s->eb[0] * Y + s->ec[0])),
+                             _mm256_mullo_epi32(lane256, _mm256_set1_epi32(s->ea[0])));
+        __m256i e1 =
+            _mm256_add_epi32(_mm256_set1_epi32((int32_t)(s->ea[1] * X + s->eb[1] * Y + s->ec[1])),
+                             _mm256_mullo_epi32(lane256, _mm256_set1_epi32(s->ea[1])));
+        __m256i e2 =
+            _mm256_add_epi32(_mm256_set1_epi32((int32_t)(s->ea[2] * X + s->eb[2] * Y + s->ec[2])),
+                             _mm256_mullo_epi32(lane256, _mm256_set1_epi32(s->ea[2])));
         const double dx0 = (double)(X - s->xr);
         const __m256d vdx0 = _mm256_add_pd(_mm256_set1_pd(dx0), lane_dx0);
         const __m256d vdx1 = _mm256_add_pd(_mm256_set1_pd(dx0), lane_dx1);
