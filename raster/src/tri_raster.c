@@ -316,6 +316,15 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
             const float *dr = dpl + (size_t)q * plane + row;
             const uint32_t *ir = ipl + (size_t)q * plane + row;
             cj_vis_sample *o = out + row * spp + q;
+            if (!bary) { /* depth and source only: a loop without branches */
+                for (int i = 0; i < tw; ++i, o += spp) {
+                    const uint32_t id = ir[i];
+                    o->depth = dr[i];
+                    o->tri = id == CJ_RASTER_NO_TRI ? CJ_RASTER_NO_TRI : src[id];
+                    o->b1 = o->b2 = 0.0f;
+                }
+                continue;
+            }
             const int64_t Y = (int64_t)y * 256 + p->oy[q];
             const int64_t X0 = (int64_t)t->x0 * 256 + p->ox[q];
             uint32_t last = CJ_RASTER_NO_TRI, last_src = CJ_RASTER_NO_TRI;
@@ -332,24 +341,18 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
                 if (id != last) {
                     last = id;
                     last_src = src[id];
-                    if (bary) {
-                        const cj_tri_setup *st = &p->setups[id];
-                        const cj_tri_attr *at = &p->attrs[id];
-                        const double dy = (double)(Y - st->yr);
-                        xr = st->xr;
-                        rr = at->r.v0 + at->r.vb * dy;
-                        r1 = at->q1.v0 + at->q1.vb * dy;
-                        r2 = at->q2.v0 + at->q2.vb * dy;
-                        ra = at->r.va;
-                        a1 = at->q1.va;
-                        a2 = at->q2.va;
-                    }
+                    const cj_tri_setup *st = &p->setups[id];
+                    const cj_tri_attr *at = &p->attrs[id];
+                    const double dy = (double)(Y - st->yr);
+                    xr = st->xr;
+                    rr = at->r.v0 + at->r.vb * dy;
+                    r1 = at->q1.v0 + at->q1.vb * dy;
+                    r2 = at->q2.v0 + at->q2.vb * dy;
+                    ra = at->r.va;
+                    a1 = at->q1.va;
+                    a2 = at->q2.va;
                 }
                 o->tri = last_src;
-                if (!bary) {
-                    o->b1 = o->b2 = 0.0f;
-                    continue;
-                }
                 const double dx = (double)(X0 + 256 * (int64_t)i - xr);
                 const double r = rr + ra * dx;
                 o->b1 = (float)((r1 + a1 * dx) / r);
