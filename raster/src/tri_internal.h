@@ -89,7 +89,7 @@ struct cj_raster_prep {
 };
 
 /* Per-thread scratch of one run: the tile's depth and set-up index planes, sample-major
- * (plane q holds sample q of every pixel of the tile, row by row), padded by 4 entries. */
+ * (plane q holds sample q of every pixel of the tile, row by row), padded by 8 entries. */
 typedef struct cj_tri_scratch {
     float *depth;
     uint32_t *id;
