@@ -9,6 +9,7 @@
 
 #include <assert.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -119,6 +120,10 @@ typedef struct pvert {
     int64_t X, Y;
     double z, r, q1, q2;
 } pvert;
+/* The lane code stores (sx, sy) and (z, r) as pairs and loads (z, r, q1, q2) as one vector. */
+_Static_assert(offsetof(pvert, sy) == offsetof(pvert, sx) + sizeof(double), "pvert: sx, sy");
+_Static_assert(offsetof(pvert, q2) == offsetof(pvert, z) + 3 * sizeof(double),
+               "pvert: z, r, q1, q2");
 
 /* rint(256·((ndc + 1)·half)): adding and removing 1.5·2^52 rounds to the nearest integer,
  * ties to even (the default rounding mode), exactly like rint for |v| < 2^51 (the guard band
