@@ -341,6 +341,98 @@ static void test_fans(void **state) {
     assert_true(tot.inside > tot.fans);
 }
 
+/* ---- the small-triangle kernel ---------------------------------------------------------- */
+
+/* Triangles the 32-bit kernel takes (columns in a tile <= 8, sides <= 64 px) and their
+ * neighbours just past its limits: thin and tall (1–10 × 50–70 px), flat and wide
+ * (50–70 × 1–10 px, whose columns a small tile cuts to <= 8), and 3–9 px ones, one per cell,
+ * straddling tile borders, at tile sizes 8, 16 and 64. Every fragment of the forward mode and
+ * every visibility sample must equal the exact reference. */
+static void test_small_kernel(void **state) {
+    (void)state;
+    cj_rng r;
+    cj_rng_init(&r, g_seed ^ 0x5a5au);
+    const int cells = 10, cell = 80, W = cells * cell, H = cells * cell;
+    const int nt = cells * cells;
+    double *clip = malloc(sizeof(double) * 4 * 3 * nt);
+    uint32_t *tris = malloc(sizeof(uint32_t) * 3 * nt);
+    size_t mism = 0, frags = 0, runs = 0, small_sized = 0;
+    static const int tiles[3] = {8, 16, 64};
+    const int rounds = scale_factor() < 1 ? 3 : 6; /* spp 1, 4, 16 (twice) */
+    for (int round = 0; round < rounds; ++round) {
+        const int spp = round % 3 == 0 ? 1 : round % 3 == 1 ? 4 : 16;
+        for (int t = 0; t < nt; ++t) {
+            const int kind = cj_rng_int(&r, 0, 2);
+            double sw = cj_rng_range(&r, 1, 10), sh = cj_rng_range(&r, 50, 70);
+            if (kind == 1) {
+                const double tmp = sw;
+                sw = sh;
+                sh = tmp;
+            } else if (kind == 2) {
+                sw = cj_rng_range(&r, 3, 9);
+                sh = cj_rng_range(&r, 3, 9);
+            }
+            small_sized += sw <= 64 && sh <= 64;
+            const double ox = (t % cells) * cell + cj_rng_range(&r, 2, cell - 2 - sw);
+            const double oy = (t / cells) * cell + cj_rng_range(&r, 2, cell - 2 - sh);
+            /* one vertex on each of three sides of the box, so the box is the triangle's */
+            const double px[3] = {ox, ox + sw, ox + cj_rng_range(&r, 0, sw)};
+            const double py[3] = {oy + cj_rng_range(&r, 0, sh), oy, oy + sh};
+            const int flip = cj_rng_int(&r, 0, 1); /* both windings */
+            for (int k = 0; k < 3; ++k) {
+                const double w = cj_rng_range(&r, 0.5, 2.0);
+                double *c = clip + 4 * (3 * t + k);
+                c[0] = (2.0 * (floor(px[k] * 256) / 256) / W - 1.0) * w;
+                c[1] = (2.0 * (floor(py[k] * 256) / 256) / H - 1.0) * w;
+                c[2] = cj_rng_range(&r, -0.5, 0.5) * w;
+                c[3] = w;
+                tris[3 * t + k] = (uint32_t)(3 * t + (flip ? 2 - k : k));
+            }
+        }
+        acc ref;
+        acc_init(&ref, W, H, spp);
+        int64_t ox[16], oy[16];
+        assert_true(ref_pattern(spp, ox, oy));
+        for (int t = 0; t < nt; ++t) {
+            int64_t X[3], Y[3];
+            for (int k = 0; k < 3; ++k) {
+                const double *c = clip + 4 * tris[3 * t + k];
+                X[k] = ref_snap(c[0], c[3], W);
+                Y[k] = ref_snap(c[1], c[3], H);
+            }
+            ref_tri(&ref, X, Y, (uint32_t)t, ox, oy);
+        }
+        const size_t n = (size_t)W * H * spp;
+        cj_vis_sample *vis = malloc(sizeof *vis * n);
+        for (int k = 0; k < 3; ++k) {
+            cj_raster_input in = {(size_t)3 * nt, clip, (size_t)nt, tris, W, H, spp};
+            acc ras;
+            acc_init(&ras, W, H, spp);
+            assert_int_equal(rh_render(&in, tiles[k], 1, vis, acc_frag, &ras, NULL), CJ_OK);
+            for (size_t i = 0; i < n; ++i) {
+                mism += ras.cnt[i] != ref.cnt[i] || ras.hash[i] != ref.hash[i];
+                frags += ras.cnt[i];
+                if (ref.cnt[i] == 1) /* the cells do not overlap */
+                    mism += vis[i].tri == CJ_RASTER_NO_TRI || mix(vis[i].tri) != ref.hash[i];
+                else
+                    mism += vis[i].tri != CJ_RASTER_NO_TRI;
+            }
+            acc_free(&ras);
+            runs++;
+        }
+        free(vis);
+        acc_free(&ref);
+    }
+    printf("test_raster_exact: small-triangle kernel: %zu runs (spp 1/4/16 x tiles 8/16/64) of "
+           "%d triangles (%zu of %zu within 64 px each way), %zu fragments: %zu samples differ "
+           "from the exact reference\n",
+           runs, nt, small_sized, (size_t)rounds * nt, frags, mism);
+    assert_int_equal(mism, 0);
+    assert_true(frags > 0);
+    free(clip);
+    free(tris);
+}
+
 /* ---- the tessellated teapot ------------------------------------------------------------ */
 
 typedef struct teapot {
@@ -581,6 +673,7 @@ int main(void) {
     g_seed = cj_test_seed("test_raster_exact", 20261123);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fans),
+        cmocka_unit_test(test_small_kernel),
         cmocka_unit_test(test_teapot_coverage),
         cmocka_unit_test(test_determinism),
     };

@@ -55,12 +55,16 @@ typedef struct cj_tri_plane {
 } cj_tri_plane;
 
 /* One set-up screen triangle (a source triangle, or one piece of a clipped one): what the
- * visibility pass reads, 128 bytes (two cache lines)... */
+ * visibility pass reads, 112 bytes... The coefficients ea = −dy, eb = dx are differences of
+ * snapped coordinates (|X|, |Y| < 2^28), so they fit in 32 bits; products with positions are
+ * formed in 64 bits. */
 typedef struct cj_tri_setup {
-    int64_t ea[3], eb[3], ec[3]; /* E_k = ea X + eb Y + ec, fill rule folded in ec */
-    int64_t xr, yr;              /* reference point: snapped vertex 0 */
-    int minx, miny, maxx, maxy;  /* inclusive pixel bounds, clamped to the image */
-    cj_tri_plane z;              /* pseudodepth */
+    int32_t ea[3], eb[3];       /* E_k = ea X + eb Y + ec, fill rule folded in ec */
+    int64_t ec[3];              /* (products widened to 64 bits) */
+    int64_t xr, yr;             /* reference point: snapped vertex 0 */
+    int minx, miny, maxx, maxy; /* inclusive pixel bounds, clamped to the image */
+    cj_tri_plane z;             /* pseudodepth */
+    int32_t small; /* every |ea_k|, |eb_k| <= 2^14: 32-bit edge values near it (tri_raster.c) */
 } cj_tri_setup;
 
 /* ... and what only the resolve and the forward mode read, kept apart (same index). */
@@ -85,7 +89,7 @@ struct cj_raster_prep {
 };
 
 /* Per-thread scratch of one run: the tile's depth and set-up index planes, sample-major
- * (plane q holds sample q of every pixel of the tile, row by row), padded by 4 entries. */
+ * (plane q holds sample q of every pixel of the tile, row by row), padded by 8 entries. */
 typedef struct cj_tri_scratch {
     float *depth;
     uint32_t *id;

@@ -117,7 +117,7 @@ static inline uint64_t span_kernel(float *dp, uint32_t *ip, int n, double rowz, 
         vs2 = _mm256_set1_epi64x(4 * st[2]);
     }
     /* Whole groups of four, the last one masked to the span: the lanes past the end read and
-     * write back their own values (the scratch planes are padded by 4). */
+     * write back their own values (the scratch planes are padded by 8). */
     for (; i < n; i += 4) {
         __m256d z = _mm256_add_pd(vz, _mm256_mul_pd(va, dx));
         z = _mm256_min_pd(_mm256_max_pd(z, lo), hi);
@@ -158,6 +158,116 @@ static inline uint64_t span_kernel(float *dp, uint32_t *ip, int n, double rowz, 
     return wr;
 }
 
+#if defined(__AVX2__)
+/* Columns up to which a small triangle's rows are scanned in groups of 8 lanes (beyond, the
+ * exact spans of the general path test fewer samples). */
+#define SMALL_SPAN 32
+
+/* The visibility pass of a SMALL triangle: every edge coefficient satisfies |ea_k|, |eb_k| <=
+ * 2^14 (the snapped triangle spans at most 64 pixels each way; set-up marks it in s->small),
+ * its columns in the tile scanned in groups of 8 lanes.
+ *
+ * 32-BIT EDGE FUNCTIONS. Every value the kernel forms is E_k at a sample P = (256 x + ox,
+ * 256 y + oy) with x in [xa, xb + 7) and y in [ya, yb), i.e. within the triangle's pixel
+ * bounding box widened by 7 pixels to the right (the last group's lanes past xb). Writing
+ * E_k(P) = ea (PX − X_k) + eb (PY − Y_k) − bias with (X_k, Y_k) a vertex: the vertices lie in
+ * the snapped box [minX, maxX] × [minY, maxY], whose sides are at most 2^14 (each side is the
+ * largest |dx| or |dy| of an edge), and the pixel box reaches at most 255 below the box and
+ * 255 + 7·256 above it, so |PX − X_k| <= 2^14 + 2^11 and |PY − Y_k| <= 2^14 + 2^8. Hence
+ *     |E_k(P)| <= 2^14 (2^14 + 2^11) + 2^14 (2^14 + 2^8) + 1 < 2^29 + 2^26 < 2^31:
+ * the int32 lanes hold the same integers as the 64-bit evaluation, and the coverage is the
+ * same. Depth is the double plane of span_kernel, (v0 + vb·dy) + va·dx from exact offsets,
+ * lane by lane: the same IEEE operations, the same floats. Lanes past xb load and store back
+ * their own values (the scratch planes are padded by 8). */
+/* Depth test of one group of 8 samples of sample row Yq starting at offset dx (exact, from the
+ * triangle's reference point) where `cover` is set; returns the samples written. */
+static inline uint64_t small_group(const cj_tri_setup *s, int64_t Yq, double dx, __m256i cover,
+                                   float *dp, uint32_t *ip, __m256 vid) {
+    const __m256d lo = _mm256_set1_pd(-1.0), hi = _mm256_set1_pd(1.0);
+    const __m256d va = _mm256_set1_pd(s->z.va);
+    const __m256d vz = _mm256_set1_pd(s->z.v0 + s->z.vb * (double)(Yq - s->yr));
+    const __m256d gdx = _mm256_set1_pd(dx);
+    __m256d z0 = _mm256_add_pd(
+        vz, _mm256_mul_pd(va, _mm256_add_pd(gdx, _mm256_setr_pd(0.0, 256.0, 512.0, 768.0))));
+    __m256d z1 = _mm256_add_pd(
+        vz, _mm256_mul_pd(va, _mm256_add_pd(gdx, _mm256_setr_pd(1024.0, 1280.0, 1536.0, 1792.0))));
+    z0 = _mm256_min_pd(_mm256_max_pd(z0, lo), hi);
+    z1 = _mm256_min_pd(_mm256_max_pd(z1, lo), hi);
+    const __m256 zf = _mm256_set_m128(_mm256_cvtpd_ps(z1), _mm256_cvtpd_ps(z0));
+    const __m256 old = _mm256_loadu_ps(dp);
+    const __m256 m = _mm256_and_ps(_mm256_cmp_ps(zf, old, _CMP_LT_OQ), _mm256_castsi256_ps(cover));
+    _mm256_storeu_ps(dp, _mm256_blendv_ps(old, zf, m));
+    const __m256 oid = _mm256_loadu_ps((const float *)ip);
+    _mm256_storeu_ps((float *)ip, _mm256_blendv_ps(oid, vid, m));
+    return (uint64_t)__builtin_popcount((unsigned)_mm256_movemask_ps(m));
+}
+
+static void raster_small(const cj_raster_prep *p, const cj_tri_setup *s, uint32_t id,
+                         const cj_tile *t, cj_tri_scratch *sc, int xa, int xb, int ya, int yb) {
+    const int tw = t->x1 - t->x0, spp = p->spp;
+    const size_t plane = (size_t)tw * (size_t)(t->y1 - t->y0);
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256 vid = _mm256_castsi256_ps(_mm256_set1_epi32((int)id));
+    /* Per-row step of each edge (256 eb; the per-lane step 256 ea is formed per sample, which
+     * keeps the kernel's vectors within the 16 registers). */
+    const __m256i ry0 = _mm256_set1_epi32((int32_t)(256 * (int64_t)s->eb[0]));
+    const __m256i ry1 = _mm256_set1_epi32((int32_t)(256 * (int64_t)s->eb[1]));
+    const __m256i ry2 = _mm256_set1_epi32((int32_t)(256 * (int64_t)s->eb[2]));
+    const __m256i lane256 = _mm256_slli_epi32(lane, 8);
+    uint64_t written = 0;
+    for (int q = 0; q < spp; ++q) {
+        const int64_t X = (int64_t)xa * 256 + p->ox[q], Y = (int64_t)ya * 256 + p->oy[q];
+        __m256i e0 =
+            _mm256_add_epi32(_mm256_set1_epi32((int32_t)(s->ea[0] * X + s->eb[0] * Y + s->ec[0])),
+                             _mm256_mullo_epi32(lane256, _mm256_set1_epi32(s->ea[0])));
+        __m256i e1 =
+            _mm256_add_epi32(_mm256_set1_epi32((int32_t)(s->ea[1] * X + s->eb[1] * Y + s->ec[1])),
+                             _mm256_mullo_epi32(lane256, _mm256_set1_epi32(s->ea[1])));
+        __m256i e2 =
+            _mm256_add_epi32(_mm256_set1_epi32((int32_t)(s->ea[2] * X + s->eb[2] * Y + s->ec[2])),
+                             _mm256_mullo_epi32(lane256, _mm256_set1_epi32(s->ea[2])));
+        const double dx0 = (double)(X - s->xr);
+        size_t at = (size_t)q * plane + (size_t)(ya - t->y0) * tw + (size_t)(xa - t->x0);
+        if (xb - xa <= 8) { /* one group per row */
+            const __m256i in_x = _mm256_cmpgt_epi32(_mm256_set1_epi32(xb - xa), lane);
+            for (int y = ya; y < yb; ++y, at += (size_t)tw) {
+                const __m256i out = _mm256_or_si256(_mm256_or_si256(e0, e1), e2);
+                const __m256i cover = _mm256_andnot_si256(_mm256_srai_epi32(out, 31), in_x);
+                e0 = _mm256_add_epi32(e0, ry0);
+                e1 = _mm256_add_epi32(e1, ry1);
+                e2 = _mm256_add_epi32(e2, ry2);
+                if (_mm256_testz_si256(cover, cover)) continue;
+                written += small_group(s, y * 256 + p->oy[q], dx0, cover, sc->depth + at,
+                                       sc->id + at, vid);
+            }
+            continue;
+        }
+        for (int y = ya; y < yb; ++y, at += (size_t)tw) {
+            __m256i g0 = e0, g1 = e1, g2 = e2;
+            e0 = _mm256_add_epi32(e0, ry0);
+            e1 = _mm256_add_epi32(e1, ry1);
+            e2 = _mm256_add_epi32(e2, ry2);
+            for (int xg = xa; xg < xb; xg += 8) {
+                const __m256i in_x = _mm256_cmpgt_epi32(_mm256_set1_epi32(xb - xg), lane);
+                const __m256i out = _mm256_or_si256(_mm256_or_si256(g0, g1), g2);
+                const __m256i cover = _mm256_andnot_si256(_mm256_srai_epi32(out, 31), in_x);
+                if (xg + 8 < xb) { /* the next group: 8 pixels to the right */
+                    g0 = _mm256_add_epi32(g0, _mm256_set1_epi32(2048 * s->ea[0]));
+                    g1 = _mm256_add_epi32(g1, _mm256_set1_epi32(2048 * s->ea[1]));
+                    g2 = _mm256_add_epi32(g2, _mm256_set1_epi32(2048 * s->ea[2]));
+                }
+                if (_mm256_testz_si256(cover, cover)) continue;
+                written +=
+                    small_group(s, y * 256 + p->oy[q], dx0 + 256.0 * (double)(xg - xa), cover,
+                                sc->depth + at + (xg - xa), sc->id + at + (xg - xa), vid);
+            }
+        }
+    }
+    sc->tested += (uint64_t)(xb - xa) * (uint64_t)(yb - ya) * (uint64_t)spp;
+    sc->written += written;
+}
+#endif
+
 /* The visibility pass of one triangle over the tile. */
 static void raster_one(const cj_raster_prep *p, const cj_tri_setup *s, uint32_t id,
                        const cj_tile *t, cj_tri_scratch *sc) {
@@ -166,10 +276,17 @@ static void raster_one(const cj_raster_prep *p, const cj_tri_setup *s, uint32_t 
     const int ya = s->miny > t->y0 ? s->miny : t->y0;
     const int yb = s->maxy + 1 < t->y1 ? s->maxy + 1 : t->y1;
     if (xa >= xb || ya >= yb) return;
+#if defined(__AVX2__)
+    if (s->small && xb - xa <= SMALL_SPAN) {
+        raster_small(p, s, id, t, sc, xa, xb, ya, yb);
+        return;
+    }
+#endif
     const int tw = t->x1 - t->x0, spp = p->spp;
     const size_t plane = (size_t)tw * (size_t)(t->y1 - t->y0);
     const int narrow = xb - xa <= NARROW_SPAN;
-    const int64_t st[3] = {s->ea[0] * 256, s->ea[1] * 256, s->ea[2] * 256};
+    const int64_t st[3] = {(int64_t)s->ea[0] * 256, (int64_t)s->ea[1] * 256,
+                           (int64_t)s->ea[2] * 256};
     const double za = s->z.va;
     uint64_t tested = 0, written = 0;
     for (int y = ya; y < yb; ++y) {
@@ -205,8 +322,8 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
     const size_t b0 = p->bin_start[t->index], b1 = p->bin_start[t->index + 1];
     for (size_t b = b0; b < b1; ++b) {
         /* Binned triangles are scattered over the set-up array: fetch ahead. */
-        if (b + 4 < b1) {
-            const char *ahead = (const char *)&p->setups[p->bin_items[b + 4]];
+        if (b + 12 < b1) {
+            const char *ahead = (const char *)&p->setups[p->bin_items[b + 12]];
             __builtin_prefetch(ahead);
             __builtin_prefetch(ahead + 64);
         }
@@ -216,7 +333,9 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
     if (!resolve) return;
     /* Resolve the winners into the tile's samples (pixel-major): source index and, unless
      * switched off, barycentrics, once per visible sample. Sample row by sample row, so the
-     * planes are read in order. */
+     * planes are read in order. Along a row the winner changes rarely: its planes' row parts
+     * v0 + vb·dy (the first operation of plane_at, the same doubles) are kept while it lasts,
+     * leaving + va·dx and the two divisions per sample. */
     const int bary = p->barycentrics;
     const uint32_t *src = p->src;
     const float *dpl = sc->depth;
@@ -228,19 +347,47 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
             const float *dr = dpl + (size_t)q * plane + row;
             const uint32_t *ir = ipl + (size_t)q * plane + row;
             cj_vis_sample *o = out + row * spp + q;
+            if (!bary) { /* depth and source only: a loop without branches */
+                for (int i = 0; i < tw; ++i, o += spp) {
+                    const uint32_t id = ir[i];
+                    o->depth = dr[i];
+                    o->tri = id == CJ_RASTER_NO_TRI ? CJ_RASTER_NO_TRI : src[id];
+                    o->b1 = o->b2 = 0.0f;
+                }
+                continue;
+            }
+            const int64_t Y = (int64_t)y * 256 + p->oy[q];
+            const int64_t X0 = (int64_t)t->x0 * 256 + p->ox[q];
+            uint32_t last = CJ_RASTER_NO_TRI, last_src = CJ_RASTER_NO_TRI;
+            int64_t xr = 0;
+            double rr = 0, r1 = 0, r2 = 0, ra = 0, a1 = 0, a2 = 0;
             for (int i = 0; i < tw; ++i, o += spp) {
                 const uint32_t id = ir[i];
                 o->depth = dr[i];
-                o->tri = id == CJ_RASTER_NO_TRI ? CJ_RASTER_NO_TRI : src[id];
-                o->b1 = o->b2 = 0.0f;
-            }
-            if (!bary) continue;
-            o = out + row * spp + q;
-            for (int i = 0; i < tw; ++i, o += spp) {
-                const uint32_t id = ir[i];
-                if (id == CJ_RASTER_NO_TRI) continue;
-                cj_tri_bary_at(&p->setups[id], &p->attrs[id], (int64_t)(t->x0 + i) * 256 + p->ox[q],
-                               (int64_t)y * 256 + p->oy[q], &o->b1, &o->b2);
+                if (id == CJ_RASTER_NO_TRI) {
+                    o->tri = CJ_RASTER_NO_TRI;
+                    o->b1 = o->b2 = 0.0f;
+                    continue;
+                }
+                if (id != last) {
+                    last = id;
+                    last_src = src[id];
+                    const cj_tri_setup *st = &p->setups[id];
+                    const cj_tri_attr *at = &p->attrs[id];
+                    const double dy = (double)(Y - st->yr);
+                    xr = st->xr;
+                    rr = at->r.v0 + at->r.vb * dy;
+                    r1 = at->q1.v0 + at->q1.vb * dy;
+                    r2 = at->q2.v0 + at->q2.vb * dy;
+                    ra = at->r.va;
+                    a1 = at->q1.va;
+                    a2 = at->q2.va;
+                }
+                o->tri = last_src;
+                const double dx = (double)(X0 + 256 * (int64_t)i - xr);
+                const double r = rr + ra * dx;
+                o->b1 = (float)((r1 + a1 * dx) / r);
+                o->b2 = (float)((r2 + a2 * dx) / r);
             }
         }
     }

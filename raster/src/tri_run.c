@@ -98,9 +98,9 @@ static cj_status reserve(cj_raster_workspace *ws, int workers, size_t n, int *re
     ws->workers = workers;
     ws->samples = n;
     for (int i = 0; i < workers; ++i) {
-        /* +4: the span kernels touch up to three samples past a span (unchanged). */
-        ws->w[i].scratch.depth = cj_ralloc(&ws->alloc, (n + 4) * sizeof(float));
-        ws->w[i].scratch.id = cj_ralloc(&ws->alloc, (n + 4) * sizeof(uint32_t));
+        /* +8: the span kernels touch up to seven samples past a span (unchanged). */
+        ws->w[i].scratch.depth = cj_ralloc(&ws->alloc, (n + 8) * sizeof(float));
+        ws->w[i].scratch.id = cj_ralloc(&ws->alloc, (n + 8) * sizeof(uint32_t));
         ws->w[i].samples = cj_ralloc(&ws->alloc, n * sizeof(cj_vis_sample));
         if (!ws->w[i].scratch.depth || !ws->w[i].scratch.id || !ws->w[i].samples) {
             release(ws);
