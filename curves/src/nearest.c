@@ -270,6 +270,7 @@ static void search(nrun *N, const cj_qpiece *p, double lb) {
 }
 
 static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol, cj_nearest *out) {
+    if (cj_nearest_by_roots(c, q, tol, out)) return CJ_OK;
     cj_qctx ctx;
     cj_status st = cj_qctx_init(&ctx, c, "curve");
     if (st != CJ_OK) return st;

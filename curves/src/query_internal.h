@@ -155,6 +155,16 @@ void cj_qpiece_boxes(const cj_qpiece *p, double lo[][2], double hi[][2]);
 /* Enclosure of the whole piece: the box of its control point boxes (cached in blo, bhi). */
 void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]);
 
+/* The fast path of cj_nearest_curve for polynomial curves up to this degree (nearest_roots.c):
+ * isolates the roots of (c - q) . c' on its Bernstein coefficients. Returns 1 with *out filled
+ * and certified (lower <= min distance <= distance, distance - lower <= tol), or 0 when some step
+ * could not be proven (a double root, a flat g, a cap), and for any input the caller would
+ * refuse (it validates nothing itself): the caller then validates and runs its branch and bound. */
+#define CJ_NEAREST_ROOTS_MAXN 12
+struct cj_nearest;
+int cj_nearest_by_roots(const cj_bezier2 *c, const double qp[2], double tol,
+                        struct cj_nearest *out);
+
 /* Max |coordinate| of the control points (finite ones; validation catches the others), the
  * exponent k that brings a scale below 2^-200 up to about 1 (0 otherwise), and a copy of the
  * curve with its points scaled by 2^k into buf (2 (degree+1) doubles; exact for k >= 0). */
