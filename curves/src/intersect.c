@@ -39,9 +39,9 @@ static cj_status curves_impl(const cj_bezier2 *a, const cj_bezier2 *b, double to
         st = cj_fail(CJ_ERR_NOMEM, "intersection work space");
         goto done;
     }
-    if ((st = cj_qctx_init(qa, a, "curve a")) != CJ_OK) goto done;
-    if ((st = cj_qctx_init(qb, b, "curve b")) != CJ_OK) goto done;
-    if ((st = cj_isect_check_tol(tol, fmax(qa->scale, qb->scale))) != CJ_OK) goto done;
+    if ((st = cj_qctx_init_first(qa, a, "curve a")) != CJ_OK) goto done;
+    if ((st = cj_qctx_init_first(qb, b, "curve b")) != CJ_OK) goto done;
+    if ((st = cj_isect_check_tol(tol, cj_fmax(qa->scale, qb->scale))) != CJ_OK) goto done;
     /* Overlaps are looked for only when a first search, capped low, leaves something
      * unresolved: coincident pieces can neither be excluded nor certified, so they always do. */
     for (int pass = 0; pass < 2; ++pass) {
@@ -78,7 +78,7 @@ static cj_status self_impl(const cj_bezier2 *a, double tol, cj_isect *out, int c
         st = cj_fail(CJ_ERR_NOMEM, "intersection work space");
         goto done;
     }
-    if ((st = cj_qctx_init(qa, a, "curve")) != CJ_OK) goto done;
+    if ((st = cj_qctx_init_first(qa, a, "curve")) != CJ_OK) goto done;
     if ((st = cj_isect_check_tol(tol, qa->scale)) != CJ_OK) goto done;
     cj_isect_run_reset(R);
     R->qa = R->qb = qa;
@@ -115,15 +115,15 @@ static cj_status line_impl(const cj_bezier2 *a, const double p[2], const double 
         st = cj_fail(CJ_ERR_NOMEM, "intersection work space");
         goto done;
     }
-    if ((st = cj_qctx_init(qa, a, "curve")) != CJ_OK) goto done;
+    if ((st = cj_qctx_init_first(qa, a, "curve")) != CJ_OK) goto done;
     if ((st = cj_isect_check_tol(tol, qa->scale)) != CJ_OK) goto done;
     {
         /* λ span: the control points project within |c_i - p| / |d| of λ = 0; a power of two
          * at least twice that keeps L exact and the curve strictly inside the segment. */
-        double reach = 0.0, dn = fmax(fabs(d[0]), fabs(d[1]));
+        double reach = 0.0, dn = cj_fmax(fabs(d[0]), fabs(d[1]));
         for (int i = 0; i <= a->degree; ++i)
-            reach = fmax(reach, fabs(a->pts[2 * i] - p[0]) + fabs(a->pts[2 * i + 1] - p[1]));
-        double L = ldexp(1.0, ilogb(fmax(reach / dn, 0x1p-1000)) + 2);
+            reach = cj_fmax(reach, fabs(a->pts[2 * i] - p[0]) + fabs(a->pts[2 * i + 1] - p[1]));
+        double L = ldexp(1.0, ilogb(cj_fmax(reach / dn, 0x1p-1000)) + 2);
         if (!isfinite(L) || !isfinite(L * dn)) {
             st = cj_fail(CJ_ERR_RANGE, "line point and direction are out of scale with the curve");
             goto done;
@@ -171,7 +171,7 @@ static void unscale(cj_isect *out, int n, int k, int line) {
 cj_status cj_intersect_curves(const cj_bezier2 *a, const cj_bezier2 *b, double tol, cj_isect *out,
                               int cap, int *count) {
     assert(a && b && count && (out || cap == 0));
-    int k = cj_query_scale_exp(fmax(cj_query_scale(a), cj_query_scale(b)));
+    int k = cj_query_scale_exp(cj_fmax(cj_query_scale(a), cj_query_scale(b)));
     if (k == 0) return curves_impl(a, b, tol, out, cap, count);
     double pa[2 * (CJ_QUERY_MAX_DEGREE + 1)], pb[2 * (CJ_QUERY_MAX_DEGREE + 1)];
     cj_bezier2 A = cj_query_scaled(a, k, pa), B = cj_query_scaled(b, k, pb);
@@ -194,7 +194,7 @@ cj_status cj_intersect_self(const cj_bezier2 *a, double tol, cj_isect *out, int 
 cj_status cj_intersect_line(const cj_bezier2 *a, const double p[2], const double d[2], double tol,
                             cj_isect *out, int cap, int *count) {
     assert(a && p && d && count && (out || cap == 0));
-    double sc = fmax(cj_query_scale(a), fmax(fabs(p[0]), fabs(p[1])));
+    double sc = cj_fmax(cj_query_scale(a), cj_fmax(fabs(p[0]), fabs(p[1])));
     int k = cj_query_scale_exp(sc);
     if (k == 0) return line_impl(a, p, d, tol, out, cap, count);
     double pa[2 * (CJ_QUERY_MAX_DEGREE + 1)], ps[2] = {ldexp(p[0], k), ldexp(p[1], k)};

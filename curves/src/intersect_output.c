@@ -50,8 +50,8 @@ static double coincidence(const cj_bezier2 *a, double s1, double s2, const cj_be
     if (cj_bezier_elevate(&SB, n - b->degree, eb) != CJ_OK) return INFINITY;
     double dev = 0.0, scale = 0.0;
     for (int i = 0; i <= n; ++i) {
-        dev = fmax(dev, hypot(ea[2 * i] - eb[2 * i], ea[2 * i + 1] - eb[2 * i + 1]));
-        scale = fmax(scale, fmax(fabs(ea[2 * i]), fabs(ea[2 * i + 1])));
+        dev = cj_fmax(dev, hypot(ea[2 * i] - eb[2 * i], ea[2 * i + 1] - eb[2 * i + 1]));
+        scale = cj_fmax(scale, cj_fmax(fabs(ea[2 * i]), fabs(ea[2 * i + 1])));
     }
     return dev + 16.0 * (n + 2) * 0x1p-53 * scale;
 }
@@ -79,7 +79,7 @@ void cj_isect_overlaps(run *R, const cj_bezier2 *a, const cj_bezier2 *b) {
             if (!(s1 < s2) || t1 == t2) continue;
             double dev = coincidence(a, s1, s2, b, t1, t2);
             if (!(dev <= R->tol)) continue;
-            cj_ivl box[2] = {cj_iv2(s1, s2), cj_iv2(fmin(t1, t2), fmax(t1, t2))};
+            cj_ivl box[2] = {cj_iv2(s1, s2), cj_iv2(cj_fmin(t1, t2), cj_fmax(t1, t2))};
             int dup = 0;
             for (int k = 0; k < R->noverlaps; ++k) {
                 if (inside(box, R->overlap[k]))
@@ -118,7 +118,7 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
                 if (meets(R->leaves[i].B, R->leaves[j].B)) {
                     for (int k = 0; k < 2; ++k)
                         R->leaves[i].B[k] = cj_ihull(R->leaves[i].B[k], R->leaves[j].B[k]);
-                    R->leaves[i].size = fmax(R->leaves[i].size, R->leaves[j].size);
+                    R->leaves[i].size = cj_fmax(R->leaves[i].size, R->leaves[j].size);
                     R->leaves[i].exact |= R->leaves[j].exact;
                     R->leaves[j] = R->leaves[--n];
                     changed = 1;
@@ -191,7 +191,7 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
             o->t_lo = lo.lo;
             o->t_hi = hi.hi;
             o->t = line_scale * (2.0 * o->t - 1.0);
-            o->t = fmin(fmax(o->t, o->t_lo), o->t_hi);
+            o->t = cj_fmin(cj_fmax(o->t, o->t_lo), o->t_hi);
         }
     }
     qsort(tmp, (size_t)total, sizeof tmp[0], cmp_isect);

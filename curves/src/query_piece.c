@@ -7,7 +7,7 @@
 #include <assert.h>
 #include <float.h>
 
-cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
+cj_status cj_qctx_init_first(cj_qctx *q, const cj_bezier2 *c, const char *what) {
     assert(q && c && what);
     if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE)
         return cj_fail(CJ_ERR_DEGREE, "%s: degree %d outside 0..%d", what, c->degree,
@@ -21,7 +21,7 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
             if (!isfinite(v))
                 return cj_fail(CJ_ERR_NONFINITE, "%s: control point %d, coordinate %d is %s", what,
                                i, k, isnan(v) ? "NaN" : "infinite");
-            scale = fmax(scale, fabs(v));
+            scale = cj_fmax(scale, fabs(v));
         }
     int rational = 0;
     if (c->weights)
@@ -58,11 +58,18 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
     }
     for (int k = 0; k < 3; ++k) {
         q->hmag[k] = 0.0;
-        for (int i = 0; i <= n; ++i) q->hmag[k] = fmax(q->hmag[k], cj_imag(q->h[i][k]));
+        for (int i = 0; i <= n; ++i) q->hmag[k] = cj_fmax(q->hmag[k], cj_imag(q->h[i][k]));
     }
     for (int i = 0; i < n; ++i)
         for (int k = 0; k < 3; ++k)
             q->dh[i][k] = cj_imul(cj_iv((double)n), cj_isub(q->h[i + 1][k], q->h[i][k]));
+    return CJ_OK;
+}
+
+cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
+    cj_status st = cj_qctx_init_first(q, c, what);
+    if (st != CJ_OK) return st;
+    int n = q->n;
     for (int i = 0; i + 1 < n; ++i)
         for (int k = 0; k < 3; ++k)
             q->ddh[i][k] = cj_imul(cj_iv((double)(n - 1)), cj_isub(q->dh[i + 1][k], q->dh[i][k]));
@@ -142,8 +149,8 @@ int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]) {
             cj_ivl v = q->h[i][k];
             double m = cj_imid(v);
             w[i][k] = m;
-            r = fmax(r, fmax(m - v.lo, v.hi - m));
-            M = fmax(M, fabs(m));
+            r = cj_fmax(r, cj_fmax(m - v.lo, v.hi - m));
+            M = cj_fmax(M, fabs(m));
         }
     for (int lev = n; lev > 0; --lev)
         for (int i = 0; i < lev; ++i)
@@ -263,8 +270,8 @@ static void set_bbox(cj_qpiece *p) {
         p->blo[k] = INFINITY;
         p->bhi[k] = -INFINITY;
         for (int i = 0; i <= n; ++i) {
-            p->blo[k] = fmin(p->blo[k], blo[i][k]);
-            p->bhi[k] = fmax(p->bhi[k], bhi[i][k]);
+            p->blo[k] = cj_fmin(p->blo[k], blo[i][k]);
+            p->bhi[k] = cj_fmax(p->bhi[k], bhi[i][k]);
         }
     }
 }
@@ -274,13 +281,14 @@ void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
     p->rational = q->rational;
     p->a = 0.0;
     p->b = 1.0;
+    p->perr = 0.0;
     for (int k = 0; k < 3; ++k) {
         double err = 0.0;
         for (int i = 0; i <= q->n; ++i) {
             cj_ivl v = q->h[i][k];
             double m = cj_imid(v);
             p->h[i][k] = m;
-            err = fmax(err, fmax(m - v.lo, v.hi - m));
+            err = cj_fmax(err, cj_fmax(m - v.lo, v.hi - m));
         }
         p->err[k] = err > 0.0 ? cj_up(err) : 0.0;
     }
@@ -309,16 +317,77 @@ void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *L, cj_q
         e[k] *= 1.0 + 0x1p-40;
     }
     if (!p->rational) e[2] = 0.0;
-    double m = 0.5 * (p->a + p->b); /* dyadic: exact */
+    /* exact for a dyadic piece; after a clip the midpoint of the exact ends is within perr
+     * plus half an ulp (at most 2^-54 below 1) of m */
+    double m = 0.5 * (p->a + p->b);
     L->n = R->n = n;
     L->rational = R->rational = p->rational;
     L->a = p->a;
     L->b = m;
     R->a = m;
     R->b = p->b;
+    L->perr = R->perr = p->perr > 0.0 ? p->perr + 0x1p-53 : 0.0;
     for (int k = 0; k < 3; ++k) L->err[k] = R->err[k] = e[k];
     set_bbox(L);
     set_bbox(R);
+}
+
+/* de Casteljau at the double t in place: w becomes the right piece's points; left (if not NULL)
+ * gets the left piece's. */
+static void split_at(double (*w)[3], int n, double t, double (*left)[3]) {
+    double s = 1.0 - t;
+    if (left) left[0][0] = w[0][0], left[0][1] = w[0][1];
+    for (int r = n; r > 0; --r) {
+        for (int i = 0; i < r; ++i) {
+            w[i][0] = s * w[i][0] + t * w[i + 1][0];
+            w[i][1] = s * w[i][1] + t * w[i + 1][1];
+        }
+        if (left) left[n - r + 1][0] = w[0][0], left[n - r + 1][1] = w[0][1];
+    }
+}
+
+void cj_qpiece_sub(const cj_qpiece *p, const double mag[3], double u0, double u1, cj_qpiece *out) {
+    assert(!p->rational && u0 >= 0.0 && u1 <= 1.0 && u0 < u1);
+    int n = p->n;
+    double w[CJ_QUERY_MAXN + 1][3];
+    for (int i = 0; i <= n; ++i) w[i][0] = p->h[i][0], w[i][1] = p->h[i][1];
+    double pa = p->a, pb = p->b, perr = p->perr, err[2] = {p->err[0], p->err[1]}; /* out may be p */
+    int splits = 0;
+    if (u0 > 0.0) {
+        split_at(w, n, u0, NULL);
+        ++splits;
+    }
+    /* the relative end rounded up, so that u0 + (1 - u0) s2 >= u1 exactly */
+    double s2 = u0 > 0.0 ? cj_up(cj_up(u1 - u0) / cj_down(1.0 - u0)) : u1;
+    if (s2 < 1.0) {
+        for (int i = 0; i <= n; ++i) out->h[i][0] = w[i][0], out->h[i][1] = w[i][1];
+        split_at(out->h, n, s2, w);
+        ++splits;
+    } else {
+        s2 = 1.0;
+    }
+    for (int i = 0; i <= n; ++i) {
+        out->h[i][0] = w[i][0];
+        out->h[i][1] = w[i][1];
+        out->h[i][2] = 1.0;
+    }
+    /* Each level of a split at t rounds s = 1 - t (at most 2^-54 off, times |x|) and the two
+     * products and the sum (2u (|s x| + |t y|)): at most 3.1 u times the largest magnitude,
+     * which the convex combinations never exceed; errors carried in pass through. */
+    for (int k = 0; k < 2; ++k)
+        out->err[k] =
+            (err[k] + (double)(splits * n) * ((mag[k] + err[k]) * 3.1 * 0x1p-53 + 0x1p-1073)) *
+            (1.0 + 0x1p-40);
+    out->err[2] = 0.0;
+    out->n = n;
+    out->rational = 0;
+    /* the exact ends: a* + (b* - a*) u0 and a* + (b* - a*)(u0 + (1 - u0) s2), with a*, b* within
+     * perr of a, b; each computed end is within perr plus a few roundings below 2 of them */
+    double w0 = pb - pa;
+    out->a = pa + w0 * u0;
+    out->b = s2 == 1.0 ? pb : pa + w0 * (u0 + (1.0 - u0) * s2);
+    out->perr = perr + 0x1p-49;
+    set_bbox(out);
 }
 
 void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]) {
@@ -339,18 +408,18 @@ void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L) {
         q->h[0][k] = cj_isub(cj_iv(p[k]), off);
         q->h[1][k] = cj_iadd(cj_iv(p[k]), off);
         q->dh[0][k] = cj_isub(q->h[1][k], q->h[0][k]);
-        q->hmag[k] = fmax(cj_imag(q->h[0][k]), cj_imag(q->h[1][k]));
+        q->hmag[k] = cj_fmax(cj_imag(q->h[0][k]), cj_imag(q->h[1][k]));
     }
     q->h[0][2] = q->h[1][2] = cj_iv(1.0);
     q->dh[0][2] = cj_iv(0.0);
-    q->scale = fmax(q->hmag[0], q->hmag[1]);
+    q->scale = cj_fmax(q->hmag[0], q->hmag[1]);
 }
 
 double cj_query_scale(const cj_bezier2 *c) {
     double s = 0.0;
     if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE) return 1.0; /* refused later */
     for (int i = 0; i < 2 * (c->degree + 1); ++i)
-        if (isfinite(c->pts[i])) s = fmax(s, fabs(c->pts[i]));
+        if (isfinite(c->pts[i])) s = cj_fmax(s, fabs(c->pts[i]));
     return s;
 }
 
