@@ -126,8 +126,11 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
                 }
     }
     R->nleaves = n;
-    cj_isect *tmp = malloc(sizeof(cj_isect) * (MAX_ROOTS + MAX_LEAVES + MAX_OVERLAPS));
-    if (!tmp) return cj_fail(CJ_ERR_NOMEM, "intersection results");
+    /* the usual handful of results on the stack; the heap only for many */
+    cj_isect few[32], *tmp = few;
+    int most = R->noverlaps + R->nroots + R->nleaves;
+    if (most > 32 && !(tmp = malloc(sizeof(cj_isect) * (size_t)most)))
+        return cj_fail(CJ_ERR_NOMEM, "intersection results");
     int total = 0;
     for (int i = 0; i < R->noverlaps; ++i) {
         cj_isect *o = &tmp[total++];
@@ -180,7 +183,7 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
             const double *e = R->ca->pts + (o->s == 0.0 ? 0 : 2 * R->ca->degree);
             o->point[0] = e[0];
             o->point[1] = e[1];
-        } else if (cj_qctx_eval(R->qa, cj_iv(o->s), p, NULL)) {
+        } else if (cj_qctx_point(R->qa, o->s, p)) {
             o->point[0] = cj_imid(p[0]);
             o->point[1] = cj_imid(p[1]);
         }
@@ -197,7 +200,7 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
     qsort(tmp, (size_t)total, sizeof tmp[0], cmp_isect);
     *count = total;
     for (int i = 0; i < total && i < cap; ++i) out[i] = tmp[i];
-    free(tmp);
+    if (tmp != few) free(tmp);
     if (R->capped)
         return cj_fail(CJ_ERR_CAP,
                        "intersection search hit its cap (%ld boxes, %d leaves): the "

@@ -101,13 +101,16 @@ static int clip_range(const cj_qpiece *p, const cj_qpiece *o, double *u0, double
     if (!isfinite(lo) || !isfinite(hi) || !isfinite(mn) || !isfinite(mx)) return 0;
     if (mx < lo || mn > hi) return -1; /* the hulls are separated along v */
     double xmin = INFINITY, xmax = -INFINITY, inv = 1.0 / n;
-    for (int i = 0; i <= n; ++i) {
+    for (int i = 0; i <= n; ++i)
         if (e[i] >= lo && e[i] <= hi) {
             double x = i * inv;
             xmin = x < xmin ? x : xmin;
             xmax = x > xmax ? x : xmax;
         }
-        for (int j = i + 1; j <= n; ++j)
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j <= n; ++j) {
+            /* a crossing lies between i/n and j/n: no use once both are inside [xmin, xmax] */
+            if (i * inv >= xmin && j * inv <= xmax) continue;
             for (int side = 0; side < 2; ++side) {
                 double level = side ? hi : lo;
                 if (!((e[i] < level && e[j] > level) || (e[i] > level && e[j] < level))) continue;
@@ -116,7 +119,7 @@ static int clip_range(const cj_qpiece *p, const cj_qpiece *o, double *u0, double
                 xmin = x < xmin ? x : xmin;
                 xmax = x > xmax ? x : xmax;
             }
-    }
+        }
     if (xmin > xmax) return -1;
     *u0 = xmin - 0x1p-48 > 0.0 ? xmin - 0x1p-48 : 0.0;
     *u1 = xmax + 0x1p-48 < 1.0 ? xmax + 0x1p-48 : 1.0;
@@ -341,10 +344,11 @@ double cj_isect_extent(const cj_qpiece *p) {
 
 /* Tries to settle the box S x T by Krawczyk on the box enlarged by an eighth on each side:
  * -1 no zero in S x T, 1 its one zero recorded, 0 undecided. */
-static int settle(run *R, cj_ivl S, cj_ivl T) {
-    /* at least 2^-44 wide: clipping can leave boxes a few ulps wide, where the rounding of the
-     * proof itself would keep K from fitting inside (a wider U proves the same zero) */
-    double ws = cj_fmax(cj_iwidth(S) / 8, 0x1p-44), wt = cj_fmax(cj_iwidth(T) / 8, 0x1p-44);
+static int settle(run *R, cj_ivl S, cj_ivl T, double min_grow) {
+    /* at least min_grow wider on each side: clipping can leave boxes a few ulps wide, where the
+     * rounding of the proof itself would keep K from fitting inside (a wider U proves the same
+     * zero) */
+    double ws = cj_fmax(cj_iwidth(S) / 8, min_grow), wt = cj_fmax(cj_iwidth(T) / 8, min_grow);
     cj_ivl U[2] = {cj_iv2(S.lo - ws, S.hi + ws), cj_iv2(T.lo - wt, T.hi + wt)};
     cj_ivl K[2];
     int r = cj_isect_krawczyk(R->qa, R->qb, U, K);
@@ -382,7 +386,7 @@ void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
         if (clip_ok ? boxes_apart(pa, pb) : separated(pa, pb)) return;
         double ea = cj_isect_extent(pa), eb = cj_isect_extent(pb);
         /* Bézier clipping first, the larger piece to the other's fat line and then the other
-         * way, kept when it removes at least a fifth of a piece: it drops most boxes without a
+         * way, kept when it removes at least 40 % of a piece: it drops most boxes without a
          * root and shrinks those with a transversal one quadratically, so that Krawczyk is
          * mostly tried once, on a small box holding the root. */
         int clipped_one = 0;
@@ -393,7 +397,7 @@ void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
             int r = clip_range(p, o, &u0, &u1);
             if (r < 0) return;
             /* below 2^-40 the clips' parameter rounding (perr) would start to count */
-            if (r == 0 || u1 - u0 > 0.8 || p->b - p->a <= 0x1p-40) continue;
+            if (r == 0 || u1 - u0 > 0.6 || p->b - p->a <= 0x1p-40) continue;
             cj_qpiece *c = &clipped[clip_a ? 0 : 1];
             cj_qpiece_sub(p, clip_a ? R->qa->hmag : R->qb->hmag, u0, u1, c);
             if (clip_a)
@@ -410,11 +414,16 @@ void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
     /* Krawczyk needs the derivative enclosures to be narrow: try it once the pieces are small
      * against the curves (cheap exclusion does the coarse work). */
     if ((ea <= R->ext_a * KRAWCZYK_SIZE || pa->n <= 1) &&
-        (eb <= R->ext_b * KRAWCZYK_SIZE || pb->n <= 1) && settle(R, S, T) != 0)
+        (eb <= R->ext_b * KRAWCZYK_SIZE || pb->n <= 1) && settle(R, S, T, 0x1p-44) != 0)
         return;
     int can_a = ea > R->tol && pa->b - pa->a > MIN_WIDTH;
     int can_b = eb > R->tol && pb->b - pb->a > MIN_WIDTH;
     if (!can_a && !can_b) {
+        /* clipping may have jumped past the sizes where Krawczyk succeeds on an ill-conditioned
+         * crossing: a few wider boxes before calling it a contact */
+        if (!R->self && (pa->perr > 0.0 || pb->perr > 0.0))
+            for (double grow = 0x1p-36; grow <= 0x1p-20; grow *= 0x1p8)
+                if (settle(R, S, T, grow) != 0) return;
         cj_isect_add_leaf(R, S, T, cj_fmax(ea, eb), 0);
         return;
     }

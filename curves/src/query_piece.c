@@ -332,44 +332,47 @@ void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *L, cj_q
     set_bbox(R);
 }
 
-/* de Casteljau at the double t in place: w becomes the right piece's points; left (if not NULL)
- * gets the left piece's. */
-static void split_at(double (*w)[3], int n, double t, double (*left)[3]) {
+/* de Casteljau at the double t in place: w becomes the piece right of t (keep_left 0) or left
+ * of it (keep_left 1; the same recurrence run from the other end). */
+static void split_at(double (*w)[3], int n, double t, int keep_left) {
     double s = 1.0 - t;
-    if (left) left[0][0] = w[0][0], left[0][1] = w[0][1];
-    for (int r = n; r > 0; --r) {
-        for (int i = 0; i < r; ++i) {
-            w[i][0] = s * w[i][0] + t * w[i + 1][0];
-            w[i][1] = s * w[i][1] + t * w[i + 1][1];
-        }
-        if (left) left[n - r + 1][0] = w[0][0], left[n - r + 1][1] = w[0][1];
+    if (!keep_left) {
+        for (int r = n; r > 0; --r)
+            for (int i = 0; i < r; ++i) {
+                w[i][0] = s * w[i][0] + t * w[i + 1][0];
+                w[i][1] = s * w[i][1] + t * w[i + 1][1];
+            }
+        return;
     }
+    for (int r = 1; r <= n; ++r)
+        for (int i = n; i >= r; --i) {
+            w[i][0] = s * w[i - 1][0] + t * w[i][0];
+            w[i][1] = s * w[i - 1][1] + t * w[i][1];
+        }
 }
 
 void cj_qpiece_sub(const cj_qpiece *p, const double mag[3], double u0, double u1, cj_qpiece *out) {
     assert(!p->rational && u0 >= 0.0 && u1 <= 1.0 && u0 < u1);
     int n = p->n;
-    double w[CJ_QUERY_MAXN + 1][3];
-    for (int i = 0; i <= n; ++i) w[i][0] = p->h[i][0], w[i][1] = p->h[i][1];
     double pa = p->a, pb = p->b, perr = p->perr, err[2] = {p->err[0], p->err[1]}; /* out may be p */
+    if (out != p)
+        for (int i = 0; i <= n; ++i) {
+            out->h[i][0] = p->h[i][0];
+            out->h[i][1] = p->h[i][1];
+            out->h[i][2] = 1.0;
+        }
     int splits = 0;
     if (u0 > 0.0) {
-        split_at(w, n, u0, NULL);
+        split_at(out->h, n, u0, 0);
         ++splits;
     }
     /* the relative end rounded up, so that u0 + (1 - u0) s2 >= u1 exactly */
     double s2 = u0 > 0.0 ? cj_up(cj_up(u1 - u0) / cj_down(1.0 - u0)) : u1;
     if (s2 < 1.0) {
-        for (int i = 0; i <= n; ++i) out->h[i][0] = w[i][0], out->h[i][1] = w[i][1];
-        split_at(out->h, n, s2, w);
+        split_at(out->h, n, s2, 1);
         ++splits;
     } else {
         s2 = 1.0;
-    }
-    for (int i = 0; i <= n; ++i) {
-        out->h[i][0] = w[i][0];
-        out->h[i][1] = w[i][1];
-        out->h[i][2] = 1.0;
     }
     /* Each level of a split at t rounds s = 1 - t (at most 2^-54 off, times |x|) and the two
      * products and the sum (2u (|s x| + |t y|)): at most 3.1 u times the largest magnitude,
