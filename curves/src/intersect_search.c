@@ -16,7 +16,7 @@ void cj_isect_run_reset(run *R) {
     R->tol = R->ext_a = R->ext_b = 0.0;
     R->max_boxes = 0;
     R->ca = NULL;
-    R->self = R->line = R->capped = 0;
+    R->self = R->line = R->capped = R->table_full = 0;
     R->boxes = 0;
     R->nroots = R->nleaves = R->noverlaps = 0;
 }
@@ -313,8 +313,8 @@ int cj_isect_record(run *R, cj_ivl K[2], const cj_ivl U[2]) {
             return 1;
         }
     }
-    if (R->nroots == MAX_ROOTS) {
-        R->capped = 1;
+    if (R->nroots == R->max_roots) {
+        R->capped = R->table_full = 1;
         return 1;
     }
     root *r = &R->roots[R->nroots++];
@@ -327,8 +327,8 @@ int cj_isect_record(run *R, cj_ivl K[2], const cj_ivl U[2]) {
 }
 
 void cj_isect_add_leaf(run *R, cj_ivl S, cj_ivl T, double size, int exact) {
-    if (R->nleaves == MAX_LEAVES) {
-        R->capped = 1;
+    if (R->nleaves == R->max_leaves) {
+        R->capped = R->table_full = 1;
         return;
     }
     leaf *l = &R->leaves[R->nleaves++];

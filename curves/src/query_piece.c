@@ -50,6 +50,27 @@ cj_status cj_qctx_init_first(cj_qctx *q, const cj_bezier2 *c, const char *what) 
     q->n = n;
     q->rational = rational;
     q->scale = scale;
+    if (!rational) {
+        /* exact points and weights 1: the hodograph n (P_{i+1} - P_i) is one rounded difference
+         * (stepped outwards) times the exact n (stepped outwards again) */
+        double dn = (double)n;
+        q->hmag[0] = q->hmag[1] = 0.0;
+        q->hmag[2] = 1.0;
+        for (int i = 0; i <= n; ++i) {
+            for (int k = 0; k < 2; ++k) {
+                double v = c->pts[2 * i + k];
+                q->h[i][k] = cj_iv(v);
+                q->hmag[k] = cj_fmax(q->hmag[k], fabs(v));
+                if (i < n) {
+                    double d = c->pts[2 * i + 2 + k] - v;
+                    q->dh[i][k] = cj_iv2(cj_down(dn * cj_down(d)), cj_up(dn * cj_up(d)));
+                }
+            }
+            q->h[i][2] = cj_iv(1.0);
+            if (i < n) q->dh[i][2] = cj_iv(0.0);
+        }
+        return CJ_OK;
+    }
     for (int i = 0; i <= n; ++i) {
         cj_ivl w = cj_iv(rational ? c->weights[i] : 1.0);
         for (int k = 0; k < 2; ++k)
@@ -282,6 +303,19 @@ void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
     p->a = 0.0;
     p->b = 1.0;
     p->perr = 0.0;
+    int exact = !q->rational;
+    for (int i = 0; i <= q->n && exact; ++i)
+        exact = q->h[i][0].lo == q->h[i][0].hi && q->h[i][1].lo == q->h[i][1].hi;
+    if (exact) { /* a polynomial's own control points (not a line's enclosed ones) */
+        for (int i = 0; i <= q->n; ++i) {
+            p->h[i][0] = q->h[i][0].lo;
+            p->h[i][1] = q->h[i][1].lo;
+            p->h[i][2] = 1.0;
+        }
+        p->err[0] = p->err[1] = p->err[2] = 0.0;
+        set_bbox(p);
+        return;
+    }
     for (int k = 0; k < 3; ++k) {
         double err = 0.0;
         for (int i = 0; i <= q->n; ++i) {
