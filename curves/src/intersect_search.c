@@ -100,22 +100,26 @@ static int clip_range(const cj_qpiece *p, const cj_qpiece *o, double *u0, double
     double lo = cj_down(omin - margin), hi = cj_up(omax + margin);
     if (!isfinite(lo) || !isfinite(hi) || !isfinite(mn) || !isfinite(mx)) return 0;
     if (mx < lo || mn > hi) return -1; /* the hulls are separated along v */
-    double xmin = INFINITY, xmax = -INFINITY, inv = 1.0 / n;
-    for (int i = 0; i <= n; ++i)
-        if (e[i] >= lo && e[i] <= hi) {
-            double x = i * inv;
-            xmin = x < xmin ? x : xmin;
-            xmax = x > xmax ? x : xmax;
+    double xmin = INFINITY, xmax = -INFINITY, inv = 1.0 / n, xs[CJ_QUERY_MAXN + 1];
+    int band[CJ_QUERY_MAXN + 1]; /* -1 below the band, 0 in it, 1 above */
+    for (int i = 0; i <= n; ++i) {
+        xs[i] = i * inv;
+        band[i] = e[i] < lo ? -1 : e[i] > hi ? 1 : 0;
+        if (band[i] == 0) {
+            xmin = xs[i] < xmin ? xs[i] : xmin;
+            xmax = xs[i] > xmax ? xs[i] : xmax;
         }
+    }
     for (int i = 0; i < n; ++i)
         for (int j = i + 1; j <= n; ++j) {
-            /* a crossing lies between i/n and j/n: no use once both are inside [xmin, xmax] */
-            if (i * inv >= xmin && j * inv <= xmax) continue;
+            /* a segment meets an edge only if its ends are on two sides of it; its crossing
+             * lies between i/n and j/n: no use once both are inside [xmin, xmax] */
+            if (band[i] == band[j] || (xs[i] >= xmin && xs[j] <= xmax)) continue;
             for (int side = 0; side < 2; ++side) {
                 double level = side ? hi : lo;
                 if (!((e[i] < level && e[j] > level) || (e[i] > level && e[j] < level))) continue;
                 double r = (level - e[i]) / (e[j] - e[i]);
-                double x = i * inv + (j - i) * inv * r;
+                double x = xs[i] + (xs[j] - xs[i]) * r;
                 xmin = x < xmin ? x : xmin;
                 xmax = x > xmax ? x : xmax;
             }
@@ -175,7 +179,8 @@ static int separated(const cj_qpiece *pa, const cj_qpiece *pb) {
 int cj_isect_krawczyk(const cj_qctx *qa, const cj_qctx *qb, const cj_ivl X[2], cj_ivl K[2]) {
     double m[2] = {cj_imid(X[0]), cj_imid(X[1])};
     cj_ivl pa[2], pb[2], da[2], db[2];
-    if (!cj_qctx_eval(qa, X[0], NULL, da) || !cj_qctx_eval(qb, X[1], NULL, db)) return 0;
+    if (!cj_qctx_deriv_near(qa, X[0], da) && !cj_qctx_eval(qa, X[0], NULL, da)) return 0;
+    if (!cj_qctx_deriv_near(qb, X[1], db) && !cj_qctx_eval(qb, X[1], NULL, db)) return 0;
     if (!cj_qctx_point(qa, m[0], pa) || !cj_qctx_point(qb, m[1], pb)) return 0;
     cj_ivl F[2] = {cj_isub(pa[0], pb[0]), cj_isub(pa[1], pb[1])};
     cj_ivl J[2][2] = {{da[0], cj_ineg(db[0])}, {da[1], cj_ineg(db[1])}};

@@ -106,8 +106,9 @@ typedef struct cj_qctx {
     cj_ivl dh[CJ_QUERY_MAXN + 1][3];  /* n (h_{i+1} - h_i), i < n */
     cj_ivl ddh[CJ_QUERY_MAXN + 1][3]; /* (n-1) (dh_{i+1} - dh_i), i < n-1 */
     cj_ivl d3h[CJ_QUERY_MAXN + 1][3]; /* (n-2) (ddh_{i+1} - ddh_i), i < n-2 */
-    double scale;                     /* max |coordinate| of the control points */
-    double hmag[3];                   /* max |homogeneous coordinate| k (bounds every piece) */
+    double d2mag[2]; /* a polynomial's max |c''_k| over [0,1] (upper bound), else INFINITY */
+    double scale;    /* max |coordinate| of the control points */
+    double hmag[3];  /* max |homogeneous coordinate| k (bounds every piece) */
 } cj_qctx;
 
 /* Validates the curve (degree 0..CJ_QUERY_MAX_DEGREE, finite points, finite positive weights)
@@ -126,6 +127,11 @@ int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]);
  * Casteljau with a rounding bound for a polynomial curve and t in [0,1] (several times cheaper
  * than interval arithmetic). */
 int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]);
+
+/* Encloses c'(t) for every t in T, for a polynomial curve and a narrow T inside [0,1]: c' at
+ * T's midpoint by plain de Casteljau with a rounding bound, widened by max |c''| times T's
+ * radius. Returns 0 where it does not apply (then use cj_qctx_eval). */
+int cj_qctx_deriv_near(const cj_qctx *q, cj_ivl T, cj_ivl d[2]);
 
 /* Encloses c(t), c'(t) and c''(t) for every t in T. Returns 0 as cj_qctx_eval does. */
 int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]);

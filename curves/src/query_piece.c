@@ -69,8 +69,16 @@ cj_status cj_qctx_init_first(cj_qctx *q, const cj_bezier2 *c, const char *what) 
             q->h[i][2] = cj_iv(1.0);
             if (i < n) q->dh[i][2] = cj_iv(0.0);
         }
+        /* c'' = sum (n-1)(dh_{i+1} - dh_i) B_i: bounded by its largest control point */
+        for (int k = 0; k < 2; ++k) {
+            double mag = 0.0;
+            for (int i = 0; i + 1 < n; ++i)
+                mag = cj_fmax(mag, cj_imag(cj_isub(q->dh[i + 1][k], q->dh[i][k])));
+            q->d2mag[k] = cj_up(mag * (double)(n > 1 ? n - 1 : 0));
+        }
         return CJ_OK;
     }
+    q->d2mag[0] = q->d2mag[1] = INFINITY;
     for (int i = 0; i <= n; ++i) {
         cj_ivl w = cj_iv(rational ? c->weights[i] : 1.0);
         for (int k = 0; k < 2; ++k)
@@ -179,6 +187,34 @@ int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]) {
     double e = (r + (double)n * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
     for (int k = 0; k < 2; ++k) p[k] = cj_iv2(cj_down(w[0][k] - e), cj_up(w[0][k] + e));
     return cj_ifinite(p[0]) && cj_ifinite(p[1]);
+}
+
+int cj_qctx_deriv_near(const cj_qctx *q, cj_ivl T, cj_ivl d[2]) {
+    int n = q->n;
+    if (q->rational || n < 1 || !(T.lo >= 0.0 && T.hi <= 1.0) || !(T.hi - T.lo <= 0x1p-20) ||
+        !(q->d2mag[0] < INFINITY && q->d2mag[1] < INFINITY))
+        return 0;
+    double t = 0.5 * T.lo + 0.5 * T.hi, s = 1.0 - t;
+    double rad = cj_up(cj_fmax(t - T.lo, T.hi - t));
+    /* as cj_qctx_point, on the hodograph's midpoints (degree n - 1) */
+    double w[CJ_QUERY_MAXN + 1][2], r = 0.0, M = 0.0;
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < 2; ++k) {
+            cj_ivl v = q->dh[i][k];
+            double m = cj_imid(v);
+            w[i][k] = m;
+            r = cj_fmax(r, cj_fmax(m - v.lo, v.hi - m));
+            M = cj_fmax(M, fabs(m));
+        }
+    for (int lev = n - 1; lev > 0; --lev)
+        for (int i = 0; i < lev; ++i)
+            for (int k = 0; k < 2; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
+    double e = (r + (double)(n - 1) * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
+    for (int k = 0; k < 2; ++k) {
+        double spread = cj_up(e + cj_up(q->d2mag[k] * rad));
+        d[k] = cj_iv2(cj_down(w[0][k] - spread), cj_up(w[0][k] + spread));
+    }
+    return cj_ifinite(d[0]) && cj_ifinite(d[1]);
 }
 
 int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]) {
@@ -449,6 +485,7 @@ void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L) {
     }
     q->h[0][2] = q->h[1][2] = cj_iv(1.0);
     q->dh[0][2] = cj_iv(0.0);
+    q->d2mag[0] = q->d2mag[1] = 0.0; /* straight: c'' = 0 */
     q->scale = cj_fmax(q->hmag[0], q->hmag[1]);
 }
 
