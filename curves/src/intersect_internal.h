@@ -12,6 +12,9 @@
 #define MIN_WIDTH    0x1p-52
 /* Krawczyk is tried once both pieces are this small against their curves */
 #define KRAWCZYK_SIZE 0.03125
+/* clipping stops for a Krawczyk try once both pieces are this narrow (measured 2^-8..2^-32:
+ * from 2^-24 boxes K lands at the rounding limit without refinement) */
+#define EARLY_WIDTH 0x1p-24
 
 typedef struct root {
     cj_ivl K[2]; /* enclosure */

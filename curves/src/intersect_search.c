@@ -390,6 +390,10 @@ void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
         /* with clipping, its two projections along the chord normals do separated's work */
         if (clip_ok ? boxes_apart(pa, pb) : separated(pa, pb)) return;
         double ea = cj_isect_extent(pa), eb = cj_isect_extent(pb);
+        if (clip_ok && pa->b - pa->a <= EARLY_WIDTH && pb->b - pb->a <= EARLY_WIDTH &&
+            ea <= R->ext_a * KRAWCZYK_SIZE && eb <= R->ext_b * KRAWCZYK_SIZE &&
+            settle(R, cj_qpiece_span(pa), cj_qpiece_span(pb), 0x1p-44) != 0)
+            return;
         /* Bézier clipping first, the larger piece to the other's fat line and then the other
          * way, kept when it removes at least 40 % of a piece: it drops most boxes without a
          * root and shrinks those with a transversal one quadratically, so that Krawczyk is
