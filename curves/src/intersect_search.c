@@ -395,7 +395,7 @@ void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
             settle(R, cj_qpiece_span(pa), cj_qpiece_span(pb), 0x1p-44) != 0)
             return;
         /* Bézier clipping first, the larger piece to the other's fat line and then the other
-         * way, kept when it removes at least 40 % of a piece: it drops most boxes without a
+         * way, kept when it removes at least 30 % of a piece: it drops most boxes without a
          * root and shrinks those with a transversal one quadratically, so that Krawczyk is
          * mostly tried once, on a small box holding the root. */
         int clipped_one = 0;
@@ -406,7 +406,7 @@ void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
             int r = clip_range(p, o, &u0, &u1);
             if (r < 0) return;
             /* below 2^-40 the clips' parameter rounding (perr) would start to count */
-            if (r == 0 || u1 - u0 > 0.6 || p->b - p->a <= 0x1p-40) continue;
+            if (r == 0 || u1 - u0 > 0.7 || p->b - p->a <= 0x1p-40) continue;
             cj_qpiece *c = &clipped[clip_a ? 0 : 1];
             cj_qpiece_sub(p, clip_a ? R->qa->hmag : R->qb->hmag, u0, u1, c);
             if (clip_a)
