@@ -29,22 +29,37 @@ const char *cj_isect_kind_name(cj_isect_kind kind) {
     return "unknown";
 }
 
+/* Points R at the full-size tables in *store (allocated). */
+static cj_status big_tables(run *R, run_tables **store) {
+    if (!(*store = malloc(sizeof **store))) return cj_fail(CJ_ERR_NOMEM, "intersection work space");
+    R->roots = (*store)->roots;
+    R->max_roots = MAX_ROOTS;
+    R->leaves = (*store)->leaves;
+    R->max_leaves = MAX_LEAVES;
+    return CJ_OK;
+}
+
 static cj_status curves_impl(const cj_bezier2 *a, const cj_bezier2 *b, double tol, cj_isect *out,
                              int cap, int *count) {
     assert(a && b && count && (out || cap == 0));
-    run *R = malloc(sizeof *R); /* the bookkeeping tables (~250 KiB) do not belong on a stack */
-    cj_qctx *qa = malloc(sizeof *qa), *qb = malloc(sizeof *qb);
+    /* small tables on the stack (a few roots and contacts is the usual answer); the full ones
+     * (~250 KiB) on the heap only if those fill, the pass then run again */
+    root few_roots[16];
+    leaf few_leaves[64];
+    run_tables *store = NULL;
+    run Rs, *R = &Rs;
+    R->roots = few_roots;
+    R->max_roots = 16;
+    R->leaves = few_leaves;
+    R->max_leaves = 64;
+    cj_qctx ctx[2], *qa = &ctx[0], *qb = &ctx[1]; /* 19 KiB */
     cj_status st = CJ_OK;
-    if (!R || !qa || !qb) {
-        st = cj_fail(CJ_ERR_NOMEM, "intersection work space");
-        goto done;
-    }
-    if ((st = cj_qctx_init(qa, a, "curve a")) != CJ_OK) goto done;
-    if ((st = cj_qctx_init(qb, b, "curve b")) != CJ_OK) goto done;
-    if ((st = cj_isect_check_tol(tol, fmax(qa->scale, qb->scale))) != CJ_OK) goto done;
+    if ((st = cj_qctx_init_first(qa, a, "curve a")) != CJ_OK) return st;
+    if ((st = cj_qctx_init_first(qb, b, "curve b")) != CJ_OK) return st;
+    if ((st = cj_isect_check_tol(tol, cj_fmax(qa->scale, qb->scale))) != CJ_OK) return st;
     /* Overlaps are looked for only when a first search, capped low, leaves something
      * unresolved: coincident pieces can neither be excluded nor certified, so they always do. */
-    for (int pass = 0; pass < 2; ++pass) {
+    for (int pass = 0; pass < 2;) {
         cj_isect_run_reset(R);
         R->qa = qa;
         R->qb = qb;
@@ -59,27 +74,31 @@ static cj_status curves_impl(const cj_bezier2 *a, const cj_bezier2 *b, double to
         R->ext_a = cj_isect_extent(&pa);
         R->ext_b = cj_isect_extent(&pb);
         cj_isect_pair(R, &pa, &pb);
+        if (R->table_full && !store) {
+            if ((st = big_tables(R, &store)) != CJ_OK) return st;
+            continue; /* the same pass with room */
+        }
         if (!R->capped && R->nleaves == 0) break;
+        ++pass;
     }
     st = cj_isect_finish(R, 0.0, out, cap, count);
-done:
-    free(R);
-    free(qa);
-    free(qb);
+    free(store);
     return st;
 }
 
 static cj_status self_impl(const cj_bezier2 *a, double tol, cj_isect *out, int cap, int *count) {
     assert(a && count && (out || cap == 0));
-    run *R = malloc(sizeof *R);
+    run Rs, *R = &Rs;
+    run_tables *store = NULL;
     cj_qctx *qa = malloc(sizeof *qa);
     cj_status st = CJ_OK;
-    if (!R || !qa) {
+    if (!qa) {
         st = cj_fail(CJ_ERR_NOMEM, "intersection work space");
         goto done;
     }
-    if ((st = cj_qctx_init(qa, a, "curve")) != CJ_OK) goto done;
+    if ((st = cj_qctx_init_first(qa, a, "curve")) != CJ_OK) goto done;
     if ((st = cj_isect_check_tol(tol, qa->scale)) != CJ_OK) goto done;
+    if ((st = big_tables(R, &store)) != CJ_OK) goto done;
     cj_isect_run_reset(R);
     R->qa = R->qb = qa;
     R->tol = tol;
@@ -95,7 +114,7 @@ static cj_status self_impl(const cj_bezier2 *a, double tol, cj_isect *out, int c
     }
     st = cj_isect_finish(R, 0.0, out, cap, count);
 done:
-    free(R);
+    free(store);
     free(qa);
     return st;
 }
@@ -108,22 +127,24 @@ static cj_status line_impl(const cj_bezier2 *a, const double p[2], const double 
     if (!isfinite(d[0]) || !isfinite(d[1]))
         return cj_fail(CJ_ERR_NONFINITE, "line direction (%g, %g) is not finite", d[0], d[1]);
     if (d[0] == 0.0 && d[1] == 0.0) return cj_fail(CJ_ERR_DEGENERATE, "line direction is (0, 0)");
-    run *R = malloc(sizeof *R);
+    run Rs, *R = &Rs;
+    run_tables *store = NULL;
     cj_qctx *qa = malloc(sizeof *qa), *qb = malloc(sizeof *qb);
     cj_status st = CJ_OK;
-    if (!R || !qa || !qb) {
+    if (!qa || !qb) {
         st = cj_fail(CJ_ERR_NOMEM, "intersection work space");
         goto done;
     }
-    if ((st = cj_qctx_init(qa, a, "curve")) != CJ_OK) goto done;
+    if ((st = cj_qctx_init_first(qa, a, "curve")) != CJ_OK) goto done;
     if ((st = cj_isect_check_tol(tol, qa->scale)) != CJ_OK) goto done;
+    if ((st = big_tables(R, &store)) != CJ_OK) goto done;
     {
         /* λ span: the control points project within |c_i - p| / |d| of λ = 0; a power of two
          * at least twice that keeps L exact and the curve strictly inside the segment. */
-        double reach = 0.0, dn = fmax(fabs(d[0]), fabs(d[1]));
+        double reach = 0.0, dn = cj_fmax(fabs(d[0]), fabs(d[1]));
         for (int i = 0; i <= a->degree; ++i)
-            reach = fmax(reach, fabs(a->pts[2 * i] - p[0]) + fabs(a->pts[2 * i + 1] - p[1]));
-        double L = ldexp(1.0, ilogb(fmax(reach / dn, 0x1p-1000)) + 2);
+            reach = cj_fmax(reach, fabs(a->pts[2 * i] - p[0]) + fabs(a->pts[2 * i + 1] - p[1]));
+        double L = ldexp(1.0, ilogb(cj_fmax(reach / dn, 0x1p-1000)) + 2);
         if (!isfinite(L) || !isfinite(L * dn)) {
             st = cj_fail(CJ_ERR_RANGE, "line point and direction are out of scale with the curve");
             goto done;
@@ -144,7 +165,7 @@ static cj_status line_impl(const cj_bezier2 *a, const double p[2], const double 
         st = cj_isect_finish(R, L, out, cap, count);
     }
 done:
-    free(R);
+    free(store);
     free(qa);
     free(qb);
     return st;
@@ -171,7 +192,7 @@ static void unscale(cj_isect *out, int n, int k, int line) {
 cj_status cj_intersect_curves(const cj_bezier2 *a, const cj_bezier2 *b, double tol, cj_isect *out,
                               int cap, int *count) {
     assert(a && b && count && (out || cap == 0));
-    int k = cj_query_scale_exp(fmax(cj_query_scale(a), cj_query_scale(b)));
+    int k = cj_query_scale_exp(cj_fmax(cj_query_scale(a), cj_query_scale(b)));
     if (k == 0) return curves_impl(a, b, tol, out, cap, count);
     double pa[2 * (CJ_QUERY_MAX_DEGREE + 1)], pb[2 * (CJ_QUERY_MAX_DEGREE + 1)];
     cj_bezier2 A = cj_query_scaled(a, k, pa), B = cj_query_scaled(b, k, pb);
@@ -194,7 +215,7 @@ cj_status cj_intersect_self(const cj_bezier2 *a, double tol, cj_isect *out, int 
 cj_status cj_intersect_line(const cj_bezier2 *a, const double p[2], const double d[2], double tol,
                             cj_isect *out, int cap, int *count) {
     assert(a && p && d && count && (out || cap == 0));
-    double sc = fmax(cj_query_scale(a), fmax(fabs(p[0]), fabs(p[1])));
+    double sc = cj_fmax(cj_query_scale(a), cj_fmax(fabs(p[0]), fabs(p[1])));
     int k = cj_query_scale_exp(sc);
     if (k == 0) return line_impl(a, p, d, tol, out, cap, count);
     double pa[2 * (CJ_QUERY_MAX_DEGREE + 1)], ps[2] = {ldexp(p[0], k), ldexp(p[1], k)};

@@ -12,6 +12,9 @@
 #define MIN_WIDTH    0x1p-52
 /* Krawczyk is tried once both pieces are this small against their curves */
 #define KRAWCZYK_SIZE 0.03125
+/* clipping stops for a Krawczyk try once both pieces are this narrow (measured 2^-8..2^-32:
+ * from 2^-24 boxes K lands at the rounding limit without refinement) */
+#define EARLY_WIDTH 0x1p-24
 
 typedef struct root {
     cj_ivl K[2]; /* enclosure */
@@ -35,14 +38,22 @@ typedef struct run {
     int line;             /* qb is a line: no domain clipping on t */
     long boxes;
     int capped;
-    root roots[MAX_ROOTS];
-    int nroots;
-    leaf leaves[MAX_LEAVES];
-    int nleaves;
+    int table_full; /* capped because roots or leaves ran out of room */
+    root *roots;    /* the tables: max_roots and max_leaves entries (small ones on the stack
+                       first, MAX_ROOTS and MAX_LEAVES on the heap when they fill) */
+    int nroots, max_roots;
+    leaf *leaves;
+    int nleaves, max_leaves;
     cj_ivl overlap[MAX_OVERLAPS][2];
     double overlap_dev[MAX_OVERLAPS];
     int noverlaps;
 } run;
+
+/* The full-size tables, allocated when the small ones fill. */
+typedef struct run_tables {
+    root roots[MAX_ROOTS];
+    leaf leaves[MAX_LEAVES];
+} run_tables;
 
 static inline int inside(const cj_ivl a[2], const cj_ivl b[2]) {
     return a[0].lo >= b[0].lo && a[0].hi <= b[0].hi && a[1].lo >= b[1].lo && a[1].hi <= b[1].hi;
@@ -52,6 +63,7 @@ static inline int meets(const cj_ivl a[2], const cj_ivl b[2]) {
     return a[0].lo <= b[0].hi && b[0].lo <= a[0].hi && a[1].lo <= b[1].hi && b[1].lo <= a[1].hi;
 }
 
+/* Empties the tables (keeping their storage). */
 void cj_isect_run_reset(run *R);
 /* -1: no zero of a(s) - b(t) in X; 1: exactly one, inside K; 0: undecided. */
 int cj_isect_krawczyk(const cj_qctx *qa, const cj_qctx *qb, const cj_ivl X[2], cj_ivl K[2]);

@@ -50,8 +50,8 @@ static double coincidence(const cj_bezier2 *a, double s1, double s2, const cj_be
     if (cj_bezier_elevate(&SB, n - b->degree, eb) != CJ_OK) return INFINITY;
     double dev = 0.0, scale = 0.0;
     for (int i = 0; i <= n; ++i) {
-        dev = fmax(dev, hypot(ea[2 * i] - eb[2 * i], ea[2 * i + 1] - eb[2 * i + 1]));
-        scale = fmax(scale, fmax(fabs(ea[2 * i]), fabs(ea[2 * i + 1])));
+        dev = cj_fmax(dev, hypot(ea[2 * i] - eb[2 * i], ea[2 * i + 1] - eb[2 * i + 1]));
+        scale = cj_fmax(scale, cj_fmax(fabs(ea[2 * i]), fabs(ea[2 * i + 1])));
     }
     return dev + 16.0 * (n + 2) * 0x1p-53 * scale;
 }
@@ -79,7 +79,7 @@ void cj_isect_overlaps(run *R, const cj_bezier2 *a, const cj_bezier2 *b) {
             if (!(s1 < s2) || t1 == t2) continue;
             double dev = coincidence(a, s1, s2, b, t1, t2);
             if (!(dev <= R->tol)) continue;
-            cj_ivl box[2] = {cj_iv2(s1, s2), cj_iv2(fmin(t1, t2), fmax(t1, t2))};
+            cj_ivl box[2] = {cj_iv2(s1, s2), cj_iv2(cj_fmin(t1, t2), cj_fmax(t1, t2))};
             int dup = 0;
             for (int k = 0; k < R->noverlaps; ++k) {
                 if (inside(box, R->overlap[k]))
@@ -118,7 +118,7 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
                 if (meets(R->leaves[i].B, R->leaves[j].B)) {
                     for (int k = 0; k < 2; ++k)
                         R->leaves[i].B[k] = cj_ihull(R->leaves[i].B[k], R->leaves[j].B[k]);
-                    R->leaves[i].size = fmax(R->leaves[i].size, R->leaves[j].size);
+                    R->leaves[i].size = cj_fmax(R->leaves[i].size, R->leaves[j].size);
                     R->leaves[i].exact |= R->leaves[j].exact;
                     R->leaves[j] = R->leaves[--n];
                     changed = 1;
@@ -126,8 +126,11 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
                 }
     }
     R->nleaves = n;
-    cj_isect *tmp = malloc(sizeof(cj_isect) * (MAX_ROOTS + MAX_LEAVES + MAX_OVERLAPS));
-    if (!tmp) return cj_fail(CJ_ERR_NOMEM, "intersection results");
+    /* the usual handful of results on the stack; the heap only for many */
+    cj_isect few[32], *tmp = few;
+    int most = R->noverlaps + R->nroots + R->nleaves;
+    if (most > 32 && !(tmp = malloc(sizeof(cj_isect) * (size_t)most)))
+        return cj_fail(CJ_ERR_NOMEM, "intersection results");
     int total = 0;
     for (int i = 0; i < R->noverlaps; ++i) {
         cj_isect *o = &tmp[total++];
@@ -180,7 +183,7 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
             const double *e = R->ca->pts + (o->s == 0.0 ? 0 : 2 * R->ca->degree);
             o->point[0] = e[0];
             o->point[1] = e[1];
-        } else if (cj_qctx_eval(R->qa, cj_iv(o->s), p, NULL)) {
+        } else if (cj_qctx_point(R->qa, o->s, p)) {
             o->point[0] = cj_imid(p[0]);
             o->point[1] = cj_imid(p[1]);
         }
@@ -191,13 +194,13 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
             o->t_lo = lo.lo;
             o->t_hi = hi.hi;
             o->t = line_scale * (2.0 * o->t - 1.0);
-            o->t = fmin(fmax(o->t, o->t_lo), o->t_hi);
+            o->t = cj_fmin(cj_fmax(o->t, o->t_lo), o->t_hi);
         }
     }
     qsort(tmp, (size_t)total, sizeof tmp[0], cmp_isect);
     *count = total;
     for (int i = 0; i < total && i < cap; ++i) out[i] = tmp[i];
-    free(tmp);
+    if (tmp != few) free(tmp);
     if (R->capped)
         return cj_fail(CJ_ERR_CAP,
                        "intersection search hit its cap (%ld boxes, %d leaves): the "

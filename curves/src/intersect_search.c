@@ -16,7 +16,7 @@ void cj_isect_run_reset(run *R) {
     R->tol = R->ext_a = R->ext_b = 0.0;
     R->max_boxes = 0;
     R->ca = NULL;
-    R->self = R->line = R->capped = 0;
+    R->self = R->line = R->capped = R->table_full = 0;
     R->boxes = 0;
     R->nroots = R->nleaves = R->noverlaps = 0;
 }
@@ -46,6 +46,13 @@ static void project(const double lo[][2], const double hi[][2], int n, const dou
  * h: the plain products and sums, widened by what the points' errors move the projection
  * (|v0| e0 + |v1| e1) plus the rounding of the dot products (at most 2.5u (|v0| + |v1|) times
  * the largest coordinate) and a step outwards. */
+static double poly_margin(const cj_qpiece *p, const double v[2]) {
+    double mag = cj_max4(fabs(p->blo[0]), fabs(p->bhi[0]), fabs(p->blo[1]), fabs(p->bhi[1]));
+    double av = fabs(v[0]) + fabs(v[1]);
+    double margin = fabs(v[0]) * p->err[0] + fabs(v[1]) * p->err[1] + av * mag * 0x1.4p-52;
+    return margin * (1.0 + 0x1p-40) + 0x1p-1060;
+}
+
 static void project_poly(const cj_qpiece *p, const double v[2], double *pmin, double *pmax) {
     double mn = INFINITY, mx = -INFINITY;
     for (int i = 0; i <= p->n; ++i) {
@@ -53,10 +60,7 @@ static void project_poly(const cj_qpiece *p, const double v[2], double *pmin, do
         mn = d < mn ? d : mn;
         mx = d > mx ? d : mx;
     }
-    double mag = cj_max4(fabs(p->blo[0]), fabs(p->bhi[0]), fabs(p->blo[1]), fabs(p->bhi[1]));
-    double av = fabs(v[0]) + fabs(v[1]);
-    double margin = fabs(v[0]) * p->err[0] + fabs(v[1]) * p->err[1] + av * mag * 0x1.4p-52;
-    margin = margin * (1.0 + 0x1p-40) + 0x1p-1060;
+    double margin = poly_margin(p, v);
     if (!isfinite(margin) || isnan(mn) || isnan(mx)) {
         *pmin = -INFINITY;
         *pmax = INFINITY;
@@ -64,6 +68,72 @@ static void project_poly(const cj_qpiece *p, const double v[2], double *pmin, do
     }
     *pmin = cj_down(mn - margin);
     *pmax = cj_up(mx + margin);
+}
+
+/* Bézier clipping (fat lines): the part of polynomial piece p that can meet polynomial piece o.
+ * With v normal to o's chord, o lies in the band bmin <= v . x <= bmax (its enclosed control
+ * points projected, as in separated). v . p(u) is the Bézier function with control values
+ * e_i* = v . P_i*, each within the margin of the computed e_i, so v . p(u) lies within the margin
+ * of sum e_i B_i(u), which lies in the convex hull of the points (i/n, e_i). Where that hull
+ * misses the band widened by the margin, p cannot meet o. The hull's part in the band spans,
+ * in u, from the smallest to the largest of: the i/n whose e_i lie in the band, and the
+ * crossings of every segment between two points with the band's edges (the hull's edges are
+ * among them). Those are computed in doubles: a crossing's ratio (level - e_i) / (e_j - e_i) is
+ * two subtractions and a division, each off by at most u relative, and the abscissas a few
+ * roundings more, so padding the range by 2^-48 makes it a superset.
+ * Returns -1 if p is proven to miss o, 1 with [*u0, *u1] (in p's own parameter) if the range
+ * is a proper part of [0,1], 0 if nothing was learnt. */
+static int clip_range(const cj_qpiece *p, const cj_qpiece *o, double *u0, double *u1) {
+    int n = p->n, no = o->n;
+    double v[2] = {-(o->h[no][1] - o->h[0][1]), o->h[no][0] - o->h[0][0]};
+    if (!isfinite(v[0]) || !isfinite(v[1]) || (v[0] == 0.0 && v[1] == 0.0)) return 0;
+    double omin, omax;
+    project_poly(o, v, &omin, &omax);
+    /* p's projections, each within margin of the exact one */
+    double e[CJ_QUERY_MAXN + 1], margin = poly_margin(p, v);
+    double mn = INFINITY, mx = -INFINITY;
+    for (int i = 0; i <= n; ++i) {
+        e[i] = v[0] * p->h[i][0] + v[1] * p->h[i][1];
+        mn = e[i] < mn ? e[i] : mn;
+        mx = e[i] > mx ? e[i] : mx;
+    }
+    double lo = cj_down(omin - margin), hi = cj_up(omax + margin);
+    if (!isfinite(lo) || !isfinite(hi) || !isfinite(mn) || !isfinite(mx)) return 0;
+    if (mx < lo || mn > hi) return -1; /* the hulls are separated along v */
+    double xmin = INFINITY, xmax = -INFINITY, inv = 1.0 / n, xs[CJ_QUERY_MAXN + 1];
+    int band[CJ_QUERY_MAXN + 1]; /* -1 below the band, 0 in it, 1 above */
+    for (int i = 0; i <= n; ++i) {
+        xs[i] = i * inv;
+        band[i] = e[i] < lo ? -1 : e[i] > hi ? 1 : 0;
+        if (band[i] == 0) {
+            xmin = xs[i] < xmin ? xs[i] : xmin;
+            xmax = xs[i] > xmax ? xs[i] : xmax;
+        }
+    }
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j <= n; ++j) {
+            /* a segment meets an edge only if its ends are on two sides of it; its crossing
+             * lies between i/n and j/n: no use once both are inside [xmin, xmax] */
+            if (band[i] == band[j] || (xs[i] >= xmin && xs[j] <= xmax)) continue;
+            for (int side = 0; side < 2; ++side) {
+                double level = side ? hi : lo;
+                if (!((e[i] < level && e[j] > level) || (e[i] > level && e[j] < level))) continue;
+                double r = (level - e[i]) / (e[j] - e[i]);
+                double x = xs[i] + (xs[j] - xs[i]) * r;
+                xmin = x < xmin ? x : xmin;
+                xmax = x > xmax ? x : xmax;
+            }
+        }
+    if (xmin > xmax) return -1;
+    *u0 = xmin - 0x1p-48 > 0.0 ? xmin - 0x1p-48 : 0.0;
+    *u1 = xmax + 0x1p-48 < 1.0 ? xmax + 0x1p-48 : 1.0;
+    return *u0 > 0.0 || *u1 < 1.0;
+}
+
+static int boxes_apart(const cj_qpiece *pa, const cj_qpiece *pb) {
+    for (int k = 0; k < 2; ++k)
+        if (pa->bhi[k] < pb->blo[k] || pb->bhi[k] < pa->blo[k]) return 1;
+    return 0;
 }
 
 /* 1 if the hulls of the two pieces are proven disjoint: their enclosing boxes first, then the
@@ -109,7 +179,8 @@ static int separated(const cj_qpiece *pa, const cj_qpiece *pb) {
 int cj_isect_krawczyk(const cj_qctx *qa, const cj_qctx *qb, const cj_ivl X[2], cj_ivl K[2]) {
     double m[2] = {cj_imid(X[0]), cj_imid(X[1])};
     cj_ivl pa[2], pb[2], da[2], db[2];
-    if (!cj_qctx_eval(qa, X[0], NULL, da) || !cj_qctx_eval(qb, X[1], NULL, db)) return 0;
+    if (!cj_qctx_deriv_near(qa, X[0], da) && !cj_qctx_eval(qa, X[0], NULL, da)) return 0;
+    if (!cj_qctx_deriv_near(qb, X[1], db) && !cj_qctx_eval(qb, X[1], NULL, db)) return 0;
     if (!cj_qctx_point(qa, m[0], pa) || !cj_qctx_point(qb, m[1], pb)) return 0;
     cj_ivl F[2] = {cj_isub(pa[0], pb[0]), cj_isub(pa[1], pb[1])};
     cj_ivl J[2][2] = {{da[0], cj_ineg(db[0])}, {da[1], cj_ineg(db[1])}};
@@ -162,7 +233,8 @@ static void guess_eval(const cj_qctx *q, double t, double p[2], double d[2]) {
     }
 }
 
-/* Newton on a(s) - b(t) = 0 in plain doubles from m; returns 0 if it did not settle. */
+/* Newton on a(s) - b(t) = 0 in plain doubles from m; returns 0 if it broke down (a singular or
+ * non-finite step), 1 otherwise (converged or not: the proof decides). */
 static int newton_guess(const cj_qctx *qa, const cj_qctx *qb, double m[2]) {
     for (int it = 0; it < 6; ++it) {
         double pa[2], da[2], pb[2], db[2];
@@ -175,11 +247,11 @@ static int newton_guess(const cj_qctx *qa, const cj_qctx *qb, double m[2]) {
         if (!isfinite(ds) || !isfinite(dt)) return 0;
         m[0] -= ds;
         m[1] -= dt;
-        if (fabs(ds) <= 0x1p-50 * fmax(fabs(m[0]), 0x1p-20) &&
-            fabs(dt) <= 0x1p-50 * fmax(fabs(m[1]), 0x1p-20))
+        if (fabs(ds) <= 0x1p-50 * cj_fmax(fabs(m[0]), 0x1p-20) &&
+            fabs(dt) <= 0x1p-50 * cj_fmax(fabs(m[1]), 0x1p-20))
             return 1;
     }
-    return 0;
+    return 1; /* rounding noise above 2^-50 (an ill-conditioned crossing): try it anyway */
 }
 
 /* Shrinks an enclosure of a zero already proven unique: K <- K(X) ∩ X while it narrows. A
@@ -190,17 +262,17 @@ static void refine(const cj_qctx *qa, const cj_qctx *qb, cj_ivl X[2]) {
     double m[2] = {cj_imid(X[0]), cj_imid(X[1])};
     if (newton_guess(qa, qb, m) && X[0].lo <= m[0] && m[0] <= X[0].hi && X[1].lo <= m[1] &&
         m[1] <= X[1].hi) {
-        for (int grow = 0; grow < 2; ++grow) {
-            double r = grow ? 0x1p-36 : 0x1p-46;
+        for (int grow = 0; grow < 3; ++grow) {
+            double r = grow == 0 ? 0x1p-46 : grow == 1 ? 0x1p-40 : 0x1p-34;
             cj_ivl Y[2], K[2];
             for (int k = 0; k < 2; ++k) {
-                double w = r * fmax(fabs(m[k]), 0x1p-16);
-                Y[k] = cj_iv2(fmax(X[k].lo, m[k] - w), fmin(X[k].hi, m[k] + w));
+                double w = r * cj_fmax(fabs(m[k]), 0x1p-16);
+                Y[k] = cj_iv2(cj_fmax(X[k].lo, m[k] - w), cj_fmin(X[k].hi, m[k] + w));
             }
             if (cj_isect_krawczyk(qa, qb, Y, K) != 1) continue;
             for (int k = 0; k < 2; ++k) {
-                X[k].lo = fmax(Y[k].lo, K[k].lo);
-                X[k].hi = fmin(Y[k].hi, K[k].hi);
+                X[k].lo = cj_fmax(Y[k].lo, K[k].lo);
+                X[k].hi = cj_fmin(Y[k].hi, K[k].hi);
             }
             return; /* K(Y) is as narrow as the rounding of the proof allows */
         }
@@ -211,8 +283,8 @@ static void refine(const cj_qctx *qa, const cj_qctx *qb, cj_ivl X[2]) {
         if (r < 0) return; /* cannot happen for a box holding the zero; keep what we have */
         double before = cj_iwidth(X[0]) + cj_iwidth(X[1]);
         for (int k = 0; k < 2; ++k) {
-            X[k].lo = fmax(X[k].lo, K[k].lo);
-            X[k].hi = fmin(X[k].hi, K[k].hi);
+            X[k].lo = cj_fmax(X[k].lo, K[k].lo);
+            X[k].hi = cj_fmin(X[k].hi, K[k].hi);
         }
         if (cj_iwidth(X[0]) + cj_iwidth(X[1]) >= before) return;
     }
@@ -228,8 +300,8 @@ int cj_isect_record(run *R, cj_ivl K[2], const cj_ivl U[2]) {
         if (K[k].hi < 0.0 || K[k].lo > 1.0) return 0;
         if (K[k].lo <= 0.0 || K[k].hi >= 1.0) {
             at_end = 1;
-            K[k].lo = fmax(K[k].lo, 0.0);
-            K[k].hi = fmin(K[k].hi, 1.0);
+            K[k].lo = cj_fmax(K[k].lo, 0.0);
+            K[k].hi = cj_fmin(K[k].hi, 1.0);
         }
     }
     if (R->self && K[0].hi >= K[1].lo) { /* must be s < t: the diagonal is no intersection */
@@ -239,15 +311,15 @@ int cj_isect_record(run *R, cj_ivl K[2], const cj_ivl U[2]) {
         root *o = &R->roots[i];
         if (inside(K, o->U) || inside(o->K, U)) {
             for (int k = 0; k < 2; ++k) {
-                o->K[k].lo = fmax(o->K[k].lo, K[k].lo);
-                o->K[k].hi = fmin(o->K[k].hi, K[k].hi);
+                o->K[k].lo = cj_fmax(o->K[k].lo, K[k].lo);
+                o->K[k].hi = cj_fmin(o->K[k].hi, K[k].hi);
             }
             o->at_end |= at_end;
             return 1;
         }
     }
-    if (R->nroots == MAX_ROOTS) {
-        R->capped = 1;
+    if (R->nroots == R->max_roots) {
+        R->capped = R->table_full = 1;
         return 1;
     }
     root *r = &R->roots[R->nroots++];
@@ -260,8 +332,8 @@ int cj_isect_record(run *R, cj_ivl K[2], const cj_ivl U[2]) {
 }
 
 void cj_isect_add_leaf(run *R, cj_ivl S, cj_ivl T, double size, int exact) {
-    if (R->nleaves == MAX_LEAVES) {
-        R->capped = 1;
+    if (R->nleaves == R->max_leaves) {
+        R->capped = R->table_full = 1;
         return;
     }
     leaf *l = &R->leaves[R->nleaves++];
@@ -272,20 +344,25 @@ void cj_isect_add_leaf(run *R, cj_ivl S, cj_ivl T, double size, int exact) {
 }
 
 double cj_isect_extent(const cj_qpiece *p) {
-    return fmax(p->bhi[0] - p->blo[0], p->bhi[1] - p->blo[1]);
+    return cj_fmax(p->bhi[0] - p->blo[0], p->bhi[1] - p->blo[1]);
 }
 
 /* Tries to settle the box S x T by Krawczyk on the box enlarged by an eighth on each side:
  * -1 no zero in S x T, 1 its one zero recorded, 0 undecided. */
-static int settle(run *R, cj_ivl S, cj_ivl T) {
-    double ws = cj_iwidth(S) / 8, wt = cj_iwidth(T) / 8;
+static int settle(run *R, cj_ivl S, cj_ivl T, double min_grow) {
+    /* at least min_grow wider on each side: clipping can leave boxes a few ulps wide, where the
+     * rounding of the proof itself would keep K from fitting inside (a wider U proves the same
+     * zero) */
+    double ws = cj_fmax(cj_iwidth(S) / 8, min_grow), wt = cj_fmax(cj_iwidth(T) / 8, min_grow);
     cj_ivl U[2] = {cj_iv2(S.lo - ws, S.hi + ws), cj_iv2(T.lo - wt, T.hi + wt)};
     cj_ivl K[2];
     int r = cj_isect_krawczyk(R->qa, R->qb, U, K);
     if (r < 0) return -1;
     if (r == 0) return 0;
     cj_ivl X[2] = {K[0], K[1]};
-    refine(R->qa, R->qb, X);
+    /* after clipping U is often only a few 2^-44 wide, and K from it already about as narrow
+     * as the rounding of the proof allows (1e-15..1e-13): refining would not narrow it */
+    if (cj_iwidth(K[0]) > 0x1p-42 || cj_iwidth(K[1]) > 0x1p-42) refine(R->qa, R->qb, X);
     cj_ivl box[2] = {S, T};
     if (!meets(X, box)) return -1; /* the one zero of U lies outside S x T */
     if (!cj_isect_record(R, X, U)) return -1;
@@ -293,31 +370,70 @@ static int settle(run *R, cj_ivl S, cj_ivl T) {
 }
 
 static int in_overlap(const run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
-    cj_ivl B[2] = {cj_iv2(pa->a, pa->b), cj_iv2(pb->a, pb->b)};
+    cj_ivl B[2] = {cj_qpiece_span(pa), cj_qpiece_span(pb)};
     for (int i = 0; i < R->noverlaps; ++i)
         if (inside(B, R->overlap[i])) return 1;
     return 0;
 }
 
 void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
-    if (R->capped) return;
-    if (++R->boxes > R->max_boxes) {
-        R->capped = 1;
-        return;
+    /* clipped pieces live here: the clipping loop runs in this frame, only halving recurses */
+    cj_qpiece clipped[2];
+    int clip_ok = !R->self && !pa->rational && !pb->rational;
+    for (;;) {
+        if (R->capped) return;
+        if (++R->boxes > R->max_boxes) {
+            R->capped = 1;
+            return;
+        }
+        if (in_overlap(R, pa, pb)) return;
+        /* with clipping, its two projections along the chord normals do separated's work */
+        if (clip_ok ? boxes_apart(pa, pb) : separated(pa, pb)) return;
+        double ea = cj_isect_extent(pa), eb = cj_isect_extent(pb);
+        if (clip_ok && pa->b - pa->a <= EARLY_WIDTH && pb->b - pb->a <= EARLY_WIDTH &&
+            ea <= R->ext_a * KRAWCZYK_SIZE && eb <= R->ext_b * KRAWCZYK_SIZE &&
+            settle(R, cj_qpiece_span(pa), cj_qpiece_span(pb), 0x1p-44) != 0)
+            return;
+        /* Bézier clipping first, the larger piece to the other's fat line and then the other
+         * way, kept when it removes at least 30 % of a piece: it drops most boxes without a
+         * root and shrinks those with a transversal one quadratically, so that Krawczyk is
+         * mostly tried once, on a small box holding the root. */
+        int clipped_one = 0;
+        for (int side = 0; side < 2 && clip_ok && !clipped_one; ++side) {
+            int clip_a = (side == 0) == (ea >= eb);
+            const cj_qpiece *p = clip_a ? pa : pb, *o = clip_a ? pb : pa;
+            double u0, u1;
+            int r = clip_range(p, o, &u0, &u1);
+            if (r < 0) return;
+            /* below 2^-40 the clips' parameter rounding (perr) would start to count */
+            if (r == 0 || u1 - u0 > 0.7 || p->b - p->a <= 0x1p-40) continue;
+            cj_qpiece *c = &clipped[clip_a ? 0 : 1];
+            cj_qpiece_sub(p, clip_a ? R->qa->hmag : R->qb->hmag, u0, u1, c);
+            if (clip_a)
+                pa = c;
+            else
+                pb = c;
+            clipped_one = 1;
+        }
+        if (clipped_one) continue;
+        break;
     }
-    if (in_overlap(R, pa, pb)) return;
-    if (separated(pa, pb)) return;
-    cj_ivl S = cj_iv2(pa->a, pa->b), T = cj_iv2(pb->a, pb->b);
+    cj_ivl S = cj_qpiece_span(pa), T = cj_qpiece_span(pb);
     double ea = cj_isect_extent(pa), eb = cj_isect_extent(pb);
     /* Krawczyk needs the derivative enclosures to be narrow: try it once the pieces are small
      * against the curves (cheap exclusion does the coarse work). */
     if ((ea <= R->ext_a * KRAWCZYK_SIZE || pa->n <= 1) &&
-        (eb <= R->ext_b * KRAWCZYK_SIZE || pb->n <= 1) && settle(R, S, T) != 0)
+        (eb <= R->ext_b * KRAWCZYK_SIZE || pb->n <= 1) && settle(R, S, T, 0x1p-44) != 0)
         return;
     int can_a = ea > R->tol && pa->b - pa->a > MIN_WIDTH;
     int can_b = eb > R->tol && pb->b - pb->a > MIN_WIDTH;
     if (!can_a && !can_b) {
-        cj_isect_add_leaf(R, S, T, fmax(ea, eb), 0);
+        /* clipping may have jumped past the sizes where Krawczyk succeeds on an ill-conditioned
+         * crossing: a few wider boxes before calling it a contact */
+        if (!R->self && (pa->perr > 0.0 || pb->perr > 0.0))
+            for (double grow = 0x1p-36; grow <= 0x1p-20; grow *= 0x1p8)
+                if (settle(R, S, T, grow) != 0) return;
+        cj_isect_add_leaf(R, S, T, cj_fmax(ea, eb), 0);
         return;
     }
     cj_qpiece h[2];

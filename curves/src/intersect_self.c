@@ -88,7 +88,7 @@ static void self_adjacent(run *R, const cj_qpiece *l, const cj_qpiece *r) {
     if (simple_dirs(ps, 2)) return;
     double el = cj_isect_extent(l), er = cj_isect_extent(r);
     if ((el <= R->tol && er <= R->tol) || l->b - l->a <= MIN_WIDTH || r->b - r->a <= MIN_WIDTH) {
-        cj_isect_add_leaf(R, cj_iv2(l->a, l->b), cj_iv2(r->a, r->b), fmax(el, er), 0);
+        cj_isect_add_leaf(R, cj_iv2(l->a, l->b), cj_iv2(r->a, r->b), cj_fmax(el, er), 0);
         return;
     }
     cj_qpiece lh[2], rh[2];

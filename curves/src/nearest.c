@@ -72,7 +72,7 @@ static double polish(const nrun *N, double t) {
         double g = ex * d[2] + ey * d[3];
         double gp = d[2] * d[2] + d[3] * d[3] + ex * d[4] + ey * d[5];
         if (!(gp > 0.0)) break;
-        double tn = fmin(1.0, fmax(0.0, t - g / gp));
+        double tn = cj_fmin(1.0, cj_fmax(0.0, t - g / gp));
         if (!isfinite(tn) || tn == t) break;
         int done = fabs(tn - t) <= 0x1p-52;
         t = tn;
@@ -99,16 +99,16 @@ static double piece_lower(const nrun *N, const cj_qpiece *p) {
     double blo[2] = {INFINITY, INFINITY}, bhi[2] = {-INFINITY, -INFINITY};
     for (int i = 0; i <= n; ++i)
         for (int k = 0; k < 2; ++k) {
-            blo[k] = fmin(blo[k], lo[i][k]);
-            bhi[k] = fmax(bhi[k], hi[i][k]);
+            blo[k] = cj_fmin(blo[k], lo[i][k]);
+            bhi[k] = cj_fmax(bhi[k], hi[i][k]);
         }
     double g[2];
     for (int k = 0; k < 2; ++k) {
         double below = cj_down(blo[k] - N->qp[k]), above = cj_down(N->qp[k] - bhi[k]);
-        g[k] = fmax(0.0, fmax(below, above));
+        g[k] = cj_fmax(0.0, cj_fmax(below, above));
     }
-    double box =
-        fmax(0.0, cj_down(sqrt(fmax(0.0, cj_down(cj_down(g[0] * g[0]) + cj_down(g[1] * g[1]))))));
+    double box = cj_fmax(
+        0.0, cj_down(sqrt(cj_fmax(0.0, cj_down(cj_down(g[0] * g[0]) + cj_down(g[1] * g[1]))))));
     /* direction to the nearest point of the chord (midpoints of the end boxes) */
     double a[2], b[2];
     for (int k = 0; k < 2; ++k) {
@@ -118,7 +118,7 @@ static double piece_lower(const nrun *N, const cj_qpiece *p) {
     double ab[2] = {b[0] - a[0], b[1] - a[1]};
     double len2 = ab[0] * ab[0] + ab[1] * ab[1];
     double lam = len2 > 0 ? ((N->qp[0] - a[0]) * ab[0] + (N->qp[1] - a[1]) * ab[1]) / len2 : 0.0;
-    lam = fmin(1.0, fmax(0.0, lam));
+    lam = cj_fmin(1.0, cj_fmax(0.0, lam));
     double v[2] = {a[0] + lam * ab[0] - N->qp[0], a[1] + lam * ab[1] - N->qp[1]};
     double gap = 0.0;
     if (isfinite(v[0]) && isfinite(v[1]) && (v[0] != 0.0 || v[1] != 0.0)) {
@@ -127,14 +127,14 @@ static double piece_lower(const nrun *N, const cj_qpiece *p) {
             cj_ivl d =
                 cj_iadd(cj_imul(cj_iv(v[0]), cj_isub(cj_iv2(lo[i][0], hi[i][0]), cj_iv(N->qp[0]))),
                         cj_imul(cj_iv(v[1]), cj_isub(cj_iv2(lo[i][1], hi[i][1]), cj_iv(N->qp[1]))));
-            mn = fmin(mn, d.lo);
+            mn = cj_fmin(mn, d.lo);
         }
         if (mn > 0.0) {
             double vn = cj_up(sqrt(cj_up(cj_up(v[0] * v[0]) + cj_up(v[1] * v[1]))));
             gap = cj_down(mn / vn);
         }
     }
-    return fmax(box, gap);
+    return cj_fmax(box, gap);
 }
 
 /* The sign pattern of g(u) = (c(u) - q) . c'(u) over a polynomial piece. g has degree 2n - 1
@@ -196,16 +196,16 @@ static double box_lower(const nrun *N, const double lo[2], const double hi[2]) {
     double g[2];
     for (int k = 0; k < 2; ++k) {
         double below = cj_down(lo[k] - N->qp[k]), above = cj_down(N->qp[k] - hi[k]);
-        g[k] = fmax(0.0, fmax(below, above));
+        g[k] = cj_fmax(0.0, cj_fmax(below, above));
     }
-    return fmax(0.0,
-                cj_down(sqrt(fmax(0.0, cj_down(cj_down(g[0] * g[0]) + cj_down(g[1] * g[1]))))));
+    return cj_fmax(
+        0.0, cj_down(sqrt(cj_fmax(0.0, cj_down(cj_down(g[0] * g[0]) + cj_down(g[1] * g[1]))))));
 }
 
 static void search(nrun *N, const cj_qpiece *p, double lb) {
     if (!(lb >= 0.0)) lb = 0.0; /* a NaN bound proves nothing */
     if (++N->pieces > MAX_PIECES || lb >= N->best - N->tol || p->b - p->a <= MIN_WIDTH) {
-        N->lower = fmin(N->lower, lb);
+        N->lower = cj_fmin(N->lower, lb);
         return;
     }
     double lb_piece = -1.0; /* a proven lower bound over the piece from the roots of g */
@@ -222,14 +222,14 @@ static void search(nrun *N, const cj_qpiece *p, double lb) {
                 lo[k] = cj_down(p->h[e][k] - p->err[k]);
                 hi[k] = cj_up(p->h[e][k] + p->err[k]);
             }
-            lb_piece = fmin(lb_piece, box_lower(N, lo, hi));
+            lb_piece = cj_fmin(lb_piece, box_lower(N, lo, hi));
         }
     } else if (changes == 1) {
         /* exactly one root t* of g, where g goes from - to +: the one minimum of the piece.
          * A Newton guess, and signs of g proven on both sides of it, enclose t*. */
         double t = polish(N, 0.5 * (p->a + p->b));
         for (double delta = 0x1p-40; delta <= 0x1p-20; delta *= 0x1p10) {
-            double lo = fmax(p->a, t - delta), hi = fmin(p->b, t + delta);
+            double lo = cj_fmax(p->a, t - delta), hi = cj_fmin(p->b, t + delta);
             if (!(lo < hi) || g_sign_at(N, lo) >= 0 || g_sign_at(N, hi) <= 0) continue;
             offer(N, t);
             cj_ivl c[2];
@@ -240,9 +240,9 @@ static void search(nrun *N, const cj_qpiece *p, double lb) {
         }
     }
     if (lb_piece >= 0.0) {
-        lb_piece = fmax(lb, lb_piece);
+        lb_piece = cj_fmax(lb, lb_piece);
         if (lb_piece >= N->best - N->tol) {
-            N->lower = fmin(N->lower, lb_piece);
+            N->lower = cj_fmin(N->lower, lb_piece);
             return;
         }
     }
@@ -254,7 +254,7 @@ static void search(nrun *N, const cj_qpiece *p, double lb) {
         offer(N, polish(N, m));
     }
     if (lb >= N->best - N->tol) {
-        N->lower = fmin(N->lower, lb);
+        N->lower = cj_fmin(N->lower, lb);
         return;
     }
     cj_qpiece h[2];
@@ -270,12 +270,13 @@ static void search(nrun *N, const cj_qpiece *p, double lb) {
 }
 
 static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol, cj_nearest *out) {
+    if (cj_nearest_by_roots(c, q, tol, out)) return CJ_OK;
     cj_qctx ctx;
-    cj_status st = cj_qctx_init(&ctx, c, "curve");
+    cj_status st = cj_qctx_init_first(&ctx, c, "curve");
     if (st != CJ_OK) return st;
     if (!isfinite(q[0]) || !isfinite(q[1]))
         return cj_fail(CJ_ERR_NONFINITE, "query point (%g, %g) is not finite", q[0], q[1]);
-    double scale = fmax(ctx.scale, fmax(fabs(q[0]), fabs(q[1])));
+    double scale = cj_fmax(ctx.scale, cj_fmax(fabs(q[0]), fabs(q[1])));
     if (!isfinite(tol)) return cj_fail(CJ_ERR_NONFINITE, "tol is %s", isnan(tol) ? "NaN" : "inf");
     if (!(tol > 0.0)) return cj_fail(CJ_ERR_ARGUMENT, "tol %g must be > 0", tol);
     if (tol < scale * 0x1p-40)
@@ -315,7 +316,7 @@ static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol
     cj_qpiece root;
     cj_qpiece_root(&ctx, &root);
     search(&N, &root, piece_lower(&N, &root));
-    double lower = fmin(N.lower, N.best);
+    double lower = cj_fmin(N.lower, N.best);
     if (!isfinite(N.best))
         return cj_fail(CJ_ERR_RANGE, "the curve's distance to the point overflows");
     out->t = N.best_t;
@@ -333,7 +334,7 @@ static cj_status nearest_impl(const cj_bezier2 *c, const double q[2], double tol
 
 cj_status cj_nearest_curve(const cj_bezier2 *c, const double q[2], double tol, cj_nearest *out) {
     assert(c && q && out);
-    double sc = fmax(cj_query_scale(c), fmax(fabs(q[0]), fabs(q[1])));
+    double sc = cj_fmax(cj_query_scale(c), cj_fmax(fabs(q[0]), fabs(q[1])));
     int k = cj_query_scale_exp(sc);
     if (k == 0) return nearest_impl(c, q, tol, out);
     /* tiny curves: scaled up by 2^k (exact), so the squared distances stay normal */
@@ -346,7 +347,7 @@ cj_status cj_nearest_curve(const cj_bezier2 *c, const double q[2], double tol, c
     r.point[1] = ldexp(r.point[1], -k);
     /* scaling down rounds (maybe into subnormals): step the bounds outwards */
     r.distance = cj_up(ldexp(r.distance, -k));
-    r.lower = fmax(0.0, cj_down(ldexp(r.lower, -k)));
+    r.lower = cj_fmax(0.0, cj_down(ldexp(r.lower, -k)));
     *out = r;
     return st;
 }

@@ -7,7 +7,7 @@
 #include <assert.h>
 #include <float.h>
 
-cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
+cj_status cj_qctx_init_first(cj_qctx *q, const cj_bezier2 *c, const char *what) {
     assert(q && c && what);
     if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE)
         return cj_fail(CJ_ERR_DEGREE, "%s: degree %d outside 0..%d", what, c->degree,
@@ -21,7 +21,7 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
             if (!isfinite(v))
                 return cj_fail(CJ_ERR_NONFINITE, "%s: control point %d, coordinate %d is %s", what,
                                i, k, isnan(v) ? "NaN" : "infinite");
-            scale = fmax(scale, fabs(v));
+            scale = cj_fmax(scale, fabs(v));
         }
     int rational = 0;
     if (c->weights)
@@ -50,6 +50,35 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
     q->n = n;
     q->rational = rational;
     q->scale = scale;
+    if (!rational) {
+        /* exact points and weights 1: the hodograph n (P_{i+1} - P_i) is one rounded difference
+         * (stepped outwards) times the exact n (stepped outwards again) */
+        double dn = (double)n;
+        q->hmag[0] = q->hmag[1] = 0.0;
+        q->hmag[2] = 1.0;
+        for (int i = 0; i <= n; ++i) {
+            for (int k = 0; k < 2; ++k) {
+                double v = c->pts[2 * i + k];
+                q->h[i][k] = cj_iv(v);
+                q->hmag[k] = cj_fmax(q->hmag[k], fabs(v));
+                if (i < n) {
+                    double d = c->pts[2 * i + 2 + k] - v;
+                    q->dh[i][k] = cj_iv2(cj_down(dn * cj_down(d)), cj_up(dn * cj_up(d)));
+                }
+            }
+            q->h[i][2] = cj_iv(1.0);
+            if (i < n) q->dh[i][2] = cj_iv(0.0);
+        }
+        /* c'' = sum (n-1)(dh_{i+1} - dh_i) B_i: bounded by its largest control point */
+        for (int k = 0; k < 2; ++k) {
+            double mag = 0.0;
+            for (int i = 0; i + 1 < n; ++i)
+                mag = cj_fmax(mag, cj_imag(cj_isub(q->dh[i + 1][k], q->dh[i][k])));
+            q->d2mag[k] = cj_up(mag * (double)(n > 1 ? n - 1 : 0));
+        }
+        return CJ_OK;
+    }
+    q->d2mag[0] = q->d2mag[1] = INFINITY;
     for (int i = 0; i <= n; ++i) {
         cj_ivl w = cj_iv(rational ? c->weights[i] : 1.0);
         for (int k = 0; k < 2; ++k)
@@ -58,11 +87,18 @@ cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
     }
     for (int k = 0; k < 3; ++k) {
         q->hmag[k] = 0.0;
-        for (int i = 0; i <= n; ++i) q->hmag[k] = fmax(q->hmag[k], cj_imag(q->h[i][k]));
+        for (int i = 0; i <= n; ++i) q->hmag[k] = cj_fmax(q->hmag[k], cj_imag(q->h[i][k]));
     }
     for (int i = 0; i < n; ++i)
         for (int k = 0; k < 3; ++k)
             q->dh[i][k] = cj_imul(cj_iv((double)n), cj_isub(q->h[i + 1][k], q->h[i][k]));
+    return CJ_OK;
+}
+
+cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
+    cj_status st = cj_qctx_init_first(q, c, what);
+    if (st != CJ_OK) return st;
+    int n = q->n;
     for (int i = 0; i + 1 < n; ++i)
         for (int k = 0; k < 3; ++k)
             q->ddh[i][k] = cj_imul(cj_iv((double)(n - 1)), cj_isub(q->dh[i + 1][k], q->dh[i][k]));
@@ -142,8 +178,8 @@ int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]) {
             cj_ivl v = q->h[i][k];
             double m = cj_imid(v);
             w[i][k] = m;
-            r = fmax(r, fmax(m - v.lo, v.hi - m));
-            M = fmax(M, fabs(m));
+            r = cj_fmax(r, cj_fmax(m - v.lo, v.hi - m));
+            M = cj_fmax(M, fabs(m));
         }
     for (int lev = n; lev > 0; --lev)
         for (int i = 0; i < lev; ++i)
@@ -151,6 +187,34 @@ int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]) {
     double e = (r + (double)n * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
     for (int k = 0; k < 2; ++k) p[k] = cj_iv2(cj_down(w[0][k] - e), cj_up(w[0][k] + e));
     return cj_ifinite(p[0]) && cj_ifinite(p[1]);
+}
+
+int cj_qctx_deriv_near(const cj_qctx *q, cj_ivl T, cj_ivl d[2]) {
+    int n = q->n;
+    if (q->rational || n < 1 || !(T.lo >= 0.0 && T.hi <= 1.0) || !(T.hi - T.lo <= 0x1p-20) ||
+        !(q->d2mag[0] < INFINITY && q->d2mag[1] < INFINITY))
+        return 0;
+    double t = 0.5 * T.lo + 0.5 * T.hi, s = 1.0 - t;
+    double rad = cj_up(cj_fmax(t - T.lo, T.hi - t));
+    /* as cj_qctx_point, on the hodograph's midpoints (degree n - 1) */
+    double w[CJ_QUERY_MAXN + 1][2], r = 0.0, M = 0.0;
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < 2; ++k) {
+            cj_ivl v = q->dh[i][k];
+            double m = cj_imid(v);
+            w[i][k] = m;
+            r = cj_fmax(r, cj_fmax(m - v.lo, v.hi - m));
+            M = cj_fmax(M, fabs(m));
+        }
+    for (int lev = n - 1; lev > 0; --lev)
+        for (int i = 0; i < lev; ++i)
+            for (int k = 0; k < 2; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
+    double e = (r + (double)(n - 1) * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
+    for (int k = 0; k < 2; ++k) {
+        double spread = cj_up(e + cj_up(q->d2mag[k] * rad));
+        d[k] = cj_iv2(cj_down(w[0][k] - spread), cj_up(w[0][k] + spread));
+    }
+    return cj_ifinite(d[0]) && cj_ifinite(d[1]);
 }
 
 int cj_qctx_eval2(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2], cj_ivl dd[2]) {
@@ -263,8 +327,8 @@ static void set_bbox(cj_qpiece *p) {
         p->blo[k] = INFINITY;
         p->bhi[k] = -INFINITY;
         for (int i = 0; i <= n; ++i) {
-            p->blo[k] = fmin(p->blo[k], blo[i][k]);
-            p->bhi[k] = fmax(p->bhi[k], bhi[i][k]);
+            p->blo[k] = cj_fmin(p->blo[k], blo[i][k]);
+            p->bhi[k] = cj_fmax(p->bhi[k], bhi[i][k]);
         }
     }
 }
@@ -274,13 +338,27 @@ void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
     p->rational = q->rational;
     p->a = 0.0;
     p->b = 1.0;
+    p->perr = 0.0;
+    int exact = !q->rational;
+    for (int i = 0; i <= q->n && exact; ++i)
+        exact = q->h[i][0].lo == q->h[i][0].hi && q->h[i][1].lo == q->h[i][1].hi;
+    if (exact) { /* a polynomial's own control points (not a line's enclosed ones) */
+        for (int i = 0; i <= q->n; ++i) {
+            p->h[i][0] = q->h[i][0].lo;
+            p->h[i][1] = q->h[i][1].lo;
+            p->h[i][2] = 1.0;
+        }
+        p->err[0] = p->err[1] = p->err[2] = 0.0;
+        set_bbox(p);
+        return;
+    }
     for (int k = 0; k < 3; ++k) {
         double err = 0.0;
         for (int i = 0; i <= q->n; ++i) {
             cj_ivl v = q->h[i][k];
             double m = cj_imid(v);
             p->h[i][k] = m;
-            err = fmax(err, fmax(m - v.lo, v.hi - m));
+            err = cj_fmax(err, cj_fmax(m - v.lo, v.hi - m));
         }
         p->err[k] = err > 0.0 ? cj_up(err) : 0.0;
     }
@@ -309,16 +387,80 @@ void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *L, cj_q
         e[k] *= 1.0 + 0x1p-40;
     }
     if (!p->rational) e[2] = 0.0;
-    double m = 0.5 * (p->a + p->b); /* dyadic: exact */
+    /* exact for a dyadic piece; after a clip the midpoint of the exact ends is within perr
+     * plus half an ulp (at most 2^-54 below 1) of m */
+    double m = 0.5 * (p->a + p->b);
     L->n = R->n = n;
     L->rational = R->rational = p->rational;
     L->a = p->a;
     L->b = m;
     R->a = m;
     R->b = p->b;
+    L->perr = R->perr = p->perr > 0.0 ? p->perr + 0x1p-53 : 0.0;
     for (int k = 0; k < 3; ++k) L->err[k] = R->err[k] = e[k];
     set_bbox(L);
     set_bbox(R);
+}
+
+/* de Casteljau at the double t in place: w becomes the piece right of t (keep_left 0) or left
+ * of it (keep_left 1; the same recurrence run from the other end). */
+static void split_at(double (*w)[3], int n, double t, int keep_left) {
+    double s = 1.0 - t;
+    if (!keep_left) {
+        for (int r = n; r > 0; --r)
+            for (int i = 0; i < r; ++i) {
+                w[i][0] = s * w[i][0] + t * w[i + 1][0];
+                w[i][1] = s * w[i][1] + t * w[i + 1][1];
+            }
+        return;
+    }
+    for (int r = 1; r <= n; ++r)
+        for (int i = n; i >= r; --i) {
+            w[i][0] = s * w[i - 1][0] + t * w[i][0];
+            w[i][1] = s * w[i - 1][1] + t * w[i][1];
+        }
+}
+
+void cj_qpiece_sub(const cj_qpiece *p, const double mag[3], double u0, double u1, cj_qpiece *out) {
+    assert(!p->rational && u0 >= 0.0 && u1 <= 1.0 && u0 < u1);
+    int n = p->n;
+    double pa = p->a, pb = p->b, perr = p->perr, err[2] = {p->err[0], p->err[1]}; /* out may be p */
+    if (out != p)
+        for (int i = 0; i <= n; ++i) {
+            out->h[i][0] = p->h[i][0];
+            out->h[i][1] = p->h[i][1];
+            out->h[i][2] = 1.0;
+        }
+    int splits = 0;
+    if (u0 > 0.0) {
+        split_at(out->h, n, u0, 0);
+        ++splits;
+    }
+    /* the relative end rounded up, so that u0 + (1 - u0) s2 >= u1 exactly */
+    double s2 = u0 > 0.0 ? cj_up(cj_up(u1 - u0) / cj_down(1.0 - u0)) : u1;
+    if (s2 < 1.0) {
+        split_at(out->h, n, s2, 1);
+        ++splits;
+    } else {
+        s2 = 1.0;
+    }
+    /* Each level of a split at t rounds s = 1 - t (at most 2^-54 off, times |x|) and the two
+     * products and the sum (2u (|s x| + |t y|)): at most 3.1 u times the largest magnitude,
+     * which the convex combinations never exceed; errors carried in pass through. */
+    for (int k = 0; k < 2; ++k)
+        out->err[k] =
+            (err[k] + (double)(splits * n) * ((mag[k] + err[k]) * 3.1 * 0x1p-53 + 0x1p-1073)) *
+            (1.0 + 0x1p-40);
+    out->err[2] = 0.0;
+    out->n = n;
+    out->rational = 0;
+    /* the exact ends: a* + (b* - a*) u0 and a* + (b* - a*)(u0 + (1 - u0) s2), with a*, b* within
+     * perr of a, b; each computed end is within perr plus a few roundings below 2 of them */
+    double w0 = pb - pa;
+    out->a = pa + w0 * u0;
+    out->b = s2 == 1.0 ? pb : pa + w0 * (u0 + (1.0 - u0) * s2);
+    out->perr = perr + 0x1p-49;
+    set_bbox(out);
 }
 
 void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]) {
@@ -339,18 +481,19 @@ void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L) {
         q->h[0][k] = cj_isub(cj_iv(p[k]), off);
         q->h[1][k] = cj_iadd(cj_iv(p[k]), off);
         q->dh[0][k] = cj_isub(q->h[1][k], q->h[0][k]);
-        q->hmag[k] = fmax(cj_imag(q->h[0][k]), cj_imag(q->h[1][k]));
+        q->hmag[k] = cj_fmax(cj_imag(q->h[0][k]), cj_imag(q->h[1][k]));
     }
     q->h[0][2] = q->h[1][2] = cj_iv(1.0);
     q->dh[0][2] = cj_iv(0.0);
-    q->scale = fmax(q->hmag[0], q->hmag[1]);
+    q->d2mag[0] = q->d2mag[1] = 0.0; /* straight: c'' = 0 */
+    q->scale = cj_fmax(q->hmag[0], q->hmag[1]);
 }
 
 double cj_query_scale(const cj_bezier2 *c) {
     double s = 0.0;
     if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE) return 1.0; /* refused later */
     for (int i = 0; i < 2 * (c->degree + 1); ++i)
-        if (isfinite(c->pts[i])) s = fmax(s, fabs(c->pts[i]));
+        if (isfinite(c->pts[i])) s = cj_fmax(s, fabs(c->pts[i]));
     return s;
 }
 

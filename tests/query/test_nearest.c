@@ -118,6 +118,62 @@ static void test_random(uint64_t seed, int nq) {
            (double)pieces / nq);
 }
 
+/* Cases aimed at the polynomial fast path (roots of (c - q).c' isolated on its Bernstein
+ * coefficients, nearest_roots.c) and its hand-over to the branch and bound: points at and near
+ * centres of curvature (a double or triple root of g, or two roots closer than rounding), a cusp,
+ * a straight cubic, the degrees around its limit of 12. */
+static void test_fast_path(uint64_t seed, int nc) {
+    cj_rng r;
+    cj_rng_init(&r, seed ^ 0x5bd1e995u);
+    const double eps[] = {0.0, 1e-12, -1e-12, 1e-8, -1e-8, 1e-4, -1e-4};
+    int nq = 0;
+    for (int k = 0; k < nc; ++k) {
+        double p[8];
+        for (int i = 0; i < 8; ++i) p[i] = cj_rng_range(&r, -1, 1);
+        cj_bezier2 c = cj_bezier2_view(3, p, NULL);
+        double t = cj_rng_unit(&r), s = 1 - t, d1[2], d2[2], pt[2];
+        for (int j = 0; j < 2; ++j) {
+            pt[j] = s * s * s * p[j] + 3 * s * s * t * p[2 + j] + 3 * s * t * t * p[4 + j] +
+                    t * t * t * p[6 + j];
+            d1[j] = 3 * (s * s * (p[2 + j] - p[j]) + 2 * s * t * (p[4 + j] - p[2 + j]) +
+                         t * t * (p[6 + j] - p[4 + j]));
+            d2[j] = 6 * (s * (p[4 + j] - 2 * p[2 + j] + p[j]) +
+                         t * (p[6 + j] - 2 * p[4 + j] + p[2 + j]));
+        }
+        double sp2 = d1[0] * d1[0] + d1[1] * d1[1], cross = d1[0] * d2[1] - d1[1] * d2[0];
+        if (fabs(cross) < 1e-3) continue;
+        /* centre of curvature: c + c'^perp |c'|^2 / (c' x c'') */
+        double ctr[2] = {pt[0] - d1[1] * sp2 / cross, pt[1] + d1[0] * sp2 / cross};
+        if (fabs(ctr[0]) > 10 || fabs(ctr[1]) > 10) continue;
+        double e = eps[k % 7],
+               q[2] = {pt[0] + (ctr[0] - pt[0]) * (1 + e), pt[1] + (ctr[1] - pt[1]) * (1 + e)};
+        char what[80];
+        snprintf(what, sizeof what, "centre of curvature %d (1%+g, seed %llu)", k, e,
+                 (unsigned long long)seed);
+        check_query(&c, q, 1e-10, 300, what);
+        ++nq;
+    }
+    double cusp[] = {0, 0, 2, 2, 0, 2, 2, 0}, line[] = {0, 0, 1, 1, 2, 2, 3, 3};
+    cj_bezier2 C = cj_bezier2_view(3, cusp, NULL), L = cj_bezier2_view(3, line, NULL);
+    check_query(&C, (double[]){1, 1.5}, 1e-10, 2000, "at the cusp");
+    check_query(&C, (double[]){1, 1.6}, 1e-10, 2000, "above the cusp");
+    check_query(&C, (double[]){1, 1.2}, 1e-10, 2000, "below the cusp");
+    check_query(&L, (double[]){1, 2}, 1e-10, 2000, "off a straight cubic");
+    check_query(&L, (double[]){4, 4.5}, 1e-10, 2000, "past the end of a straight cubic");
+    check_query(&L, (double[]){1.5, 1.5}, 1e-10, 2000, "on a straight cubic");
+    for (int n = 11; n <= 13; ++n)
+        for (int k = 0; k < 10; ++k) {
+            double hp[2 * 14];
+            for (int i = 0; i < 2 * (n + 1); ++i) hp[i] = cj_rng_range(&r, -1, 1);
+            cj_bezier2 H = cj_bezier2_view(n, hp, NULL);
+            check_query(&H, (double[]){cj_rng_range(&r, -1, 1), cj_rng_range(&r, -1, 1)}, 1e-10,
+                        1000, "degree 11..13");
+        }
+    printf("fast path: %d points at and near (1 +- 1e-12, 1e-8, 1e-4) centres of curvature, a "
+           "cusp, a straight cubic, 30 curves of degrees 11..13\n",
+           nq);
+}
+
 static void test_bad_input(void) {
     double a[] = {0, 0, 1, 2, 2, -1, 3, 1}, pt[] = {1, 1, 1, 1};
     cj_bezier2 A = cj_bezier2_view(3, a, NULL), P = cj_bezier2_view(1, pt, NULL);
@@ -138,6 +194,7 @@ int main(void) {
     uint64_t seed = cj_test_seed("test_nearest", 23);
     test_adversarial();
     test_random(seed, 2000);
+    test_fast_path(seed, 1400);
     test_bad_input();
     printf("test_nearest: %ld exact (256-bit) sample distances, none below a certified lower "
            "bound; largest gap %.3g of tol; %s (%d failures)\n",
