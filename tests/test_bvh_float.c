@@ -69,22 +69,24 @@ static int naive_hit(const double lo[3], const double hi[3], const double o[3], 
     return vn <= vf;
 }
 
-static int float_hit(const double lo[3], const double hi[3], const cj_ray *ray) {
-    cj_bvh4_node n;
+/* The box in slot `slot` of an otherwise empty wide node (every slot is exercised, so each SIMD
+ * lane's arithmetic is). */
+static int float_hit(const double lo[3], const double hi[3], const cj_ray *ray, int slot) {
+    cj_bvhw_node n;
     memset(&n, 0, sizeof n);
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < CJ_BVHW_W; ++i)
         for (int k = 0; k < 3; ++k) n.b[2 * k][i] = INFINITY, n.b[2 * k + 1][i] = -INFINITY;
     for (int k = 0; k < 3; ++k) {
-        n.b[2 * k][1] = cj_f32_down(lo[k]);
-        n.b[2 * k + 1][1] = cj_f32_up(hi[k]);
+        n.b[2 * k][slot] = cj_f32_down(lo[k]);
+        n.b[2 * k + 1][slot] = cj_f32_up(hi[k]);
     }
-    n.count = 4;
-    n.valid = 0xf;
-    cj_bvh4_ray r;
-    cj_bvh4_ray_setup(ray, &r);
-    float t0[4];
-    const int m = cj_bvh4_slab(&n, &r, cj_f32_down(ray->tmin), cj_f32_up(ray->tmax), t0);
-    return (m >> 1) & 1;
+    n.count = CJ_BVHW_W;
+    n.valid = (1 << CJ_BVHW_W) - 1;
+    cj_bvhw_ray r;
+    cj_bvhw_ray_setup(ray, &r);
+    float t0[CJ_BVHW_W];
+    const int m = cj_bvhw_slab(&n, &r, cj_f32_down(ray->tmin), cj_f32_up(ray->tmax), t0);
+    return m == (1 << slot) ? 1 : (m == 0 ? 0 : -1); /* -1: an empty slot reported met */
 }
 
 static double step_out(double x, double dir) {
@@ -94,7 +96,7 @@ static double step_out(double x, double dir) {
 static void test_slab(uint64_t seed) {
     cj_rng rng;
     cj_rng_init(&rng, seed);
-    long cases = 0, exact_hits = 0, lost = 0, naive_lost = 0;
+    long cases = 0, exact_hits = 0, lost = 0, naive_lost = 0, ghosts = 0;
     const double scales[4] = {1.0, 1e-3, 1e3, 1e7};
     for (int it = 0; it < 200000; ++it) {
         const double s = scales[it % 4];
@@ -135,10 +137,12 @@ static void test_slab(uint64_t seed) {
         if (tk == 3) tmin = -INFINITY, tmax = cj_rng_range(&rng, -2, 2);
         const cj_ray ray = {cj_v3(o[0], o[1], o[2]), cj_v3(d[0], d[1], d[2]), tmin, tmax};
         const int ex = exact_hit(lo, hi, o, d, tmin, tmax);
+        const int fh = float_hit(lo, hi, &ray, it % CJ_BVHW_W);
         ++cases;
+        ghosts += fh < 0;
         if (!ex) continue;
         ++exact_hits;
-        if (!float_hit(lo, hi, &ray)) {
+        if (fh != 1) {
             if (++lost <= 5)
                 fprintf(stderr, "lost box: o (%a %a %a) d (%a %a %a) box (%a %a %a)-(%a %a %a)\n",
                         o[0], o[1], o[2], d[0], d[1], d[2], lo[0], lo[1], lo[2], hi[0], hi[1],
@@ -146,10 +150,12 @@ static void test_slab(uint64_t seed) {
         }
         naive_lost += !naive_hit(lo, hi, o, d, tmin, tmax);
     }
-    printf("float slab test: %ld rays, %ld meet their box exactly; lost by the float test: %ld; "
-           "lost by a naive float test: %ld\n",
-           cases, exact_hits, lost, naive_lost);
+    printf("float slab test (%d-wide nodes, the box in each slot in turn): %ld rays, %ld meet "
+           "their box exactly; lost by the float test: %ld; empty slots reported met: %ld; lost "
+           "by a naive float test: %ld\n",
+           CJ_BVHW_W, cases, exact_hits, lost, ghosts, naive_lost);
     CHECK(lost == 0, "%ld boxes lost", lost);
+    CHECK(ghosts == 0, "%ld empty slots reported met", ghosts);
     CHECK(naive_lost > 0, "the cases cannot tell a naive float test from a conservative one");
     CHECK(exact_hits > cases / 4, "too few hits (%ld of %ld) to test anything", exact_hits, cases);
 }
@@ -161,7 +167,7 @@ static void test_packets(uint64_t seed) {
     long lanes = 0, hits = 0, zero_lanes = 0, differ = 0;
     for (int it = 0; it < 50000; ++it) {
         double tri[36];
-        cj_bvh4_tris p;
+        cj_bvhw_tris p;
         const int grid = it % 2; /* integer grid: edge values of exactly zero */
         for (int l = 0; l < 4; ++l) {
             for (int r = 0; r < 9; ++r) {
@@ -187,8 +193,8 @@ static void test_packets(uint64_t seed) {
         ray.tmax = cj_rng_int(&rng, 0, 1) ? INFINITY : cj_rng_range(&rng, 0, 12);
         cj_ray_tri_pre pre;
         cj_ray_triangle_prepare(&ray, &pre);
-        cj_bvh4_tri_hits th;
-        cj_bvh4_tris_test(&p, &ray, &pre, &th);
+        cj_bvhw_tri_hits th;
+        cj_bvhw_tris_test(&p, &ray, &pre, &th);
         for (int l = 0; l < 4; ++l) {
             if (p.idx[l] == UINT32_MAX) {
                 differ += (th.mask >> l) & 1;

@@ -12,23 +12,23 @@
 /* 4 triangles, coordinates per lane: v[3 j + k][lane] is coordinate k of vertex j. idx[lane] is
  * the triangle's index in the mesh (hit->prim); unused lanes hold NaN vertices
  * (never hit: every comparison of a NaN edge value is false) and idx UINT32_MAX. */
-typedef struct cj_bvh4_tris {
+typedef struct cj_bvhw_tris {
     double v[9][4];
     uint32_t idx[4];
     uint32_t pad_[4]; /* 320 bytes: 5 whole cache lines when aligned */
-} cj_bvh4_tris;
+} cj_bvhw_tris;
 
 /* The 9 coordinates of lane l. */
-static inline void cj_bvh4_tris_lane(const cj_bvh4_tris *p, int l, double v[9]) {
+static inline void cj_bvhw_tris_lane(const cj_bvhw_tris *p, int l, double v[9]) {
     for (int r = 0; r < 9; ++r) v[r] = p->v[r][l];
 }
 
 /* The outcome of one packet: lane bits that hit at t in [tmin, tmax], their t, edge values and
  * sums. */
-typedef struct cj_bvh4_tri_hits {
+typedef struct cj_bvhw_tri_hits {
     int mask;
     double t[4], e0[4], e1[4], e2[4], det[4];
-} cj_bvh4_tri_hits;
+} cj_bvhw_tri_hits;
 
 #if defined(__AVX__) && defined(__FMA__)
 /* cj_tri_edge_fn in 4 lanes: the plain difference where it clears its rounding bound, else
@@ -51,8 +51,8 @@ static inline __m256d cj_tri_edge_fn4(__m256d px, __m256d py, __m256d qx, __m256
 #endif
 
 /* Tests the 4 triangles of p against the ray (pre: its shear, o: its origin). */
-static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
-                                     const cj_ray_tri_pre *pre, cj_bvh4_tri_hits *out) {
+static inline void cj_bvhw_tris_test(const cj_bvhw_tris *p, const cj_ray *ray,
+                                     const cj_ray_tri_pre *pre, cj_bvhw_tri_hits *out) {
     int mask = 0;
 #if defined(__AVX__) && defined(__FMA__)
     const int kx = pre->kx, ky = pre->ky, kz = pre->kz;
@@ -111,7 +111,7 @@ static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
         const int l = __builtin_ctz((unsigned)z);
         if (p->idx[l] == UINT32_MAX) continue;
         double t, e[3], det, v[9];
-        cj_bvh4_tris_lane(p, l, v);
+        cj_bvhw_tris_lane(p, l, v);
         if (!cj_tri_core_v(ray, pre, v, &t, e, &det)) continue;
         mask |= 1 << l;
         out->t[l] = t, out->e0[l] = e[0], out->e1[l] = e[1], out->e2[l] = e[2];
@@ -121,7 +121,7 @@ static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
     for (int l = 0; l < 4; ++l) {
         if (p->idx[l] == UINT32_MAX) continue;
         double t, e[3], det, v[9];
-        cj_bvh4_tris_lane(p, l, v);
+        cj_bvhw_tris_lane(p, l, v);
         if (!cj_tri_core_v(ray, pre, v, &t, e, &det)) continue;
         mask |= 1 << l;
         out->t[l] = t, out->e0[l] = e[0], out->e1[l] = e[1], out->e2[l] = e[2];

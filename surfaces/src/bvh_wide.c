@@ -1,5 +1,5 @@
-/* The 4-wide BVH that traversal walks: collapsed from the binary SAH tree, and
- * its 4-box slab test (bvh_internal.h), boxes rounded outward to float. */
+/* The 8-wide BVH that traversal walks: collapsed from the binary SAH tree, and
+ * its 8-box slab test (bvh_internal.h), boxes rounded outward to float. */
 #include "bvh_internal.h"
 #include "bvh_leaf_internal.h"
 #include "alloc_internal.h"
@@ -18,15 +18,14 @@ static double box_area(const cj_aabb *b) {
     return dx >= 0.0 && dy >= 0.0 && dz >= 0.0 ? dx * dy + dy * dz + dz * dx : 0.0;
 }
 
-cj_status cj_bvh4_build(cj_bvh *bvh) {
+cj_status cj_bvhw_build(cj_bvh *bvh) {
     cj_allocator *a = &bvh->alloc_;
     const size_t cap = bvh->node_count; /* each wide node consumes >= 1 binary inner node */
-    cj_bvh4 *w = cj_allocator_alloc(a, sizeof *w);
+    cj_bvhw *w = cj_allocator_alloc(a, sizeof *w);
     if (!w) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for the wide nodes");
-    /* 128-byte aligned: a node is one aligned pair of cache lines, which the processor's
-     * adjacent-line prefetch fetches together */
-    w->nodes_mem_ = cj_allocator_alloc(a, cap * sizeof *w->nodes + 127);
-    w->nodes = align_up(w->nodes_mem_, 128);
+    /* 64-byte aligned: a node is four whole cache lines */
+    w->nodes_mem_ = cj_allocator_alloc(a, cap * sizeof *w->nodes + 63);
+    w->nodes = align_up(w->nodes_mem_, 64);
     w->tris_mem_ = NULL;
     uint32_t *todo = cj_allocator_alloc(a, 2 * cap * sizeof *todo);
     if (!w->nodes_mem_ || !todo) {
@@ -41,7 +40,7 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
     todo[ntodo++] = 0;
     while (ntodo > 0) {
         const uint32_t b = todo[--ntodo], wi = todo[--ntodo];
-        uint32_t kids[4];
+        uint32_t kids[CJ_BVHW_W];
         int nk = 0;
         const cj_bvh_node *bn = &bvh->nodes[b];
         if (bn->count) {
@@ -50,7 +49,7 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
             kids[nk++] = bn->first;
             kids[nk++] = bn->first + 1;
         }
-        while (nk < 4) { /* open the inner child with the largest area */
+        while (nk < CJ_BVHW_W) { /* open the inner child with the largest area */
             int best = -1;
             double best_area = -1.0;
             for (int i = 0; i < nk; ++i) {
@@ -63,11 +62,11 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
             kids[best] = bvh->nodes[open].first;
             kids[nk++] = bvh->nodes[open].first + 1;
         }
-        cj_bvh4_node *wn = &w->nodes[wi];
+        cj_bvhw_node *wn = &w->nodes[wi];
         memset(wn, 0, sizeof *wn);
         wn->count = nk;
         wn->valid = (1 << nk) - 1;
-        for (int i = 0; i < 4; ++i) {
+        for (int i = 0; i < CJ_BVHW_W; ++i) {
             for (int k = 0; k < 3; ++k) {
                 wn->b[2 * k][i] = INFINITY;
                 wn->b[2 * k + 1][i] = -INFINITY;
@@ -106,8 +105,8 @@ static int degenerate(const double *v) {
     return e01 || e12 || e20;
 }
 
-cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
-    cj_bvh4 *w = bvh->wide_;
+cj_status cj_bvhw_pack_triangles(cj_bvh *bvh) {
+    cj_bvhw *w = bvh->wide_;
     size_t np = 0;
     for (size_t n = 0; n < w->count; ++n)
         for (int i = 0; i < w->nodes[n].count; ++i)
@@ -119,13 +118,13 @@ cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
     w->tris_count = np;
     size_t at = 0;
     for (size_t n = 0; n < w->count; ++n) {
-        cj_bvh4_node *wn = &w->nodes[n];
+        cj_bvhw_node *wn = &w->nodes[n];
         for (int i = 0; i < wn->count; ++i) {
             if (wn->child[i] >= 0) continue;
             const uint32_t first = ~(uint32_t)wn->child[i];
             wn->child[i] = ~(int32_t)at;
             for (uint32_t j = 0; j < wn->nprim[i]; j += 4, ++at) {
-                cj_bvh4_tris *p = &w->tris[at];
+                cj_bvhw_tris *p = &w->tris[at];
                 memset(p->pad_, 0, sizeof p->pad_);
                 for (int l = 0; l < 4; ++l) {
                     int used = j + (uint32_t)l < wn->nprim[i];
@@ -142,8 +141,8 @@ cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
     return CJ_OK;
 }
 
-void cj_bvh4_destroy(cj_bvh *bvh) {
-    cj_bvh4 *w = bvh->wide_;
+void cj_bvhw_destroy(cj_bvh *bvh) {
+    cj_bvhw *w = bvh->wide_;
     if (!w) return;
     cj_allocator_free(&bvh->alloc_, w->tris_mem_);
     cj_allocator_free(&bvh->alloc_, w->nodes_mem_);
