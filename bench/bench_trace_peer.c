@@ -179,6 +179,11 @@ static void measure(const char *name, const cj_mesh *m) {
         tr[1][r] = (cj_bench_thread_cpu() - t0) / g_nrays * 1e9;
 #endif
     }
+    cj_bvh_trav_stats st = {0};
+    for (int i = 0; i < g_nrays; i++) {
+        cj_hit h;
+        cj_bvh_mesh_closest(b, &rays[i], &h, &st);
+    }
     const int np = 1
 #ifdef CJ_HAVE_EMBREE
                    + 1
@@ -196,6 +201,8 @@ static void measure(const char *name, const cj_mesh *m) {
         printf("| %s (%zu tri) | %s | %.1f (%.1f-%.1f) | %.1f%% | %.1f ms |\n", name,
                m->triangle_count, who[p], med[p], lo[p], hi[p], 100.0 * hits[p] / g_nrays,
                1e3 * bmed[p]);
+    printf("| | ours: box tests / triangles tested per ray | %.1f / %.1f | | |\n",
+           (double)st.nodes / g_nrays, (double)st.prims / g_nrays);
     if (np == 2)
         printf("| | ratio ours / Embree | %.2f | | %.2f |\n", med[0] / med[1], bmed[0] / bmed[1]);
     cj_bvh_destroy(b);

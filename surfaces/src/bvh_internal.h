@@ -31,8 +31,9 @@ typedef struct cj_bvhw_node {
     uint8_t nprim[CJ_BVHW_W];
     int32_t count; /* used slots */
     int32_t valid; /* (1 << count) - 1 */
-    int32_t pad_[2];
+    int32_t pad_[4];
 } cj_bvhw_node;
+_Static_assert(sizeof(cj_bvhw_node) == 256, "a wide node is four whole cache lines");
 
 typedef struct cj_bvhw_tris cj_bvhw_tris; /* bvh_leaf_internal.h */
 
