@@ -126,12 +126,11 @@ typedef struct mesh_best {
  * as a scalar loop's "t <= tmax" replaces ties in order. Not inlined: the node loop keeps its
  * registers. */
 __attribute__((noinline)) static int mesh_leaf(const cj_bvhw_tris *pk, uint32_t n, cj_ray *ray,
-                                               const cj_ray_tri_pre *pre, int any,
-                                               mesh_best *best) {
+                                               cj_bvhw_tri_ray *tr, int any, mesh_best *best) {
     int found = 0;
     for (uint32_t j = 0; j < n; j += 4, ++pk) {
         cj_bvhw_tri_hits th;
-        cj_bvhw_tris_test(pk, ray, pre, &th);
+        cj_bvhw_tris_test_r(pk, tr, &th);
         if (!th.mask) continue;
         found = 1;
         if (any) return 1;
@@ -143,6 +142,9 @@ __attribute__((noinline)) static int mesh_leaf(const cj_bvhw_tris *pk, uint32_t 
         best->pk = pk, best->lane = bl, best->t = th.t[bl], best->det = th.det[bl];
         best->e[0] = th.e0[bl], best->e[1] = th.e1[bl], best->e[2] = th.e2[bl];
         ray->tmax = best->t;
+#if defined(__AVX__) && defined(__FMA__)
+        tr->tmax = _mm256_set1_pd(best->t);
+#endif
     }
     return found;
 }
@@ -172,6 +174,8 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
     float tmax_f = cj_f32_up(ray.tmax);
     cj_ray_tri_pre pre;
     cj_ray_triangle_prepare(&ray, &pre);
+    cj_bvhw_tri_ray tr;
+    cj_bvhw_tri_ray_setup(&ray, &pre, &tr);
     wentry st[WIDE_STACK];
     int sp = 0, found = 0;
     mesh_best best = {NULL, 0, 0.0, {0.0, 0.0, 0.0}, 1.0};
@@ -219,7 +223,7 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
             }
         } else {
             prims += cur.n;
-            if (mesh_leaf(w->tris + ~(uint32_t)cur.ref, cur.n, &ray, &pre, any, &best)) {
+            if (mesh_leaf(w->tris + ~(uint32_t)cur.ref, cur.n, &ray, &tr, any, &best)) {
                 found = 1;
                 if (any) break;
                 tmax_f = cj_f32_up(ray.tmax);

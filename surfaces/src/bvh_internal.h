@@ -138,10 +138,17 @@ typedef struct cj_bvhw_ray {
 static inline void cj_bvhw_ray_setup(const cj_ray *ray, cj_bvhw_ray *r) {
     const double o[3] = {ray->org.x, ray->org.y, ray->org.z};
     const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
+    /* on the bit patterns of |d| and |o| (ordered as the values are, NaN above infinity): a
+     * direction in (0, 2^-64) is 0 < bits < B(2^-64), i.e. bits - 1 < B(2^-64) - 1 unsigned */
+    const uint64_t lo_bits = 0x3bf0000000000000u, hi_bits = 0x43f0000000000000u; /* 2^-64, 2^64 */
     int all = 0;
-    for (int k = 0; k < 3; ++k) { /* bitwise, not short-circuit: no branches */
-        const double ad = fabs(d[k]);
-        all |= ((ad != 0.0) & ((ad < 0x1p-64) | (ad > 0x1p64))) | !(fabs(o[k]) <= 0x1p64);
+    for (int k = 0; k < 3; ++k) {
+        uint64_t bd, bo;
+        memcpy(&bd, &d[k], sizeof bd);
+        memcpy(&bo, &o[k], sizeof bo);
+        bd &= 0x7fffffffffffffffu;
+        bo &= 0x7fffffffffffffffu;
+        all |= (bd - 1u < lo_bits - 1u) | (bd > hi_bits) | (bo > hi_bits);
     }
     for (int k = 0; k < 3; ++k) {
         const int neg = signbit(d[k]) != 0;

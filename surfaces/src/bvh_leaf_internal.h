@@ -50,26 +50,59 @@ static inline __m256d cj_tri_edge_fn4(__m256d px, __m256d py, __m256d qx, __m256
 }
 #endif
 
-/* Tests the 4 triangles of p against the ray (pre: its shear, o: its origin). */
-static inline void cj_bvhw_tris_test(const cj_bvhw_tris *p, const cj_ray *ray,
-                                     const cj_ray_tri_pre *pre, cj_bvhw_tri_hits *out) {
-    int mask = 0;
+/* What the packet test needs of the ray, set up once per ray rather than once per packet: the
+ * rows of the packet holding the sheared frame's x', y', z' (kx, ky, kz), and the origin, shear
+ * and interval broadcast to the lanes. */
+typedef struct cj_bvhw_tri_ray {
+    const cj_ray *ray;
+    const cj_ray_tri_pre *pre;
 #if defined(__AVX__) && defined(__FMA__)
-    const int kx = pre->kx, ky = pre->ky, kz = pre->kz;
+    int kx, ky, kz;
+    __m256d ox, oy, oz, sx, sy, sz, tmin, tmax;
+#endif
+} cj_bvhw_tri_ray;
+
+static inline void cj_bvhw_tri_ray_setup(const cj_ray *ray, const cj_ray_tri_pre *pre,
+                                         cj_bvhw_tri_ray *r) {
+    r->ray = ray;
+    r->pre = pre;
+#if defined(__AVX__) && defined(__FMA__)
     const double o[3] = {ray->org.x, ray->org.y, ray->org.z};
-    const __m256d ox = _mm256_set1_pd(o[kx]), oy = _mm256_set1_pd(o[ky]),
-                  oz = _mm256_set1_pd(o[kz]);
-    const __m256d sx = _mm256_set1_pd(pre->sx), sy = _mm256_set1_pd(pre->sy);
-    const __m256d sz = _mm256_set1_pd(pre->sz);
+    r->kx = pre->kx, r->ky = pre->ky, r->kz = pre->kz;
+    r->ox = _mm256_set1_pd(o[pre->kx]);
+    r->oy = _mm256_set1_pd(o[pre->ky]);
+    r->oz = _mm256_set1_pd(o[pre->kz]);
+    r->sx = _mm256_set1_pd(pre->sx);
+    r->sy = _mm256_set1_pd(pre->sy);
+    r->sz = _mm256_set1_pd(pre->sz);
+    r->tmin = _mm256_set1_pd(ray->tmin);
+    r->tmax = _mm256_set1_pd(ray->tmax);
+#endif
+}
+
+/* Tests the 4 triangles of p against the ray of r (set up by cj_bvhw_tri_ray_setup; r->tmax
+ * must follow ray->tmax when the caller shrinks it). */
+static inline void cj_bvhw_tris_test_r(const cj_bvhw_tris *p, const cj_bvhw_tri_ray *r,
+                                       cj_bvhw_tri_hits *out) {
+    int mask = 0;
+    const cj_ray *ray = r->ray;
+    const cj_ray_tri_pre *pre = r->pre;
+#if defined(__AVX__) && defined(__FMA__)
+    const __m256d ox = r->ox, oy = r->oy, oz = r->oz, sx = r->sx, sy = r->sy, sz = r->sz;
     __m256d X[3], Y[3], Z[3];
-    for (int j = 0; j < 3; ++j) {
-        const __m256d a0 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * j + kx]), ox);
-        const __m256d a1 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * j + ky]), oy);
-        const __m256d a2 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * j + kz]), oz);
-        X[j] = _mm256_sub_pd(a0, _mm256_mul_pd(sx, a2));
-        Y[j] = _mm256_sub_pd(a1, _mm256_mul_pd(sy, a2));
-        Z[j] = a2;
-    }
+#define CJ_BVHW_VERTEX(j)                                                                          \
+    do {                                                                                           \
+        const __m256d a0 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * (j) + r->kx]), ox);              \
+        const __m256d a1 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * (j) + r->ky]), oy);              \
+        const __m256d a2 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * (j) + r->kz]), oz);              \
+        X[j] = _mm256_sub_pd(a0, _mm256_mul_pd(sx, a2));                                           \
+        Y[j] = _mm256_sub_pd(a1, _mm256_mul_pd(sy, a2));                                           \
+        Z[j] = a2;                                                                                 \
+    } while (0)
+    CJ_BVHW_VERTEX(0);
+    CJ_BVHW_VERTEX(1);
+    CJ_BVHW_VERTEX(2);
+#undef CJ_BVHW_VERTEX
     const __m256d e0 = cj_tri_edge_fn4(X[1], Y[1], X[2], Y[2]);
     const __m256d e1 = cj_tri_edge_fn4(X[2], Y[2], X[0], Y[0]);
     const __m256d e2 = cj_tri_edge_fn4(X[0], Y[0], X[1], Y[1]);
@@ -93,10 +126,9 @@ static inline void cj_bvhw_tris_test(const cj_bvhw_tris *p, const cj_ray *ray,
                                                         _mm256_mul_pd(e1, _mm256_mul_pd(sz, Z[1]))),
                                           _mm256_mul_pd(e2, _mm256_mul_pd(sz, Z[2])));
         const __m256d t = _mm256_div_pd(tsc, det);
-        const __m256d in =
-            _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(det, zero, _CMP_NEQ_OQ),
-                                        _mm256_cmp_pd(t, _mm256_set1_pd(ray->tmin), _CMP_GE_OQ)),
-                          _mm256_cmp_pd(t, _mm256_set1_pd(ray->tmax), _CMP_LE_OQ));
+        const __m256d in = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(det, zero, _CMP_NEQ_OQ),
+                                                       _mm256_cmp_pd(t, r->tmin, _CMP_GE_OQ)),
+                                         _mm256_cmp_pd(t, r->tmax, _CMP_LE_OQ));
         mask = cand & _mm256_movemask_pd(in);
         if (mask) {
             _mm256_storeu_pd(out->t, t);
@@ -129,6 +161,14 @@ static inline void cj_bvhw_tris_test(const cj_bvhw_tris *p, const cj_ray *ray,
     }
 #endif
     out->mask = mask;
+}
+
+/* The same for one packet on its own (the tests compare it with the scalar test). */
+static inline void cj_bvhw_tris_test(const cj_bvhw_tris *p, const cj_ray *ray,
+                                     const cj_ray_tri_pre *pre, cj_bvhw_tri_hits *out) {
+    cj_bvhw_tri_ray r;
+    cj_bvhw_tri_ray_setup(ray, pre, &r);
+    cj_bvhw_tris_test_r(p, &r, out);
 }
 
 #endif
