@@ -28,7 +28,7 @@
 #define NRAYS_DEFAULT 100000
 /* Rays per round (BENCH_RAYS=<n> in the BENCH_ONLY mode, for shorter callgrind runs). */
 static int g_nrays = NRAYS_DEFAULT;
-#define ROUNDS 5
+#define ROUNDS 11
 
 static uint64_t g_rng = 20261126;
 static double urand(void) {

@@ -123,10 +123,11 @@ typedef struct mesh_best {
 
 /* Tests the packets of one leaf; returns 1 when one hits (for `any`, as soon as one does), with
  * ray->tmax and *best moved to the closest. Within a packet the last lane at the smallest t wins,
- * as a scalar loop's "t <= tmax" replaces ties in order. Not inlined: the node loop keeps its
- * registers. */
-__attribute__((noinline)) static int mesh_leaf(const cj_bvhw_tris *pk, uint32_t n, cj_ray *ray,
-                                               cj_bvhw_tri_ray *tr, int any, mesh_best *best) {
+ * as a scalar loop's "t <= tmax" replaces ties in order. Inlined since the packet constants are
+ * set up once per ray (cj_bvhw_tri_ray): a call cost more than the registers it saved. */
+static inline __attribute__((always_inline)) int mesh_leaf(const cj_bvhw_tris *pk, uint32_t n,
+                                                           cj_ray *ray, cj_bvhw_tri_ray *tr,
+                                                           int any, mesh_best *best) {
     int found = 0;
     for (uint32_t j = 0; j < n; j += 4, ++pk) {
         cj_bvhw_tri_hits th;
