@@ -1,7 +1,7 @@
 /* bench_trace_peer: our BVH against Embree 3 (issue 20), one thread, single rays, the same
  * triangles (Embree gets them in float) and the same rays:
  *   - the teapot tessellated at 1e-3 (75 030 triangles) and at a tolerance giving >= 1e6;
- *   - closest hit, ns per ray: median and range of 5 rounds (thread CPU time);
+ *   - closest hit, ns per ray: median and range of 11 rounds (thread CPU time);
  *   - build time of each (median of 3);
  *   - BENCH_ONLY=<what> runs one piece alone, for instruction counts under callgrind
  *     (valgrind --tool=callgrind --toggle-collect=bench_run_<what> ...): what is one of

@@ -155,7 +155,7 @@ static inline __attribute__((always_inline)) int mesh_leaf(const cj_bvhw_tris *p
  * pushed are popped later, by which time the lines have arrived. */
 static inline void prefetch_entry(const cj_bvhw *w, wentry c) {
     const char *p =
-        c.ref >= 0 ? (const char *)&w->nodes[c.ref] : (const char *)(w->tris + ~(uint32_t)c.ref);
+        (const char *)w->lines + 64 * (size_t)(c.ref >= 0 ? (uint32_t)c.ref : ~(uint32_t)c.ref);
     __builtin_prefetch(p);
     __builtin_prefetch(p + 64);
     __builtin_prefetch(p + 128);
@@ -184,7 +184,8 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
     wentry cur = {0, 0, tmin_f};
     for (;;) {
         if (cur.ref >= 0) {
-            const cj_bvhw_node *wn = &w->nodes[cur.ref];
+            const cj_bvhw_node *wn =
+                (const cj_bvhw_node *)(const void *)(w->lines + 64 * (size_t)cur.ref);
             float t0[CJ_BVHW_W];
             int mask = cj_bvhw_slab(wn, &rw, tmin_f, tmax_f, t0);
             nodes += (uint64_t)wn->count;
@@ -224,7 +225,9 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
             }
         } else {
             prims += cur.n;
-            if (mesh_leaf(w->tris + ~(uint32_t)cur.ref, cur.n, &ray, &tr, any, &best)) {
+            const cj_bvhw_tris *pk =
+                (const cj_bvhw_tris *)(const void *)(w->lines + 64 * (size_t) ~(uint32_t)cur.ref);
+            if (mesh_leaf(pk, cur.n, &ray, &tr, any, &best)) {
                 found = 1;
                 if (any) break;
                 tmax_f = cj_f32_up(ray.tmax);

@@ -38,14 +38,18 @@ _Static_assert(sizeof(cj_bvhw_node) == 256, "a wide node is four whole cache lin
 typedef struct cj_bvhw_tris cj_bvhw_tris; /* bvh_leaf_internal.h */
 
 typedef struct cj_bvhw {
-    size_t count;
-    cj_bvhw_node *nodes; /* nodes[0] is the root; 64-byte aligned */
-    /* mesh BVH only: the triangles in packets of 4 per leaf; then a leaf child's ~child[i] is its
-     * first packet (nprim[i] triangles in ceil(nprim[i] / 4) packets) instead of its first
-     * primitive */
-    cj_bvhw_tris *tris; /* 64-byte aligned */
-    size_t tris_count;
-    void *nodes_mem_, *tris_mem_; /* the allocations the aligned arrays live in */
+    size_t count;        /* wide nodes */
+    cj_bvhw_node *nodes; /* callback BVH: nodes[0] is the root; 64-byte aligned. NULL in a mesh
+                          * BVH once its triangles are packed into `lines` */
+    /* Mesh BVH only: the nodes and the triangles (in packets of 4 per leaf) interleaved in one
+     * array of 64-byte lines, depth first, each node followed by the packets of its leaf
+     * children, so the line after a node is often the leaf the ray tests next (the processor's
+     * stream prefetch fetches it with the node). There a child reference is a line index: a
+     * node at line child[i] >= 0, or a leaf whose nprim[i] triangles fill ceil(nprim[i] / 4)
+     * packets from line ~child[i]. The root is at line 0. */
+    unsigned char *lines; /* 64-byte aligned */
+    size_t line_count, tris_count;
+    void *nodes_mem_, *lines_mem_; /* the allocations the aligned arrays live in */
 } cj_bvhw;
 
 /* cj_bvh_build with the leaf cost counted in blocks of `block` primitives, a power of two (1:
@@ -57,7 +61,8 @@ cj_status cj_bvh_build_blocks(const cj_aabb *boxes, size_t count, const cj_alloc
  * children, then repeatedly the children of its largest inner child, up to CJ_BVHW_W). */
 cj_status cj_bvhw_build(cj_bvh *bvh);
 void cj_bvhw_destroy(cj_bvh *bvh);
-/* Packs bvh->tri (set) into the leaf packets and re-points the leaf children at them. */
+/* Packs bvh->tri (set) and the wide nodes into bvh->wide_->lines (see cj_bvhw), and frees the
+ * wide nodes' own array. */
 cj_status cj_bvhw_pack_triangles(cj_bvh *bvh);
 
 /* Rounds a double to float downward / upward (to the nearest float on that side; ±inf beyond the
