@@ -174,7 +174,7 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
     const float tmin_f = cj_f32_down(ray.tmin);
     float tmax_f = cj_f32_up(ray.tmax);
     cj_ray_tri_pre pre;
-    cj_ray_triangle_prepare(&ray, &pre);
+    cj_tri_prepare(&ray, &pre);
     cj_bvhw_tri_ray tr;
     cj_bvhw_tri_ray_setup(&ray, &pre, &tr);
     wentry st[WIDE_STACK];

@@ -141,6 +141,42 @@ typedef struct cj_bvhw_ray {
 /* The exhaustive walk is inv = NaN in every coordinate: every slab is then skipped and each used
  * slot is entered. */
 static inline void cj_bvhw_ray_setup(const cj_ray *ray, cj_bvhw_ray *r) {
+#if defined(__AVX2__)
+    /* the scalar form below, 3 coordinates in 4 lanes (lane 3 is ignored: it reads dir.x and
+     * tmin, the next members of the ray) */
+    const __m256d o = _mm256_loadu_pd(&ray->org.x), d = _mm256_loadu_pd(&ray->dir.x);
+    const __m256i abs = _mm256_set1_epi64x(0x7fffffffffffffffLL);
+    const __m256i bd = _mm256_and_si256(_mm256_castpd_si256(d), abs);
+    const __m256i bo = _mm256_and_si256(_mm256_castpd_si256(o), abs);
+    const __m256i lo_bits = _mm256_set1_epi64x(0x3bf0000000000000LL); /* 2^-64 */
+    const __m256i hi_bits = _mm256_set1_epi64x(0x43f0000000000000LL); /* 2^64 */
+    const __m256i tiny = _mm256_andnot_si256(_mm256_cmpeq_epi64(bd, _mm256_setzero_si256()),
+                                             _mm256_cmpgt_epi64(lo_bits, bd));
+    const __m256i bad = _mm256_or_si256(
+        tiny, _mm256_or_si256(_mm256_cmpgt_epi64(bd, hi_bits), _mm256_cmpgt_epi64(bo, hi_bits)));
+    const int all = _mm256_movemask_pd(_mm256_castsi256_pd(bad)) & 7;
+    const __m128 f = _mm256_cvtpd_ps(o);
+    const __m128 step =
+        _mm_add_ps(_mm_mul_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), f), _mm_set1_ps(0x1p-23f)),
+                   _mm_set1_ps(0x1p-149f));
+    const __m128 ou = _mm_add_ps(f, step), od = _mm_sub_ps(f, step);
+    const __m128 inv =
+        all ? _mm_set1_ps(NAN) : _mm256_cvtpd_ps(_mm256_div_pd(_mm256_set1_pd(1.0), d));
+    const __m128 negv = _mm256_cvtpd_ps(d); /* the sign survives the conversion, -0 too */
+    const int neg = _mm256_movemask_pd(d);
+    float on[4], of[4], iv[4];
+    _mm_storeu_ps(on, _mm_blendv_ps(ou, od, negv));
+    _mm_storeu_ps(of, _mm_blendv_ps(od, ou, negv));
+    _mm_storeu_ps(iv, inv);
+    for (int k = 0; k < 3; ++k) {
+        const int nk = (neg >> k) & 1;
+        r->near[k] = (size_t)(2 * k + nk) * CJ_BVHW_W * sizeof(float);
+        r->far[k] = (size_t)(2 * k + !nk) * CJ_BVHW_W * sizeof(float);
+        r->onear[k] = _mm256_set1_ps(on[k]);
+        r->ofar[k] = _mm256_set1_ps(of[k]);
+        r->inv[k] = _mm256_set1_ps(iv[k]);
+    }
+#else
     const double o[3] = {ray->org.x, ray->org.y, ray->org.z};
     const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
     /* on the bit patterns of |d| and |o| (ordered as the values are, NaN above infinity): a
@@ -178,6 +214,7 @@ static inline void cj_bvhw_ray_setup(const cj_ray *ray, cj_bvhw_ray *r) {
         r->inv[k] = inv;
 #endif
     }
+#endif
     r->nonneg = ray->tmin >= 0.0;
 }
 
