@@ -10,8 +10,6 @@
 #include <math.h>
 #include <string.h>
 
-#define STACK 128
-
 void cj_bvh_destroy(cj_bvh *bvh) {
     if (!bvh) return;
     cj_bvhw_destroy(bvh);
@@ -24,9 +22,9 @@ void cj_bvh_destroy(cj_bvh *bvh) {
 
 /* ---- traversal ------------------------------------------------------------------------- */
 
-/* each wide level pushes at most CJ_BVHW_W - 1 entries, and the binary tree's depth (which
- * bounds the wide one) stays below STACK */
-#define WIDE_STACK (CJ_BVHW_W * STACK)
+/* each wide level on the path pushes at most CJ_BVHW_W - 1 entries, and cj_bvhw_build bounds
+ * the depth (one more entry is the child being pushed) */
+#define WIDE_STACK ((CJ_BVHW_W - 1) * CJ_BVHW_MAX_DEPTH + 1)
 
 typedef struct wentry {
     int32_t ref; /* >= 0: wide node; < 0: leaf ~ref, with n primitives */
@@ -72,8 +70,6 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
                 mask &= mask - 1;
                 cur = (wentry){wn->child[i], wn->nprim[i], t0[i]};
                 if (!mask) continue; /* one child met: descend */
-                if (sp + CJ_BVHW_W > WIDE_STACK)
-                    continue; /* cannot happen: the build bounds depth */
                 /* several: the nearest becomes cur, the others go on the stack farthest first */
                 const int base = sp;
                 st[sp++] = cur;
@@ -194,8 +190,6 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
                 mask &= mask - 1;
                 cur = (wentry){wn->child[i], wn->nprim[i], t0[i]};
                 if (!mask) continue; /* one child met: descend */
-                if (sp + CJ_BVHW_W > WIDE_STACK)
-                    continue; /* cannot happen: the build bounds depth */
                 i = __builtin_ctz((unsigned)mask);
                 mask &= mask - 1;
                 const wentry c2 = {wn->child[i], wn->nprim[i], t0[i]};

@@ -13,6 +13,10 @@
 #include <immintrin.h>
 #endif
 
+/* The deepest wide tree the walks' fixed stacks hold (cj_bvhw_build refuses a deeper one, which
+ * the builder never makes: its depth stays below 82). */
+#define CJ_BVHW_MAX_DEPTH 128
+
 /* Children per wide node. 8: one AVX pass tests them all, and the tree is about 1.5 times
  * shallower than a 4-wide one, which matters because the walk waits on one cache miss per level
  * (measured: the first load of a node or a leaf packet takes most of the walk's time). */

@@ -20,7 +20,9 @@ typedef struct cj_bvhw_tris {
 
 /* The 9 coordinates of lane l. */
 static inline void cj_bvhw_tris_lane(const cj_bvhw_tris *p, int l, double v[9]) {
-    for (int r = 0; r < 9; ++r) v[r] = p->v[r][l];
+    v[0] = p->v[0][l], v[1] = p->v[1][l], v[2] = p->v[2][l];
+    v[3] = p->v[3][l], v[4] = p->v[4][l], v[5] = p->v[5][l];
+    v[6] = p->v[6][l], v[7] = p->v[7][l], v[8] = p->v[8][l];
 }
 
 /* The outcome of one packet: lane bits that hit at t in [tmin, tmax], their t, edge values and
@@ -82,8 +84,8 @@ static inline void cj_bvhw_tri_ray_setup(const cj_ray *ray, const cj_ray_tri_pre
 
 /* Tests the 4 triangles of p against the ray of r (set up by cj_bvhw_tri_ray_setup; r->tmax
  * must follow ray->tmax when the caller shrinks it). */
-static inline void cj_bvhw_tris_test_r(const cj_bvhw_tris *p, const cj_bvhw_tri_ray *r,
-                                       cj_bvhw_tri_hits *out) {
+static inline __attribute__((always_inline)) void
+cj_bvhw_tris_test_r(const cj_bvhw_tris *p, const cj_bvhw_tri_ray *r, cj_bvhw_tri_hits *out) {
     int mask = 0;
     const cj_ray *ray = r->ray;
     const cj_ray_tri_pre *pre = r->pre;

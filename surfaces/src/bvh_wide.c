@@ -20,6 +20,10 @@ static double box_area(const cj_aabb *b) {
 
 cj_status cj_bvhw_build(cj_bvh *bvh) {
     cj_allocator *a = &bvh->alloc_;
+    /* the walks' stacks hold at most CJ_BVHW_W - 1 entries per level of a path, and a wide path
+     * is never longer than a binary one (the builder keeps that below DEEP_SPLIT + 33) */
+    if (bvh->depth > CJ_BVHW_MAX_DEPTH)
+        return cj_fail(CJ_ERR_CAP, "BVH: depth %d exceeds %d", bvh->depth, CJ_BVHW_MAX_DEPTH);
     const size_t cap = bvh->node_count; /* each wide node consumes >= 1 binary inner node */
     cj_bvhw *w = cj_allocator_alloc(a, sizeof *w);
     if (!w) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for the wide nodes");
