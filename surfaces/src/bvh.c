@@ -7,6 +7,7 @@
 #include "alloc_internal.h"
 #include "error_internal.h"
 
+#include <assert.h>
 #include <math.h>
 #include <string.h>
 
@@ -50,6 +51,7 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
                     cj_hit *hit, int any, cj_bvh_trav_stats *stats) {
     cj_ray ray = *ray0;
     const cj_bvhw *w = bvh->wide_;
+    assert(w->nodes && "a mesh BVH is walked by cj_bvh_mesh_closest / cj_bvh_mesh_any");
     cj_bvhw_ray rw;
     cj_bvhw_ray_setup(&ray, &rw);
     const float tmin_f = cj_f32_down(ray.tmin);
