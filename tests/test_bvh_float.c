@@ -8,7 +8,8 @@
  *    rounded to nearest, no padding) do miss some, so the cases can catch a lost box;
  *  - the 4-lane triangle packet test gives, lane by lane, bit-identical answers (hit, t, edge
  *    values, their sum) to the scalar watertight test, on random triangles and on triangles
- *    through which the ray passes exactly along an edge or a vertex (edge values of zero). */
+ *    through which the ray passes exactly along an edge or a vertex (edge values of zero);
+ *  - the mesh BVH's array of nodes and packets is consistent (test_layout). */
 #include "bvh_internal.h"
 #include "bvh_leaf_internal.h"
 #include "check.h"
@@ -222,9 +223,121 @@ static void test_packets(uint64_t seed) {
     CHECK(zero_lanes > 100, "only %ld tie-break hits exercised", zero_lanes);
 }
 
+/* The mesh BVH's interleaved array (bvh_internal.h, cj_bvhw): walked depth first from line 0,
+ * every node is reached once, its references stay inside the array, every child's float box
+ * lies inside its parent's slot box, every leaf's lanes hold the vertices of the triangles the
+ * index names and lie inside the slot's box, and each triangle sits in exactly one lane, except
+ * those with two equal vertices, which are in none. */
+static void test_layout(uint64_t seed) {
+    cj_rng rng;
+    cj_rng_init(&rng, seed);
+    const size_t nt = 5000, nv = 3 * nt;
+    double *pos = malloc(3 * nv * sizeof *pos);
+    uint32_t *tri = malloc(3 * nt * sizeof *tri);
+    unsigned char *seen = calloc(nt, 1);
+    long degenerate = 0;
+    for (size_t t = 0; t < nt; ++t) {
+        const double c[3] = {cj_rng_range(&rng, -10, 10), cj_rng_range(&rng, -10, 10),
+                             cj_rng_range(&rng, -10, 10)};
+        for (int j = 0; j < 3; ++j) {
+            for (int k = 0; k < 3; ++k) pos[9 * t + 3 * j + k] = c[k] + cj_rng_range(&rng, -1, 1);
+            tri[3 * t + j] = (uint32_t)(3 * t + (size_t)j);
+        }
+        if (t % 50 == 0) { /* two equal vertices */
+            memcpy(pos + 9 * t + 3, pos + 9 * t, 3 * sizeof *pos);
+            ++degenerate;
+        }
+    }
+    cj_bvh *b = NULL;
+    CHECK(cj_bvh_mesh_build(pos, nv, tri, nt, NULL, &b) == CJ_OK, "mesh BVH build failed");
+    const cj_bvhw *w = b->wide_;
+    long bad = 0, nodes = 0, lanes = 0;
+    /* pending: (line, slot box of its parent as 6 floats) */
+    size_t cap = w->count + 1, n = 0;
+    uint32_t *todo = malloc(cap * sizeof *todo);
+    float *tbox = malloc(6 * cap * sizeof *tbox);
+    todo[n] = 0;
+    for (int k = 0; k < 3; ++k) tbox[6 * n + 2 * k] = -INFINITY, tbox[6 * n + 2 * k + 1] = INFINITY;
+    ++n;
+    while (n > 0 && bad == 0) {
+        --n;
+        const uint32_t line = todo[n];
+        float pb[6];
+        memcpy(pb, tbox + 6 * n, sizeof pb);
+        if ((size_t)line + 4 > w->line_count) {
+            ++bad;
+            break;
+        }
+        const cj_bvhw_node *wn = (const cj_bvhw_node *)(const void *)(w->lines + 64 * (size_t)line);
+        ++nodes;
+        if (wn->count < 1 || wn->count > CJ_BVHW_W || wn->valid != (1 << wn->count) - 1) ++bad;
+        for (int i = 0; i < wn->count && !bad; ++i) {
+            float cb[6];
+            for (int r = 0; r < 6; ++r) cb[r] = wn->b[r][i];
+            for (int k = 0; k < 3; ++k) /* inside the parent's slot box */
+                if (!(cb[2 * k] >= pb[2 * k] && cb[2 * k + 1] <= pb[2 * k + 1])) ++bad;
+            if (wn->child[i] >= 0) {
+                if (n >= cap) {
+                    ++bad;
+                    break;
+                }
+                todo[n] = (uint32_t)wn->child[i];
+                memcpy(tbox + 6 * n, cb, sizeof cb);
+                ++n;
+                continue;
+            }
+            const size_t first = ~(uint32_t)wn->child[i], np = (wn->nprim[i] + 3u) / 4u;
+            if (first + 5 * np > w->line_count) {
+                ++bad;
+                break;
+            }
+            const cj_bvhw_tris *pk = (const cj_bvhw_tris *)(const void *)(w->lines + 64 * first);
+            for (size_t q = 0; q < np; ++q)
+                for (int l = 0; l < 4; ++l) {
+                    const uint32_t id = pk[q].idx[l];
+                    if (id == UINT32_MAX) continue;
+                    ++lanes;
+                    if (id >= nt || seen[id]++) {
+                        ++bad;
+                        continue;
+                    }
+                    for (int r = 0; r < 9; ++r) {
+                        const double v = pk[q].v[r][l], k = r % 3;
+                        if (memcmp(&v, &pos[9 * id + (size_t)r], sizeof v)) ++bad;
+                        if (!(v >= cb[2 * (int)k] && v <= cb[2 * (int)k + 1])) ++bad;
+                    }
+                }
+        }
+    }
+    long missing = 0, present_degenerate = 0;
+    for (size_t t = 0; t < nt; ++t) {
+        if (t % 50 == 0)
+            present_degenerate += seen[t] != 0;
+        else
+            missing += seen[t] == 0;
+    }
+    printf("mesh BVH layout: %zu triangles (%ld with two equal vertices), %ld wide nodes reached "
+           "of %zu, %ld lanes; broken references, boxes or vertices: %ld; triangles missing: %ld; "
+           "degenerate triangles stored: %ld\n",
+           nt, degenerate, nodes, w->count, lanes, bad, missing, present_degenerate);
+    CHECK(bad == 0, "%ld layout errors", bad);
+    CHECK(nodes == (long)w->count, "%ld of %zu nodes reached", nodes, w->count);
+    CHECK(missing == 0 && present_degenerate == 0, "%ld missing, %ld degenerate stored", missing,
+          present_degenerate);
+    CHECK(lanes == (long)(nt - (size_t)degenerate), "%ld lanes for %zu triangles", lanes,
+          nt - (size_t)degenerate);
+    cj_bvh_destroy(b);
+    free(todo);
+    free(tbox);
+    free(seen);
+    free(pos);
+    free(tri);
+}
+
 int main(void) {
     const uint64_t seed = cj_test_seed("test_bvh_float", 20261126u);
     test_slab(seed);
     test_packets(seed + 1);
+    test_layout(seed + 2);
     return cj_check_exit();
 }
