@@ -1,12 +1,12 @@
 /* bench_trace_peer: our BVH against Embree 3 (issue 20), one thread, single rays, the same
  * triangles (Embree gets them in float) and the same rays:
  *   - the teapot tessellated at 1e-3 (75 030 triangles) and at a tolerance giving >= 1e6;
- *   - closest hit, ns per ray: median and range of 5 rounds (thread CPU time);
+ *   - closest hit, ns per ray: median and range of 11 rounds (thread CPU time);
  *   - build time of each (median of 3);
  *   - BENCH_ONLY=<what> runs one piece alone, for instruction counts under callgrind
  *     (valgrind --tool=callgrind --toggle-collect=bench_run_<what> ...): what is one of
  *     ours_rays, embree_rays, ours_build, embree_build; BENCH_MESH=1 takes the large mesh,
- *     BENCH_RAYS=<n> shoots n rays.
+ *     BENCH_RAYS=<n> shoots n rays, BENCH_REPEAT=<k> shoots ours k times (for perf).
  * Rays: origins on a sphere of twice the mesh's box radius around its centre, aimed at uniform
  * points of the box (seeded). */
 #define _POSIX_C_SOURCE 200809L
@@ -28,7 +28,7 @@
 #define NRAYS_DEFAULT 100000
 /* Rays per round (BENCH_RAYS=<n> in the BENCH_ONLY mode, for shorter callgrind runs). */
 static int g_nrays = NRAYS_DEFAULT;
-#define ROUNDS 5
+#define ROUNDS 11
 
 static uint64_t g_rng = 20261126;
 static double urand(void) {
@@ -179,12 +179,17 @@ static void measure(const char *name, const cj_mesh *m) {
         tr[1][r] = (cj_bench_thread_cpu() - t0) / g_nrays * 1e9;
 #endif
     }
+    cj_bvh_trav_stats st = {0};
+    for (int i = 0; i < g_nrays; i++) {
+        cj_hit h;
+        cj_bvh_mesh_closest(b, &rays[i], &h, &st);
+    }
     const int np = 1
 #ifdef CJ_HAVE_EMBREE
                    + 1
 #endif
         ;
-    const char *who[2] = {"casteljau BVH (4-wide float boxes, exact double triangles)",
+    const char *who[2] = {"casteljau BVH (8-wide float boxes, exact double triangles)",
                           "Embree 3 rtcIntersect1 (float)"};
     double med[2], lo[2], hi[2], bmed[2];
     for (int p = 0; p < np; p++) {
@@ -196,6 +201,8 @@ static void measure(const char *name, const cj_mesh *m) {
         printf("| %s (%zu tri) | %s | %.1f (%.1f-%.1f) | %.1f%% | %.1f ms |\n", name,
                m->triangle_count, who[p], med[p], lo[p], hi[p], 100.0 * hits[p] / g_nrays,
                1e3 * bmed[p]);
+    printf("| | ours: box tests / triangles tested per ray | %.1f / %.1f | | |\n",
+           (double)st.nodes / g_nrays, (double)st.prims / g_nrays);
     if (np == 2)
         printf("| | ratio ours / Embree | %.2f | | %.2f |\n", med[0] / med[1], bmed[0] / bmed[1]);
     cj_bvh_destroy(b);
@@ -228,7 +235,10 @@ int main(void) {
         const cj_ray *rays = make_rays(m);
         cj_bvh *b = NULL;
         if (!strcmp(only, "ours_build") || !strcmp(only, "ours_rays")) b = bench_run_ours_build(m);
-        if (!strcmp(only, "ours_rays")) printf("hits %d\n", bench_run_ours_rays(b, rays));
+        const char *rep = getenv("BENCH_REPEAT"); /* for perf: the rays again and again */
+        const int nrep = rep && atoi(rep) > 0 ? atoi(rep) : 1;
+        for (int k = 0; k < nrep; k++)
+            if (!strcmp(only, "ours_rays")) printf("hits %d\n", bench_run_ours_rays(b, rays));
 #ifdef CJ_HAVE_EMBREE
         if (!strcmp(only, "embree_build") || !strcmp(only, "embree_rays")) {
             emb e = bench_run_embree_build(m);

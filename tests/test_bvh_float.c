@@ -8,7 +8,8 @@
  *    rounded to nearest, no padding) do miss some, so the cases can catch a lost box;
  *  - the 4-lane triangle packet test gives, lane by lane, bit-identical answers (hit, t, edge
  *    values, their sum) to the scalar watertight test, on random triangles and on triangles
- *    through which the ray passes exactly along an edge or a vertex (edge values of zero). */
+ *    through which the ray passes exactly along an edge or a vertex (edge values of zero);
+ *  - the mesh BVH's array of nodes and packets is consistent (test_layout). */
 #include "bvh_internal.h"
 #include "bvh_leaf_internal.h"
 #include "check.h"
@@ -69,22 +70,24 @@ static int naive_hit(const double lo[3], const double hi[3], const double o[3], 
     return vn <= vf;
 }
 
-static int float_hit(const double lo[3], const double hi[3], const cj_ray *ray) {
-    cj_bvh4_node n;
+/* The box in slot `slot` of an otherwise empty wide node (every slot is exercised, so each SIMD
+ * lane's arithmetic is). */
+static int float_hit(const double lo[3], const double hi[3], const cj_ray *ray, int slot) {
+    cj_bvhw_node n;
     memset(&n, 0, sizeof n);
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < CJ_BVHW_W; ++i)
         for (int k = 0; k < 3; ++k) n.b[2 * k][i] = INFINITY, n.b[2 * k + 1][i] = -INFINITY;
     for (int k = 0; k < 3; ++k) {
-        n.b[2 * k][1] = cj_f32_down(lo[k]);
-        n.b[2 * k + 1][1] = cj_f32_up(hi[k]);
+        n.b[2 * k][slot] = cj_f32_down(lo[k]);
+        n.b[2 * k + 1][slot] = cj_f32_up(hi[k]);
     }
-    n.count = 4;
-    n.valid = 0xf;
-    cj_bvh4_ray r;
-    cj_bvh4_ray_setup(ray, &r);
-    float t0[4];
-    const int m = cj_bvh4_slab(&n, &r, cj_f32_down(ray->tmin), cj_f32_up(ray->tmax), t0);
-    return (m >> 1) & 1;
+    n.count = CJ_BVHW_W;
+    n.valid = (1 << CJ_BVHW_W) - 1;
+    cj_bvhw_ray r;
+    cj_bvhw_ray_setup(ray, &r);
+    float t0[CJ_BVHW_W];
+    const int m = cj_bvhw_slab(&n, &r, cj_f32_down(ray->tmin), cj_f32_up(ray->tmax), t0);
+    return m == (1 << slot) ? 1 : (m == 0 ? 0 : -1); /* -1: an empty slot reported met */
 }
 
 static double step_out(double x, double dir) {
@@ -94,7 +97,7 @@ static double step_out(double x, double dir) {
 static void test_slab(uint64_t seed) {
     cj_rng rng;
     cj_rng_init(&rng, seed);
-    long cases = 0, exact_hits = 0, lost = 0, naive_lost = 0;
+    long cases = 0, exact_hits = 0, lost = 0, naive_lost = 0, ghosts = 0;
     const double scales[4] = {1.0, 1e-3, 1e3, 1e7};
     for (int it = 0; it < 200000; ++it) {
         const double s = scales[it % 4];
@@ -135,10 +138,12 @@ static void test_slab(uint64_t seed) {
         if (tk == 3) tmin = -INFINITY, tmax = cj_rng_range(&rng, -2, 2);
         const cj_ray ray = {cj_v3(o[0], o[1], o[2]), cj_v3(d[0], d[1], d[2]), tmin, tmax};
         const int ex = exact_hit(lo, hi, o, d, tmin, tmax);
+        const int fh = float_hit(lo, hi, &ray, it % CJ_BVHW_W);
         ++cases;
+        ghosts += fh < 0;
         if (!ex) continue;
         ++exact_hits;
-        if (!float_hit(lo, hi, &ray)) {
+        if (fh != 1) {
             if (++lost <= 5)
                 fprintf(stderr, "lost box: o (%a %a %a) d (%a %a %a) box (%a %a %a)-(%a %a %a)\n",
                         o[0], o[1], o[2], d[0], d[1], d[2], lo[0], lo[1], lo[2], hi[0], hi[1],
@@ -146,10 +151,12 @@ static void test_slab(uint64_t seed) {
         }
         naive_lost += !naive_hit(lo, hi, o, d, tmin, tmax);
     }
-    printf("float slab test: %ld rays, %ld meet their box exactly; lost by the float test: %ld; "
-           "lost by a naive float test: %ld\n",
-           cases, exact_hits, lost, naive_lost);
+    printf("float slab test (%d-wide nodes, the box in each slot in turn): %ld rays, %ld meet "
+           "their box exactly; lost by the float test: %ld; empty slots reported met: %ld; lost "
+           "by a naive float test: %ld\n",
+           CJ_BVHW_W, cases, exact_hits, lost, ghosts, naive_lost);
     CHECK(lost == 0, "%ld boxes lost", lost);
+    CHECK(ghosts == 0, "%ld empty slots reported met", ghosts);
     CHECK(naive_lost > 0, "the cases cannot tell a naive float test from a conservative one");
     CHECK(exact_hits > cases / 4, "too few hits (%ld of %ld) to test anything", exact_hits, cases);
 }
@@ -161,7 +168,7 @@ static void test_packets(uint64_t seed) {
     long lanes = 0, hits = 0, zero_lanes = 0, differ = 0;
     for (int it = 0; it < 50000; ++it) {
         double tri[36];
-        cj_bvh4_tris p;
+        cj_bvhw_tris p;
         const int grid = it % 2; /* integer grid: edge values of exactly zero */
         for (int l = 0; l < 4; ++l) {
             for (int r = 0; r < 9; ++r) {
@@ -187,8 +194,8 @@ static void test_packets(uint64_t seed) {
         ray.tmax = cj_rng_int(&rng, 0, 1) ? INFINITY : cj_rng_range(&rng, 0, 12);
         cj_ray_tri_pre pre;
         cj_ray_triangle_prepare(&ray, &pre);
-        cj_bvh4_tri_hits th;
-        cj_bvh4_tris_test(&p, &ray, &pre, &th);
+        cj_bvhw_tri_hits th;
+        cj_bvhw_tris_test(&p, &ray, &pre, &th);
         for (int l = 0; l < 4; ++l) {
             if (p.idx[l] == UINT32_MAX) {
                 differ += (th.mask >> l) & 1;
@@ -216,9 +223,121 @@ static void test_packets(uint64_t seed) {
     CHECK(zero_lanes > 100, "only %ld tie-break hits exercised", zero_lanes);
 }
 
+/* The mesh BVH's interleaved array (bvh_internal.h, cj_bvhw): walked depth first from line 0,
+ * every node is reached once, its references stay inside the array, every child's float box
+ * lies inside its parent's slot box, every leaf's lanes hold the vertices of the triangles the
+ * index names and lie inside the slot's box, and each triangle sits in exactly one lane, except
+ * those with two equal vertices, which are in none. */
+static void test_layout(uint64_t seed) {
+    cj_rng rng;
+    cj_rng_init(&rng, seed);
+    const size_t nt = 5000, nv = 3 * nt;
+    double *pos = malloc(3 * nv * sizeof *pos);
+    uint32_t *tri = malloc(3 * nt * sizeof *tri);
+    unsigned char *seen = calloc(nt, 1);
+    long degenerate = 0;
+    for (size_t t = 0; t < nt; ++t) {
+        const double c[3] = {cj_rng_range(&rng, -10, 10), cj_rng_range(&rng, -10, 10),
+                             cj_rng_range(&rng, -10, 10)};
+        for (int j = 0; j < 3; ++j) {
+            for (int k = 0; k < 3; ++k) pos[9 * t + 3 * j + k] = c[k] + cj_rng_range(&rng, -1, 1);
+            tri[3 * t + j] = (uint32_t)(3 * t + (size_t)j);
+        }
+        if (t % 50 == 0) { /* two equal vertices */
+            memcpy(pos + 9 * t + 3, pos + 9 * t, 3 * sizeof *pos);
+            ++degenerate;
+        }
+    }
+    cj_bvh *b = NULL;
+    CHECK(cj_bvh_mesh_build(pos, nv, tri, nt, NULL, &b) == CJ_OK, "mesh BVH build failed");
+    const cj_bvhw *w = b->wide_;
+    long bad = 0, nodes = 0, lanes = 0;
+    /* pending: (line, slot box of its parent as 6 floats) */
+    size_t cap = w->count + 1, n = 0;
+    uint32_t *todo = malloc(cap * sizeof *todo);
+    float *tbox = malloc(6 * cap * sizeof *tbox);
+    todo[n] = 0;
+    for (int k = 0; k < 3; ++k) tbox[6 * n + 2 * k] = -INFINITY, tbox[6 * n + 2 * k + 1] = INFINITY;
+    ++n;
+    while (n > 0 && bad == 0) {
+        --n;
+        const uint32_t line = todo[n];
+        float pb[6];
+        memcpy(pb, tbox + 6 * n, sizeof pb);
+        if ((size_t)line + 4 > w->line_count) {
+            ++bad;
+            break;
+        }
+        const cj_bvhw_node *wn = (const cj_bvhw_node *)(const void *)(w->lines + 64 * (size_t)line);
+        ++nodes;
+        if (wn->count < 1 || wn->count > CJ_BVHW_W || wn->valid != (1 << wn->count) - 1) ++bad;
+        for (int i = 0; i < wn->count && !bad; ++i) {
+            float cb[6];
+            for (int r = 0; r < 6; ++r) cb[r] = wn->b[r][i];
+            for (int k = 0; k < 3; ++k) /* inside the parent's slot box */
+                if (!(cb[2 * k] >= pb[2 * k] && cb[2 * k + 1] <= pb[2 * k + 1])) ++bad;
+            if (wn->child[i] >= 0) {
+                if (n >= cap) {
+                    ++bad;
+                    break;
+                }
+                todo[n] = (uint32_t)wn->child[i];
+                memcpy(tbox + 6 * n, cb, sizeof cb);
+                ++n;
+                continue;
+            }
+            const size_t first = ~(uint32_t)wn->child[i], np = (wn->nprim[i] + 3u) / 4u;
+            if (first + 5 * np > w->line_count) {
+                ++bad;
+                break;
+            }
+            const cj_bvhw_tris *pk = (const cj_bvhw_tris *)(const void *)(w->lines + 64 * first);
+            for (size_t q = 0; q < np; ++q)
+                for (int l = 0; l < 4; ++l) {
+                    const uint32_t id = pk[q].idx[l];
+                    if (id == UINT32_MAX) continue;
+                    ++lanes;
+                    if (id >= nt || seen[id]++) {
+                        ++bad;
+                        continue;
+                    }
+                    for (int r = 0; r < 9; ++r) {
+                        const double v = pk[q].v[r][l], k = r % 3;
+                        if (memcmp(&v, &pos[9 * id + (size_t)r], sizeof v)) ++bad;
+                        if (!(v >= cb[2 * (int)k] && v <= cb[2 * (int)k + 1])) ++bad;
+                    }
+                }
+        }
+    }
+    long missing = 0, present_degenerate = 0;
+    for (size_t t = 0; t < nt; ++t) {
+        if (t % 50 == 0)
+            present_degenerate += seen[t] != 0;
+        else
+            missing += seen[t] == 0;
+    }
+    printf("mesh BVH layout: %zu triangles (%ld with two equal vertices), %ld wide nodes reached "
+           "of %zu, %ld lanes; broken references, boxes or vertices: %ld; triangles missing: %ld; "
+           "degenerate triangles stored: %ld\n",
+           nt, degenerate, nodes, w->count, lanes, bad, missing, present_degenerate);
+    CHECK(bad == 0, "%ld layout errors", bad);
+    CHECK(nodes == (long)w->count, "%ld of %zu nodes reached", nodes, w->count);
+    CHECK(missing == 0 && present_degenerate == 0, "%ld missing, %ld degenerate stored", missing,
+          present_degenerate);
+    CHECK(lanes == (long)(nt - (size_t)degenerate), "%ld lanes for %zu triangles", lanes,
+          nt - (size_t)degenerate);
+    cj_bvh_destroy(b);
+    free(todo);
+    free(tbox);
+    free(seen);
+    free(pos);
+    free(tri);
+}
+
 int main(void) {
     const uint64_t seed = cj_test_seed("test_bvh_float", 20261126u);
     test_slab(seed);
     test_packets(seed + 1);
+    test_layout(seed + 2);
     return cj_check_exit();
 }

@@ -7,14 +7,13 @@
 #include "alloc_internal.h"
 #include "error_internal.h"
 
+#include <assert.h>
 #include <math.h>
 #include <string.h>
 
-#define STACK 128
-
 void cj_bvh_destroy(cj_bvh *bvh) {
     if (!bvh) return;
-    cj_bvh4_destroy(bvh);
+    cj_bvhw_destroy(bvh);
     cj_allocator a = bvh->alloc_;
     cj_allocator_free(&a, bvh->nodes);
     cj_allocator_free(&a, bvh->prims);
@@ -24,7 +23,9 @@ void cj_bvh_destroy(cj_bvh *bvh) {
 
 /* ---- traversal ------------------------------------------------------------------------- */
 
-#define WIDE_STACK (4 * STACK)
+/* each wide level on the path pushes at most CJ_BVHW_W - 1 entries, and cj_bvhw_build bounds
+ * the depth (one more entry is the child being pushed) */
+#define WIDE_STACK ((CJ_BVHW_W - 1) * CJ_BVHW_MAX_DEPTH + 1)
 
 typedef struct wentry {
     int32_t ref; /* >= 0: wide node; < 0: leaf ~ref, with n primitives */
@@ -49,9 +50,10 @@ static inline void push_sorted(wentry *st, int *sp, int base, wentry c) {
 static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, void *user,
                     cj_hit *hit, int any, cj_bvh_trav_stats *stats) {
     cj_ray ray = *ray0;
-    const cj_bvh4 *w = bvh->wide_;
-    cj_bvh4_ray r4;
-    cj_bvh4_ray_setup(&ray, &r4);
+    const cj_bvhw *w = bvh->wide_;
+    assert(w->nodes && "a mesh BVH is walked by cj_bvh_mesh_closest / cj_bvh_mesh_any");
+    cj_bvhw_ray rw;
+    cj_bvhw_ray_setup(&ray, &rw);
     const float tmin_f = cj_f32_down(ray.tmin);
     float tmax_f = cj_f32_up(ray.tmax);
     wentry st[WIDE_STACK];
@@ -61,16 +63,15 @@ static int traverse(const cj_bvh *bvh, const cj_ray *ray0, cj_bvh_prim_fn fn, vo
     cj_hit h;
     for (;;) {
         if (cur.ref >= 0) {
-            const cj_bvh4_node *wn = &w->nodes[cur.ref];
-            float t0[4];
-            int mask = cj_bvh4_slab(wn, &r4, tmin_f, tmax_f, t0);
+            const cj_bvhw_node *wn = &w->nodes[cur.ref];
+            float t0[CJ_BVHW_W];
+            int mask = cj_bvhw_slab(wn, &rw, tmin_f, tmax_f, t0);
             nodes += (uint64_t)wn->count;
             if (mask) {
                 int i = __builtin_ctz((unsigned)mask);
                 mask &= mask - 1;
                 cur = (wentry){wn->child[i], wn->nprim[i], t0[i]};
-                if (!mask) continue;               /* one child met: descend */
-                if (sp + 4 > WIDE_STACK) continue; /* cannot happen: the build bounds depth */
+                if (!mask) continue; /* one child met: descend */
                 /* several: the nearest becomes cur, the others go on the stack farthest first */
                 const int base = sp;
                 st[sp++] = cur;
@@ -113,22 +114,22 @@ done:
 /* The closest hit so far among the built-in triangles: where it is, its t, edge values and
  * their sum (the hit record is filled once, at the end). */
 typedef struct mesh_best {
-    const cj_bvh4_tris *pk; /* its packet and lane: the record is filled from memory just read */
+    const cj_bvhw_tris *pk; /* its packet and lane: the record is filled from memory just read */
     int lane;
     double t, e[3], det;
 } mesh_best;
 
 /* Tests the packets of one leaf; returns 1 when one hits (for `any`, as soon as one does), with
  * ray->tmax and *best moved to the closest. Within a packet the last lane at the smallest t wins,
- * as a scalar loop's "t <= tmax" replaces ties in order. Not inlined: the node loop keeps its
- * registers. */
-__attribute__((noinline)) static int mesh_leaf(const cj_bvh4_tris *pk, uint32_t n, cj_ray *ray,
-                                               const cj_ray_tri_pre *pre, int any,
-                                               mesh_best *best) {
+ * as a scalar loop's "t <= tmax" replaces ties in order. Inlined since the packet constants are
+ * set up once per ray (cj_bvhw_tri_ray): a call cost more than the registers it saved. */
+static inline __attribute__((always_inline)) int mesh_leaf(const cj_bvhw_tris *pk, uint32_t n,
+                                                           cj_ray *ray, cj_bvhw_tri_ray *tr,
+                                                           int any, mesh_best *best) {
     int found = 0;
     for (uint32_t j = 0; j < n; j += 4, ++pk) {
-        cj_bvh4_tri_hits th;
-        cj_bvh4_tris_test(pk, ray, pre, &th);
+        cj_bvhw_tri_hits th;
+        cj_bvhw_tris_test_r(pk, tr, &th);
         if (!th.mask) continue;
         found = 1;
         if (any) return 1;
@@ -140,8 +141,24 @@ __attribute__((noinline)) static int mesh_leaf(const cj_bvh4_tris *pk, uint32_t 
         best->pk = pk, best->lane = bl, best->t = th.t[bl], best->det = th.det[bl];
         best->e[0] = th.e0[bl], best->e[1] = th.e1[bl], best->e[2] = th.e2[bl];
         ray->tmax = best->t;
+#if defined(__AVX__) && defined(__FMA__)
+        tr->tmax = _mm256_set1_pd(best->t);
+#endif
     }
     return found;
+}
+
+/* Starts loading what a met child will read: a wide node's four cache lines, or a leaf's first
+ * packet (five). The walk is bound by the latency of these loads, and the children that are
+ * pushed are popped later, by which time the lines have arrived. */
+static inline void prefetch_entry(const cj_bvhw *w, wentry c) {
+    const char *p =
+        (const char *)w->lines + 64 * (size_t)(c.ref >= 0 ? (uint32_t)c.ref : ~(uint32_t)c.ref);
+    __builtin_prefetch(p);
+    __builtin_prefetch(p + 64);
+    __builtin_prefetch(p + 128);
+    __builtin_prefetch(p + 192);
+    if (c.ref < 0) __builtin_prefetch(p + 256);
 }
 
 /* The walk over the built-in triangles (packets of 4 per leaf). */
@@ -149,13 +166,15 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
                                                            cj_hit *hit, const int any,
                                                            cj_bvh_trav_stats *stats) {
     cj_ray ray = *ray0;
-    const cj_bvh4 *w = bvh->wide_;
-    cj_bvh4_ray r4;
-    cj_bvh4_ray_setup(&ray, &r4);
+    const cj_bvhw *w = bvh->wide_;
+    cj_bvhw_ray rw;
+    cj_bvhw_ray_setup(&ray, &rw);
     const float tmin_f = cj_f32_down(ray.tmin);
     float tmax_f = cj_f32_up(ray.tmax);
     cj_ray_tri_pre pre;
-    cj_ray_triangle_prepare(&ray, &pre);
+    cj_tri_prepare(&ray, &pre);
+    cj_bvhw_tri_ray tr;
+    cj_bvhw_tri_ray_setup(&ray, &pre, &tr);
     wentry st[WIDE_STACK];
     int sp = 0, found = 0;
     mesh_best best = {NULL, 0, 0.0, {0.0, 0.0, 0.0}, 1.0};
@@ -163,19 +182,21 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
     wentry cur = {0, 0, tmin_f};
     for (;;) {
         if (cur.ref >= 0) {
-            const cj_bvh4_node *wn = &w->nodes[cur.ref];
-            float t0[4];
-            int mask = cj_bvh4_slab(wn, &r4, tmin_f, tmax_f, t0);
+            const cj_bvhw_node *wn =
+                (const cj_bvhw_node *)(const void *)(w->lines + 64 * (size_t)cur.ref);
+            float t0[CJ_BVHW_W];
+            int mask = cj_bvhw_slab(wn, &rw, tmin_f, tmax_f, t0);
             nodes += (uint64_t)wn->count;
             if (mask) {
                 int i = __builtin_ctz((unsigned)mask);
                 mask &= mask - 1;
                 cur = (wentry){wn->child[i], wn->nprim[i], t0[i]};
-                if (!mask) continue;               /* one child met: descend */
-                if (sp + 4 > WIDE_STACK) continue; /* cannot happen: the build bounds depth */
+                if (!mask) continue; /* one child met: descend */
                 i = __builtin_ctz((unsigned)mask);
                 mask &= mask - 1;
                 const wentry c2 = {wn->child[i], wn->nprim[i], t0[i]};
+                prefetch_entry(w, cur);
+                prefetch_entry(w, c2);
                 if (!mask) {               /* two: push the farther, descend into the nearer */
                     if (c2.t0 <= cur.t0) { /* ties: the later child first, as below */
                         st[sp++] = cur;
@@ -191,14 +212,18 @@ static inline __attribute__((always_inline)) int walk_mesh(const cj_bvh *bvh, co
                 push_sorted(st, &sp, base, c2);
                 for (; mask; mask &= mask - 1) {
                     i = __builtin_ctz((unsigned)mask);
-                    push_sorted(st, &sp, base, (wentry){wn->child[i], wn->nprim[i], t0[i]});
+                    const wentry c = {wn->child[i], wn->nprim[i], t0[i]};
+                    prefetch_entry(w, c);
+                    push_sorted(st, &sp, base, c);
                 }
                 cur = st[--sp];
                 continue;
             }
         } else {
             prims += cur.n;
-            if (mesh_leaf(w->tris + ~(uint32_t)cur.ref, cur.n, &ray, &pre, any, &best)) {
+            const cj_bvhw_tris *pk =
+                (const cj_bvhw_tris *)(const void *)(w->lines + 64 * (size_t) ~(uint32_t)cur.ref);
+            if (mesh_leaf(pk, cur.n, &ray, &tr, any, &best)) {
                 found = 1;
                 if (any) break;
                 tmax_f = cj_f32_up(ray.tmax);
@@ -217,7 +242,7 @@ done:
     }
     if (found && !any) {
         double v[9];
-        cj_bvh4_tris_lane(best.pk, best.lane, v);
+        cj_bvhw_tris_lane(best.pk, best.lane, v);
         cj_tri_fill(cj_v3(v[0], v[1], v[2]), cj_v3(v[3], v[4], v[5]), cj_v3(v[6], v[7], v[8]),
                     best.t, best.e, best.det, hit);
         hit->prim = best.pk->idx[best.lane];
@@ -268,7 +293,7 @@ cj_status cj_bvh_mesh_build(const double *positions, size_t vertex_count, const 
             memcpy(b->tri + 9 * i + 3 * c, positions + 3 * (size_t)tris[3 * (size_t)t + c],
                    3 * sizeof(double));
     }
-    st = cj_bvh4_pack_triangles(b);
+    st = cj_bvhw_pack_triangles(b);
     if (st != CJ_OK) {
         cj_bvh_destroy(b);
         return st;

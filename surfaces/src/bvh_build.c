@@ -333,7 +333,7 @@ cj_status cj_bvh_build_blocks(const cj_aabb *boxes, size_t count, const cj_alloc
     b->sah_cost = cost_sum / root_area;
     cj_allocator_free(&a, bd.ref);
     cj_allocator_free(&a, stack);
-    const cj_status wst = cj_bvh4_build(b);
+    const cj_status wst = cj_bvhw_build(b);
     if (wst) {
         cj_bvh_destroy(b);
         return wst;

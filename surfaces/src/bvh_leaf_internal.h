@@ -12,23 +12,25 @@
 /* 4 triangles, coordinates per lane: v[3 j + k][lane] is coordinate k of vertex j. idx[lane] is
  * the triangle's index in the mesh (hit->prim); unused lanes hold NaN vertices
  * (never hit: every comparison of a NaN edge value is false) and idx UINT32_MAX. */
-typedef struct cj_bvh4_tris {
+typedef struct cj_bvhw_tris {
     double v[9][4];
     uint32_t idx[4];
     uint32_t pad_[4]; /* 320 bytes: 5 whole cache lines when aligned */
-} cj_bvh4_tris;
+} cj_bvhw_tris;
 
 /* The 9 coordinates of lane l. */
-static inline void cj_bvh4_tris_lane(const cj_bvh4_tris *p, int l, double v[9]) {
-    for (int r = 0; r < 9; ++r) v[r] = p->v[r][l];
+static inline void cj_bvhw_tris_lane(const cj_bvhw_tris *p, int l, double v[9]) {
+    v[0] = p->v[0][l], v[1] = p->v[1][l], v[2] = p->v[2][l];
+    v[3] = p->v[3][l], v[4] = p->v[4][l], v[5] = p->v[5][l];
+    v[6] = p->v[6][l], v[7] = p->v[7][l], v[8] = p->v[8][l];
 }
 
 /* The outcome of one packet: lane bits that hit at t in [tmin, tmax], their t, edge values and
  * sums. */
-typedef struct cj_bvh4_tri_hits {
+typedef struct cj_bvhw_tri_hits {
     int mask;
     double t[4], e0[4], e1[4], e2[4], det[4];
-} cj_bvh4_tri_hits;
+} cj_bvhw_tri_hits;
 
 #if defined(__AVX__) && defined(__FMA__)
 /* cj_tri_edge_fn in 4 lanes: the plain difference where it clears its rounding bound, else
@@ -50,26 +52,59 @@ static inline __m256d cj_tri_edge_fn4(__m256d px, __m256d py, __m256d qx, __m256
 }
 #endif
 
-/* Tests the 4 triangles of p against the ray (pre: its shear, o: its origin). */
-static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
-                                     const cj_ray_tri_pre *pre, cj_bvh4_tri_hits *out) {
-    int mask = 0;
+/* What the packet test needs of the ray, set up once per ray rather than once per packet: the
+ * rows of the packet holding the sheared frame's x', y', z' (kx, ky, kz), and the origin, shear
+ * and interval broadcast to the lanes. */
+typedef struct cj_bvhw_tri_ray {
+    const cj_ray *ray;
+    const cj_ray_tri_pre *pre;
 #if defined(__AVX__) && defined(__FMA__)
-    const int kx = pre->kx, ky = pre->ky, kz = pre->kz;
+    int kx, ky, kz;
+    __m256d ox, oy, oz, sx, sy, sz, tmin, tmax;
+#endif
+} cj_bvhw_tri_ray;
+
+static inline void cj_bvhw_tri_ray_setup(const cj_ray *ray, const cj_ray_tri_pre *pre,
+                                         cj_bvhw_tri_ray *r) {
+    r->ray = ray;
+    r->pre = pre;
+#if defined(__AVX__) && defined(__FMA__)
     const double o[3] = {ray->org.x, ray->org.y, ray->org.z};
-    const __m256d ox = _mm256_set1_pd(o[kx]), oy = _mm256_set1_pd(o[ky]),
-                  oz = _mm256_set1_pd(o[kz]);
-    const __m256d sx = _mm256_set1_pd(pre->sx), sy = _mm256_set1_pd(pre->sy);
-    const __m256d sz = _mm256_set1_pd(pre->sz);
+    r->kx = pre->kx, r->ky = pre->ky, r->kz = pre->kz;
+    r->ox = _mm256_set1_pd(o[pre->kx]);
+    r->oy = _mm256_set1_pd(o[pre->ky]);
+    r->oz = _mm256_set1_pd(o[pre->kz]);
+    r->sx = _mm256_set1_pd(pre->sx);
+    r->sy = _mm256_set1_pd(pre->sy);
+    r->sz = _mm256_set1_pd(pre->sz);
+    r->tmin = _mm256_set1_pd(ray->tmin);
+    r->tmax = _mm256_set1_pd(ray->tmax);
+#endif
+}
+
+/* Tests the 4 triangles of p against the ray of r (set up by cj_bvhw_tri_ray_setup; r->tmax
+ * must follow ray->tmax when the caller shrinks it). */
+static inline __attribute__((always_inline)) void
+cj_bvhw_tris_test_r(const cj_bvhw_tris *p, const cj_bvhw_tri_ray *r, cj_bvhw_tri_hits *out) {
+    int mask = 0;
+    const cj_ray *ray = r->ray;
+    const cj_ray_tri_pre *pre = r->pre;
+#if defined(__AVX__) && defined(__FMA__)
+    const __m256d ox = r->ox, oy = r->oy, oz = r->oz, sx = r->sx, sy = r->sy, sz = r->sz;
     __m256d X[3], Y[3], Z[3];
-    for (int j = 0; j < 3; ++j) {
-        const __m256d a0 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * j + kx]), ox);
-        const __m256d a1 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * j + ky]), oy);
-        const __m256d a2 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * j + kz]), oz);
-        X[j] = _mm256_sub_pd(a0, _mm256_mul_pd(sx, a2));
-        Y[j] = _mm256_sub_pd(a1, _mm256_mul_pd(sy, a2));
-        Z[j] = a2;
-    }
+#define CJ_BVHW_VERTEX(j)                                                                          \
+    do {                                                                                           \
+        const __m256d a0 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * (j) + r->kx]), ox);              \
+        const __m256d a1 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * (j) + r->ky]), oy);              \
+        const __m256d a2 = _mm256_sub_pd(_mm256_loadu_pd(p->v[3 * (j) + r->kz]), oz);              \
+        X[j] = _mm256_sub_pd(a0, _mm256_mul_pd(sx, a2));                                           \
+        Y[j] = _mm256_sub_pd(a1, _mm256_mul_pd(sy, a2));                                           \
+        Z[j] = a2;                                                                                 \
+    } while (0)
+    CJ_BVHW_VERTEX(0);
+    CJ_BVHW_VERTEX(1);
+    CJ_BVHW_VERTEX(2);
+#undef CJ_BVHW_VERTEX
     const __m256d e0 = cj_tri_edge_fn4(X[1], Y[1], X[2], Y[2]);
     const __m256d e1 = cj_tri_edge_fn4(X[2], Y[2], X[0], Y[0]);
     const __m256d e2 = cj_tri_edge_fn4(X[0], Y[0], X[1], Y[1]);
@@ -93,10 +128,9 @@ static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
                                                         _mm256_mul_pd(e1, _mm256_mul_pd(sz, Z[1]))),
                                           _mm256_mul_pd(e2, _mm256_mul_pd(sz, Z[2])));
         const __m256d t = _mm256_div_pd(tsc, det);
-        const __m256d in =
-            _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(det, zero, _CMP_NEQ_OQ),
-                                        _mm256_cmp_pd(t, _mm256_set1_pd(ray->tmin), _CMP_GE_OQ)),
-                          _mm256_cmp_pd(t, _mm256_set1_pd(ray->tmax), _CMP_LE_OQ));
+        const __m256d in = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(det, zero, _CMP_NEQ_OQ),
+                                                       _mm256_cmp_pd(t, r->tmin, _CMP_GE_OQ)),
+                                         _mm256_cmp_pd(t, r->tmax, _CMP_LE_OQ));
         mask = cand & _mm256_movemask_pd(in);
         if (mask) {
             _mm256_storeu_pd(out->t, t);
@@ -111,7 +145,7 @@ static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
         const int l = __builtin_ctz((unsigned)z);
         if (p->idx[l] == UINT32_MAX) continue;
         double t, e[3], det, v[9];
-        cj_bvh4_tris_lane(p, l, v);
+        cj_bvhw_tris_lane(p, l, v);
         if (!cj_tri_core_v(ray, pre, v, &t, e, &det)) continue;
         mask |= 1 << l;
         out->t[l] = t, out->e0[l] = e[0], out->e1[l] = e[1], out->e2[l] = e[2];
@@ -121,7 +155,7 @@ static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
     for (int l = 0; l < 4; ++l) {
         if (p->idx[l] == UINT32_MAX) continue;
         double t, e[3], det, v[9];
-        cj_bvh4_tris_lane(p, l, v);
+        cj_bvhw_tris_lane(p, l, v);
         if (!cj_tri_core_v(ray, pre, v, &t, e, &det)) continue;
         mask |= 1 << l;
         out->t[l] = t, out->e0[l] = e[0], out->e1[l] = e[1], out->e2[l] = e[2];
@@ -129,6 +163,14 @@ static inline void cj_bvh4_tris_test(const cj_bvh4_tris *p, const cj_ray *ray,
     }
 #endif
     out->mask = mask;
+}
+
+/* The same for one packet on its own (the tests compare it with the scalar test). */
+static inline void cj_bvhw_tris_test(const cj_bvhw_tris *p, const cj_ray *ray,
+                                     const cj_ray_tri_pre *pre, cj_bvhw_tri_hits *out) {
+    cj_bvhw_tri_ray r;
+    cj_bvhw_tri_ray_setup(ray, pre, &r);
+    cj_bvhw_tris_test_r(p, &r, out);
 }
 
 #endif

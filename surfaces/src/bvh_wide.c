@@ -1,5 +1,5 @@
-/* The 4-wide BVH that traversal walks: collapsed from the binary SAH tree, and
- * its 4-box slab test (bvh_internal.h), boxes rounded outward to float. */
+/* The 8-wide BVH that traversal walks: collapsed from the binary SAH tree, and
+ * its 8-box slab test (bvh_internal.h), boxes rounded outward to float. */
 #include "bvh_internal.h"
 #include "bvh_leaf_internal.h"
 #include "alloc_internal.h"
@@ -18,16 +18,19 @@ static double box_area(const cj_aabb *b) {
     return dx >= 0.0 && dy >= 0.0 && dz >= 0.0 ? dx * dy + dy * dz + dz * dx : 0.0;
 }
 
-cj_status cj_bvh4_build(cj_bvh *bvh) {
+cj_status cj_bvhw_build(cj_bvh *bvh) {
     cj_allocator *a = &bvh->alloc_;
+    /* the walks' stacks hold at most CJ_BVHW_W - 1 entries per level of a path, and a wide path
+     * is never longer than a binary one (the builder keeps that below DEEP_SPLIT + 33) */
+    if (bvh->depth > CJ_BVHW_MAX_DEPTH)
+        return cj_fail(CJ_ERR_CAP, "BVH: depth %d exceeds %d", bvh->depth, CJ_BVHW_MAX_DEPTH);
     const size_t cap = bvh->node_count; /* each wide node consumes >= 1 binary inner node */
-    cj_bvh4 *w = cj_allocator_alloc(a, sizeof *w);
+    cj_bvhw *w = cj_allocator_alloc(a, sizeof *w);
     if (!w) return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for the wide nodes");
-    /* 128-byte aligned: a node is one aligned pair of cache lines, which the processor's
-     * adjacent-line prefetch fetches together */
-    w->nodes_mem_ = cj_allocator_alloc(a, cap * sizeof *w->nodes + 127);
-    w->nodes = align_up(w->nodes_mem_, 128);
-    w->tris_mem_ = NULL;
+    /* 64-byte aligned: a node is four whole cache lines */
+    w->nodes_mem_ = cj_allocator_alloc(a, cap * sizeof *w->nodes + 63);
+    w->nodes = align_up(w->nodes_mem_, 64);
+    w->lines_mem_ = NULL;
     uint32_t *todo = cj_allocator_alloc(a, 2 * cap * sizeof *todo);
     if (!w->nodes_mem_ || !todo) {
         cj_allocator_free(a, w->nodes_mem_);
@@ -41,7 +44,7 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
     todo[ntodo++] = 0;
     while (ntodo > 0) {
         const uint32_t b = todo[--ntodo], wi = todo[--ntodo];
-        uint32_t kids[4];
+        uint32_t kids[CJ_BVHW_W];
         int nk = 0;
         const cj_bvh_node *bn = &bvh->nodes[b];
         if (bn->count) {
@@ -50,7 +53,7 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
             kids[nk++] = bn->first;
             kids[nk++] = bn->first + 1;
         }
-        while (nk < 4) { /* open the inner child with the largest area */
+        while (nk < CJ_BVHW_W) { /* open the inner child with the largest area */
             int best = -1;
             double best_area = -1.0;
             for (int i = 0; i < nk; ++i) {
@@ -63,11 +66,11 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
             kids[best] = bvh->nodes[open].first;
             kids[nk++] = bvh->nodes[open].first + 1;
         }
-        cj_bvh4_node *wn = &w->nodes[wi];
+        cj_bvhw_node *wn = &w->nodes[wi];
         memset(wn, 0, sizeof *wn);
         wn->count = nk;
         wn->valid = (1 << nk) - 1;
-        for (int i = 0; i < 4; ++i) {
+        for (int i = 0; i < CJ_BVHW_W; ++i) {
             for (int k = 0; k < 3; ++k) {
                 wn->b[2 * k][i] = INFINITY;
                 wn->b[2 * k + 1][i] = -INFINITY;
@@ -89,8 +92,8 @@ cj_status cj_bvh4_build(cj_bvh *bvh) {
         }
     }
     w->count = nw;
-    w->tris = NULL;
-    w->tris_count = 0;
+    w->lines = NULL;
+    w->line_count = w->tris_count = 0;
     cj_allocator_free(a, todo);
     bvh->wide_ = w;
     return CJ_OK;
@@ -106,46 +109,79 @@ static int degenerate(const double *v) {
     return e01 || e12 || e20;
 }
 
-cj_status cj_bvh4_pack_triangles(cj_bvh *bvh) {
-    cj_bvh4 *w = bvh->wide_;
+/* One leaf: its n triangles from position `first` of the tree order, into packets p[0..]. */
+static void pack_leaf(const cj_bvh *bvh, uint32_t first, uint32_t n, cj_bvhw_tris *p) {
+    for (uint32_t j = 0; j < n; j += 4, ++p) {
+        memset(p->pad_, 0, sizeof p->pad_);
+        for (int l = 0; l < 4; ++l) {
+            const size_t at_i = first + j + (uint32_t)l;
+            int used = j + (uint32_t)l < n;
+            if (used && degenerate(bvh->tri + 9 * at_i)) used = 0;
+            p->idx[l] = used ? bvh->prims[at_i] : UINT32_MAX;
+            for (int r = 0; r < 9; ++r) p->v[r][l] = used ? bvh->tri[9 * at_i + (size_t)r] : NAN;
+        }
+    }
+}
+
+#define NODE_LINES   (sizeof(cj_bvhw_node) / 64)
+#define PACKET_LINES (sizeof(cj_bvhw_tris) / 64)
+_Static_assert(sizeof(cj_bvhw_tris) % 64 == 0, "a packet is whole cache lines");
+
+cj_status cj_bvhw_pack_triangles(cj_bvh *bvh) {
+    cj_bvhw *w = bvh->wide_;
     size_t np = 0;
     for (size_t n = 0; n < w->count; ++n)
         for (int i = 0; i < w->nodes[n].count; ++i)
             if (w->nodes[n].child[i] < 0) np += (w->nodes[n].nprim[i] + 3u) / 4u;
-    w->tris_mem_ = cj_allocator_alloc(&bvh->alloc_, np * sizeof *w->tris + 63);
-    w->tris = align_up(w->tris_mem_, 64);
-    if (!w->tris_mem_)
+    const size_t lines = w->count * NODE_LINES + np * PACKET_LINES;
+    if (lines > (size_t)INT32_MAX)
+        return cj_fail(CJ_ERR_CAP, "BVH: %zu wide nodes and %zu packets exceed 2^31 lines",
+                       w->count, np);
+    /* pending nodes: (wide node, line of its parent, slot in the parent) */
+    uint32_t *todo = cj_allocator_alloc(&bvh->alloc_, 3 * w->count * sizeof *todo);
+    w->lines_mem_ = cj_allocator_alloc(&bvh->alloc_, lines * 64 + 63);
+    w->lines = align_up(w->lines_mem_, 64);
+    if (!w->lines_mem_ || !todo) {
+        cj_allocator_free(&bvh->alloc_, todo);
         return cj_fail(CJ_ERR_NOMEM, "BVH: out of memory for %zu triangle packets", np);
+    }
+    w->line_count = lines;
     w->tris_count = np;
-    size_t at = 0;
-    for (size_t n = 0; n < w->count; ++n) {
-        cj_bvh4_node *wn = &w->nodes[n];
+    size_t at = 0, ntodo = 0;
+    todo[ntodo++] = 0, todo[ntodo++] = UINT32_MAX, todo[ntodo++] = 0;
+    while (ntodo > 0) { /* depth first: a node, its leaves, then its inner children in order */
+        const uint32_t slot = todo[--ntodo], parent = todo[--ntodo], n = todo[--ntodo];
+        cj_bvhw_node *wn = (cj_bvhw_node *)(void *)(w->lines + 64 * at);
+        *wn = w->nodes[n];
+        const uint32_t line = (uint32_t)at;
+        if (parent != UINT32_MAX)
+            ((cj_bvhw_node *)(void *)(w->lines + 64 * (size_t)parent))->child[slot] = (int32_t)line;
+        at += NODE_LINES;
         for (int i = 0; i < wn->count; ++i) {
             if (wn->child[i] >= 0) continue;
             const uint32_t first = ~(uint32_t)wn->child[i];
             wn->child[i] = ~(int32_t)at;
-            for (uint32_t j = 0; j < wn->nprim[i]; j += 4, ++at) {
-                cj_bvh4_tris *p = &w->tris[at];
-                memset(p->pad_, 0, sizeof p->pad_);
-                for (int l = 0; l < 4; ++l) {
-                    int used = j + (uint32_t)l < wn->nprim[i];
-                    if (used && degenerate(bvh->tri + 9 * (size_t)(first + j + (uint32_t)l)))
-                        used = 0;
-                    const size_t at_i = first + j + (uint32_t)l;
-                    p->idx[l] = used ? bvh->prims[at_i] : UINT32_MAX;
-                    for (int r = 0; r < 9; ++r)
-                        p->v[r][l] = used ? bvh->tri[9 * at_i + (size_t)r] : NAN;
-                }
-            }
+            pack_leaf(bvh, first, wn->nprim[i], (cj_bvhw_tris *)(void *)(w->lines + 64 * at));
+            at += PACKET_LINES * ((wn->nprim[i] + 3u) / 4u);
         }
+        for (int i = wn->count - 1; i >= 0; --i) /* reversed: the first child comes out first */
+            if (wn->child[i] >= 0) {
+                todo[ntodo++] = (uint32_t)wn->child[i];
+                todo[ntodo++] = line;
+                todo[ntodo++] = (uint32_t)i;
+            }
     }
+    cj_allocator_free(&bvh->alloc_, todo);
+    cj_allocator_free(&bvh->alloc_, w->nodes_mem_);
+    w->nodes_mem_ = NULL;
+    w->nodes = NULL;
     return CJ_OK;
 }
 
-void cj_bvh4_destroy(cj_bvh *bvh) {
-    cj_bvh4 *w = bvh->wide_;
+void cj_bvhw_destroy(cj_bvh *bvh) {
+    cj_bvhw *w = bvh->wide_;
     if (!w) return;
-    cj_allocator_free(&bvh->alloc_, w->tris_mem_);
+    cj_allocator_free(&bvh->alloc_, w->lines_mem_);
     cj_allocator_free(&bvh->alloc_, w->nodes_mem_);
     cj_allocator_free(&bvh->alloc_, w);
     bvh->wide_ = NULL;

@@ -5,27 +5,8 @@
 
 #include <math.h>
 
-static inline double comp(cj_vec3 a, int k) {
-    return k == 0 ? a.x : (k == 1 ? a.y : a.z);
-}
-
 void cj_ray_triangle_prepare(const cj_ray *ray, cj_ray_tri_pre *pre) {
-    double ax = fabs(ray->dir.x), ay = fabs(ray->dir.y), az = fabs(ray->dir.z);
-    int kz = (ax > ay) ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
-    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
-    /* Keep the (x', y', z') frame right-handed so triangles keep their winding. */
-    if (comp(ray->dir, kz) < 0.0) {
-        int tmp = kx;
-        kx = ky;
-        ky = tmp;
-    }
-    double dz = comp(ray->dir, kz);
-    pre->kx = kx;
-    pre->ky = ky;
-    pre->kz = kz;
-    pre->sx = comp(ray->dir, kx) / dz;
-    pre->sy = comp(ray->dir, ky) / dz;
-    pre->sz = 1.0 / dz;
+    cj_tri_prepare(ray, pre);
 }
 
 int cj_ray_triangle_pre(const cj_ray *ray, const cj_ray_tri_pre *pre, cj_vec3 v0, cj_vec3 v1,

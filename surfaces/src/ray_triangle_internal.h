@@ -8,6 +8,28 @@
 
 #include <math.h>
 
+/* The per-ray set-up of the watertight test (cj_ray_triangle_prepare), inline for the BVH walk:
+ * z' is the direction's largest coordinate, the (x', y', z') frame kept right-handed so that
+ * triangles keep their winding; the shear takes the direction to +z'. */
+static inline void cj_tri_prepare(const cj_ray *ray, cj_ray_tri_pre *pre) {
+    const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
+    const double ax = fabs(d[0]), ay = fabs(d[1]), az = fabs(d[2]);
+    const int kz = (ax > ay) ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    if (d[kz] < 0.0) {
+        const int tmp = kx;
+        kx = ky;
+        ky = tmp;
+    }
+    const double dz = d[kz];
+    pre->kx = kx;
+    pre->ky = ky;
+    pre->kz = kz;
+    pre->sx = d[kx] / dz;
+    pre->sy = d[ky] / dz;
+    pre->sz = 1.0 / dz;
+}
+
 /* px*qy − py*qx with the exact sign: the plain product difference when it exceeds its rounding
  * bound, else Kahan's fma form (w = py*qx, e = w − py*qx exactly, f = px*qy − w rounded once:
  * f + e has relative error <= 2u, so its sign is exact, and it is exactly 0 when px qy = py qx). */

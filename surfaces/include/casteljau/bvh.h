@@ -13,25 +13,28 @@
  * primitive order is the permutation `prims` (leaf k holds prims[first .. first+count-1]).
  * Build is O(n log n).
  *
- * TRAVERSAL. The binary tree is collapsed into a 4-wide one (each wide node takes a node's
- * children, then the children of its largest inner child, up to 4). The 4 child boxes are
+ * TRAVERSAL. The binary tree is collapsed into an 8-wide one (each wide node takes a node's
+ * children, then the children of its largest inner child, up to 8). The 8 child boxes are
  * stored in float, rounded OUTWARD from the double boxes, and one visit tests the ray against
- * all 4 at once (SSE) with a float slab test whose origin rounding is directed and whose
+ * all 8 at once (AVX) with a float slab test whose origin rounding is directed and whose
  * entry/exit are padded so that it provably reports every box the ray meets in exact
  * arithmetic (the proof is in surfaces/src/bvh_internal.h; test_bvh_float checks it against
  * rational arithmetic). A box is entered at worst slightly early, never missed, so the hits
  * found are exactly those of an exact walk. Closest hit descends into the nearest met child and
- * pushes the others farthest first, skipping boxes beyond the best hit so far, so a ray costs
- * O(log n) box tests on well-distributed scenes; any hit (shadow rays) stops at the first hit.
- * Statistics count the boxes tested (the used slots of each visited wide node).
+ * pushes the others farthest first (prefetching them), skipping boxes beyond the best hit so
+ * far, so a ray costs O(log n) box tests on well-distributed scenes; any hit (shadow rays) stops
+ * at the first hit. Statistics count the boxes tested (the used slots of each visited wide node)
+ * and the triangles (or primitives) of the leaves tested.
  *
  * Primitives are intersected by a callback, or by the built-in watertight triangle test of
  * cj_bvh_mesh_* : the triangles of each leaf are stored in packets of 4 (double coordinates,
  * one lane per triangle) and tested together in AVX lanes with exactly the scalar test's
  * arithmetic, so each answer, and the hit record filled once for the closest, is bit-identical
- * to cj_ray_triangle on that triangle. The vertex positions are also kept in `tri` in tree
- * order. Nothing in traversal allocates; a BVH is read-only after build and may be shared by
- * threads.
+ * to cj_ray_triangle on that triangle. A mesh BVH stores its wide nodes and packets in one
+ * array, depth first, each node followed by its leaves' packets. The vertex positions are also
+ * kept in `tri` in tree order. Nothing in traversal allocates; a BVH is read-only after build
+ * and may be shared by threads. Of triangles hit at exactly the same t (coincident
+ * triangles), which one is reported depends on the walk's order.
  *
  * Status codes: CJ_ERR_EMPTY (no primitives), CJ_ERR_NONFINITE (a box with a NaN, named),
  * CJ_ERR_CAP (more than 2^31 primitives), CJ_ERR_NOMEM, CJ_ERR_RANGE (a triangle index out of
@@ -66,7 +69,7 @@ typedef struct cj_bvh {
     double *tri;
     /* private */
     cj_allocator alloc_;
-    void *wide_; /* the 4-wide form traversal walks (bvh_wide.c) */
+    void *wide_; /* the 8-wide form traversal walks (bvh_wide.c) */
 } cj_bvh;
 
 /* Builds a BVH over `count` boxes (empty boxes are allowed and never hit). alloc may be NULL. */
@@ -83,7 +86,8 @@ typedef struct cj_bvh_trav_stats {
  * fills *hit when it is hit at t in [tmin, tmax], else 0. */
 typedef int (*cj_bvh_prim_fn)(void *user, uint32_t prim, const cj_ray *ray, cj_hit *hit);
 
-/* Closest hit along the ray: 1 and *hit (hit->prim = the primitive index) if any. */
+/* Closest hit along the ray: 1 and *hit (hit->prim = the primitive index) if any. For a BVH of
+ * cj_bvh_build only (a mesh BVH's leaves hold its triangles: cj_bvh_mesh_closest). */
 int cj_bvh_closest(const cj_bvh *bvh, const cj_ray *ray, cj_bvh_prim_fn fn, void *user, cj_hit *hit,
                    cj_bvh_trav_stats *stats);
 /* Any hit in [tmin, tmax] (occlusion): 1 as soon as one is found. */
