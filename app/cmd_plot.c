@@ -215,9 +215,11 @@ int cmd_plot(int argc, char **argv) {
         return CLI_EXIT_USAGE;
     }
     cj_plot_doc doc;
-    int rc = cj_plot_json_parse(demo ? demo_json : text, &doc, why, sizeof why);
+    st = cj_plot_json_parse(demo ? "demo" : input, demo ? demo_json : text, &doc);
     free(text);
-    if (rc) return cli_fail("plot", "%s: %s", demo ? "demo" : input, why);
+    if (st)
+        return st == CJ_ERR_NOMEM ? cli_error("plot", "%s", cj_last_error())
+                                  : cli_fail("plot", "%s", cj_last_error());
     if (width) doc.width = width;
     if (height) doc.height = height;
 

@@ -6,6 +6,9 @@
  * list, and a table sorted by node address finds it. The success path pays nothing. */
 #include "json_read_internal.h"
 
+#include "json_depth_internal.h"
+#include "json_write_internal.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -190,6 +193,27 @@ void cj_json_doc_free(cj_json_doc *d) {
     d->lines->scanned = 0;
 }
 
+cj_status cj_json_parse(const char *name, const char *text, cJSON **root) {
+    const char *end = NULL;
+    *root = cJSON_ParseWithOpts(text, &end, 1);
+    if (*root) return CJ_OK;
+    if (!end) end = cJSON_GetErrorPtr();
+    if (!end) return cj_fail(CJ_ERR_NOMEM, "%s: out of memory parsing JSON", name);
+    int line = 1, col = 1;
+    for (const char *p = text; p < end && *p; ++p) {
+        if (*p == '\n')
+            line++, col = 1;
+        else
+            col++;
+    }
+    if (cj_json_depth_at_(text, end) >= CJSON_NESTING_LIMIT)
+        return cj_fail(CJ_ERR_PARSE,
+                       "%s:%d:%d: JSON nested deeper than %d levels (the reader's limit)", name,
+                       line, col, CJSON_NESTING_LIMIT);
+    return cj_fail(CJ_ERR_PARSE, "%s:%d:%d: JSON syntax error (line %d, column %d)", name, line,
+                   col, line, col);
+}
+
 /* ---- messages ------------------------------------------------------------------------------- */
 
 cj_status cj_json_fail(const cj_json_doc *c, const cJSON *node, int at_key, cj_status st,
@@ -302,8 +326,10 @@ static cj_status check_range(const cj_json_doc *c, const cJSON *n, const char *p
         snprintf(what, sizeof what, "in (%g, %g)", lo, hi);
         break;
     }
-    if (!ok) return cj_json_fail(c, n, 0, CJ_ERR_RANGE, "%s must be %s", p, what);
-    return CJ_OK;
+    if (ok) return CJ_OK;
+    char given[CJ_JSON_NUMBER_MAX];
+    cj_json_number_text(v, given);
+    return cj_json_fail(c, n, 0, CJ_ERR_RANGE, "%s must be %s, not %s", p, what, given);
 }
 
 static cj_status number_node(const cj_json_doc *c, const cJSON *n, const char *p, double *v) {
@@ -316,17 +342,54 @@ static cj_status number_node(const cj_json_doc *c, const cJSON *n, const char *p
     return CJ_OK;
 }
 
+cj_status cj_json_number_at(const cj_json_doc *c, const cJSON *n, const char *path, cj_json_range r,
+                            double lo, double hi, double *out) {
+    double v = 0.0;
+    cj_status st = number_node(c, n, path, &v);
+    if (!st) st = check_range(c, n, path, r, lo, hi, v);
+    if (!st) *out = v;
+    return st;
+}
+
+cj_status cj_json_int_at(const cj_json_doc *c, const cJSON *n, const char *path, double lo,
+                         double hi, int *out) {
+    double v;
+    cj_status st = number_node(c, n, path, &v);
+    if (st) return st;
+    if (v != floor(v)) {
+        char given[CJ_JSON_NUMBER_MAX];
+        cj_json_number_text(v, given);
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be an integer, not %s", path, given);
+    }
+    st = check_range(c, n, path, CJ_JSON_IN, lo, hi, v);
+    if (!st) *out = (int)v;
+    return st;
+}
+
+cj_status cj_json_bool_at(const cj_json_doc *c, const cJSON *n, const char *path, int *out) {
+    if (!cJSON_IsBool(n))
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be true or false, not %s", path,
+                            cj_json_type_name(n));
+    *out = cJSON_IsTrue(n) ? 1 : 0;
+    return CJ_OK;
+}
+
+cj_status cj_json_string_at(const cj_json_doc *c, const cJSON *n, const char *path,
+                            const char **out) {
+    if (!cJSON_IsString(n))
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be a string, not %s", path,
+                            cj_json_type_name(n));
+    *out = n->valuestring;
+    return CJ_OK;
+}
+
 cj_status cj_json_num(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
                       cj_json_range r, double lo, double hi, double *out) {
     const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
     if (!n) return CJ_OK;
     char p[CJ_JSON_PATH];
     cj_json_join(p, path, key);
-    double v;
-    cj_status st = number_node(c, n, p, &v);
-    if (!st) st = check_range(c, n, p, r, lo, hi, v);
-    if (!st) *out = v;
-    return st;
+    return cj_json_number_at(c, n, p, r, lo, hi, out);
 }
 
 cj_status cj_json_int(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
@@ -335,34 +398,28 @@ cj_status cj_json_int(const cj_json_doc *c, const cJSON *obj, const char *path, 
     if (!n) return CJ_OK;
     char p[CJ_JSON_PATH];
     cj_json_join(p, path, key);
-    double v;
-    cj_status st = number_node(c, n, p, &v);
-    if (st) return st;
-    if (v != floor(v)) return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be an integer", p);
-    st = check_range(c, n, p, CJ_JSON_IN, lo, hi, v);
-    if (!st) *out = (int)v;
-    return st;
+    return cj_json_int_at(c, n, p, lo, hi, out);
 }
 
 cj_status cj_json_bool(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
                        int *out) {
     const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
     if (!n) return CJ_OK;
-    if (!cJSON_IsBool(n)) {
-        char p[CJ_JSON_PATH];
-        cj_json_join(p, path, key);
-        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be true or false, not %s", p,
-                            cj_json_type_name(n));
-    }
-    *out = cJSON_IsTrue(n) ? 1 : 0;
-    return CJ_OK;
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, key);
+    return cj_json_bool_at(c, n, p, out);
 }
 
 /* A fixed-length array of numbers at node n. */
 static cj_status fixed_array(const cj_json_doc *c, const cJSON *n, const char *p, int len,
                              double *v, const char *what) {
-    if (!cJSON_IsArray(n) || cJSON_GetArraySize(n) != len)
-        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be %s", p, what);
+    if (!cJSON_IsArray(n) || cJSON_GetArraySize(n) != len) {
+        if (cJSON_IsArray(n))
+            return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be %s, not %d", p, what,
+                                cJSON_GetArraySize(n));
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be %s, not %s", p, what,
+                            cj_json_type_name(n));
+    }
     int k = 0;
     for (const cJSON *e = n->child; e; e = e->next, ++k) {
         char pe[CJ_JSON_PATH];
@@ -371,6 +428,13 @@ static cj_status fixed_array(const cj_json_doc *c, const cJSON *n, const char *p
         if (st) return st;
     }
     return CJ_OK;
+}
+
+cj_status cj_json_array_at(const cj_json_doc *c, const cJSON *n, const char *path, int len,
+                           double *out) {
+    char what[48];
+    snprintf(what, sizeof what, "an array of %d numbers", len);
+    return fixed_array(c, n, path, len, out, what);
 }
 
 cj_status cj_json_vec3(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
@@ -410,14 +474,9 @@ cj_status cj_json_string(const cj_json_doc *c, const cJSON *obj, const char *pat
                          const char **out) {
     const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
     if (!n) return CJ_OK;
-    if (!cJSON_IsString(n)) {
-        char p[CJ_JSON_PATH];
-        cj_json_join(p, path, key);
-        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be a string, not %s", p,
-                            cj_json_type_name(n));
-    }
-    *out = n->valuestring;
-    return CJ_OK;
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, key);
+    return cj_json_string_at(c, n, p, out);
 }
 
 cj_status cj_json_enum(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
@@ -443,13 +502,22 @@ cj_status cj_json_enum(const cj_json_doc *c, const cJSON *obj, const char *path,
                         "%s \"%s\" is not one of %s", p, s, list);
 }
 
-cj_status cj_json_numbers(const cj_json_doc *c, const cJSON *arr, const char *path, int dim,
-                          cj_json_range r, double lo, size_t want, double **out, size_t *count) {
+/* The numbers of arr: exactly `want` entries when want > 0, else at least `min` (min 1: "must
+ * not be empty"). */
+static cj_status numbers(const cj_json_doc *c, const cJSON *arr, const char *path, int dim,
+                         cj_json_range r, double lo, size_t min, size_t want, double **out,
+                         size_t *count) {
     if (!cJSON_IsArray(arr))
         return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must be an array, not %s", path,
                             cj_json_type_name(arr));
     size_t n = (size_t)cJSON_GetArraySize(arr);
-    if (n == 0) return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must not be empty", path);
+    if (n == 0 && min <= 1)
+        return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must not be empty", path);
+    if (!want && n < min) {
+        const char *noun = dim > 0 ? "point" : "number";
+        return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s has %zu %s%s, at least %zu needed", path,
+                            n, noun, n == 1 ? "" : "s", min);
+    }
     if (want && n != want)
         return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must have %zu entries, not %zu", path,
                             want, n);
@@ -493,6 +561,17 @@ cj_status cj_json_numbers(const cj_json_doc *c, const cJSON *arr, const char *pa
     return CJ_OK;
 }
 
+cj_status cj_json_numbers(const cj_json_doc *c, const cJSON *arr, const char *path, int dim,
+                          cj_json_range r, double lo, size_t want, double **out, size_t *count) {
+    return numbers(c, arr, path, dim, r, lo, 1, want, out, count);
+}
+
+cj_status cj_json_numbers_at_least(const cj_json_doc *c, const cJSON *arr, const char *path,
+                                   int dim, cj_json_range r, double lo, size_t min, double **out,
+                                   size_t *count) {
+    return numbers(c, arr, path, dim, r, lo, min, 0, out, count);
+}
+
 /* An angle given as key_deg or key_rad (not both), converted to radians. */
 cj_status cj_json_angle(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
                         cj_json_range r, double lo_rad, double hi_rad, double *out) {
@@ -515,7 +594,9 @@ cj_status cj_json_angle(const cj_json_doc *c, const cJSON *obj, const char *path
 }
 
 cj_status cj_json_list(const cj_json_doc *c, const cJSON *arr, const char *p) {
-    if (!cJSON_IsArray(arr)) return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must be an array", p);
+    if (!cJSON_IsArray(arr))
+        return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must be an array, not %s", p,
+                            cj_json_type_name(arr));
     return CJ_OK;
 }
 
