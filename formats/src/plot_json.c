@@ -352,12 +352,9 @@ static int is_chart(const cJSON *obj) {
 
 cj_status cj_plot_json_parse(const char *name, const char *text, cj_plot_doc *doc) {
     memset(doc, 0, sizeof *doc);
-    if (!name) name = "<plot>";
-    cJSON *root = NULL;
-    CJ_JSON_TRY(cj_json_parse(name, text, &root));
     pj_ctx c;
-    memset(&c, 0, sizeof c);
-    cj_json_doc_init(&c.doc, &c.lines, name, text, root);
+    cJSON *root = NULL;
+    CJ_JSON_TRY(pj_open(&c, name, text, &root));
     int rc = -1;
     static const char *const single[] = {"width",  "height", "background", "title", "axes",
                                          "margin", "view",   "items",      NULL};
@@ -442,9 +439,7 @@ cj_status cj_plot_json_parse(const char *name, const char *text, cj_plot_doc *do
     rc = 0;
 done:
     if (rc) cj_plot_doc_free(doc);
-    cj_json_doc_free(&c.doc);
-    cJSON_Delete(root);
-    return rc ? pj_status(rc) : CJ_OK;
+    return pj_close(&c, root, rc);
 }
 
 const char *cj_plot_doc_where(cj_plot_doc *doc) {

@@ -253,16 +253,10 @@ cj_status cj_plot_json_read_page(const char *name, const char *text, cj_plot_jso
     page->background = cj_rgba_make(255, 255, 255, 255);
     page->axes = 1;
     page->margin = 12.0;
-    if (!name) name = "<plot>";
-    cJSON *root = NULL;
-    CJ_JSON_TRY(cj_json_parse(name, text, &root));
     pj_ctx c;
-    memset(&c, 0, sizeof c);
-    cj_json_doc_init(&c.doc, &c.lines, name, text, root);
+    cJSON *root = NULL;
+    CJ_JSON_TRY(pj_open(&c, name, text, &root));
     const int rc = read_page(&c, root, page);
-    const cj_status st = rc ? pj_status(rc) : CJ_OK;
-    cj_json_doc_free(&c.doc);
-    cJSON_Delete(root);
-    if (st) cj_plot_json_page_free(page);
-    return st;
+    if (rc) cj_plot_json_page_free(page);
+    return pj_close(&c, root, rc);
 }

@@ -31,9 +31,11 @@ int pj_parse_color(pj_ctx *c, const cJSON *v, const char *path, cj_rgba *out);
  * against the document's PLOT_JSON_MAX_POINTS. */
 int pj_parse_points(pj_ctx *c, const cJSON *v, const char *path, size_t min_count, double **out,
                     size_t *count);
-/* The status of a reader's nonzero result: the kit's status when it came straight from one,
- * else CJ_ERR_PARSE (the message in cj_last_error() is exact either way). */
-cj_status pj_status(int rc);
+/* Parses text, the document `name` (NULL: "<plot>"), into *root and readies c for reading it;
+ * pj_close(c, root, rc) ends the reading and returns the status of the readers' result rc: 0 is
+ * CJ_OK, a kit's status stays, -1 is CJ_ERR_PARSE (cj_last_error() is exact either way). */
+cj_status pj_open(pj_ctx *c, const char *name, const char *text, cJSON **root);
+cj_status pj_close(pj_ctx *c, cJSON *root, int rc);
 /* After a library call refused what the document gave: fails at node with "path:
  * <cj_last_error()>" (CJ_ERR_PARSE: the document is refused). */
 int pj_lib_fail(pj_ctx *c, const cJSON *node, const char *path);

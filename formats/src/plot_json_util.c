@@ -79,8 +79,18 @@ int pj_parse_points(pj_ctx *c, const cJSON *v, const char *path, size_t min_coun
     return 0;
 }
 
-cj_status pj_status(int rc) {
-    return rc > 0 ? (cj_status)rc : CJ_ERR_PARSE;
+cj_status pj_open(pj_ctx *c, const char *name, const char *text, cJSON **root) {
+    memset(c, 0, sizeof *c);
+    if (!name) name = "<plot>";
+    CJ_JSON_TRY(cj_json_parse(name, text, root));
+    cj_json_doc_init(&c->doc, &c->lines, name, text, *root);
+    return CJ_OK;
+}
+
+cj_status pj_close(pj_ctx *c, cJSON *root, int rc) {
+    cj_json_doc_free(&c->doc);
+    cJSON_Delete(root);
+    return rc > 0 ? (cj_status)rc : rc ? CJ_ERR_PARSE : CJ_OK;
 }
 
 int pj_lib_fail(pj_ctx *c, const cJSON *node, const char *path) {

@@ -48,7 +48,8 @@ static const bad_case BAD[] = {
     /* camera */
     {OBJ1 "\"camera\": {\"eye\": [0, 0]}}", CJ_ERR_PARSE,
      "scene.json:2: camera.eye must be an array of 3 numbers, not 2"},
-    {OBJ1 "\"camera\": {\n\"near\": 0.1}}", CJ_ERR_RANGE, "scene.json:3: camera.near must be < 0, not 0.1"},
+    {OBJ1 "\"camera\": {\n\"near\": 0.1}}", CJ_ERR_RANGE,
+     "scene.json:3: camera.near must be < 0, not 0.1"},
     {OBJ1 "\"camera\": {\"near\": -1,\n\n \"far\": -0.5}}", CJ_ERR_RANGE,
      "scene.json:4: camera.far must be < -1, not -0.5"},
     {OBJ1 "\"camera\": {\"gaze\": [0, 0, -1],\n \"look_at\": [0, 0, 0]}}", CJ_ERR_PARSE,
