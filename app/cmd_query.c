@@ -77,42 +77,11 @@ typedef struct qcurve {
 } qcurve;
 
 static char *read_all(const char *cmd, const char *path, int *rc) {
-    char q[160];
-    if (strcmp(path, "-")) { /* a file: regular, capped, logged as an input (file_internal.h) */
-        char *data = NULL;
-        size_t size = 0;
-        const cj_status st = cj_file_read_all(path, QUERY_MAX_BYTES, "document", &data, &size);
-        if (st) *rc = cli_fail_status(cmd, st, "%s", cj_last_error());
-        return st ? NULL : data;
-    }
-    FILE *f = stdin;
-    if (!f) {
-        *rc = cli_fail(cmd, "cannot open '%s'", cli_quote(path, q, sizeof q));
-        return NULL;
-    }
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n - 1, f);
-        if (ferror(f) || n > QUERY_MAX_BYTES) break;
-        if (feof(f)) {
-            buf[n] = '\0';
-            if (f != stdin) fclose(f);
-            return buf;
-        }
-        if (n + 1 < cap) continue;
-        char *nb = realloc(buf, cap * 2);
-        if (!nb) free(buf);
-        buf = nb;
-        cap *= 2;
-    }
-    int oom = buf == NULL;
-    free(buf);
-    if (f != stdin) fclose(f);
-    *rc = oom ? cli_error(cmd, "out of memory reading '%s'", cli_quote(path, q, sizeof q))
-              : cli_fail(cmd, "cannot read '%s' (or it is larger than 64 MiB)",
-                         cli_quote(path, q, sizeof q));
-    return NULL;
+    char *data = NULL;
+    size_t size = 0;
+    const cj_status st = cj_file_read_input(path, QUERY_MAX_BYTES, "document", &data, &size);
+    if (st) *rc = cli_fail_status(cmd, st, "%s", cj_last_error());
+    return st ? NULL : data;
 }
 
 /* The bezier items of one panel's "items" array. Returns the count, or -1 with a message. */

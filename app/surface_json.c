@@ -22,45 +22,13 @@ static int fail(char *why, size_t n, const char *fmt, ...) {
 }
 
 static char *slurp(const char *path, char *why, size_t n, int *nomem) {
-    if (strcmp(path, "-")) { /* a file: the shared reader (regular, capped, logged as an input) */
-        char *data = NULL;
-        size_t size = 0;
-        const cj_status st =
-            cj_file_read_all(path, SURFACE_JSON_MAX_BYTES, "surface document", &data, &size);
-        *nomem = st == CJ_ERR_NOMEM;
-        if (st) fail(why, n, "%s", cj_last_error());
-        return st ? NULL : data;
-    }
-    FILE *f = stdin;
-    if (!f) {
-        fail(why, n, "cannot open '%s'", path);
-        return NULL;
-    }
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        len += fread(buf + len, 1, cap - len - 1, f);
-        if (ferror(f) || len > SURFACE_JSON_MAX_BYTES) {
-            fail(why, n, "cannot read '%s'%s", path,
-                 len > SURFACE_JSON_MAX_BYTES ? " (larger than 256 MiB)" : "");
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        if (feof(f)) break;
-        if (len + 1 < cap) continue;
-        char *nb = realloc(buf, cap * 2);
-        if (!nb) {
-            free(buf);
-            *nomem = 1;
-            fail(why, n, "out of memory reading '%s'", path);
-        }
-        buf = nb;
-        cap *= 2;
-    }
-    if (f != stdin) fclose(f);
-    if (buf) buf[len] = '\0';
-    return buf;
+    char *data = NULL;
+    size_t size = 0;
+    const cj_status st =
+        cj_file_read_input(path, SURFACE_JSON_MAX_BYTES, "surface document", &data, &size);
+    *nomem = st == CJ_ERR_NOMEM;
+    if (st) fail(why, n, "%s", cj_last_error());
+    return st ? NULL : data;
 }
 
 /* An array of exactly `want` finite numbers (or of `want` triples when triple). */
