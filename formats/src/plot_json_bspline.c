@@ -14,9 +14,9 @@ int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
     static const char *const extra[] = {"color",          "width",        "control_polygon",
                                         "control_points", "knot_markers", NULL};
     cj_bsp_json b;
-    char why[400];
-    if (cj_bsp_json_parse(it, path, extra, PLOT_JSON_MAX_POINTS - c->points, &b, why, sizeof why))
-        return pj_fail(c, it, "%s", why);
+    const cj_status st =
+        cj_bsp_json_parse(&c->doc, it, path, extra, PLOT_JSON_MAX_POINTS - c->points, &b);
+    if (st) return st;
     cj_plot_bspline_opts o = cj_plot_bspline_defaults();
     o.color = color;
     int r = 0;

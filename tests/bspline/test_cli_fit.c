@@ -169,11 +169,11 @@ int main(void) {
          "[0,0,2,1,1]}",
          "0.5", "knot 3"},
         {"{\"type\": \"bspline\", \"degree\": 1, \"points\": [[0],[1]], \"weights\": [1, 0]}",
-         "0.5", "weight 1"},
+         "0.5", "c.json:1: document.weights[1] must be > 0, not 0"},
         {"{\"type\": \"bspline\", \"degree\": 1, \"points\": [[0],[1]]}", "1.5",
          "outside the domain"},
         {"{\"type\": \"bspline\", \"degree\": 1, \"points\": [[0],[1]], \"knot\": [0]}", "0.5",
-         "unknown field \"knot\""},
+         "c.json:1: document.knot is not a known key"},
     };
     char cfile[160];
     snprintf(cfile, sizeof cfile, "%s/c.json", dir);
