@@ -240,8 +240,8 @@ int main(void) {
           f);
     fclose(f);
     snprintf(cmd, sizeof cmd, "'%s' tessellate --surface '%s' -o '%s/s.obj'", CJ_CLI, sfile, dir);
-    CHECK(run(cmd, &r) == 2 && strstr(r.err, "weight (0, 1)"), "negative surface weight: %s",
-          r.err);
+    CHECK(run(cmd, &r) == 2 && strstr(r.err, "surface.json:1: weights[2] must be > 0, not -1"),
+          "negative surface weight: %s", r.err);
     cj_cli_result_free(&r);
     printf("surfaces: fit --grid 8,6 then tessellate --surface meshes 15 patches; a wrong grid "
            "size and a negative surface weight are refused naming them\n");
