@@ -1,4 +1,4 @@
-#define _POSIX_C_SOURCE 200809L /* readlink, clock_gettime */
+#define _POSIX_C_SOURCE 200809L /* readlink */
 #include "cli.h"
 #include "cli_progress.h"
 
@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 /* Escapes control characters (and DEL) so that echoed input cannot break a message's line. */
@@ -97,19 +96,13 @@ const char *cli_quote(const char *s, char *out, size_t out_size) {
 int cli_quiet = 0;
 double cli_started = 0.0;
 
-double cli_now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 const char *cli_version(void) {
     return "casteljau " CJ_VERSION;
 }
 
 void cli_parser_init(cli_parser *p, const char *cmd, const char *usage, int argc, char **argv,
                      const cli_opt *opts, size_t nopts) {
-    cli_started = cli_now();
+    cli_started = cj_clock_seconds();
     p->cmd = cmd;
     p->usage = usage;
     p->argc = argc;

@@ -23,7 +23,7 @@ void cli_progress_begin(cli_progress *p, const char *cmd, const char *unit) {
     p->cmd = cmd;
     p->unit = unit;
     p->shown = !cli_quiet && isatty(2);
-    p->t0 = p->last = cli_now();
+    p->t0 = p->last = cj_clock_seconds();
     interrupted = 0;
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -52,7 +52,7 @@ static void put_duration(char *buf, size_t n, double s) {
 
 int cli_progress_label(cli_progress *p, uint64_t done, uint64_t total, const char *label) {
     if (p->shown && total) {
-        const double now = cli_now();
+        const double now = cj_clock_seconds();
         if (done <= 1 || done >= total || now - p->last >= 0.1) {
             p->last = now;
             const double elapsed = now - p->t0;
@@ -117,7 +117,7 @@ void cli_summary(const char *cmd, const char *what, const char *path, const char
     char size[32] = "", el[32];
     struct stat st;
     if (path && stat(path, &st) == 0) put_size(size, sizeof size, (double)st.st_size);
-    put_duration(el, sizeof el, cli_now() - (t0 < 0 ? cli_started : t0));
+    put_duration(el, sizeof el, cj_clock_seconds() - (t0 < 0 ? cli_started : t0));
     const int paren = (detail && detail[0]) || size[0];
     fflush(stdout);
     fprintf(stderr, "casteljau %s: wrote %s%s%s%s%s%s in %s\n", cmd, what, paren ? " (" : "",

@@ -8,25 +8,25 @@
 #ifndef CASTELJAU_APP_CLI_PROGRESS_H
 #define CASTELJAU_APP_CLI_PROGRESS_H
 
+#include "clock_internal.h"
+
 #include <stdint.h>
 
 /* Set by --quiet (the shared parser, app/cli_common.c): no progress, no summary, no
  * "large work" notice. Errors and other warnings still print. */
 extern int cli_quiet;
 
-/* When the command started (set by cli_parser_init), on the cli_now clock. */
+/* When the command started (set by cli_parser_init), on the library's one monotonic clock
+ * (cj_clock_seconds, clock_internal.h). Both live beside the parser (cli_common.c), which sets
+ * them. */
 extern double cli_started;
-
-/* Seconds on the monotonic clock (for the summary's time). These three live beside the parser
- * (cli_common.c), which sets cli_quiet and cli_started. */
-double cli_now(void);
 
 typedef struct cli_progress {
     const char *cmd;  /* "render" */
     const char *unit; /* "tiles", "sections" */
     int shown;        /* 1: the status line is on a terminal and not --quiet */
     int drawn;        /* a status line is on screen (to be cleared) */
-    double t0, last;  /* start and last redraw (cli_now) */
+    double t0, last;  /* start and last redraw (cj_clock_seconds) */
     double t_first;   /* the first step: the rate (and so the time left) is measured from it,
                          since the set-up before it (buffers, tessellation) is not a step */
     uint64_t first_done;

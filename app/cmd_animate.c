@@ -354,7 +354,7 @@ int cmd_animate(int argc, char **argv) {
     const cj_status load_st = cj_anim_doc_load(doc_path, &doc);
     if (load_st) return cli_fail_status(cmd, load_st, "%s", cj_last_error());
     int rc = 0;
-    const double t0 = cli_now();
+    const double t0 = cj_clock_seconds();
     long written = 0;
     cli_progress pr; /* by frame, on a terminal; Ctrl-C stops after the frame being drawn */
     cli_progress_begin(&pr, cmd, "frames");

@@ -50,7 +50,7 @@ const char reduce_usage[] =
 int offset_panel(cJSON *panel, const char *where, const qopts *o) {
     cJSON *items = cJSON_GetObjectItemCaseSensitive(panel, "items");
     qcurve cv[QUERY_MAX_CURVES];
-    int rc = 0, nc = read_curves("offset", items, where, cv, &rc);
+    int rc = 0, nc = read_curves("offset", o->json, items, where, cv, &rc);
     if (nc < 0) return rc;
     double dd[1] = {o->distance};
     double tol = o->tol > 0 ? o->tol : 1e-6 * (panel_size(cv, nc, dd, 1) + fabs(o->distance));
@@ -120,7 +120,7 @@ int offset_panel(cJSON *panel, const char *where, const qopts *o) {
 int reduce_panel(cJSON *panel, const char *where, const qopts *o) {
     cJSON *items = cJSON_GetObjectItemCaseSensitive(panel, "items");
     qcurve cv[QUERY_MAX_CURVES];
-    int rc = 0, nc = read_curves("reduce", items, where, cv, &rc);
+    int rc = 0, nc = read_curves("reduce", o->json, items, where, cv, &rc);
     if (nc < 0) return rc;
     double out[2 * (CJ_QUERY_MAX_DEGREE + 1)];
     for (int i = 0; i < nc && !rc; ++i) {

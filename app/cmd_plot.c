@@ -105,56 +105,18 @@ static const char demo_json[] =
     "]}";
 
 static char *read_file(const char *path, char *why, size_t why_size) {
-    if (strcmp(path, "-")) {
-        char *text = NULL;
-        size_t len = 0;
-        if (cj_file_read_all(path, PLOT_JSON_MAX_BYTES, "plot document", &text, &len)) {
-            snprintf(why, why_size, "%s", cj_last_error());
-            return NULL;
-        }
-        if (strlen(text) != len) {
-            snprintf(why, why_size, "'%s' contains a NUL byte: not a JSON text file", path);
-            free(text);
-            return NULL;
-        }
-        return text;
-    }
-    FILE *f = stdin;
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n - 1, f);
-        if (ferror(f)) {
-            snprintf(why, why_size, "cannot read '%s'", path);
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        if (n > PLOT_JSON_MAX_BYTES) {
-            snprintf(why, why_size, "'%s' is larger than %zu MiB", path, PLOT_JSON_MAX_BYTES >> 20);
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        if (feof(f)) break;
-        if (n + 1 < cap) continue;
-        char *nb = realloc(buf, cap * 2);
-        if (!nb) free(buf);
-        buf = nb;
-        cap *= 2;
-    }
-    if (f != stdin) fclose(f);
-    if (!buf) {
-        if (!*why) snprintf(why, why_size, "out of memory reading '%s'", path);
+    char *text = NULL;
+    size_t len = 0;
+    if (cj_file_read_input(path, PLOT_JSON_MAX_BYTES, "plot document", &text, &len)) {
+        snprintf(why, why_size, "%s", cj_last_error());
         return NULL;
     }
-    buf[n] = '\0';
-    if (strlen(buf) != n) {
+    if (strlen(text) != len) {
         snprintf(why, why_size, "'%s' contains a NUL byte: not a JSON text file", path);
-        free(buf);
+        free(text);
         return NULL;
     }
-    return buf;
+    return text;
 }
 
 static int parse_side(const char *opt, const char *s, int *out) {
@@ -215,9 +177,11 @@ int cmd_plot(int argc, char **argv) {
         return CLI_EXIT_USAGE;
     }
     cj_plot_doc doc;
-    int rc = cj_plot_json_parse(demo ? demo_json : text, &doc, why, sizeof why);
+    st = cj_plot_json_parse(demo ? "demo" : input, demo ? demo_json : text, &doc);
     free(text);
-    if (rc) return cli_fail("plot", "%s: %s", demo ? "demo" : input, why);
+    if (st)
+        return st == CJ_ERR_NOMEM ? cli_error("plot", "%s", cj_last_error())
+                                  : cli_fail("plot", "%s", cj_last_error());
     if (width) doc.width = width;
     if (height) doc.height = height;
 

@@ -7,6 +7,7 @@
 #include "cli_guard.h"
 #include "file_internal.h"
 #include "query_doc.h"
+#include "json_read_internal.h"
 
 #include "casteljau/bezier.h"
 #include "casteljau/intersect.h"
@@ -57,45 +58,13 @@ static const char nearest_usage[] =
     "M,N) [--tol T] (see 'casteljau nearest --point 0,0,0 --teapot --help').\n";
 
 static char *read_all(const char *cmd, const char *path, int *rc) {
-    char q[160];
-    if (strcmp(path, "-")) { /* a file: regular, capped, logged as an input (file_internal.h) */
-        char *data = NULL;
-        size_t size = 0;
-        const cj_status st = cj_file_read_all(path, QUERY_MAX_BYTES, "document", &data, &size);
-        if (st) *rc = cli_fail_status(cmd, st, "%s", cj_last_error());
-        return st ? NULL : data;
-    }
-    FILE *f = stdin;
-    if (!f) {
-        *rc = cli_fail(cmd, "cannot open '%s'", cli_quote(path, q, sizeof q));
-        return NULL;
-    }
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n - 1, f);
-        if (ferror(f) || n > QUERY_MAX_BYTES) break;
-        if (feof(f)) {
-            buf[n] = '\0';
-            if (f != stdin) fclose(f);
-            return buf;
-        }
-        if (n + 1 < cap) continue;
-        char *nb = realloc(buf, cap * 2);
-        if (!nb) free(buf);
-        buf = nb;
-        cap *= 2;
-    }
-    int oom = buf == NULL;
-    free(buf);
-    if (f != stdin) fclose(f);
-    *rc = oom ? cli_error(cmd, "out of memory reading '%s'", cli_quote(path, q, sizeof q))
-              : cli_fail(cmd, "cannot read '%s' (or it is larger than 64 MiB)",
-                         cli_quote(path, q, sizeof q));
-    return NULL;
+    char *data = NULL;
+    size_t size = 0;
+    const cj_status st = cj_file_read_input(path, QUERY_MAX_BYTES, "document", &data, &size);
+    if (st) *rc = cli_fail_status(cmd, st, "%s", cj_last_error());
+    return st ? NULL : data;
 }
 
-/* The bezier items of one panel's "items" array. Returns the count, or -1 with a message. */
 void free_curves(qcurve *cv, int nc) {
     for (int i = 0; i < nc; ++i) {
         free(cv[i].pts);
@@ -103,64 +72,51 @@ void free_curves(qcurve *cv, int nc) {
     }
 }
 
-int read_curves(const char *cmd, const cJSON *items, const char *where, qcurve *cv, int *rc) {
+/* The bezier items of one panel's "items" array, checked with the JSON kit (the document's
+ * name and lines in jd). Returns the count, or -1 with *rc the command's failure. */
+int read_curves(const char *cmd, const cj_json_doc *jd, const cJSON *items, const char *where,
+                qcurve *cv, int *rc) {
     int nc = 0, idx = 0;
-    for (const cJSON *it = items ? items->child : NULL; it; it = it->next, ++idx) {
+    cj_status st = CJ_OK;
+    for (const cJSON *it = items ? items->child : NULL; it && !st; it = it->next, ++idx) {
         const cJSON *t = cJSON_GetObjectItemCaseSensitive(it, "type");
         if (!cJSON_IsString(t) || strcmp(t->valuestring, "bezier")) continue;
+        char ip[CJ_JSON_PATH], p[CJ_JSON_PATH];
+        snprintf(p, sizeof p, "%sitems", where);
+        cj_json_index(ip, p, (size_t)idx);
         if (nc == QUERY_MAX_CURVES) {
-            *rc = cli_fail(cmd, "%sitems: more than %d bezier items", where, QUERY_MAX_CURVES);
-            goto fail;
+            st = cj_json_fail(jd, it, 0, CJ_ERR_RANGE, "%s: more than %d bezier items", p,
+                              QUERY_MAX_CURVES);
+            break;
         }
         const cJSON *pv = cJSON_GetObjectItemCaseSensitive(it, "points");
         const cJSON *wv = cJSON_GetObjectItemCaseSensitive(it, "weights");
-        int n = cJSON_IsArray(pv) ? cJSON_GetArraySize(pv) : 0;
-        if (n < 1 || n > CJ_QUERY_MAX_DEGREE + 1) {
-            *rc = cli_fail(cmd, "%sitems[%d].points: need 1 to %d points (degree <= %d)", where,
-                           idx, CJ_QUERY_MAX_DEGREE + 1, CJ_QUERY_MAX_DEGREE);
-            goto fail;
-        }
-        if (wv && (!cJSON_IsArray(wv) || cJSON_GetArraySize(wv) != n)) {
-            *rc =
-                cli_fail(cmd, "%sitems[%d].weights: need one weight per point (%d)", where, idx, n);
-            goto fail;
+        cj_json_join(p, ip, "points");
+        const int n = cJSON_IsArray(pv) ? cJSON_GetArraySize(pv) : 0;
+        if (cJSON_IsArray(pv) && n > CJ_QUERY_MAX_DEGREE + 1) {
+            st = cj_json_fail(jd, pv, 0, CJ_ERR_PARSE, "%s: need 1 to %d points (degree <= %d)", p,
+                              CJ_QUERY_MAX_DEGREE + 1, CJ_QUERY_MAX_DEGREE);
+            break;
         }
         qcurve *c = &cv[nc];
+        memset(c, 0, sizeof *c);
+        size_t count = 0;
+        st = pv ? cj_json_numbers(jd, pv, p, 2, CJ_JSON_ANY, 0.0, 0, &c->pts, &count)
+                : cj_json_fail(jd, it, 0, CJ_ERR_PARSE, "%s: a bezier needs \"points\"", ip);
+        if (st) break;
         c->item = idx;
         c->degree = n - 1;
-        c->pts = malloc(sizeof(double) * 2 * (size_t)n);
-        c->w = wv ? malloc(sizeof(double) * (size_t)n) : NULL;
-        if (!c->pts || (wv && !c->w)) {
-            free(c->pts);
-            free(c->w);
-            *rc = cli_error(cmd, "out of memory");
-            goto fail;
-        }
         ++nc;
-        int i = 0;
-        for (const cJSON *p = pv->child; p; p = p->next, ++i) {
-            const cJSON *x = cJSON_GetArrayItem(p, 0), *y = cJSON_GetArrayItem(p, 1);
-            if (!cJSON_IsArray(p) || cJSON_GetArraySize(p) != 2 || !cJSON_IsNumber(x) ||
-                !cJSON_IsNumber(y)) {
-                *rc =
-                    cli_fail(cmd, "%sitems[%d].points[%d] is not a pair of numbers", where, idx, i);
-                goto fail;
-            }
-            c->pts[2 * i] = x->valuedouble;
-            c->pts[2 * i + 1] = y->valuedouble;
-        }
-        i = 0;
-        for (const cJSON *p = wv ? wv->child : NULL; p; p = p->next, ++i) {
-            if (!cJSON_IsNumber(p)) {
-                *rc = cli_fail(cmd, "%sitems[%d].weights[%d] is not a number", where, idx, i);
-                goto fail;
-            }
-            c->w[i] = p->valuedouble;
+        if (wv) {
+            cj_json_join(p, ip, "weights");
+            st = cj_json_numbers(jd, wv, p, 0, CJ_JSON_ANY, 0.0, (size_t)n, &c->w, &count);
         }
     }
-    return nc;
-fail: /* the caller sees only -1: the curves read before the bad item are freed here */
+    if (!st) return nc;
+    /* the caller sees only -1: the curves read before the bad item are freed here */
     free_curves(cv, nc);
+    *rc = st == CJ_ERR_NOMEM ? cli_error(cmd, "%s", cj_last_error())
+                             : cli_fail_status(cmd, st, "%s", cj_last_error());
     return -1;
 }
 
@@ -242,7 +198,7 @@ static void mark(cJSON *items, cJSON *cross, cJSON *contact, const cj_isect *r, 
 static int intersect_panel(cJSON *panel, const char *where, const qopts *o) {
     cJSON *items = cJSON_GetObjectItemCaseSensitive(panel, "items");
     qcurve cv[QUERY_MAX_CURVES];
-    int rc = 0, nc = read_curves("intersect", items, where, cv, &rc);
+    int rc = 0, nc = read_curves("intersect", o->json, items, where, cv, &rc);
     if (nc < 0) return rc;
     double tol = o->tol > 0 ? o->tol : 1e-9 * panel_size(cv, nc, o->line, o->have_line ? 2 : 0);
     cj_isect *res = malloc(sizeof(cj_isect) * QUERY_MAX_RESULTS);
@@ -301,7 +257,7 @@ static int intersect_panel(cJSON *panel, const char *where, const qopts *o) {
 static int nearest_panel(cJSON *panel, const char *where, const qopts *o) {
     cJSON *items = cJSON_GetObjectItemCaseSensitive(panel, "items");
     qcurve cv[QUERY_MAX_CURVES];
-    int rc = 0, nc = read_curves("nearest", items, where, cv, &rc);
+    int rc = 0, nc = read_curves("nearest", o->json, items, where, cv, &rc);
     if (nc < 0) return rc;
     if (nc == 0) {
         free_curves(cv, nc);
@@ -356,17 +312,23 @@ static int run_doc(const char *cmd, const char *path, const qopts *o,
     int rc = 0;
     char *text = read_all(cmd, path, &rc);
     if (!text) return rc;
-    const char *end = NULL;
-    cJSON *doc = cJSON_ParseWithOpts(text, &end, 1);
-    if (!doc) {
-        int line = 1;
-        for (const char *s = text; end && s < end; ++s) line += *s == '\n';
+    cJSON *doc = NULL;
+    const cj_status st = cj_json_parse(path, text, &doc);
+    if (st) {
         free(text);
-        return cli_fail(cmd, "JSON syntax error at line %d", line);
+        return st == CJ_ERR_NOMEM ? cli_error(cmd, "%s", cj_last_error())
+                                  : cli_fail(cmd, "%s", cj_last_error());
     }
-    free(text);
+    cj_json_lines lines;
+    cj_json_doc jd;
+    cj_json_doc_init(&jd, &lines, path, text, doc);
+    qopts with_doc = *o;
+    with_doc.json = &jd;
+    o = &with_doc;
     if (!cJSON_IsObject(doc)) {
+        cj_json_doc_free(&jd);
         cJSON_Delete(doc);
+        free(text);
         return cli_fail(cmd, "the document is not a JSON object");
     }
     cJSON *panels = cJSON_GetObjectItemCaseSensitive(doc, "panels");
@@ -392,7 +354,9 @@ static int run_doc(const char *cmd, const char *path, const qopts *o,
             free(out);
         }
     }
+    cj_json_doc_free(&jd);
     cJSON_Delete(doc);
+    free(text);
     if (!rc && fflush(stdout) != 0) rc = cli_error(cmd, "cannot write standard output");
     return rc;
 }

@@ -3,6 +3,7 @@
 #include "bspline_json.h"
 #include "cli.h"
 #include "file_internal.h"
+#include "json_read_internal.h"
 
 #include "casteljau/bspline.h"
 
@@ -33,22 +34,32 @@ int eval_bspline_run(const char *path, int derivative, int want_bound, char **ta
     int nomem = 0;
     char *text = slurp(path, why, sizeof why, &nomem);
     if (!text) return nomem ? cli_error("eval", "%s", why) : cli_fail("eval", "%s", why);
-    cJSON *doc = cJSON_Parse(text);
-    free(text);
-    if (!doc) return cli_fail("eval", "--curve: '%s' is not valid JSON", path);
+    cJSON *doc = NULL;
+    cj_status st = cj_json_parse(path, text, &doc);
+    if (st) {
+        free(text);
+        return st == CJ_ERR_NOMEM ? cli_error("eval", "--curve: %s", cj_last_error())
+                                  : cli_fail("eval", "--curve: %s", cj_last_error());
+    }
     char ipath[96];
     const cJSON *item = cj_bsp_json_find(doc, ipath, sizeof ipath);
     cj_bsp_json b;
     int rc = 0;
     if (!item) {
         cJSON_Delete(doc);
+        free(text);
         return cli_fail("eval", "--curve: '%s' has no item of type \"bspline\"", path);
     }
-    if (cj_bsp_json_parse(item, ipath, NULL, 50000000, &b, why, sizeof why)) {
-        cJSON_Delete(doc);
-        return cli_fail("eval", "--curve: %s", why);
-    }
+    cj_json_lines lines;
+    cj_json_doc jdoc;
+    cj_json_doc_init(&jdoc, &lines, path, text, doc);
+    st = cj_bsp_json_parse(&jdoc, item, ipath, NULL, 50000000, &b);
+    cj_json_doc_free(&jdoc);
     cJSON_Delete(doc);
+    free(text);
+    if (st)
+        return st == CJ_ERR_NOMEM ? cli_error("eval", "--curve: %s", cj_last_error())
+                                  : cli_fail("eval", "--curve: %s", cj_last_error());
     double *ts = NULL, *vals = NULL;
     size_t nt = 0;
     if (ntargs > 0) {
@@ -85,7 +96,7 @@ int eval_bspline_run(const char *path, int derivative, int want_bound, char **ta
     }
     for (size_t j = 0; j < nt && !rc; ++j) {
         double *v = vals + j * (size_t)dim * 2;
-        cj_status st = cj_bspline_eval_derivs(&c, ts[j], derivative, der);
+        st = cj_bspline_eval_derivs(&c, ts[j], derivative, der);
         if (!st) memcpy(v, der + (size_t)derivative * (size_t)dim, sizeof(double) * (size_t)dim);
         if (!st && want_bound && derivative == 0) st = cj_bspline_error_bound(&c, ts[j], v + dim);
         if (!st && want_bound && derivative > 0) {

@@ -4,6 +4,7 @@
 #define CASTELJAU_APP_QUERY_DOC_H
 
 #include "casteljau/status.h"
+#include "json_read_internal.h"
 
 #include <cJSON.h>
 
@@ -23,12 +24,15 @@ typedef struct qopts {
     double line[4];
     double point[2];
     double distance;
-    int trim; /* offset: drop the loops (cj_offset_trim) */
+    int trim;                /* offset: drop the loops (cj_offset_trim) */
+    const cj_json_doc *json; /* the document being read (run_doc), for messages */
 } qopts;
 
-/* The bezier items of one panel's "items" array into cv (at most QUERY_MAX_CURVES). Returns the
- * count, or -1 with *rc the exit status (the message printed). */
-int read_curves(const char *cmd, const cJSON *items, const char *where, qcurve *cv, int *rc);
+/* The bezier items of one panel's "items" array into cv (at most QUERY_MAX_CURVES), checked
+ * with the JSON kit (the document's name and lines in jd). Returns the count, or -1 with *rc the
+ * exit status (the message printed). */
+int read_curves(const char *cmd, const cj_json_doc *jd, const cJSON *items, const char *where,
+                qcurve *cv, int *rc);
 void free_curves(qcurve *cv, int nc);
 /* Max |coordinate| of the curves (and of nextra extra values), at least tiny. */
 double panel_size(const qcurve *cv, int nc, const double *extra, int nextra);

@@ -156,7 +156,7 @@ int cli_render_scene(const char *cmd, const cli_scene_args *a, int exr, cj_scene
                      void (*touch)(cj_render_image *img)) {
     cj_render_image *img = NULL;
     cj_stage_report rep;
-    const double t0 = cli_now();
+    const double t0 = cj_clock_seconds();
     const int rc = cli_draw_scene(cmd, a->scene_path ? a->scene_path : "demo", ro, scene, backend,
                                   planes, ray_factor, &img, &rep);
     cj_scene_destroy(scene);

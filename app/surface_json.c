@@ -3,6 +3,7 @@
 
 #include "error_internal.h"
 #include "file_internal.h"
+#include "json_read_internal.h"
 #include "json_write_internal.h"
 
 #include <cJSON.h>
@@ -22,83 +23,80 @@ static int fail(char *why, size_t n, const char *fmt, ...) {
 }
 
 static char *slurp(const char *path, char *why, size_t n, int *nomem) {
-    if (strcmp(path, "-")) { /* a file: the shared reader (regular, capped, logged as an input) */
-        char *data = NULL;
-        size_t size = 0;
-        const cj_status st =
-            cj_file_read_all(path, SURFACE_JSON_MAX_BYTES, "surface document", &data, &size);
-        *nomem = st == CJ_ERR_NOMEM;
-        if (st) fail(why, n, "%s", cj_last_error());
-        return st ? NULL : data;
-    }
-    FILE *f = stdin;
-    if (!f) {
-        fail(why, n, "cannot open '%s'", path);
-        return NULL;
-    }
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        len += fread(buf + len, 1, cap - len - 1, f);
-        if (ferror(f) || len > SURFACE_JSON_MAX_BYTES) {
-            fail(why, n, "cannot read '%s'%s", path,
-                 len > SURFACE_JSON_MAX_BYTES ? " (larger than 256 MiB)" : "");
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        if (feof(f)) break;
-        if (len + 1 < cap) continue;
-        char *nb = realloc(buf, cap * 2);
-        if (!nb) {
-            free(buf);
-            *nomem = 1;
-            fail(why, n, "out of memory reading '%s'", path);
-        }
-        buf = nb;
-        cap *= 2;
-    }
-    if (f != stdin) fclose(f);
-    if (buf) buf[len] = '\0';
-    return buf;
+    char *data = NULL;
+    size_t size = 0;
+    const cj_status st =
+        cj_file_read_input(path, SURFACE_JSON_MAX_BYTES, "surface document", &data, &size);
+    *nomem = st == CJ_ERR_NOMEM;
+    if (st) fail(why, n, "%s", cj_last_error());
+    return st ? NULL : data;
 }
 
-/* An array of exactly `want` finite numbers (or of `want` triples when triple). */
-static int numbers(const cJSON *v, const char *name, size_t want, int triple, double **out,
-                   char *why, size_t n) {
-    if (!cJSON_IsArray(v) || (size_t)cJSON_GetArraySize(v) != want)
-        return fail(why, n, "%s must be an array of %zu %s", name, want,
-                    triple ? "[x, y, z] points" : "numbers");
-    double *a = malloc(sizeof(double) * (want ? want : 1) * (triple ? 3 : 1));
-    if (!a) return fail(why, n, "%s: out of memory", name);
-    size_t i = 0;
-    for (const cJSON *e = v->child; e; e = e->next, ++i) {
-        const cJSON *x = triple ? e->child : e;
-        for (int c = 0; c < (triple ? 3 : 1); ++c, x = x ? x->next : NULL) {
-            if ((triple && (!cJSON_IsArray(e) || cJSON_GetArraySize(e) != 3)) || !x ||
-                !cJSON_IsNumber(x) || !isfinite(x->valuedouble)) {
-                free(a);
-                return triple ? fail(why, n, "%s[%zu] is not [x, y, z] of finite numbers", name, i)
-                              : fail(why, n, "%s[%zu] is not a finite number", name, i);
-            }
-            a[triple ? 3 * i + (size_t)c : i] = x->valuedouble;
-        }
-    }
-    *out = a;
-    return 0;
+/* Two whole numbers in [lo, hi] ("degree": [p, q], "size": [nu, nv]). */
+static cj_status int_pair(const cj_json_doc *d, const cJSON *root, const char *key, int lo, int hi,
+                          int *a, int *b) {
+    const cJSON *v = NULL;
+    double two[2];
+    CJ_JSON_TRY(cj_json_require(d, root, "", key, &v));
+    CJ_JSON_TRY(cj_json_array_at(d, v, key, 2, two));
+    char p[CJ_JSON_PATH];
+    cj_json_index(p, key, 0);
+    CJ_JSON_TRY(cj_json_int_at(d, v->child, p, lo, hi, a));
+    cj_json_index(p, key, 1);
+    return cj_json_int_at(d, v->child->next, p, lo, hi, b);
 }
 
-static int int_pair(const cJSON *v, const char *name, int lo, int hi, int *a, int *b, char *why,
-                    size_t n) {
-    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 2 || !cJSON_IsNumber(v->child) ||
-        !cJSON_IsNumber(v->child->next))
-        return fail(why, n, "%s must be two integers", name);
-    const double x = v->child->valuedouble, y = v->child->next->valuedouble;
-    if (x != floor(x) || y != floor(y) || x < lo || y < lo || x > hi || y > hi)
-        return fail(why, n, "%s must be two integers in %d..%d", name, lo, hi);
-    *a = (int)x;
-    *b = (int)y;
-    return 0;
+/* The surface of the document root, checked with the kit, into its arrays (malloc'd). */
+static cj_status read_surface(const cj_json_doc *d, const cJSON *root, cj_bspline_surface *s) {
+    static const char *const types[] = {"bspline_surface", "nurbs_surface", NULL};
+    static const char *const keys[] = {"type",    "degree",  "size",    "points",
+                                       "knots_u", "knots_v", "weights", NULL};
+    const cJSON *t = NULL;
+    int nurbs = 0;
+    CJ_JSON_TRY(cj_json_object(d, root, "", keys));
+    CJ_JSON_TRY(cj_json_require(d, root, "", "type", &t));
+    CJ_JSON_TRY(cj_json_enum(d, root, "", "type", types, &nurbs));
+    const cJSON *wn = cJSON_GetObjectItemCaseSensitive(root, "weights");
+    if (wn && !nurbs)
+        return cj_json_fail(d, wn, 1, CJ_ERR_PARSE,
+                            "weights are given for a bspline_surface (weights make a "
+                            "nurbs_surface)");
+    CJ_JSON_TRY(int_pair(d, root, "degree", 1, CJ_PATCH_MAX_DEGREE, &s->deg_u, &s->deg_v));
+    CJ_JSON_TRY(int_pair(d, root, "size", 2, 100000, &s->npts_u, &s->npts_v));
+    const size_t n = (size_t)s->npts_u * (size_t)s->npts_v;
+    if (n > 10000000)
+        return cj_json_fail(d, cJSON_GetObjectItemCaseSensitive(root, "size"), 0, CJ_ERR_RANGE,
+                            "size: more than 1e7 control points");
+    const cJSON *pn = NULL;
+    size_t got = 0;
+    double *pts = NULL, *w = NULL, *knots[2] = {NULL, NULL};
+    CJ_JSON_TRY(cj_json_require(d, root, "", "points", &pn));
+    CJ_JSON_TRY(cj_json_numbers(d, pn, "points", 3, CJ_JSON_ANY, 0.0, n, &pts, &got));
+    s->pts = pts;
+    if (nurbs) {
+        CJ_JSON_TRY(cj_json_require(d, root, "", "weights", &wn));
+        CJ_JSON_TRY(cj_json_numbers(d, wn, "weights", 0, CJ_JSON_GT, 0.0, n, &w, &got));
+        s->weights = w;
+    }
+    for (int dir = 0; dir < 2; ++dir) {
+        const char *key = dir ? "knots_v" : "knots_u";
+        const int cnt = dir ? s->npts_v : s->npts_u, deg = dir ? s->deg_v : s->deg_u;
+        const size_t want = (size_t)(cnt + deg + 1);
+        const cJSON *kn = cJSON_GetObjectItemCaseSensitive(root, key);
+        if (kn) {
+            CJ_JSON_TRY(cj_json_numbers(d, kn, key, 0, CJ_JSON_ANY, 0.0, want, &knots[dir], &got));
+        } else if (!(knots[dir] = malloc(sizeof(double) * want))) {
+            return cj_fail(CJ_ERR_NOMEM, "%s: out of memory", d->name);
+        } else if (cj_bspline_uniform_knots(cnt, deg, 0.0, 1.0, 1, knots[dir])) {
+            free(knots[dir]);
+            return cj_json_relabel(d, root, CJ_ERR_PARSE);
+        }
+        if (dir)
+            s->knots_v = knots[dir];
+        else
+            s->knots_u = knots[dir];
+    }
+    return CJ_OK;
 }
 
 int surface_json_load(const char *path, surface_patches *out, char *why, size_t n, int *nomem) {
@@ -106,79 +104,48 @@ int surface_json_load(const char *path, surface_patches *out, char *why, size_t 
     *nomem = 0;
     char *text = slurp(path, why, n, nomem);
     if (!text) return -1;
-    cJSON *doc = cJSON_Parse(text);
+    cJSON *root = NULL;
+    cj_status st = cj_json_parse(path, text, &root);
+    cj_bspline_surface s;
+    memset(&s, 0, sizeof s);
+    if (!st) {
+        cj_json_lines lines;
+        cj_json_doc d;
+        cj_json_doc_init(&d, &lines, path, text, root);
+        st = read_surface(&d, root, &s);
+        cj_json_doc_free(&d);
+    }
+    cJSON_Delete(root);
     free(text);
-    if (!doc) return fail(why, n, "'%s' is not valid JSON", path);
-    int r = 0, nurbs = 0, p = 0, q = 0, nu = 0, nv = 0;
-    double *pts = NULL, *w = NULL, *ku = NULL, *kv = NULL;
-    const cJSON *t = cJSON_GetObjectItemCaseSensitive(doc, "type");
-    if (!cJSON_IsString(t) ||
-        (strcmp(t->valuestring, "bspline_surface") && strcmp(t->valuestring, "nurbs_surface")))
-        r = fail(why, n, "type must be \"bspline_surface\" or \"nurbs_surface\"");
-    else
-        nurbs = !strcmp(t->valuestring, "nurbs_surface");
-    static const char *const keys[] = {"type",    "degree",  "size",    "points",
-                                       "knots_u", "knots_v", "weights", NULL};
-    for (const cJSON *f = doc->child; f && !r; f = f->next) {
-        int ok = 0;
-        for (int i = 0; keys[i] && !ok; ++i) ok = !strcmp(f->string, keys[i]);
-        if (!ok || (!nurbs && !strcmp(f->string, "weights")))
-            r = fail(why, n, "unknown field \"%s\"%s", f->string,
-                     ok ? " (weights make a nurbs_surface)" : "");
-    }
-    if (!r)
-        r = int_pair(cJSON_GetObjectItemCaseSensitive(doc, "degree"), "degree", 1,
-                     CJ_PATCH_MAX_DEGREE, &p, &q, why, n);
-    if (!r)
-        r = int_pair(cJSON_GetObjectItemCaseSensitive(doc, "size"), "size", 2, 100000, &nu, &nv,
-                     why, n);
-    if (!r && (double)nu * nv > 1e7) r = fail(why, n, "size: more than 1e7 control points");
-    if (!r)
-        r = numbers(cJSON_GetObjectItemCaseSensitive(doc, "points"), "points",
-                    (size_t)nu * (size_t)nv, 1, &pts, why, n);
-    if (!r && nurbs)
-        r = numbers(cJSON_GetObjectItemCaseSensitive(doc, "weights"), "weights",
-                    (size_t)nu * (size_t)nv, 0, &w, why, n);
-    for (int dir = 0; dir < 2 && !r; ++dir) {
-        const char *key = dir ? "knots_v" : "knots_u";
-        const int cnt = dir ? nv : nu, deg = dir ? q : p;
-        double **dst = dir ? &kv : &ku;
-        const cJSON *kn = cJSON_GetObjectItemCaseSensitive(doc, key);
-        if (kn)
-            r = numbers(kn, key, (size_t)(cnt + deg + 1), 0, dst, why, n);
-        else if (!(*dst = malloc(sizeof(double) * (size_t)(cnt + deg + 1))))
-            r = fail(why, n, "out of memory");
-        else if (cj_bspline_uniform_knots(cnt, deg, 0.0, 1.0, 1, *dst))
-            r = fail(why, n, "%s", cj_last_error());
-    }
-    cJSON_Delete(doc);
-    const cj_bspline_surface s = {p, q, nu, nv, pts, w, ku, kv};
+    const int p = s.deg_u, q = s.deg_v;
     int np = 0;
-    if (!r && cj_bspline_surface_patch_count(&s, &np)) r = fail(why, n, "%s", cj_last_error());
+    if (!st) st = cj_bspline_surface_patch_count(&s, &np);
     const size_t per = (size_t)(p + 1) * (size_t)(q + 1);
-    if (!r) {
+    if (!st) {
         out->pts = malloc(sizeof(double) * 3 * per * (size_t)np);
-        out->weights = w ? malloc(sizeof(double) * per * (size_t)np) : NULL;
+        out->weights = s.weights ? malloc(sizeof(double) * per * (size_t)np) : NULL;
         out->patches = calloc((size_t)np, sizeof *out->patches);
-        if (!out->pts || !out->patches || (w && !out->weights)) {
-            *nomem = 1;
-            r = fail(why, n, "out of memory for %d patches", np);
-        }
+        if (!out->pts || !out->patches || (s.weights && !out->weights))
+            st = cj_fail(CJ_ERR_NOMEM, "out of memory for %d patches", np);
     }
-    if (!r && cj_bspline_surface_to_patches(&s, out->pts, out->weights, NULL, NULL, np, NULL))
-        r = fail(why, n, "%s", cj_last_error());
-    if (!r) {
+    if (!st) st = cj_bspline_surface_to_patches(&s, out->pts, out->weights, NULL, NULL, np, NULL);
+    if (!st) {
         for (int i = 0; i < np; ++i)
             out->patches[i] = cj_patch_view(p, q, out->pts + 3 * per * (size_t)i,
                                             out->weights ? out->weights + per * (size_t)i : NULL);
         out->count = (size_t)np;
     }
-    free(pts);
-    free(w);
-    free(ku);
-    free(kv);
-    if (r) surface_json_free(out);
-    return r;
+    free((double *)s.pts);
+    free((double *)s.weights);
+    free((double *)s.knots_u);
+    free((double *)s.knots_v);
+    if (st) {
+        *nomem = st == CJ_ERR_NOMEM;
+        fail(why, n, "%s", cj_last_error());
+        surface_json_free(out);
+        return -1;
+    }
+    return 0;
 }
 
 void surface_json_free(surface_patches *s) {

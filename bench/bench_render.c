@@ -10,6 +10,7 @@
  *                                 transparent material, lights of zero intensity), to compare
  *                                 instruction counts under valgrind --tool=callgrind */
 #define _POSIX_C_SOURCE 200809L
+#include "bench_clock.h"
 #include "casteljau/render.h"
 
 #include <stdio.h>
@@ -23,25 +24,6 @@
 #ifndef CJ_TEAPOT_PATH
 #define CJ_TEAPOT_PATH "data/teapot.bpt"
 #endif
-
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* CPU time of the whole process (all threads): unlike wall time it does not count the time
- * other programs hold the cores, which on a shared machine is most of the wall time. */
-static double cpu_now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 static double stage_sec(const cj_stage_report *r, const char *name) {
     const cj_stage *s = cj_stage_report_find(r, name);
@@ -118,18 +100,18 @@ static run_result measure(const cj_scene *s, int w, int spp, int threads, int re
     }
     for (int i = 0; i < reps; ++i) {
         cj_render_image *img = NULL;
-        double a = now(), ca = cpu_now();
+        double a = cj_bench_wall(), ca = cj_bench_process_cpu();
         if (cj_render_raster(s, &o, 0, NULL, &img, &reps_[i])) {
             fprintf(stderr, "bench_render: %s\n", cj_last_error());
             exit(1);
         }
-        t[i] = now() - a;
-        cpu[i] = cpu_now() - ca;
+        t[i] = cj_bench_wall() - a;
+        cpu[i] = cj_bench_process_cpu() - ca;
         cj_render_image_destroy(img);
     }
     double sorted[16];
     memcpy(sorted, t, sizeof(double) * (size_t)reps);
-    qsort(sorted, (size_t)reps, sizeof(double), cmp_double);
+    qsort(sorted, (size_t)reps, sizeof(double), cj_bench_cmp_double);
     int med = 0;
     for (int i = 0; i < reps; ++i)
         if (t[i] == sorted[reps / 2]) med = i;
@@ -137,7 +119,7 @@ static run_result measure(const cj_scene *s, int w, int spp, int threads, int re
     r.rep = reps_[med];
     r.frame_ms = 1e3 * t[med];
     memcpy(sorted, cpu, sizeof(double) * (size_t)reps);
-    qsort(sorted, (size_t)reps, sizeof(double), cmp_double);
+    qsort(sorted, (size_t)reps, sizeof(double), cj_bench_cmp_double);
     r.cpu_ms = 1e3 * sorted[reps / 2];
     r.tess_ms = 1e3 * stage_sec(&r.rep, "tessellate_patches");
     r.run_ms = 1e3 * cj_stage_report_find(&r.rep, "rasterize")->extra[2].value;

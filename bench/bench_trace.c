@@ -25,7 +25,7 @@
 #include <string.h>
 
 #ifdef CJ_HAVE_EMBREE
-#include <embree3/rtcore.h>
+#include "embree_mesh.h"
 #endif
 
 static uint64_t rng_state = 88172645463325252ull;
@@ -134,50 +134,19 @@ static cj_mesh *tess(const cj_patch *p, size_t n, double tol, cj_bvh **bvh) {
 
 #ifdef CJ_HAVE_EMBREE
 static void embree_teapot(const cj_mesh *m, cj_bvh *ours) {
-    RTCDevice dev = rtcNewDevice("threads=1");
-    RTCScene scene = rtcNewScene(dev);
-    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-    float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                       3 * sizeof(float), m->vertex_count);
-    unsigned *ix = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                           3 * sizeof(unsigned), m->triangle_count);
-    for (size_t i = 0; i < 3 * m->vertex_count; i++) v[i] = (float)m->positions[i];
-    for (size_t i = 0; i < 3 * m->triangle_count; i++) ix[i] = m->triangles[i];
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(scene, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(scene);
-    struct RTCIntersectContext ctx;
+    cj_bench_embree e = cj_bench_embree_build(m);
     double best = 1e30;
     int hits = 0;
     for (int rep = 0; rep < 3; rep++) {
         double t0 = cj_bench_wall();
-        hits = 0;
-        for (int i = 0; i < NRAYS; i++) {
-            rtcInitIntersectContext(&ctx);
-            struct RTCRayHit rh;
-            memset(&rh, 0, sizeof rh);
-            rh.ray.org_x = (float)rays[i].org.x;
-            rh.ray.org_y = (float)rays[i].org.y;
-            rh.ray.org_z = (float)rays[i].org.z;
-            rh.ray.dir_x = (float)rays[i].dir.x;
-            rh.ray.dir_y = (float)rays[i].dir.y;
-            rh.ray.dir_z = (float)rays[i].dir.z;
-            rh.ray.tnear = 0.0f;
-            rh.ray.tfar = INFINITY;
-            rh.ray.mask = 0xffffffffu;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(scene, &ctx, &rh);
-            hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-        }
+        hits = cj_bench_embree_rays(e.scene, rays, NRAYS);
         double dt = cj_bench_wall() - t0;
         if (dt < best) best = dt;
     }
     printf("  %-34s %9.1f ns/ray  (%5.1f%% hit)  [Embree 3, float, 1 thread]\n",
            "teapot mesh, Embree rtcIntersect1", 1e9 * best / NRAYS, 100.0 * hits / NRAYS);
     (void)ours;
-    rtcReleaseScene(scene);
-    rtcReleaseDevice(dev);
+    cj_bench_embree_free(e);
 }
 #endif
 

@@ -16,8 +16,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     memcpy(text, data, size);
     text[size] = '\0';
     cj_plot_doc doc;
-    char why[512];
-    if (cj_plot_json_parse(text, &doc, why, sizeof why) == 0) {
+    if (cj_plot_json_parse("fuzz", text, &doc) == CJ_OK) {
         cj_framebuffer *fb = NULL;
         /* a small image whatever the document asks for: layout and drawing, not pixels */
         if (cj_framebuffer_create(96, 80, 0, NULL, &fb) == CJ_OK) {

@@ -74,3 +74,6 @@ s/\bplot_doc(_free|_render|_where)?\b([^.]|$)/cj_plot_doc\1\2/g
 s/\bplot_json_(parse|curve_add|page_free|read_page|write_page|print_fit|page|curve)\b([^.]|$)/cj_plot_json_\1\2/g
 s/\bbsp_json(_find|_free|_item|_parse|_view)?\b([^.]|$)/cj_bsp_json\1\2/g
 s/\bchart_json_parse\b([^.]|$)/cj_chart_json_parse\1/g
+#
+# One monotonic clock: the tool's own wrapper went (cli_progress.h includes clock_internal.h).
+s/\bcli_now\(\)/cj_clock_seconds()/g

@@ -42,17 +42,6 @@ static cj_cli_result run(const char *first, ...) {
     return r;
 }
 
-static cj_cli_result shell(const char *fmt, ...) {
-    char cmd[4096];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(cmd, sizeof cmd, fmt, ap);
-    va_end(ap);
-    cj_cli_result r;
-    assert_int_equal(cj_cli_shell(cmd, &r), 0);
-    return r;
-}
-
 /* Exit 2, nothing on stdout, exactly one line on stderr starting "casteljau <cmd>: ", and the
  * line contains `must` (if not NULL) and not `must_not` (if not NULL). */
 static void expect_refusal(cj_cli_result *r, const char *what, const char *cmd, const char *must,
@@ -126,16 +115,17 @@ static void test_version_and_help(void **state) {
 
 static void test_stdin_parameters(void **state) {
     (void)state;
-    cj_cli_result r = shell("printf '0 0.5\\n  1\\n' | '%s' eval --points '%s'", exe, P);
+    cj_cli_result r = cj_cli_shellf("printf '0 0.5\\n  1\\n' | '%s' eval --points '%s'", exe, P);
     expect_output(&r, "parameters from stdin", "0 0\n1 1\n2 0\n");
     /* A long list: far more than fits on a command line in one go. */
-    r = shell("awk 'BEGIN{for(i=0;i<200000;i++) print i/200000}' | '%s' eval --points '%s' | wc "
-              "-l",
-              exe, P);
+    r = cj_cli_shellf(
+        "awk 'BEGIN{for(i=0;i<200000;i++) print i/200000}' | '%s' eval --points '%s' | wc "
+        "-l",
+        exe, P);
     assert_int_equal(r.status, 0);
     assert_int_equal(atoi(r.out), 200000);
     cj_cli_result_free(&r);
-    r = shell("printf '0 x 1' | '%s' eval --points '%s'", exe, P);
+    r = cj_cli_shellf("printf '0 x 1' | '%s' eval --points '%s'", exe, P);
     expect_refusal(&r, "bad stdin parameter", "eval", "standard input, parameter 1", NULL);
     r = run("eval", "--points", P, NULL); /* stdin is /dev/null here */
     expect_refusal(&r, "no parameters anywhere", "eval", "no parameter", NULL);
@@ -202,21 +192,24 @@ static void test_contour_bounded(void **state) {
 static void test_startup_without_oiio(void **state) {
     (void)state;
     /* The dynamic loader lists every library it maps: eval must not map OpenImageIO. */
-    cj_cli_result r = shell("LD_DEBUG=libs '%s' eval --points '%s' 0.5 2>&1 >/dev/null | grep -c "
-                            "'calling init:.*OpenImageIO' || true",
-                            exe, P);
+    cj_cli_result r =
+        cj_cli_shellf("LD_DEBUG=libs '%s' eval --points '%s' 0.5 2>&1 >/dev/null | grep -c "
+                      "'calling init:.*OpenImageIO' || true",
+                      exe, P);
     assert_int_equal(atoi(r.out), 0);
     cj_cli_result_free(&r);
     /* Nor does a PNG (libpng directly) ... */
-    r = shell("cd \"$(mktemp -d)\" && LD_DEBUG=libs '%s' plot --demo --width 300 --height 200 -o "
-              "g.png 2>&1 >/dev/null | grep -c 'calling init:.*OpenImageIO' || true",
-              exe);
+    r = cj_cli_shellf(
+        "cd \"$(mktemp -d)\" && LD_DEBUG=libs '%s' plot --demo --width 300 --height 200 -o "
+        "g.png 2>&1 >/dev/null | grep -c 'calling init:.*OpenImageIO' || true",
+        exe);
     assert_int_equal(atoi(r.out), 0);
     cj_cli_result_free(&r);
     /* ... while a TIFF does (so the checks above can see it). */
-    r = shell("cd \"$(mktemp -d)\" && LD_DEBUG=libs '%s' plot --demo --width 300 --height 200 -o "
-              "g.tif 2>&1 >/dev/null | grep -c 'calling init:.*OpenImageIO'",
-              exe);
+    r = cj_cli_shellf(
+        "cd \"$(mktemp -d)\" && LD_DEBUG=libs '%s' plot --demo --width 300 --height 200 -o "
+        "g.tif 2>&1 >/dev/null | grep -c 'calling init:.*OpenImageIO'",
+        exe);
     if (atoi(r.out) < 1) fail_msg("plot -o g.tif did not load OpenImageIO? %s", r.out);
     cj_cli_result_free(&r);
     printf("test_cli_harden: eval and plot -o x.png map no OpenImageIO (LD_DEBUG=libs); plot -o "
@@ -413,13 +406,13 @@ static void full_disk_writers(const char *d, const char *limit, const char *how)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         char path[600];
         snprintf(path, sizeof path, "%s/%s", d, cases[i].name);
-        cj_cli_result r = shell("'%s' %s -o '%s'", exe, cases[i].small, path);
+        cj_cli_result r = cj_cli_shellf("'%s' %s -o '%s'", exe, cases[i].small, path);
         if (r.status != 0) fail_msg("%s: small write failed: %s", cases[i].name, r.err);
         cj_cli_result_free(&r);
         size_t n0 = 0, n1 = 0;
         char *before = slurp(path, &n0);
         assert_non_null(before);
-        r = shell("%s '%s' %s -o '%s'", limit, exe, cases[i].big, path);
+        r = cj_cli_shellf("%s '%s' %s -o '%s'", limit, exe, cases[i].big, path);
         if (r.status != 1)
             fail_msg("%s (%s): exit %d, expected 1; stderr %s", cases[i].name, how, r.status,
                      r.err);

@@ -15,17 +15,6 @@
 
 #include "support/cli_run.h"
 
-static cj_cli_result shell(const char *fmt, ...) {
-    char cmd[2048];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(cmd, sizeof cmd, fmt, ap);
-    va_end(ap);
-    cj_cli_result r;
-    assert_int_equal(cj_cli_shell(cmd, &r), 0);
-    return r;
-}
-
 static const char *const deferred[] = {"libglfw",    "libGL",      "libGLX",
                                        "libGLEW",    "libavcodec", "libavformat",
                                        "libswscale", "libavutil",  "libOpenImageIO"};
@@ -33,15 +22,15 @@ enum { NDEFERRED = sizeof deferred / sizeof deferred[0] };
 
 static void test_program_links_none(void **state) {
     (void)state;
-    cj_cli_result r = shell("ldd '%s'", CJ_CLI);
+    cj_cli_result r = cj_cli_shellf("ldd '%s'", CJ_CLI);
     assert_int_equal(r.status, 0);
     assert_non_null(strstr(r.out, "libc.so")); /* the check can see the libraries */
     for (size_t i = 0; i < NDEFERRED; ++i)
         if (strstr(r.out, deferred[i])) fail_msg("casteljau links %s:\n%s", deferred[i], r.out);
     cj_cli_result_free(&r);
-    r = shell("LD_DEBUG=libs '%s' eval --points '0,0;1,1' 0.5 2>&1 >/dev/null | grep "
-              "'calling init:' || true",
-              CJ_CLI);
+    r = cj_cli_shellf("LD_DEBUG=libs '%s' eval --points '0,0;1,1' 0.5 2>&1 >/dev/null | grep "
+                      "'calling init:' || true",
+                      CJ_CLI);
     for (size_t i = 0; i < NDEFERRED; ++i)
         if (strstr(r.out, deferred[i])) fail_msg("eval maps %s:\n%s", deferred[i], r.out);
     cj_cli_result_free(&r);
@@ -49,37 +38,38 @@ static void test_program_links_none(void **state) {
            "FFmpeg, cairo or OpenImageIO library\n");
 }
 
-static void test_missing_film_module(void **state) {
-    (void)state;
-    cj_cli_result r = shell("cd \"$(mktemp -d)\" && CJ_VIDEO_PLUGIN=/nonexistent/libv.so '%s' "
-                            "animate '%s' -o f.mp4 --frames 0:2 --width 64 --height 48; s=$?; "
-                            "ls; exit $s",
-                            CJ_CLI, CJ_ANIM_PATH);
+/* Runs `cmd` (a shell line that ends by listing its fresh folder) with a module's variable
+ * pointing nowhere: exit 1 or 2, one line on stderr naming the variable and the module, and no
+ * file `left` in the folder. */
+static void expect_missing_module(const char *cmd, const char *variable, const char *module,
+                                  const char *left) {
+    cj_cli_result r = cj_cli_shellf("cd \"$(mktemp -d)\" && %s; s=$?; ls; exit $s", cmd);
     if (r.status != 1 && r.status != 2) fail_msg("exit status %d: %s", r.status, r.err);
-    if (!strstr(r.err, "CJ_VIDEO_PLUGIN") || !strstr(r.err, "film module"))
-        fail_msg("message: %s", r.err);
-    const char *nl = strchr(r.err, '\n');
-    if (nl && nl[1]) fail_msg("more than one line: %s", r.err);
-    if (strstr(r.out, "f.mp4")) fail_msg("a film was left: %s", r.out);
+    if (!strstr(r.err, variable) || !strstr(r.err, module)) fail_msg("message: %s", r.err);
+    if (!cj_cli_one_line(r.err)) fail_msg("more than one line: %s", r.err);
+    if (strstr(r.out, left)) fail_msg("a file was left: %s", r.out);
     printf("  %s", r.err);
     cj_cli_result_free(&r);
+}
+
+static void test_missing_film_module(void **state) {
+    (void)state;
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd,
+             "CJ_VIDEO_PLUGIN=/nonexistent/libv.so '%s' animate '%s' -o f.mp4 --frames 0:2 "
+             "--width 64 --height 48",
+             CJ_CLI, CJ_ANIM_PATH);
+    expect_missing_module(cmd, "CJ_VIDEO_PLUGIN", "film module", "f.mp4");
     printf("test_cli_modules: a missing film module is a one-line error naming CJ_VIDEO_PLUGIN, "
            "and no file\n");
 }
 
 static void test_missing_cairo_module(void **state) {
     (void)state;
-    cj_cli_result r = shell("cd \"$(mktemp -d)\" && CJ_CAIRO_PLUGIN=/nonexistent/libc.so '%s' "
-                            "plot --demo -o p.svg; s=$?; ls; exit $s",
-                            CJ_CLI);
-    if (r.status != 1 && r.status != 2) fail_msg("exit status %d: %s", r.status, r.err);
-    if (!strstr(r.err, "CJ_CAIRO_PLUGIN") || !strstr(r.err, "vector plot module"))
-        fail_msg("message: %s", r.err);
-    const char *nl = strchr(r.err, '\n');
-    if (nl && nl[1]) fail_msg("more than one line: %s", r.err);
-    if (strstr(r.out, "p.svg")) fail_msg("a file was left: %s", r.out);
-    printf("  %s", r.err);
-    cj_cli_result_free(&r);
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "CJ_CAIRO_PLUGIN=/nonexistent/libc.so '%s' plot --demo -o p.svg",
+             CJ_CLI);
+    expect_missing_module(cmd, "CJ_CAIRO_PLUGIN", "vector plot module", "p.svg");
     printf("test_cli_modules: a missing vector plot module is a one-line error naming "
            "CJ_CAIRO_PLUGIN, before any work, and no file\n");
 }

@@ -163,10 +163,10 @@ typedef struct bad_case {
 /* The CLI contract on a few representative failures (every JSON error path is checked
  * in-process by test_plot_json, which is much faster than starting the tool each time). */
 static const bad_case bad_cases[] = {
-    {"{\"items\": [", "", "JSON syntax error at line 1"},
+    {"{\"items\": [", "", "JSON syntax error (line 1, column 12)"},
     {"{\"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,1]]},"
      " {\"type\": \"bezier\", \"points\": [[0,0],[1,1],[2,0],[3]]}]}",
-     "", "items[1].points[3] is not a pair of numbers"},
+     "", "bad.json:1: items[1].points[3] must be an array of 2 numbers, not 1"},
     {"{\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]}", "--width abc",
      "--width 'abc' is not a whole number"},
     {"{\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]]}]}", "--frobnicate",

@@ -32,6 +32,15 @@ cj_status cj_file_check_input(const char *path, size_t max_bytes, const char *wh
 cj_status cj_file_read_all(const char *path, size_t max_bytes, const char *what, char **data,
                            size_t *size);
 
+/* Reads standard input to its end the same way (at most max_bytes bytes, a NUL after them; the
+ * stream is named '-' in messages). Errors: CJ_ERR_IO, CJ_ERR_RANGE (over the cap),
+ * CJ_ERR_NOMEM. */
+cj_status cj_file_read_stdin(size_t max_bytes, const char *what, char **data, size_t *size);
+
+/* A command's input: standard input when path is "-", else cj_file_read_all(path). */
+cj_status cj_file_read_input(const char *path, size_t max_bytes, const char *what, char **data,
+                             size_t *size);
+
 /* The log of inputs: every file cj_file_read_all read and cj_file_check_input admitted in this
  * process (device and inode, and the name it was given; the first 256). Returns the name under
  * which `path`'s file was read, or NULL if it was not: an output that must not overwrite an

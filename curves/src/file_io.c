@@ -107,6 +107,48 @@ cj_status cj_file_check_input(const char *path, size_t max_bytes, const char *wh
     return st;
 }
 
+/* Reads fd to its end into a malloc'd buffer (cap: the expected size + 1), at most max_bytes
+ * bytes; `name` and `what` for messages. Closes nothing. */
+static cj_status read_fd(int fd, size_t cap, size_t max_bytes, const char *what, const char *name,
+                         char **data, size_t *size) {
+    size_t len = 0;
+    char *buf = malloc(cap + 1);
+    if (!buf)
+        return cj_fail(CJ_ERR_NOMEM, "out of memory reading %s '%s' (%zu bytes)", what, name,
+                       cap - 1);
+    for (;;) {
+        if (len == cap) { /* the file grew since fstat, or a stream goes on */
+            if (cap > max_bytes) break;
+            size_t nc = cap * 2 > max_bytes + 1 ? max_bytes + 1 : cap * 2;
+            char *b = realloc(buf, nc + 1);
+            if (!b) {
+                free(buf);
+                return cj_fail(CJ_ERR_NOMEM, "out of memory reading %s '%s'", what, name);
+            }
+            buf = b;
+            cap = nc;
+        }
+        ssize_t k = read(fd, buf + len, cap - len);
+        if (k < 0 && errno == EINTR) continue;
+        if (k < 0) {
+            const int e = errno;
+            free(buf);
+            return cj_fail(CJ_ERR_IO, "cannot read %s '%s': %s", what, name, strerror(e));
+        }
+        if (k == 0) break;
+        len += (size_t)k;
+    }
+    if (len > max_bytes) {
+        free(buf);
+        return cj_fail(CJ_ERR_RANGE, "%s '%s' is over the limit of %zu MiB", what, name,
+                       max_bytes >> 20);
+    }
+    buf[len] = '\0';
+    *data = buf;
+    *size = len;
+    return CJ_OK;
+}
+
 cj_status cj_file_read_all(const char *path, size_t max_bytes, const char *what, char **data,
                            size_t *size) {
     assert(path && what && data && size);
@@ -120,52 +162,23 @@ cj_status cj_file_read_all(const char *path, size_t max_bytes, const char *what,
         return cj_fail(CJ_ERR_IO, "cannot open '%s': %s", path, strerror(e));
     }
     cj_status st = check_stat(&sb, path, max_bytes, what);
-    if (st) {
-        close(fd);
-        return st;
-    }
-    note_input(path, &sb);
-    size_t cap = (size_t)sb.st_size + 1, len = 0;
-    char *buf = malloc(cap + 1);
-    if (!buf) {
-        close(fd);
-        return cj_fail(CJ_ERR_NOMEM, "out of memory reading %s '%s' (%zu bytes)", what, path,
-                       cap - 1);
-    }
-    for (;;) {
-        if (len == cap) { /* the file grew since fstat */
-            if (cap > max_bytes) break;
-            size_t nc = cap * 2 > max_bytes + 1 ? max_bytes + 1 : cap * 2;
-            char *b = realloc(buf, nc + 1);
-            if (!b) {
-                free(buf);
-                close(fd);
-                return cj_fail(CJ_ERR_NOMEM, "out of memory reading %s '%s'", what, path);
-            }
-            buf = b;
-            cap = nc;
-        }
-        ssize_t k = read(fd, buf + len, cap - len);
-        if (k < 0 && errno == EINTR) continue;
-        if (k < 0) {
-            const int e = errno;
-            free(buf);
-            close(fd);
-            return cj_fail(CJ_ERR_IO, "cannot read %s '%s': %s", what, path, strerror(e));
-        }
-        if (k == 0) break;
-        len += (size_t)k;
+    if (!st) {
+        note_input(path, &sb);
+        st = read_fd(fd, (size_t)sb.st_size + 1, max_bytes, what, path, data, size);
     }
     close(fd);
-    if (len > max_bytes) {
-        free(buf);
-        return cj_fail(CJ_ERR_RANGE, "%s '%s' is over the limit of %zu MiB", what, path,
-                       max_bytes >> 20);
-    }
-    buf[len] = '\0';
-    *data = buf;
-    *size = len;
-    return CJ_OK;
+    return st;
+}
+
+cj_status cj_file_read_stdin(size_t max_bytes, const char *what, char **data, size_t *size) {
+    assert(what && data && size);
+    return read_fd(0, (size_t)1 << 16, max_bytes, what, "-", data, size);
+}
+
+cj_status cj_file_read_input(const char *path, size_t max_bytes, const char *what, char **data,
+                             size_t *size) {
+    return strcmp(path, "-") ? cj_file_read_all(path, max_bytes, what, data, size)
+                             : cj_file_read_stdin(max_bytes, what, data, size);
 }
 
 int cj_file_same(const char *a, const char *b) {

@@ -18,11 +18,14 @@ typedef struct cj_bsp_json {
     double *pts, *weights, *knots; /* owned; weights NULL for a polynomial B-spline */
 } cj_bsp_json;
 
-/* Parses item (at JSON path `path`) into out. extra_keys: NULL-terminated field names also
- * allowed (drawing options of plot), may be NULL. Returns 0, or -1 with a one-line reason
- * naming the path into why. max_points caps the control points. */
-int cj_bsp_json_parse(const cJSON *item, const char *path, const char *const *extra_keys,
-                      size_t max_points, cj_bsp_json *out, char *why, size_t why_size);
+struct cj_json_doc; /* the checked-JSON kit's document (scene/src/json_read_internal.h) */
+
+/* Parses item (at JSON path `path` of the document doc, read through the checked-JSON kit) into
+ * out (free with cj_bsp_json_free). extra_keys: NULL-terminated field names also allowed (drawing
+ * options of plot), may be NULL. max_points caps the control points. Returns CJ_OK, or the
+ * kit's status with cj_last_error() "<document>:<line>: <path> ..." and nothing allocated. */
+cj_status cj_bsp_json_parse(const struct cj_json_doc *doc, const cJSON *item, const char *path,
+                            const char *const *extra_keys, size_t max_points, cj_bsp_json *out);
 
 void cj_bsp_json_free(cj_bsp_json *b);
 

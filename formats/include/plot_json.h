@@ -32,10 +32,13 @@ typedef struct cj_plot_doc {
     char where[32]; /* cj_plot_doc_where's text */
 } cj_plot_doc;
 
-/* Parses a whole document. On success returns 0 and fills *doc (free with cj_plot_doc_free). On
- * failure returns -1, leaves nothing allocated, and writes a one-line reason naming the JSON
- * path of the bad field ("items[2].points[3] is not a pair of numbers") to why. */
-int cj_plot_json_parse(const char *text, cj_plot_doc *doc, char *why, size_t why_size);
+/* Parses a whole document, named `name` in messages (a file name; NULL: "<plot>"). On success
+ * returns CJ_OK and fills *doc (free with cj_plot_doc_free). On failure leaves nothing allocated
+ * and returns CJ_ERR_PARSE (or CJ_ERR_RANGE, CJ_ERR_NONFINITE, CJ_ERR_NOMEM where the checked-JSON
+ * kit's status reaches the entry), with cj_last_error() a one-line reason giving the document,
+ * the line and the JSON path of the bad value ("plot.json:7: items[2].points[3] must be an array
+ * of 2 numbers, not 1"); a syntax error names its line and column. */
+cj_status cj_plot_json_parse(const char *name, const char *text, cj_plot_doc *doc);
 
 void cj_plot_doc_free(cj_plot_doc *doc);
 
@@ -78,11 +81,12 @@ typedef struct cj_plot_json_page {
     cj_plot_json_curve *curves; /* malloc'd, owned */
 } cj_plot_json_page;
 
-/* Reads a single-plot document whose items are all "bezier", "catmull-rom" or 2D "bspline" (with
- * the same checks and messages as cj_plot_json_parse; a document with panels, a chart or another
- * kind of item is refused, naming it). Returns 0 and fills *page (free with
- * cj_plot_json_page_free), or -1 with nothing allocated and a one-line reason in why. */
-int cj_plot_json_read_page(const char *text, cj_plot_json_page *page, char *why, size_t why_size);
+/* Reads a single-plot document (named `name` in messages, as cj_plot_json_parse) whose items are
+ * all "bezier", "catmull-rom" or 2D "bspline" (with the same checks and messages as
+ * cj_plot_json_parse; a document with panels, a chart or another kind of item is refused, naming
+ * it). Returns CJ_OK and fills *page (free with cj_plot_json_page_free), or a status as
+ * cj_plot_json_parse's with nothing allocated and the reason in cj_last_error(). */
+cj_status cj_plot_json_read_page(const char *name, const char *text, cj_plot_json_page *page);
 
 void cj_plot_json_page_free(cj_plot_json_page *page);
 

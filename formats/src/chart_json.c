@@ -27,37 +27,33 @@ static const cj_rgba chart_palette[] = {{0x1f, 0x77, 0xb4, 255}, {0xff, 0x7f, 0x
                                         {0x94, 0x67, 0xbd, 255}, {0x8c, 0x56, 0x4b, 255}};
 
 static int parse_text(pj_ctx *c, const cJSON *v, const char *path, const char **out) {
-    if (!cJSON_IsString(v)) return pj_fail(c, "%s is not a string", path);
-    if (strlen(v->valuestring) > CJ_CHART_MAX_TEXT)
-        return pj_fail(c, "%s is longer than %d bytes", path, CJ_CHART_MAX_TEXT);
-    *out = v->valuestring;
+    if (cj_json_string_at(&c->doc, v, path, out)) return -1;
+    if (strlen(*out) > CJ_CHART_MAX_TEXT)
+        return pj_fail(c, v, "%s is longer than %d bytes", path, CJ_CHART_MAX_TEXT);
     return 0;
 }
 
 static int parse_axis(pj_ctx *c, const cJSON *ax, const char *path, int axis, cj_chart *ch) {
     static const char *const keys[] = {"scale", "title", "range", NULL};
-    if (!cJSON_IsObject(ax)) return pj_fail(c, "%s is not an object", path);
-    if (pj_check_keys(c, ax, path, keys)) return -1;
-    char p[300];
+    if (cj_json_object(&c->doc, ax, path, keys)) return -1;
+    char p[CJ_JSON_PATH];
     const cJSON *v;
-    cj_chart_scale scale = CJ_CHART_LINEAR;
+    static const char *const scales[] = {"linear", "log", NULL};
+    int log_scale = 0;
+    if (cj_json_enum(&c->doc, ax, path, "scale", scales, &log_scale)) return -1;
+    const cj_chart_scale scale = log_scale ? CJ_CHART_LOG10 : CJ_CHART_LINEAR;
     const char *title = NULL;
-    if ((v = pj_field(ax, "scale"))) {
-        if (!cJSON_IsString(v) ||
-            (strcmp(v->valuestring, "linear") && strcmp(v->valuestring, "log")))
-            return pj_fail(c, "%s.scale is not \"linear\" or \"log\"", path);
-        scale = strcmp(v->valuestring, "log") ? CJ_CHART_LINEAR : CJ_CHART_LOG10;
-    }
-    pj_pathf(p, sizeof p, "%s.title", path);
-    if ((v = pj_field(ax, "title")) && parse_text(c, v, p, &title)) return -1;
-    if (cj_chart_set_axis(ch, axis, scale, title)) return pj_lib_fail(c, path);
-    if ((v = pj_field(ax, "range"))) {
+    cj_json_join(p, path, "title");
+    if ((v = cJSON_GetObjectItemCaseSensitive(ax, "title")) && parse_text(c, v, p, &title))
+        return -1;
+    if (cj_chart_set_axis(ch, axis, scale, title)) return pj_lib_fail(c, ax, path);
+    if ((v = cJSON_GetObjectItemCaseSensitive(ax, "range"))) {
         double r[2];
-        pj_pathf(p, sizeof p, "%s.range", path);
-        if (pj_parse_numbers(c, v, p, 2, r)) return -1;
+        cj_json_join(p, path, "range");
+        if (cj_json_array_at(&c->doc, v, p, 2, r)) return -1;
         if (scale == CJ_CHART_LOG10 && !(r[0] > 0))
-            return pj_fail(c, "%s[0] = %g is not > 0 on a log axis", p, r[0]);
-        if (cj_chart_set_range(ch, axis, r[0], r[1])) return pj_lib_fail(c, p);
+            return pj_fail(c, v->child, "%s[0] = %g is not > 0 on a log axis", p, r[0]);
+        if (cj_chart_set_range(ch, axis, r[0], r[1])) return pj_lib_fail(c, v, p);
     }
     return 0;
 }
@@ -65,46 +61,43 @@ static int parse_axis(pj_ctx *c, const cJSON *ax, const char *path, int axis, cj
 static int parse_series(pj_ctx *c, const cJSON *s, const char *path, size_t index, cj_chart *ch) {
     static const char *const keys[] = {"points", "label",         "color", "line_width",
                                        "marker", "marker_radius", NULL};
-    static const char *const markers[] = {"none", "circle", "square", "triangle", "diamond"};
-    if (!cJSON_IsObject(s)) return pj_fail(c, "%s is not an object", path);
-    if (pj_check_keys(c, s, path, keys)) return -1;
-    char p[300];
+    static const char *const markers[] = {"none", "circle", "square", "triangle", "diamond", NULL};
+    if (cj_json_object(&c->doc, s, path, keys)) return -1;
+    char p[CJ_JSON_PATH];
     const cJSON *v;
     cj_chart_series_opts o = {NULL, chart_palette[index % 6], 1.5, CJ_MARKER_CIRCLE, 4.0};
-    pj_pathf(p, sizeof p, "%s.label", path);
-    if ((v = pj_field(s, "label")) && parse_text(c, v, p, &o.label)) return -1;
-    pj_pathf(p, sizeof p, "%s.color", path);
-    if ((v = pj_field(s, "color")) && pj_parse_color(c, v, p, &o.color)) return -1;
-    pj_pathf(p, sizeof p, "%s.line_width", path);
-    if ((v = pj_field(s, "line_width")) && pj_parse_number(c, v, p, 0, 16, &o.line_width))
+    cj_json_join(p, path, "label");
+    if ((v = cJSON_GetObjectItemCaseSensitive(s, "label")) && parse_text(c, v, p, &o.label))
         return -1;
-    pj_pathf(p, sizeof p, "%s.marker_radius", path);
-    if ((v = pj_field(s, "marker_radius")) &&
-        pj_parse_number(c, v, p, 0x1p-10, 16, &o.marker_radius))
+    cj_json_join(p, path, "color");
+    if ((v = cJSON_GetObjectItemCaseSensitive(s, "color")) && pj_parse_color(c, v, p, &o.color))
         return -1;
-    if ((v = pj_field(s, "marker"))) {
-        int k = -1;
-        for (int i = 0; i < 5 && cJSON_IsString(v); ++i)
-            if (!strcmp(v->valuestring, markers[i])) k = i;
-        if (k < 0)
-            return pj_fail(c, "%s.marker is not none, circle, square, triangle or diamond", path);
-        o.marker = (cj_chart_marker)k;
-    }
+    cj_json_join(p, path, "line_width");
+    if ((v = cJSON_GetObjectItemCaseSensitive(s, "line_width")) &&
+        cj_json_number_at(&c->doc, v, p, CJ_JSON_IN, 0, 16, &o.line_width))
+        return -1;
+    cj_json_join(p, path, "marker_radius");
+    if ((v = cJSON_GetObjectItemCaseSensitive(s, "marker_radius")) &&
+        cj_json_number_at(&c->doc, v, p, CJ_JSON_IN, 0x1p-10, 16, &o.marker_radius))
+        return -1;
+    int marker = (int)o.marker;
+    if (cj_json_enum(&c->doc, s, path, "marker", markers, &marker)) return -1;
+    o.marker = (cj_chart_marker)marker;
     if (o.marker == CJ_MARKER_NONE && o.line_width == 0)
-        return pj_fail(c, "%s has line_width 0 and marker none: nothing to draw", path);
-    const cJSON *pts = pj_field(s, "points");
-    if (!pts) return pj_fail(c, "%s has no points", path);
-    pj_pathf(p, sizeof p, "%s.points", path);
+        return pj_fail(c, s, "%s has line_width 0 and marker none: nothing to draw", path);
+    const cJSON *pts = cJSON_GetObjectItemCaseSensitive(s, "points");
+    if (!pts) return pj_fail(c, s, "%s has no points", path);
+    cj_json_join(p, path, "points");
     double *xy = NULL;
     size_t n = 0;
     if (pj_parse_points(c, pts, p, 1, &xy, &n)) return -1;
     double *x = malloc(2 * n * sizeof *x);
     if (!x) {
         free(xy);
-        return pj_fail(c, "%s: out of memory", p);
+        return cj_json_fail(&c->doc, pts, 0, CJ_ERR_NOMEM, "%s: out of memory", p);
     }
     for (size_t i = 0; i < n; ++i) x[i] = xy[2 * i], x[n + i] = xy[2 * i + 1];
-    const int r = cj_chart_add_series(ch, x, x + n, n, &o) ? pj_lib_fail(c, path) : 0;
+    const int r = cj_chart_add_series(ch, x, x + n, n, &o) ? pj_lib_fail(c, s, path) : 0;
     free(x);
     free(xy);
     return r;
@@ -112,23 +105,25 @@ static int parse_series(pj_ctx *c, const cJSON *s, const char *path, size_t inde
 
 static int parse_note(pj_ctx *c, const cJSON *a, const char *path, cj_chart *ch) {
     static const char *const keys[] = {"at", "text", "color", NULL};
-    if (!cJSON_IsObject(a)) return pj_fail(c, "%s is not an object", path);
-    if (pj_check_keys(c, a, path, keys)) return -1;
-    char p[300];
+    if (cj_json_object(&c->doc, a, path, keys)) return -1;
+    char p[CJ_JSON_PATH];
     const cJSON *v;
     double at[2];
     const char *text = NULL;
     cj_rgba col = cj_rgba_make(0x40, 0x40, 0x40, 255);
-    if (!(v = pj_field(a, "at"))) return pj_fail(c, "%s has no \"at\" point", path);
-    pj_pathf(p, sizeof p, "%s.at", path);
-    if (pj_parse_numbers(c, v, p, 2, at)) return -1;
-    if (!(v = pj_field(a, "text"))) return pj_fail(c, "%s has no text", path);
-    pj_pathf(p, sizeof p, "%s.text", path);
+    if (!(v = cJSON_GetObjectItemCaseSensitive(a, "at")))
+        return pj_fail(c, a, "%s has no \"at\" point", path);
+    cj_json_join(p, path, "at");
+    if (cj_json_array_at(&c->doc, v, p, 2, at)) return -1;
+    if (!(v = cJSON_GetObjectItemCaseSensitive(a, "text")))
+        return pj_fail(c, a, "%s has no text", path);
+    cj_json_join(p, path, "text");
     if (parse_text(c, v, p, &text)) return -1;
-    if (!text[0]) return pj_fail(c, "%s is empty", p);
-    pj_pathf(p, sizeof p, "%s.color", path);
-    if ((v = pj_field(a, "color")) && pj_parse_color(c, v, p, &col)) return -1;
-    return cj_chart_annotate(ch, at[0], at[1], text, col) ? pj_lib_fail(c, path) : 0;
+    if (!text[0]) return pj_fail(c, v, "%s is empty", p);
+    cj_json_join(p, path, "color");
+    if ((v = cJSON_GetObjectItemCaseSensitive(a, "color")) && pj_parse_color(c, v, p, &col))
+        return -1;
+    return cj_chart_annotate(ch, at[0], at[1], text, col) ? pj_lib_fail(c, a, path) : 0;
 }
 
 int cj_chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path,
@@ -140,55 +135,54 @@ int cj_chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path,
     for (size_t i = 0; i < sizeof base / sizeof base[0]; ++i) keys[nk++] = base[i];
     for (size_t i = 0; extra_keys && extra_keys[i] && nk < 15; ++i) keys[nk++] = extra_keys[i];
     keys[nk] = NULL;
-    if (pj_check_keys(c, obj, path, keys)) return -1;
+    if (cj_json_object(&c->doc, obj, path, keys)) return -1;
     cj_chart *ch = NULL;
-    if (cj_chart_create(NULL, &ch)) return pj_lib_fail(c, path);
-    char p[300];
+    if (cj_chart_create(NULL, &ch)) return pj_lib_fail(c, obj, path);
+    char p[CJ_JSON_PATH];
     const cJSON *v;
     int r = 0;
     const char *title = NULL;
-    pj_pathf(p, sizeof p, "%s.title", path);
-    if (!r && (v = pj_field(obj, "title")))
-        r = parse_text(c, v, p, &title) || (cj_chart_set_title(ch, title) && pj_lib_fail(c, p));
+    cj_json_join(p, path, "title");
+    if (!r && (v = cJSON_GetObjectItemCaseSensitive(obj, "title")))
+        r = parse_text(c, v, p, &title) || (cj_chart_set_title(ch, title) && pj_lib_fail(c, v, p));
     for (int a = 0; !r && a < 2; ++a) {
-        pj_pathf(p, sizeof p, "%s.%s", path, a ? "y" : "x");
-        if ((v = pj_field(obj, a ? "y" : "x"))) r = parse_axis(c, v, p, a, ch);
+        cj_json_join(p, path, a ? "y" : "x");
+        if ((v = cJSON_GetObjectItemCaseSensitive(obj, a ? "y" : "x")))
+            r = parse_axis(c, v, p, a, ch);
     }
-    if (!r && (v = pj_field(obj, "legend"))) {
-        static const char *const pos[] = {"upper right", "upper left", "lower left", "lower right",
-                                          "outside"};
-        int k = -1;
-        for (int i = 0; i < 5 && cJSON_IsString(v); ++i)
-            if (!strcmp(v->valuestring, pos[i])) k = i;
-        if (k < 0)
-            r = pj_fail(c,
-                        "%s.legend is not \"upper right\", \"upper left\", \"lower left\", "
-                        "\"lower right\" or \"outside\"",
-                        path);
-        else
-            cj_chart_set_legend(ch, (cj_chart_legend)k);
+    if (!r && cJSON_GetObjectItemCaseSensitive(obj, "legend")) {
+        static const char *const pos[] = {"upper right", "upper left", "lower left",
+                                          "lower right", "outside",    NULL};
+        int k = 0;
+        r = cj_json_enum(&c->doc, obj, path, "legend", pos, &k) != CJ_OK;
+        if (!r) cj_chart_set_legend(ch, (cj_chart_legend)k);
     }
-    const cJSON *series = pj_field(obj, "series");
+    const cJSON *series = cJSON_GetObjectItemCaseSensitive(obj, "series");
     if (!r && (!series || !cJSON_IsArray(series) || cJSON_GetArraySize(series) < 1 ||
                cJSON_GetArraySize(series) > CJ_CHART_MAX_SERIES))
-        r = pj_fail(c, "%s.series is not an array of 1 to %d series", path, CJ_CHART_MAX_SERIES);
+        r = pj_fail(c, series ? series : obj, "%s.series is not an array of 1 to %d series", path,
+                    CJ_CHART_MAX_SERIES);
     size_t i = 0;
     for (const cJSON *s = series ? series->child : NULL; !r && s; s = s->next, ++i) {
-        pj_pathf(p, sizeof p, "%s.series[%zu]", path, i);
+        char sp[CJ_JSON_PATH];
+        cj_json_join(sp, path, "series");
+        cj_json_index(p, sp, i);
         r = parse_series(c, s, p, i, ch);
     }
-    const cJSON *notes = pj_field(obj, "annotations");
+    const cJSON *notes = cJSON_GetObjectItemCaseSensitive(obj, "annotations");
     if (!r && notes && (!cJSON_IsArray(notes) || cJSON_GetArraySize(notes) > CJ_CHART_MAX_NOTES))
-        r = pj_fail(c, "%s.annotations is not an array of at most %d notes", path,
+        r = pj_fail(c, notes, "%s.annotations is not an array of at most %d notes", path,
                     CJ_CHART_MAX_NOTES);
     i = 0;
     for (const cJSON *a = notes ? notes->child : NULL; !r && a; a = a->next, ++i) {
-        pj_pathf(p, sizeof p, "%s.annotations[%zu]", path, i);
+        char ap[CJ_JSON_PATH];
+        cj_json_join(ap, path, "annotations");
+        cj_json_index(p, ap, i);
         r = parse_note(c, a, p, ch);
     }
     /* ranges now, so that a value <= 0 on a log axis is a parse error with a path */
     double lo[2], hi[2];
-    if (!r && cj_chart_ranges(ch, lo, hi)) r = pj_lib_fail(c, path);
+    if (!r && cj_chart_ranges(ch, lo, hi)) r = pj_lib_fail(c, obj, path);
     if (r) {
         cj_chart_destroy(ch);
         return -1;

@@ -56,55 +56,57 @@ static int parse_curve(pj_ctx *c, const cJSON *it, const char *path, cj_plot *pl
     if (pj_read_curve(c, it, path, spline, color, &k)) return -1;
     const cj_status st = cj_plot_json_curve_add(plot, &k);
     pj_curve_free(&k);
-    return st ? pj_lib_fail(c, path) : 0;
+    return st ? pj_lib_fail(c, it, path) : 0;
 }
 
 static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot,
                           cj_rgba color) {
     static const char *const keys[] = {"type", "color", "width", "circle", "ellipse",
                                        "line", "poly",  "box",   "grid",   NULL};
-    if (pj_check_keys(c, it, path, keys)) return -1;
+    if (cj_json_object(&c->doc, it, path, keys)) return -1;
     double width = 2.5;
     int grid = 64;
     PJ_OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
-    PJ_OPT(it, "width", path, pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
-    PJ_OPT(it, "grid", path, pj_parse_int(c, v_, p_, 4, 1024, &grid));
+    PJ_OPT(it, "width", path,
+           cj_json_number_at(&c->doc, v_, p_, CJ_JSON_IN, 0.1, CJ_PLOT_MAX_WIDTH, &width));
+    PJ_OPT(it, "grid", path, cj_json_int_at(&c->doc, v_, p_, 4, 1024, &grid));
     const char *kinds[] = {"circle", "ellipse", "line", "poly"};
     int which = -1;
     for (int k = 0; k < 4; ++k)
-        if (pj_field(it, kinds[k])) {
+        if (cJSON_GetObjectItemCaseSensitive(it, kinds[k])) {
             if (which >= 0)
-                return pj_fail(c, "%s has both \"%s\" and \"%s\": give exactly one curve", path,
+                return pj_fail(c, cJSON_GetObjectItemCaseSensitive(it, kinds[k]),
+                               "%s has both \"%s\" and \"%s\": give exactly one curve", path,
                                kinds[which], kinds[k]);
             which = k;
         }
     if (which < 0)
-        return pj_fail(c,
+        return pj_fail(c, it,
                        "%s: an implicit item needs one of \"circle\", \"ellipse\", \"line\", "
                        "\"poly\"",
                        path);
-    char p[300];
-    pj_pathf(p, sizeof p, "%s.%s", path, kinds[which]);
-    const cJSON *v = pj_field(it, kinds[which]);
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, kinds[which]);
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(it, kinds[which]);
     cj_implicit_shape shape;
     cj_implicit f;
     double box[4], a[5];
     int have_box = 0;
     double *coef = NULL;
     cj_status st = CJ_OK;
-    const cJSON *bv = pj_field(it, "box");
+    const cJSON *bv = cJSON_GetObjectItemCaseSensitive(it, "box");
     if (bv) {
-        char q[300];
-        pj_pathf(q, sizeof q, "%s.box", path);
-        if (pj_parse_numbers(c, bv, q, 4, box)) return -1;
+        char q[CJ_JSON_PATH];
+        cj_json_join(q, path, "box");
+        if (cj_json_array_at(&c->doc, bv, q, 4, box)) return -1;
         if (!(box[0] < box[2] && box[1] < box[3]))
-            return pj_fail(c, "%s is not [x0, y0, x1, y1] with x0 < x1 and y0 < y1", q);
+            return pj_fail(c, bv, "%s is not [x0, y0, x1, y1] with x0 < x1 and y0 < y1", q);
         have_box = 1;
     }
     switch (which) {
     case 0:
-        if (pj_parse_numbers(c, v, p, 3, a)) return -1;
-        if (!(a[2] > 0)) return pj_fail(c, "%s: the radius %g is not positive", p, a[2]);
+        if (cj_json_array_at(&c->doc, v, p, 3, a)) return -1;
+        if (!(a[2] > 0)) return pj_fail(c, v, "%s: the radius %g is not positive", p, a[2]);
         st = cj_implicit_circle(a[0], a[1], a[2], &shape, &f);
         if (!have_box) {
             const double r = 1.1 * a[2];
@@ -112,9 +114,9 @@ static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
         }
         break;
     case 1:
-        if (pj_parse_numbers(c, v, p, 5, a)) return -1;
+        if (cj_json_array_at(&c->doc, v, p, 5, a)) return -1;
         if (!(a[2] > 0 && a[3] > 0))
-            return pj_fail(c, "%s: the radii %g, %g are not positive", p, a[2], a[3]);
+            return pj_fail(c, v, "%s: the radii %g, %g are not positive", p, a[2], a[3]);
         st = cj_implicit_ellipse(a[0], a[1], a[2], a[3], a[4], &shape, &f);
         if (!have_box) {
             const double r = 1.1 * fmax(a[2], a[3]);
@@ -122,33 +124,34 @@ static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
         }
         break;
     case 2:
-        if (pj_parse_numbers(c, v, p, 3, a)) return -1;
-        if (!have_box) return pj_fail(c, "%s: a \"line\" needs a \"box\" to be drawn in", path);
+        if (cj_json_array_at(&c->doc, v, p, 3, a)) return -1;
+        if (!have_box) return pj_fail(c, it, "%s: a \"line\" needs a \"box\" to be drawn in", path);
         st = cj_implicit_line(a[0], a[1], a[2], &shape, &f);
         break;
     default: {
         static const char *const pkeys[] = {"degree", "coef", NULL};
-        if (!cJSON_IsObject(v)) return pj_fail(c, "%s is not an object {\"degree\", \"coef\"}", p);
-        if (pj_check_keys(c, v, p, pkeys)) return -1;
+        if (cj_json_object(&c->doc, v, p, pkeys)) return -1;
         int degree = 0;
-        char q[320];
-        pj_pathf(q, sizeof q, "%s.degree", p);
-        if (!pj_field(v, "degree")) return pj_fail(c, "%s: missing \"degree\"", p);
-        if (pj_parse_int(c, pj_field(v, "degree"), q, 1, 32, &degree)) return -1;
+        char q[CJ_JSON_PATH];
+        cj_json_join(q, p, "degree");
+        const cJSON *dv = NULL;
+        if (cj_json_require(&c->doc, v, p, "degree", &dv)) return -1;
+        if (cj_json_int_at(&c->doc, dv, q, 1, 32, &degree)) return -1;
         size_t nc = cj_implicit_poly_ncoef(degree);
-        pj_pathf(q, sizeof q, "%s.coef", p);
-        const cJSON *cv = pj_field(v, "coef");
+        cj_json_join(q, p, "coef");
+        const cJSON *cv = cJSON_GetObjectItemCaseSensitive(v, "coef");
         if (!cv || !cJSON_IsArray(cv) || (size_t)cJSON_GetArraySize(cv) != nc)
-            return pj_fail(c, "%s is not an array of %zu numbers (degree %d)", q, nc, degree);
+            return pj_fail(c, cv ? cv : v, "%s is not an array of %zu numbers (degree %d)", q, nc,
+                           degree);
         coef = malloc(nc * sizeof *coef);
-        if (!coef) return pj_fail(c, "%s: out of memory", q);
-        if (pj_parse_numbers(c, cv, q, (int)nc, coef)) {
+        if (!coef) return cj_json_fail(&c->doc, cv, 0, CJ_ERR_NOMEM, "%s: out of memory", q);
+        if (cj_json_array_at(&c->doc, cv, q, (int)nc, coef)) {
             free(coef);
             return -1;
         }
         if (!have_box) {
             free(coef);
-            return pj_fail(c, "%s: a \"poly\" needs a \"box\" to be drawn in", path);
+            return pj_fail(c, it, "%s: a \"poly\" needs a \"box\" to be drawn in", path);
         }
         st = cj_implicit_poly(degree, coef, &shape, &f);
         break;
@@ -160,14 +163,14 @@ static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
     c->work += (double)(grid + 1) * (double)(grid + 1) * terms;
     if (!st && c->work > PLOT_JSON_MAX_WORK) {
         free(coef);
-        return pj_fail(c,
+        return pj_fail(c, it,
                        "%s: the document's implicit curves need more than %.0e evaluations of "
                        "terms in all (grid^2 x terms; lower \"grid\" or the degree)",
                        path, PLOT_JSON_MAX_WORK);
     }
     if (!st) st = cj_plot_add_implicit(plot, &f, box, grid, color, width);
     free(coef);
-    return st ? pj_lib_fail(c, path) : 0;
+    return st ? pj_lib_fail(c, it, path) : 0;
 }
 
 static int parse_polyline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot,
@@ -175,29 +178,29 @@ static int parse_polyline(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
     static const char *const lkeys[] = {"type",   "points",  "color", "width",
                                         "closed", "markers", NULL};
     static const char *const pkeys[] = {"type", "points", "color", "radius", NULL};
-    if (pj_check_keys(c, it, path, points_only ? pkeys : lkeys)) return -1;
+    if (cj_json_object(&c->doc, it, path, points_only ? pkeys : lkeys)) return -1;
     double width = points_only ? 4.0 : 2.0;
     int closed = 0, markers = 0;
     PJ_OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
     PJ_OPT(it, points_only ? "radius" : "width", path,
-           pj_parse_number(c, v_, p_, 0.1, CJ_PLOT_MAX_WIDTH, &width));
+           cj_json_number_at(&c->doc, v_, p_, CJ_JSON_IN, 0.1, CJ_PLOT_MAX_WIDTH, &width));
     if (!points_only) {
-        PJ_OPT(it, "closed", path, pj_parse_bool(c, v_, p_, &closed));
-        PJ_OPT(it, "markers", path, pj_parse_bool(c, v_, p_, &markers));
+        PJ_OPT(it, "closed", path, cj_json_bool_at(&c->doc, v_, p_, &closed));
+        PJ_OPT(it, "markers", path, cj_json_bool_at(&c->doc, v_, p_, &markers));
     }
-    const cJSON *pv = pj_field(it, "points");
+    const cJSON *pv = cJSON_GetObjectItemCaseSensitive(it, "points");
     if (!pv)
-        return pj_fail(c, "%s: a %s needs \"points\"", path,
+        return pj_fail(c, it, "%s: a %s needs \"points\"", path,
                        points_only ? "points item" : "polyline");
-    char p[300];
-    pj_pathf(p, sizeof p, "%s.points", path);
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, "points");
     double *pts = NULL;
     size_t n = 0;
     if (pj_parse_points(c, pv, p, points_only ? 1 : 2, &pts, &n)) return -1;
     cj_status st = points_only ? cj_plot_add_points(plot, pts, n, color, width)
                                : cj_plot_add_polyline(plot, pts, n, closed, color, width, markers);
     free(pts);
-    return st ? pj_lib_fail(c, path) : 0;
+    return st ? pj_lib_fail(c, it, path) : 0;
 }
 
 /* One plot from an object holding title/axes/margin/view/background/items. `prefix` is the
@@ -205,7 +208,7 @@ static int parse_polyline(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
 static int parse_panel(pj_ctx *c, const cJSON *obj, const char *prefix, cj_rgba background,
                        cj_plot **out) {
     cj_plot *plot = NULL;
-    if (cj_plot_create(NULL, &plot)) return pj_fail(c, "%s", cj_last_error());
+    if (cj_plot_create(NULL, &plot)) return pj_lib_fail(c, obj, *prefix ? prefix : "document");
     cj_plot_set_background(plot, background);
     const char *path = *prefix ? prefix : "document";
     int axes = 1;
@@ -216,65 +219,64 @@ static int parse_panel(pj_ctx *c, const cJSON *obj, const char *prefix, cj_rgba 
         cj_plot_destroy(plot);                                                                     \
         return -1;                                                                                 \
     } while (0)
-    char p[300];
-    if ((v = pj_field(obj, "axes"))) {
-        pj_pathf(p, sizeof p, "%s%saxes", prefix, *prefix ? "." : "");
-        if (pj_parse_bool(c, v, p, &axes)) PFAIL;
+    char p[CJ_JSON_PATH];
+    if ((v = cJSON_GetObjectItemCaseSensitive(obj, "axes"))) {
+        cj_json_join(p, prefix, "axes");
+        if (cj_json_bool_at(&c->doc, v, p, &axes)) PFAIL;
     }
     cj_plot_set_axes(plot, axes);
-    if ((v = pj_field(obj, "margin"))) {
-        pj_pathf(p, sizeof p, "%s%smargin", prefix, *prefix ? "." : "");
-        if (pj_parse_number(c, v, p, 0.0, 1000.0, &margin)) PFAIL;
+    if ((v = cJSON_GetObjectItemCaseSensitive(obj, "margin"))) {
+        cj_json_join(p, prefix, "margin");
+        if (cj_json_number_at(&c->doc, v, p, CJ_JSON_IN, 0.0, 1000.0, &margin)) PFAIL;
     }
     cj_plot_set_margin(plot, margin);
-    if ((v = pj_field(obj, "title"))) {
-        pj_pathf(p, sizeof p, "%s%stitle", prefix, *prefix ? "." : "");
-        if (!cJSON_IsString(v)) {
-            pj_fail(c, "%s is not a string", p);
-            PFAIL;
-        }
-        if (cj_plot_set_title(plot, v->valuestring)) {
-            pj_fail(c, "%s: %s", p, cj_last_error());
+    if ((v = cJSON_GetObjectItemCaseSensitive(obj, "title"))) {
+        cj_json_join(p, prefix, "title");
+        const char *title = NULL;
+        if (cj_json_string_at(&c->doc, v, p, &title)) PFAIL;
+        if (cj_plot_set_title(plot, title)) {
+            pj_lib_fail(c, v, p);
             PFAIL;
         }
     }
-    if ((v = pj_field(obj, "view"))) {
+    if ((v = cJSON_GetObjectItemCaseSensitive(obj, "view"))) {
         double b[4];
-        pj_pathf(p, sizeof p, "%s%sview", prefix, *prefix ? "." : "");
-        if (pj_parse_numbers(c, v, p, 4, b)) PFAIL;
+        cj_json_join(p, prefix, "view");
+        if (cj_json_array_at(&c->doc, v, p, 4, b)) PFAIL;
         if (cj_plot_set_view(plot, b[0], b[1], b[2], b[3])) {
-            pj_fail(c, "%s: %s", p, cj_last_error());
+            pj_lib_fail(c, v, p);
             PFAIL;
         }
     }
-    const cJSON *items = pj_field(obj, "items");
-    pj_pathf(p, sizeof p, "%s%sitems", prefix, *prefix ? "." : "");
+    const cJSON *items = cJSON_GetObjectItemCaseSensitive(obj, "items");
+    cj_json_join(p, prefix, "items");
     if (!items) {
-        pj_fail(c, "%s: missing \"items\" (the list of things to draw)", path);
+        pj_fail(c, obj, "%s: missing \"items\" (the list of things to draw)", path);
         PFAIL;
     }
     if (!cJSON_IsArray(items) || cJSON_GetArraySize(items) == 0) {
-        pj_fail(c, "%s is not a non-empty array of items", p);
+        pj_fail(c, items, "%s is not a non-empty array of items", p);
         PFAIL;
     }
     size_t i = 0;
     for (const cJSON *it = items->child; it; it = it->next, ++i) {
-        char ip[300];
-        pj_pathf(ip, sizeof ip, "%s[%zu]", p, i);
+        char ip[CJ_JSON_PATH];
+        cj_json_index(ip, p, i);
         if (!cJSON_IsObject(it)) {
-            pj_fail(c, "%s is not an object", ip);
+            pj_fail(c, it, "%s is not an object, but %s", ip, cj_json_type_name(it));
             PFAIL;
         }
-        const cJSON *t = pj_field(it, "type");
+        const cJSON *t = cJSON_GetObjectItemCaseSensitive(it, "type");
         if (!t || !cJSON_IsString(t)) {
-            pj_fail(c,
+            pj_fail(c, t ? t : it,
                     "%s.type is missing or not a string (bezier, bspline, catmull-rom, "
                     "implicit, polyline, points)",
                     ip);
             PFAIL;
         }
         if (++c->items > PLOT_JSON_MAX_ITEMS) {
-            pj_fail(c, "%s: the document has more than %d items in all", ip, PLOT_JSON_MAX_ITEMS);
+            pj_fail(c, it, "%s: the document has more than %d items in all", ip,
+                    PLOT_JSON_MAX_ITEMS);
             PFAIL;
         }
         cj_rgba color = pj_palette(i);
@@ -292,7 +294,7 @@ static int parse_panel(pj_ctx *c, const cJSON *obj, const char *prefix, cj_rgba 
         else if (!strcmp(t->valuestring, "bspline"))
             r = pj_parse_bspline(c, it, ip, plot, color);
         else
-            r = pj_fail(c,
+            r = pj_fail(c, t,
                         "%s.type '%s' is not bezier, bspline, catmull-rom, implicit, polyline or "
                         "points",
                         ip, t->valuestring);
@@ -316,23 +318,24 @@ void cj_plot_doc_free(cj_plot_doc *doc) {
  * anything is contoured, so that a document over the limit costs nothing. Malformed fields
  * are left to the real parse (they count with their defaults here). */
 static int prescan_work(pj_ctx *c, const cJSON *panel, const char *prefix, double *work) {
-    const cJSON *items = pj_field(panel, "items");
+    const cJSON *items = cJSON_GetObjectItemCaseSensitive(panel, "items");
     if (!items || !cJSON_IsArray(items)) return 0;
     size_t i = 0;
     for (const cJSON *it = items->child; it; it = it->next, ++i) {
-        const cJSON *t = pj_field(it, "type");
+        const cJSON *t = cJSON_GetObjectItemCaseSensitive(it, "type");
         if (!t || !cJSON_IsString(t) || strcmp(t->valuestring, "implicit")) continue;
-        const cJSON *g = pj_field(it, "grid"), *poly = pj_field(it, "poly");
+        const cJSON *g = cJSON_GetObjectItemCaseSensitive(it, "grid"),
+                    *poly = cJSON_GetObjectItemCaseSensitive(it, "poly");
         const double grid = g && cJSON_IsNumber(g) && g->valuedouble >= 4 && g->valuedouble <= 1024
                                 ? floor(g->valuedouble)
                                 : 64.0;
         double terms = 3.0;
-        const cJSON *deg = poly ? pj_field(poly, "degree") : NULL;
+        const cJSON *deg = poly ? cJSON_GetObjectItemCaseSensitive(poly, "degree") : NULL;
         if (deg && cJSON_IsNumber(deg) && deg->valuedouble >= 1 && deg->valuedouble <= 32)
             terms = (double)cj_implicit_poly_ncoef((int)deg->valuedouble);
         *work += (grid + 1) * (grid + 1) * terms;
         if (*work > PLOT_JSON_MAX_WORK)
-            return pj_fail(c,
+            return pj_fail(c, it,
                            "%s%sitems[%zu]: the document's implicit curves need more than %.0e "
                            "evaluations of terms in all (grid^2 x terms; lower \"grid\" or the "
                            "degree)",
@@ -343,19 +346,15 @@ static int prescan_work(pj_ctx *c, const cJSON *panel, const char *prefix, doubl
 
 /* "kind": "chart" (chart_json.c); anything else is read as a geometry panel. */
 static int is_chart(const cJSON *obj) {
-    const cJSON *k = pj_field(obj, "kind");
+    const cJSON *k = cJSON_GetObjectItemCaseSensitive(obj, "kind");
     return k && cJSON_IsString(k) && !strcmp(k->valuestring, "chart");
 }
 
-int cj_plot_json_parse(const char *text, cj_plot_doc *doc, char *why, size_t why_size) {
-    pj_ctx c = {why, why_size, 0, 0, 0.0};
+cj_status cj_plot_json_parse(const char *name, const char *text, cj_plot_doc *doc) {
     memset(doc, 0, sizeof *doc);
-    const char *end = NULL;
-    cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
-    if (!root) {
-        pj_syntax_error(&c, text, end ? end : cJSON_GetErrorPtr());
-        return -1;
-    }
+    pj_ctx c;
+    cJSON *root = NULL;
+    CJ_JSON_TRY(pj_open(&c, name, text, &root));
     int rc = -1;
     static const char *const single[] = {"width",  "height", "background", "title", "axes",
                                          "margin", "view",   "items",      NULL};
@@ -365,23 +364,25 @@ int cj_plot_json_parse(const char *text, cj_plot_doc *doc, char *why, size_t why
     int w = 800, h = 600;
     doc->background = cj_rgba_make(255, 255, 255, 255);
     if (!cJSON_IsObject(root)) {
-        pj_fail(&c, "document is not a JSON object");
+        pj_fail(&c, root, "document is not a JSON object, but %s", cj_json_type_name(root));
         goto done;
     }
-    panels = pj_field(root, "panels");
+    panels = cJSON_GetObjectItemCaseSensitive(root, "panels");
     if (!panels && is_chart(root)) { /* the whole document is one chart */
         static const char *const doc_keys[] = {"width", "height", "background", NULL};
         if (cj_chart_json_parse(&c, root, "document", doc_keys, &doc->charts[0])) goto done;
         doc->npanels = 1;
     }
-    if (!doc->npanels && pj_check_keys(&c, root, "document", panels ? multi : single)) goto done;
-    if ((v = pj_field(root, "width")) &&
-        pj_parse_int(&c, v, "width", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &w))
+    if (!doc->npanels && cj_json_object(&c.doc, root, "document", panels ? multi : single))
         goto done;
-    if ((v = pj_field(root, "height")) &&
-        pj_parse_int(&c, v, "height", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &h))
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "width")) &&
+        cj_json_int_at(&c.doc, v, "width", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &w))
         goto done;
-    if ((v = pj_field(root, "background")) && pj_parse_color(&c, v, "background", &doc->background))
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "height")) &&
+        cj_json_int_at(&c.doc, v, "height", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &h))
+        goto done;
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "background")) &&
+        pj_parse_color(&c, v, "background", &doc->background))
         goto done;
     doc->width = w;
     doc->height = h;
@@ -390,8 +391,8 @@ int cj_plot_json_parse(const char *text, cj_plot_doc *doc, char *why, size_t why
         if (panels && cJSON_IsArray(panels)) {
             int k = 0;
             for (const cJSON *pn = panels->child; pn; pn = pn->next, ++k) {
-                char p[64];
-                pj_pathf(p, sizeof p, "panels[%d]", k);
+                char p[CJ_JSON_PATH];
+                cj_json_index(p, "panels", (size_t)k);
                 if (cJSON_IsObject(pn) && prescan_work(&c, pn, p, &work)) goto done;
             }
         } else if (!panels && prescan_work(&c, root, "", &work)) {
@@ -401,19 +402,20 @@ int cj_plot_json_parse(const char *text, cj_plot_doc *doc, char *why, size_t why
     if (panels) {
         if (!cJSON_IsArray(panels) || cJSON_GetArraySize(panels) == 0 ||
             cJSON_GetArraySize(panels) > PLOT_JSON_MAX_PANELS) {
-            pj_fail(&c, "panels is not an array of 1 to %d panels", PLOT_JSON_MAX_PANELS);
+            pj_fail(&c, panels, "panels is not an array of 1 to %d panels", PLOT_JSON_MAX_PANELS);
             goto done;
         }
         int n = cJSON_GetArraySize(panels);
         doc->columns = (int)ceil(sqrt((double)n));
-        if ((v = pj_field(root, "columns")) && pj_parse_int(&c, v, "columns", 1, n, &doc->columns))
+        if ((v = cJSON_GetObjectItemCaseSensitive(root, "columns")) &&
+            cj_json_int_at(&c.doc, v, "columns", 1, n, &doc->columns))
             goto done;
         int i = 0;
         for (const cJSON *pn = panels->child; pn; pn = pn->next, ++i) {
-            char p[64];
-            pj_pathf(p, sizeof p, "panels[%d]", i);
+            char p[CJ_JSON_PATH];
+            cj_json_index(p, "panels", (size_t)i);
             if (!cJSON_IsObject(pn)) {
-                pj_fail(&c, "%s is not an object", p);
+                pj_fail(&c, pn, "%s is not an object, but %s", p, cj_json_type_name(pn));
                 goto done;
             }
             if (is_chart(pn)) {
@@ -421,7 +423,7 @@ int cj_plot_json_parse(const char *text, cj_plot_doc *doc, char *why, size_t why
                 doc->npanels++;
                 continue;
             }
-            if (pj_check_keys(&c, pn, p, panel_keys)) goto done;
+            if (cj_json_object(&c.doc, pn, p, panel_keys)) goto done;
             if (parse_panel(&c, pn, p, doc->background, &doc->panels[doc->npanels])) goto done;
             doc->npanels++;
         }
@@ -437,8 +439,7 @@ int cj_plot_json_parse(const char *text, cj_plot_doc *doc, char *why, size_t why
     rc = 0;
 done:
     if (rc) cj_plot_doc_free(doc);
-    cJSON_Delete(root);
-    return rc;
+    return pj_close(&c, root, rc);
 }
 
 const char *cj_plot_doc_where(cj_plot_doc *doc) {

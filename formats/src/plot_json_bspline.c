@@ -14,27 +14,28 @@ int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
     static const char *const extra[] = {"color",          "width",        "control_polygon",
                                         "control_points", "knot_markers", NULL};
     cj_bsp_json b;
-    char why[400];
-    if (cj_bsp_json_parse(it, path, extra, PLOT_JSON_MAX_POINTS - c->points, &b, why, sizeof why))
-        return pj_fail(c, "%s", why);
+    const cj_status st =
+        cj_bsp_json_parse(&c->doc, it, path, extra, PLOT_JSON_MAX_POINTS - c->points, &b);
+    if (st) return st;
     cj_plot_bspline_opts o = cj_plot_bspline_defaults();
     o.color = color;
     int r = 0;
     const cJSON *v;
-    char p[300];
+    char p[CJ_JSON_PATH];
 #define BOPT(key, call)                                                                            \
-    if (!r && (v = pj_field(it, key))) {                                                           \
-        pj_pathf(p, sizeof p, "%s.%s", path, key);                                                 \
+    if (!r && (v = cJSON_GetObjectItemCaseSensitive(it, key))) {                                   \
+        cj_json_join(p, path, key);                                                                \
         r = call;                                                                                  \
     }
     BOPT("color", pj_parse_color(c, v, p, &o.color));
-    BOPT("width", pj_parse_number(c, v, p, 0.1, CJ_PLOT_MAX_WIDTH, &o.width));
-    BOPT("control_polygon", pj_parse_bool(c, v, p, &o.control_polygon));
-    BOPT("control_points", pj_parse_bool(c, v, p, &o.control_points));
-    BOPT("knot_markers", pj_parse_bool(c, v, p, &o.knot_markers));
+    BOPT("width", cj_json_number_at(&c->doc, v, p, CJ_JSON_IN, 0.1, CJ_PLOT_MAX_WIDTH, &o.width));
+    BOPT("control_polygon", cj_json_bool_at(&c->doc, v, p, &o.control_polygon));
+    BOPT("control_points", cj_json_bool_at(&c->doc, v, p, &o.control_points));
+    BOPT("knot_markers", cj_json_bool_at(&c->doc, v, p, &o.knot_markers));
 #undef BOPT
     if (!r && b.dim != 2)
-        r = pj_fail(c, "%s.points: a plotted B-spline needs 2D points, not %d coordinates", path,
+        r = pj_fail(c, cJSON_GetObjectItemCaseSensitive(it, "points"),
+                    "%s.points: a plotted B-spline needs 2D points, not %d coordinates", path,
                     b.dim);
     if (r) {
         cj_bsp_json_free(&b);
@@ -58,7 +59,7 @@ int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
 int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color) {
     cj_plot_json_curve k;
     if (pj_read_bspline(c, it, path, color, &k)) return -1;
-    const int r = cj_plot_json_curve_add(plot, &k) ? pj_lib_fail(c, path) : 0;
+    const int r = cj_plot_json_curve_add(plot, &k) ? pj_lib_fail(c, it, path) : 0;
     pj_curve_free(&k);
     return r ? -1 : 0;
 }

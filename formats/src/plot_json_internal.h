@@ -1,62 +1,59 @@
-/* Private to the casteljau tool: helpers shared by the JSON readers of `casteljau plot`
- * (plot_json.c: geometry panels, chart_json.c: chart panels). Every reader returns 0 on
- * success, or -1 after writing a one-line reason naming the JSON path into the context. */
+/* Private to formats/: what the readers of the plot document share (plot_json.c: geometry
+ * panels, chart_json.c: chart panels, plot_json_curve.c and plot_json_bspline.c: curve items).
+ * JSON is checked with the one kit of the scene layer (json_read_internal.h, cj_json_*); this
+ * file adds only what is the plot format's own: its colours, its palette, its point budget.
+ * Every reader returns 0 on success, or nonzero after reporting through cj_fail a one-line
+ * reason "<document>:<line>: <JSON path> ..." (cj_last_error). */
 #ifndef CASTELJAU_APP_PLOT_JSON_INTERNAL_H
 #define CASTELJAU_APP_PLOT_JSON_INTERNAL_H
 
 #include "plot_json.h"
 
+#include "json_read_internal.h"
+
 #include <cJSON.h>
 #include <stddef.h>
 
 typedef struct pj_ctx {
-    char *why;
-    size_t why_size;
+    cj_json_doc doc; /* the document's name and the lines of its values, for messages */
+    cj_json_lines lines;
     /* work counted against the document's limits (plot_json.h) */
     size_t items, points;
     double work;
 } pj_ctx;
 
-#if defined(__GNUC__)
-#define PJ_PRINTF(a, b) __attribute__((format(printf, a, b)))
-#else
-#define PJ_PRINTF(a, b)
-#endif
+/* Fails at node (its line in the message) with CJ_ERR_PARSE: "<name>:<line>: <message>". */
+#define pj_fail(c, node, ...) cj_json_fail(&(c)->doc, node, 0, CJ_ERR_PARSE, __VA_ARGS__)
 
-int pj_fail(pj_ctx *c, const char *fmt, ...) PJ_PRINTF(2, 3);
-void pj_pathf(char *buf, size_t size, const char *fmt, ...) PJ_PRINTF(3, 4);
-/* Fails naming the first field of obj not in the NULL-terminated list allowed. */
-int pj_check_keys(pj_ctx *c, const cJSON *obj, const char *path, const char *const *allowed);
+/* A colour of the plot format ("#rgb", "#rrggbb", "#rrggbbaa" or a CSS name) at node v. */
 int pj_parse_color(pj_ctx *c, const cJSON *v, const char *path, cj_rgba *out);
-int pj_parse_number(pj_ctx *c, const cJSON *v, const char *path, double lo, double hi, double *out);
-int pj_parse_int(pj_ctx *c, const cJSON *v, const char *path, int lo, int hi, int *out);
-int pj_parse_bool(pj_ctx *c, const cJSON *v, const char *path, int *out);
-/* A fixed-size array of count numbers. */
-int pj_parse_numbers(pj_ctx *c, const cJSON *v, const char *path, int count, double *out);
 /* [[x, y], ...] with at least min_count points into a new array (caller frees); counted
- * against PLOT_JSON_MAX_POINTS. */
+ * against the document's PLOT_JSON_MAX_POINTS. */
 int pj_parse_points(pj_ctx *c, const cJSON *v, const char *path, size_t min_count, double **out,
                     size_t *count);
-/* Fails with "path: <cj_last_error()>". */
-int pj_lib_fail(pj_ctx *c, const char *path);
-const cJSON *pj_field(const cJSON *obj, const char *key);
+/* Parses text, the document `name` (NULL: "<plot>"), into *root and readies c for reading it;
+ * pj_close(c, root, rc) ends the reading and returns the status of the readers' result rc: 0 is
+ * CJ_OK, a kit's status stays, -1 is CJ_ERR_PARSE (cj_last_error() is exact either way). */
+cj_status pj_open(pj_ctx *c, const char *name, const char *text, cJSON **root);
+cj_status pj_close(pj_ctx *c, cJSON *root, int rc);
+/* After a library call refused what the document gave: fails at node with "path:
+ * <cj_last_error()>" (CJ_ERR_PARSE: the document is refused). */
+int pj_lib_fail(pj_ctx *c, const cJSON *node, const char *path);
 
 /* An optional field: when obj has key, runs call with v_ (the value) and p_ (its JSON path)
  * and returns -1 from the calling function if call fails; absent, nothing happens. */
 #define PJ_OPT(obj, key, path, call)                                                               \
     do {                                                                                           \
-        const cJSON *v_ = pj_field(obj, key);                                                      \
+        const cJSON *v_ = cJSON_GetObjectItemCaseSensitive(obj, key);                              \
         if (v_) {                                                                                  \
-            char p_[300];                                                                          \
-            pj_pathf(p_, sizeof p_, "%s.%s", path, key);                                           \
+            char p_[CJ_JSON_PATH];                                                                 \
+            cj_json_join(p_, path, key);                                                           \
             if (call) return -1;                                                                   \
         }                                                                                          \
     } while (0)
 
 /* The default colour of item i (a palette of eight, by position). */
 cj_rgba pj_palette(size_t i);
-/* "JSON syntax error at line L, column C" for the parse error at `at` in text. */
-void pj_syntax_error(pj_ctx *c, const char *text, const char *at);
 
 /* A "bezier" (spline 0) or "catmull-rom" (spline 1) item at path into *out (plot_json_curve.c;
  * free with pj_curve_free); color is its default colour. */

@@ -5,19 +5,13 @@
 #include "trace_shade.h"
 
 #include "brdf.h"
+#include "clock_internal.h"
 #include "reflect_model.h"
 
 #include <math.h>
 #include <string.h>
-#include <time.h>
 
 static const double PI = 3.14159265358979323846;
-
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 uint64_t cj_trace_mix(uint64_t z) {
     z += 0x9e3779b97f4a7c15ull;
@@ -65,18 +59,18 @@ int cj_trace_refract(cj_vec3 d, cj_vec3 n, double n1, double n2, cj_vec3 *t) {
 }
 
 int tr_cast(tr_shade *sh, int kind, const cj_ray *ray, cj_hit *hit) {
-    double t0 = now();
+    double t0 = cj_clock_seconds();
     int got = tr_closest(sh->s, ray, sh->time, hit, sh->c);
-    sh->c->seconds[kind] += now() - t0;
+    sh->c->seconds[kind] += cj_clock_seconds() - t0;
     sh->c->cast[kind]++;
     if (got) sh->c->hit[kind]++;
     return got;
 }
 
 int tr_occluded(tr_shade *sh, const cj_ray *ray) {
-    double t0 = now();
+    double t0 = cj_clock_seconds();
     int got = tr_any(sh->s, ray, sh->time, sh->c);
-    sh->c->seconds[TR_SHADOW] += now() - t0;
+    sh->c->seconds[TR_SHADOW] += cj_clock_seconds() - t0;
     sh->c->cast[TR_SHADOW]++;
     if (got) sh->c->hit[TR_SHADOW]++;
     return got;

@@ -6,7 +6,6 @@
 #include "anim_json_internal.h"
 #include "error_internal.h"
 #include "file_internal.h"
-#include "json_depth_internal.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -517,18 +516,8 @@ cj_status cj_anim_doc_parse(const char *text, const char *name, const char *base
     memset(&c, 0, sizeof c);
     c.name = name ? name : "animation";
     c.base_dir = base_dir ? base_dir : "";
-    cJSON *root = cJSON_ParseWithOpts(text, NULL, 1);
-    if (!root) {
-        const char *at = cJSON_GetErrorPtr();
-        int line = 1;
-        for (const char *s = text; at && s < at && *s; ++s) line += *s == '\n';
-        if (cj_json_depth_at_(text, at) >= CJSON_NESTING_LIMIT)
-            return cj_fail(CJ_ERR_PARSE,
-                           "%s:%d: JSON nested deeper than %d levels (the reader's "
-                           "limit)",
-                           c.name, line, CJSON_NESTING_LIMIT);
-        return cj_fail(CJ_ERR_PARSE, "%s:%d: JSON syntax error", c.name, line);
-    }
+    cJSON *root = NULL;
+    CJ_JSON_TRY(cj_json_parse(c.name, text, &root));
     cj_json_doc_init(&c.json, &c.lines, c.name, text, root);
     cj_anim_doc *doc = calloc(1, sizeof *doc);
     cj_status st = doc ? CJ_OK : cj_fail(CJ_ERR_NOMEM, "no memory for the animation");

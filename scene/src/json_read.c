@@ -1,194 +1,17 @@
 /* The checked-JSON reading kit (json_read_internal.h), shared by the scene reader
- * (scene_json*.c) and the animation reader (anim_json*.c): lines of values for messages, checked
- * accessors. cJSON keeps no positions, so when a message needs a line a scanner walks the raw
- * text once (cJSON accepted it, so it is valid JSON) and records the line of every value in
- * document order; a node's position in a pre-order walk of the cJSON tree is its index in that
- * list, and a table sorted by node address finds it. The success path pays nothing. */
+ * (scene_json*.c), the animation reader (anim_json*.c) and the plot reader (formats/): messages
+ * "<name>:<line>: <path> ..." (the lines come from json_lines.c) and the checked accessors. */
 #include "json_read_internal.h"
+
+#include "json_write_internal.h"
 
 #include <math.h>
 #include <stdarg.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 static const double DEG = 3.14159265358979323846 / 180.0;
-
-/* ---- lines ---------------------------------------------------------------------------------- */
-
-typedef struct scanner {
-    const char *s;
-    int line;
-    int *vals; /* pairs (line, key_line) in document order */
-    size_t n, cap;
-    int ok;
-} scanner;
-
-static void skip_ws(scanner *sc) {
-    while (*sc->s && (unsigned char)*sc->s <= 32) {
-        if (*sc->s == '\n') sc->line++;
-        sc->s++;
-    }
-}
-
-static void skip_string(scanner *sc) {
-    sc->s++; /* opening quote */
-    while (*sc->s && *sc->s != '"') {
-        if (*sc->s == '\\' && sc->s[1]) sc->s++;
-        if (*sc->s == '\n') sc->line++;
-        sc->s++;
-    }
-    if (*sc->s) sc->s++;
-}
-
-static void record(scanner *sc, int line, int key_line) {
-    if (sc->n + 2 > sc->cap) {
-        size_t nc = sc->cap ? 2 * sc->cap : 256;
-        int *d = realloc(sc->vals, nc * sizeof *d);
-        if (!d) {
-            sc->ok = 0;
-            return;
-        }
-        sc->vals = d;
-        sc->cap = nc;
-    }
-    sc->vals[sc->n++] = line;
-    sc->vals[sc->n++] = key_line;
-}
-
-/* The text is valid JSON (cJSON parsed it), so the scanner only has to find token starts. */
-static void scan_value(scanner *sc, int key_line, int depth) {
-    skip_ws(sc);
-    record(sc, sc->line, key_line ? key_line : sc->line);
-    char ch = *sc->s;
-    if (ch == '{' || ch == '[') {
-        const char close = ch == '{' ? '}' : ']';
-        sc->s++;
-        skip_ws(sc);
-        if (*sc->s == close) {
-            sc->s++;
-            return;
-        }
-        while (*sc->s && sc->ok && depth < 4096) {
-            skip_ws(sc);
-            int kl = 0;
-            if (close == '}') {
-                kl = sc->line;
-                skip_string(sc);
-                skip_ws(sc);
-                if (*sc->s == ':') sc->s++;
-            }
-            scan_value(sc, kl, depth + 1);
-            skip_ws(sc);
-            if (*sc->s == ',') {
-                sc->s++;
-                continue;
-            }
-            if (*sc->s == close) sc->s++;
-            return;
-        }
-    } else if (ch == '"') {
-        skip_string(sc);
-    } else {
-        while (*sc->s && *sc->s != ',' && *sc->s != ']' && *sc->s != '}' &&
-               (unsigned char)*sc->s > 32)
-            sc->s++;
-    }
-}
-
-/* The sorted table: every node of the tree with its (line, key line), ordered by address, so a
- * lookup is a binary search (a reader that asks for many lines, such as the animation reader's
- * one line per channel, stays linear overall). */
-typedef struct node_entry {
-    const cJSON *node;
-    int line, key_line;
-} node_entry;
-
-static void pair_nodes(const cJSON *n, const int *vals, size_t nvals, node_entry *t, size_t *k) {
-    for (; n; n = n->next) {
-        t[*k].node = n;
-        t[*k].line = *k < nvals ? vals[2 * *k] : 0;
-        t[*k].key_line = *k < nvals ? vals[2 * *k + 1] : 0;
-        ++*k;
-        if (n->child) pair_nodes(n->child, vals, nvals, t, k);
-    }
-}
-
-static size_t count_nodes(const cJSON *n) {
-    size_t k = 0;
-    for (; n; n = n->next) k += 1 + (n->child ? count_nodes(n->child) : 0);
-    return k;
-}
-
-static int by_node(const void *a, const void *b) {
-    const uintptr_t x = (uintptr_t)((const node_entry *)a)->node,
-                    y = (uintptr_t)((const node_entry *)b)->node;
-    return x < y ? -1 : x > y;
-}
-
-static void build_table(cj_json_lines *l) {
-    scanner sc = {l->text, 1, NULL, 0, 0, 1};
-    if ((unsigned char)sc.s[0] == 0xEF && (unsigned char)sc.s[1] == 0xBB &&
-        (unsigned char)sc.s[2] == 0xBF)
-        sc.s += 3;
-    scan_value(&sc, 0, 0);
-    const size_t n = count_nodes(l->root);
-    node_entry *t = sc.ok ? malloc((n ? n : 1) * sizeof *t) : NULL;
-    if (t) {
-        size_t k = 0;
-        pair_nodes(l->root, sc.vals, sc.n / 2, t, &k);
-        qsort(t, n, sizeof *t, by_node);
-    }
-    free(sc.vals);
-    l->table = t;
-    l->n = t ? n : 0;
-    l->scanned = t ? 1 : -1;
-}
-
-/* The entry of node, scanning the text on the first request; NULL if unknown. */
-static const node_entry *node_lines(const cj_json_doc *c, const cJSON *node) {
-    cj_json_lines *l = c->lines;
-    if (!l || !node || !l->text || !l->root) return NULL;
-    if (!l->scanned) build_table(l);
-    const node_entry *t = l->table;
-    size_t lo = 0, hi = l->n;
-    while (lo < hi) {
-        const size_t mid = lo + (hi - lo) / 2;
-        if ((uintptr_t)t[mid].node < (uintptr_t)node)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo < l->n && t[lo].node == node ? &t[lo] : NULL;
-}
-
-int cj_json_line(const cj_json_doc *c, const cJSON *node) {
-    const node_entry *e = node_lines(c, node);
-    return e ? e->line : 0;
-}
-
-int cj_json_key_line(const cj_json_doc *c, const cJSON *node) {
-    const node_entry *e = node_lines(c, node);
-    return e ? e->key_line : 0;
-}
-
-void cj_json_doc_init(cj_json_doc *d, cj_json_lines *lines, const char *name, const char *text,
-                      const cJSON *root) {
-    memset(lines, 0, sizeof *lines);
-    lines->text = text;
-    lines->root = root;
-    d->name = name;
-    d->lines = lines;
-}
-
-void cj_json_doc_free(cj_json_doc *d) {
-    if (!d->lines) return;
-    free(d->lines->table);
-    d->lines->table = NULL;
-    d->lines->n = 0;
-    d->lines->scanned = 0;
-}
 
 /* ---- messages ------------------------------------------------------------------------------- */
 
@@ -302,8 +125,10 @@ static cj_status check_range(const cj_json_doc *c, const cJSON *n, const char *p
         snprintf(what, sizeof what, "in (%g, %g)", lo, hi);
         break;
     }
-    if (!ok) return cj_json_fail(c, n, 0, CJ_ERR_RANGE, "%s must be %s", p, what);
-    return CJ_OK;
+    if (ok) return CJ_OK;
+    char given[CJ_JSON_NUMBER_MAX];
+    cj_json_number_text(v, given);
+    return cj_json_fail(c, n, 0, CJ_ERR_RANGE, "%s must be %s, not %s", p, what, given);
 }
 
 static cj_status number_node(const cj_json_doc *c, const cJSON *n, const char *p, double *v) {
@@ -316,17 +141,54 @@ static cj_status number_node(const cj_json_doc *c, const cJSON *n, const char *p
     return CJ_OK;
 }
 
+cj_status cj_json_number_at(const cj_json_doc *c, const cJSON *n, const char *path, cj_json_range r,
+                            double lo, double hi, double *out) {
+    double v = 0.0;
+    cj_status st = number_node(c, n, path, &v);
+    if (!st) st = check_range(c, n, path, r, lo, hi, v);
+    if (!st) *out = v;
+    return st;
+}
+
+cj_status cj_json_int_at(const cj_json_doc *c, const cJSON *n, const char *path, double lo,
+                         double hi, int *out) {
+    double v;
+    cj_status st = number_node(c, n, path, &v);
+    if (st) return st;
+    if (v != floor(v)) {
+        char given[CJ_JSON_NUMBER_MAX];
+        cj_json_number_text(v, given);
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be an integer, not %s", path, given);
+    }
+    st = check_range(c, n, path, CJ_JSON_IN, lo, hi, v);
+    if (!st) *out = (int)v;
+    return st;
+}
+
+cj_status cj_json_bool_at(const cj_json_doc *c, const cJSON *n, const char *path, int *out) {
+    if (!cJSON_IsBool(n))
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be true or false, not %s", path,
+                            cj_json_type_name(n));
+    *out = cJSON_IsTrue(n) ? 1 : 0;
+    return CJ_OK;
+}
+
+cj_status cj_json_string_at(const cj_json_doc *c, const cJSON *n, const char *path,
+                            const char **out) {
+    if (!cJSON_IsString(n))
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be a string, not %s", path,
+                            cj_json_type_name(n));
+    *out = n->valuestring;
+    return CJ_OK;
+}
+
 cj_status cj_json_num(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
                       cj_json_range r, double lo, double hi, double *out) {
     const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
     if (!n) return CJ_OK;
     char p[CJ_JSON_PATH];
     cj_json_join(p, path, key);
-    double v;
-    cj_status st = number_node(c, n, p, &v);
-    if (!st) st = check_range(c, n, p, r, lo, hi, v);
-    if (!st) *out = v;
-    return st;
+    return cj_json_number_at(c, n, p, r, lo, hi, out);
 }
 
 cj_status cj_json_int(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
@@ -335,34 +197,28 @@ cj_status cj_json_int(const cj_json_doc *c, const cJSON *obj, const char *path, 
     if (!n) return CJ_OK;
     char p[CJ_JSON_PATH];
     cj_json_join(p, path, key);
-    double v;
-    cj_status st = number_node(c, n, p, &v);
-    if (st) return st;
-    if (v != floor(v)) return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be an integer", p);
-    st = check_range(c, n, p, CJ_JSON_IN, lo, hi, v);
-    if (!st) *out = (int)v;
-    return st;
+    return cj_json_int_at(c, n, p, lo, hi, out);
 }
 
 cj_status cj_json_bool(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
                        int *out) {
     const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
     if (!n) return CJ_OK;
-    if (!cJSON_IsBool(n)) {
-        char p[CJ_JSON_PATH];
-        cj_json_join(p, path, key);
-        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be true or false, not %s", p,
-                            cj_json_type_name(n));
-    }
-    *out = cJSON_IsTrue(n) ? 1 : 0;
-    return CJ_OK;
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, key);
+    return cj_json_bool_at(c, n, p, out);
 }
 
 /* A fixed-length array of numbers at node n. */
 static cj_status fixed_array(const cj_json_doc *c, const cJSON *n, const char *p, int len,
                              double *v, const char *what) {
-    if (!cJSON_IsArray(n) || cJSON_GetArraySize(n) != len)
-        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be %s", p, what);
+    if (!cJSON_IsArray(n) || cJSON_GetArraySize(n) != len) {
+        if (cJSON_IsArray(n))
+            return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be %s, not %d", p, what,
+                                cJSON_GetArraySize(n));
+        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be %s, not %s", p, what,
+                            cj_json_type_name(n));
+    }
     int k = 0;
     for (const cJSON *e = n->child; e; e = e->next, ++k) {
         char pe[CJ_JSON_PATH];
@@ -371,6 +227,13 @@ static cj_status fixed_array(const cj_json_doc *c, const cJSON *n, const char *p
         if (st) return st;
     }
     return CJ_OK;
+}
+
+cj_status cj_json_array_at(const cj_json_doc *c, const cJSON *n, const char *path, int len,
+                           double *out) {
+    char what[48];
+    snprintf(what, sizeof what, "an array of %d numbers", len);
+    return fixed_array(c, n, path, len, out, what);
 }
 
 cj_status cj_json_vec3(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
@@ -410,14 +273,9 @@ cj_status cj_json_string(const cj_json_doc *c, const cJSON *obj, const char *pat
                          const char **out) {
     const cJSON *n = cJSON_GetObjectItemCaseSensitive(obj, key);
     if (!n) return CJ_OK;
-    if (!cJSON_IsString(n)) {
-        char p[CJ_JSON_PATH];
-        cj_json_join(p, path, key);
-        return cj_json_fail(c, n, 0, CJ_ERR_PARSE, "%s must be a string, not %s", p,
-                            cj_json_type_name(n));
-    }
-    *out = n->valuestring;
-    return CJ_OK;
+    char p[CJ_JSON_PATH];
+    cj_json_join(p, path, key);
+    return cj_json_string_at(c, n, p, out);
 }
 
 cj_status cj_json_enum(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
@@ -443,13 +301,22 @@ cj_status cj_json_enum(const cj_json_doc *c, const cJSON *obj, const char *path,
                         "%s \"%s\" is not one of %s", p, s, list);
 }
 
-cj_status cj_json_numbers(const cj_json_doc *c, const cJSON *arr, const char *path, int dim,
-                          cj_json_range r, double lo, size_t want, double **out, size_t *count) {
+/* The numbers of arr: exactly `want` entries when want > 0, else at least `min` (min 1: "must
+ * not be empty"). */
+static cj_status numbers(const cj_json_doc *c, const cJSON *arr, const char *path, int dim,
+                         cj_json_range r, double lo, size_t min, size_t want, double **out,
+                         size_t *count) {
     if (!cJSON_IsArray(arr))
         return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must be an array, not %s", path,
                             cj_json_type_name(arr));
     size_t n = (size_t)cJSON_GetArraySize(arr);
-    if (n == 0) return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must not be empty", path);
+    if (n == 0 && min <= 1)
+        return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must not be empty", path);
+    if (!want && n < min) {
+        const char *noun = dim > 0 ? "point" : "number";
+        return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s has %zu %s%s, at least %zu needed", path,
+                            n, noun, n == 1 ? "" : "s", min);
+    }
     if (want && n != want)
         return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must have %zu entries, not %zu", path,
                             want, n);
@@ -493,6 +360,17 @@ cj_status cj_json_numbers(const cj_json_doc *c, const cJSON *arr, const char *pa
     return CJ_OK;
 }
 
+cj_status cj_json_numbers(const cj_json_doc *c, const cJSON *arr, const char *path, int dim,
+                          cj_json_range r, double lo, size_t want, double **out, size_t *count) {
+    return numbers(c, arr, path, dim, r, lo, 1, want, out, count);
+}
+
+cj_status cj_json_numbers_at_least(const cj_json_doc *c, const cJSON *arr, const char *path,
+                                   int dim, cj_json_range r, double lo, size_t min, double **out,
+                                   size_t *count) {
+    return numbers(c, arr, path, dim, r, lo, min, 0, out, count);
+}
+
 /* An angle given as key_deg or key_rad (not both), converted to radians. */
 cj_status cj_json_angle(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
                         cj_json_range r, double lo_rad, double hi_rad, double *out) {
@@ -515,7 +393,9 @@ cj_status cj_json_angle(const cj_json_doc *c, const cJSON *obj, const char *path
 }
 
 cj_status cj_json_list(const cj_json_doc *c, const cJSON *arr, const char *p) {
-    if (!cJSON_IsArray(arr)) return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must be an array", p);
+    if (!cJSON_IsArray(arr))
+        return cj_json_fail(c, arr, 0, CJ_ERR_PARSE, "%s must be an array, not %s", p,
+                            cj_json_type_name(arr));
     return CJ_OK;
 }
 

@@ -1,6 +1,7 @@
 /* Private: the one checked-JSON reading kit, shared by the readers of the scene layer (the scene
- * reader, scene_json*.c, and the animation reader, anim_json*.c) and open to every layer above
- * (scene/ is the lowest layer that links cJSON). A document is its name, its text and its cJSON
+ * reader, scene_json*.c, and the animation reader, anim_json*.c) and by the layers above (the
+ * plot reader of formats/, which the viewer's documents go through; scene/ is the lowest layer
+ * that links cJSON). A document is its name, its text and its cJSON
  * tree; every accessor reports a failure as "<name>:<line>: <path> <message>" through cj_fail and
  * returns its status, and leaves *out untouched when an optional key is missing. */
 #ifndef CASTELJAU_JSON_READ_INTERNAL_H
@@ -35,6 +36,11 @@ typedef struct cj_json_doc {
     const char *name;     /* the document's name in messages */
     cj_json_lines *lines; /* filled on the first request; NULL: every line reads 0 */
 } cj_json_doc;
+
+/* Parses text (the document `name`) into *root (free with cJSON_Delete). A refusal names the
+ * place: "<name>:<line>:<col>: JSON syntax error (line L, column C)", or "... JSON nested deeper
+ * than N levels" at cJSON's nesting limit (CJ_ERR_PARSE); CJ_ERR_NOMEM when cJSON ran out. */
+cj_status cj_json_parse(const char *name, const char *text, cJSON **root);
 
 /* A document read from text (parsed into root); lines is the caller's storage. Free the line
  * table with cj_json_doc_free. */
@@ -77,7 +83,22 @@ typedef enum cj_json_range {
     CJ_JSON_OPEN
 } cj_json_range;
 
-/* Optional numbers: finite (CJ_ERR_NONFINITE otherwise), in range (CJ_ERR_RANGE). */
+/* Checks of a node in hand (an array entry, a value found by the caller), named `path` in
+ * messages: a finite number in range (the range message ends with the value given: "width must
+ * be in [64, 8192], not 10"), a whole number in [lo, hi], a boolean, a string, an array of
+ * exactly `len` numbers. */
+cj_status cj_json_number_at(const cj_json_doc *c, const cJSON *n, const char *path, cj_json_range r,
+                            double lo, double hi, double *out);
+cj_status cj_json_int_at(const cj_json_doc *c, const cJSON *n, const char *path, double lo,
+                         double hi, int *out);
+cj_status cj_json_bool_at(const cj_json_doc *c, const cJSON *n, const char *path, int *out);
+cj_status cj_json_string_at(const cj_json_doc *c, const cJSON *n, const char *path,
+                            const char **out);
+cj_status cj_json_array_at(const cj_json_doc *c, const cJSON *n, const char *path, int len,
+                           double *out);
+
+/* Optional keys of obj, checked as the *_at accessors above: finite (CJ_ERR_NONFINITE otherwise),
+ * in range (CJ_ERR_RANGE). */
 cj_status cj_json_num(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
                       cj_json_range r, double lo, double hi, double *out);
 /* An optional whole number in [lo, hi]. */
@@ -99,6 +120,11 @@ cj_status cj_json_enum(const cj_json_doc *c, const cJSON *obj, const char *path,
  * malloc'ed array (free with free()). dim > 0: an array of arrays of `dim` numbers, flattened. */
 cj_status cj_json_numbers(const cj_json_doc *c, const cJSON *arr, const char *path, int dim,
                           cj_json_range r, double lo, size_t want, double **out, size_t *count);
+/* As cj_json_numbers with no fixed count but at least `min` entries ("points has 2 points, at
+ * least 3 needed"). */
+cj_status cj_json_numbers_at_least(const cj_json_doc *c, const cJSON *arr, const char *path,
+                                   int dim, cj_json_range r, double lo, size_t min, double **out,
+                                   size_t *count);
 /* An angle given as key_deg or key_rad (not both), range in radians, into *out (radians). */
 cj_status cj_json_angle(const cj_json_doc *c, const cJSON *obj, const char *path, const char *key,
                         cj_json_range r, double lo_rad, double hi_rad, double *out);

@@ -3,7 +3,6 @@
  * (json_read.c), which also gives the lines of messages. */
 #include "scene_json_internal.h"
 #include "file_internal.h"
-#include "json_depth_internal.h"
 
 #include <assert.h>
 #include <errno.h>
@@ -86,24 +85,8 @@ cj_status cj_scene_parse_json_with_options(const char *text, const char *name, c
                                            const cj_allocator *alloc, cj_scene **out) {
     assert(text && out);
     if (!name) name = "<scene>";
-    const char *end = NULL;
-    cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
-    if (!root) {
-        if (!end) return cj_fail(CJ_ERR_NOMEM, "%s: out of memory parsing JSON", name);
-        int line = 1, col = 1;
-        for (const char *p = text; p < end && *p; ++p) {
-            if (*p == '\n')
-                line++, col = 1;
-            else
-                col++;
-        }
-        if (cj_json_depth_at_(text, end) >= CJSON_NESTING_LIMIT)
-            return cj_fail(CJ_ERR_PARSE,
-                           "%s:%d:%d: JSON nested deeper than %d levels (the reader's limit)", name,
-                           line, col, CJSON_NESTING_LIMIT);
-        return cj_fail(CJ_ERR_PARSE, "%s:%d:%d: JSON syntax error (line %d, column %d)", name, line,
-                       col, line, col);
-    }
+    cJSON *root = NULL;
+    CJ_JSON_TRY(cj_json_parse(name, text, &root));
     jctx c;
     memset(&c, 0, sizeof c);
     c.name = name;

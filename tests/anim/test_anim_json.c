@@ -145,7 +145,8 @@ static void test_errors(void **state) {
            CJ_ERR_PARSE, "interpolation must be one of: step, linear");
     expect("{\"channels\": [\n\n  {\"target\": 3}]}", CJ_ERR_PARSE,
            "bad.json:3: channels[0].target");
-    expect("{\"channels\": [}", CJ_ERR_PARSE, "bad.json:1: JSON syntax error");
+    expect("{\"channels\": [}", CJ_ERR_PARSE,
+           "bad.json:1:15: JSON syntax error (line 1, column 15)");
 }
 
 int main(void) {

@@ -9,6 +9,7 @@ if(TARGET cj::viz AND TARGET cj::raster AND TARGET cj_test_bspline_oracle)
 endif()
 if(CJ_HAVE_VIEWER AND TARGET casteljau AND TARGET cj_test_bspline_oracle)
   cj_add_test(test_viewer_design SOURCES viewer/test_viewer_design.c support/xvfb.c
+    support/png_diff.c
     LIBS cj::viz cj::raster cj_test_bspline_oracle)
   target_include_directories(test_viewer_design PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_compile_definitions(test_viewer_design PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")

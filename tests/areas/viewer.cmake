@@ -7,6 +7,7 @@ if(TARGET cj::viz AND TARGET cj::scene AND TARGET cj::raster)
 endif()
 if(CJ_HAVE_VIEWER AND TARGET casteljau)
   cj_add_test(test_viewer_window SOURCES viewer/test_viewer_window.c support/xvfb.c
+    support/png_diff.c
     LIBS cj::viz cj::raster cj::scene cj::surfaces)
   target_include_directories(test_viewer_window PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_compile_definitions(test_viewer_window PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"
@@ -29,6 +30,7 @@ endif()
 if(CJ_HAVE_VIEWER AND TARGET casteljau)
   find_package(X11 REQUIRED)
   cj_add_test(test_viewer_live SOURCES viewer/test_viewer_live.c support/xvfb.c
+    support/png_diff.c
     LIBS cj::viz X11::X11)
   target_include_directories(test_viewer_live PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_compile_definitions(test_viewer_live PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>")

@@ -2,6 +2,7 @@
  * Cox–de Boor basis functions, 2300 bits), Bézier patches that reproduce their spans and share
  * boundary control points bit for bit, knot insertion in u and v that leaves the surface in
  * place, grid interpolation through its points, and refused input named. */
+#include "bsp_surf.h"
 #include "bsp_test.h"
 #include "oracle_bspline.h"
 
@@ -14,19 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { MAXN = 12 };
-
-typedef struct surf {
-    int p, q, nu, nv, rational;
-    double pts[3 * MAXN * MAXN], w[MAXN * MAXN], ku[MAXN + 10], kv[MAXN + 10];
-    char what[80];
-} surf;
-
-static cj_bspline_surface view(const surf *s) {
-    cj_bspline_surface v = {s->p,  s->q, s->nu, s->nv, s->pts, s->rational ? s->w : NULL,
-                            s->ku, s->kv};
-    return v;
-}
+enum { MAXN = BSP_SURF_MAXN };
 
 static void knots(cj_rng *r, double *k, int n, int p, int clamped) {
     double x = cj_rng_range(r, -1, 1);
@@ -46,64 +35,10 @@ static void knots(cj_rng *r, double *k, int n, int p, int clamped) {
     }
 }
 
-static void generate(cj_rng *r, surf *s, int rep) {
-    s->p = cj_rng_int(r, 1, 4);
-    s->q = cj_rng_int(r, 1, 4);
-    s->nu = s->p + 1 + cj_rng_int(r, 0, MAXN - 1 - s->p);
-    s->nv = s->q + 1 + cj_rng_int(r, 0, MAXN - 1 - s->q);
-    s->rational = rep % 2;
-    knots(r, s->ku, s->nu, s->p, rep % 3 != 0);
-    knots(r, s->kv, s->nv, s->q, rep % 4 != 0);
-    for (int i = 0; i < 3 * s->nu * s->nv; ++i) s->pts[i] = cj_rng_range(r, -1, 1);
-    for (int i = 0; i < s->nu * s->nv; ++i) s->w[i] = s->rational ? cj_rng_range(r, 0.3, 3) : 1.0;
-    snprintf(s->what, sizeof s->what, "(%d,%d) %dx%d %s", s->p, s->q, s->nu, s->nv,
-             s->rational ? "NURBS" : "poly");
-}
-
-/* Exact S_k(u, v) minus x, rounded, per coordinate into gaps (may be NULL); returns the max. */
-static double oracle_gap3(const surf *s, const mpfr_t u, const mpfr_t v, const double *x,
-                          double *gaps) {
-    mpfr_t Nu[MAXN], Nv[MAXN], num[3], den, t;
-    for (int i = 0; i < MAXN; ++i) mpfr_inits2(64, Nu[i], Nv[i], (mpfr_ptr)0);
-    mpfr_inits2(CJ_ORACLE_BSP_PREC, num[0], num[1], num[2], den, t, (mpfr_ptr)0);
-    cj_obsp_basis(s->ku, s->nu, s->p, u, Nu);
-    cj_obsp_basis(s->kv, s->nv, s->q, v, Nv);
-    for (int c = 0; c < 3; ++c) mpfr_set_ui(num[c], 0, MPFR_RNDN);
-    mpfr_set_ui(den, 0, MPFR_RNDN);
-    for (int j = 0; j < s->nv; ++j)
-        for (int i = 0; i < s->nu; ++i) {
-            mpfr_mul(t, Nu[i], Nv[j], MPFR_RNDN);
-            mpfr_mul_d(t, t, s->w[j * s->nu + i], MPFR_RNDN);
-            mpfr_add(den, den, t, MPFR_RNDN);
-            for (int c = 0; c < 3; ++c) {
-                mpfr_t z;
-                mpfr_init2(z, CJ_ORACLE_BSP_PREC);
-                mpfr_mul_d(z, t, s->pts[3 * (j * s->nu + i) + c], MPFR_RNDN);
-                mpfr_add(num[c], num[c], z, MPFR_RNDN);
-                mpfr_clear(z);
-            }
-        }
-    double g = 0;
-    for (int c = 0; c < 3; ++c) {
-        mpfr_div(num[c], num[c], den, MPFR_RNDN);
-        mpfr_sub_d(num[c], num[c], x[c], MPFR_RNDN);
-        const double gc = fabs(mpfr_get_d(num[c], MPFR_RNDU));
-        if (gaps) gaps[c] = gc;
-        g = fmax(g, gc);
-    }
-    for (int i = 0; i < MAXN; ++i) mpfr_clears(Nu[i], Nv[i], (mpfr_ptr)0);
-    mpfr_clears(num[0], num[1], num[2], den, t, (mpfr_ptr)0);
-    return g;
-}
-
-static double oracle_gap(const surf *s, const mpfr_t u, const mpfr_t v, const double *x) {
-    return oracle_gap3(s, u, v, x, NULL);
-}
-
 static const double TOL = 1e-13;
 
 static void test_eval_and_patches(cj_rng *r) {
-    static surf s;
+    static bsp_surf s;
     static double pp[3 * 25 * MAXN * MAXN * 4], pw[25 * MAXN * MAXN * 4], ub[MAXN + 1],
         vb[MAXN + 1];
     double worst_eval = 0, worst_patch = 0, worst_ratio = 0;
@@ -111,8 +46,8 @@ static void test_eval_and_patches(cj_rng *r) {
     mpfr_t u, v;
     mpfr_inits2(CJ_ORACLE_BSP_PREC, u, v, (mpfr_ptr)0);
     for (int rep = 0; rep < 40; ++rep) {
-        generate(r, &s, rep);
-        const cj_bspline_surface sv = view(&s);
+        bsp_surf_generate(r, &s, rep, knots);
+        const cj_bspline_surface sv = bsp_surf_view(&s);
         BSP_CHECK(cj_bspline_surface_check(&sv) == CJ_OK, "%s: %s", s.what, cj_last_error());
         const double u0 = s.ku[s.p], u1 = s.ku[s.nu], v0 = s.kv[s.q], v1 = s.kv[s.nv];
         for (int k = 0; k < 10; ++k) {
@@ -124,7 +59,7 @@ static void test_eval_and_patches(cj_rng *r) {
             mpfr_set_d(u, fmin(a, u1), MPFR_RNDN);
             mpfr_set_d(v, fmin(b, v1), MPFR_RNDN);
             double gaps[3], bound[3];
-            const double g = oracle_gap3(&s, u, v, x, gaps);
+            const double g = bsp_surf_gap_exact(&s, u, v, x, gaps);
             st = cj_bspline_surface_error_bound(&sv, fmin(a, u1), fmin(b, v1), bound);
             BSP_CHECK(st == CJ_OK, "%s: bound: %s", s.what, cj_last_error());
             for (int c = 0; c < 3; ++c) {
@@ -163,7 +98,7 @@ static void test_eval_and_patches(cj_rng *r) {
                 mpfr_add_d(v, v, vb[b], MPFR_RNDN);
                 /* At a jump knot the oracle takes the right-hand side; stay inside the span. */
                 if ((su == 1.0 && a + 1 < nsu) || (tv == 1.0)) continue;
-                const double g = oracle_gap(&s, u, v, x);
+                const double g = bsp_surf_gap_exact(&s, u, v, x, NULL);
                 BSP_CHECK(g <= TOL, "%s: patch %d at (%g, %g) off by %.3g", s.what, k, su, tv, g);
                 worst_patch = fmax(worst_patch, g);
             }
@@ -196,12 +131,12 @@ static void test_eval_and_patches(cj_rng *r) {
 }
 
 static void test_insert(cj_rng *r) {
-    static surf s;
+    static bsp_surf s;
     static double op[3 * (MAXN + 4) * MAXN], ow[(MAXN + 4) * MAXN], ok[MAXN + 16];
     double worst = 0;
     for (int rep = 0; rep < 30; ++rep) {
-        generate(r, &s, rep);
-        const cj_bspline_surface sv = view(&s);
+        bsp_surf_generate(r, &s, rep, knots);
+        const cj_bspline_surface sv = bsp_surf_view(&s);
         const int dir = rep % 2;
         const double *k = dir ? s.kv : s.ku;
         const int n = dir ? s.nv : s.nu, p = dir ? s.q : s.p;

@@ -3,6 +3,7 @@
  * within the evaluation bound plus the reported bound, knot removal within a tolerance moves it
  * at most the reported bound, partial derivatives of every order stay within their proven bound,
  * and refused input is named. */
+#include "bsp_surf.h"
 #include "bsp_test.h"
 #include "oracle_bspline.h"
 
@@ -14,24 +15,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { MAXN = 12, BIGN = 64 };
-
-typedef struct surf {
-    int p, q, nu, nv, rational;
-    double pts[3 * BIGN * BIGN], w[BIGN * BIGN], ku[BIGN + 40], kv[BIGN + 40];
-    char what[80];
-} surf;
+enum { MAXN = BSP_SURF_MAXN, BIGN = BSP_SURF_CAP };
 
 static unsigned long binom_ul(int n, int i) {
     unsigned long b = 1;
     for (int j = 1; j <= i; ++j) b = b * (unsigned long)(n - i + j) / (unsigned long)j;
     return b;
-}
-
-static cj_bspline_surface view(const surf *s) {
-    cj_bspline_surface v = {s->p,  s->q, s->nu, s->nv, s->pts, s->rational ? s->w : NULL,
-                            s->ku, s->kv};
-    return v;
 }
 
 /* Random knots: runs of equal values (multiplicity 1..p, mostly 1) spaced 0.2..1 apart, with
@@ -55,56 +44,11 @@ static void knots(cj_rng *r, double *k, int n, int p, int clamped) {
         for (i = n; i < total; ++i) k[i] += 0.5;
 }
 
-static void generate(cj_rng *r, surf *s, int rep) {
-    s->p = cj_rng_int(r, 1, 4);
-    s->q = cj_rng_int(r, 1, 4);
-    s->nu = s->p + 1 + cj_rng_int(r, 0, MAXN - 1 - s->p);
-    s->nv = s->q + 1 + cj_rng_int(r, 0, MAXN - 1 - s->q);
-    s->rational = rep % 2;
-    knots(r, s->ku, s->nu, s->p, rep % 3 != 0);
-    knots(r, s->kv, s->nv, s->q, rep % 4 != 0);
-    for (int i = 0; i < 3 * s->nu * s->nv; ++i) s->pts[i] = cj_rng_range(r, -1, 1);
-    for (int i = 0; i < s->nu * s->nv; ++i) s->w[i] = s->rational ? cj_rng_range(r, 0.3, 3) : 1.0;
-    snprintf(s->what, sizeof s->what, "(%d,%d) %dx%d %s", s->p, s->q, s->nu, s->nv,
-             s->rational ? "NURBS" : "poly");
-}
-
-/* Largest |S_k(u, v) − x_k| over the coordinates, S exact (MPFR), rounded up. */
-static double oracle_gap(const surf *s, double u, double v, const double *x) {
-    mpfr_t Nu[BIGN], Nv[BIGN], num[3], den, t, z, mu, mv;
-    for (int i = 0; i < BIGN; ++i) mpfr_inits2(64, Nu[i], Nv[i], (mpfr_ptr)0);
-    mpfr_inits2(CJ_ORACLE_BSP_PREC, num[0], num[1], num[2], den, t, z, mu, mv, (mpfr_ptr)0);
-    mpfr_set_d(mu, u, MPFR_RNDN);
-    mpfr_set_d(mv, v, MPFR_RNDN);
-    cj_obsp_basis(s->ku, s->nu, s->p, mu, Nu);
-    cj_obsp_basis(s->kv, s->nv, s->q, mv, Nv);
-    for (int c = 0; c < 3; ++c) mpfr_set_ui(num[c], 0, MPFR_RNDN);
-    mpfr_set_ui(den, 0, MPFR_RNDN);
-    for (int j = 0; j < s->nv; ++j)
-        for (int i = 0; i < s->nu; ++i) {
-            mpfr_mul(t, Nu[i], Nv[j], MPFR_RNDN);
-            mpfr_mul_d(t, t, s->rational ? s->w[j * s->nu + i] : 1.0, MPFR_RNDN);
-            mpfr_add(den, den, t, MPFR_RNDN);
-            for (int c = 0; c < 3; ++c) {
-                mpfr_mul_d(z, t, s->pts[3 * (j * s->nu + i) + c], MPFR_RNDN);
-                mpfr_add(num[c], num[c], z, MPFR_RNDN);
-            }
-        }
-    double g = 0;
-    for (int c = 0; c < 3; ++c) {
-        mpfr_div(num[c], num[c], den, MPFR_RNDN);
-        mpfr_sub_d(num[c], num[c], x[c], MPFR_RNDN);
-        g = fmax(g, fabs(mpfr_get_d(num[c], MPFR_RNDU)));
-    }
-    for (int i = 0; i < BIGN; ++i) mpfr_clears(Nu[i], Nv[i], (mpfr_ptr)0);
-    mpfr_clears(num[0], num[1], num[2], den, t, z, mu, mv, (mpfr_ptr)0);
-    return g;
-}
-
 /* Largest (|S(u,v) − F(u,v)| − eval bound of F) / (allowed) at ntest random (u, v): the new
  * surface F evaluated, compared with the exact S. */
-static double worst_ratio(cj_rng *r, const surf *s, const surf *f, double allowed, int ntest) {
-    const cj_bspline_surface fv = view(f);
+static double worst_ratio(cj_rng *r, const bsp_surf *s, const bsp_surf *f, double allowed,
+                          int ntest) {
+    const cj_bspline_surface fv = bsp_surf_view(f);
     double worst = 0;
     for (int t = 0; t < ntest; ++t) {
         const double u = s->ku[s->p] + (s->ku[s->nu] - s->ku[s->p]) * cj_rng_unit(r);
@@ -115,7 +59,7 @@ static double worst_ratio(cj_rng *r, const surf *s, const surf *f, double allowe
         if (!st) st = cj_bspline_surface_error_bound(&fv, uu, vv, b);
         BSP_CHECK(st == CJ_OK, "%s: eval of the result: %s", s->what, cj_last_error());
         if (st) return INFINITY;
-        const double gap = oracle_gap(s, uu, vv, x);
+        const double gap = bsp_surf_gap(s, uu, vv, x, NULL);
         const double ratio = gap / (allowed + fmax(b[0], fmax(b[1], b[2])));
         worst = fmax(worst, ratio);
     }
@@ -124,7 +68,7 @@ static double worst_ratio(cj_rng *r, const surf *s, const surf *f, double allowe
 
 /* Rounding of the conversions the bounds leave out (re-refinement, Bézier elevation): a few
  * hundred units of the largest homogeneous coordinate, times wmax/wmin for a NURBS. */
-static double conversion_slack(const surf *s) {
+static double conversion_slack(const bsp_surf *s) {
     double dmax = 0, wmin = INFINITY, wmax = 0;
     for (int i = 0; i < s->nu * s->nv; ++i) {
         for (int c = 0; c < 3; ++c) dmax = fmax(dmax, fabs(s->pts[3 * i + c]));
@@ -135,12 +79,12 @@ static double conversion_slack(const surf *s) {
 }
 
 static void test_elevate(cj_rng *r) {
-    static surf s, f;
+    static bsp_surf s, f;
     double worst = 0, worst_err = 0;
     int cases = 0;
     for (int rep = 0; rep < 40; ++rep) {
-        generate(r, &s, rep);
-        const cj_bspline_surface sv = view(&s);
+        bsp_surf_generate(r, &s, rep, knots);
+        const cj_bspline_surface sv = bsp_surf_view(&s);
         const int dir = rep % 2, times = 1 + rep % 3;
         int n2;
         cj_status st = cj_bspline_surface_elevate_count(&sv, dir, times, &n2);
@@ -160,7 +104,7 @@ static void test_elevate(cj_rng *r) {
             f.p += times;
             f.nu = n2;
         }
-        const cj_bspline_surface fv = view(&f);
+        const cj_bspline_surface fv = bsp_surf_view(&f);
         BSP_CHECK(cj_bspline_surface_check(&fv) == CJ_OK, "%s: elevated surface invalid: %s",
                   s.what, cj_last_error());
         const double ratio = worst_ratio(r, &s, &f, err + conversion_slack(&s), 16);
@@ -178,7 +122,7 @@ static void test_elevate(cj_rng *r) {
     s.rational = 0;
     memcpy(s.ku, (double[]){0, 1, 2}, sizeof(double) * 3);
     memcpy(s.kv, (double[]){0, 0, 1, 1}, sizeof(double) * 4);
-    cj_bspline_surface sv = view(&s);
+    cj_bspline_surface sv = bsp_surf_view(&s);
     int n2;
     BSP_CHECK(cj_bspline_surface_elevate_count(&sv, 0, 1, &n2) == CJ_ERR_DEGREE &&
                   strstr(cj_last_error(), "u degree 0"),
@@ -188,7 +132,7 @@ static void test_elevate(cj_rng *r) {
     s.p = 1;
     s.nu = 4;
     memcpy(s.ku, (double[]){0, 0, 1, 1, 2, 2}, sizeof(double) * 6);
-    sv = view(&s);
+    sv = bsp_surf_view(&s);
     BSP_CHECK(cj_bspline_surface_elevate_count(&sv, 0, 1, &n2) == CJ_ERR_ARGUMENT &&
                   strstr(cj_last_error(), "jump"),
               "jump: %s", cj_last_error());
@@ -200,13 +144,13 @@ static void test_elevate(cj_rng *r) {
 }
 
 static void test_remove(cj_rng *r) {
-    static surf s, g, f;
+    static bsp_surf s, g, f;
     static double ip[3 * BIGN * BIGN], iw[BIGN * BIGN], ik[BIGN + 40];
     double worst_back = 0, worst_ratio_tol = 0;
     int exact = 0, partial = 0;
     for (int rep = 0; rep < 40; ++rep) {
-        generate(r, &s, rep);
-        const cj_bspline_surface sv = view(&s);
+        bsp_surf_generate(r, &s, rep, knots);
+        const cj_bspline_surface sv = bsp_surf_view(&s);
         const int dir = rep % 2;
         const double *k = dir ? s.kv : s.ku;
         const int n = dir ? s.nv : s.nu, p = dir ? s.q : s.p;
@@ -236,7 +180,7 @@ static void test_remove(cj_rng *r) {
             g.nu += times;
             memcpy(g.ku, ik, sizeof(double) * (size_t)(g.nu + g.p + 1));
         }
-        const cj_bspline_surface gv = view(&g);
+        const cj_bspline_surface gv = bsp_surf_view(&g);
         f = g;
         int removed = -1;
         double err = -1;
@@ -282,11 +226,11 @@ static void test_remove(cj_rng *r) {
         ++partial;
     }
     /* tol = 0 on a generic surface removes nothing and returns the input bit for bit */
-    generate(r, &s, 2);
+    bsp_surf_generate(r, &s, 2, knots);
     s.nu = 6;
     s.p = 2;
     memcpy(s.ku, (double[]){0, 0, 0, 1, 2, 3, 4, 4, 4}, sizeof(double) * 9);
-    const cj_bspline_surface sv = view(&s);
+    const cj_bspline_surface sv = bsp_surf_view(&s);
     int removed = -1;
     double err = -1;
     f = s;
@@ -321,7 +265,7 @@ enum { KMAX = 6 };
 /* Exact partials S_{u^k v^l} (k <= ku, l <= kv) at (u, v) into ex[(k (kv+1) + l) 3 + c] (mpfr,
  * initialised): basis derivatives N_i^(k) as the derivatives of the unit-coefficient curves
  * (cj_obsp_eval), the tensor sums of the homogeneous partials, the quotient rule, all in MPFR. */
-static void oracle_partials(const surf *s, double u, double v, int ku, int kv, mpfr_t *ex) {
+static void oracle_partials(const bsp_surf *s, double u, double v, int ku, int kv, mpfr_t *ex) {
     static double unit[BIGN];
     mpfr_t Du[BIGN][KMAX + 1], Dv[BIGN][KMAX + 1], H[(KMAX + 1) * (KMAX + 1)][4], t, z, mu, mv;
     mpfr_inits2(CJ_ORACLE_BSP_PREC, t, z, mu, mv, (mpfr_ptr)0);
@@ -391,14 +335,14 @@ static double draw_param(cj_rng *r, const double *k, int n, int p) {
 }
 
 static void test_derivs(cj_rng *r) {
-    static surf s;
+    static bsp_surf s;
     double worst = 0, loosest = 0;
     int checked = 0, bitwise = 1;
     mpfr_t ex[(KMAX + 1) * (KMAX + 1) * 3];
     for (int i = 0; i < (KMAX + 1) * (KMAX + 1) * 3; ++i) mpfr_init2(ex[i], CJ_ORACLE_BSP_PREC);
     for (int rep = 0; rep < 40; ++rep) {
-        generate(r, &s, rep);
-        const cj_bspline_surface sv = view(&s);
+        bsp_surf_generate(r, &s, rep, knots);
+        const cj_bspline_surface sv = bsp_surf_view(&s);
         const int ku = s.p + 1, kv = s.q + 1, nl = kv + 1;
         for (int t = 0; t < 6; ++t) {
             const double u = draw_param(r, s.ku, s.nu, s.p), v = draw_param(r, s.kv, s.nv, s.q);
@@ -434,7 +378,7 @@ static void test_derivs(cj_rng *r) {
     BSP_CHECK(loosest < 1e-9, "derivative bounds vacuous: %.3g of the largest derivative", loosest);
     BSP_CHECK(bitwise, "the point (order (0, 0)) differs from cj_bspline_surface_eval");
     /* refusals */
-    const cj_bspline_surface sv = view(&s);
+    const cj_bspline_surface sv = bsp_surf_view(&s);
     double d[3 * 18 * 18];
     BSP_CHECK(cj_bspline_surface_eval_derivs(&sv, s.ku[s.p], s.kv[s.q], 17, 0, d) ==
                       CJ_ERR_ARGUMENT &&

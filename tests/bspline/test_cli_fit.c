@@ -169,11 +169,11 @@ int main(void) {
          "[0,0,2,1,1]}",
          "0.5", "knot 3"},
         {"{\"type\": \"bspline\", \"degree\": 1, \"points\": [[0],[1]], \"weights\": [1, 0]}",
-         "0.5", "weight 1"},
+         "0.5", "c.json:1: document.weights[1] must be > 0, not 0"},
         {"{\"type\": \"bspline\", \"degree\": 1, \"points\": [[0],[1]]}", "1.5",
          "outside the domain"},
         {"{\"type\": \"bspline\", \"degree\": 1, \"points\": [[0],[1]], \"knot\": [0]}", "0.5",
-         "unknown field \"knot\""},
+         "c.json:1: document.knot is not a known key"},
     };
     char cfile[160];
     snprintf(cfile, sizeof cfile, "%s/c.json", dir);
@@ -240,8 +240,8 @@ int main(void) {
           f);
     fclose(f);
     snprintf(cmd, sizeof cmd, "'%s' tessellate --surface '%s' -o '%s/s.obj'", CJ_CLI, sfile, dir);
-    CHECK(run(cmd, &r) == 2 && strstr(r.err, "weight (0, 1)"), "negative surface weight: %s",
-          r.err);
+    CHECK(run(cmd, &r) == 2 && strstr(r.err, "surface.json:1: weights[2] must be > 0, not -1"),
+          "negative surface weight: %s", r.err);
     cj_cli_result_free(&r);
     printf("surfaces: fit --grid 8,6 then tessellate --surface meshes 15 patches; a wrong grid "
            "size and a negative surface weight are refused naming them\n");

@@ -110,7 +110,7 @@ int main(void) {
         {"{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,1]]}]}",
          "intersect --self --tol 1e-30", "tol 1e-30 is below what doubles resolve"},
         {"{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,\"x\"]]}]}", "intersect",
-         "items[0].points[1] is not a pair of numbers"},
+         "-:1: items[0].points[1][1] must be a number, not a string"},
         {"{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,1]]}]}", "nearest",
          "missing --point"},
         {"{\"items\": [", "intersect", "JSON syntax error"},

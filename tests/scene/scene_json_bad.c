@@ -29,7 +29,7 @@ static const bad_case BAD[] = {
     /* lines survive strings with brackets, quotes and escapes, empty containers and a BOM */
     {"{\"objects\": [{\"name\": \"a}\\\"],:{[\", \"geometry\": {\"type\": \"sphere\",\n"
      " \"radius\": -1}}]}",
-     CJ_ERR_RANGE, "scene.json:2: objects[0].geometry.radius must be > 0"},
+     CJ_ERR_RANGE, "scene.json:2: objects[0].geometry.radius must be > 0, not -1"},
     {"{\"settings\": {}, \"lights\": [],\n\"textures\": [ ], \"materials\": [{\"name\": "
      "\"x\\n\\u00e9\"}],\n\"objects\": [{\"children\": [\n{\"name\": \"[\", \"geometry\": "
      "\"nope\"}]}]}",
@@ -44,28 +44,29 @@ static const bad_case BAD[] = {
     {"{\"objects\": [],\n \"camra\": {}}", CJ_ERR_PARSE,
      "scene.json:2: camra is not a known key (expected one of: camera, settings, lights, "
      "textures, materials, geometries, objects)"},
-    {"{\"objects\": {}}", CJ_ERR_PARSE, "scene.json:1: objects must be an array"},
+    {"{\"objects\": {}}", CJ_ERR_PARSE, "scene.json:1: objects must be an array, not an object"},
     /* camera */
     {OBJ1 "\"camera\": {\"eye\": [0, 0]}}", CJ_ERR_PARSE,
-     "scene.json:2: camera.eye must be an array of 3 numbers"},
-    {OBJ1 "\"camera\": {\n\"near\": 0.1}}", CJ_ERR_RANGE, "scene.json:3: camera.near must be < 0"},
+     "scene.json:2: camera.eye must be an array of 3 numbers, not 2"},
+    {OBJ1 "\"camera\": {\n\"near\": 0.1}}", CJ_ERR_RANGE,
+     "scene.json:3: camera.near must be < 0, not 0.1"},
     {OBJ1 "\"camera\": {\"near\": -1,\n\n \"far\": -0.5}}", CJ_ERR_RANGE,
-     "scene.json:4: camera.far must be < -1"},
+     "scene.json:4: camera.far must be < -1, not -0.5"},
     {OBJ1 "\"camera\": {\"gaze\": [0, 0, -1],\n \"look_at\": [0, 0, 0]}}", CJ_ERR_PARSE,
      "scene.json:3: camera: give either \"gaze\" or \"look_at\", not both"},
     {OBJ1 "\"camera\": {\"fov_deg\": 180}}", CJ_ERR_RANGE,
-     "scene.json:2: camera.fov_deg must be in (0, 180)"},
+     "scene.json:2: camera.fov_deg must be in (0, 180), not 180"},
     {OBJ1 "\"camera\": {\n\"gaze\": [0, 1, 0], \"up\": [0, 2, 0]}}", CJ_ERR_DEGENERATE,
      "scene.json:2: camera.up must not be parallel to the gaze"},
     {OBJ1 "\"camera\": {\"projection\": \"fisheye\"}}", CJ_ERR_PARSE,
      "scene.json:2: camera.projection \"fisheye\" is not one of perspective, orthographic"},
     /* settings */
     {OBJ1 "\"settings\": {\"width\": 0}}", CJ_ERR_RANGE,
-     "scene.json:2: settings.width must be in [1, 32768]"},
+     "scene.json:2: settings.width must be in [1, 32768], not 0"},
     {OBJ1 "\"settings\": {\"spp\": 2.5}}", CJ_ERR_PARSE,
-     "scene.json:2: settings.spp must be an integer"},
+     "scene.json:2: settings.spp must be an integer, not 2.5"},
     {OBJ1 "\"settings\": {\"background\": [0, -1, 0]}}", CJ_ERR_RANGE,
-     "scene.json:2: settings.background[1] must be >= 0"},
+     "scene.json:2: settings.background[1] must be >= 0, not -1"},
     /* lights */
     {OBJ1 "\"lights\": [{\"intensity\": 1}]}", CJ_ERR_PARSE,
      "scene.json:2: lights[0]: missing key \"type\""},
@@ -78,11 +79,11 @@ static const bad_case BAD[] = {
      "scene.json:4: lights[1].position is not a known key (expected one of: type, color, "
      "intensity, casts_shadows)"},
     {OBJ1 "\"lights\": [{\"type\": \"point\", \"intensity\": -1}]}", CJ_ERR_RANGE,
-     "scene.json:2: lights[0].intensity must be >= 0"},
+     "scene.json:2: lights[0].intensity must be >= 0, not -1"},
     {OBJ1 "\"lights\": [{\"type\": \"point\", \"color\": [1,\n \"x\", 1]}]}", CJ_ERR_PARSE,
      "scene.json:3: lights[0].color[1] must be a number, not a string"},
     {OBJ1 "\"lights\": [{\"type\": \"spot\", \"angle_deg\": 95}]}", CJ_ERR_RANGE,
-     "scene.json:2: lights[0].angle_deg must be in [0, 90]"},
+     "scene.json:2: lights[0].angle_deg must be in [0, 90], not 95"},
     {OBJ1 "\"lights\": [{\"type\": \"directional\", \"direction\": [0, 0, 0]}]}", CJ_ERR_DEGENERATE,
      "scene.json:2: lights[0].direction must not be the zero vector"},
     /* textures */
@@ -96,17 +97,17 @@ static const bad_case BAD[] = {
           "\"checker\"}]}",
      CJ_ERR_PARSE, "scene.json:3: textures[1].name \"t\" is already textures[0]"},
     {OBJ1 "\"textures\": [{\"name\": \"t\", \"type\": \"checker\", \"checks\": [0, 4]}]}",
-     CJ_ERR_RANGE, "scene.json:2: textures[0].checks[0] must be >= 1"},
+     CJ_ERR_RANGE, "scene.json:2: textures[0].checks[0] must be >= 1, not 0"},
     /* materials */
     {OBJ1
      "\"materials\": [{\"name\": \"a\"}, {\"name\": \"b\"},\n {\"name\": \"c\",\n \"alpha\": -1}]}",
-     CJ_ERR_RANGE, "scene.json:4: materials[2].alpha must be >= 0"},
+     CJ_ERR_RANGE, "scene.json:4: materials[2].alpha must be >= 0, not -1"},
     {OBJ1 "\"materials\": [{\"name\": \"a\", \"texture\": \"wood\"}]}", CJ_ERR_PARSE,
      "scene.json:2: materials[0].texture \"wood\" names no texture"},
     {OBJ1 "\"materials\": [{\"name\": \"a\", \"opacity\": 1.5}]}", CJ_ERR_RANGE,
-     "scene.json:2: materials[0].opacity must be in [0, 1]"},
+     "scene.json:2: materials[0].opacity must be in [0, 1], not 1.5"},
     {OBJ1 "\"materials\": [{\"name\": \"a\", \"ior\": 0.5}]}", CJ_ERR_RANGE,
-     "scene.json:2: materials[0].ior must be >= 1"},
+     "scene.json:2: materials[0].ior must be >= 1, not 0.5"},
     {OBJ1 "\"materials\": [{\"name\": \"a\", \"shading\": \"toon\"}]}", CJ_ERR_PARSE,
      "scene.json:2: materials[0].shading \"toon\" is not one of flat, gouraud, phong"},
     /* objects: the issue's example, line 14 */
@@ -114,7 +115,7 @@ static const bad_case BAD[] = {
      "      " SPHERE ",\n      \"material\": {\n        \"color\": [1, 0, 0],\n"
      "        \"kd\": 0.5,\n        \"ks\": 0.5,\n        \"shading\": \"phong\",\n"
      "        \"two_sided\": false,\n        \"alpha\": -3\n      }\n    }\n  ]\n}\n",
-     CJ_ERR_RANGE, "scene.json:14: objects[2].material.alpha must be >= 0"},
+     CJ_ERR_RANGE, "scene.json:14: objects[2].material.alpha must be >= 0, not -3"},
     {"{\"objects\": [{" SPHERE ",\n \"material\": \"gold\"}]}", CJ_ERR_PARSE,
      "scene.json:2: objects[0].material \"gold\" names no material"},
     {"{\"objects\": [{" SPHERE ",\n \"children\": []}]}", CJ_ERR_PARSE,
@@ -129,7 +130,7 @@ static const bad_case BAD[] = {
     {"{\"objects\": [{\"name\": \"a\",\n \"name\": \"b\", " SPHERE "}]}", CJ_ERR_PARSE,
      "scene.json:2: objects[0].name is given twice (line 1)"},
     {"{\"objects\": [{" SPHERE ",\n \"overlay\": {\"iso_lines\": -1}}]}", CJ_ERR_RANGE,
-     "scene.json:2: objects[0].overlay.iso_lines must be in [0, 10000]"},
+     "scene.json:2: objects[0].overlay.iso_lines must be in [0, 10000], not -1"},
     /* transforms */
     {"{\"objects\": [{" SPHERE ",\n \"transform\": {\"quaternion\": [1, 0, 0, 0], \"rotate\": "
      "{\"axis\": [0, 0, 1], \"angle_deg\": 3}}}]}",
@@ -156,7 +157,7 @@ static const bad_case BAD[] = {
      "quadric, torus, cylinder, planar, plane, bilinear, revolution, gen_cylinder, mesh, curve, "
      "bspline_surface, nurbs_surface"},
     {"{\"objects\": [{\"geometry\": {\"type\": \"sphere\",\n \"radius\": 0}}]}", CJ_ERR_RANGE,
-     "scene.json:2: objects[0].geometry.radius must be > 0"},
+     "scene.json:2: objects[0].geometry.radius must be > 0, not 0"},
     {"{\"objects\": [{\"geometry\": {\"type\": \"sphere\"}}]}", CJ_ERR_PARSE,
      "scene.json:1: objects[0].geometry: missing key \"radius\""},
     {"{\"objects\": [{\"geometry\": {\"type\": \"quadric\", \"kind\": \"ellipsoid\", \"a\": 1, "
@@ -170,7 +171,7 @@ static const bad_case BAD[] = {
      "scene.json:2: objects[0].geometry.patches[0].points must have 4 entries, not 3"},
     {"{\"objects\": [{\"geometry\": {\"type\": \"patches\", \"patches\": [{\"degree\": [1, 1],\n"
      "\"points\": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]],\n \"weights\": [1, 1, -1, 1]}]}}]}",
-     CJ_ERR_RANGE, "scene.json:3: objects[0].geometry.patches[0].weights[2] must be > 0"},
+     CJ_ERR_RANGE, "scene.json:3: objects[0].geometry.patches[0].weights[2] must be > 0, not -1"},
     {"{\"objects\": [{\"geometry\": {\"type\": \"bpt\",\n \"path\": \"nope.bpt\"}}]}", CJ_ERR_IO,
      "scene.json:2: objects[0].geometry.path: cannot open '%s/nope.bpt': No such file or "
      "directory"},
@@ -186,7 +187,7 @@ static const bad_case BAD[] = {
      CJ_ERR_PARSE, "scene.json:1: objects[0].geometry: missing key \"weights\""},
     {"{\"objects\": [{\"geometry\": {\"type\": \"curve\", \"kind\": \"bezier\", \"points\": "
      "[[0, 0, 0], [1, 0, 0]],\n \"width_px\": 0.5}}]}",
-     CJ_ERR_RANGE, "scene.json:2: objects[0].geometry.width_px must be >= 1"},
+     CJ_ERR_RANGE, "scene.json:2: objects[0].geometry.width_px must be >= 1, not 0.5"},
     {"{\"objects\": [{\"geometry\": {\"type\": \"torus\", \"major\": 1, \"minor\": 2}}]}",
      CJ_ERR_ARGUMENT,
      "scene.json:1: objects[0].geometry: torus: minor radius 2 must be below major radius 1 "

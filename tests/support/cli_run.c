@@ -2,6 +2,7 @@
 #include "cli_run.h"
 
 #include <fcntl.h>
+#include <stdarg.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -71,6 +72,30 @@ done:
 int cj_cli_shell(const char *cmd, cj_cli_result *r) {
     char *const argv[] = {(char *)"/bin/sh", (char *)"-c", (char *)cmd, NULL};
     return cj_cli_spawn(argv, r);
+}
+
+cj_cli_result cj_cli_shellf(const char *fmt, ...) {
+    char cmd[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    const int n = vsnprintf(cmd, sizeof cmd, fmt, ap);
+    va_end(ap);
+    cj_cli_result r;
+    if (n >= 0 && (size_t)n < sizeof cmd && cj_cli_shell(cmd, &r) == 0) return r;
+    memset(&r, 0, sizeof r);
+    r.status = -1;
+    r.out = calloc(1, 1);
+    const char *why = n < 0 || (size_t)n >= sizeof cmd ? "the command is longer than 4095 bytes"
+                                                       : "the shell could not be run or captured";
+    r.err = malloc(strlen(why) + 1);
+    if (r.err) strcpy(r.err, why);
+    r.err_len = r.err ? strlen(why) : 0;
+    return r;
+}
+
+int cj_cli_one_line(const char *s) {
+    const char *nl = strchr(s, '\n');
+    return !nl || !nl[1];
 }
 
 void cj_cli_result_free(cj_cli_result *r) {

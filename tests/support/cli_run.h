@@ -20,6 +20,18 @@ int cj_cli_spawn(char *const argv[], cj_cli_result *r);
 /* Runs `/bin/sh -c cmd` (for pipelines and quoting); same capture. */
 int cj_cli_shell(const char *cmd, cj_cli_result *r);
 
+/* Runs `/bin/sh -c` on the printf-style command (at most 4095 bytes). When the command does not
+ * fit, or could not be run or captured, the result has status -1, out "" and err saying so, so
+ * the caller's checks of status and messages fail with a reason. Free with cj_cli_result_free. */
+cj_cli_result cj_cli_shellf(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* 1 when s (a program's stderr) is exactly one line: no newline but a last one. */
+int cj_cli_one_line(const char *s);
+
 void cj_cli_result_free(cj_cli_result *r);
 
 /* Runs `exe sub args...` (args NULL-terminated, at most 60) and copies the exit status and both

@@ -10,6 +10,7 @@
 #include "cli_run.h"
 #include "oracle_bspline.h"
 #include "support/check.h"
+#include "support/png_diff.h"
 #include "support/xvfb.h"
 
 #include <float.h>
@@ -62,24 +63,6 @@ static void window_xy(const cj_vview *v, const double *p, int *x, int *y) {
     cj_vview_to_px(v, p[0], p[1], q);
     *x = (int)floor(q[0]);
     *y = v->height - 1 - (int)floor(q[1]);
-}
-
-/* Pixels of two PNG files that differ (-1: sizes differ). */
-static long differ(const char *a, const char *b) {
-    char pa[600], pb[600];
-    snprintf(pa, sizeof pa, "%s/%s", dir, a);
-    snprintf(pb, sizeof pb, "%s/%s", dir, b);
-    int wa = 0, ha = 0, wb = 0, hb = 0;
-    uint8_t *x = NULL, *y = NULL;
-    long n = -1;
-    if (!cj_image_read(pa, &wa, &ha, &x) && !cj_image_read(pb, &wb, &hb, &y) && wa == wb &&
-        ha == hb) {
-        n = 0;
-        for (long i = 0; i < (long)wa * ha; ++i) n += memcmp(x + 4 * i, y + 4 * i, 4) != 0;
-    }
-    cj_image_free(x);
-    cj_image_free(y);
-    return n;
 }
 
 /* Runs the viewer on `doc` with `extra` options in a window titled uniquely, sends it the
@@ -172,7 +155,7 @@ static void test_edit_and_pixels(void) {
           "dragged point saved at (%.17g, %.17g)", want[0], want[1]);
     const double w = 3.0 * 1.25 * 1.25 / 1.25 * 1.25;
     CHECK(nu2->weights[1] == w, "weight %.17g, expected %.17g", nu2->weights[1], w);
-    const long n = differ("edit_window.png", "edit_plot.png");
+    const long n = cj_test_png_differ(dir, "edit_window.png", "edit_plot.png");
     CHECK(n == 0, "%ld pixels differ between the window and casteljau plot", n);
     printf("xdotool session: a cubic B-spline point dragged by (+30, +25) px, a NURBS weight "
            "x1.25 x1.25 /1.25 x1.25 (now %.17g), a knot inserted at the cursor (%.6g), ctrl+S, "

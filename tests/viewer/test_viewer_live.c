@@ -15,6 +15,7 @@
 
 #include "casteljau/image_io.h"
 #include "cli_run.h"
+#include "support/png_diff.h"
 #include "support/xvfb.h"
 
 #include <X11/Xlib.h>
@@ -227,25 +228,6 @@ static void test_real_keys_and_interrupt(void **state) {
     free(bare);
 }
 
-/* Pixels of two PNG files that differ (-1 if the sizes differ). */
-static long differ_png(const char *a, const char *b) {
-    char pa[512], pb[512];
-    snprintf(pa, sizeof pa, "%s/%s", dir, a);
-    snprintf(pb, sizeof pb, "%s/%s", dir, b);
-    int wa, ha, wb, hb;
-    uint8_t *x = NULL, *y = NULL;
-    assert_int_equal(cj_image_read(pa, &wa, &ha, &x), CJ_OK);
-    assert_int_equal(cj_image_read(pb, &wb, &hb, &y), CJ_OK);
-    long n = -1;
-    if (wa == wb && ha == hb) {
-        n = 0;
-        for (long i = 0; i < (long)wa * ha; ++i) n += memcmp(x + 4 * i, y + 4 * i, 4) != 0;
-    }
-    cj_image_free(x);
-    cj_image_free(y);
-    return n;
-}
-
 static void test_traced_passes_equal_offline(void **state) {
     (void)state;
     char path[512], cmd[4096];
@@ -261,9 +243,9 @@ static void test_traced_passes_equal_offline(void **state) {
              "%s trace traced.json -o t4.png --spp 4 --threads 2",
              dir, CJ_CLI, CJ_CLI, CJ_CLI);
     assert_int_equal(sh(cmd), 0);
-    assert_int_equal(differ_png("pass1.png", "t1.png"), 0);
-    assert_int_equal(differ_png("pass2.png", "t4.png"), 0);
-    assert_true(differ_png("pass1.png", "pass2.png") > 0);
+    assert_int_equal(cj_test_png_differ(dir, "pass1.png", "t1.png"), 0);
+    assert_int_equal(cj_test_png_differ(dir, "pass2.png", "t4.png"), 0);
+    assert_true(cj_test_png_differ(dir, "pass1.png", "pass2.png") > 0);
     printf("replayed ray-traced passes 2 (1 spp) and 3 (4 spp) == `casteljau trace` of the saved "
            "scene at 1 and 4 spp: 0 of %d pixels differ\n",
            160 * 120);

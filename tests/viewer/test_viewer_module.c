@@ -13,24 +13,12 @@
 
 #include "support/cli_run.h"
 
-static cj_cli_result shell(const char *fmt, ...) {
-    char cmd[2048];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(cmd, sizeof cmd, fmt, ap);
-    va_end(ap);
-    cj_cli_result r;
-    assert_int_equal(cj_cli_shell(cmd, &r), 0);
-    return r;
-}
-
 static void expect_view_error(const char *env, const char *want1, const char *want2) {
-    cj_cli_result r = shell("env -u DISPLAY %s '%s' view --teapot", env, CJ_CLI);
+    cj_cli_result r = cj_cli_shellf("env -u DISPLAY %s '%s' view --teapot", env, CJ_CLI);
     if (r.status != 1 && r.status != 2) fail_msg("exit status %d: %s", r.status, r.err);
     if (!strstr(r.err, want1) || (want2 && !strstr(r.err, want2)))
         fail_msg("message '%s' lacks '%s' / '%s'", r.err, want1, want2 ? want2 : "");
-    const char *nl = strchr(r.err, '\n');
-    if (nl && nl[1]) fail_msg("more than one line: %s", r.err);
+    if (!cj_cli_one_line(r.err)) fail_msg("more than one line: %s", r.err);
     printf("  %s -> %s", env[0] ? env : "(default)", r.err);
     cj_cli_result_free(&r);
 }
@@ -41,9 +29,9 @@ static void test_view_errors(void **state) {
                       "/nonexistent");
     /* a file that exists but is no library: dlopen's reason is in the message */
     cj_cli_result r =
-        shell("f=$(mktemp) && echo junk > \"$f\" && env -u DISPLAY "
-              "CJ_VIEWER_PLUGIN=\"$f\" '%s' view --teapot; s=$?; rm -f \"$f\"; exit $s",
-              CJ_CLI);
+        cj_cli_shellf("f=$(mktemp) && echo junk > \"$f\" && env -u DISPLAY "
+                      "CJ_VIEWER_PLUGIN=\"$f\" '%s' view --teapot; s=$?; rm -f \"$f\"; exit $s",
+                      CJ_CLI);
     if (r.status != 1 && r.status != 2) fail_msg("exit status %d: %s", r.status, r.err);
     if (!strstr(r.err, "cannot be loaded") || !strstr(r.err, "GLFW"))
         fail_msg("message: %s", r.err);

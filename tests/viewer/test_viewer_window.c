@@ -23,6 +23,7 @@
 #include "casteljau/viewer_model.h"
 #include "casteljau/viewer_scene.h"
 #include "cli_run.h"
+#include "support/png_diff.h"
 #include "support/xvfb.h"
 
 #include <math.h>
@@ -57,25 +58,6 @@ static int run(const char *cmd, cj_cli_result *r) {
     snprintf(full, sizeof full, "cd %s && %s", dir, cmd);
     assert_int_equal(cj_cli_shell(full, r), 0);
     return r->status;
-}
-
-/* Pixels of two PNG files: the number that differ (-1 if sizes differ). */
-static long differ(const char *a, const char *b) {
-    char pa[512], pb[512];
-    snprintf(pa, sizeof pa, "%s/%s", dir, a);
-    snprintf(pb, sizeof pb, "%s/%s", dir, b);
-    int wa, ha, wb, hb;
-    uint8_t *x = NULL, *y = NULL;
-    assert_int_equal(cj_image_read(pa, &wa, &ha, &x), CJ_OK);
-    assert_int_equal(cj_image_read(pb, &wb, &hb, &y), CJ_OK);
-    long n = -1;
-    if (wa == wb && ha == hb) {
-        n = 0;
-        for (long i = 0; i < (long)wa * ha; ++i) n += memcmp(x + 4 * i, y + 4 * i, 4) != 0;
-    }
-    cj_image_free(x);
-    cj_image_free(y);
-    return n;
 }
 
 /* Window coordinates (y down) of the pixel that holds curve ci's point pi. */
@@ -167,9 +149,10 @@ static void test_2d_drag_and_pixels(void **state) {
              CJ_CLI, CJ_CLI);
     assert_int_equal(run(buf, &r), 0);
     cj_cli_result_free(&r);
-    const long n = differ("bare.png", "plot.png");
+    const long n = cj_test_png_differ(dir, "bare.png", "plot.png");
     assert_int_equal(n, 0);
-    assert_true(differ("overlay.png", "plot.png") > 1000); /* the overlay is really drawn */
+    assert_true(cj_test_png_differ(dir, "overlay.png", "plot.png") >
+                1000); /* the overlay is really drawn */
     printf("2D session (drag, weight, elevate, hull, insert, construction, frame, split, undo, "
            "redo, delete, pan, zoom): back buffer == `casteljau plot` of the saved file, 0 of "
            "%d pixels differ; with the overlay and help shown they do differ\n",
@@ -177,20 +160,26 @@ static void test_2d_drag_and_pixels(void **state) {
     cj_vdoc_destroy(d);
 }
 
+/* The scene set to W x H at 1 spp, its depth plane (what the viewer picks against: the same
+ * deterministic render) into *depth, and its editable points. */
+static cj_vscene *pickable(cj_scene *s, int W, int H, cj_render_image **depth) {
+    cj_scene_settings set = *cj_scene_get_settings(s);
+    set.width = W, set.height = H, set.spp = 1;
+    assert_int_equal(cj_scene_set_settings(s, &set), CJ_OK);
+    cj_render_options ro = cj_render_options_defaults();
+    assert_int_equal(cj_render_raster(s, &ro, CJ_IMAGE_DEPTH, NULL, depth, NULL), CJ_OK);
+    cj_vscene *vs = NULL;
+    assert_int_equal(cj_vscene_create(s, &vs), CJ_OK);
+    return vs;
+}
+
 static void test_3d_drag_and_pixels(void **state) {
     (void)state;
     const int W = 320, H = 240;
     cj_scene *s = NULL;
     assert_int_equal(cj_render_demo_scene(CJ_TEAPOT_PATH, NULL, &s), CJ_OK);
-    cj_scene_settings set = *cj_scene_get_settings(s);
-    set.width = W, set.height = H, set.spp = 1;
-    assert_int_equal(cj_scene_set_settings(s, &set), CJ_OK);
-    /* the depth plane the viewer picks against (the same deterministic render) */
     cj_render_image *img = NULL;
-    cj_render_options ro = cj_render_options_defaults();
-    assert_int_equal(cj_render_raster(s, &ro, CJ_IMAGE_DEPTH, NULL, &img, NULL), CJ_OK);
-    cj_vscene *vs = NULL;
-    assert_int_equal(cj_vscene_create(s, &vs), CJ_OK);
+    cj_vscene *vs = pickable(s, W, H, &img);
     /* a visible control point on screen: the pick at the centre of its own pixel */
     size_t k = 0, picked = 0;
     double q[3];
@@ -255,9 +244,9 @@ static void test_3d_drag_and_pixels(void **state) {
     assert_true(cj_vscene_project(vm, picked, W, H, q1));
     const double err = fmax(fabs(q1[0] - (q[0] + 15)), fabs(q1[1] - (q[1] + 9)));
     assert_true(err < 1e-6);
-    const long n = differ("bare3d.png", "render3d.png");
+    const long n = cj_test_png_differ(dir, "bare3d.png", "render3d.png");
     assert_int_equal(n, 0);
-    assert_true(differ("overlay3d.png", "render3d.png") > 100);
+    assert_true(cj_test_png_differ(dir, "overlay3d.png", "render3d.png") > 100);
     printf("3D replay: control point %zu of the teapot dragged (+15, -9) px on the camera plane "
            "(with the %zu other patch corners at the same place): its projection moved by that "
            "within %.1e px, the other %zu points bit-identical; "
@@ -277,14 +266,8 @@ static void test_3d_bspline_drag(void **state) {
     const int W = 320, H = 240;
     cj_scene *s = NULL;
     assert_int_equal(cj_scene_load_json(CJ_BSPLINES_PATH, NULL, &s), CJ_OK);
-    cj_scene_settings set = *cj_scene_get_settings(s);
-    set.width = W, set.height = H, set.spp = 1;
-    assert_int_equal(cj_scene_set_settings(s, &set), CJ_OK);
     cj_render_image *img = NULL;
-    cj_render_options ro = cj_render_options_defaults();
-    assert_int_equal(cj_render_raster(s, &ro, CJ_IMAGE_DEPTH, NULL, &img, NULL), CJ_OK);
-    cj_vscene *vs = NULL;
-    assert_int_equal(cj_vscene_create(s, &vs), CJ_OK);
+    cj_vscene *vs = pickable(s, W, H, &img);
     /* a visible net point of the polynomial surface (the bicubic sheet) */
     size_t picked = 0;
     double q[3];
@@ -345,7 +328,7 @@ static void test_3d_bspline_drag(void **state) {
     assert_true(cj_vscene_project(vm, picked, W, H, q1));
     const double err = fmax(fabs(q1[0] - (q[0] + 12)), fabs(q1[1] - (q[1] + 10)));
     assert_true(err < 1e-6);
-    const long n = differ("bsurf.png", "bsurf_render.png");
+    const long n = cj_test_png_differ(dir, "bsurf.png", "bsurf_render.png");
     assert_int_equal(n, 0);
     printf("3D replay on a B-spline surface: net point %zu of the bicubic sheet dragged (+12, "
            "-10) px: saved as bspline_surface with that point moved (projection within %.1e px), "
@@ -370,7 +353,7 @@ static void test_animation(void **state) {
     cj_cli_result r;
     assert_int_equal(run(buf, &r), 0);
     cj_cli_result_free(&r);
-    assert_int_equal(differ("anim_view.png", "anim_4.png"), 0);
+    assert_int_equal(cj_test_png_differ(dir, "anim_view.png", "anim_4.png"), 0);
     printf("animation playback (scenes/anim_flyby.json): frame 4 in the viewer == `casteljau "
            "animate` frame 4, 0 of %d pixels differ\n",
            160 * 120);

@@ -117,10 +117,9 @@ cj_status cj_vdoc_load_json(const char *path, cj_vdoc **out, cj_vview *v, cj_vdo
     cj_status st = cj_file_read_all(path, CJ_FILE_MAX_BYTES, "viewer document", &text, &len);
     if (st) return st;
     cj_plot_json_page page;
-    char why[512];
-    const int rc = cj_plot_json_read_page(text, &page, why, sizeof why);
+    st = cj_plot_json_read_page(path, text, &page);
     free(text);
-    if (rc) return cj_fail(CJ_ERR_PARSE, "%s: %s", path, why);
+    if (st) return st;
     cj_vdoc *doc = NULL;
     cj_vdoc_display d = {page.background, -1, 0.5, 0, 0};
     st = cj_vdoc_create(&doc);
