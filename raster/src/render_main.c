@@ -24,7 +24,7 @@ static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
         cj_raster_prep_destroy(lists[i]->prep);
     }
     cj_rfree(a, c->clip);
-    cj_rfree(a, c->pe);
+    cj_rfree(a, c->vrec);
     cj_rfree(a, c->gouraud);
     cj_rfree(a, c->mats);
     cj_rfree(a, c->obj_mat);

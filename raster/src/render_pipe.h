@@ -113,7 +113,8 @@ typedef struct cj_rctx {
     int width, height, spp, tile_size, tiles_x, threads;
     const double (*pattern)[2];
     double *clip;   /* 4 per vertex */
-    float *pe;      /* 3 per vertex: position − eye in float (Phong shading, render_light8.h) */
+    float *vrec;    /* 8 per vertex: the unit normal (0 without normals), position − eye, (u, v)
+                       (0 without), in float: Phong shading (render_light8.h, render_shade8.c) */
     float *gouraud; /* gstride per vertex: (A, S) lit from the front, then (where two-sided
                        Gouraud materials exist, gstride 12) from the back; or NULL */
     int gstride;
@@ -143,7 +144,7 @@ typedef struct cj_rctx {
 /* flip: light the other side (n -> -n). */
 void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const float n_in[3],
                     int flip, float A[3], float S[3]);
-/* Fills c->pe and each light's pe (positions relative to the eye, float). */
+/* Fills c->vrec and each light's pe (positions relative to the eye, float). */
 cj_status cj_rshade_prepare_eye(cj_rctx *c, const cj_allocator *a);
 /* render_shade8.c: the Phong kernels, CJ_LANES samples at a time (textured or not). */
 void cj_rshade_phong8(const cj_rctx *c, const cj_tile *t, const uint32_t *idx, size_t n,

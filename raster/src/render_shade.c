@@ -66,13 +66,20 @@ cj_status cj_rshade_prepare_eye(cj_rctx *c, const cj_allocator *a) {
         L->pe[2] = (float)(L->pos[2] - e.z);
     }
     const size_t nv = c->b->vertex_count;
-    c->pe = cj_ralloc(a, sizeof(float) * 3 * (nv ? nv : 1));
-    if (!c->pe) return cj_fail(CJ_ERR_NOMEM, "eye-relative positions of %zu vertices", nv);
+    c->vrec = cj_ralloc(a, sizeof(float) * 8 * (nv ? nv : 1));
+    if (!c->vrec) return cj_fail(CJ_ERR_NOMEM, "shading records of %zu vertices", nv);
     const double *p = c->b->pos;
+    const float *nrm = c->b->nrm, *uv = c->b->uv;
     for (size_t v = 0; v < nv; ++v) {
-        c->pe[3 * v] = (float)(p[3 * v] - e.x);
-        c->pe[3 * v + 1] = (float)(p[3 * v + 1] - e.y);
-        c->pe[3 * v + 2] = (float)(p[3 * v + 2] - e.z);
+        float *r = c->vrec + 8 * v;
+        r[0] = nrm ? nrm[3 * v] : 0.0f;
+        r[1] = nrm ? nrm[3 * v + 1] : 0.0f;
+        r[2] = nrm ? nrm[3 * v + 2] : 0.0f;
+        r[3] = (float)(p[3 * v] - e.x);
+        r[4] = (float)(p[3 * v + 1] - e.y);
+        r[5] = (float)(p[3 * v + 2] - e.z);
+        r[6] = uv ? uv[2 * v] : 0.0f;
+        r[7] = uv ? uv[2 * v + 1] : 0.0f;
     }
     return CJ_OK;
 }
@@ -144,8 +151,9 @@ CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1
         } else {
             const float *n0 = c->b->nrm + 3 * (size_t)tv[0], *n1 = c->b->nrm + 3 * (size_t)tv[1],
                         *n2 = c->b->nrm + 3 * (size_t)tv[2];
-            const float *p0 = c->pe + 3 * (size_t)tv[0], *p1 = c->pe + 3 * (size_t)tv[1],
-                        *p2 = c->pe + 3 * (size_t)tv[2];
+            const float *p0 = c->vrec + 8 * (size_t)tv[0] + 3,
+                        *p1 = c->vrec + 8 * (size_t)tv[1] + 3,
+                        *p2 = c->vrec + 8 * (size_t)tv[2] + 3;
             float n[3], p[3];
             for (int k = 0; k < 3; ++k) {
                 n[k] = b0 * n0[k] + b1 * n1[k] + b2 * n2[k];
