@@ -135,10 +135,13 @@ CJ_LANE_INLINE void cj_lanes_view(const cj_rctx *c, int n, const cj_lanes *b, fl
 CJ_LANE_INLINE void cj_lanes_normalize(int n, float *x, float *y, float *z) {
     for (int j = 0; j < n; ++j) {
         const float len = sqrtf(x[j] * x[j] + y[j] * y[j] + z[j] * z[j]);
+        /* r = 1 where len is not > 0, and x·1 = x: a plain multiply, not a select, so the
+         * stores are unconditional (GCC made the select a masked store, which AMD cores run
+         * slowly and which stalls the loads that follow it) */
         const float r = 1.0f / (len > 0.0f ? len : 1.0f);
-        x[j] = len > 0.0f ? x[j] * r : x[j];
-        y[j] = len > 0.0f ? y[j] * r : y[j];
-        z[j] = len > 0.0f ? z[j] * r : z[j];
+        x[j] *= r;
+        y[j] *= r;
+        z[j] *= r;
     }
 }
 
