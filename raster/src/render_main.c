@@ -369,7 +369,9 @@ cj_status cj_rraster_frame(cj_renderer *r, const cj_rscene *rs, unsigned planes,
     F.rs = rs;
     F.scene = rs->scene;
     F.R = R;
-    F.A = r->alloc;
+    /* the frame's arrays come from the renderer's scratch blocks: a warm frame reuses the
+     * memory of the last one instead of faulting in fresh pages (render_scratch.h) */
+    F.A = cj_rscratch_allocator(r->scratch);
     F.target.fresh = 0;
     cj_status st = resolve_settings(&F);
     if (!st) st = setup_view(&F);
