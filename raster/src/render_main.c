@@ -246,8 +246,11 @@ static cj_status project_and_light(cj_rframe *F) {
                             F->b.vertex_count, F->sec_project);
     ts = cj_render_now();
     st = cj_rshade_prepare_eye(c, &F->A);
-    if (!st) st = cj_rshade_prepare_list(c, &c->opaque, &F->A);
-    if (!st) st = cj_rshade_prepare_list(c, &c->transp, &F->A);
+    /* the pool of the last frame, if any (the first frame starts it in run_tiles) */
+    cj_rpool *pool = F->r->pool;
+    int workers = pool ? cj_rpool_plan(F->r->opt.render.threads, cj_rpool_threads(pool)) : 1;
+    if (!st) st = cj_rshade_prepare_list(c, &c->opaque, &F->A, pool, workers);
+    if (!st) st = cj_rshade_prepare_list(c, &c->transp, &F->A, pool, workers);
     if (!st) st = cj_rshade_prepare_gouraud(c, &F->A, &F->gouraud_vertices);
     F->sec_shade_setup = cj_render_now() - ts;
     if (st) return st;

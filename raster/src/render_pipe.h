@@ -160,9 +160,11 @@ void cj_rshade_tex(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, 
 /* Shades one fragment of list L (transparent pass). */
 void cj_rshade_one(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2, double sx,
                    double sy, float out[4]);
-/* Per-triangle / per-vertex preparation of a list: kernel, flat A/S, (u,v) planes; Gouraud
- * vertex A/S into c->gouraud. */
-cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a);
+/* Per-triangle / per-vertex preparation of a list: kernel, flat A/S, (u,v) planes. pool (may
+ * be NULL) with workers > 1: the per-triangle part runs in ranges on it (the same values). */
+struct cj_rpool;
+cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a,
+                                 struct cj_rpool *pool, int workers);
 cj_status cj_rshade_prepare_gouraud(cj_rctx *c, const cj_allocator *a, size_t *vertices);
 
 /* render_emitters.c: the samples of the tile whose camera ray meets an emitter in front of
