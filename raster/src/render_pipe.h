@@ -165,6 +165,11 @@ void cj_rshade_one(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, 
 struct cj_rpool;
 cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a,
                                  struct cj_rpool *pool, int workers);
+/* The same in two steps: the kernel table and the arrays (begin), then the per-triangle values
+ * of triangles [t0, t1) (range: facing, flat A/S, (u,v) planes), which depend on that triangle
+ * alone, so ranges may run on any thread and in any order. */
+cj_status cj_rshade_prepare_begin(cj_rctx *c, cj_rlist *L, const cj_allocator *a);
+void cj_rshade_prepare_range(const cj_rctx *c, cj_rlist *L, size_t t0, size_t t1);
 cj_status cj_rshade_prepare_gouraud(cj_rctx *c, const cj_allocator *a, size_t *vertices);
 
 /* render_emitters.c: the samples of the tile whose camera ray meets an emitter in front of

@@ -296,9 +296,7 @@ static int shows_back(const cj_rctx *c, const uint32_t *tv) {
     return d[0] * n[0] + d[1] * n[1] + d[2] * n[2] > 0.0;
 }
 
-/* The per-triangle set-up of triangles [t0, t1) of L: facing, flat A/S, (u,v) planes. Each
- * triangle's values depend on that triangle alone, so ranges can run on any worker. */
-static void prepare_range(const cj_rctx *c, cj_rlist *L, size_t t0, size_t t1) {
+void cj_rshade_prepare_range(const cj_rctx *c, cj_rlist *L, size_t t0, size_t t1) {
     for (size_t t = t0; t < t1; ++t) {
         const cj_rmat *m = &c->mats[c->obj_mat[L->obj[t]]];
         const uint32_t *tv = L->tris + 3 * t;
@@ -336,11 +334,10 @@ static void prepare_task(void *user, int task, int worker) {
     (void)worker;
     const prepare_job *j = user;
     const size_t t0 = (size_t)task * j->chunk, t1 = t0 + j->chunk;
-    prepare_range(j->c, j->L, t0, t1 < j->L->count ? t1 : j->L->count);
+    cj_rshade_prepare_range(j->c, j->L, t0, t1 < j->L->count ? t1 : j->L->count);
 }
 
-cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a, cj_rpool *pool,
-                                 int workers) {
+cj_status cj_rshade_prepare_begin(cj_rctx *c, cj_rlist *L, const cj_allocator *a) {
     size_t n = L->count;
     L->kernel = cj_ralloc(a, n ? n : 1);
     if (!L->kernel) return cj_fail(CJ_ERR_NOMEM, "kernel table of %zu triangles", n);
@@ -365,6 +362,14 @@ cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a,
         L->back = cj_ralloc(a, n ? n : 1);
         if (!L->back) return cj_fail(CJ_ERR_NOMEM, "facing flags of %zu triangles", n);
     }
+    return CJ_OK;
+}
+
+cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a, cj_rpool *pool,
+                                 int workers) {
+    cj_status st = cj_rshade_prepare_begin(c, L, a);
+    if (st) return st;
+    const size_t n = L->count;
     /* in ranges on the renderer's pool when it has one (a warm frame): the set-up is a serial
      * phase of the frame otherwise */
     const size_t chunk = 4096;
@@ -372,7 +377,7 @@ cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a,
         prepare_job job = {c, L, chunk};
         cj_rpool_run(pool, (int)((n + chunk - 1) / chunk), workers, prepare_task, &job, NULL);
     } else {
-        prepare_range(c, L, 0, n);
+        cj_rshade_prepare_range(c, L, 0, n);
     }
     return CJ_OK;
 }
