@@ -12,7 +12,8 @@
  * And the 8-lane checker (texture_lanes.h) against cj_tex_sample, bit for bit, over random
  * (u, v), scales, offsets, checks, filters (NEAREST point-samples, BILINEAR box-filters) and
  * footprints from tiny to huge (the derivatives from a random (u,v) plane by the formula of
- * render_shade.c's uv_derivs, restated here). Prints the worst relative difference of s. */
+ * render_shade.c's uv_derivs, restated here); half of the blocks with one sampler in every lane
+ * through cj_checker_lanes_set_params. Prints the worst relative difference of s. */
 #include "render_light8.h"
 #include "texture_lanes.h"
 
@@ -90,6 +91,10 @@ static long checker_cases(cj_rng *rng, long *count) {
                 ck.b[k][j] = smp[j].b[k];
             }
         }
+        /* every other block: one sampler for all lanes, its parameters broadcast by
+         * cj_checker_lanes_set_params (the Phong kernel's blocks on one material) */
+        const int uniform = it % 2 == 1;
+        if (uniform) cj_checker_lanes_set_params(&ck, &smp[0]);
         float out[3][CJ_TEX_LANES];
         cj_checker_lanes_sample(CJ_TEX_LANES, &ck, out);
         for (int j = 0; j < CJ_TEX_LANES; ++j) {
@@ -97,7 +102,7 @@ static long checker_cases(cj_rng *rng, long *count) {
             for (int k = 0; k < 9; ++k) pl[k] = ck.plane[k][j];
             plane_derivs(pl, ck.sx[j], ck.sy[j], d);
             float ref[3];
-            cj_tex_sample(&smp[j], ck.u[j], ck.v[j], d[0], d[1], d[2], d[3], ref);
+            cj_tex_sample(&smp[uniform ? 0 : j], ck.u[j], ck.v[j], d[0], d[1], d[2], d[3], ref);
             ++*count;
             if (ref[0] != out[0][j] || ref[1] != out[1][j] || ref[2] != out[2][j]) {
                 if (++differ <= 5)

@@ -84,22 +84,29 @@ CJ_LANE_INLINE void cj_lanes_terms(int n, int radiometric, int any_mirror, int a
     }
     if (cj_lanes_any_subnormal(n, cc))
         for (int j = 0; j < n; ++j) pw[j] = cj_lane_pow_fix(cc[j], b->alpha[j], pw[j]);
-    for (int j = 0; j < n; ++j) {
-        const float zero_lobe = b->alpha[j] == 0.0f && !radiometric ? 1.0f : 0.0f;
-        float sj = cc[j] > 0.0f ? pw[j] : zero_lobe, dj = nl[j];
-        if (radiometric) {
-            const float pi = 3.14159265358979323846f;
-            dj = nl[j] / pi;
-            const float sm = sj * ((b->alpha[j] + 2.0f) / (2.0f * pi) * nl[j]);
-            const float nv = b->nx[j] * vx[j] + b->ny[j] * vy[j] + b->nz[j] * vz[j];
-            const float lh = hl[j] / 2.0f, mx = nv > nl[j] ? nv : nl[j];
-            const float den = 8.0f * pi * lh * mx;
-            const float sh = sj * (b->alpha[j] + 1.0f) / (den > 0.0f ? den : 1.0f) * nl[j];
-            sj = any_mirror && (!any_half || b->mirror[j]) ? sm : (lh > 0.0f ? sh : 0.0f);
+    /* two loops, not one with the light model tested inside: the test kept the loop scalar */
+    if (!radiometric) {
+        for (int j = 0; j < n; ++j) {
+            const float zero_lobe = b->alpha[j] == 0.0f ? 1.0f : 0.0f;
+            const float sj = cc[j] > 0.0f ? pw[j] : zero_lobe;
+            const int lit = nl[j] > 0.0f;
+            d[j] = lit ? nl[j] : 0.0f;
+            s[j] = lit ? sj : 0.0f;
         }
+        return;
+    }
+    for (int j = 0; j < n; ++j) {
+        const float pi = 3.14159265358979323846f;
+        const float sj = cc[j] > 0.0f ? pw[j] : 0.0f, dj = nl[j] / pi;
+        const float sm = sj * ((b->alpha[j] + 2.0f) / (2.0f * pi) * nl[j]);
+        const float nv = b->nx[j] * vx[j] + b->ny[j] * vy[j] + b->nz[j] * vz[j];
+        const float lh = hl[j] / 2.0f, mx = nv > nl[j] ? nv : nl[j];
+        const float den = 8.0f * pi * lh * mx;
+        const float sh = sj * (b->alpha[j] + 1.0f) / (den > 0.0f ? den : 1.0f) * nl[j];
+        const float sr = any_mirror && (!any_half || b->mirror[j]) ? sm : (lh > 0.0f ? sh : 0.0f);
         const int lit = nl[j] > 0.0f;
         d[j] = lit ? dj : 0.0f;
-        s[j] = lit ? sj : 0.0f;
+        s[j] = lit ? sr : 0.0f;
     }
 }
 
@@ -128,10 +135,13 @@ CJ_LANE_INLINE void cj_lanes_view(const cj_rctx *c, int n, const cj_lanes *b, fl
 CJ_LANE_INLINE void cj_lanes_normalize(int n, float *x, float *y, float *z) {
     for (int j = 0; j < n; ++j) {
         const float len = sqrtf(x[j] * x[j] + y[j] * y[j] + z[j] * z[j]);
+        /* r = 1 where len is not > 0, and x·1 = x: a plain multiply, not a select, so the
+         * stores are unconditional (GCC made the select a masked store, which AMD cores run
+         * slowly and which stalls the loads that follow it) */
         const float r = 1.0f / (len > 0.0f ? len : 1.0f);
-        x[j] = len > 0.0f ? x[j] * r : x[j];
-        y[j] = len > 0.0f ? y[j] * r : y[j];
-        z[j] = len > 0.0f ? z[j] * r : z[j];
+        x[j] *= r;
+        y[j] *= r;
+        z[j] *= r;
     }
 }
 

@@ -113,7 +113,8 @@ typedef struct cj_rctx {
     int width, height, spp, tile_size, tiles_x, threads;
     const double (*pattern)[2];
     double *clip;   /* 4 per vertex */
-    float *pe;      /* 3 per vertex: position − eye in float (Phong shading, render_light8.h) */
+    float *vrec;    /* 8 per vertex: the unit normal (0 without normals), position − eye, (u, v)
+                       (0 without), in float: Phong shading (render_light8.h, render_shade8.c) */
     float *gouraud; /* gstride per vertex: (A, S) lit from the front, then (where two-sided
                        Gouraud materials exist, gstride 12) from the back; or NULL */
     int gstride;
@@ -143,7 +144,7 @@ typedef struct cj_rctx {
 /* flip: light the other side (n -> -n). */
 void cj_rlight_eval(const cj_rctx *c, const cj_rmat *m, const double p[3], const float n_in[3],
                     int flip, float A[3], float S[3]);
-/* Fills c->pe and each light's pe (positions relative to the eye, float). */
+/* Fills c->vrec and each light's pe (positions relative to the eye, float). */
 cj_status cj_rshade_prepare_eye(cj_rctx *c, const cj_allocator *a);
 /* render_shade8.c: the Phong kernels, CJ_LANES samples at a time (textured or not). */
 void cj_rshade_phong8(const cj_rctx *c, const cj_tile *t, const uint32_t *idx, size_t n,
@@ -159,9 +160,16 @@ void cj_rshade_tex(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, 
 /* Shades one fragment of list L (transparent pass). */
 void cj_rshade_one(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, float b2, double sx,
                    double sy, float out[4]);
-/* Per-triangle / per-vertex preparation of a list: kernel, flat A/S, (u,v) planes; Gouraud
- * vertex A/S into c->gouraud. */
-cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a);
+/* Per-triangle / per-vertex preparation of a list: kernel, flat A/S, (u,v) planes. pool (may
+ * be NULL) with workers > 1: the per-triangle part runs in ranges on it (the same values). */
+struct cj_rpool;
+cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a,
+                                 struct cj_rpool *pool, int workers);
+/* The same in two steps: the kernel table and the arrays (begin), then the per-triangle values
+ * of triangles [t0, t1) (range: facing, flat A/S, (u,v) planes), which depend on that triangle
+ * alone, so ranges may run on any thread and in any order. */
+cj_status cj_rshade_prepare_begin(cj_rctx *c, cj_rlist *L, const cj_allocator *a);
+void cj_rshade_prepare_range(const cj_rctx *c, cj_rlist *L, size_t t0, size_t t1);
 cj_status cj_rshade_prepare_gouraud(cj_rctx *c, const cj_allocator *a, size_t *vertices);
 
 /* render_emitters.c: the samples of the tile whose camera ray meets an emitter in front of

@@ -2,6 +2,7 @@
  * Gouraud / Phong interpolation and textures, in one loop per kernel (render_pipe.h). */
 #include "render_pipe.h"
 #include "render_light8.h"
+#include "render_pool.h"
 
 #include "error_internal.h"
 
@@ -66,13 +67,20 @@ cj_status cj_rshade_prepare_eye(cj_rctx *c, const cj_allocator *a) {
         L->pe[2] = (float)(L->pos[2] - e.z);
     }
     const size_t nv = c->b->vertex_count;
-    c->pe = cj_ralloc(a, sizeof(float) * 3 * (nv ? nv : 1));
-    if (!c->pe) return cj_fail(CJ_ERR_NOMEM, "eye-relative positions of %zu vertices", nv);
+    c->vrec = cj_ralloc(a, sizeof(float) * 8 * (nv ? nv : 1));
+    if (!c->vrec) return cj_fail(CJ_ERR_NOMEM, "shading records of %zu vertices", nv);
     const double *p = c->b->pos;
+    const float *nrm = c->b->nrm, *uv = c->b->uv;
     for (size_t v = 0; v < nv; ++v) {
-        c->pe[3 * v] = (float)(p[3 * v] - e.x);
-        c->pe[3 * v + 1] = (float)(p[3 * v + 1] - e.y);
-        c->pe[3 * v + 2] = (float)(p[3 * v + 2] - e.z);
+        float *r = c->vrec + 8 * v;
+        r[0] = nrm ? nrm[3 * v] : 0.0f;
+        r[1] = nrm ? nrm[3 * v + 1] : 0.0f;
+        r[2] = nrm ? nrm[3 * v + 2] : 0.0f;
+        r[3] = (float)(p[3 * v] - e.x);
+        r[4] = (float)(p[3 * v + 1] - e.y);
+        r[5] = (float)(p[3 * v + 2] - e.z);
+        r[6] = uv ? uv[2 * v] : 0.0f;
+        r[7] = uv ? uv[2 * v + 1] : 0.0f;
     }
     return CJ_OK;
 }
@@ -144,8 +152,9 @@ CJ_INLINE void shade(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1
         } else {
             const float *n0 = c->b->nrm + 3 * (size_t)tv[0], *n1 = c->b->nrm + 3 * (size_t)tv[1],
                         *n2 = c->b->nrm + 3 * (size_t)tv[2];
-            const float *p0 = c->pe + 3 * (size_t)tv[0], *p1 = c->pe + 3 * (size_t)tv[1],
-                        *p2 = c->pe + 3 * (size_t)tv[2];
+            const float *p0 = c->vrec + 8 * (size_t)tv[0] + 3,
+                        *p1 = c->vrec + 8 * (size_t)tv[1] + 3,
+                        *p2 = c->vrec + 8 * (size_t)tv[2] + 3;
             float n[3], p[3];
             for (int k = 0; k < 3; ++k) {
                 n[k] = b0 * n0[k] + b1 * n1[k] + b2 * n2[k];
@@ -287,7 +296,48 @@ static int shows_back(const cj_rctx *c, const uint32_t *tv) {
     return d[0] * n[0] + d[1] * n[1] + d[2] * n[2] > 0.0;
 }
 
-cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a) {
+void cj_rshade_prepare_range(const cj_rctx *c, cj_rlist *L, size_t t0, size_t t1) {
+    for (size_t t = t0; t < t1; ++t) {
+        const cj_rmat *m = &c->mats[c->obj_mat[L->obj[t]]];
+        const uint32_t *tv = L->tris + 3 * t;
+        if (L->back) L->back[t] = m->two_sided && shows_back(c, tv);
+        if (m->model == CJ_RM_FLAT) {
+            const double *p0 = c->b->pos + 3 * (size_t)tv[0], *p1 = c->b->pos + 3 * (size_t)tv[1],
+                         *p2 = c->b->pos + 3 * (size_t)tv[2];
+            double e1[3], e2[3], p[3];
+            for (int k = 0; k < 3; ++k) {
+                e1[k] = p1[k] - p0[k];
+                e2[k] = p2[k] - p0[k];
+                p[k] = (p0[k] + p1[k] + p2[k]) / 3.0;
+            }
+            double nd[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                            e1[0] * e2[1] - e1[1] * e2[0]};
+            double l = sqrt(nd[0] * nd[0] + nd[1] * nd[1] + nd[2] * nd[2]);
+            float nf[3] = {0, 0, 0};
+            if (l > 0.0)
+                for (int k = 0; k < 3; ++k) nf[k] = (float)(nd[k] / l);
+            cj_rlight_eval(c, m, p, nf, L->back && L->back[t], L->flat + 6 * t,
+                           L->flat + 6 * t + 3);
+        }
+        if (L->uvplane && m->tex >= 0 && c->samplers[m->tex].needs_deriv)
+            if (!uv_plane(c, tv, L->uvplane + 9 * t)) memset(L->uvplane + 9 * t, 0, 72);
+    }
+}
+
+typedef struct prepare_job {
+    const cj_rctx *c;
+    cj_rlist *L;
+    size_t chunk;
+} prepare_job;
+
+static void prepare_task(void *user, int task, int worker) {
+    (void)worker;
+    const prepare_job *j = user;
+    const size_t t0 = (size_t)task * j->chunk, t1 = t0 + j->chunk;
+    cj_rshade_prepare_range(j->c, j->L, t0, t1 < j->L->count ? t1 : j->L->count);
+}
+
+cj_status cj_rshade_prepare_begin(cj_rctx *c, cj_rlist *L, const cj_allocator *a) {
     size_t n = L->count;
     L->kernel = cj_ralloc(a, n ? n : 1);
     if (!L->kernel) return cj_fail(CJ_ERR_NOMEM, "kernel table of %zu triangles", n);
@@ -312,30 +362,22 @@ cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a)
         L->back = cj_ralloc(a, n ? n : 1);
         if (!L->back) return cj_fail(CJ_ERR_NOMEM, "facing flags of %zu triangles", n);
     }
-    for (size_t t = 0; t < n; ++t) {
-        const cj_rmat *m = &c->mats[c->obj_mat[L->obj[t]]];
-        const uint32_t *tv = L->tris + 3 * t;
-        if (L->back) L->back[t] = m->two_sided && shows_back(c, tv);
-        if (m->model == CJ_RM_FLAT) {
-            const double *p0 = c->b->pos + 3 * (size_t)tv[0], *p1 = c->b->pos + 3 * (size_t)tv[1],
-                         *p2 = c->b->pos + 3 * (size_t)tv[2];
-            double e1[3], e2[3], p[3];
-            for (int k = 0; k < 3; ++k) {
-                e1[k] = p1[k] - p0[k];
-                e2[k] = p2[k] - p0[k];
-                p[k] = (p0[k] + p1[k] + p2[k]) / 3.0;
-            }
-            double nd[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                            e1[0] * e2[1] - e1[1] * e2[0]};
-            double l = sqrt(nd[0] * nd[0] + nd[1] * nd[1] + nd[2] * nd[2]);
-            float nf[3] = {0, 0, 0};
-            if (l > 0.0)
-                for (int k = 0; k < 3; ++k) nf[k] = (float)(nd[k] / l);
-            cj_rlight_eval(c, m, p, nf, L->back && L->back[t], L->flat + 6 * t,
-                           L->flat + 6 * t + 3);
-        }
-        if (L->uvplane && m->tex >= 0 && c->samplers[m->tex].needs_deriv)
-            if (!uv_plane(c, tv, L->uvplane + 9 * t)) memset(L->uvplane + 9 * t, 0, 72);
+    return CJ_OK;
+}
+
+cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a, cj_rpool *pool,
+                                 int workers) {
+    cj_status st = cj_rshade_prepare_begin(c, L, a);
+    if (st) return st;
+    const size_t n = L->count;
+    /* in ranges on the renderer's pool when it has one (a warm frame): the set-up is a serial
+     * phase of the frame otherwise */
+    const size_t chunk = 4096;
+    if (pool && workers > 1 && n > chunk && n / chunk < 1000000) {
+        prepare_job job = {c, L, chunk};
+        cj_rpool_run(pool, (int)((n + chunk - 1) / chunk), workers, prepare_task, &job, NULL);
+    } else {
+        cj_rshade_prepare_range(c, L, 0, n);
     }
     return CJ_OK;
 }

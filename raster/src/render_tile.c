@@ -46,17 +46,19 @@ void cj_rtile_run(void *user, const cj_tile *t) {
     /* counting sort of the samples by kernel; bucket CJ_RK_COUNT is the background */
     size_t start[CJ_RK_COUNT + 2], fill[CJ_RK_COUNT + 1];
     memset(start, 0, sizeof start);
+    /* each sample's bucket is looked up once and kept, one byte per sample, in the colour
+     * buffer (written only after the sort), for the second pass */
     const uint8_t *kern = c->opaque.kernel;
+    uint8_t *bucket = (uint8_t *)col;
     for (size_t i = 0; i < n; ++i) {
-        uint32_t tri = t->samples[i].tri;
-        ++start[(tri == CJ_RASTER_NO_TRI ? CJ_RK_COUNT : kern[tri]) + 1];
+        const uint32_t tri = t->samples[i].tri;
+        const uint8_t k = tri == CJ_RASTER_NO_TRI ? (uint8_t)CJ_RK_COUNT : kern[tri];
+        bucket[i] = k;
+        ++start[k + 1];
     }
     for (int k = 0; k <= CJ_RK_COUNT; ++k) start[k + 1] += start[k];
     memcpy(fill, start, sizeof fill);
-    for (size_t i = 0; i < n; ++i) {
-        uint32_t tri = t->samples[i].tri;
-        ord[fill[tri == CJ_RASTER_NO_TRI ? CJ_RK_COUNT : kern[tri]]++] = (uint32_t)i;
-    }
+    for (size_t i = 0; i < n; ++i) ord[fill[bucket[i]]++] = (uint32_t)i;
     for (size_t j = start[CJ_RK_COUNT]; j < start[CJ_RK_COUNT + 1]; ++j) {
         float *cc = col + 4 * (size_t)ord[j];
         cc[0] = c->bg[0];

@@ -62,6 +62,7 @@ static cj_status create(const cj_renderer_options *opt, const cj_allocator *allo
     r->opt = o;
     r->caching = caching;
     st = cj_raster_workspace_create(&a, &r->ws);
+    if (!st) st = cj_rscratch_create(&a, &r->scratch);
     if (!st && caching) st = cj_render_cache_create(&a, &r->cache);
     if (!st && caching) st = tr_bvh_cache_create(&a, &r->bvh);
     if (st) {
@@ -86,6 +87,7 @@ void cj_renderer_destroy(cj_renderer *r) {
     if (!r) return;
     cj_rpool_destroy(r->pool);
     cj_raster_workspace_destroy(r->ws);
+    cj_rscratch_destroy(r->scratch);
     cj_render_cache_destroy(r->cache);
     tr_bvh_cache_destroy(r->bvh);
     cj_renderer_free_shade_buffers(r);

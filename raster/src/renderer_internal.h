@@ -7,6 +7,7 @@
 #include "raster3d_internal.h"
 #include "render_pool.h"
 #include "render_scene.h"
+#include "render_scratch.h"
 
 struct tr_bvh_cache;
 
@@ -18,6 +19,7 @@ struct cj_renderer {
     cj_stage_report report; /* the stage table of the last draw */
     cj_rpool *pool;         /* started at the first draw */
     cj_raster_workspace *ws;
+    cj_rscratch *scratch;   /* the rasterizer frames' set-up arrays, recycled (render_scratch.h) */
     cj_render_cache *cache; /* own tessellation cache, or NULL */
     struct tr_bvh_cache *bvh;
     /* the rasterizer's per-worker shading buffers: 4 floats and one index per tile sample */

@@ -17,3 +17,9 @@ if(TARGET cj::raster)
   target_compile_definitions(test_render_overwrite PRIVATE
     CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
 endif()
+if(TARGET cj::raster)
+  # the renderer's recycling allocator of per-frame arrays (raster/src/render_scratch.h)
+  cj_add_test(test_render_scratch SOURCES test_render_scratch.c LIBS cj::raster)
+  target_include_directories(test_render_scratch PRIVATE ${PROJECT_SOURCE_DIR}/raster/src
+    ${CMAKE_CURRENT_SOURCE_DIR})
+endif()
