@@ -114,7 +114,7 @@ static inline void end_point(const fast_ctx *cx, fpt *o) {
 /* Share of the tolerance a model quadratic may miss its piece of the cubic by. 0.15 (0.3 before
  * issue 20's fourth pass) gives plans of few segments a model close enough that their measured
  * second placement is rejected less often: at tol 1 a fifth more quadratics paid back by fewer
- * repairs (plans of more than 16 segments mostly use all FAST_MAX_QUADS either way). */
+ * repairs (at tol 0.01 most cubics use all FAST_MAX_QUADS either way). */
 #define FAST_QUAD_TOL 0.15
 /* Segments are placed for this share of the tolerance (their estimated deviation): a little
  * below 1 so that the estimate's spread rarely fails the certificate. */
