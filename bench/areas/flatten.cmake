@@ -1,3 +1,9 @@
+# The fixed workload of the flattening instruction counts (bench/flatten_callgrind.sh) and the
+# same-process time ratios against kurbo (issue 20).
+add_executable(bench_flatten_icount ${CMAKE_CURRENT_SOURCE_DIR}/bench_flatten_icount.c)
+target_link_libraries(bench_flatten_icount PRIVATE cj::curves m)
+cj_warnings(bench_flatten_icount)
+
 # Peers measured in the same run as ours (issue 13): cairo's flattening (cairo_copy_path_flat)
 # next to bench_flatten's, cairo's anti-aliased strokes next to bench_lines'. cairo is linked
 # into these bench programs only, never into the library.
@@ -45,6 +51,8 @@ if(CJ_CARGO AND CJ_RUSTC AND EXISTS ${CJ_CARGO_REGISTRY}/kurbo-0.7.1)
   add_dependencies(cj_bench_kurbo cj_bench_kurbo_build)
   target_link_libraries(bench_flatten PRIVATE cj_bench_kurbo pthread dl m)
   target_compile_definitions(bench_flatten PRIVATE CJ_HAVE_KURBO=1)
+  target_link_libraries(bench_flatten_icount PRIVATE cj_bench_kurbo pthread dl m)
+  target_compile_definitions(bench_flatten_icount PRIVATE CJ_HAVE_KURBO=1)
 else()
   message(STATUS "cargo or librust-kurbo-dev not found: bench_flatten runs without the kurbo rows")
 endif()
