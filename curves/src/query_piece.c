@@ -16,6 +16,7 @@
 CJ_UNROLLED cj_status init_first_n(cj_qctx *q, const cj_bezier2 *c, int n, const char *what) {
     assert(c->pts);
     double scale = 0.0;
+#pragma GCC unroll 8
     for (int i = 0; i <= n; ++i)
         for (int k = 0; k < 2; ++k) {
             double v = c->pts[2 * i + k];
@@ -41,6 +42,7 @@ CJ_UNROLLED cj_status init_first_n(cj_qctx *q, const cj_bezier2 *c, int n, const
                        "certify (2^500 = 3.3e150)",
                        what, scale);
     int distinct = 0;
+#pragma GCC unroll 8
     for (int i = 1; i <= n && !distinct; ++i)
         distinct = c->pts[2 * i] != c->pts[0] || c->pts[2 * i + 1] != c->pts[1];
     if (!distinct)
@@ -57,6 +59,7 @@ CJ_UNROLLED cj_status init_first_n(cj_qctx *q, const cj_bezier2 *c, int n, const
         double dn = (double)n;
         q->hmag[0] = q->hmag[1] = 0.0;
         q->hmag[2] = 1.0;
+#pragma GCC unroll 8
         for (int i = 0; i <= n; ++i) {
             for (int k = 0; k < 2; ++k) {
                 double v = c->pts[2 * i + k];
@@ -70,9 +73,28 @@ CJ_UNROLLED cj_status init_first_n(cj_qctx *q, const cj_bezier2 *c, int n, const
             q->h[i][2] = cj_iv(1.0);
             if (i < n) q->dh[i][2] = cj_iv(0.0);
         }
+        /* the starting points of the plain evaluations: the control points themselves (exact)
+         * and the hodograph's midpoints */
+        q->plain = 1;
+        q->hrad = q->drad = q->dmax = 0.0;
+        q->hmax = cj_fmax(q->hmag[0], q->hmag[1]);
+#pragma GCC unroll 8
+        for (int i = 0; i <= n; ++i) {
+            q->hm[i][0] = c->pts[2 * i];
+            q->hm[i][1] = c->pts[2 * i + 1];
+            if (i == n) break;
+            for (int k = 0; k < 2; ++k) {
+                cj_ivl v = q->dh[i][k];
+                double m = cj_imid(v);
+                q->dm[i][k] = m;
+                q->drad = cj_fmax(q->drad, cj_fmax(m - v.lo, v.hi - m));
+                q->dmax = cj_fmax(q->dmax, fabs(m));
+            }
+        }
         /* c'' = sum (n-1)(dh_{i+1} - dh_i) B_i: bounded by its largest control point */
         for (int k = 0; k < 2; ++k) {
             double mag = 0.0;
+#pragma GCC unroll 8
             for (int i = 0; i + 1 < n; ++i)
                 mag = cj_fmax(mag, cj_imag(cj_isub(q->dh[i + 1][k], q->dh[i][k])));
             q->d2mag[k] = cj_up(mag * (double)(n > 1 ? n - 1 : 0));
@@ -80,6 +102,7 @@ CJ_UNROLLED cj_status init_first_n(cj_qctx *q, const cj_bezier2 *c, int n, const
         return CJ_OK;
     }
     q->d2mag[0] = q->d2mag[1] = INFINITY;
+    q->plain = 0;
     for (int i = 0; i <= n; ++i) {
         cj_ivl w = cj_iv(rational ? c->weights[i] : 1.0);
         for (int k = 0; k < 2; ++k)
@@ -201,6 +224,32 @@ CJ_UNROLLED double plain_decasteljau(const cj_ivl (*pts)[3], int n, double t, do
     return (r + (double)n * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
 }
 
+/* The same from midpoints m[0..n] given with their largest radius r and magnitude M. */
+CJ_UNROLLED double plain_decasteljau_mid(const double (*m)[2], int n, double r, double M, double t,
+                                         double out[2]) {
+    double w[CJ_QUERY_MAXN + 1][2], s = 1.0 - t;
+#pragma GCC unroll 8
+    for (int i = 0; i <= n; ++i) {
+        w[i][0] = m[i][0];
+        w[i][1] = m[i][1];
+    }
+#pragma GCC unroll 8
+    for (int lev = n; lev > 0; --lev)
+#pragma GCC unroll 8
+        for (int i = 0; i < lev; ++i)
+            for (int k = 0; k < 2; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
+    out[0] = w[0][0];
+    out[1] = w[0][1];
+    return (r + (double)n * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
+}
+
+static double plain_eval_mid(const double (*m)[2], int n, double r, double M, double t,
+                             double out[2]) {
+    if (n == 3) return plain_decasteljau_mid(m, 3, r, M, t, out);
+    if (n == 2) return plain_decasteljau_mid(m, 2, r, M, t, out);
+    return plain_decasteljau_mid(m, n, r, M, t, out);
+}
+
 static double plain_eval(const cj_ivl (*pts)[3], int n, double t, double out[2]) {
     if (n == 3) return plain_decasteljau(pts, 3, t, out);
     if (n == 2) return plain_decasteljau(pts, 2, t, out);
@@ -209,7 +258,9 @@ static double plain_eval(const cj_ivl (*pts)[3], int n, double t, double out[2])
 
 int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]) {
     if (q->rational || !(t >= 0.0 && t <= 1.0)) return cj_qctx_eval(q, cj_iv(t), p, NULL);
-    double w[2], e = plain_eval((const cj_ivl(*)[3])q->h, q->n, t, w);
+    double w[2], e = q->plain
+                         ? plain_eval_mid((const double(*)[2])q->hm, q->n, q->hrad, q->hmax, t, w)
+                         : plain_eval((const cj_ivl(*)[3])q->h, q->n, t, w);
     for (int k = 0; k < 2; ++k) p[k] = cj_iv2(cj_down(w[k] - e), cj_up(w[k] + e));
     return cj_ifinite(p[0]) && cj_ifinite(p[1]);
 }
@@ -222,7 +273,9 @@ int cj_qctx_deriv_near(const cj_qctx *q, cj_ivl T, cj_ivl d[2]) {
     double t = 0.5 * T.lo + 0.5 * T.hi;
     double rad = cj_up(cj_fmax(t - T.lo, T.hi - t));
     /* as cj_qctx_point, on the hodograph (degree n - 1) */
-    double w[2], e = plain_eval((const cj_ivl(*)[3])q->dh, n - 1, t, w);
+    double w[2], e = q->plain
+                         ? plain_eval_mid((const double(*)[2])q->dm, n - 1, q->drad, q->dmax, t, w)
+                         : plain_eval((const cj_ivl(*)[3])q->dh, n - 1, t, w);
     for (int k = 0; k < 2; ++k) {
         double spread = cj_up(e + cj_up(q->d2mag[k] * rad));
         d[k] = cj_iv2(cj_down(w[k] - spread), cj_up(w[k] + spread));
@@ -369,7 +422,10 @@ void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
             p->h[i][2] = 1.0;
         }
         p->err[0] = p->err[1] = p->err[2] = 0.0;
-        set_bbox(p);
+        if (q->n == 3)
+            set_bbox_poly(p, 3);
+        else
+            set_bbox(p);
         return;
     }
     for (int k = 0; k < 3; ++k) {
@@ -402,14 +458,10 @@ CJ_UNROLLED void halve_points(const cj_qpiece *p, int n, int dims, cj_qpiece *L,
     }
 }
 
-void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *L, cj_qpiece *R) {
-    int n = p->n;
+CJ_UNROLLED void halve_n(const cj_qpiece *p, int n, const double mag[3], cj_qpiece *L,
+                         cj_qpiece *R) {
     if (p->rational)
         halve_points(p, n, 3, L, R);
-    else if (n == 3)
-        halve_points(p, 3, 2, L, R);
-    else if (n == 2)
-        halve_points(p, 2, 2, L, R);
     else
         halve_points(p, n, 2, L, R);
     /* Each output point went through at most n averagings, each off by at most u times the
@@ -433,8 +485,22 @@ void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *L, cj_q
     R->b = p->b;
     L->perr = R->perr = p->perr > 0.0 ? p->perr + 0x1p-53 : 0.0;
     for (int k = 0; k < 3; ++k) L->err[k] = R->err[k] = e[k];
-    set_bbox(L);
-    set_bbox(R);
+    if (p->rational) {
+        set_bbox(L);
+        set_bbox(R);
+    } else {
+        set_bbox_poly(L, n);
+        set_bbox_poly(R, n);
+    }
+}
+
+void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *L, cj_qpiece *R) {
+    if (p->n == 3 && !p->rational)
+        halve_n(p, 3, mag, L, R);
+    else if (p->n == 2 && !p->rational)
+        halve_n(p, 2, mag, L, R);
+    else
+        halve_n(p, p->n, mag, L, R);
 }
 
 /* de Casteljau at the double t in place: w becomes the piece right of t (keep_left 0) or left
@@ -535,6 +601,7 @@ void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L) {
     q->h[0][2] = q->h[1][2] = cj_iv(1.0);
     q->dh[0][2] = cj_iv(0.0);
     q->d2mag[0] = q->d2mag[1] = 0.0; /* straight: c'' = 0 */
+    q->plain = 0;
     q->scale = cj_fmax(q->hmag[0], q->hmag[1]);
 }
 
