@@ -59,38 +59,31 @@ CJ_UNROLLED cj_status init_first_n(cj_qctx *q, const cj_bezier2 *c, int n, const
         double dn = (double)n;
         q->hmag[0] = q->hmag[1] = 0.0;
         q->hmag[2] = 1.0;
+        q->dmax = 0.0;
 #pragma GCC unroll 8
         for (int i = 0; i <= n; ++i) {
             for (int k = 0; k < 2; ++k) {
                 double v = c->pts[2 * i + k];
                 q->h[i][k] = cj_iv(v);
+                q->hm[i][k] = v;
                 q->hmag[k] = cj_fmax(q->hmag[k], fabs(v));
                 if (i < n) {
                     double d = c->pts[2 * i + 2 + k] - v;
                     q->dh[i][k] = cj_iv2(cj_down(dn * cj_down(d)), cj_up(dn * cj_up(d)));
+                    q->dm[i][k] = dn * d;
+                    q->dmax = cj_fmax(q->dmax, fabs(q->dm[i][k]));
                 }
             }
             q->h[i][2] = cj_iv(1.0);
             if (i < n) q->dh[i][2] = cj_iv(0.0);
         }
         /* the starting points of the plain evaluations: the control points themselves (exact)
-         * and the hodograph's midpoints */
+         * and n d for the hodograph (d = P_{i+1} - P_i rounded): off from the exact
+         * n (P_{i+1} - P_i) by at most 2u |n d| plus a subnormal rounding, covered by drad */
         q->plain = 1;
-        q->hrad = q->drad = q->dmax = 0.0;
+        q->hrad = 0.0;
         q->hmax = cj_fmax(q->hmag[0], q->hmag[1]);
-#pragma GCC unroll 8
-        for (int i = 0; i <= n; ++i) {
-            q->hm[i][0] = c->pts[2 * i];
-            q->hm[i][1] = c->pts[2 * i + 1];
-            if (i == n) break;
-            for (int k = 0; k < 2; ++k) {
-                cj_ivl v = q->dh[i][k];
-                double m = cj_imid(v);
-                q->dm[i][k] = m;
-                q->drad = cj_fmax(q->drad, cj_fmax(m - v.lo, v.hi - m));
-                q->dmax = cj_fmax(q->dmax, fabs(m));
-            }
-        }
+        q->drad = cj_up(q->dmax * 0x1p-51 + 0x1p-1070);
         /* c'' = sum (n-1)(dh_{i+1} - dh_i) B_i: bounded by its largest control point */
         for (int k = 0; k < 2; ++k) {
             double mag = 0.0;
@@ -412,13 +405,11 @@ void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
     p->a = 0.0;
     p->b = 1.0;
     p->perr = 0.0;
-    int exact = !q->rational;
-    for (int i = 0; i <= q->n && exact; ++i)
-        exact = q->h[i][0].lo == q->h[i][0].hi && q->h[i][1].lo == q->h[i][1].hi;
-    if (exact) { /* a polynomial's own control points (not a line's enclosed ones) */
+    /* a polynomial's own control points, exact (hm); a line's enclosed ones below */
+    if (q->plain) {
         for (int i = 0; i <= q->n; ++i) {
-            p->h[i][0] = q->h[i][0].lo;
-            p->h[i][1] = q->h[i][1].lo;
+            p->h[i][0] = q->hm[i][0];
+            p->h[i][1] = q->hm[i][1];
             p->h[i][2] = 1.0;
         }
         p->err[0] = p->err[1] = p->err[2] = 0.0;
