@@ -52,7 +52,7 @@ static cj_status curves_impl(const cj_bezier2 *a, const cj_bezier2 *b, double to
     R->max_roots = 16;
     R->leaves = few_leaves;
     R->max_leaves = 64;
-    cj_qctx ctx[2], *qa = &ctx[0], *qb = &ctx[1]; /* 19 KiB */
+    cj_qctx ctx[2], *qa = &ctx[0], *qb = &ctx[1]; /* 22 KiB */
     cj_status st = CJ_OK;
     if ((st = cj_qctx_init_first(qa, a, "curve a")) != CJ_OK) return st;
     if ((st = cj_qctx_init_first(qb, b, "curve b")) != CJ_OK) return st;

@@ -197,7 +197,7 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
             o->t = cj_fmin(cj_fmax(o->t, o->t_lo), o->t_hi);
         }
     }
-    qsort(tmp, (size_t)total, sizeof tmp[0], cmp_isect);
+    if (total > 1) qsort(tmp, (size_t)total, sizeof tmp[0], cmp_isect);
     *count = total;
     for (int i = 0; i < total && i < cap; ++i) out[i] = tmp[i];
     if (tmp != few) free(tmp);

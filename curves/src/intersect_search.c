@@ -46,16 +46,22 @@ static void project(const double lo[][2], const double hi[][2], int n, const dou
  * h: the plain products and sums, widened by what the points' errors move the projection
  * (|v0| e0 + |v1| e1) plus the rounding of the dot products (at most 2.5u (|v0| + |v1|) times
  * the largest coordinate) and a step outwards. */
-static double poly_margin(const cj_qpiece *p, const double v[2]) {
+static inline double poly_margin(const cj_qpiece *p, const double v[2]) {
     double mag = cj_max4(fabs(p->blo[0]), fabs(p->bhi[0]), fabs(p->blo[1]), fabs(p->bhi[1]));
     double av = fabs(v[0]) + fabs(v[1]);
     double margin = fabs(v[0]) * p->err[0] + fabs(v[1]) * p->err[1] + av * mag * 0x1.4p-52;
     return margin * (1.0 + 0x1p-40) + 0x1p-1060;
 }
 
-static void project_poly(const cj_qpiece *p, const double v[2], double *pmin, double *pmax) {
+/* Forced inlining: the clip is instantiated for cubics and quadratics with the degrees as
+ * constants, so that its loops unroll (half the search's time goes there). */
+#define CJ_UNROLLED static inline __attribute__((always_inline))
+
+CJ_UNROLLED void project_poly_n(const cj_qpiece *p, int n, const double v[2], double *pmin,
+                                double *pmax) {
     double mn = INFINITY, mx = -INFINITY;
-    for (int i = 0; i <= p->n; ++i) {
+#pragma GCC unroll 8
+    for (int i = 0; i <= n; ++i) {
         double d = v[0] * p->h[i][0] + v[1] * p->h[i][1];
         mn = d < mn ? d : mn;
         mx = d > mx ? d : mx;
@@ -68,6 +74,10 @@ static void project_poly(const cj_qpiece *p, const double v[2], double *pmin, do
     }
     *pmin = cj_down(mn - margin);
     *pmax = cj_up(mx + margin);
+}
+
+static void project_poly(const cj_qpiece *p, const double v[2], double *pmin, double *pmax) {
+    project_poly_n(p, p->n, v, pmin, pmax);
 }
 
 /* Bézier clipping (fat lines): the part of polynomial piece p that can meet polynomial piece o.
@@ -83,15 +93,16 @@ static void project_poly(const cj_qpiece *p, const double v[2], double *pmin, do
  * roundings more, so padding the range by 2^-48 makes it a superset.
  * Returns -1 if p is proven to miss o, 1 with [*u0, *u1] (in p's own parameter) if the range
  * is a proper part of [0,1], 0 if nothing was learnt. */
-static int clip_range(const cj_qpiece *p, const cj_qpiece *o, double *u0, double *u1) {
-    int n = p->n, no = o->n;
+CJ_UNROLLED int clip_range_n(const cj_qpiece *p, int n, const cj_qpiece *o, int no, double *u0,
+                             double *u1) {
     double v[2] = {-(o->h[no][1] - o->h[0][1]), o->h[no][0] - o->h[0][0]};
     if (!isfinite(v[0]) || !isfinite(v[1]) || (v[0] == 0.0 && v[1] == 0.0)) return 0;
     double omin, omax;
-    project_poly(o, v, &omin, &omax);
+    project_poly_n(o, no, v, &omin, &omax);
     /* p's projections, each within margin of the exact one */
     double e[CJ_QUERY_MAXN + 1], margin = poly_margin(p, v);
     double mn = INFINITY, mx = -INFINITY;
+#pragma GCC unroll 8
     for (int i = 0; i <= n; ++i) {
         e[i] = v[0] * p->h[i][0] + v[1] * p->h[i][1];
         mn = e[i] < mn ? e[i] : mn;
@@ -102,6 +113,7 @@ static int clip_range(const cj_qpiece *p, const cj_qpiece *o, double *u0, double
     if (mx < lo || mn > hi) return -1; /* the hulls are separated along v */
     double xmin = INFINITY, xmax = -INFINITY, inv = 1.0 / n, xs[CJ_QUERY_MAXN + 1];
     int band[CJ_QUERY_MAXN + 1]; /* -1 below the band, 0 in it, 1 above */
+#pragma GCC unroll 8
     for (int i = 0; i <= n; ++i) {
         xs[i] = i * inv;
         band[i] = e[i] < lo ? -1 : e[i] > hi ? 1 : 0;
@@ -110,7 +122,9 @@ static int clip_range(const cj_qpiece *p, const cj_qpiece *o, double *u0, double
             xmax = xs[i] > xmax ? xs[i] : xmax;
         }
     }
+#pragma GCC unroll 8
     for (int i = 0; i < n; ++i)
+#pragma GCC unroll 8
         for (int j = i + 1; j <= n; ++j) {
             /* a segment meets an edge only if its ends are on two sides of it; its crossing
              * lies between i/n and j/n: no use once both are inside [xmin, xmax] */
@@ -128,6 +142,15 @@ static int clip_range(const cj_qpiece *p, const cj_qpiece *o, double *u0, double
     *u0 = xmin - 0x1p-48 > 0.0 ? xmin - 0x1p-48 : 0.0;
     *u1 = xmax + 0x1p-48 < 1.0 ? xmax + 0x1p-48 : 1.0;
     return *u0 > 0.0 || *u1 < 1.0;
+}
+
+/* The clip for the usual degrees with constant loop bounds, else the general one. */
+static int clip_range(const cj_qpiece *p, const cj_qpiece *o, double *u0, double *u1) {
+    if (p->n == 3 && o->n == 3) return clip_range_n(p, 3, o, 3, u0, u1);
+    if (p->n == 3 && o->n == 2) return clip_range_n(p, 3, o, 2, u0, u1);
+    if (p->n == 2 && o->n == 3) return clip_range_n(p, 2, o, 3, u0, u1);
+    if (p->n == 2 && o->n == 2) return clip_range_n(p, 2, o, 2, u0, u1);
+    return clip_range_n(p, p->n, o, o->n, u0, u1);
 }
 
 static int boxes_apart(const cj_qpiece *pa, const cj_qpiece *pb) {
@@ -174,6 +197,14 @@ static int separated(const cj_qpiece *pa, const cj_qpiece *pb) {
     return 0;
 }
 
+/* y a for a double y: the same enclosure as cj_imul(cj_iv(y), a) from two products instead of
+ * four (the bounds pair up by y's sign), stepped outwards; a NaN widens to the line. */
+static inline cj_ivl scale_ivl(double y, cj_ivl a) {
+    double lo = y >= 0.0 ? y * a.lo : y * a.hi, hi = y >= 0.0 ? y * a.hi : y * a.lo;
+    if (isnan(lo + hi)) return cj_iv2(-INFINITY, INFINITY);
+    return cj_iv2(cj_down(lo), cj_up(hi));
+}
+
 /* Krawczyk's operator for F(s,t) = a(s) - b(t) over X: -1 if K misses X (no zero in X), 1 if K
  * lies in the interior of X (exactly one zero in X, and it lies in K), 0 otherwise. */
 int cj_isect_krawczyk(const cj_qctx *qa, const cj_qctx *qb, const cj_ivl X[2], cj_ivl K[2]) {
@@ -194,10 +225,10 @@ int cj_isect_krawczyk(const cj_qctx *qa, const cj_qctx *qb, const cj_ivl X[2], c
         for (int c = 0; c < 2; ++c)
             if (!isfinite(Y[r][c])) return 0;
     for (int r = 0; r < 2; ++r) {
-        cj_ivl acc = cj_isub(cj_iv(m[r]),
-                             cj_iadd(cj_imul(cj_iv(Y[r][0]), F[0]), cj_imul(cj_iv(Y[r][1]), F[1])));
+        cj_ivl acc =
+            cj_isub(cj_iv(m[r]), cj_iadd(scale_ivl(Y[r][0], F[0]), scale_ivl(Y[r][1], F[1])));
         for (int c = 0; c < 2; ++c) {
-            cj_ivl yj = cj_iadd(cj_imul(cj_iv(Y[r][0]), J[0][c]), cj_imul(cj_iv(Y[r][1]), J[1][c]));
+            cj_ivl yj = cj_iadd(scale_ivl(Y[r][0], J[0][c]), scale_ivl(Y[r][1], J[1][c]));
             cj_ivl M = cj_isub(cj_iv(r == c ? 1.0 : 0.0), yj);
             acc = cj_iadd(acc, cj_imul(M, cj_isub(X[c], cj_iv(m[c]))));
         }

@@ -109,6 +109,14 @@ typedef struct cj_qctx {
     double d2mag[2]; /* a polynomial's max |c''_k| over [0,1] (upper bound), else INFINITY */
     double scale;    /* max |coordinate| of the control points */
     double hmag[3];  /* max |homogeneous coordinate| k (bounds every piece) */
+    /* A polynomial curve's plain evaluations (cj_qctx_point, cj_qctx_deriv_near) and its root
+     * piece start from these, set once by cj_qctx_init_first (plain = 1, the curve's own exact
+     * control points in h; 0 for other contexts): points hm and dm within hrad and drad of
+     * the exact control points of c and c', and the largest magnitudes hmax and dmax of hm,
+     * dm. */
+    int plain;
+    double hm[CJ_QUERY_MAXN + 1][2], dm[CJ_QUERY_MAXN + 1][2];
+    double hrad, hmax, drad, dmax;
 } cj_qctx;
 
 /* Validates the curve (degree 0..CJ_QUERY_MAX_DEGREE, finite points, finite positive weights)

@@ -7,14 +7,16 @@
 #include <assert.h>
 #include <float.h>
 
-cj_status cj_qctx_init_first(cj_qctx *q, const cj_bezier2 *c, const char *what) {
-    assert(q && c && what);
-    if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE)
-        return cj_fail(CJ_ERR_DEGREE, "%s: degree %d outside 0..%d", what, c->degree,
-                       CJ_QUERY_MAX_DEGREE);
+/* Forced inlining: the hot parts (point and derivative evaluations, halving, clipping) are
+ * instantiated for cubics and quadratics with the degree as a constant, so that their loops
+ * unroll; the general degree runs the same code with a variable bound. */
+#define CJ_UNROLLED static inline __attribute__((always_inline))
+
+/* The context for degree n (checked by the caller): a constant for the usual degrees. */
+CJ_UNROLLED cj_status init_first_n(cj_qctx *q, const cj_bezier2 *c, int n, const char *what) {
     assert(c->pts);
-    int n = c->degree;
     double scale = 0.0;
+#pragma GCC unroll 8
     for (int i = 0; i <= n; ++i)
         for (int k = 0; k < 2; ++k) {
             double v = c->pts[2 * i + k];
@@ -40,6 +42,7 @@ cj_status cj_qctx_init_first(cj_qctx *q, const cj_bezier2 *c, const char *what) 
                        "certify (2^500 = 3.3e150)",
                        what, scale);
     int distinct = 0;
+#pragma GCC unroll 8
     for (int i = 1; i <= n && !distinct; ++i)
         distinct = c->pts[2 * i] != c->pts[0] || c->pts[2 * i + 1] != c->pts[1];
     if (!distinct)
@@ -56,22 +59,35 @@ cj_status cj_qctx_init_first(cj_qctx *q, const cj_bezier2 *c, const char *what) 
         double dn = (double)n;
         q->hmag[0] = q->hmag[1] = 0.0;
         q->hmag[2] = 1.0;
+        q->dmax = 0.0;
+#pragma GCC unroll 8
         for (int i = 0; i <= n; ++i) {
             for (int k = 0; k < 2; ++k) {
                 double v = c->pts[2 * i + k];
                 q->h[i][k] = cj_iv(v);
+                q->hm[i][k] = v;
                 q->hmag[k] = cj_fmax(q->hmag[k], fabs(v));
                 if (i < n) {
                     double d = c->pts[2 * i + 2 + k] - v;
                     q->dh[i][k] = cj_iv2(cj_down(dn * cj_down(d)), cj_up(dn * cj_up(d)));
+                    q->dm[i][k] = dn * d;
+                    q->dmax = cj_fmax(q->dmax, fabs(q->dm[i][k]));
                 }
             }
             q->h[i][2] = cj_iv(1.0);
             if (i < n) q->dh[i][2] = cj_iv(0.0);
         }
+        /* the starting points of the plain evaluations: the control points themselves (exact)
+         * and n d for the hodograph (d = P_{i+1} - P_i rounded): off from the exact
+         * n (P_{i+1} - P_i) by at most 2u |n d| plus a subnormal rounding, covered by drad */
+        q->plain = 1;
+        q->hrad = 0.0;
+        q->hmax = cj_fmax(q->hmag[0], q->hmag[1]);
+        q->drad = cj_up(q->dmax * 0x1p-51 + 0x1p-1070);
         /* c'' = sum (n-1)(dh_{i+1} - dh_i) B_i: bounded by its largest control point */
         for (int k = 0; k < 2; ++k) {
             double mag = 0.0;
+#pragma GCC unroll 8
             for (int i = 0; i + 1 < n; ++i)
                 mag = cj_fmax(mag, cj_imag(cj_isub(q->dh[i + 1][k], q->dh[i][k])));
             q->d2mag[k] = cj_up(mag * (double)(n > 1 ? n - 1 : 0));
@@ -79,6 +95,7 @@ cj_status cj_qctx_init_first(cj_qctx *q, const cj_bezier2 *c, const char *what) 
         return CJ_OK;
     }
     q->d2mag[0] = q->d2mag[1] = INFINITY;
+    q->plain = 0;
     for (int i = 0; i <= n; ++i) {
         cj_ivl w = cj_iv(rational ? c->weights[i] : 1.0);
         for (int k = 0; k < 2; ++k)
@@ -93,6 +110,16 @@ cj_status cj_qctx_init_first(cj_qctx *q, const cj_bezier2 *c, const char *what) 
         for (int k = 0; k < 3; ++k)
             q->dh[i][k] = cj_imul(cj_iv((double)n), cj_isub(q->h[i + 1][k], q->h[i][k]));
     return CJ_OK;
+}
+
+cj_status cj_qctx_init_first(cj_qctx *q, const cj_bezier2 *c, const char *what) {
+    assert(q && c && what);
+    if (c->degree < 0 || c->degree > CJ_QUERY_MAX_DEGREE)
+        return cj_fail(CJ_ERR_DEGREE, "%s: degree %d outside 0..%d", what, c->degree,
+                       CJ_QUERY_MAX_DEGREE);
+    if (c->degree == 3) return init_first_n(q, c, 3, what);
+    if (c->degree == 2) return init_first_n(q, c, 2, what);
+    return init_first_n(q, c, c->degree, what);
 }
 
 cj_status cj_qctx_init(cj_qctx *q, const cj_bezier2 *c, const char *what) {
@@ -164,28 +191,70 @@ int cj_qctx_eval(const cj_qctx *q, cj_ivl T, cj_ivl p[2], cj_ivl d[2]) {
     return 1;
 }
 
-int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]) {
-    int n = q->n;
-    if (q->rational || !(t >= 0.0 && t <= 1.0)) return cj_qctx_eval(q, cj_iv(t), p, NULL);
-    /* De Casteljau in doubles on the midpoints of the enclosed control points. With s = 1 - t
-     * (off by at most u) each step s a + t b is off by at most about 3u M (M the largest
-     * magnitude, which the convex combinations never exceed), and errors carried in pass
-     * through the combination unchanged: n steps, 4u M each, plus the control points' own
-     * radius r and the subnormal rounding of the products. */
+/* De Casteljau in doubles at t on the midpoints of the enclosed points pts[0..n] (coordinates
+ * 0 and 1), with a bound of its error. With s = 1 - t (off by at most u) each step s a + t b is
+ * off by at most about 3u M (M the largest magnitude, which the convex combinations never
+ * exceed), and errors carried in pass through the combination unchanged: n steps, 4u M each,
+ * plus the points' own radius r and the subnormal rounding of the products. */
+CJ_UNROLLED double plain_decasteljau(const cj_ivl (*pts)[3], int n, double t, double out[2]) {
     double w[CJ_QUERY_MAXN + 1][2], r = 0.0, M = 0.0, s = 1.0 - t;
+#pragma GCC unroll 8
     for (int i = 0; i <= n; ++i)
         for (int k = 0; k < 2; ++k) {
-            cj_ivl v = q->h[i][k];
+            cj_ivl v = pts[i][k];
             double m = cj_imid(v);
             w[i][k] = m;
             r = cj_fmax(r, cj_fmax(m - v.lo, v.hi - m));
             M = cj_fmax(M, fabs(m));
         }
+#pragma GCC unroll 8
     for (int lev = n; lev > 0; --lev)
+#pragma GCC unroll 8
         for (int i = 0; i < lev; ++i)
             for (int k = 0; k < 2; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
-    double e = (r + (double)n * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
-    for (int k = 0; k < 2; ++k) p[k] = cj_iv2(cj_down(w[0][k] - e), cj_up(w[0][k] + e));
+    out[0] = w[0][0];
+    out[1] = w[0][1];
+    return (r + (double)n * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
+}
+
+/* The same from midpoints m[0..n] given with their largest radius r and magnitude M. */
+CJ_UNROLLED double plain_decasteljau_mid(const double (*m)[2], int n, double r, double M, double t,
+                                         double out[2]) {
+    double w[CJ_QUERY_MAXN + 1][2], s = 1.0 - t;
+#pragma GCC unroll 8
+    for (int i = 0; i <= n; ++i) {
+        w[i][0] = m[i][0];
+        w[i][1] = m[i][1];
+    }
+#pragma GCC unroll 8
+    for (int lev = n; lev > 0; --lev)
+#pragma GCC unroll 8
+        for (int i = 0; i < lev; ++i)
+            for (int k = 0; k < 2; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
+    out[0] = w[0][0];
+    out[1] = w[0][1];
+    return (r + (double)n * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
+}
+
+static double plain_eval_mid(const double (*m)[2], int n, double r, double M, double t,
+                             double out[2]) {
+    if (n == 3) return plain_decasteljau_mid(m, 3, r, M, t, out);
+    if (n == 2) return plain_decasteljau_mid(m, 2, r, M, t, out);
+    return plain_decasteljau_mid(m, n, r, M, t, out);
+}
+
+static double plain_eval(const cj_ivl (*pts)[3], int n, double t, double out[2]) {
+    if (n == 3) return plain_decasteljau(pts, 3, t, out);
+    if (n == 2) return plain_decasteljau(pts, 2, t, out);
+    return plain_decasteljau(pts, n, t, out);
+}
+
+int cj_qctx_point(const cj_qctx *q, double t, cj_ivl p[2]) {
+    if (q->rational || !(t >= 0.0 && t <= 1.0)) return cj_qctx_eval(q, cj_iv(t), p, NULL);
+    double w[2], e = q->plain
+                         ? plain_eval_mid((const double(*)[2])q->hm, q->n, q->hrad, q->hmax, t, w)
+                         : plain_eval((const cj_ivl(*)[3])q->h, q->n, t, w);
+    for (int k = 0; k < 2; ++k) p[k] = cj_iv2(cj_down(w[k] - e), cj_up(w[k] + e));
     return cj_ifinite(p[0]) && cj_ifinite(p[1]);
 }
 
@@ -194,25 +263,15 @@ int cj_qctx_deriv_near(const cj_qctx *q, cj_ivl T, cj_ivl d[2]) {
     if (q->rational || n < 1 || !(T.lo >= 0.0 && T.hi <= 1.0) || !(T.hi - T.lo <= 0x1p-20) ||
         !(q->d2mag[0] < INFINITY && q->d2mag[1] < INFINITY))
         return 0;
-    double t = 0.5 * T.lo + 0.5 * T.hi, s = 1.0 - t;
+    double t = 0.5 * T.lo + 0.5 * T.hi;
     double rad = cj_up(cj_fmax(t - T.lo, T.hi - t));
-    /* as cj_qctx_point, on the hodograph's midpoints (degree n - 1) */
-    double w[CJ_QUERY_MAXN + 1][2], r = 0.0, M = 0.0;
-    for (int i = 0; i < n; ++i)
-        for (int k = 0; k < 2; ++k) {
-            cj_ivl v = q->dh[i][k];
-            double m = cj_imid(v);
-            w[i][k] = m;
-            r = cj_fmax(r, cj_fmax(m - v.lo, v.hi - m));
-            M = cj_fmax(M, fabs(m));
-        }
-    for (int lev = n - 1; lev > 0; --lev)
-        for (int i = 0; i < lev; ++i)
-            for (int k = 0; k < 2; ++k) w[i][k] = s * w[i][k] + t * w[i + 1][k];
-    double e = (r + (double)(n - 1) * (M * 0x1p-51 + 0x1p-1070)) * (1.0 + 0x1p-40);
+    /* as cj_qctx_point, on the hodograph (degree n - 1) */
+    double w[2], e = q->plain
+                         ? plain_eval_mid((const double(*)[2])q->dm, n - 1, q->drad, q->dmax, t, w)
+                         : plain_eval((const cj_ivl(*)[3])q->dh, n - 1, t, w);
     for (int k = 0; k < 2; ++k) {
         double spread = cj_up(e + cj_up(q->d2mag[k] * rad));
-        d[k] = cj_iv2(cj_down(w[0][k] - spread), cj_up(w[0][k] + spread));
+        d[k] = cj_iv2(cj_down(w[k] - spread), cj_up(w[k] + spread));
     }
     return cj_ifinite(d[0]) && cj_ifinite(d[1]);
 }
@@ -303,22 +362,29 @@ void cj_qpiece_boxes(const cj_qpiece *p, double lo[][2], double hi[][2]) {
     }
 }
 
-/* The enclosure of the whole piece, cached on creation: for a polynomial the control points
- * are h +- err (weights exactly 1), so min and max of h widened by err and a step outwards;
- * rational pieces go through the projected boxes. */
+/* The enclosure of a polynomial piece: its control points are h +- err (weights exactly 1), so
+ * min and max of h widened by err and a step outwards. */
+CJ_UNROLLED void set_bbox_poly(cj_qpiece *p, int n) {
+#pragma GCC unroll 2
+    for (int k = 0; k < 2; ++k) {
+        double lo = p->h[0][k], hi = lo;
+#pragma GCC unroll 8
+        for (int i = 1; i <= n; ++i) {
+            double v = p->h[i][k];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+        p->blo[k] = cj_down(lo - p->err[k]);
+        p->bhi[k] = cj_up(hi + p->err[k]);
+    }
+}
+
+/* The enclosure of the whole piece, cached on creation; rational pieces go through the
+ * projected boxes. */
 static void set_bbox(cj_qpiece *p) {
     int n = p->n;
     if (!p->rational) {
-        for (int k = 0; k < 2; ++k) {
-            double lo = p->h[0][k], hi = lo;
-            for (int i = 1; i <= n; ++i) {
-                double v = p->h[i][k];
-                lo = v < lo ? v : lo;
-                hi = v > hi ? v : hi;
-            }
-            p->blo[k] = cj_down(lo - p->err[k]);
-            p->bhi[k] = cj_up(hi + p->err[k]);
-        }
+        set_bbox_poly(p, n);
         return;
     }
     double blo[CJ_QUERY_MAXN + 1][2], bhi[CJ_QUERY_MAXN + 1][2];
@@ -339,17 +405,18 @@ void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
     p->a = 0.0;
     p->b = 1.0;
     p->perr = 0.0;
-    int exact = !q->rational;
-    for (int i = 0; i <= q->n && exact; ++i)
-        exact = q->h[i][0].lo == q->h[i][0].hi && q->h[i][1].lo == q->h[i][1].hi;
-    if (exact) { /* a polynomial's own control points (not a line's enclosed ones) */
+    /* a polynomial's own control points, exact (hm); a line's enclosed ones below */
+    if (q->plain) {
         for (int i = 0; i <= q->n; ++i) {
-            p->h[i][0] = q->h[i][0].lo;
-            p->h[i][1] = q->h[i][1].lo;
+            p->h[i][0] = q->hm[i][0];
+            p->h[i][1] = q->hm[i][1];
             p->h[i][2] = 1.0;
         }
         p->err[0] = p->err[1] = p->err[2] = 0.0;
-        set_bbox(p);
+        if (q->n == 3)
+            set_bbox_poly(p, 3);
+        else
+            set_bbox(p);
         return;
     }
     for (int k = 0; k < 3; ++k) {
@@ -365,18 +432,29 @@ void cj_qpiece_root(const cj_qctx *q, cj_qpiece *p) {
     set_bbox(p);
 }
 
-void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *L, cj_qpiece *R) {
-    int n = p->n, dims = p->rational ? 3 : 2;
-    /* de Casteljau at 1/2 in place in R (its points are the right piece's at the end), the
-     * left piece's points taken off the first column as it goes */
+/* de Casteljau at 1/2 in place in R (its points are the right piece's at the end), the left
+ * piece's points taken off the first column as it goes; dims coordinates averaged, the weight
+ * copied. */
+CJ_UNROLLED void halve_points(const cj_qpiece *p, int n, int dims, cj_qpiece *L, cj_qpiece *R) {
+#pragma GCC unroll 8
     for (int i = 0; i <= n; ++i)
         for (int k = 0; k < 3; ++k) R->h[i][k] = p->h[i][k];
     for (int k = 0; k < 3; ++k) L->h[0][k] = p->h[0][k];
+#pragma GCC unroll 8
     for (int r = n; r > 0; --r) {
+#pragma GCC unroll 8
         for (int i = 0; i < r; ++i)
             for (int k = 0; k < dims; ++k) R->h[i][k] = 0.5 * (R->h[i][k] + R->h[i + 1][k]);
         for (int k = 0; k < 3; ++k) L->h[n - r + 1][k] = R->h[0][k];
     }
+}
+
+CJ_UNROLLED void halve_n(const cj_qpiece *p, int n, const double mag[3], cj_qpiece *L,
+                         cj_qpiece *R) {
+    if (p->rational)
+        halve_points(p, n, 3, L, R);
+    else
+        halve_points(p, n, 2, L, R);
     /* Each output point went through at most n averagings, each off by at most u times the
      * largest magnitude (the addition) plus 2^-1075 (the halving, in the subnormal range);
      * errors of the inputs pass through averages unchanged. A polynomial's weights stay
@@ -398,34 +476,52 @@ void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *L, cj_q
     R->b = p->b;
     L->perr = R->perr = p->perr > 0.0 ? p->perr + 0x1p-53 : 0.0;
     for (int k = 0; k < 3; ++k) L->err[k] = R->err[k] = e[k];
-    set_bbox(L);
-    set_bbox(R);
+    if (p->rational) {
+        set_bbox(L);
+        set_bbox(R);
+    } else {
+        set_bbox_poly(L, n);
+        set_bbox_poly(R, n);
+    }
+}
+
+void cj_qpiece_halve(const cj_qpiece *p, const double mag[3], cj_qpiece *L, cj_qpiece *R) {
+    if (p->n == 3 && !p->rational)
+        halve_n(p, 3, mag, L, R);
+    else if (p->n == 2 && !p->rational)
+        halve_n(p, 2, mag, L, R);
+    else
+        halve_n(p, p->n, mag, L, R);
 }
 
 /* de Casteljau at the double t in place: w becomes the piece right of t (keep_left 0) or left
  * of it (keep_left 1; the same recurrence run from the other end). */
-static void split_at(double (*w)[3], int n, double t, int keep_left) {
+CJ_UNROLLED void split_at(double (*w)[3], int n, double t, int keep_left) {
     double s = 1.0 - t;
     if (!keep_left) {
+#pragma GCC unroll 8
         for (int r = n; r > 0; --r)
+#pragma GCC unroll 8
             for (int i = 0; i < r; ++i) {
                 w[i][0] = s * w[i][0] + t * w[i + 1][0];
                 w[i][1] = s * w[i][1] + t * w[i + 1][1];
             }
         return;
     }
+#pragma GCC unroll 8
     for (int r = 1; r <= n; ++r)
+#pragma GCC unroll 8
         for (int i = n; i >= r; --i) {
             w[i][0] = s * w[i - 1][0] + t * w[i][0];
             w[i][1] = s * w[i - 1][1] + t * w[i][1];
         }
 }
 
-void cj_qpiece_sub(const cj_qpiece *p, const double mag[3], double u0, double u1, cj_qpiece *out) {
-    assert(!p->rational && u0 >= 0.0 && u1 <= 1.0 && u0 < u1);
-    int n = p->n;
+CJ_UNROLLED void qpiece_sub_n(const cj_qpiece *p, int n, const double mag[3], double u0, double u1,
+                              cj_qpiece *out) {
     double pa = p->a, pb = p->b, perr = p->perr, err[2] = {p->err[0], p->err[1]}; /* out may be p */
     if (out != p)
+#pragma GCC unroll 8
         for (int i = 0; i <= n; ++i) {
             out->h[i][0] = p->h[i][0];
             out->h[i][1] = p->h[i][1];
@@ -460,7 +556,17 @@ void cj_qpiece_sub(const cj_qpiece *p, const double mag[3], double u0, double u1
     out->a = pa + w0 * u0;
     out->b = s2 == 1.0 ? pb : pa + w0 * (u0 + (1.0 - u0) * s2);
     out->perr = perr + 0x1p-49;
-    set_bbox(out);
+    set_bbox_poly(out, n);
+}
+
+void cj_qpiece_sub(const cj_qpiece *p, const double mag[3], double u0, double u1, cj_qpiece *out) {
+    assert(!p->rational && u0 >= 0.0 && u1 <= 1.0 && u0 < u1);
+    if (p->n == 3)
+        qpiece_sub_n(p, 3, mag, u0, u1, out);
+    else if (p->n == 2)
+        qpiece_sub_n(p, 2, mag, u0, u1, out);
+    else
+        qpiece_sub_n(p, p->n, mag, u0, u1, out);
 }
 
 void cj_qpiece_bbox(const cj_qpiece *p, double lo[2], double hi[2]) {
@@ -486,6 +592,7 @@ void cj_qctx_line(cj_qctx *q, const double p[2], const double d[2], double L) {
     q->h[0][2] = q->h[1][2] = cj_iv(1.0);
     q->dh[0][2] = cj_iv(0.0);
     q->d2mag[0] = q->d2mag[1] = 0.0; /* straight: c'' = 0 */
+    q->plain = 0;
     q->scale = cj_fmax(q->hmag[0], q->hmag[1]);
 }
 
