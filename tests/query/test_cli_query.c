@@ -103,7 +103,7 @@ int main(void) {
         const char *json, *args, *needle;
     } bad[] = {
         {"{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,1]],\"weights\":[1,0]}]}",
-         "intersect --self", "items[0]: curve: weight 1 is 0"},
+         "intersect --self", "-:1: items[0].weights[1] must be > 0, not 0"},
         {"{\"items\":[{\"type\":\"bezier\",\"points\":[[1,1],[1,1]]},"
          "{\"type\":\"bezier\",\"points\":[[0,0],[1,1]]}]}",
          "intersect", "all 2 control points coincide"},
