@@ -98,7 +98,7 @@ static cj_status read_surface(const cj_json_doc *d, const cJSON *obj, const char
     if (st) {
         char msg[400];
         snprintf(msg, sizeof msg, "%s", cj_last_error());
-        return cj_json_fail(d, obj, 0, st, "%s%s%s", path, *path ? ": " : "", msg);
+        return cj_json_fail(d, obj, 0, st, "%s: %s", *path ? path : "document", msg);
     }
     return CJ_OK;
 }
