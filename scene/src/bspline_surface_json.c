@@ -1,5 +1,8 @@
-/* The one reader of the B-spline / NURBS surface object (bspline_surface_json_internal.h). */
+/* The one reader and writer of the B-spline / NURBS surface object
+ * (bspline_surface_json_internal.h). */
 #include "bspline_surface_json_internal.h"
+
+#include "json_write_internal.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -109,4 +112,27 @@ cj_status cj_json_read_bspline_surface(const cj_json_doc *d, const cJSON *obj, c
     const cj_status st = read_surface(d, obj, path, named, out);
     if (st) cj_json_bspline_surface_free(out);
     return st;
+}
+
+/* Adds item (taking it) under key; 0, or -1 when out of memory. */
+static int add(cJSON *obj, const char *key, cJSON *item) {
+    if (item && cJSON_AddItemToObject(obj, key, item)) return 0;
+    cJSON_Delete(item);
+    return -1;
+}
+
+cj_status cj_json_add_bspline_surface(cJSON *obj, const cj_bspline_surface *s) {
+    const size_t n = (size_t)s->npts_u * (size_t)s->npts_v;
+    const double degree[2] = {s->deg_u, s->deg_v}, size[2] = {s->npts_u, s->npts_v};
+    const int bad =
+        add(obj, "type", cJSON_CreateString(s->weights ? "nurbs_surface" : "bspline_surface")) ||
+        add(obj, "degree", cj_json_number_array(degree, 2)) ||
+        add(obj, "size", cj_json_number_array(size, 2)) ||
+        add(obj, "points", cj_json_point_array(s->pts, n, 3)) ||
+        add(obj, "knots_u", cj_json_number_array(s->knots_u, (size_t)(s->npts_u + s->deg_u + 1))) ||
+        add(obj, "knots_v", cj_json_number_array(s->knots_v, (size_t)(s->npts_v + s->deg_v + 1))) ||
+        (s->weights && add(obj, "weights", cj_json_number_array(s->weights, n)));
+    return bad ? cj_fail(CJ_ERR_NOMEM, "out of memory writing a %dx%d B-spline surface", s->npts_u,
+                         s->npts_v)
+               : CJ_OK;
 }

@@ -1,6 +1,6 @@
-/* Private: the one reader of the B-spline / NURBS surface object, shared by the scene reader (a
- * "bspline_surface" or "nurbs_surface" geometry, scene_json_geom.c) and by the surface document
- * of formats/ (surface_json.c: `tessellate --surface`, `section --surface`, `nearest
+/* Private: the one reader and writer of the B-spline / NURBS surface object, shared by the scene
+ * reader (a "bspline_surface" or "nurbs_surface" geometry, scene_json_geom.c) and by the surface
+ * document of formats/ (surface_json.c: `tessellate --surface`, `section --surface`, `nearest
  * --surface`), which is that geometry alone. scene/ is the lowest layer that links cJSON, so it
  * lives here beside the kit it reads with (json_read_internal.h).
  *
@@ -24,5 +24,11 @@
 cj_status cj_json_read_bspline_surface(const cj_json_doc *d, const cJSON *obj, const char *path,
                                        int named, cj_bspline_surface *out);
 void cj_json_bspline_surface_free(cj_bspline_surface *s);
+
+/* The one writer of that object: adds its members to obj (a cJSON object) in the order above,
+ * knots always explicit, numbers through the writing kit (json_write_internal.h), so that the
+ * reader rebuilds the same surface bit for bit. Used by the scene writer and the surface
+ * document. CJ_OK, or CJ_ERR_NOMEM (obj then holds some members: drop it). */
+cj_status cj_json_add_bspline_surface(cJSON *obj, const cj_bspline_surface *s);
 
 #endif
