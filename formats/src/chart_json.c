@@ -11,10 +11,11 @@
  *   series       required, 1..CJ_CHART_MAX_SERIES series: points [[x, y], ...] (required,
  *                >= 1; > 0 on log axes), label (legend entry; absent = none), color (default: the
  *                plot's palette of eight by position, pj_palette), line_width (px, 0..16,
- * default 1.5; 0 = scatter), marker ("circle" default | "square" | "triangle" | "diamond" |
- * "none"), marker_radius (px, (0, 16], default 4) annotations  [{at: [x, y] (required), text
- * (required), color (default #404040)}, ...], at most CJ_CHART_MAX_NOTES A chart panel must be at
- * least 120 x 90 px (cj_chart_render). */
+ *                default 1.5; 0 = scatter), marker ("circle" default | "square" | "triangle" |
+ *                "diamond" | "none"), marker_radius (px, (0, 16], default 4)
+ *   annotations  [{at: [x, y] (required), text (required), color (default #404040)}, ...],
+ *                at most CJ_CHART_MAX_NOTES
+ * A chart panel must be at least 120 x 90 px (cj_chart_render). */
 #include "plot_json_internal.h"
 
 #include <math.h>
