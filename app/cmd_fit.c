@@ -145,7 +145,7 @@ static int fit_grid(const double *data, int n, int dim, int nu, int nv, int degr
             if (cj_atomic_open(&f, output)) {
                 rc = cli_error("fit", "%s", cj_last_error());
             } else {
-                if (surface_json_write(f.fp, &s)) {
+                if (cj_surface_json_print(f.fp, &s, "fit")) {
                     rc = cli_error("fit", "%s", cj_last_error());
                     cj_atomic_abandon(&f);
                 } else if (cj_atomic_commit(&f)) {
@@ -153,7 +153,7 @@ static int fit_grid(const double *data, int n, int dim, int nu, int nv, int degr
                 }
             }
         } else {
-            if (surface_json_write(stdout, &s) || fflush(stdout) != 0 || ferror(stdout))
+            if (cj_surface_json_print(stdout, &s, "fit") || fflush(stdout) != 0 || ferror(stdout))
                 rc = cli_error("fit", "cannot write the output");
         }
     }

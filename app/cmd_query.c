@@ -8,6 +8,8 @@
 #include "file_internal.h"
 #include "query_doc.h"
 #include "json_read_internal.h"
+#include "json_write_internal.h"
+#include "plot_json.h"
 
 #include "casteljau/bezier.h"
 #include "casteljau/intersect.h"
@@ -72,8 +74,9 @@ void free_curves(qcurve *cv, int nc) {
     }
 }
 
-/* The bezier items of one panel's "items" array, checked with the JSON kit (the document's
- * name and lines in jd). Returns the count, or -1 with *rc the command's failure. */
+/* The bezier items of one panel's "items" array, read by the plot format's one reader of them
+ * (cj_plot_json_read_bezier; the document's name and lines in jd). Returns the count, or -1
+ * with *rc the command's failure. */
 int read_curves(const char *cmd, const cj_json_doc *jd, const cJSON *items, const char *where,
                 qcurve *cv, int *rc) {
     int nc = 0, idx = 0;
@@ -89,28 +92,21 @@ int read_curves(const char *cmd, const cj_json_doc *jd, const cJSON *items, cons
                               QUERY_MAX_CURVES);
             break;
         }
-        const cJSON *pv = cJSON_GetObjectItemCaseSensitive(it, "points");
-        const cJSON *wv = cJSON_GetObjectItemCaseSensitive(it, "weights");
-        cj_json_join(p, ip, "points");
-        const int n = cJSON_IsArray(pv) ? cJSON_GetArraySize(pv) : 0;
-        if (cJSON_IsArray(pv) && n > CJ_QUERY_MAX_DEGREE + 1) {
-            st = cj_json_fail(jd, pv, 0, CJ_ERR_PARSE, "%s: need 1 to %d points (degree <= %d)", p,
-                              CJ_QUERY_MAX_DEGREE + 1, CJ_QUERY_MAX_DEGREE);
+        cj_plot_json_curve k;
+        if ((st = cj_plot_json_read_bezier(jd, it, ip, &k))) break;
+        if (k.count > CJ_QUERY_MAX_DEGREE + 1) {
+            cj_json_join(p, ip, "points");
+            st = cj_json_fail(jd, cJSON_GetObjectItemCaseSensitive(it, "points"), 0, CJ_ERR_RANGE,
+                              "%s has %zu points: the queries take degree <= %d", p, k.count,
+                              CJ_QUERY_MAX_DEGREE);
+            cj_plot_json_curve_free(&k);
             break;
         }
-        qcurve *c = &cv[nc];
-        memset(c, 0, sizeof *c);
-        size_t count = 0;
-        st = pv ? cj_json_numbers(jd, pv, p, 2, CJ_JSON_ANY, 0.0, 0, &c->pts, &count)
-                : cj_json_fail(jd, it, 0, CJ_ERR_PARSE, "%s: a bezier needs \"points\"", ip);
-        if (st) break;
-        c->item = idx;
-        c->degree = n - 1;
+        cv[nc].item = idx;
+        cv[nc].degree = (int)k.count - 1;
+        cv[nc].pts = k.points; /* the curve's arrays pass to cv */
+        cv[nc].w = k.weights;
         ++nc;
-        if (wv) {
-            cj_json_join(p, ip, "weights");
-            st = cj_json_numbers(jd, wv, p, 0, CJ_JSON_ANY, 0.0, (size_t)n, &c->w, &count);
-        }
     }
     if (!st) return nc;
     /* the caller sees only -1: the curves read before the bad item are freed here */
@@ -132,10 +128,8 @@ double panel_size(const qcurve *cv, int nc, const double *extra, int nextra) {
 }
 
 cJSON *pair_json(double x, double y) {
-    cJSON *p = cJSON_CreateArray();
-    cJSON_AddItemToArray(p, cJSON_CreateNumber(x));
-    cJSON_AddItemToArray(p, cJSON_CreateNumber(y));
-    return p;
+    const double xy[2] = {x, y};
+    return cj_json_number_array(xy, 2);
 }
 
 static cJSON *points_item(const char *color, double radius) {
@@ -143,7 +137,7 @@ static cJSON *points_item(const char *color, double radius) {
     cJSON_AddStringToObject(it, "type", "points");
     cJSON_AddItemToObject(it, "points", cJSON_CreateArray());
     cJSON_AddStringToObject(it, "color", color);
-    cJSON_AddNumberToObject(it, "radius", radius);
+    cj_json_add_number(it, "radius", radius);
     return it;
 }
 
@@ -187,7 +181,7 @@ static void mark(cJSON *items, cJSON *cross, cJSON *contact, const cj_isect *r, 
                 cJSON_AddItemToArray(pts, pair_json(sub[2 * i], sub[2 * i + 1]));
             cJSON_AddItemToObject(it, "points", pts);
             cJSON_AddStringToObject(it, "color", "#d6272880");
-            cJSON_AddNumberToObject(it, "width", 7);
+            cj_json_add_number(it, "width", 7);
             cJSON_AddFalseToObject(it, "control_polygon");
             cJSON_AddFalseToObject(it, "control_points");
             cJSON_AddItemToArray(items, it);
@@ -345,14 +339,11 @@ static int run_doc(const char *cmd, const char *path, const qopts *o,
         rc = cli_fail(cmd, "the document has neither \"items\" nor \"panels\"");
     }
     if (!rc && !o->text) {
-        char *out = cJSON_Print(doc);
-        if (!out)
+        /* the writing kit: the numbers read in and those added in their shortest exact form */
+        if (cj_json_shortest_numbers(doc))
             rc = cli_error(cmd, "out of memory");
-        else {
-            fputs(out, stdout);
-            fputc('\n', stdout);
-            free(out);
-        }
+        else if (cj_json_print(doc, 1, stdout, cmd))
+            rc = cli_error(cmd, "%s", cj_last_error());
     }
     cj_json_doc_free(&jd);
     cJSON_Delete(doc);

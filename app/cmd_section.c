@@ -5,7 +5,7 @@
 #include "cli.h"
 #include "cli_guard.h"
 #include "file_internal.h"
-#include "surface_json.h"
+#include "surface_load.h"
 
 #include "casteljau/patch.h"
 #include "casteljau/patch_nearest.h"
@@ -66,7 +66,7 @@ typedef struct model {
 
 static void model_free(model *M) {
     if (M->set) cj_patchset_destroy(M->set);
-    surface_json_free(&M->surf);
+    surface_patches_free(&M->surf);
     free(M->pts);
     free(M->weights);
 }
@@ -98,7 +98,7 @@ static int model_load(const char *cmd, int teapot, const char *bpt, const char *
     if (surface) {
         char why[256];
         int nomem = 0;
-        if (surface_json_load(surface, &M->surf, why, sizeof why, &nomem))
+        if (surface_load(surface, &M->surf, why, sizeof why, &nomem))
             return nomem ? cli_error(cmd, "--surface: %s", why)
                          : cli_fail(cmd, "--surface: %s", why);
         M->patches = M->surf.patches;

@@ -10,7 +10,7 @@
 #include "weights.h"
 
 #include "casteljau/patchset.h"
-#include "surface_json.h"
+#include "surface_load.h"
 #include "casteljau/tessellate.h"
 
 #include <limits.h>
@@ -174,7 +174,7 @@ int cmd_tessellate(int argc, char **argv) {
     } else if (surface) {
         char why[400];
         int nomem = 0;
-        if (surface_json_load(surface, &sp, why, sizeof why, &nomem))
+        if (surface_load(surface, &sp, why, sizeof why, &nomem))
             return nomem ? cli_error(cmd, "--surface: %s", why)
                          : cli_fail(cmd, "--surface: %s", why);
         patches = sp.patches;
@@ -307,7 +307,7 @@ int cmd_tessellate(int argc, char **argv) {
     cj_mesh_destroy(mesh);
 done:
     cj_patchset_destroy(set);
-    surface_json_free(&sp);
+    surface_patches_free(&sp);
     free(pts);
     free(weights);
     return rc;

@@ -128,6 +128,64 @@ static void test_bad_documents(void **state) {
            n);
 }
 
+/* The status of a refusal is the kit's own, kept up to the entry points (a value out of range is
+ * CJ_ERR_RANGE, not infinite CJ_ERR_NONFINITE, a wrong type CJ_ERR_PARSE), deep in panels,
+ * charts, curve items and pages alike. */
+static void test_statuses(void **state) {
+    (void)state;
+    static const struct {
+        const char *json;
+        cj_status status;
+    } cases[] = {
+        {"{\"width\": 10, \"items\": [{\"type\": \"points\", \"points\": [[0,0]]}]}", CJ_ERR_RANGE},
+        {"{\"width\": \"9\", \"items\": [{\"type\": \"points\", \"points\": [[0,0]]}]}",
+         CJ_ERR_PARSE},
+        {"{\"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,1]], \"weights\": [1, 0]}]}",
+         CJ_ERR_RANGE},
+        {"{\"items\": [{\"type\": \"bezier\", \"points\": [[0,0],[1,1e999]]}]}", CJ_ERR_NONFINITE},
+        {"{\"items\": [{\"type\": \"bezier\", \"construction_t\": 1.5, \"points\": "
+         "[[0,0],[1,1]]}]}",
+         CJ_ERR_RANGE},
+        {"{\"panels\": [{\"items\": [{\"type\": \"points\", \"points\": [[0,0],[1,1]],"
+         " \"radius\": 0}]}]}",
+         CJ_ERR_RANGE},
+        {"{\"panels\": [{\"items\": [{\"type\": \"implicit\", \"poly\": {\"degree\": 40, "
+         "\"coef\": []}, \"box\": [0,0,1,1]}]}]}",
+         CJ_ERR_RANGE},
+        {"{\"kind\": \"chart\", \"series\": [{\"points\": [[0,1]], \"line_width\": 20}]}",
+         CJ_ERR_RANGE},
+        {"{\"items\": [{\"type\": \"catmull-rom\", \"tension\": 11, \"points\": [[0,0],[1,1]]}]}",
+         CJ_ERR_RANGE},
+        {"{\"items\": [{\"type\": \"polyline\", \"points\": [[0,0]]}]}", CJ_ERR_PARSE},
+    };
+    const size_t n = sizeof cases / sizeof cases[0];
+    for (size_t i = 0; i < n; ++i) {
+        cj_plot_doc doc;
+        const cj_status rc = cj_plot_json_parse("st.json", cases[i].json, &doc);
+        if (rc != cases[i].status) {
+            printf("case %zu: status %d, expected %d (%s)\n", i, rc, cases[i].status,
+                   rc ? cj_last_error() : "accepted");
+            fail();
+        }
+        if (!rc) cj_plot_doc_free(&doc);
+    }
+    /* a page reads its items with the same readers */
+    cj_plot_json_page page;
+    assert_int_equal(cj_plot_json_read_page("p.json",
+                                            "{\"margin\": -1, \"items\": [{\"type\": "
+                                            "\"bezier\", \"points\": [[0,0],[1,1]]}]}",
+                                            &page),
+                     CJ_ERR_RANGE);
+    assert_int_equal(cj_plot_json_read_page("p.json",
+                                            "{\"items\": [{\"type\": \"bezier\", \"width\": 99, "
+                                            "\"points\": [[0,0],[1,1]]}]}",
+                                            &page),
+                     CJ_ERR_RANGE);
+    printf("test_plot_json: %zu documents and 2 pages refused with the kit's own status (range, "
+           "not finite, type)\n",
+           n);
+}
+
 /* Colours by name (CSS basic names, any case) as well as "#rrggbb". */
 static void test_named_colours(void **state) {
     (void)state;
@@ -209,6 +267,7 @@ int main(void) {
         cmocka_unit_test(test_bad_documents),
         cmocka_unit_test(test_good_documents),
         cmocka_unit_test(test_named_colours),
+        cmocka_unit_test(test_statuses),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

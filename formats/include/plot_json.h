@@ -90,6 +90,18 @@ cj_status cj_plot_json_read_page(const char *name, const char *text, cj_plot_jso
 
 void cj_plot_json_page_free(cj_plot_json_page *page);
 
+/* One "bezier" item, `item` at `path` ("panels[0].items[3]"), of a document that a caller
+ * reads with the JSON kit (doc: its name and lines, scene/src/json_read_internal.h) and edits
+ * as a cJSON tree (the query commands, which add their answers to the document): read by the
+ * one reader of that item, with its checks and messages, into *out (free with
+ * cj_plot_json_curve_free; weights, when given, normalised as for the plot). Errors: those of
+ * cj_plot_json_parse for the item. */
+struct cj_json_doc;
+struct cJSON;
+cj_status cj_plot_json_read_bezier(const struct cj_json_doc *doc, const struct cJSON *item,
+                                   const char *path, cj_plot_json_curve *out);
+void cj_plot_json_curve_free(cj_plot_json_curve *k);
+
 /* Draws curve k into plot as the plot reader does (cj_plot_add_bezier, _rbezier, _spline or
  * _bspline):
  * their status (cj_last_error explains a failure). */

@@ -10,9 +10,9 @@
  *                "outside" (right of the plot area)
  *   series       required, 1..CJ_CHART_MAX_SERIES series: points [[x, y], ...] (required,
  *                >= 1; > 0 on log axes), label (legend entry; absent = none), color (default: the
- *                palette by position), line_width (px, 0..16, default 1.5; 0 = scatter),
- *                marker ("circle" default | "square" | "triangle" | "diamond" | "none"),
- *                marker_radius (px, (0, 16], default 4)
+ *                plot's palette of eight by position, pj_palette), line_width (px, 0..16,
+ *                default 1.5; 0 = scatter), marker ("circle" default | "square" | "triangle" |
+ *                "diamond" | "none"), marker_radius (px, (0, 16], default 4)
  *   annotations  [{at: [x, y] (required), text (required), color (default #404040)}, ...],
  *                at most CJ_CHART_MAX_NOTES
  * A chart panel must be at least 120 x 90 px (cj_chart_render). */
@@ -22,12 +22,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const cj_rgba chart_palette[] = {{0x1f, 0x77, 0xb4, 255}, {0xff, 0x7f, 0x0e, 255},
-                                        {0x2c, 0xa0, 0x2c, 255}, {0xd6, 0x27, 0x28, 255},
-                                        {0x94, 0x67, 0xbd, 255}, {0x8c, 0x56, 0x4b, 255}};
-
 static int parse_text(pj_ctx *c, const cJSON *v, const char *path, const char **out) {
-    if (cj_json_string_at(&c->doc, v, path, out)) return -1;
+    CJ_JSON_TRY(cj_json_string_at(&c->doc, v, path, out));
     if (strlen(*out) > CJ_CHART_MAX_TEXT)
         return pj_fail(c, v, "%s is longer than %d bytes", path, CJ_CHART_MAX_TEXT);
     return 0;
@@ -35,22 +31,22 @@ static int parse_text(pj_ctx *c, const cJSON *v, const char *path, const char **
 
 static int parse_axis(pj_ctx *c, const cJSON *ax, const char *path, int axis, cj_chart *ch) {
     static const char *const keys[] = {"scale", "title", "range", NULL};
-    if (cj_json_object(&c->doc, ax, path, keys)) return -1;
+    CJ_JSON_TRY(cj_json_object(&c->doc, ax, path, keys));
     char p[CJ_JSON_PATH];
     const cJSON *v;
     static const char *const scales[] = {"linear", "log", NULL};
     int log_scale = 0;
-    if (cj_json_enum(&c->doc, ax, path, "scale", scales, &log_scale)) return -1;
+    CJ_JSON_TRY(cj_json_enum(&c->doc, ax, path, "scale", scales, &log_scale));
     const cj_chart_scale scale = log_scale ? CJ_CHART_LOG10 : CJ_CHART_LINEAR;
     const char *title = NULL;
     cj_json_join(p, path, "title");
-    if ((v = cJSON_GetObjectItemCaseSensitive(ax, "title")) && parse_text(c, v, p, &title))
-        return -1;
+    if ((v = cJSON_GetObjectItemCaseSensitive(ax, "title")))
+        CJ_JSON_TRY(parse_text(c, v, p, &title));
     if (cj_chart_set_axis(ch, axis, scale, title)) return pj_lib_fail(c, ax, path);
     if ((v = cJSON_GetObjectItemCaseSensitive(ax, "range"))) {
         double r[2];
         cj_json_join(p, path, "range");
-        if (cj_json_array_at(&c->doc, v, p, 2, r)) return -1;
+        CJ_JSON_TRY(cj_json_array_at(&c->doc, v, p, 2, r));
         if (scale == CJ_CHART_LOG10 && !(r[0] > 0))
             return pj_fail(c, v->child, "%s[0] = %g is not > 0 on a log axis", p, r[0]);
         if (cj_chart_set_range(ch, axis, r[0], r[1])) return pj_lib_fail(c, v, p);
@@ -62,26 +58,24 @@ static int parse_series(pj_ctx *c, const cJSON *s, const char *path, size_t inde
     static const char *const keys[] = {"points", "label",         "color", "line_width",
                                        "marker", "marker_radius", NULL};
     static const char *const markers[] = {"none", "circle", "square", "triangle", "diamond", NULL};
-    if (cj_json_object(&c->doc, s, path, keys)) return -1;
+    CJ_JSON_TRY(cj_json_object(&c->doc, s, path, keys));
     char p[CJ_JSON_PATH];
     const cJSON *v;
-    cj_chart_series_opts o = {NULL, chart_palette[index % 6], 1.5, CJ_MARKER_CIRCLE, 4.0};
+    cj_chart_series_opts o = {NULL, pj_palette(index), 1.5, CJ_MARKER_CIRCLE, 4.0};
     cj_json_join(p, path, "label");
-    if ((v = cJSON_GetObjectItemCaseSensitive(s, "label")) && parse_text(c, v, p, &o.label))
-        return -1;
+    if ((v = cJSON_GetObjectItemCaseSensitive(s, "label")))
+        CJ_JSON_TRY(parse_text(c, v, p, &o.label));
     cj_json_join(p, path, "color");
-    if ((v = cJSON_GetObjectItemCaseSensitive(s, "color")) && pj_parse_color(c, v, p, &o.color))
-        return -1;
+    if ((v = cJSON_GetObjectItemCaseSensitive(s, "color")))
+        CJ_JSON_TRY(pj_parse_color(c, v, p, &o.color));
     cj_json_join(p, path, "line_width");
-    if ((v = cJSON_GetObjectItemCaseSensitive(s, "line_width")) &&
-        cj_json_number_at(&c->doc, v, p, CJ_JSON_IN, 0, 16, &o.line_width))
-        return -1;
+    if ((v = cJSON_GetObjectItemCaseSensitive(s, "line_width")))
+        CJ_JSON_TRY(cj_json_number_at(&c->doc, v, p, CJ_JSON_IN, 0, 16, &o.line_width));
     cj_json_join(p, path, "marker_radius");
-    if ((v = cJSON_GetObjectItemCaseSensitive(s, "marker_radius")) &&
-        cj_json_number_at(&c->doc, v, p, CJ_JSON_IN, 0x1p-10, 16, &o.marker_radius))
-        return -1;
+    if ((v = cJSON_GetObjectItemCaseSensitive(s, "marker_radius")))
+        CJ_JSON_TRY(cj_json_number_at(&c->doc, v, p, CJ_JSON_IN, 0x1p-10, 16, &o.marker_radius));
     int marker = (int)o.marker;
-    if (cj_json_enum(&c->doc, s, path, "marker", markers, &marker)) return -1;
+    CJ_JSON_TRY(cj_json_enum(&c->doc, s, path, "marker", markers, &marker));
     o.marker = (cj_chart_marker)marker;
     if (o.marker == CJ_MARKER_NONE && o.line_width == 0)
         return pj_fail(c, s, "%s has line_width 0 and marker none: nothing to draw", path);
@@ -90,7 +84,7 @@ static int parse_series(pj_ctx *c, const cJSON *s, const char *path, size_t inde
     cj_json_join(p, path, "points");
     double *xy = NULL;
     size_t n = 0;
-    if (pj_parse_points(c, pts, p, 1, &xy, &n)) return -1;
+    CJ_JSON_TRY(pj_parse_points(c, pts, p, 1, &xy, &n));
     double *x = malloc(2 * n * sizeof *x);
     if (!x) {
         free(xy);
@@ -105,7 +99,7 @@ static int parse_series(pj_ctx *c, const cJSON *s, const char *path, size_t inde
 
 static int parse_note(pj_ctx *c, const cJSON *a, const char *path, cj_chart *ch) {
     static const char *const keys[] = {"at", "text", "color", NULL};
-    if (cj_json_object(&c->doc, a, path, keys)) return -1;
+    CJ_JSON_TRY(cj_json_object(&c->doc, a, path, keys));
     char p[CJ_JSON_PATH];
     const cJSON *v;
     double at[2];
@@ -114,15 +108,15 @@ static int parse_note(pj_ctx *c, const cJSON *a, const char *path, cj_chart *ch)
     if (!(v = cJSON_GetObjectItemCaseSensitive(a, "at")))
         return pj_fail(c, a, "%s has no \"at\" point", path);
     cj_json_join(p, path, "at");
-    if (cj_json_array_at(&c->doc, v, p, 2, at)) return -1;
+    CJ_JSON_TRY(cj_json_array_at(&c->doc, v, p, 2, at));
     if (!(v = cJSON_GetObjectItemCaseSensitive(a, "text")))
         return pj_fail(c, a, "%s has no text", path);
     cj_json_join(p, path, "text");
-    if (parse_text(c, v, p, &text)) return -1;
+    CJ_JSON_TRY(parse_text(c, v, p, &text));
     if (!text[0]) return pj_fail(c, v, "%s is empty", p);
     cj_json_join(p, path, "color");
-    if ((v = cJSON_GetObjectItemCaseSensitive(a, "color")) && pj_parse_color(c, v, p, &col))
-        return -1;
+    if ((v = cJSON_GetObjectItemCaseSensitive(a, "color")))
+        CJ_JSON_TRY(pj_parse_color(c, v, p, &col));
     return cj_chart_annotate(ch, at[0], at[1], text, col) ? pj_lib_fail(c, a, path) : 0;
 }
 
@@ -135,7 +129,7 @@ int cj_chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path,
     for (size_t i = 0; i < sizeof base / sizeof base[0]; ++i) keys[nk++] = base[i];
     for (size_t i = 0; extra_keys && extra_keys[i] && nk < 15; ++i) keys[nk++] = extra_keys[i];
     keys[nk] = NULL;
-    if (cj_json_object(&c->doc, obj, path, keys)) return -1;
+    CJ_JSON_TRY(cj_json_object(&c->doc, obj, path, keys));
     cj_chart *ch = NULL;
     if (cj_chart_create(NULL, &ch)) return pj_lib_fail(c, obj, path);
     char p[CJ_JSON_PATH];
@@ -185,7 +179,7 @@ int cj_chart_json_parse(pj_ctx *c, const cJSON *obj, const char *path,
     if (!r && cj_chart_ranges(ch, lo, hi)) r = pj_lib_fail(c, obj, path);
     if (r) {
         cj_chart_destroy(ch);
-        return -1;
+        return r;
     }
     *out = ch;
     return 0;

@@ -53,7 +53,7 @@
 static int parse_curve(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, int spline,
                        cj_rgba color) {
     cj_plot_json_curve k;
-    if (pj_read_curve(c, it, path, spline, color, &k)) return -1;
+    CJ_JSON_TRY(pj_read_curve(c, it, path, spline, color, &k));
     const cj_status st = cj_plot_json_curve_add(plot, &k);
     pj_curve_free(&k);
     return st ? pj_lib_fail(c, it, path) : 0;
@@ -63,7 +63,7 @@ static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
                           cj_rgba color) {
     static const char *const keys[] = {"type", "color", "width", "circle", "ellipse",
                                        "line", "poly",  "box",   "grid",   NULL};
-    if (cj_json_object(&c->doc, it, path, keys)) return -1;
+    CJ_JSON_TRY(cj_json_object(&c->doc, it, path, keys));
     double width = 2.5;
     int grid = 64;
     PJ_OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
@@ -98,14 +98,14 @@ static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
     if (bv) {
         char q[CJ_JSON_PATH];
         cj_json_join(q, path, "box");
-        if (cj_json_array_at(&c->doc, bv, q, 4, box)) return -1;
+        CJ_JSON_TRY(cj_json_array_at(&c->doc, bv, q, 4, box));
         if (!(box[0] < box[2] && box[1] < box[3]))
             return pj_fail(c, bv, "%s is not [x0, y0, x1, y1] with x0 < x1 and y0 < y1", q);
         have_box = 1;
     }
     switch (which) {
     case 0:
-        if (cj_json_array_at(&c->doc, v, p, 3, a)) return -1;
+        CJ_JSON_TRY(cj_json_array_at(&c->doc, v, p, 3, a));
         if (!(a[2] > 0)) return pj_fail(c, v, "%s: the radius %g is not positive", p, a[2]);
         st = cj_implicit_circle(a[0], a[1], a[2], &shape, &f);
         if (!have_box) {
@@ -114,7 +114,7 @@ static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
         }
         break;
     case 1:
-        if (cj_json_array_at(&c->doc, v, p, 5, a)) return -1;
+        CJ_JSON_TRY(cj_json_array_at(&c->doc, v, p, 5, a));
         if (!(a[2] > 0 && a[3] > 0))
             return pj_fail(c, v, "%s: the radii %g, %g are not positive", p, a[2], a[3]);
         st = cj_implicit_ellipse(a[0], a[1], a[2], a[3], a[4], &shape, &f);
@@ -124,19 +124,19 @@ static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
         }
         break;
     case 2:
-        if (cj_json_array_at(&c->doc, v, p, 3, a)) return -1;
+        CJ_JSON_TRY(cj_json_array_at(&c->doc, v, p, 3, a));
         if (!have_box) return pj_fail(c, it, "%s: a \"line\" needs a \"box\" to be drawn in", path);
         st = cj_implicit_line(a[0], a[1], a[2], &shape, &f);
         break;
     default: {
         static const char *const pkeys[] = {"degree", "coef", NULL};
-        if (cj_json_object(&c->doc, v, p, pkeys)) return -1;
+        CJ_JSON_TRY(cj_json_object(&c->doc, v, p, pkeys));
         int degree = 0;
         char q[CJ_JSON_PATH];
         cj_json_join(q, p, "degree");
         const cJSON *dv = NULL;
-        if (cj_json_require(&c->doc, v, p, "degree", &dv)) return -1;
-        if (cj_json_int_at(&c->doc, dv, q, 1, 32, &degree)) return -1;
+        CJ_JSON_TRY(cj_json_require(&c->doc, v, p, "degree", &dv));
+        CJ_JSON_TRY(cj_json_int_at(&c->doc, dv, q, 1, 32, &degree));
         size_t nc = cj_implicit_poly_ncoef(degree);
         cj_json_join(q, p, "coef");
         const cJSON *cv = cJSON_GetObjectItemCaseSensitive(v, "coef");
@@ -145,9 +145,10 @@ static int parse_implicit(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
                            degree);
         coef = malloc(nc * sizeof *coef);
         if (!coef) return cj_json_fail(&c->doc, cv, 0, CJ_ERR_NOMEM, "%s: out of memory", q);
-        if (cj_json_array_at(&c->doc, cv, q, (int)nc, coef)) {
+        st = cj_json_array_at(&c->doc, cv, q, (int)nc, coef);
+        if (st) {
             free(coef);
-            return -1;
+            return st;
         }
         if (!have_box) {
             free(coef);
@@ -178,7 +179,7 @@ static int parse_polyline(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
     static const char *const lkeys[] = {"type",   "points",  "color", "width",
                                         "closed", "markers", NULL};
     static const char *const pkeys[] = {"type", "points", "color", "radius", NULL};
-    if (cj_json_object(&c->doc, it, path, points_only ? pkeys : lkeys)) return -1;
+    CJ_JSON_TRY(cj_json_object(&c->doc, it, path, points_only ? pkeys : lkeys));
     double width = points_only ? 4.0 : 2.0;
     int closed = 0, markers = 0;
     PJ_OPT(it, "color", path, pj_parse_color(c, v_, p_, &color));
@@ -196,7 +197,7 @@ static int parse_polyline(pj_ctx *c, const cJSON *it, const char *path, cj_plot 
     cj_json_join(p, path, "points");
     double *pts = NULL;
     size_t n = 0;
-    if (pj_parse_points(c, pv, p, points_only ? 1 : 2, &pts, &n)) return -1;
+    CJ_JSON_TRY(pj_parse_points(c, pv, p, points_only ? 1 : 2, &pts, &n));
     cj_status st = points_only ? cj_plot_add_points(plot, pts, n, color, width)
                                : cj_plot_add_polyline(plot, pts, n, closed, color, width, markers);
     free(pts);
@@ -214,48 +215,49 @@ static int parse_panel(pj_ctx *c, const cJSON *obj, const char *prefix, cj_rgba 
     int axes = 1;
     double margin = 12.0;
     const cJSON *v;
+    int r = 0; /* the status of a failure, returned after the plot is freed */
 #define PFAIL                                                                                      \
     do {                                                                                           \
         cj_plot_destroy(plot);                                                                     \
-        return -1;                                                                                 \
+        return r;                                                                                  \
     } while (0)
     char p[CJ_JSON_PATH];
     if ((v = cJSON_GetObjectItemCaseSensitive(obj, "axes"))) {
         cj_json_join(p, prefix, "axes");
-        if (cj_json_bool_at(&c->doc, v, p, &axes)) PFAIL;
+        if ((r = cj_json_bool_at(&c->doc, v, p, &axes))) PFAIL;
     }
     cj_plot_set_axes(plot, axes);
     if ((v = cJSON_GetObjectItemCaseSensitive(obj, "margin"))) {
         cj_json_join(p, prefix, "margin");
-        if (cj_json_number_at(&c->doc, v, p, CJ_JSON_IN, 0.0, 1000.0, &margin)) PFAIL;
+        if ((r = cj_json_number_at(&c->doc, v, p, CJ_JSON_IN, 0.0, 1000.0, &margin))) PFAIL;
     }
     cj_plot_set_margin(plot, margin);
     if ((v = cJSON_GetObjectItemCaseSensitive(obj, "title"))) {
         cj_json_join(p, prefix, "title");
         const char *title = NULL;
-        if (cj_json_string_at(&c->doc, v, p, &title)) PFAIL;
+        if ((r = cj_json_string_at(&c->doc, v, p, &title))) PFAIL;
         if (cj_plot_set_title(plot, title)) {
-            pj_lib_fail(c, v, p);
+            r = pj_lib_fail(c, v, p);
             PFAIL;
         }
     }
     if ((v = cJSON_GetObjectItemCaseSensitive(obj, "view"))) {
         double b[4];
         cj_json_join(p, prefix, "view");
-        if (cj_json_array_at(&c->doc, v, p, 4, b)) PFAIL;
+        if ((r = cj_json_array_at(&c->doc, v, p, 4, b))) PFAIL;
         if (cj_plot_set_view(plot, b[0], b[1], b[2], b[3])) {
-            pj_lib_fail(c, v, p);
+            r = pj_lib_fail(c, v, p);
             PFAIL;
         }
     }
     const cJSON *items = cJSON_GetObjectItemCaseSensitive(obj, "items");
     cj_json_join(p, prefix, "items");
     if (!items) {
-        pj_fail(c, obj, "%s: missing \"items\" (the list of things to draw)", path);
+        r = pj_fail(c, obj, "%s: missing \"items\" (the list of things to draw)", path);
         PFAIL;
     }
     if (!cJSON_IsArray(items) || cJSON_GetArraySize(items) == 0) {
-        pj_fail(c, items, "%s is not a non-empty array of items", p);
+        r = pj_fail(c, items, "%s is not a non-empty array of items", p);
         PFAIL;
     }
     size_t i = 0;
@@ -263,24 +265,23 @@ static int parse_panel(pj_ctx *c, const cJSON *obj, const char *prefix, cj_rgba 
         char ip[CJ_JSON_PATH];
         cj_json_index(ip, p, i);
         if (!cJSON_IsObject(it)) {
-            pj_fail(c, it, "%s is not an object, but %s", ip, cj_json_type_name(it));
+            r = pj_fail(c, it, "%s is not an object, but %s", ip, cj_json_type_name(it));
             PFAIL;
         }
         const cJSON *t = cJSON_GetObjectItemCaseSensitive(it, "type");
         if (!t || !cJSON_IsString(t)) {
-            pj_fail(c, t ? t : it,
-                    "%s.type is missing or not a string (bezier, bspline, catmull-rom, "
-                    "implicit, polyline, points)",
-                    ip);
+            r = pj_fail(c, t ? t : it,
+                        "%s.type is missing or not a string (bezier, bspline, catmull-rom, "
+                        "implicit, polyline, points)",
+                        ip);
             PFAIL;
         }
         if (++c->items > PLOT_JSON_MAX_ITEMS) {
-            pj_fail(c, it, "%s: the document has more than %d items in all", ip,
-                    PLOT_JSON_MAX_ITEMS);
+            r = pj_fail(c, it, "%s: the document has more than %d items in all", ip,
+                        PLOT_JSON_MAX_ITEMS);
             PFAIL;
         }
         cj_rgba color = pj_palette(i);
-        int r;
         if (!strcmp(t->valuestring, "bezier"))
             r = parse_curve(c, it, ip, plot, 0, color);
         else if (!strcmp(t->valuestring, "catmull-rom"))
@@ -355,7 +356,7 @@ cj_status cj_plot_json_parse(const char *name, const char *text, cj_plot_doc *do
     pj_ctx c;
     cJSON *root = NULL;
     CJ_JSON_TRY(pj_open(&c, name, text, &root));
-    int rc = -1;
+    int rc = -1; /* a failure's status (-1: CJ_ERR_PARSE), 0 once the document is read */
     static const char *const single[] = {"width",  "height", "background", "title", "axes",
                                          "margin", "view",   "items",      NULL};
     static const char *const multi[] = {"width", "height", "background", "columns", "panels", NULL};
@@ -364,25 +365,25 @@ cj_status cj_plot_json_parse(const char *name, const char *text, cj_plot_doc *do
     int w = 800, h = 600;
     doc->background = cj_rgba_make(255, 255, 255, 255);
     if (!cJSON_IsObject(root)) {
-        pj_fail(&c, root, "document is not a JSON object, but %s", cj_json_type_name(root));
+        rc = pj_fail(&c, root, "document is not a JSON object, but %s", cj_json_type_name(root));
         goto done;
     }
     panels = cJSON_GetObjectItemCaseSensitive(root, "panels");
     if (!panels && is_chart(root)) { /* the whole document is one chart */
         static const char *const doc_keys[] = {"width", "height", "background", NULL};
-        if (cj_chart_json_parse(&c, root, "document", doc_keys, &doc->charts[0])) goto done;
+        if ((rc = cj_chart_json_parse(&c, root, "document", doc_keys, &doc->charts[0]))) goto done;
         doc->npanels = 1;
     }
-    if (!doc->npanels && cj_json_object(&c.doc, root, "document", panels ? multi : single))
+    if (!doc->npanels && (rc = cj_json_object(&c.doc, root, "document", panels ? multi : single)))
         goto done;
     if ((v = cJSON_GetObjectItemCaseSensitive(root, "width")) &&
-        cj_json_int_at(&c.doc, v, "width", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &w))
+        (rc = cj_json_int_at(&c.doc, v, "width", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &w)))
         goto done;
     if ((v = cJSON_GetObjectItemCaseSensitive(root, "height")) &&
-        cj_json_int_at(&c.doc, v, "height", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &h))
+        (rc = cj_json_int_at(&c.doc, v, "height", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &h)))
         goto done;
     if ((v = cJSON_GetObjectItemCaseSensitive(root, "background")) &&
-        pj_parse_color(&c, v, "background", &doc->background))
+        (rc = pj_parse_color(&c, v, "background", &doc->background)))
         goto done;
     doc->width = w;
     doc->height = h;
@@ -393,38 +394,41 @@ cj_status cj_plot_json_parse(const char *name, const char *text, cj_plot_doc *do
             for (const cJSON *pn = panels->child; pn; pn = pn->next, ++k) {
                 char p[CJ_JSON_PATH];
                 cj_json_index(p, "panels", (size_t)k);
-                if (cJSON_IsObject(pn) && prescan_work(&c, pn, p, &work)) goto done;
+                if (cJSON_IsObject(pn) && (rc = prescan_work(&c, pn, p, &work))) goto done;
             }
-        } else if (!panels && prescan_work(&c, root, "", &work)) {
+        } else if (!panels && (rc = prescan_work(&c, root, "", &work))) {
             goto done;
         }
     }
     if (panels) {
         if (!cJSON_IsArray(panels) || cJSON_GetArraySize(panels) == 0 ||
             cJSON_GetArraySize(panels) > PLOT_JSON_MAX_PANELS) {
-            pj_fail(&c, panels, "panels is not an array of 1 to %d panels", PLOT_JSON_MAX_PANELS);
+            rc = pj_fail(&c, panels, "panels is not an array of 1 to %d panels",
+                         PLOT_JSON_MAX_PANELS);
             goto done;
         }
         int n = cJSON_GetArraySize(panels);
         doc->columns = (int)ceil(sqrt((double)n));
         if ((v = cJSON_GetObjectItemCaseSensitive(root, "columns")) &&
-            cj_json_int_at(&c.doc, v, "columns", 1, n, &doc->columns))
+            (rc = cj_json_int_at(&c.doc, v, "columns", 1, n, &doc->columns)))
             goto done;
         int i = 0;
         for (const cJSON *pn = panels->child; pn; pn = pn->next, ++i) {
             char p[CJ_JSON_PATH];
             cj_json_index(p, "panels", (size_t)i);
             if (!cJSON_IsObject(pn)) {
-                pj_fail(&c, pn, "%s is not an object, but %s", p, cj_json_type_name(pn));
+                rc = pj_fail(&c, pn, "%s is not an object, but %s", p, cj_json_type_name(pn));
                 goto done;
             }
             if (is_chart(pn)) {
-                if (cj_chart_json_parse(&c, pn, p, NULL, &doc->charts[doc->npanels])) goto done;
+                if ((rc = cj_chart_json_parse(&c, pn, p, NULL, &doc->charts[doc->npanels])))
+                    goto done;
                 doc->npanels++;
                 continue;
             }
-            if (cj_json_object(&c.doc, pn, p, panel_keys)) goto done;
-            if (parse_panel(&c, pn, p, doc->background, &doc->panels[doc->npanels])) goto done;
+            if ((rc = cj_json_object(&c.doc, pn, p, panel_keys))) goto done;
+            if ((rc = parse_panel(&c, pn, p, doc->background, &doc->panels[doc->npanels])))
+                goto done;
             doc->npanels++;
         }
     } else if (doc->npanels == 1) { /* a chart document, parsed above */
@@ -433,7 +437,7 @@ cj_status cj_plot_json_parse(const char *name, const char *text, cj_plot_doc *do
     } else {
         doc->columns = 1;
         doc->single = 1;
-        if (parse_panel(&c, root, "", doc->background, &doc->panels[0])) goto done;
+        if ((rc = parse_panel(&c, root, "", doc->background, &doc->panels[0]))) goto done;
         doc->npanels = 1;
     }
     rc = 0;

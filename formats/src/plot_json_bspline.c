@@ -39,7 +39,7 @@ int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
                     b.dim);
     if (r) {
         cj_bsp_json_free(&b);
-        return -1;
+        return r;
     }
     c->points += (size_t)b.npts;
     memset(out, 0, sizeof *out);
@@ -58,8 +58,8 @@ int pj_read_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_rgba color,
 
 int pj_parse_bspline(pj_ctx *c, const cJSON *it, const char *path, cj_plot *plot, cj_rgba color) {
     cj_plot_json_curve k;
-    if (pj_read_bspline(c, it, path, color, &k)) return -1;
+    CJ_JSON_TRY(pj_read_bspline(c, it, path, color, &k));
     const int r = cj_plot_json_curve_add(plot, &k) ? pj_lib_fail(c, it, path) : 0;
     pj_curve_free(&k);
-    return r ? -1 : 0;
+    return r;
 }

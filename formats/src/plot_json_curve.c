@@ -29,7 +29,7 @@ static int read_bezier_style(pj_ctx *c, const cJSON *it, const char *path, cj_pl
     if (ct) {
         char p[CJ_JSON_PATH];
         cj_json_join(p, path, "construction_t");
-        if (cj_json_number_at(&c->doc, ct, p, CJ_JSON_IN, 0.0, 1.0, &o->construction_t)) return -1;
+        CJ_JSON_TRY(cj_json_number_at(&c->doc, ct, p, CJ_JSON_IN, 0.0, 1.0, &o->construction_t));
         o->construction = 1;
     }
     const cJSON *ft = cJSON_GetObjectItemCaseSensitive(it, "frames_t");
@@ -42,8 +42,8 @@ static int read_bezier_style(pj_ctx *c, const cJSON *it, const char *path, cj_pl
         for (const cJSON *e = ft->child; e; e = e->next) {
             char q[CJ_JSON_PATH];
             cj_json_index(q, p, o->nframes);
-            if (cj_json_number_at(&c->doc, e, q, CJ_JSON_IN, 0.0, 1.0, &o->frames_t[o->nframes]))
-                return -1;
+            CJ_JSON_TRY(
+                cj_json_number_at(&c->doc, e, q, CJ_JSON_IN, 0.0, 1.0, &o->frames_t[o->nframes]));
             ++o->nframes;
         }
     }
@@ -59,19 +59,19 @@ static int read_weights(pj_ctx *c, const cJSON *wv, const char *path, size_t n, 
         bad = pj_fail(c, wv, "%s is not an array of %zu weights (one per point)", p, n);
     else if (!(w = malloc(n * sizeof *w)))
         bad = cj_json_fail(&c->doc, wv, 0, CJ_ERR_NOMEM, "%s: out of memory", p);
-    else if (cj_json_array_at(&c->doc, wv, p, (int)n, w))
-        bad = -1;
+    else
+        bad = cj_json_array_at(&c->doc, wv, p, (int)n, w);
     const cJSON *e = wv->child;
     for (size_t i = 0; !bad && i < n; ++i, e = e->next) {
         char q[CJ_JSON_PATH];
         cj_json_index(q, p, i);
-        bad = cj_json_number_at(&c->doc, e, q, CJ_JSON_GT, 0.0, 0.0, &w[i]) != CJ_OK;
+        bad = cj_json_number_at(&c->doc, e, q, CJ_JSON_GT, 0.0, 0.0, &w[i]);
     }
     if (!bad && weights_normalize(w, n))
         bad = pj_fail(c, wv, "%s: the weights span more than the double range", p);
     if (bad) {
         free(w);
-        return -1;
+        return bad;
     }
     *out = w;
     return 0;
@@ -81,23 +81,23 @@ static int read_bezier(pj_ctx *c, const cJSON *it, const char *path, cj_plot_jso
     static const char *const keys[] = {
         "type", "points",         "color",    "width",   "control_polygon", "control_points",
         "hull", "construction_t", "frames_t", "normals", "weights",         NULL};
-    if (cj_json_object(&c->doc, it, path, keys)) return -1;
-    if (read_bezier_style(c, it, path, &k->bezier)) return -1;
+    CJ_JSON_TRY(cj_json_object(&c->doc, it, path, keys));
+    CJ_JSON_TRY(read_bezier_style(c, it, path, &k->bezier));
     const cJSON *pv = cJSON_GetObjectItemCaseSensitive(it, "points");
     if (!pv) return pj_fail(c, it, "%s: a bezier needs \"points\"", path);
     char p[CJ_JSON_PATH];
     cj_json_join(p, path, "points");
-    if (pj_parse_points(c, pv, p, 1, &k->points, &k->count)) return -1;
-    if (k->count > (size_t)CJ_BEZIER_MAX_DEGREE + 1) {
-        pj_fail(c, pv, "%s has %zu points: the degree is at most %d", p, k->count,
-                CJ_BEZIER_MAX_DEGREE);
-        pj_curve_free(k);
-        return -1;
-    }
+    CJ_JSON_TRY(pj_parse_points(c, pv, p, 1, &k->points, &k->count));
+    cj_status st = CJ_OK;
+    if (k->count > (size_t)CJ_BEZIER_MAX_DEGREE + 1)
+        st = cj_json_fail(&c->doc, pv, 0, CJ_ERR_RANGE,
+                          "%s has %zu points: the degree is at most %d", p, k->count,
+                          CJ_BEZIER_MAX_DEGREE);
     const cJSON *wv = cJSON_GetObjectItemCaseSensitive(it, "weights");
-    if (wv && read_weights(c, wv, path, k->count, &k->weights)) {
+    if (!st && wv) st = read_weights(c, wv, path, k->count, &k->weights);
+    if (st) {
         pj_curve_free(k);
-        return -1;
+        return st;
     }
     return 0;
 }
@@ -105,7 +105,7 @@ static int read_bezier(pj_ctx *c, const cJSON *it, const char *path, cj_plot_jso
 static int read_spline(pj_ctx *c, const cJSON *it, const char *path, cj_plot_json_curve *k) {
     static const char *const keys[] = {"type", "points", "color", "width", "tension",
                                        "kind", "closed", "knots", NULL};
-    if (cj_json_object(&c->doc, it, path, keys)) return -1;
+    CJ_JSON_TRY(cj_json_object(&c->doc, it, path, keys));
     cj_spline_options *so = &k->spline_options;
     PJ_OPT(it, "color", path, pj_parse_color(c, v_, p_, &k->bezier.color));
     PJ_OPT(
@@ -119,7 +119,7 @@ static int read_spline(pj_ctx *c, const cJSON *it, const char *path, cj_plot_jso
     static const cj_spline_kind kind_of[] = {CJ_SPLINE_CATMULL_ROM, CJ_SPLINE_CENTRIPETAL,
                                              CJ_SPLINE_CHORDAL};
     int kind = -1;
-    if (cj_json_enum(&c->doc, it, path, "kind", kinds, &kind)) return -1;
+    CJ_JSON_TRY(cj_json_enum(&c->doc, it, path, "kind", kinds, &kind));
     if (kind >= 0) so->kind = kind_of[kind];
     const cJSON *pv = cJSON_GetObjectItemCaseSensitive(it, "points");
     if (!pv) return pj_fail(c, it, "%s: a catmull-rom spline needs \"points\"", path);
@@ -137,10 +137,22 @@ int pj_read_curve(pj_ctx *c, const cJSON *it, const char *path, int spline, cj_r
     k.bezier.color = color;
     k.spline_options = cj_spline_defaults();
     k.knots = 1;
-    if (spline && read_spline(c, it, path, &k)) return -1;
-    if (!spline && read_bezier(c, it, path, &k)) return -1;
+    CJ_JSON_TRY(spline ? read_spline(c, it, path, &k) : read_bezier(c, it, path, &k));
     *out = k;
     return 0;
+}
+
+cj_status cj_plot_json_read_bezier(const cj_json_doc *doc, const cJSON *item, const char *path,
+                                   cj_plot_json_curve *out) {
+    pj_ctx c;
+    memset(&c, 0, sizeof c);
+    c.doc = *doc; /* the caller's document and line table, not freed here */
+    memset(out, 0, sizeof *out);
+    return pj_status(pj_read_curve(&c, item, path, 0, pj_palette(0), out));
+}
+
+void cj_plot_json_curve_free(cj_plot_json_curve *k) {
+    pj_curve_free(k);
 }
 
 cj_status cj_plot_json_curve_add(cj_plot *plot, const cj_plot_json_curve *k) {
@@ -180,33 +192,31 @@ static int read_page(pj_ctx *c, const cJSON *root, cj_plot_json_page *page) {
                        "document has panels: a page is a single plot");
     const cJSON *kind = cJSON_GetObjectItemCaseSensitive(root, "kind");
     if (kind) return pj_fail(c, kind, "document is a chart: a page is a plot of curves");
-    if (cj_json_object(&c->doc, root, "document", keys)) return -1;
+    CJ_JSON_TRY(cj_json_object(&c->doc, root, "document", keys));
     const cJSON *v;
-    if ((v = cJSON_GetObjectItemCaseSensitive(root, "width")) &&
-        cj_json_int_at(&c->doc, v, "width", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &page->width))
-        return -1;
-    if ((v = cJSON_GetObjectItemCaseSensitive(root, "height")) &&
-        cj_json_int_at(&c->doc, v, "height", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE, &page->height))
-        return -1;
-    if ((v = cJSON_GetObjectItemCaseSensitive(root, "background")) &&
-        pj_parse_color(c, v, "background", &page->background))
-        return -1;
-    if ((v = cJSON_GetObjectItemCaseSensitive(root, "axes")) &&
-        cj_json_bool_at(&c->doc, v, "axes", &page->axes))
-        return -1;
-    if ((v = cJSON_GetObjectItemCaseSensitive(root, "margin")) &&
-        cj_json_number_at(&c->doc, v, "margin", CJ_JSON_IN, 0.0, 1000.0, &page->margin))
-        return -1;
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "width")))
+        CJ_JSON_TRY(cj_json_int_at(&c->doc, v, "width", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE,
+                                   &page->width));
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "height")))
+        CJ_JSON_TRY(cj_json_int_at(&c->doc, v, "height", PLOT_JSON_MIN_SIDE, PLOT_JSON_MAX_SIDE,
+                                   &page->height));
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "background")))
+        CJ_JSON_TRY(pj_parse_color(c, v, "background", &page->background));
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "axes")))
+        CJ_JSON_TRY(cj_json_bool_at(&c->doc, v, "axes", &page->axes));
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "margin")))
+        CJ_JSON_TRY(
+            cj_json_number_at(&c->doc, v, "margin", CJ_JSON_IN, 0.0, 1000.0, &page->margin));
     if ((v = cJSON_GetObjectItemCaseSensitive(root, "title"))) {
         const char *title = NULL;
-        if (cj_json_string_at(&c->doc, v, "title", &title)) return -1;
+        CJ_JSON_TRY(cj_json_string_at(&c->doc, v, "title", &title));
         const size_t n = strlen(title) + 1;
         if (!(page->title = malloc(n)))
             return cj_json_fail(&c->doc, v, 0, CJ_ERR_NOMEM, "title: out of memory");
         memcpy(page->title, title, n);
     }
     if ((v = cJSON_GetObjectItemCaseSensitive(root, "view"))) {
-        if (cj_json_array_at(&c->doc, v, "view", 4, page->view)) return -1;
+        CJ_JSON_TRY(cj_json_array_at(&c->doc, v, "view", 4, page->view));
         if (!(page->view[0] < page->view[2] && page->view[1] < page->view[3]) ||
             !isfinite(page->view[2] - page->view[0]) || !isfinite(page->view[3] - page->view[1]))
             return pj_fail(c, v, "view is not [x0, y0, x1, y1] with x0 < x1 and y0 < y1");
@@ -231,7 +241,7 @@ static int read_page(pj_ctx *c, const cJSON *root, cj_plot_json_page *page) {
             return pj_fail(c, t ? t : it, "%s.type is missing or not a string", ip);
         const int spline = !strcmp(t->valuestring, "catmull-rom");
         if (!strcmp(t->valuestring, "bspline")) {
-            if (pj_read_bspline(c, it, ip, pj_palette(i), &page->curves[i])) return -1;
+            CJ_JSON_TRY(pj_read_bspline(c, it, ip, pj_palette(i), &page->curves[i]));
             page->ncurves = i + 1;
             continue;
         }
@@ -240,7 +250,7 @@ static int read_page(pj_ctx *c, const cJSON *root, cj_plot_json_page *page) {
                            "%s is a '%s' item: a page holds bezier, catmull-rom and bspline "
                            "items only",
                            ip, t->valuestring);
-        if (pj_read_curve(c, it, ip, spline, pj_palette(i), &page->curves[i])) return -1;
+        CJ_JSON_TRY(pj_read_curve(c, it, ip, spline, pj_palette(i), &page->curves[i]));
         page->ncurves = i + 1;
     }
     return 0;

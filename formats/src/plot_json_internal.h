@@ -36,19 +36,21 @@ int pj_parse_points(pj_ctx *c, const cJSON *v, const char *path, size_t min_coun
  * CJ_OK, a kit's status stays, -1 is CJ_ERR_PARSE (cj_last_error() is exact either way). */
 cj_status pj_open(pj_ctx *c, const char *name, const char *text, cJSON **root);
 cj_status pj_close(pj_ctx *c, cJSON *root, int rc);
+/* The status of a reader's result rc, as pj_close returns it. */
+cj_status pj_status(int rc);
 /* After a library call refused what the document gave: fails at node with "path:
  * <cj_last_error()>" (CJ_ERR_PARSE: the document is refused). */
 int pj_lib_fail(pj_ctx *c, const cJSON *node, const char *path);
 
 /* An optional field: when obj has key, runs call with v_ (the value) and p_ (its JSON path)
- * and returns -1 from the calling function if call fails; absent, nothing happens. */
+ * and returns its status from the calling function if call fails; absent, nothing happens. */
 #define PJ_OPT(obj, key, path, call)                                                               \
     do {                                                                                           \
         const cJSON *v_ = cJSON_GetObjectItemCaseSensitive(obj, key);                              \
         if (v_) {                                                                                  \
             char p_[CJ_JSON_PATH];                                                                 \
             cj_json_join(p_, path, key);                                                           \
-            if (call) return -1;                                                                   \
+            CJ_JSON_TRY(call);                                                                     \
         }                                                                                          \
     } while (0)
 

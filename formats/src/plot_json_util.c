@@ -73,8 +73,8 @@ int pj_parse_points(pj_ctx *c, const cJSON *v, const char *path, size_t min_coun
     if (n > PLOT_JSON_MAX_POINTS - c->points)
         return pj_fail(c, v, "%s: the document has more than %d points in all", path,
                        PLOT_JSON_MAX_POINTS);
-    if (cj_json_numbers_at_least(&c->doc, v, path, 2, CJ_JSON_ANY, 0.0, min_count, out, count))
-        return -1;
+    CJ_JSON_TRY(
+        cj_json_numbers_at_least(&c->doc, v, path, 2, CJ_JSON_ANY, 0.0, min_count, out, count));
     c->points += n;
     return 0;
 }
@@ -90,6 +90,10 @@ cj_status pj_open(pj_ctx *c, const char *name, const char *text, cJSON **root) {
 cj_status pj_close(pj_ctx *c, cJSON *root, int rc) {
     cj_json_doc_free(&c->doc);
     cJSON_Delete(root);
+    return pj_status(rc);
+}
+
+cj_status pj_status(int rc) {
     return rc > 0 ? (cj_status)rc : rc ? CJ_ERR_PARSE : CJ_OK;
 }
 

@@ -29,6 +29,24 @@ cJSON *cj_json_number(double v) {
     return cJSON_CreateRaw(buf);
 }
 
+int cj_json_shortest_numbers(cJSON *node) {
+    for (; node; node = node->next) {
+        if (cJSON_IsNumber(node)) {
+            char buf[CJ_JSON_NUMBER_MAX];
+            cj_json_number_text(node->valuedouble, buf);
+            const size_t len = strlen(buf) + 1;
+            char *text = cJSON_malloc(len); /* freed by cJSON_Delete, as a raw node's text */
+            if (!text) return -1;
+            memcpy(text, buf, len);
+            node->type = cJSON_Raw | (node->type & ~0xFF);
+            node->valuestring = text;
+        } else if (node->child && cj_json_shortest_numbers(node->child)) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
 int cj_json_add_number(cJSON *obj, const char *key, double v) {
     cJSON *n = cj_json_number(v);
     if (!n) return -1;

@@ -32,6 +32,13 @@ void cj_json_number_text(double v, char buf[CJ_JSON_NUMBER_MAX]);
  * number printing keeps 17 digits where 16 suffice). NULL when out of memory. */
 cJSON *cj_json_number(double v);
 
+/* Turns every number of the tree from node on (its siblings and their children: pass a document's
+ * root) into cj_json_number's form, for a document read with cJSON, edited and printed again
+ * (the query commands): a number read as 0.1 prints "0.1", not cJSON's own 17 digits when it
+ * needs 16. Numbers can no longer be read as numbers afterwards. Returns 0, or -1 when out of
+ * memory (the tree stays whole, some numbers changed). */
+int cj_json_shortest_numbers(cJSON *node);
+
 /* Adds cj_json_number(v) to obj under key (obj an object) or at the end (obj an array, key
  * NULL). Returns 0, or -1 when out of memory (obj unchanged). */
 int cj_json_add_number(cJSON *obj, const char *key, double v);

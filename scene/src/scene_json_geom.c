@@ -368,7 +368,7 @@ cj_status cj_json_read_geometry_(jctx *c, const cJSON *obj, const char *p, int *
     if (type == G_QUADRIC) return read_quadric(c, obj, p, named, index);
     if (type == G_CURVE) return cj_json_read_curve_(c, obj, p, named, index);
     if (type == G_BSPLINE_SURFACE || type == G_NURBS_SURFACE)
-        return cj_json_read_bspline_surface_(c, obj, p, named, type == G_NURBS_SURFACE, index);
+        return cj_json_read_bspline_surface_(c, obj, p, named, index);
     CJ_JSON_TRY(geom_keys(c, obj, p, type, named));
     switch (type) {
     case G_TEAPOT:

@@ -44,9 +44,9 @@ cj_status cj_json_geom_need_(const jctx *c, const cJSON *obj, const char *path,
                              const char *const *keys);
 cj_status cj_json_geom_add_(jctx *c, const cJSON *obj, const char *path, const cj_geometry *g,
                             int *index);
-/* "bspline_surface" (nurbs = 0) / "nurbs_surface" (nurbs = 1), converted to Bézier patches at
- * load (scene_json_bspline.c). named: the object is an entry of "geometries" (may have "name"). */
+/* A "bspline_surface" or "nurbs_surface", converted to Bézier patches at load
+ * (scene_json_bspline.c). named: the object is an entry of "geometries" (may have "name"). */
 cj_status cj_json_read_bspline_surface_(jctx *c, const cJSON *obj, const char *path, int named,
-                                        int nurbs, int *index);
+                                        int *index);
 
 #endif

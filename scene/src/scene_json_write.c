@@ -6,6 +6,7 @@
 #include "casteljau/scene_bspline.h"
 #include "casteljau/scene_json.h"
 #include "error_internal.h"
+#include "bspline_surface_json_internal.h"
 #include "json_write_internal.h"
 
 #include <assert.h>
@@ -323,14 +324,8 @@ static void write_curve(emitter *e, const cj_geometry *g) {
 /* A geometry that keeps its B-spline form, written as that form (knots always explicit, so a
  * load of the file rebuilds the same surface bit for bit). */
 static void write_bspline_surface(emitter *e, const cj_bspline_surface *b) {
-    const size_t n = (size_t)b->npts_u * (size_t)b->npts_v;
-    string(e, "type", b->weights ? "nurbs_surface" : "bspline_surface");
-    pair(e, "degree", b->deg_u, b->deg_v);
-    pair(e, "size", b->npts_u, b->npts_v);
-    points(e, "points", b->pts, n, 3);
-    nums(e, "knots_u", b->knots_u, (size_t)(b->npts_u + b->deg_u + 1));
-    nums(e, "knots_v", b->knots_v, (size_t)(b->npts_v + b->deg_v + 1));
-    weights(e, b->weights, n);
+    /* the one writer of the object, also the surface document's (bspline_surface_json.c) */
+    if (!e->oom && !e->too_deep && cj_json_add_bspline_surface(e->stack[e->depth], b)) e->oom = 1;
 }
 
 static void write_geometry(emitter *e, const cj_scene *s, int i) {

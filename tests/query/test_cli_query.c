@@ -103,7 +103,7 @@ int main(void) {
         const char *json, *args, *needle;
     } bad[] = {
         {"{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,1]],\"weights\":[1,0]}]}",
-         "intersect --self", "items[0]: curve: weight 1 is 0"},
+         "intersect --self", "-:1: items[0].weights[1] must be > 0, not 0"},
         {"{\"items\":[{\"type\":\"bezier\",\"points\":[[1,1],[1,1]]},"
          "{\"type\":\"bezier\",\"points\":[[0,0],[1,1]]}]}",
          "intersect", "all 2 control points coincide"},
@@ -130,8 +130,38 @@ int main(void) {
         cj_cli_result_free(&r);
         ++checks;
     }
+    /* the document is written by the writing kit: a number read in and written back keeps its
+     * shortest form (cJSON's own printer gives 0.79999999999999993), the added items too */
+    snprintf(cmd, sizeof cmd,
+             "printf '%%s' '{\"items\":[{\"type\":\"bezier\",\"points\":[[0,0],[1,"
+             "0.7999999999999999]]},{\"type\":\"bezier\",\"points\":[[0,1],[1,0]]}]}' | %s "
+             "intersect",
+             exe);
+    if (!run(cmd, &r)) {
+        CHECK(r.status == 0 && strstr(r.out, "0.7999999999999999") &&
+                  !strstr(r.out, "0.79999999999999993") && strstr(r.out, "\"radius\":\t5"),
+              "shortest numbers: %d\n%s%s", r.status, r.out, r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
+    /* the plot reader takes bezier items to degree 255, the queries to 48: a bezier of 50
+     * points is read, then refused by the query naming the limit */
+    char many[1400] = "{\"items\":[{\"type\":\"bezier\",\"points\":[";
+    for (int i = 0; i < 50; ++i)
+        snprintf(many + strlen(many), sizeof many - strlen(many), "%s[%d,%d]", i ? "," : "", i,
+                 i % 3);
+    strcat(many, "]}]}");
+    snprintf(cmd, sizeof cmd, "printf '%%s' '%s' | %s intersect --self", many, exe);
+    if (!run(cmd, &r)) {
+        CHECK(
+            r.status == 2 &&
+                strstr(r.err, "-:1: items[0].points has 50 points: the queries take degree <= 48"),
+            "degree 49: %d %s", r.status, r.err);
+        cj_cli_result_free(&r);
+        ++checks;
+    }
     printf("test_cli_query: %d checks (text answers, composition through pipes, %zu bad inputs "
-           "refused naming the input): %s\n",
+           "refused naming the input, numbers written shortest): %s\n",
            checks, sizeof bad / sizeof bad[0], failures ? "FAILED" : "passed");
     return failures ? 1 : 0;
 }
