@@ -30,3 +30,10 @@ if(TARGET cj::raster)
   target_compile_definitions(test_render_planes PRIVATE
     CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
 endif()
+if(TARGET cj::raster)
+  # the render cache's tolerance band on a steady camera approach
+  cj_add_test(test_render_band SOURCES test_render_band.c LIBS cj::raster cj::scene)
+  target_include_directories(test_render_band PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(test_render_band PRIVATE
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+endif()
