@@ -3,6 +3,9 @@
  * scene's 0.25 px tolerance, rasterized:
  *   drag   one control point of patch 0 moves a little each frame (alternating up and down);
  *   orbit  the camera turns 1 degree about the teapot each frame, nothing else changes;
+ *   approach  the camera moves 0.5 % of its distance closer to the point it looks at each
+ *          frame (a steady zoom: each frame needs a slightly finer tolerance; the render
+ *          cache's band policy decides how often the teapot is re-tessellated);
  * each drawn two ways: ONE-SHOT (cj_render_raster per frame: what every command and the
  * viewer did before the renderer, the behaviour of today's main) and RENDERER (one cj_renderer
  * for all frames: its tessellation cache, pool, buffers and image kept).
@@ -12,7 +15,7 @@
  *            (process CPU time: every thread) and the minima of both, cache hits/misses of
  *            the last frame;
  *            `stages` adds the renderer's last stage report (JSON)
- *        bench_live cg drag|orbit oneshot|renderer [frames (default 2)]
+ *        bench_live cg drag|orbit|approach oneshot|renderer [frames (default 2)]
  *            one warm-up frame, then `frames` frames with callgrind collecting only those:
  *            valgrind --tool=callgrind --collect-atstart=no bench_live cg drag renderer 2
  *            (instructions per frame = the total / frames); 1 thread.
@@ -62,8 +65,9 @@ static void cj_renderer_destroy(cj_renderer *r) {
 #define CJ_TEAPOT_PATH "data/teapot.bpt"
 #endif
 
-enum { DRAG, ORBIT };
-static const char *workload_name[2] = {"drag a teapot control point", "orbit the camera"};
+enum { DRAG, ORBIT, APPROACH, WORKLOADS };
+static const char *workload_name[WORKLOADS] = {"drag a teapot control point", "orbit the camera",
+                                               "approach (camera 0.5 % closer per frame)"};
 
 static void die(const char *what) {
     fprintf(stderr, "bench_live: %s: %s\n", what, cj_last_error());
@@ -99,8 +103,16 @@ static void step(cj_scene *s, int workload, int f, double *pt, const cj_camera *
         pt[1] += (f % 2 ? -1.0 : 1.0) * 0.01; /* a little up, then back down */
         return;
     }
-    /* eye and gaze turned about the vertical axis through the point looked at */
     cj_camera cam = *cam0;
+    if (workload == APPROACH) {
+        const cj_vec3 target = cj_v3_add(cam0->eye, cam0->gaze);
+        const double k = pow(0.995, (double)f);
+        cam.eye = cj_v3_add(target, cj_v3_scale(cj_v3_sub(cam0->eye, target), k));
+        cam.gaze = cj_v3_sub(target, cam.eye);
+        if (cj_scene_set_camera(s, &cam)) die("camera");
+        return;
+    }
+    /* eye and gaze turned about the vertical axis through the point looked at */
     double a = (double)f * 3.14159265358979323846 / 180.0, ca = cos(a), sa = sin(a);
     cj_vec3 target = cj_v3_add(cam0->eye, cam0->gaze);
     cj_vec3 off = cj_v3_sub(cam0->eye, target);
@@ -156,12 +168,14 @@ static void run(int workload, int renderer, int frames, int threads) {
     double *cpu = malloc(sizeof(double) * (size_t)frames);
     if (!wall || !cpu) die("memory");
     frame(r, s, &ro.render, &img, &rep); /* the cold frame is not counted */
+    double built = 0.0;                  /* patches built over the counted frames (renderer) */
     for (int f = 0; f < frames; ++f) {
         step(s, workload, f + 1, pt, &cam0);
         double w0 = cj_bench_wall(), c0 = cj_bench_process_cpu();
         frame(r, s, &ro.render, &img, &rep);
         wall[f] = cj_bench_wall() - w0;
         cpu[f] = cj_bench_process_cpu() - c0;
+        if (r) built += value(&rep, "tessellate_patches", "patches_built");
     }
     double tess = cj_stage_report_find(&rep, "tessellate_patches")->seconds;
     double wmin = wall[0], cmin = cpu[0];
@@ -171,11 +185,13 @@ static void run(int workload, int renderer, int frames, int threads) {
     }
     /* the minimum too: on a shared machine the least disturbed frame is the steadier figure */
     printf("  %-9s median %7.1f ms wall, %7.1f ms CPU per frame (min %.1f, %.1f); last frame: "
-           "tessellation %6.1f ms, cache hits %g, misses %g\n",
+           "tessellation %6.1f ms, cache hits %g, misses %g",
            renderer ? "renderer" : "one-shot", 1e3 * cj_bench_median(wall, (size_t)frames),
            1e3 * cj_bench_median(cpu, (size_t)frames), 1e3 * wmin, 1e3 * cmin, 1e3 * tess,
            value(&rep, "tessellate_patches", "cache_hits"),
            value(&rep, "tessellate_patches", "cache_misses"));
+    if (r) printf("; %g patches built in %d frames", built, frames);
+    printf("\n");
     if (print_stages && renderer) {
         cj_stage_report_json(&rep, stdout);
         fputc('\n', stdout);
@@ -219,12 +235,14 @@ static int callgrind(int workload, int renderer, int frames) {
 int main(int argc, char **argv) {
     if (argc > 1 && !strcmp(argv[1], "cg")) {
         if (argc < 4) {
-            fprintf(stderr, "usage: bench_live cg drag|orbit oneshot|renderer [frames]\n");
+            fprintf(stderr, "usage: bench_live cg drag|orbit|approach oneshot|renderer [frames]\n");
             return 2;
         }
         int frames = argc > 4 ? atoi(argv[4]) : 2;
-        return callgrind(strcmp(argv[2], "orbit") ? DRAG : ORBIT, !strcmp(argv[3], "renderer"),
-                         frames > 0 ? frames : 2);
+        const int w = !strcmp(argv[2], "orbit")      ? ORBIT
+                      : !strcmp(argv[2], "approach") ? APPROACH
+                                                     : DRAG;
+        return callgrind(w, !strcmp(argv[3], "renderer"), frames > 0 ? frames : 2);
     }
     int arg = 1;
     if (argc > 1 && !strcmp(argv[1], "stages")) {
@@ -238,7 +256,7 @@ int main(int argc, char **argv) {
     printf("bench_live: teapot demo scene, 1024 x 1024, 1 spp, tol 0.25 px, rasterized, %d "
            "thread(s), median of %d frames after a cold one\n",
            threads, frames);
-    for (int w = 0; w < 2; ++w) {
+    for (int w = 0; w < WORKLOADS; ++w) {
         printf("%s:\n", workload_name[w]);
         run(w, 0, frames, threads);
         if (HAVE_RENDERER) run(w, 1, frames, threads);

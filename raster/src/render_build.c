@@ -203,33 +203,36 @@ static cj_status append_object(cj_rbuild *b, const cj_scene *scene, const cj_mes
             }
         }
     }
+    /* written in place (room reserved above), one attribute at a time: the same products and
+     * sums in the same order as cj_rbuild_add_vertex's callers made (-ffp-contract=off) */
     const cj_xform3 *Wx = &o->world;
     const cj_xform3 *Nx = &o->normal;
-    for (size_t i = 0; i < mesh->vertex_count; ++i) {
+    const size_t nv = mesh->vertex_count, base = b->vertex_count;
+    double *pos = b->pos + 3 * base;
+    for (size_t i = 0; i < nv; ++i) {
         const double *p = mesh->positions + 3 * i;
-        double wp[3];
         for (int r = 0; r < 3; ++r)
-            wp[r] = Wx->m[r][0] * p[0] + Wx->m[r][1] * p[1] + Wx->m[r][2] * p[2] + Wx->m[r][3];
-        float nf[3] = {0, 0, 0}, uvf[2] = {0, 0};
-        if (want_n) {
+            pos[3 * i + r] =
+                Wx->m[r][0] * p[0] + Wx->m[r][1] * p[1] + Wx->m[r][2] * p[2] + Wx->m[r][3];
+    }
+    if (b->nrm) {
+        float *nrm = b->nrm + 3 * base;
+        if (!want_n) memset(nrm, 0, sizeof(float) * 3 * nv);
+        for (size_t i = 0; i < nv && want_n; ++i) {
             const double *n = acc ? acc + 3 * i : mesh->normals + 3 * i;
             double wn[3];
             for (int r = 0; r < 3; ++r)
                 wn[r] = Nx->m[r][0] * n[0] + Nx->m[r][1] * n[1] + Nx->m[r][2] * n[2];
             double len = sqrt(wn[0] * wn[0] + wn[1] * wn[1] + wn[2] * wn[2]);
-            if (len > 0.0)
-                for (int r = 0; r < 3; ++r) nf[r] = (float)(wn[r] / len);
-        }
-        if (want_uv) {
-            uvf[0] = (float)mesh->uvs[2 * i];
-            uvf[1] = (float)mesh->uvs[2 * i + 1];
-        }
-        cj_status st = cj_rbuild_add_vertex(b, wp, nf, uvf, NULL);
-        if (st) {
-            cj_rfree(&b->alloc, acc);
-            return st;
+            for (int r = 0; r < 3; ++r) nrm[3 * i + r] = len > 0.0 ? (float)(wn[r] / len) : 0.0f;
         }
     }
+    if (b->uv) {
+        float *uv = b->uv + 2 * base;
+        if (!want_uv) memset(uv, 0, sizeof(float) * 2 * nv);
+        for (size_t i = 0; i < 2 * nv && want_uv; ++i) uv[i] = (float)mesh->uvs[i];
+    }
+    b->vertex_count += nv;
     cj_rfree(&b->alloc, acc);
     o->v1 = b->vertex_count;
     double t1 = cj_render_now();
@@ -259,8 +262,12 @@ static cj_status append_object(cj_rbuild *b, const cj_scene *scene, const cj_mes
                 continue;
             }
         }
-        cj_status st = cj_rbuild_add_tri(b, a, c, d, oi);
-        if (st) return st;
+        /* room reserved above */
+        const size_t k = b->tri_count++;
+        b->tris[3 * k] = a;
+        b->tris[3 * k + 1] = c;
+        b->tris[3 * k + 2] = d;
+        b->tobj[k] = oi;
     }
     o->t1 = b->tri_count;
     b->sec_cull += cj_render_now() - t1;

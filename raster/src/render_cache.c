@@ -3,7 +3,12 @@
  * tolerance it tessellates at. TOLERANCE BAND: while the tolerance a frame needs stays within
  * [cached tol, 2 x cached tol], the node keeps its cached tolerance (its mesh's proven bound is
  * then within the needed tolerance, at most 2x finer than needed), so a moving camera does not
- * re-tessellate; outside the band the node re-tessellates at the needed tolerance. Within the
+ * re-tessellate; outside the band the node re-tessellates at the needed tolerance, except on a
+ * steady approach: when the needed tolerance falls below the band and the node's last departure
+ * from its band was downwards too, it re-tessellates at needed/sqrt 2, so the frames of a camera
+ * (or a dragged point) moving closer stay in the new band for a factor sqrt 2 in distance
+ * instead of each redoing the whole node at a tolerance a hair finer than the last (the first
+ * departure stays exact: a single edit or camera jump still gives the one-shot image). Within the
  * band an edit re-plans only the edited patches and rebuilds only them and the neighbours whose
  * shared side count changed; the mesh is bit-identical to a one-shot tessellation of the same
  * patches at the cached tolerance. */
@@ -17,6 +22,7 @@
 typedef struct cache_entry {
     int node;
     double tol;
+    int approaching; /* the last departure from the band was below it (a finer tolerance) */
     cj_tess_cache *tess;
 } cache_entry;
 
@@ -86,7 +92,13 @@ cj_status cj_rcache_tessellate(cj_render_cache *c, int node, const cj_patch *pat
                                cj_tess_cache_stats *stats) {
     cache_entry *e = entry_for(c, node);
     if (!e) return cj_fail(CJ_ERR_NOMEM, "render cache entry of node %d", node);
-    if (e->tol > 0.0 && e->tol <= opt->tol && opt->tol <= 2.0 * e->tol) opt->tol = e->tol;
+    const double need = opt->tol;
+    const int in_band = e->tol > 0.0 && e->tol <= need && need <= 2.0 * e->tol;
+    const int below = e->tol > 0.0 && need < e->tol;
+    if (in_band)
+        opt->tol = e->tol;
+    else if (below && e->approaching)
+        opt->tol = need * 0.70710678118654752; /* ≤ need (rounded 1/√2 < 1): the bound holds */
     cj_tess_cache_set_progress(e->tess, c->progress ? tess_progress : NULL, c);
     const cj_status st = cj_tess_cache_update(e->tess, patches, count, opt, mesh, rep, stats);
     cj_tess_cache_set_progress(e->tess, NULL, NULL);
@@ -94,5 +106,6 @@ cj_status cj_rcache_tessellate(cj_render_cache *c, int node, const cj_patch *pat
      * the tolerance they were made at, so the next frame in the band resumes that work instead
      * of re-tessellating every patch at the exact needed tolerance */
     e->tol = st && st != CJ_ERR_CANCELLED ? 0.0 : opt->tol;
+    if (!in_band) e->approaching = below && e->tol > 0.0;
     return st;
 }

@@ -20,6 +20,7 @@ static void clear_ctx(cj_rctx *c, const cj_allocator *a) {
         cj_rfree(a, lists[i]->kernel);
         cj_rfree(a, lists[i]->flat);
         cj_rfree(a, lists[i]->uvplane);
+        cj_rfree(a, (void *)lists[i]->plane_state);
         cj_rfree(a, lists[i]->back);
         cj_raster_prep_destroy(lists[i]->prep);
     }
@@ -401,6 +402,10 @@ static void report_tiles(cj_rframe *F) {
     }
     s = cj_stage_report_figures(R, "texture", "samples", textured, "samples", textured, tex_sec);
     if (F->f.textured) cj_stage_add_value(s, "seconds_include_shading", 1.0);
+    if (c->opaque.plane_state || c->transp.plane_state)
+        cj_stage_add_value(
+            s, "planes_built",
+            (double)(cj_rshade_planes_built(&c->opaque) + cj_rshade_planes_built(&c->transp)));
     cj_stage_report_figures(R, "overlay_lines", "segments", c->lines.world_segments, "pixels",
                             sum.n[CJ_RS_LINES], sum.sec[CJ_RS_LINES] + F->sec_lines_setup);
     s = cj_stage_report_figures(R, "transparency", "triangles", c->transp.count, "fragments",

@@ -23,6 +23,8 @@
 #include "render_internal.h"
 #include "texture_internal.h"
 
+#include <stdatomic.h>
+
 enum { CJ_RM_UNLIT = 0, CJ_RM_FLAT, CJ_RM_GOURAUD, CJ_RM_PHONG, CJ_RM_COUNT };
 #define CJ_RK_COUNT (2 * CJ_RM_COUNT) /* kernel = 2·model + textured */
 
@@ -85,9 +87,12 @@ typedef struct cj_rlist {
     uint32_t *obj;   /* object per triangle */
     uint8_t *kernel; /* kernel per triangle */
     float *flat;     /* 6 per triangle (A, S) where flat-lit, else unused; may be NULL */
-    double *uvplane; /* 9 per triangle where textured with a footprint filter; may be NULL */
-    uint8_t *back;   /* 1 per triangle: 1 where a two-sided triangle shows its back; NULL when the
-                        list has no two-sided triangle */
+    double *uvplane; /* 9 per triangle where textured with a footprint filter; may be NULL.
+                        Built lazily, by the first sample that needs it (cj_rshade_plane) */
+    _Atomic uint8_t *plane_state; /* per triangle: 0 no plane yet, 1 being built, 2 built; with
+                                     uvplane */
+    uint8_t *back; /* 1 per triangle: 1 where a two-sided triangle shows its back; NULL when the
+                      list has no two-sided triangle */
     cj_raster_prep *prep;
 } cj_rlist;
 
@@ -169,6 +174,20 @@ cj_status cj_rshade_prepare_list(cj_rctx *c, cj_rlist *L, const cj_allocator *a,
  * of triangles [t0, t1) (range: facing, flat A/S, (u,v) planes), which depend on that triangle
  * alone, so ranges may run on any thread and in any order. */
 cj_status cj_rshade_prepare_begin(cj_rctx *c, cj_rlist *L, const cj_allocator *a);
+/* The (u,v) plane of triangle tri of L (L->uvplane non-NULL). A plane is built the first time a
+ * sample of its triangle needs it, not for every triangle at set-up: most of a fine mesh's
+ * triangles are hidden or win no sample. Race-free on any number of threads: the first caller
+ * claims the triangle (0 -> 1), writes its plane, then publishes it (release store of 2); a
+ * caller that finds it being built waits the few instructions that takes. The values do not
+ * depend on which thread builds them (the same function of the clip coordinates and (u,v)). */
+const double *cj_rshade_plane_build(const cj_rctx *c, const cj_rlist *L, uint32_t tri);
+static inline const double *cj_rshade_plane(const cj_rctx *c, const cj_rlist *L, uint32_t tri) {
+    if (atomic_load_explicit(&L->plane_state[tri], memory_order_acquire) == 2)
+        return L->uvplane + 9 * (size_t)tri;
+    return cj_rshade_plane_build(c, L, tri);
+}
+/* How many planes of L were built (after the tiles). */
+size_t cj_rshade_planes_built(const cj_rlist *L);
 void cj_rshade_prepare_range(const cj_rctx *c, cj_rlist *L, size_t t0, size_t t1);
 cj_status cj_rshade_prepare_gouraud(cj_rctx *c, const cj_allocator *a, size_t *vertices);
 

@@ -7,6 +7,7 @@
 #include "error_internal.h"
 
 #include <math.h>
+#include <sched.h>
 #include <string.h>
 
 #if defined(__GNUC__)
@@ -114,7 +115,7 @@ void cj_rshade_tex(const cj_rctx *c, const cj_rlist *L, uint32_t tri, float b1, 
     const cj_tex_sampler *smp = &c->samplers[m->tex];
     double dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
     if (smp->needs_deriv && L->uvplane)
-        uv_derivs(L->uvplane + 9 * (size_t)tri, sx, sy, &dudx, &dvdx, &dudy, &dvdy);
+        uv_derivs(cj_rshade_plane(c, L, tri), sx, sy, &dudx, &dvdx, &dudy, &dvdy);
     cj_tex_sample(smp, u, v, dudx, dvdx, dudy, dvdy, out);
 }
 
@@ -319,9 +320,32 @@ void cj_rshade_prepare_range(const cj_rctx *c, cj_rlist *L, size_t t0, size_t t1
             cj_rlight_eval(c, m, p, nf, L->back && L->back[t], L->flat + 6 * t,
                            L->flat + 6 * t + 3);
         }
-        if (L->uvplane && m->tex >= 0 && c->samplers[m->tex].needs_deriv)
-            if (!uv_plane(c, tv, L->uvplane + 9 * t)) memset(L->uvplane + 9 * t, 0, 72);
     }
+}
+
+const double *cj_rshade_plane_build(const cj_rctx *c, const cj_rlist *L, uint32_t tri) {
+    _Atomic uint8_t *state = &L->plane_state[tri];
+    double *plane = L->uvplane + 9 * (size_t)tri;
+    uint8_t expect = 0;
+    if (atomic_compare_exchange_strong_explicit(state, &expect, 1, memory_order_acquire,
+                                                memory_order_acquire)) {
+        if (!uv_plane(c, L->tris + 3 * (size_t)tri, plane)) memset(plane, 0, 9 * sizeof(double));
+        atomic_store_explicit(state, 2, memory_order_release);
+        return plane;
+    }
+    /* another worker is writing it (about a hundred instructions); yield now and then in case
+     * that worker was descheduled mid-way */
+    for (unsigned spin = 1; atomic_load_explicit(state, memory_order_acquire) != 2; ++spin)
+        if (!(spin & 63)) sched_yield();
+    return plane;
+}
+
+size_t cj_rshade_planes_built(const cj_rlist *L) {
+    size_t n = 0;
+    if (L->plane_state)
+        for (size_t t = 0; t < L->count; ++t)
+            n += atomic_load_explicit(&L->plane_state[t], memory_order_relaxed) == 2;
+    return n;
 }
 
 typedef struct prepare_job {
@@ -356,7 +380,10 @@ cj_status cj_rshade_prepare_begin(cj_rctx *c, cj_rlist *L, const cj_allocator *a
     }
     if (any_plane) {
         L->uvplane = cj_ralloc(a, sizeof(double) * 9 * (n ? n : 1));
-        if (!L->uvplane) return cj_fail(CJ_ERR_NOMEM, "texture planes of %zu triangles", n);
+        L->plane_state = cj_ralloc(a, n ? n : 1);
+        if (!L->uvplane || !L->plane_state)
+            return cj_fail(CJ_ERR_NOMEM, "texture planes of %zu triangles", n);
+        for (size_t t = 0; t < n; ++t) atomic_init(&L->plane_state[t], 0);
     }
     if (any_two_sided) {
         L->back = cj_ralloc(a, n ? n : 1);

@@ -168,9 +168,10 @@ static inline __attribute__((always_inline)) void phong_block(const cj_rctx *c, 
         float tx[3][CJ_LANES];
         const cj_tex_sampler *s0 = &c->samplers[m0->tex];
         if (uniform && s0->kind == CJ_TEX_CHECKER) {
-            if (s0->needs_deriv && L->uvplane)
+            if (s0->needs_deriv && L->uvplane) {
+                for (int j = 0; j < CJ_LANES; ++j) (void)cj_rshade_plane(c, L, tri[j]);
                 gather_planes(L->uvplane, tri, ck.plane);
-            else
+            } else
                 for (int k = 0; k < 9; ++k)
                     for (int j = 0; j < CJ_LANES; ++j) ck.plane[k][j] = 0.0;
             cj_checker_lanes_set_params(&ck, s0);
@@ -189,7 +190,7 @@ static inline __attribute__((always_inline)) void phong_block(const cj_rctx *c, 
                 }
                 any_checker = 1;
                 const double *pl =
-                    smp->needs_deriv && L->uvplane ? L->uvplane + 9 * (size_t)tri[j] : zero_plane;
+                    smp->needs_deriv && L->uvplane ? cj_rshade_plane(c, L, tri[j]) : zero_plane;
                 for (int k = 0; k < 9; ++k) ck.plane[k][j] = pl[k];
                 ck.su[j] = smp->su;
                 ck.sv[j] = smp->sv;

@@ -23,3 +23,17 @@ if(TARGET cj::raster)
   target_include_directories(test_render_scratch PRIVATE ${PROJECT_SOURCE_DIR}/raster/src
     ${CMAKE_CURRENT_SOURCE_DIR})
 endif()
+if(TARGET cj::raster)
+  # the texture planes built lazily by the first sample that needs one, on any worker
+  cj_add_test(test_render_planes SOURCES test_render_planes.c LIBS cj::raster cj::scene)
+  target_include_directories(test_render_planes PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(test_render_planes PRIVATE
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+endif()
+if(TARGET cj::raster)
+  # the render cache's tolerance band on a steady camera approach
+  cj_add_test(test_render_band SOURCES test_render_band.c LIBS cj::raster cj::scene)
+  target_include_directories(test_render_band PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(test_render_band PRIVATE
+    CJ_TEAPOT_PATH="${PROJECT_SOURCE_DIR}/data/teapot.bpt")
+endif()

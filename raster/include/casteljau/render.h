@@ -127,9 +127,12 @@ cj_status cj_render_raster(const cj_scene *scene, const cj_render_options *opt, 
  * was made at. A render given the cache (cj_render_options.cache) keeps a node's tolerance while
  * the tolerance the frame needs stays between the cached one and twice it, so the proven bound
  * still holds (the mesh is at most 2x finer than needed) and a moving camera does not
- * re-tessellate; otherwise the node re-tessellates at the needed tolerance. Either way only the
- * patches whose control points (and weights) changed are re-planned, and only they and the
- * neighbours whose shared side changed are rebuilt; the rest is reused. Transforms may change
+ * re-tessellate; otherwise the node re-tessellates at the needed tolerance, or, on a steady
+ * approach (the needed tolerance falls below the band and the node's last departure from its
+ * band was downwards too), at needed/sqrt 2, so that a camera or an edit moving the object
+ * closer does not redo the whole node every frame. Either way only the patches whose control
+ * points (and weights) changed are re-planned, and only they and the neighbours whose shared
+ * side changed are rebuilt; the rest is reused. Transforms may change
  * freely (the mesh is in object space). The image is the same as without a cache whenever the
  * cached tolerance equals the needed one (e.g. a still camera, after any edits). Not
  * thread-safe: one cache per renderer thread. The stage report's tessellate_patches gives

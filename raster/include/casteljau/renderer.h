@@ -52,9 +52,11 @@
  * whenever no cached tessellation is reused at another tolerance than the frame needs: an
  * empty cache, a still camera, edits of control points, materials, lights or other objects
  * all keep that. When the camera or an object's transform moves, a cached mesh up to 2x finer
- * than needed may be drawn instead of a fresh one: the proven bound still holds (bound_px <=
- * tol_px), but the triangles, and so the pixels along silhouettes, can differ from a one-shot
- * render. The ray tracer's images never depend on its caches.
+ * than needed may be drawn instead of a fresh one, and a node whose needed tolerance falls
+ * below its band twice in a row (a steady approach) is re-tessellated sqrt 2 finer than needed
+ * (render.h, TESSELLATION CACHE): the proven bound still holds (bound_px <= tol_px), but the
+ * triangles, and so the pixels along silhouettes, can differ from a one-shot render. The ray
+ * tracer's images never depend on its caches.
  *
  * THREADING. A renderer is used by one thread at a time (its draws must not overlap); distinct
  * renderers are independent. The progress callback runs on worker threads, one call at a time.
