@@ -86,6 +86,11 @@ struct cj_raster_prep {
     uint32_t *src;     /* attrs[i].src again, compact: the resolve reads it for every sample */
     size_t *bin_start; /* tiles_x·tiles_y + 1 offsets into bin_items */
     uint32_t *bin_items;
+    /* Capacities and set-up scratch kept for cj_raster_prepare_again, which writes the next
+     * frame into the same (warm, already mapped) memory. */
+    size_t setup_cap, bin_start_cap, bin_items_cap;
+    uint16_t (*range)[4]; /* tile range of each set-up, while binning */
+    void *vcache;         /* the vertex cache of tri_setup.c */
 };
 
 /* Per-thread scratch of one run: the tile's depth and set-up index planes, sample-major

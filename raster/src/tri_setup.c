@@ -1,6 +1,7 @@
 /* Preparation of a frame's triangles: validation, clipping, snapping to the 1/256 pixel grid,
  * 64-bit edge functions with the top-left rule, attribute planes, and binning into tiles
  * (count, then fill, so the bins are one array in input order). */
+#define _DEFAULT_SOURCE /* madvise */
 #include "tri_internal.h"
 
 #include "casteljau/framebuffer.h"
@@ -15,6 +16,10 @@
 
 #if defined(__AVX2__)
 #include <immintrin.h>
+#endif
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 /* The per-triangle steps are inlined into the loop over the triangles (a call per triangle,
@@ -86,6 +91,23 @@ static void *xalloc(const cj_allocator *a, size_t n) {
     return a->alloc(a->user, n ? n : 1);
 }
 
+/* The set-up records are read in bin order, scattered over arrays of tens of megabytes: with
+ * 4 KiB pages nearly every record costs a TLB miss besides its cache miss. Large arrays ask
+ * for transparent huge pages (a hint: the pages of the whole 2 MiB-aligned extents inside the
+ * array, faulted in later, may be huge; nothing changes where the kernel declines). */
+static void *xalloc_big(const cj_allocator *a, size_t n) {
+    void *m = xalloc(a, n);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    const uintptr_t huge = (uintptr_t)1 << 21;
+    if (m && n >= 2 * huge) {
+        const uintptr_t lo = ((uintptr_t)m + huge - 1) & ~(huge - 1);
+        const uintptr_t hi = ((uintptr_t)m + n) & ~(huge - 1);
+        if (hi > lo) (void)madvise((void *)lo, hi - lo, MADV_HUGEPAGE);
+    }
+#endif
+    return m;
+}
+
 void cj_raster_prep_destroy(cj_raster_prep *p) {
     if (!p) return;
     cj_allocator a = p->alloc;
@@ -94,6 +116,8 @@ void cj_raster_prep_destroy(cj_raster_prep *p) {
     a.free(a.user, p->src);
     a.free(a.user, p->bin_start);
     a.free(a.user, p->bin_items);
+    a.free(a.user, p->range);
+    a.free(a.user, p->vcache);
     a.free(a.user, p);
 }
 
@@ -347,7 +371,7 @@ typedef struct setup_list {
 } setup_list;
 
 static int grow(const cj_allocator *al, void **arr, size_t n, size_t cap, size_t size) {
-    void *na = xalloc(al, cap * size);
+    void *na = xalloc_big(al, cap * size);
     if (!na) return 0;
     if (n) memcpy(na, *arr, n * size);
     al->free(al->user, *arr);
@@ -415,10 +439,15 @@ static ALWAYS_INLINE void count_bins(const cj_raster_prep *p, setup_list *l, siz
 static cj_status bin(cj_raster_prep *p, uint16_t (*range)[4]) {
     const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
     for (size_t t = 0; t < tiles; ++t) p->bin_start[t + 1] += p->bin_start[t];
-    p->bin_items = xalloc(&p->alloc, (p->bin_start[tiles] + 1) * sizeof *p->bin_items);
-    if (!p->bin_items)
-        return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu binned triangles",
-                       p->bin_start[tiles]);
+    if (p->bin_start[tiles] + 1 > p->bin_items_cap) {
+        p->alloc.free(p->alloc.user, p->bin_items);
+        p->bin_items_cap = 0;
+        p->bin_items = xalloc_big(&p->alloc, (p->bin_start[tiles] + 1) * sizeof *p->bin_items);
+        if (!p->bin_items)
+            return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu binned triangles",
+                           p->bin_start[tiles]);
+        p->bin_items_cap = p->bin_start[tiles] + 1;
+    }
     for (size_t i = 0; i < p->setup_count; ++i) {
         const int tx0 = range[i][0], tx1 = range[i][1], ty0 = range[i][2], ty1 = range[i][3];
         if (tx0 == tx1 && ty0 == ty1) {
@@ -436,12 +465,11 @@ static cj_status bin(cj_raster_prep *p, uint16_t (*range)[4]) {
     return CJ_OK;
 }
 
-cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_allocator *alloc,
-                            cj_raster_prep **out, cj_raster_stats *stats) {
-    assert(in && out);
+/* The refusals of cj_raster_prepare that need no memory: sizes, spp, tile size, counts and
+ * indices. */
+static cj_status check_input(const cj_raster_input *in, int tile_size) {
     assert(in->vertex_count == 0 || in->clip);
     assert(in->tri_count == 0 || in->tris);
-    const double t_start = cj_clock_seconds();
     if (in->width < 1 || in->height < 1 || in->width > CJ_FRAMEBUFFER_MAX_SIDE ||
         in->height > CJ_FRAMEBUFFER_MAX_SIDE)
         return cj_fail(CJ_ERR_RANGE, "raster: image size %d x %d outside 1..%d", in->width,
@@ -470,19 +498,24 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
             if (in->tris[i] >= in->vertex_count)
                 return cj_fail(CJ_ERR_ARGUMENT, "raster: triangle %zu names vertex %u of %zu",
                                i / 3, (unsigned)in->tris[i], in->vertex_count);
+    return CJ_OK;
+}
 
-    cj_allocator a;
-    if (alloc)
-        a = *alloc;
-    else {
-        a.alloc = std_alloc;
-        a.free = std_free;
-        a.user = NULL;
-    }
-    cj_raster_prep *p = xalloc(&a, sizeof *p);
-    if (!p) return cj_fail(CJ_ERR_NOMEM, "raster: no memory for the prepared frame");
-    memset(p, 0, sizeof *p);
-    p->alloc = a;
+/* After a failed preparation: no triangles, every bin empty (a run draws nothing). */
+static void make_empty(cj_raster_prep *p) {
+    p->setup_count = 0;
+    const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
+    if (p->bin_start && p->bin_start_cap >= tiles + 1)
+        memset(p->bin_start, 0, (tiles + 1) * sizeof *p->bin_start);
+    else
+        p->tiles_x = p->tiles_y = 0;
+}
+
+/* Prepares the frame `in` into p, whose arrays (set-ups, attributes, bins, vertex cache) are
+ * reused where large enough and replaced where not. */
+static cj_status prepare_into(cj_raster_prep *p, const cj_raster_input *in, int tile_size,
+                              cj_raster_stats *stats, double t_start) {
+    p->setup_count = 0;
     p->width = in->width;
     p->height = in->height;
     p->spp = in->spp;
@@ -505,10 +538,15 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     st.tris_in = in->tri_count;
     const double hw = 0.5 * in->width, hh = 0.5 * in->height;
     const double gx = 2.0 * CJ_TRI_GUARD_PX / in->width, gy = 2.0 * CJ_TRI_GUARD_PX / in->height;
-    setup_list list = {&p->alloc, NULL, NULL, NULL, NULL, 0, 0};
+    setup_list list = {&p->alloc, p->setups, p->attrs, p->src, p->range, 0, p->setup_cap};
     cj_status status = CJ_OK;
     const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
-    p->bin_start = xalloc(&p->alloc, (tiles + 1) * sizeof *p->bin_start);
+    if (tiles + 1 > p->bin_start_cap) {
+        p->alloc.free(p->alloc.user, p->bin_start);
+        p->bin_start_cap = 0;
+        p->bin_start = xalloc(&p->alloc, (tiles + 1) * sizeof *p->bin_start);
+        if (p->bin_start) p->bin_start_cap = tiles + 1;
+    }
     if (!p->bin_start)
         status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu tile bins", tiles);
     else
@@ -542,7 +580,8 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     /* Mesh vertices are shared by several triangles, mostly close together in the input: a
      * small direct-mapped cache keeps each vertex's outcode and projection (the same values as
      * computing them again). */
-    vcache *cache = xalloc(&p->alloc, VCACHE_SIZE * sizeof *cache);
+    if (!p->vcache) p->vcache = xalloc(&p->alloc, VCACHE_SIZE * sizeof(vcache));
+    vcache *cache = p->vcache;
     if (!cache)
         status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for the vertex cache");
     else
@@ -632,19 +671,59 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
         if (made == 0) st.tris_rejected++;
         st.tris_setup += made;
     }
-    p->alloc.free(p->alloc.user, cache);
     p->setups = list.v;
     p->attrs = list.a;
     p->src = list.src;
+    p->range = list.range;
+    p->setup_cap = list.cap;
     p->setup_count = list.n;
     if (status == CJ_OK) status = bin(p, list.range);
-    p->alloc.free(p->alloc.user, list.range);
     if (status != CJ_OK) {
-        cj_raster_prep_destroy(p);
+        make_empty(p);
         return status;
     }
     st.seconds_setup = cj_clock_seconds() - t_start;
     if (stats) *stats = st;
+    return CJ_OK;
+}
+
+cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_allocator *alloc,
+                            cj_raster_prep **out, cj_raster_stats *stats) {
+    assert(in && out);
+    const double t_start = cj_clock_seconds();
+    cj_status status = check_input(in, tile_size);
+    if (status) return status;
+    cj_allocator a;
+    if (alloc)
+        a = *alloc;
+    else {
+        a.alloc = std_alloc;
+        a.free = std_free;
+        a.user = NULL;
+    }
+    cj_raster_prep *p = xalloc(&a, sizeof *p);
+    if (!p) return cj_fail(CJ_ERR_NOMEM, "raster: no memory for the prepared frame");
+    memset(p, 0, sizeof *p);
+    p->alloc = a;
+    status = prepare_into(p, in, tile_size, stats, t_start);
+    if (status != CJ_OK) {
+        cj_raster_prep_destroy(p);
+        return status;
+    }
     *out = p;
     return CJ_OK;
+}
+
+cj_status cj_raster_prepare_again(cj_raster_prep *prep, const cj_raster_input *in, int tile_size,
+                                  cj_raster_stats *stats) {
+    assert(prep && in);
+    const double t_start = cj_clock_seconds();
+    prep->setup_count = 0;
+    prep->barycentrics = 1;
+    cj_status status = check_input(in, tile_size);
+    if (status) {
+        make_empty(prep);
+        return status;
+    }
+    return prepare_into(prep, in, tile_size, stats, t_start);
 }
