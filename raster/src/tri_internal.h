@@ -94,6 +94,7 @@ struct cj_raster_prep {
     size_t setup_cap, bin_start_cap, bin_items_cap;
     uint16_t (*range)[4]; /* tile range of each set-up, while binning */
     void *vcache;         /* the vertex cache of tri_setup.c */
+    int huge;             /* kept across frames: large arrays in transparent huge pages */
 };
 
 /* Per-thread scratch of one run: the tile's depth and set-up index planes, sample-major

@@ -92,18 +92,22 @@ static void *xalloc(const cj_allocator *a, size_t n) {
 }
 
 /* The set-up records are read in bin order, scattered over arrays of tens of megabytes: with
- * 4 KiB pages nearly every record costs a TLB miss besides its cache miss. Large arrays ask
- * for transparent huge pages (a hint: the pages of the whole 2 MiB-aligned extents inside the
- * array, faulted in later, may be huge; nothing changes where the kernel declines). */
-static void *xalloc_big(const cj_allocator *a, size_t n) {
+ * 4 KiB pages nearly every record costs a TLB miss besides its cache miss. Large arrays of a
+ * prep that is kept across frames (`huge`: cj_raster_prepare_again) ask for transparent huge
+ * pages (a hint: the pages of the whole 2 MiB-aligned extents inside the array, faulted in
+ * later, may be huge; nothing changes where the kernel declines). Not for a prep used once:
+ * faulting fresh huge pages every frame cost more set-up time than they saved. */
+static void *xalloc_big(const cj_allocator *a, size_t n, int huge_pages) {
     void *m = xalloc(a, n);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     const uintptr_t huge = (uintptr_t)1 << 21;
-    if (m && n >= 2 * huge) {
+    if (m && huge_pages && n >= 2 * huge) {
         const uintptr_t lo = ((uintptr_t)m + huge - 1) & ~(huge - 1);
         const uintptr_t hi = ((uintptr_t)m + n) & ~(huge - 1);
         if (hi > lo) (void)madvise((void *)lo, hi - lo, MADV_HUGEPAGE);
     }
+#else
+    (void)huge_pages;
 #endif
     return m;
 }
@@ -363,6 +367,7 @@ static const vcache *vertex(vcache *cache, const double *clip, uint32_t i, doubl
 
 typedef struct setup_list {
     const cj_allocator *alloc;
+    int huge; /* xalloc_big's huge_pages */
     cj_tri_setup *v;
     cj_tri_attr *a;
     uint32_t *src;        /* a[i].src again, compact (what the resolve reads) */
@@ -370,8 +375,8 @@ typedef struct setup_list {
     size_t n, cap;
 } setup_list;
 
-static int grow(const cj_allocator *al, void **arr, size_t n, size_t cap, size_t size) {
-    void *na = xalloc_big(al, cap * size);
+static int grow(const cj_allocator *al, void **arr, size_t n, size_t cap, size_t size, int huge) {
+    void *na = xalloc_big(al, cap * size, huge);
     if (!na) return 0;
     if (n) memcpy(na, *arr, n * size);
     al->free(al->user, *arr);
@@ -383,10 +388,10 @@ static int list_reserve(setup_list *l, size_t need) {
     if (need <= l->cap) return 1;
     size_t cap = l->cap ? 2 * l->cap : 1024;
     if (cap < need) cap = need;
-    if (!grow(l->alloc, (void **)&l->v, l->n, cap, sizeof *l->v) ||
-        !grow(l->alloc, (void **)&l->a, l->n, cap, sizeof *l->a) ||
-        !grow(l->alloc, (void **)&l->src, l->n, cap, sizeof *l->src) ||
-        !grow(l->alloc, (void **)&l->range, l->n, cap, sizeof *l->range))
+    if (!grow(l->alloc, (void **)&l->v, l->n, cap, sizeof *l->v, l->huge) ||
+        !grow(l->alloc, (void **)&l->a, l->n, cap, sizeof *l->a, l->huge) ||
+        !grow(l->alloc, (void **)&l->src, l->n, cap, sizeof *l->src, l->huge) ||
+        !grow(l->alloc, (void **)&l->range, l->n, cap, sizeof *l->range, l->huge))
         return 0;
     l->cap = cap;
     return 1;
@@ -442,7 +447,8 @@ static cj_status bin(cj_raster_prep *p, uint16_t (*range)[4]) {
     if (p->bin_start[tiles] + 1 > p->bin_items_cap) {
         p->alloc.free(p->alloc.user, p->bin_items);
         p->bin_items_cap = 0;
-        p->bin_items = xalloc_big(&p->alloc, (p->bin_start[tiles] + 1) * sizeof *p->bin_items);
+        p->bin_items =
+            xalloc_big(&p->alloc, (p->bin_start[tiles] + 1) * sizeof *p->bin_items, p->huge);
         if (!p->bin_items)
             return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu binned triangles",
                            p->bin_start[tiles]);
@@ -538,7 +544,7 @@ static cj_status prepare_into(cj_raster_prep *p, const cj_raster_input *in, int 
     st.tris_in = in->tri_count;
     const double hw = 0.5 * in->width, hh = 0.5 * in->height;
     const double gx = 2.0 * CJ_TRI_GUARD_PX / in->width, gy = 2.0 * CJ_TRI_GUARD_PX / in->height;
-    setup_list list = {&p->alloc, p->setups, p->attrs, p->src, p->range, 0, p->setup_cap};
+    setup_list list = {&p->alloc, p->huge, p->setups, p->attrs, p->src, p->range, 0, p->setup_cap};
     cj_status status = CJ_OK;
     const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
     if (tiles + 1 > p->bin_start_cap) {
@@ -677,7 +683,18 @@ static cj_status prepare_into(cj_raster_prep *p, const cj_raster_input *in, int 
     p->range = list.range;
     p->setup_cap = list.cap;
     p->setup_count = list.n;
+    /* A prep used once gives its scratch back as soon as it is done with it, in the order it
+     * always did: the heap then stays mapped between frames (freed later, after the bins, the
+     * cache let malloc trim the whole heap every frame: a third more page faults). */
+    if (!p->huge) {
+        p->alloc.free(p->alloc.user, p->vcache);
+        p->vcache = NULL;
+    }
     if (status == CJ_OK) status = bin(p, list.range);
+    if (!p->huge) {
+        p->alloc.free(p->alloc.user, p->range);
+        p->range = NULL;
+    }
     if (status != CJ_OK) {
         make_empty(p);
         return status;
@@ -720,6 +737,21 @@ cj_status cj_raster_prepare_again(cj_raster_prep *prep, const cj_raster_input *i
     const double t_start = cj_clock_seconds();
     prep->setup_count = 0;
     prep->barycentrics = 1;
+    if (!prep->huge) { /* kept across frames from now on: its arrays again, in huge pages */
+        cj_allocator *a = &prep->alloc;
+        a->free(a->user, prep->setups);
+        a->free(a->user, prep->attrs);
+        a->free(a->user, prep->src);
+        a->free(a->user, prep->range);
+        a->free(a->user, prep->bin_items);
+        prep->setups = NULL;
+        prep->attrs = NULL;
+        prep->src = NULL;
+        prep->range = NULL;
+        prep->bin_items = NULL;
+        prep->setup_cap = prep->bin_items_cap = 0;
+        prep->huge = 1;
+    }
     cj_status status = check_input(in, tile_size);
     if (status) {
         make_empty(prep);
