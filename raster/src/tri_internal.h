@@ -55,20 +55,19 @@ typedef struct cj_tri_plane {
 } cj_tri_plane;
 
 /* One set-up screen triangle (a source triangle, or one piece of a clipped one): what the
- * visibility pass reads, 96 bytes (two cache lines when the array is line-aligned)... The
- * coefficients ea = −dy, eb = dx are differences of snapped coordinates (|X|, |Y| < 2^28), so
- * they fit in 32 bits, and so do the reference point's coordinates; products with positions
- * are formed in 64 bits. Pixel bounds fit int16 (image sides <= CJ_FRAMEBUFFER_MAX_SIDE =
- * 2^15). */
+ * visibility pass reads, 112 bytes... The coefficients ea = −dy, eb = dx are differences of
+ * snapped coordinates (|X|, |Y| < 2^28), so they fit in 32 bits; products with positions are
+ * formed in 64 bits. (A 96-byte record, xr, yr in int32 and bounds in int16, read 10 % faster
+ * from a kept prep, but with one-shot preps its smaller arrays let malloc trim and re-fault
+ * the heap every frame in bench_raster: set-up twice as slow. Kept at 112 bytes.) */
 typedef struct cj_tri_setup {
-    int32_t ea[3], eb[3];           /* E_k = ea X + eb Y + ec, fill rule folded in ec */
-    int64_t ec[3];                  /* (products widened to 64 bits) */
-    int32_t xr, yr;                 /* reference point: snapped vertex 0 */
-    int16_t minx, miny, maxx, maxy; /* inclusive pixel bounds, clamped to the image */
-    cj_tri_plane z;                 /* pseudodepth */
+    int32_t ea[3], eb[3];       /* E_k = ea X + eb Y + ec, fill rule folded in ec */
+    int64_t ec[3];              /* (products widened to 64 bits) */
+    int64_t xr, yr;             /* reference point: snapped vertex 0 */
+    int minx, miny, maxx, maxy; /* inclusive pixel bounds, clamped to the image */
+    cj_tri_plane z;             /* pseudodepth */
     int32_t small; /* every |ea_k|, |eb_k| <= 2^14: 32-bit edge values near it (tri_raster.c) */
 } cj_tri_setup;
-_Static_assert(sizeof(cj_tri_setup) == 96, "cj_tri_setup: the 96-byte visibility record");
 
 /* ... and what only the resolve and the forward mode read, kept apart (same index). */
 typedef struct cj_tri_attr {

@@ -246,12 +246,12 @@ static ALWAYS_INLINE int setup_tri(const cj_raster_prep *p, const pvert *a, cons
     if (x0 > x1 || y0 > y1) return 0;
     const int64_t lim = (int64_t)1 << 14;
     s->small = maxX - minX <= lim && maxY - minY <= lim; /* each |ea_k| <= H, |eb_k| <= W */
-    s->minx = (int16_t)x0;
-    s->maxx = (int16_t)x1;
-    s->miny = (int16_t)y0;
-    s->maxy = (int16_t)y1;
-    s->xr = (int32_t)v[0]->X; /* |X|, |Y| < 2^28 (the guard band) */
-    s->yr = (int32_t)v[0]->Y;
+    s->minx = (int)x0;
+    s->maxx = (int)x1;
+    s->miny = (int)y0;
+    s->maxy = (int)y1;
+    s->xr = v[0]->X;
+    s->yr = v[0]->Y;
     at->src = src;
     /* Attribute planes through the exact (unsnapped) positions, in 1/256 pixel units; when
      * snapping made a sliver out of a (nearly) degenerate triangle, through the snapped ones. */
