@@ -96,6 +96,13 @@ struct cj_raster_prep {
     int huge;             /* kept across frames: large arrays in transparent huge pages */
 };
 
+/* The fixed sample offsets of spp 1, 4 or 16 in 1/256 pixel (tri_prep.c). */
+void cj_tri_pattern_fixed(int spp, int *ox, int *oy);
+
+/* The refusals of cj_raster_prepare that need no memory: image size, spp, tile size, triangle
+ * count and vertex indices (tri_prep.c). NaN and infinite coordinates are found by the set-up. */
+cj_status cj_tri_check_input(const cj_raster_input *in, int tile_size);
+
 /* Per-thread scratch of one run: the tile's depth and set-up index planes, sample-major
  * (plane q holds sample q of every pixel of the tile, row by row), padded by 8 entries. */
 typedef struct cj_tri_scratch {
