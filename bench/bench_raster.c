@@ -14,7 +14,10 @@
  * Each on 1 and 2 threads, at 1, 4 and 16 samples per pixel; the configurations are
  * interleaved over the repetitions and the median is printed.
  *
- *   bench_raster [--reps N] [--callgrind]
+ * Frames write their set-up into one prep kept across frames (cj_raster_prepare_again, as a
+ * renderer would); --fresh makes a new prep per frame (cj_raster_prepare, freshly mapped memory).
+ *
+ *   bench_raster [--reps N] [--callgrind] [--fresh]
  * --callgrind: one run of a fixed small workload per configuration (256 × 256, 4 large and
  * 20 000 small triangles), for instruction counts that repeat exactly under valgrind; only
  * the prepare and the visibility pass (no "+vis" run) are collected, so
@@ -40,7 +43,9 @@ static double urand(void) {
 }
 
 static int g_coherent;
-static int g_callgrind; /* collect only prepare + the visibility pass */
+static int g_fresh;            /* --fresh: a new prep per frame (cj_raster_prepare), not reused */
+static cj_raster_prep *g_prep; /* the prep the frames reuse (cj_raster_prepare_again) */
+static int g_callgrind;        /* collect only prepare + the visibility pass */
 
 typedef struct workload {
     int W, H;
@@ -168,11 +173,12 @@ static void no_tile(void *u, const cj_tile *t) {
 static void frame(const workload *w, int spp, int threads, double *t_prep, double *t_run,
                   double *t_resolve) {
     cj_raster_input in = {w->nv, w->clip, w->nt, w->tris, w->W, w->H, spp};
-    cj_raster_prep *p;
+    cj_raster_prep *p = g_prep;
     double (*clock)(void) = threads == 1 ? cj_bench_thread_cpu : cj_bench_wall;
     if (g_callgrind) CALLGRIND_TOGGLE_COLLECT;
     const double t0 = clock();
-    if (cj_raster_prepare(&in, 64, NULL, &p, NULL) != CJ_OK) exit(1);
+    if (p ? cj_raster_prepare_again(p, &in, 64, NULL) : cj_raster_prepare(&in, 64, NULL, &p, NULL))
+        exit(1);
     cj_raster_prep_set_barycentrics(p, 0); /* depth only */
     const double t1 = clock();
     if (cj_raster_run(p, threads, NULL, NULL, NULL, NULL) != CJ_OK) exit(1);
@@ -181,7 +187,10 @@ static void frame(const workload *w, int spp, int threads, double *t_prep, doubl
     /* Again with a (empty) tile callback: the visibility samples are written for it. */
     if (cj_raster_run(p, threads, no_tile, NULL, NULL, NULL) != CJ_OK) exit(1);
     const double t3 = clock();
-    cj_raster_prep_destroy(p);
+    if (g_fresh)
+        cj_raster_prep_destroy(p);
+    else
+        g_prep = p;
     *t_prep = t1 - t0;
     *t_run = t2 - t1;
     *t_resolve = t3 - t2;
@@ -195,6 +204,8 @@ int main(int argc, char **argv) {
             reps = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--callgrind"))
             cg = 1;
+        else if (!strcmp(argv[i], "--fresh"))
+            g_fresh = 1;
         else if (!strcmp(argv[i], "--coherent"))
             g_coherent = 1;
         else if (!strcmp(argv[i], "--workload") && i + 1 < argc)
@@ -204,8 +215,8 @@ int main(int argc, char **argv) {
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
             only_thr = atoi(argv[++i]);
         else {
-            fprintf(stderr, "usage: bench_raster [--reps N] [--callgrind] [--workload 0-4] "
-                            "[--spp 1|4|16] [--threads 1|2]\n");
+            fprintf(stderr, "usage: bench_raster [--reps N] [--callgrind] [--fresh] [--coherent] "
+                            "[--workload 0-4] [--spp 1|4|16] [--threads 1|2]\n");
             return 2;
         }
     }
@@ -239,8 +250,9 @@ int main(int argc, char **argv) {
                   &tv[c * reps + r]);
         }
     printf("bench_raster: depth-only visibility (no barycentrics), %d x %d, tiles 64, median of "
-           "%d interleaved runs%s; 1 thread: thread CPU time, 2 threads: wall time\n",
-           S, S, reps, cg ? " (callgrind workload)" : "");
+           "%d interleaved runs%s, %s; 1 thread: thread CPU time, 2 threads: wall time\n",
+           S, S, reps, cg ? " (callgrind workload)" : "",
+           g_fresh ? "a fresh prep per frame" : "one prep reused by every frame");
     FILE *la = fopen("/proc/loadavg", "r");
     double load = -1;
     if (la) {
@@ -270,6 +282,7 @@ int main(int argc, char **argv) {
                th, (unsigned long long)cov[k][s], 1e3 * p, 1e3 * q, 1e3 * v, cov[k][s] / q * 1e-6,
                cov[k][s] / v * 1e-6, w->nt / (p + q) * 1e-6, w->nt / (p + v) * 1e-6);
     }
+    cj_raster_prep_destroy(g_prep);
     free(tp);
     free(tr);
     free(tv);

@@ -140,8 +140,19 @@ static void rh_on_tile(void *u, const cj_tile *t) {
 static inline cj_status rh_render(const cj_raster_input *in, int tile, int threads,
                                   cj_vis_sample *vis, rh_frag frag, void *ctx,
                                   cj_raster_stats *stats) {
+    /* Every other call re-prepares one kept prep (cj_raster_prepare_again, buffers of earlier
+     * frames of other sizes reused), so both paths meet the reference. */
+    static cj_raster_prep *kept;
+    static unsigned calls;
+    const int again = (calls++ & 1) != 0;
     cj_raster_prep *prep = NULL;
-    cj_status st = cj_raster_prepare(in, tile, NULL, &prep, stats);
+    cj_status st;
+    if (again && kept) {
+        prep = kept;
+        st = cj_raster_prepare_again(prep, in, tile, stats);
+    } else {
+        st = cj_raster_prepare(in, tile, NULL, &prep, stats);
+    }
     if (st != CJ_OK) return st;
     rh h;
     memset(&h, 0, sizeof h);
@@ -165,7 +176,10 @@ static inline cj_status rh_render(const cj_raster_input *in, int tile, int threa
         stats->seconds_raster = rs.seconds_raster;
     }
     for (int i = 0; i < RH_MAX_THREADS; ++i) free(h.fwd[i]);
-    cj_raster_prep_destroy(prep);
+    if (prep != kept) {
+        cj_raster_prep_destroy(kept);
+        kept = prep; /* freed with the process (its buffers serve the next frames) */
+    }
     return st;
 }
 

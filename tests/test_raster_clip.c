@@ -337,6 +337,58 @@ static void test_depth_order_and_forward(void **state) {
     free(v16);
 }
 
+/* Counts drawn samples (one worker: the counter is not shared safely). */
+static void count_drawn(void *u, const cj_tile *t) {
+    const size_t n = (size_t)(t->x1 - t->x0) * (size_t)(t->y1 - t->y0) * (size_t)t->spp;
+    for (size_t i = 0; i < n; ++i) *(size_t *)u += t->samples[i].tri != CJ_RASTER_NO_TRI;
+}
+
+/* cj_raster_prepare_again: a failed preparation leaves a prep that draws nothing, and the next
+ * good one (other sizes, spp, tiles; more triangles than the prep had room for) draws what a
+ * fresh prep draws. */
+static void test_prepare_again(void **state) {
+    (void)state;
+    double clip[16] = {-1, -1, 0, 1, 1, -1, 0, 1, -1, 1, 0, 1, 1, 1, 0.5, 1};
+    uint32_t tris[6] = {0, 1, 2, 2, 1, 3};
+    cj_raster_input in = {4, clip, 1, tris, 8, 8, 1};
+    cj_raster_prep *p = NULL, *fresh = NULL;
+    assert_int_equal(cj_raster_prepare(&in, 8, NULL, &p, NULL), CJ_OK);
+    size_t drawn = 0;
+    assert_int_equal(cj_raster_run(p, 1, count_drawn, &drawn, NULL, NULL), CJ_OK);
+    assert_true(drawn >= 28 && drawn <= 36); /* the lower-left half, the diagonal's owner aside */
+    clip[5] = NAN;
+    assert_int_equal(cj_raster_prepare_again(p, &in, 8, NULL), CJ_ERR_NONFINITE);
+    drawn = 0;
+    assert_int_equal(cj_raster_run(p, 1, count_drawn, &drawn, NULL, NULL), CJ_OK);
+    assert_int_equal(drawn, 0);
+    clip[5] = -1;
+    assert_int_equal(cj_raster_prepare_again(p, &in, 0, NULL), CJ_ERR_RANGE);
+    drawn = 0;
+    assert_int_equal(cj_raster_run(p, 1, count_drawn, &drawn, NULL, NULL), CJ_OK);
+    assert_int_equal(drawn, 0);
+    const int sizes[3][3] = {{37, 29, 4}, {200, 150, 16}, {5, 3, 1}}; /* W, H, spp */
+    for (int k = 0; k < 3; ++k) {
+        in.tri_count = 2;
+        in.width = sizes[k][0];
+        in.height = sizes[k][1];
+        in.spp = sizes[k][2];
+        cj_raster_stats sa, sf;
+        assert_int_equal(cj_raster_prepare_again(p, &in, 16, &sa), CJ_OK);
+        assert_int_equal(cj_raster_prepare(&in, 16, NULL, &fresh, &sf), CJ_OK);
+        assert_int_equal(sa.tris_setup, sf.tris_setup);
+        size_t a = 0, f = 0;
+        assert_int_equal(cj_raster_run(p, 1, count_drawn, &a, NULL, NULL), CJ_OK);
+        assert_int_equal(cj_raster_run(fresh, 1, count_drawn, &f, NULL, NULL), CJ_OK);
+        assert_int_equal(a, f);
+        assert_int_equal(a, (size_t)in.width * in.height * in.spp); /* the square, once */
+        cj_raster_prep_destroy(fresh);
+        fresh = NULL;
+    }
+    cj_raster_prep_destroy(p);
+    printf("test_raster_clip: prepare_again after errors draws nothing; then 3 layouts drawn as "
+           "by a fresh prep (each sample once)\n");
+}
+
 static void test_errors_and_pattern(void **state) {
     (void)state;
     double clip[12] = {0, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, 1};
@@ -382,10 +434,9 @@ static void test_errors_and_pattern(void **state) {
 int main(void) {
     g_seed = cj_test_seed("test_raster_clip", 20261123);
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_depth_and_barycentrics),
-        cmocka_unit_test(test_clip_cases),
-        cmocka_unit_test(test_depth_order_and_forward),
-        cmocka_unit_test(test_errors_and_pattern),
+        cmocka_unit_test(test_depth_and_barycentrics),  cmocka_unit_test(test_clip_cases),
+        cmocka_unit_test(test_depth_order_and_forward), cmocka_unit_test(test_errors_and_pattern),
+        cmocka_unit_test(test_prepare_again),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -86,6 +86,15 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
                             cj_raster_prep **out, cj_raster_stats *stats);
 void cj_raster_prep_destroy(cj_raster_prep *prep);
 
+/* cj_raster_prepare into a prep made by an earlier call (its allocator is kept): the set-up
+ * records, bins and scratch are written into the previous frame's memory, grown only when the
+ * new frame needs more, so a renderer preparing every frame writes to warm, mapped pages and
+ * allocates nothing in the steady state. The result is the same as a fresh cj_raster_prepare
+ * (barycentrics switched on again). Same status codes; on an error the prep holds no
+ * triangles (a run draws nothing) and may be prepared again or destroyed. */
+cj_status cj_raster_prepare_again(cj_raster_prep *prep, const cj_raster_input *in, int tile_size,
+                                  cj_raster_stats *stats);
+
 /* Called once per tile, on a worker thread, after the tile's visibility buffer is complete.
  * It may call cj_raster_tile_forward. It must write only pixels of its own tile. */
 typedef void (*cj_tile_fn)(void *user, const cj_tile *tile);

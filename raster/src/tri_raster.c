@@ -317,15 +317,23 @@ void cj_tri_render_tile(const cj_raster_prep *p, const cj_tile *t, cj_tri_scratc
                         int resolve) {
     const int spp = p->spp, tw = t->x1 - t->x0;
     const size_t plane = (size_t)tw * (size_t)(t->y1 - t->y0), n = plane * (size_t)spp;
-    for (size_t i = 0; i < n; ++i) sc->depth[i] = 1.0f;
+    size_t c = 0;
+#if defined(__AVX2__)
+    /* 8 samples a store (the compiler leaves this loop scalar at -O2: 4 instructions a sample,
+     * a tenth of a small triangle's visibility cost). */
+    const __m256 far = _mm256_set1_ps(1.0f);
+    for (; c + 8 <= n; c += 8) _mm256_storeu_ps(sc->depth + c, far);
+#endif
+    for (; c < n; ++c) sc->depth[c] = 1.0f;
     memset(sc->id, 0xff, n * sizeof *sc->id); /* CJ_RASTER_NO_TRI */
     const size_t b0 = p->bin_start[t->index], b1 = p->bin_start[t->index + 1];
     for (size_t b = b0; b < b1; ++b) {
         /* Binned triangles are scattered over the set-up array: fetch ahead. */
-        if (b + 12 < b1) {
+        if (b + 12 < b1) { /* every line of the record: its first, second and last byte */
             const char *ahead = (const char *)&p->setups[p->bin_items[b + 12]];
             __builtin_prefetch(ahead);
             __builtin_prefetch(ahead + 64);
+            __builtin_prefetch(ahead + sizeof(cj_tri_setup) - 1);
         }
         const uint32_t id = p->bin_items[b];
         raster_one(p, &p->setups[id], id, t, sc);

@@ -1,6 +1,7 @@
 /* Preparation of a frame's triangles: validation, clipping, snapping to the 1/256 pixel grid,
  * 64-bit edge functions with the top-left rule, attribute planes, and binning into tiles
  * (count, then fill, so the bins are one array in input order). */
+#define _DEFAULT_SOURCE /* madvise */
 #include "tri_internal.h"
 
 #include "casteljau/framebuffer.h"
@@ -16,6 +17,10 @@
 #if defined(__AVX2__)
 #include <immintrin.h>
 #endif
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 /* The per-triangle steps are inlined into the loop over the triangles (a call per triangle,
  * with its saved registers, was a tenth of the set-up). */
@@ -24,52 +29,6 @@
 #else
 #define ALWAYS_INLINE inline
 #endif
-
-/* ---- sample patterns --------------------------------------------------------------------- */
-
-/* spp 4: rotated grid; spp 16: 4 × 4 cells, one sample per cell, every x and every y distinct
- * (multi-jittered: x = (4i + p[j] + 1/2)/16, y = (4j + q[i] + 1/2)/16 for cell (i, j)). */
-static const int k_pat4[4][2] = {{96, 32}, {224, 96}, {32, 160}, {160, 224}};
-static const int k_p16[4] = {2, 0, 3, 1};
-static const int k_q16[4] = {1, 3, 0, 2};
-
-static const double k_dpat1[1][2] = {{0.5, 0.5}};
-static const double k_dpat4[4][2] = {{96 / 256.0, 32 / 256.0},
-                                     {224 / 256.0, 96 / 256.0},
-                                     {32 / 256.0, 160 / 256.0},
-                                     {160 / 256.0, 224 / 256.0}};
-/* pattern_fixed(16) / 256, written out so that the table is constant (no lazy init). */
-static const double k_dpat16[16][2] = {
-    {40 / 256.0, 24 / 256.0},   {104 / 256.0, 56 / 256.0},  {168 / 256.0, 8 / 256.0},
-    {232 / 256.0, 40 / 256.0},  {8 / 256.0, 88 / 256.0},    {72 / 256.0, 120 / 256.0},
-    {136 / 256.0, 72 / 256.0},  {200 / 256.0, 104 / 256.0}, {56 / 256.0, 152 / 256.0},
-    {120 / 256.0, 184 / 256.0}, {184 / 256.0, 136 / 256.0}, {248 / 256.0, 168 / 256.0},
-    {24 / 256.0, 216 / 256.0},  {88 / 256.0, 248 / 256.0},  {152 / 256.0, 200 / 256.0},
-    {216 / 256.0, 232 / 256.0}};
-
-static void pattern_fixed(int spp, int *ox, int *oy) {
-    if (spp == 1) {
-        ox[0] = oy[0] = 128;
-    } else if (spp == 4) {
-        for (int s = 0; s < 4; ++s) {
-            ox[s] = k_pat4[s][0];
-            oy[s] = k_pat4[s][1];
-        }
-    } else {
-        for (int j = 0; j < 4; ++j)
-            for (int i = 0; i < 4; ++i) {
-                ox[4 * j + i] = 16 * (4 * i + k_p16[j]) + 8;
-                oy[4 * j + i] = 16 * (4 * j + k_q16[i]) + 8;
-            }
-    }
-}
-
-const double (*cj_raster_sample_pattern(int spp))[2] {
-    if (spp == 1) return k_dpat1;
-    if (spp == 4) return k_dpat4;
-    if (spp == 16) return k_dpat16;
-    return NULL;
-}
 
 /* ---- memory ------------------------------------------------------------------------------- */
 
@@ -86,29 +45,25 @@ static void *xalloc(const cj_allocator *a, size_t n) {
     return a->alloc(a->user, n ? n : 1);
 }
 
-void cj_raster_prep_destroy(cj_raster_prep *p) {
-    if (!p) return;
-    cj_allocator a = p->alloc;
-    a.free(a.user, p->setups);
-    a.free(a.user, p->attrs);
-    a.free(a.user, p->src);
-    a.free(a.user, p->bin_start);
-    a.free(a.user, p->bin_items);
-    a.free(a.user, p);
-}
-
-void cj_raster_prep_set_barycentrics(cj_raster_prep *p, int on) {
-    assert(p);
-    p->barycentrics = on != 0;
-}
-
-void cj_raster_prep_layout(const cj_raster_prep *p, int *width, int *height, int *spp,
-                           int *tile_size) {
-    assert(p);
-    if (width) *width = p->width;
-    if (height) *height = p->height;
-    if (spp) *spp = p->spp;
-    if (tile_size) *tile_size = p->tile_size;
+/* The set-up records are read in bin order, scattered over arrays of tens of megabytes: with
+ * 4 KiB pages nearly every record costs a TLB miss besides its cache miss. Large arrays of a
+ * prep that is kept across frames (`huge`: cj_raster_prepare_again) ask for transparent huge
+ * pages (a hint: the pages of the whole 2 MiB-aligned extents inside the array, faulted in
+ * later, may be huge; nothing changes where the kernel declines). Not for a prep used once:
+ * faulting fresh huge pages every frame cost more set-up time than they saved. */
+static void *xalloc_big(const cj_allocator *a, size_t n, int huge_pages) {
+    void *m = xalloc(a, n);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    const uintptr_t huge = (uintptr_t)1 << 21;
+    if (m && huge_pages && n >= 2 * huge) {
+        const uintptr_t lo = ((uintptr_t)m + huge - 1) & ~(huge - 1);
+        const uintptr_t hi = ((uintptr_t)m + n) & ~(huge - 1);
+        if (hi > lo) (void)madvise((void *)lo, hi - lo, MADV_HUGEPAGE);
+    }
+#else
+    (void)huge_pages;
+#endif
+    return m;
 }
 
 /* ---- set-up ------------------------------------------------------------------------------ */
@@ -339,6 +294,7 @@ static const vcache *vertex(vcache *cache, const double *clip, uint32_t i, doubl
 
 typedef struct setup_list {
     const cj_allocator *alloc;
+    int huge; /* xalloc_big's huge_pages */
     cj_tri_setup *v;
     cj_tri_attr *a;
     uint32_t *src;        /* a[i].src again, compact (what the resolve reads) */
@@ -346,8 +302,8 @@ typedef struct setup_list {
     size_t n, cap;
 } setup_list;
 
-static int grow(const cj_allocator *al, void **arr, size_t n, size_t cap, size_t size) {
-    void *na = xalloc(al, cap * size);
+static int grow(const cj_allocator *al, void **arr, size_t n, size_t cap, size_t size, int huge) {
+    void *na = xalloc_big(al, cap * size, huge);
     if (!na) return 0;
     if (n) memcpy(na, *arr, n * size);
     al->free(al->user, *arr);
@@ -359,10 +315,10 @@ static int list_reserve(setup_list *l, size_t need) {
     if (need <= l->cap) return 1;
     size_t cap = l->cap ? 2 * l->cap : 1024;
     if (cap < need) cap = need;
-    if (!grow(l->alloc, (void **)&l->v, l->n, cap, sizeof *l->v) ||
-        !grow(l->alloc, (void **)&l->a, l->n, cap, sizeof *l->a) ||
-        !grow(l->alloc, (void **)&l->src, l->n, cap, sizeof *l->src) ||
-        !grow(l->alloc, (void **)&l->range, l->n, cap, sizeof *l->range))
+    if (!grow(l->alloc, (void **)&l->v, l->n, cap, sizeof *l->v, l->huge) ||
+        !grow(l->alloc, (void **)&l->a, l->n, cap, sizeof *l->a, l->huge) ||
+        !grow(l->alloc, (void **)&l->src, l->n, cap, sizeof *l->src, l->huge) ||
+        !grow(l->alloc, (void **)&l->range, l->n, cap, sizeof *l->range, l->huge))
         return 0;
     l->cap = cap;
     return 1;
@@ -415,10 +371,16 @@ static ALWAYS_INLINE void count_bins(const cj_raster_prep *p, setup_list *l, siz
 static cj_status bin(cj_raster_prep *p, uint16_t (*range)[4]) {
     const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
     for (size_t t = 0; t < tiles; ++t) p->bin_start[t + 1] += p->bin_start[t];
-    p->bin_items = xalloc(&p->alloc, (p->bin_start[tiles] + 1) * sizeof *p->bin_items);
-    if (!p->bin_items)
-        return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu binned triangles",
-                       p->bin_start[tiles]);
+    if (p->bin_start[tiles] + 1 > p->bin_items_cap) {
+        p->alloc.free(p->alloc.user, p->bin_items);
+        p->bin_items_cap = 0;
+        p->bin_items =
+            xalloc_big(&p->alloc, (p->bin_start[tiles] + 1) * sizeof *p->bin_items, p->huge);
+        if (!p->bin_items)
+            return cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu binned triangles",
+                           p->bin_start[tiles]);
+        p->bin_items_cap = p->bin_start[tiles] + 1;
+    }
     for (size_t i = 0; i < p->setup_count; ++i) {
         const int tx0 = range[i][0], tx1 = range[i][1], ty0 = range[i][2], ty1 = range[i][3];
         if (tx0 == tx1 && ty0 == ty1) {
@@ -436,53 +398,21 @@ static cj_status bin(cj_raster_prep *p, uint16_t (*range)[4]) {
     return CJ_OK;
 }
 
-cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_allocator *alloc,
-                            cj_raster_prep **out, cj_raster_stats *stats) {
-    assert(in && out);
-    assert(in->vertex_count == 0 || in->clip);
-    assert(in->tri_count == 0 || in->tris);
-    const double t_start = cj_clock_seconds();
-    if (in->width < 1 || in->height < 1 || in->width > CJ_FRAMEBUFFER_MAX_SIDE ||
-        in->height > CJ_FRAMEBUFFER_MAX_SIDE)
-        return cj_fail(CJ_ERR_RANGE, "raster: image size %d x %d outside 1..%d", in->width,
-                       in->height, CJ_FRAMEBUFFER_MAX_SIDE);
-    if (in->spp != 1 && in->spp != 4 && in->spp != 16)
-        return cj_fail(CJ_ERR_RANGE, "raster: spp = %d must be 1, 4 or 16", in->spp);
-    if (tile_size < 1 || tile_size > CJ_FRAMEBUFFER_MAX_SIDE)
-        return cj_fail(CJ_ERR_RANGE, "raster: tile size %d outside 1..%d", tile_size,
-                       CJ_FRAMEBUFFER_MAX_SIDE);
-    if (in->tri_count > (size_t)1 << 28)
-        return cj_fail(CJ_ERR_RANGE, "raster: %zu triangles exceed the limit 2^28", in->tri_count);
-    /* The largest index first (a loop without exits, which vectorizes), the culprit after. */
-    uint32_t top = 0;
-    size_t i0 = 0;
-#if defined(__AVX2__)
-    __m256i vtop = _mm256_setzero_si256();
-    for (; i0 + 8 <= 3 * in->tri_count; i0 += 8)
-        vtop = _mm256_max_epu32(vtop, _mm256_loadu_si256((const __m256i *)(in->tris + i0)));
-    uint32_t lanes[8];
-    _mm256_storeu_si256((__m256i *)lanes, vtop);
-    for (int k = 0; k < 8; ++k) top = lanes[k] > top ? lanes[k] : top;
-#endif
-    for (size_t i = i0; i < 3 * in->tri_count; ++i) top = in->tris[i] > top ? in->tris[i] : top;
-    if (in->tri_count && (size_t)top >= in->vertex_count)
-        for (size_t i = 0; i < 3 * in->tri_count; ++i)
-            if (in->tris[i] >= in->vertex_count)
-                return cj_fail(CJ_ERR_ARGUMENT, "raster: triangle %zu names vertex %u of %zu",
-                               i / 3, (unsigned)in->tris[i], in->vertex_count);
+/* After a failed preparation: no triangles, every bin empty (a run draws nothing). */
+static void make_empty(cj_raster_prep *p) {
+    p->setup_count = 0;
+    const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
+    if (p->bin_start && p->bin_start_cap >= tiles + 1)
+        memset(p->bin_start, 0, (tiles + 1) * sizeof *p->bin_start);
+    else
+        p->tiles_x = p->tiles_y = 0;
+}
 
-    cj_allocator a;
-    if (alloc)
-        a = *alloc;
-    else {
-        a.alloc = std_alloc;
-        a.free = std_free;
-        a.user = NULL;
-    }
-    cj_raster_prep *p = xalloc(&a, sizeof *p);
-    if (!p) return cj_fail(CJ_ERR_NOMEM, "raster: no memory for the prepared frame");
-    memset(p, 0, sizeof *p);
-    p->alloc = a;
+/* Prepares the frame `in` into p, whose arrays (set-ups, attributes, bins, vertex cache) are
+ * reused where large enough and replaced where not. */
+static cj_status prepare_into(cj_raster_prep *p, const cj_raster_input *in, int tile_size,
+                              cj_raster_stats *stats, double t_start) {
+    p->setup_count = 0;
     p->width = in->width;
     p->height = in->height;
     p->spp = in->spp;
@@ -490,7 +420,7 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     p->barycentrics = 1;
     p->tiles_x = (in->width + tile_size - 1) / tile_size;
     p->tiles_y = (in->height + tile_size - 1) / tile_size;
-    pattern_fixed(in->spp, p->ox, p->oy);
+    cj_tri_pattern_fixed(in->spp, p->ox, p->oy);
     p->oxmin = p->oymin = 256;
     p->oxmax = p->oymax = -1;
     for (int s = 0; s < in->spp; ++s) {
@@ -505,10 +435,15 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     st.tris_in = in->tri_count;
     const double hw = 0.5 * in->width, hh = 0.5 * in->height;
     const double gx = 2.0 * CJ_TRI_GUARD_PX / in->width, gy = 2.0 * CJ_TRI_GUARD_PX / in->height;
-    setup_list list = {&p->alloc, NULL, NULL, NULL, NULL, 0, 0};
+    setup_list list = {&p->alloc, p->huge, p->setups, p->attrs, p->src, p->range, 0, p->setup_cap};
     cj_status status = CJ_OK;
     const size_t tiles = (size_t)p->tiles_x * (size_t)p->tiles_y;
-    p->bin_start = xalloc(&p->alloc, (tiles + 1) * sizeof *p->bin_start);
+    if (tiles + 1 > p->bin_start_cap) {
+        p->alloc.free(p->alloc.user, p->bin_start);
+        p->bin_start_cap = 0;
+        p->bin_start = xalloc(&p->alloc, (tiles + 1) * sizeof *p->bin_start);
+        if (p->bin_start) p->bin_start_cap = tiles + 1;
+    }
     if (!p->bin_start)
         status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for %zu tile bins", tiles);
     else
@@ -542,7 +477,8 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
     /* Mesh vertices are shared by several triangles, mostly close together in the input: a
      * small direct-mapped cache keeps each vertex's outcode and projection (the same values as
      * computing them again). */
-    vcache *cache = xalloc(&p->alloc, VCACHE_SIZE * sizeof *cache);
+    if (!p->vcache) p->vcache = xalloc(&p->alloc, VCACHE_SIZE * sizeof(vcache));
+    vcache *cache = p->vcache;
     if (!cache)
         status = cj_fail(CJ_ERR_NOMEM, "raster: no memory for the vertex cache");
     else
@@ -632,19 +568,85 @@ cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_a
         if (made == 0) st.tris_rejected++;
         st.tris_setup += made;
     }
-    p->alloc.free(p->alloc.user, cache);
     p->setups = list.v;
     p->attrs = list.a;
     p->src = list.src;
+    p->range = list.range;
+    p->setup_cap = list.cap;
     p->setup_count = list.n;
+    /* A prep used once gives its scratch back as soon as it is done with it, in the order it
+     * always did: the heap then stays mapped between frames (freed later, after the bins, the
+     * cache let malloc trim the whole heap every frame: a third more page faults). */
+    if (!p->huge) {
+        p->alloc.free(p->alloc.user, p->vcache);
+        p->vcache = NULL;
+    }
     if (status == CJ_OK) status = bin(p, list.range);
-    p->alloc.free(p->alloc.user, list.range);
+    if (!p->huge) {
+        p->alloc.free(p->alloc.user, p->range);
+        p->range = NULL;
+    }
     if (status != CJ_OK) {
-        cj_raster_prep_destroy(p);
+        make_empty(p);
         return status;
     }
     st.seconds_setup = cj_clock_seconds() - t_start;
     if (stats) *stats = st;
+    return CJ_OK;
+}
+
+cj_status cj_raster_prepare(const cj_raster_input *in, int tile_size, const cj_allocator *alloc,
+                            cj_raster_prep **out, cj_raster_stats *stats) {
+    assert(in && out);
+    const double t_start = cj_clock_seconds();
+    cj_status status = cj_tri_check_input(in, tile_size);
+    if (status) return status;
+    cj_allocator a;
+    if (alloc)
+        a = *alloc;
+    else {
+        a.alloc = std_alloc;
+        a.free = std_free;
+        a.user = NULL;
+    }
+    cj_raster_prep *p = xalloc(&a, sizeof *p);
+    if (!p) return cj_fail(CJ_ERR_NOMEM, "raster: no memory for the prepared frame");
+    memset(p, 0, sizeof *p);
+    p->alloc = a;
+    status = prepare_into(p, in, tile_size, stats, t_start);
+    if (status != CJ_OK) {
+        cj_raster_prep_destroy(p);
+        return status;
+    }
     *out = p;
     return CJ_OK;
+}
+
+cj_status cj_raster_prepare_again(cj_raster_prep *prep, const cj_raster_input *in, int tile_size,
+                                  cj_raster_stats *stats) {
+    assert(prep && in);
+    const double t_start = cj_clock_seconds();
+    prep->setup_count = 0;
+    prep->barycentrics = 1;
+    if (!prep->huge) { /* kept across frames from now on: its arrays again, in huge pages */
+        cj_allocator *a = &prep->alloc;
+        a->free(a->user, prep->setups);
+        a->free(a->user, prep->attrs);
+        a->free(a->user, prep->src);
+        a->free(a->user, prep->range);
+        a->free(a->user, prep->bin_items);
+        prep->setups = NULL;
+        prep->attrs = NULL;
+        prep->src = NULL;
+        prep->range = NULL;
+        prep->bin_items = NULL;
+        prep->setup_cap = prep->bin_items_cap = 0;
+        prep->huge = 1;
+    }
+    cj_status status = cj_tri_check_input(in, tile_size);
+    if (status) {
+        make_empty(prep);
+        return status;
+    }
+    return prepare_into(prep, in, tile_size, stats, t_start);
 }
