@@ -15,12 +15,16 @@
 #include <Geom2dAPI_InterCurveCurve.hxx>
 #include <Geom2dAPI_ProjectPointOnCurve.hxx>
 #include <Geom2d_BezierCurve.hxx>
+#include <Geom2d_Line.hxx>
+#include <gp_Dir2d.hxx>
 #include <TColgp_Array1OfPnt2d.hxx>
 #include <gp_Pnt2d.hxx>
 
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <vector>
 
 static uint64_t state = 0x9e3779b97f4a7c15u;
@@ -43,8 +47,10 @@ static Handle(Geom2d_BezierCurve) occ_curve(const double *p, int n) {
 // kurbo in the same process: nearest points on the same queries (accuracy 1e-10, as ours), and
 // the intersection of each cubic with a random line (ours certified, kurbo's
 // PathSeg::intersect_line on a segment long enough to cross the whole unit square).
-static void kurbo_rows(const double (*curves)[8], const double *qx, const double *qy,
-                       const double *dours, const double *lours, double t_ours_nearest) {
+static void kurbo_rows(const double (*curves)[8],
+                       const std::vector<Handle(Geom2d_BezierCurve)> &occ, const double *qx,
+                       const double *qy, const double *dours, const double *lours,
+                       double t_ours_nearest) {
     std::vector<double> dk(NCURVES), tk(NCURVES);
     double times[REPS];
     for (int r = 0; r < REPS; ++r) {
@@ -85,8 +91,12 @@ static void kurbo_rows(const double (*curves)[8], const double *qx, const double
         lines[4 * i] = unit(), lines[4 * i + 1] = unit();
         lines[4 * i + 2] = std::cos(a), lines[4 * i + 3] = std::sin(a);
     }
-    std::vector<int> nours(NCURVES), nk(NCURVES);
-    double t_ours[REPS], t_k[REPS];
+    std::vector<int> nours(NCURVES), nk(NCURVES), nocc(NCURVES);
+    std::vector<Handle(Geom2d_Line)> occ_lines(NCURVES);
+    for (int i = 0; i < NCURVES; ++i)
+        occ_lines[i] = new Geom2d_Line(gp_Pnt2d(lines[4 * i], lines[4 * i + 1]),
+                                       gp_Dir2d(lines[4 * i + 2], lines[4 * i + 3]));
+    double t_ours[REPS], t_k[REPS], t_occ[REPS];
     cj_isect res[16];
     for (int r = 0; r < REPS; ++r) {
         double t0 = cj_bench_thread_cpu();
@@ -105,9 +115,16 @@ static void kurbo_rows(const double (*curves)[8], const double *qx, const double
                                                        l[0] + 3 * l[2], l[1] + 3 * l[3], ts);
         }
         t_k[r] = (cj_bench_thread_cpu() - t0) / NCURVES;
+        t0 = cj_bench_thread_cpu();
+        for (int i = 0; i < NCURVES; ++i) {
+            Geom2dAPI_InterCurveCurve inter(occ[i], occ_lines[i], 1e-9);
+            nocc[i] = inter.NbPoints() + inter.NbSegments();
+        }
+        t_occ[r] = (cj_bench_thread_cpu() - t0) / NCURVES;
     }
-    int lagree = 0, kfewer = 0, kmore = 0;
+    int lagree = 0, kfewer = 0, kmore = 0, oagree = 0;
     for (int i = 0; i < NCURVES; ++i) {
+        oagree += nocc[i] == nours[i];
         if (nours[i] == nk[i])
             ++lagree;
         else if (nk[i] < nours[i])
@@ -121,12 +138,19 @@ static void kurbo_rows(const double (*curves)[8], const double *qx, const double
            "solve, not certified): %.2fx; counts agree on %d of %d (kurbo fewer on %d, more on "
            "%d)\n",
            1e6 * mo, 1e6 * mk, mk / mo, lagree, NCURVES, kfewer, kmore);
+    double mc = cj_bench_median(t_occ, REPS);
+    printf("intersect cubic-line:  OpenCASCADE %8.2f us (Geom2dAPI_InterCurveCurve with a "
+           "Geom2d_Line): %.2fx ours; counts agree with ours on %d of %d\n",
+           1e6 * mc, mc / mo, oagree, NCURVES);
     printf("kurbo 0.7 has no curve-curve intersection, no self-intersection and no offsets (its "
            "offset module came later): those rows are ours and OpenCASCADE's only\n");
 }
 #endif
 
-int main() {
+// `bench_query_occt offsets [1|2]` runs the offset rows alone, OpenCASCADE with one setting
+// (for callgrind, with --toggle-collect=cj_offset_curve or Geom2dConvert_ApproxCurve's
+// constructor).
+int main(int argc, char **argv) {
     static double curves[NCURVES][8];
     for (int i = 0; i < NCURVES; ++i)
         for (int k = 0; k < 8; ++k) curves[i][k] = unit();
@@ -135,6 +159,10 @@ int main() {
         TColgp_Array1OfPnt2d poles(1, 4);
         for (int j = 0; j < 4; ++j) poles(j + 1) = gp_Pnt2d(curves[i][2 * j], curves[i][2 * j + 1]);
         occ[i] = new Geom2d_BezierCurve(poles);
+    }
+    if (argc > 1 && std::strcmp(argv[1], "offsets") == 0) {
+        cj_bench_offsets_vs_occt(curves, NOFFSETS, 0.05, 1e-4, argc > 2 ? std::atoi(argv[2]) : 0);
+        return 0;
     }
     // intersections: ours and OCCT's, counts compared per pair
     cj_isect res[64];
@@ -212,10 +240,10 @@ int main() {
            "%.3g; below our proven lower bound on %d); our mean distance %.12f\n",
            1e6 * mo, 1e6 * mc, mc / mo, nagree, NCURVES, occ_worse, worst, occ_below_proof, mean);
 #ifdef CJ_HAVE_KURBO
-    kurbo_rows(curves, qx.data(), qy.data(), dours.data(), lours.data(), mo);
+    kurbo_rows(curves, occ, qx.data(), qy.data(), dours.data(), lours.data(), mo);
 #else
     printf("kurbo: not linked (cargo or librust-kurbo-dev missing)\n");
 #endif
-    cj_bench_offsets_vs_occt(curves, NOFFSETS, 0.05, 1e-4);
+    cj_bench_offsets_vs_occt(curves, NOFFSETS, 0.05, 1e-4, 0);
     return 0;
 }

@@ -87,7 +87,8 @@ struct occt_setting {
     int max_degree;
 };
 
-void cj_bench_offsets_vs_occt(const double (*curves)[8], int ncurves, double d, double tol) {
+void cj_bench_offsets_vs_occt(const double (*curves)[8], int ncurves, double d, double tol,
+                              int only_setting) {
     std::vector<double> pts(8 * OFFSET_CAP), br(OFFSET_CAP + 1);
     double times[OFFSET_REPS];
     // ours: timed, then checked
@@ -142,7 +143,9 @@ void cj_bench_offsets_vs_occt(const double (*curves)[8], int ncurves, double d, 
         {"C1 cubic spans (our class)", GeomAbs_C1, 3},
         {"C2, degree <= 14 (its defaults)", GeomAbs_C2, 14},
     };
-    for (const occt_setting &s : settings) {
+    for (int si = 0; si < 2; ++si) {
+        const occt_setting &s = settings[si];
+        if (only_setting && only_setting != si + 1) continue;
         long spans = 0;
         int ok = 0, failed = 0, claimed = 0, top_degree = 0;
         std::vector<Handle(Geom2d_BSplineCurve)> out(ncurves);

@@ -7,9 +7,11 @@
 #include <stddef.h>
 
 /* Offsets of ncurves cubics by d at tol: ours (cj_offset_curve) and OpenCASCADE's
- * (Geom2d_OffsetCurve approximated by Geom2dConvert_ApproxCurve), timed and checked by the same
- * dense comparison with the exact offset; prints the rows. */
-void cj_bench_offsets_vs_occt(const double (*curves)[8], int ncurves, double d, double tol);
+ * (Geom2d_OffsetCurve approximated by Geom2dConvert_ApproxCurve: 1 with C1 cubic spans, 2 with
+ * C2 spans up to degree 14; only_setting 0 runs both), timed and checked by the same dense
+ * comparison with the exact offset; prints the rows. */
+void cj_bench_offsets_vs_occt(const double (*curves)[8], int ncurves, double d, double tol,
+                              int only_setting);
 
 #ifdef CJ_HAVE_KURBO
 extern "C" {
