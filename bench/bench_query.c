@@ -1,7 +1,7 @@
 /* bench_query: the certified queries of issue 23 on random cubics in the unit square (seeded):
  * curve–curve intersection per pair, nearest point per query, offset per curve at a tolerance,
- * each the median over 7 repetitions of a batch, in thread CPU time. Peers (OpenCASCADE,
- * kurbo) are not in this run yet: see docs/queries.md. */
+ * each the median over 7 repetitions of a batch, in thread CPU time. The same queries against
+ * OpenCASCADE and kurbo in one process: bench_query_occt (docs/queries.md). */
 #include "bench_clock.h"
 
 #include "casteljau/intersect.h"

@@ -39,3 +39,20 @@ endif()
 # Stroke outlines (butt/round/square caps, closed curves) and offsets through a cusp, against the
 # exact offsets and caps in long double, both ways.
 cj_add_test(test_offset_outline SOURCES query/test_offset_outline.c)
+# Adversarial intersections with exact answers known by construction (near-tangencies, a G1
+# joint, coincident curves, a triple root, huge and tiny scales): ours must agree with the facts;
+# OpenCASCADE (scripts/setup.sh installs it) runs beside and its answers are printed, not asserted.
+cj_add_test(test_query_adversarial SOURCES query/test_query_adversarial.cpp)
+find_path(CJ_OCCT_INCLUDE Geom2dAPI_InterCurveCurve.hxx PATH_SUFFIXES opencascade)
+find_library(CJ_OCCT_TKGEOMALGO TKGeomAlgo)
+find_library(CJ_OCCT_TKGEOMBASE TKGeomBase)
+find_library(CJ_OCCT_TKG2D TKG2d)
+find_library(CJ_OCCT_TKMATH TKMath)
+find_library(CJ_OCCT_TKERNEL TKernel)
+if(CJ_OCCT_INCLUDE AND CJ_OCCT_TKGEOMALGO AND CJ_OCCT_TKGEOMBASE AND CJ_OCCT_TKG2D AND
+   CJ_OCCT_TKMATH AND CJ_OCCT_TKERNEL)
+  target_include_directories(test_query_adversarial SYSTEM PRIVATE ${CJ_OCCT_INCLUDE})
+  target_link_libraries(test_query_adversarial PRIVATE ${CJ_OCCT_TKGEOMALGO} ${CJ_OCCT_TKGEOMBASE}
+    ${CJ_OCCT_TKG2D} ${CJ_OCCT_TKMATH} ${CJ_OCCT_TKERNEL})
+  target_compile_definitions(test_query_adversarial PRIVATE CJ_HAVE_OCCT=1)
+endif()
