@@ -16,7 +16,7 @@ void cj_isect_run_reset(run *R) {
     R->tol = R->ext_a = R->ext_b = 0.0;
     R->max_boxes = 0;
     R->ca = NULL;
-    R->self = R->line = R->capped = R->table_full = 0;
+    R->self = R->line = R->capped = R->table_full = R->in_flat = 0;
     R->boxes = 0;
     R->nroots = R->nleaves = R->noverlaps = 0;
 }
@@ -438,9 +438,10 @@ static int monotone_along(const cj_qpiece *p, const double w[2], double *cover_l
  * the other's (a point outside cannot lie on the other piece), a few times. If then both are
  * monotone along w, every point p of one has a point q of the other at the same w (or an end
  * point, `overhang` further along w), so |p - q| <= (width + overhang) / |w|: with that <= tol
- * the pair is one contact leaf, every root in it inside the clipped spans. 1 if the pair is
- * settled (a leaf, or proven empty), 0 if it is to be split as usual. */
-static int flat_contact(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
+ * the pair is one contact, every root in it inside the clipped spans. -1 if the pair is proven
+ * empty, 1 with the contact's box B and size, 0 if it is to be split as usual. */
+static int flat_contact(run *R, const cj_qpiece *pa, const cj_qpiece *pb, cj_ivl B[2],
+                        double *size) {
     int nb = pb->n;
     double w[2] = {pb->h[nb][0] - pb->h[0][0], pb->h[nb][1] - pb->h[0][1]}, v[2] = {-w[1], w[0]};
     double len = hypot(w[0], w[1]) * (1.0 - 0x1p-50); /* below |w| = |v| */
@@ -456,7 +457,7 @@ static int flat_contact(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
             double omin, omax, u0, u1;
             project_poly(&c[1 - k], w, &omin, &omax);
             int r = clip_band_n(p, p->n, w, omin, omax, &u0, &u1);
-            if (r < 0) return 1; /* the pieces' projections on w are apart: no root here */
+            if (r < 0) return -1; /* the pieces' projections on w are apart: no root here */
             if (r > 0 && p->b - p->a > 0x1p-40)
                 cj_qpiece_sub(p, k == 0 ? R->qa->hmag : R->qb->hmag, u0, u1, p);
         }
@@ -478,9 +479,33 @@ static int flat_contact(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
     double dev = cj_up(cj_up(width + overhang) / len);
     if (!(dev <= R->tol)) return 0;
     /* a leaf's deviation is reported as 2 sqrt(2) times its size: the size that gives dev */
-    cj_isect_add_leaf(R, cj_qpiece_span(&c[0]), cj_qpiece_span(&c[1]),
-                      dev * 0x1.6a09e667f3bcdp-2 * (1.0 + 0x1p-50), 0);
+    B[0] = cj_qpiece_span(&c[0]);
+    B[1] = cj_qpiece_span(&c[1]);
+    *size = dev * 0x1.6a09e667f3bcdp-2 * (1.0 + 0x1p-50);
     return 1;
+}
+
+/* A flat pair may still hold crossings that a little more splitting certifies (y = x^2 against
+ * y = 1e-12 at tol 1e-9: two roots 2e-6 apart in a stretch 6e-5 long within tol). The usual
+ * search is run on it with a budget of FLAT_BUDGET boxes and no flat contacts inside; 1 if it
+ * settled everything (its crossings kept), else 0 with its roots and leaves taken back (they
+ * lie in the pair's box, which the contact then covers). */
+#define FLAT_BUDGET 256
+static int resolve_flat(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
+    int roots = R->nroots, leaves = R->nleaves;
+    long max_boxes = R->max_boxes;
+    if (R->boxes + FLAT_BUDGET < max_boxes) R->max_boxes = R->boxes + FLAT_BUDGET;
+    R->in_flat = 1;
+    cj_isect_pair(R, pa, pb);
+    R->in_flat = 0;
+    R->max_boxes = max_boxes;
+    /* the whole search's cap, or tables full (the pass runs again with room): as it stands */
+    if (R->table_full || R->boxes > max_boxes) return 1;
+    if (!R->capped && R->nleaves == leaves) return 1;
+    R->capped = 0;
+    R->nroots = roots;
+    R->nleaves = leaves;
+    return 0;
 }
 
 void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
@@ -532,9 +557,17 @@ void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
     if ((ea <= R->ext_a * KRAWCZYK_SIZE || pa->n <= 1) &&
         (eb <= R->ext_b * KRAWCZYK_SIZE || pb->n <= 1) && settle(R, S, T, 0x1p-44) != 0)
         return;
-    if (clip_ok && ea <= R->ext_a * KRAWCZYK_SIZE && eb <= R->ext_b * KRAWCZYK_SIZE &&
-        flat_contact(R, pa, pb))
-        return;
+    if (clip_ok && !R->in_flat && ea <= R->ext_a * KRAWCZYK_SIZE &&
+        eb <= R->ext_b * KRAWCZYK_SIZE) {
+        cj_ivl B[2];
+        double size;
+        int flat = flat_contact(R, pa, pb, B, &size);
+        if (flat < 0) return;
+        if (flat > 0) {
+            if (!resolve_flat(R, pa, pb)) cj_isect_add_leaf(R, B[0], B[1], size, 0);
+            return;
+        }
+    }
     int can_a = ea > R->tol && pa->b - pa->a > MIN_WIDTH;
     int can_b = eb > R->tol && pb->b - pb->a > MIN_WIDTH;
     if (!can_a && !can_b) {
