@@ -264,6 +264,23 @@ int main(void) {
         cases[nc++] = p;
     }
     for (int i = 0; i < nc; ++i) run_case(cases[i]);
+    {
+        /* the triple root through the curve-line entry point: x = 0 at s = 1/2, line
+         * parameter 0 on the x axis */
+        const double a[8] = {-1, -1, -1.0 / 3, 1, 1.0 / 3, -1, 1, 1}, p[2] = {0, 0}, d[2] = {1, 0};
+        cj_bezier2 c = cj_bezier2_view(3, a, NULL);
+        cj_isect res[CAP];
+        int n = 0;
+        cj_status st = cj_intersect_line(&c, p, d, 1e-9, res, CAP, &n);
+        CHECK(st == CJ_OK && n == 1 && res[0].kind == CJ_ISECT_CONTACT &&
+                  inside(0.5L, res[0].s_lo, res[0].s_hi) &&
+                  inside(0.0L, res[0].t_lo, res[0].t_hi) && res[0].deviation <= 2.83e-9,
+              "y = x^3 and the line y = 0: status %d, %d results", (int)st, n);
+        printf("y = x^3 and the line y = 0 (cj_intersect_line), tol 1e-9: %d result, s in [%.9g, "
+               "%.9g], "
+               "deviation %.3g\n",
+               n, n ? res[0].s_lo : 0.0, n ? res[0].s_hi : 0.0, n ? res[0].deviation : 0.0);
+    }
     printf("checked %d adversarial pairs against their exact roots: each root in exactly one "
            "result, each crossing holding one root, each contact at least one, overlaps only where "
            "coincident\n",
