@@ -25,7 +25,8 @@ typedef struct root {
 typedef struct leaf {
     cj_ivl B[2];
     double size;
-    int exact; /* a joint: bitwise equal end points */
+    int exact;   /* a joint: bitwise equal end points */
+    int dropped; /* set by cj_isect_finish: inside a crossing's uniqueness box or an overlap */
 } leaf;
 
 typedef struct run {
@@ -39,6 +40,7 @@ typedef struct run {
     long boxes;
     int capped;
     int table_full; /* capped because roots or leaves ran out of room */
+    int in_flat;    /* searching inside a flat pair (intersect_search.c): no flat contacts */
     root *roots;    /* the tables: max_roots and max_leaves entries (small ones on the stack
                        first, MAX_ROOTS and MAX_LEAVES on the heap when they fill) */
     int nroots, max_roots;

@@ -143,10 +143,21 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
         o->deviation = R->overlap_dev[i];
         o->at_end = 1;
     }
+    /* leaves inside a crossing's uniqueness box are that crossing (dropped); a crossing whose
+     * enclosure lies inside a remaining contact is held by it (a flat contact made by one pair
+     * can hold a root certified by a neighbouring pair): dropped, so it is not reported twice */
+    for (int i = 0; i < R->nleaves; ++i) {
+        leaf *l = &R->leaves[i];
+        l->dropped = 0;
+        for (int k = 0; k < R->noverlaps; ++k) l->dropped |= meets(l->B, R->overlap[k]);
+        for (int k = 0; k < R->nroots && !l->exact; ++k) l->dropped |= inside(l->B, R->roots[k].U);
+    }
     for (int i = 0; i < R->nroots; ++i) {
         root *r = &R->roots[i];
         int absorbed = 0;
         for (int k = 0; k < R->noverlaps; ++k) absorbed |= meets(r->K, R->overlap[k]);
+        for (int k = 0; k < R->nleaves; ++k)
+            absorbed |= !R->leaves[k].dropped && inside(r->K, R->leaves[k].B);
         if (absorbed) continue;
         cj_isect *o = &tmp[total++];
         memset(o, 0, sizeof *o);
@@ -159,10 +170,7 @@ cj_status cj_isect_finish(run *R, double line_scale, cj_isect *out, int cap, int
     }
     for (int i = 0; i < R->nleaves; ++i) {
         leaf *l = &R->leaves[i];
-        int absorbed = 0;
-        for (int k = 0; k < R->noverlaps; ++k) absorbed |= meets(l->B, R->overlap[k]);
-        for (int k = 0; k < R->nroots && !l->exact; ++k) absorbed |= inside(l->B, R->roots[k].U);
-        if (absorbed) continue;
+        if (l->dropped) continue;
         cj_isect *o = &tmp[total++];
         memset(o, 0, sizeof *o);
         o->kind = CJ_ISECT_CONTACT;

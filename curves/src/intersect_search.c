@@ -16,7 +16,7 @@ void cj_isect_run_reset(run *R) {
     R->tol = R->ext_a = R->ext_b = 0.0;
     R->max_boxes = 0;
     R->ca = NULL;
-    R->self = R->line = R->capped = R->table_full = 0;
+    R->self = R->line = R->capped = R->table_full = R->in_flat = 0;
     R->boxes = 0;
     R->nroots = R->nleaves = R->noverlaps = 0;
 }
@@ -93,12 +93,8 @@ static void project_poly(const cj_qpiece *p, const double v[2], double *pmin, do
  * roundings more, so padding the range by 2^-48 makes it a superset.
  * Returns -1 if p is proven to miss o, 1 with [*u0, *u1] (in p's own parameter) if the range
  * is a proper part of [0,1], 0 if nothing was learnt. */
-CJ_UNROLLED int clip_range_n(const cj_qpiece *p, int n, const cj_qpiece *o, int no, double *u0,
-                             double *u1) {
-    double v[2] = {-(o->h[no][1] - o->h[0][1]), o->h[no][0] - o->h[0][0]};
-    if (!isfinite(v[0]) || !isfinite(v[1]) || (v[0] == 0.0 && v[1] == 0.0)) return 0;
-    double omin, omax;
-    project_poly_n(o, no, v, &omin, &omax);
+CJ_UNROLLED int clip_band_n(const cj_qpiece *p, int n, const double v[2], double omin, double omax,
+                            double *u0, double *u1) {
     /* p's projections, each within margin of the exact one */
     double e[CJ_QUERY_MAXN + 1], margin = poly_margin(p, v);
     double mn = INFINITY, mx = -INFINITY;
@@ -142,6 +138,15 @@ CJ_UNROLLED int clip_range_n(const cj_qpiece *p, int n, const cj_qpiece *o, int 
     *u0 = xmin - 0x1p-48 > 0.0 ? xmin - 0x1p-48 : 0.0;
     *u1 = xmax + 0x1p-48 < 1.0 ? xmax + 0x1p-48 : 1.0;
     return *u0 > 0.0 || *u1 < 1.0;
+}
+
+CJ_UNROLLED int clip_range_n(const cj_qpiece *p, int n, const cj_qpiece *o, int no, double *u0,
+                             double *u1) {
+    double v[2] = {-(o->h[no][1] - o->h[0][1]), o->h[no][0] - o->h[0][0]};
+    if (!isfinite(v[0]) || !isfinite(v[1]) || (v[0] == 0.0 && v[1] == 0.0)) return 0;
+    double omin, omax;
+    project_poly_n(o, no, v, &omin, &omax);
+    return clip_band_n(p, n, v, omin, omax, u0, u1);
 }
 
 /* The clip for the usual degrees with constant loop bounds, else the general one. */
@@ -407,6 +412,102 @@ static int in_overlap(const run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
     return 0;
 }
 
+/* w . x over a polynomial piece's control points (each within the returned margin of the
+ * exact one) if they are strictly monotone, so that the piece itself is monotone along w and
+ * covers at least [*cover_lo, *cover_hi] there (its end points' projections); 0 if not. */
+static int monotone_along(const cj_qpiece *p, const double w[2], double *cover_lo,
+                          double *cover_hi) {
+    double margin = poly_margin(p, w), e[CJ_QUERY_MAXN + 1];
+    int up = 1, down = 1;
+    for (int i = 0; i <= p->n; ++i) {
+        e[i] = w[0] * p->h[i][0] + w[1] * p->h[i][1];
+        if (i > 0) {
+            up &= e[i] - e[i - 1] > 2.0 * margin;
+            down &= e[i - 1] - e[i] > 2.0 * margin;
+        }
+    }
+    if (!isfinite(margin) || !(up || down)) return 0;
+    *cover_lo = cj_up(cj_fmin(e[0], e[p->n]) + margin);
+    *cover_hi = cj_down(cj_fmax(e[0], e[p->n]) - margin);
+    return 1;
+}
+
+/* Contacts along a flat stretch (a triple root, a near-coincidence) must not be split down to
+ * pieces of size tol: there are about length / tol of them. When both pieces lie in a strip of
+ * width <= tol along b's chord w, each is clipped to the part of it whose projection on w meets
+ * the other's (a point outside cannot lie on the other piece), a few times. If then both are
+ * monotone along w, every point p of one has a point q of the other at the same w (or an end
+ * point, `overhang` further along w), so |p - q| <= (width + overhang) / |w|: with that <= tol
+ * the pair is one contact, every root in it inside the clipped spans. -1 if the pair is proven
+ * empty, 1 with the contact's box B and size, 0 if it is to be split as usual. */
+static int flat_contact(run *R, const cj_qpiece *pa, const cj_qpiece *pb, cj_ivl B[2],
+                        double *size) {
+    int nb = pb->n;
+    double w[2] = {pb->h[nb][0] - pb->h[0][0], pb->h[nb][1] - pb->h[0][1]}, v[2] = {-w[1], w[0]};
+    double len = hypot(w[0], w[1]) * (1.0 - 0x1p-50); /* below |w| = |v| */
+    if (!isfinite(len) || !(len > 0.0)) return 0;
+    double amin, amax, bmin, bmax;
+    project_poly(pa, v, &amin, &amax);
+    project_poly(pb, v, &bmin, &bmax);
+    if (!(cj_up(cj_fmax(amax, bmax) - cj_fmin(amin, bmin)) <= R->tol * len)) return 0;
+    cj_qpiece c[2] = {*pa, *pb};
+    for (int round = 0; round < 4; ++round)
+        for (int k = 0; k < 2; ++k) {
+            cj_qpiece *p = &c[k];
+            double omin, omax, u0, u1;
+            project_poly(&c[1 - k], w, &omin, &omax);
+            int r = clip_band_n(p, p->n, w, omin, omax, &u0, &u1);
+            if (r < 0) return -1; /* the pieces' projections on w are apart: no root here */
+            if (r > 0 && p->b - p->a > 0x1p-40)
+                cj_qpiece_sub(p, k == 0 ? R->qa->hmag : R->qb->hmag, u0, u1, p);
+        }
+    /* the clipped pieces are parts of the same curves, but their control points are new:
+     * the strip is measured again */
+    project_poly(&c[0], v, &amin, &amax);
+    project_poly(&c[1], v, &bmin, &bmax);
+    double width = cj_up(cj_fmax(amax, bmax) - cj_fmin(amin, bmin));
+    double cover[2][2], reach[2][2];
+    for (int k = 0; k < 2; ++k) {
+        if (!monotone_along(&c[k], w, &cover[k][0], &cover[k][1])) return 0;
+        project_poly(&c[k], w, &reach[k][0], &reach[k][1]);
+    }
+    double overhang = 0.0;
+    for (int k = 0; k < 2; ++k) {
+        overhang = cj_fmax(overhang, cj_up(cover[1 - k][0] - reach[k][0]));
+        overhang = cj_fmax(overhang, cj_up(reach[k][1] - cover[1 - k][1]));
+    }
+    double dev = cj_up(cj_up(width + overhang) / len);
+    if (!(dev <= R->tol)) return 0;
+    /* a leaf's deviation is reported as 2 sqrt(2) times its size: the size that gives dev */
+    B[0] = cj_qpiece_span(&c[0]);
+    B[1] = cj_qpiece_span(&c[1]);
+    *size = dev * 0x1.6a09e667f3bcdp-2 * (1.0 + 0x1p-50);
+    return 1;
+}
+
+/* A flat pair may still hold crossings that a little more splitting certifies (y = x^2 against
+ * y = 1e-12 at tol 1e-9: two roots 2e-6 apart in a stretch 6e-5 long within tol). The usual
+ * search is run on it with a budget of FLAT_BUDGET boxes and no flat contacts inside; 1 if it
+ * settled everything (its crossings kept), else 0 with its roots and leaves taken back (they
+ * lie in the pair's box, which the contact then covers). */
+#define FLAT_BUDGET 256
+static int resolve_flat(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
+    int roots = R->nroots, leaves = R->nleaves;
+    long max_boxes = R->max_boxes;
+    if (R->boxes + FLAT_BUDGET < max_boxes) R->max_boxes = R->boxes + FLAT_BUDGET;
+    R->in_flat = 1;
+    cj_isect_pair(R, pa, pb);
+    R->in_flat = 0;
+    R->max_boxes = max_boxes;
+    /* the whole search's cap, or tables full (the pass runs again with room): as it stands */
+    if (R->table_full || R->boxes > max_boxes) return 1;
+    if (!R->capped && R->nleaves == leaves) return 1;
+    R->capped = 0;
+    R->nroots = roots;
+    R->nleaves = leaves;
+    return 0;
+}
+
 void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
     /* clipped pieces live here: the clipping loop runs in this frame, only halving recurses */
     cj_qpiece clipped[2];
@@ -456,6 +557,17 @@ void cj_isect_pair(run *R, const cj_qpiece *pa, const cj_qpiece *pb) {
     if ((ea <= R->ext_a * KRAWCZYK_SIZE || pa->n <= 1) &&
         (eb <= R->ext_b * KRAWCZYK_SIZE || pb->n <= 1) && settle(R, S, T, 0x1p-44) != 0)
         return;
+    if (clip_ok && !R->in_flat && ea <= R->ext_a * KRAWCZYK_SIZE &&
+        eb <= R->ext_b * KRAWCZYK_SIZE) {
+        cj_ivl B[2];
+        double size;
+        int flat = flat_contact(R, pa, pb, B, &size);
+        if (flat < 0) return;
+        if (flat > 0) {
+            if (!resolve_flat(R, pa, pb)) cj_isect_add_leaf(R, B[0], B[1], size, 0);
+            return;
+        }
+    }
     int can_a = ea > R->tol && pa->b - pa->a > MIN_WIDTH;
     int can_b = eb > R->tol && pb->b - pb->a > MIN_WIDTH;
     if (!can_a && !can_b) {

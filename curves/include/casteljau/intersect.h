@@ -15,12 +15,17 @@
  *                      intervals are then shrunk by the same operator, typically to a few ulps.
  *   CJ_ISECT_CONTACT   a region the method cannot resolve at the tolerance: the pieces of both
  *                      curves there are smaller than tol, come within tol of each other, and no
- *                      simple intersection could be certified. Tangencies (touching, double
- *                      roots), near-tangencies whose crossings lie closer than the rounding can
- *                      separate, and intersections at cusps land here. It may hold 0, 1 or
- *                      more true intersections, but every intersection in it lies within the
- *                      reported intervals, and the curves there are within 2 sqrt(2) tol of
- *                      each other. Touching leaves are merged, so one contact is reported once.
+ *                      simple intersection could be certified; or a flat stretch (a triple or
+ *                      higher root, a near-coincidence) where both pieces are proven within
+ *                      `deviation` <= tol of each other everywhere and a search of 256 boxes
+ *                      inside it did not settle it. Tangencies (touching, double roots),
+ *                      near-tangencies whose crossings lie closer than the rounding can
+ *                      separate, high-order roots and intersections at cusps land here. It may
+ *                      hold 0, 1 or more true intersections, but every intersection in it lies
+ *                      within the reported intervals, and the curves there are within
+ *                      `deviation` <= 2 sqrt(2) tol of each other. Touching leaves are merged,
+ *                      so one contact is reported once; a crossing inside a contact is
+ *                      reported by the contact only.
  *   CJ_ISECT_OVERLAP   coincident pieces (polynomial curves): a(s) for s in [s_lo, s_hi] and
  *                      b(t) for t in [t_lo, t_hi] are the same curve up to a linear change of
  *                      parameter, with control points of the two pieces (elevated to one
@@ -97,7 +102,7 @@ typedef struct cj_isect {
     double s_lo, s_hi; /* proven enclosure on the first curve */
     double t_lo, t_hi; /* proven enclosure on the second curve (or the line parameter) */
     double point[2];   /* a(s), the estimate of the intersection point */
-    double deviation;  /* OVERLAP: max control point distance; CONTACT: size bound; else 0 */
+    double deviation;  /* OVERLAP: max control point distance; CONTACT: distance bound; else 0 */
     int at_end;        /* 1 if the enclosure touches an end of a curve (see LIMITS) */
 } cj_isect;
 
