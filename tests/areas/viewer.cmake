@@ -29,7 +29,7 @@ endif()
 # ray-traced pass is interrupted by a key, traced passes equal `casteljau trace`.
 if(CJ_HAVE_VIEWER AND TARGET casteljau)
   find_package(X11 REQUIRED)
-  cj_add_test(test_viewer_live SOURCES viewer/test_viewer_live.c support/xvfb.c
+  cj_add_test(test_viewer_live SOURCES viewer/test_viewer_live.c support/xvfb.c support/timeline.c
     support/png_diff.c
     LIBS cj::viz X11::X11)
   target_include_directories(test_viewer_live PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
@@ -49,7 +49,7 @@ endif()
 # to newer drag states (never two in a row), and the still view equals `casteljau render`.
 if(CJ_HAVE_VIEWER AND TARGET casteljau)
   find_package(X11 REQUIRED)
-  cj_add_test(test_viewer_drag SOURCES viewer/test_viewer_drag.c support/xvfb.c
+  cj_add_test(test_viewer_drag SOURCES viewer/test_viewer_drag.c support/xvfb.c support/timeline.c
     LIBS cj::viz cj::raster cj::scene cj::surfaces X11::X11)
   target_include_directories(test_viewer_drag PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   target_compile_definitions(test_viewer_drag PRIVATE CJ_CLI="$<TARGET_FILE:casteljau>"

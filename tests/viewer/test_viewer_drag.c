@@ -19,6 +19,7 @@
 #include "casteljau/render.h"
 #include "casteljau/viewer_scene.h"
 #include "cli_run.h"
+#include "support/timeline.h"
 #include "support/xvfb.h"
 
 #include <X11/Xlib.h>
@@ -36,11 +37,6 @@
 static char dir[] = "/tmp/cj_viewer_drag_XXXXXX";
 enum { W = 320, H = 240 };
 
-static void sleep_s(double s) {
-    struct timespec ts = {(time_t)s, (long)((s - (double)(time_t)s) * 1e9)};
-    nanosleep(&ts, NULL);
-}
-
 static int sh(const char *cmd) {
     cj_cli_result r;
     assert_int_equal(cj_cli_shell(cmd, &r), 0);
@@ -48,44 +44,6 @@ static int sh(const char *cmd) {
     if (st) printf("command failed (%d): %s\n%s%s", st, cmd, r.out, r.err);
     cj_cli_result_free(&r);
     return st;
-}
-
-/* The whole timeline so far (caller frees). */
-static char *timeline(const char *path) {
-    FILE *f = fopen(path, "r");
-    if (!f) return calloc(1, 1);
-    char *buf = malloc(1 << 22);
-    assert_non_null(buf);
-    const size_t n = fread(buf, 1, (1 << 22) - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
-}
-
-/* Waits up to `timeout` seconds for a line containing `what` after byte `from`; returns the
- * offset of that line, or -1. */
-static long wait_line(const char *path, long from, const char *what, double timeout) {
-    for (double t = 0; t < timeout; t += 0.05) {
-        char *tl = timeline(path);
-        const long len = (long)strlen(tl);
-        const char *hit = from <= len ? strstr(tl + from, what) : NULL;
-        long at = -1;
-        if (hit) {
-            while (hit > tl && hit[-1] != '\n') --hit;
-            at = (long)(hit - tl);
-        }
-        free(tl);
-        if (at >= 0) return at;
-        sleep_s(0.05);
-    }
-    return -1;
-}
-
-static long timeline_size(const char *path) {
-    char *tl = timeline(path);
-    const long n = (long)strlen(tl);
-    free(tl);
-    return n;
 }
 
 /* A visible control point of the demo teapot at W x H (as test_viewer_window picks one): its
@@ -224,15 +182,15 @@ static void test_drag_drops_preparing_frames(void **state) {
     unsigned long wid = 0;
     assert_int_equal(fscanf(wf, "%lu", &wid), 1);
     fclose(wf);
-    assert_true(wait_line(tpath, 0, "shown gen 1 ", 60) >= 0);
+    assert_true(cj_timeline_wait_line(tpath, 0, "shown gen 1 ", 60) >= 0);
 
     /* a fast drag: press on the point, 40 moves a few ms apart, release; repeated (the point
      * goes back and forth) until a drag frame was dropped while tessellating */
     drag_stats ds;
     int tries = 0, x = px, y = py;
-    long from = timeline_size(tpath);
+    long from = cj_timeline_size(tpath);
     do {
-        from = timeline_size(tpath);
+        from = cj_timeline_size(tpath);
         int n = snprintf(cmd, sizeof cmd,
                          "xdotool mousemove --window %lu %d %d sleep 0.2 mousedown 1 sleep 0.05",
                          wid, x, y);
@@ -245,18 +203,18 @@ static void test_drag_drops_preparing_frames(void **state) {
         y += 40 % 3;
         snprintf(cmd + n, sizeof cmd - (size_t)n, " mouseup 1");
         assert_int_equal(sh(cmd), 0);
-        assert_true(wait_line(tpath, from, "button 0 release", 20) >= 0);
-        char *tl = timeline(tpath);
+        assert_true(cj_timeline_wait_line(tpath, from, "button 0 release", 20) >= 0);
+        char *tl = cj_timeline_read(tpath);
         scan(tl, from, &ds);
         assert_non_null(strstr(tl + from, "drag point")); /* the press picked the point */
         free(tl);
         ++tries;
     } while (ds.dropped == 0 && tries < 4);
     /* the still view after the release: the next (non-interactive) submit, shown */
-    const long rel = wait_line(tpath, from, "button 0 release", 20);
-    const long still = wait_line(tpath, rel, "submit gen", 20);
+    const long rel = cj_timeline_wait_line(tpath, from, "button 0 release", 20);
+    const long still = cj_timeline_wait_line(tpath, rel, "submit gen", 20);
     assert_true(still >= 0);
-    char *tl = timeline(tpath);
+    char *tl = cj_timeline_read(tpath);
     unsigned long gen_still = 0;
     const char *sub = strstr(tl + still, "submit");
     assert_int_equal(sscanf(sub, "submit gen %lu", &gen_still), 1);
@@ -265,14 +223,14 @@ static void test_drag_drops_preparing_frames(void **state) {
     free(tl);
     char want[64];
     snprintf(want, sizeof want, "shown gen %lu ", gen_still);
-    assert_true(wait_line(tpath, still, want, 60) >= 0);
-    sleep_s(0.3);
+    assert_true(cj_timeline_wait_line(tpath, still, want, 60) >= 0);
+    cj_test_sleep(0.3);
     Display *dpy = XOpenDisplay(NULL);
     assert_non_null(dpy);
     unsigned *win = grab(dpy, (Window)wid);
     XCloseDisplay(dpy);
 
-    tl = timeline(tpath);
+    tl = cj_timeline_read(tpath);
     drag_stats all;
     scan(tl, 0, &all);
     free(tl);
@@ -292,7 +250,7 @@ static void test_drag_drops_preparing_frames(void **state) {
     int status = -1;
     for (int i = 0; i < 300; ++i) {
         if (waitpid(child, &status, WNOHANG) == child) break;
-        sleep_s(0.1);
+        cj_test_sleep(0.1);
         if (i == 299) {
             kill(child, SIGKILL);
             waitpid(child, &status, 0);

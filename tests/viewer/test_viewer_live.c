@@ -16,6 +16,7 @@
 #include "casteljau/image_io.h"
 #include "cli_run.h"
 #include "support/png_diff.h"
+#include "support/timeline.h"
 #include "support/xvfb.h"
 
 #include <X11/Xlib.h>
@@ -32,11 +33,6 @@
 static char dir[] = "/tmp/cj_viewer_live_XXXXXX";
 enum { W = 320, H = 240 };
 
-static void sleep_s(double s) {
-    struct timespec ts = {(time_t)s, (long)((s - (double)(time_t)s) * 1e9)};
-    nanosleep(&ts, NULL);
-}
-
 static int sh(const char *cmd) {
     cj_cli_result r;
     assert_int_equal(cj_cli_shell(cmd, &r), 0);
@@ -44,44 +40,6 @@ static int sh(const char *cmd) {
     if (st) printf("command failed (%d): %s\n%s%s", st, cmd, r.out, r.err);
     cj_cli_result_free(&r);
     return st;
-}
-
-/* The whole timeline so far (caller frees). */
-static char *timeline(const char *path) {
-    FILE *f = fopen(path, "r");
-    if (!f) return calloc(1, 1);
-    char *buf = malloc(1 << 20);
-    assert_non_null(buf);
-    const size_t n = fread(buf, 1, (1 << 20) - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
-}
-
-/* Waits up to `timeout` seconds for a line containing `what` after byte `from` of the
- * timeline; returns the offset of that line, or -1. */
-static long wait_line(const char *path, long from, const char *what, double timeout) {
-    for (double t = 0; t < timeout; t += 0.05) {
-        char *tl = timeline(path);
-        const long len = (long)strlen(tl);
-        const char *hit = from <= len ? strstr(tl + from, what) : NULL;
-        long at = -1;
-        if (hit) {
-            while (hit > tl && hit[-1] != '\n') --hit;
-            at = (long)(hit - tl);
-        }
-        free(tl);
-        if (at >= 0) return at;
-        sleep_s(0.05);
-    }
-    return -1;
-}
-
-static long timeline_size(const char *path) {
-    char *tl = timeline(path);
-    const long n = (long)strlen(tl);
-    free(tl);
-    return n;
 }
 
 /* The window's pixels as the X server holds them (what the screen shows), 0xRRGGBB. */
@@ -106,7 +64,7 @@ static long differ(const unsigned *a, const unsigned *b) {
 static unsigned *grab_settled(Display *dpy, Window win) {
     unsigned *a = grab(dpy, win);
     for (int i = 0; i < 40; ++i) {
-        sleep_s(0.3);
+        cj_test_sleep(0.3);
         unsigned *b = grab(dpy, win);
         const long d = differ(a, b);
         free(a);
@@ -148,7 +106,7 @@ static void test_real_keys_and_interrupt(void **state) {
     unsigned long wid = 0;
     assert_int_equal(fscanf(wf, "%lu", &wid), 1);
     fclose(wf);
-    assert_true(wait_line(tpath, 0, "shown gen 1 ", 60) >= 0);
+    assert_true(cj_timeline_wait_line(tpath, 0, "shown gen 1 ", 60) >= 0);
     Display *dpy = XOpenDisplay(NULL);
     assert_non_null(dpy);
     unsigned *before = grab_settled(dpy, (Window)wid);
@@ -170,30 +128,30 @@ static void test_real_keys_and_interrupt(void **state) {
            help_px, W * H, overlay_px);
 
     /* R: ray tracing, progressive; a key while pass 4 (16 spp) runs cancels it at once */
-    long from = timeline_size(tpath);
+    long from = cj_timeline_size(tpath);
     assert_int_equal(sh("xdotool key r"), 0);
     /* a hang guard, not a speed test: the sanitizer build's Debug tracer needs about 65 s of
      * CPU for the 4 spp pass alone on one thread, more while other tests share the machine */
-    const long started = wait_line(tpath, from, "trace pass 3", 600);
+    const long started = cj_timeline_wait_line(tpath, from, "trace pass 3", 600);
     assert_true(started >= 0);
-    sleep_s(0.3);
-    from = timeline_size(tpath);
+    cj_test_sleep(0.3);
+    from = cj_timeline_size(tpath);
     assert_int_equal(sh("xdotool key g"), 0); /* shading: a new state */
-    const long key_at = wait_line(tpath, from, "key 71", 10);
+    const long key_at = cj_timeline_wait_line(tpath, from, "key 71", 10);
     assert_true(key_at >= 0);
-    const long submit_at = wait_line(tpath, key_at, "submit gen", 10);
+    const long submit_at = cj_timeline_wait_line(tpath, key_at, "submit gen", 10);
     assert_true(submit_at >= 0);
-    char *tl = timeline(tpath);
+    char *tl = cj_timeline_read(tpath);
     unsigned long gen_old = 0, gen_new = 0;
     assert_int_equal(sscanf(strstr(tl + submit_at, "submit"), "submit gen %lu", &gen_new), 1);
     free(tl);
-    const long cancel_at = wait_line(tpath, key_at, "cancelled gen", 30);
+    const long cancel_at = cj_timeline_wait_line(tpath, key_at, "cancelled gen", 30);
     assert_true(cancel_at >= 0);
     char want[64];
     snprintf(want, sizeof want, "shown gen %lu ", gen_new);
-    const long next_shown = wait_line(tpath, cancel_at, want, 60);
+    const long next_shown = cj_timeline_wait_line(tpath, cancel_at, want, 60);
     assert_true(next_shown >= 0);
-    tl = timeline(tpath);
+    tl = cj_timeline_read(tpath);
     int pass = -1;
     unsigned long long done = 0, total = 0;
     assert_int_equal(sscanf(strstr(tl + cancel_at, "cancelled"),
@@ -214,7 +172,7 @@ static void test_real_keys_and_interrupt(void **state) {
     int status = -1;
     for (int i = 0; i < 300; ++i) {
         if (waitpid(child, &status, WNOHANG) == child) break;
-        sleep_s(0.1);
+        cj_test_sleep(0.1);
         if (i == 299) {
             kill(child, SIGKILL);
             waitpid(child, &status, 0);
