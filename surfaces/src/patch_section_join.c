@@ -377,8 +377,9 @@ cj_status cj_patches_section_curves(const cj_patch *patches, size_t count, const
         goto nomem;
     }
     for (size_t i = 0; i < count; ++i) {
-        memcpy(out->unresolved + 3 * out->nunresolved, secs[i].unresolved,
-               (size_t)secs[i].nunresolved * 3 * sizeof(double));
+        if (secs[i].nunresolved) /* a section without any holds no array (NULL) */
+            memcpy(out->unresolved + 3 * out->nunresolved, secs[i].unresolved,
+                   (size_t)secs[i].nunresolved * 3 * sizeof(double));
         out->nunresolved += secs[i].nunresolved;
         out->ambiguous += secs[i].ambiguous;
         out->cells += secs[i].cells;

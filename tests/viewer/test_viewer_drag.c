@@ -183,8 +183,21 @@ static void test_drag_drops_preparing_frames(void **state) {
     assert_int_equal(fscanf(wf, "%lu", &wid), 1);
     fclose(wf);
     assert_true(cj_timeline_wait_line(tpath, 0, "shown gen 1 ", 60) >= 0);
+    /* the first frame's time sets how long the button stays down after the moves, so that a
+     * drag frame can finish while the button is held whatever the build's speed (a sanitizer
+     * build's frame takes about 0.8 s, a release build's about 0.05 s) */
+    double frame_s = 0.0;
+    {
+        char *tl = cj_timeline_read(tpath);
+        const char *d1 = strstr(tl, "done gen 1 ");
+        assert_non_null(d1);
+        const char *in = strstr(d1, " in ");
+        assert_true(in && sscanf(in, " in %lf", &frame_s) == 1);
+        free(tl);
+    }
+    const double hold_s = fmax(0.2, 3.0 * frame_s);
 
-    /* a fast drag: press on the point, 40 moves a few ms apart, release; repeated (the point
+    /* a fast drag: press on the point, 40 moves a few ms apart, hold, release; repeated (the point
      * goes back and forth) until a drag frame was dropped while tessellating */
     drag_stats ds;
     int tries = 0, x = px, y = py;
@@ -201,7 +214,7 @@ static void test_drag_drops_preparing_frames(void **state) {
                           y + (i % 3));
         x += dir_x * 40;
         y += 40 % 3;
-        snprintf(cmd + n, sizeof cmd - (size_t)n, " mouseup 1");
+        snprintf(cmd + n, sizeof cmd - (size_t)n, " sleep %.2f mouseup 1", hold_s);
         assert_int_equal(sh(cmd), 0);
         assert_true(cj_timeline_wait_line(tpath, from, "button 0 release", 20) >= 0);
         char *tl = cj_timeline_read(tpath);
