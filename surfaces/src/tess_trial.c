@@ -98,13 +98,7 @@ static size_t zip_trial(ptess *P, const double *tout, int k, const double *tin, 
         band_max(P, r0, r1, 1, own);
     int a = 0, b = 0;
     while (a < k || b < L) {
-        int adv_outer;
-        if (a == k)
-            adv_outer = 0;
-        else if (b == L)
-            adv_outer = 1;
-        else
-            adv_outer = tout[a] + tout[a + 1] < tin[b] + tin[b + 1];
+        const int adv_outer = cj_tess_zip_outer(tout, a, k, tin, b, L);
         /* (o[a], o[a+1], in[b]) or (o[a], in[b+1], in[b]); parameters increase along a row */
         const double x0 = tout[a] < tin[b] ? tout[a] : tin[b];
         const double hi = adv_outer ? tout[a + 1] : tin[b + 1];

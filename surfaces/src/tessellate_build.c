@@ -352,13 +352,7 @@ static cj_status zipper(ptess *P, const uint32_t *o, const double *tout, int k, 
     }
     cj_status st = CJ_OK;
     while (a < k || b < L) {
-        int adv_outer;
-        if (a == k)
-            adv_outer = 0;
-        else if (b == L)
-            adv_outer = 1;
-        else
-            adv_outer = tout[a] + tout[a + 1] < tin[b] + tin[b + 1];
+        const int adv_outer = cj_tess_zip_outer(tout, a, k, tin, b, L);
         if (adv_outer) {
             st = add_tri(P, o[a], o[a + 1], in[b], db);
             ++a;

@@ -128,6 +128,17 @@ typedef struct grid {
     int nu, nv, uni;
 } grid;
 
+/* The zipper's next step between a side's outer parameters tout[0..k] and the inner row's
+ * tin[0..L], at outer index a and inner index b: 1 to advance along the outer side (triangle
+ * o[a], o[a+1], in[b]), 0 along the inner row. The build and the planning trial both take it from
+ * here, so the trial bounds exactly the triangles the build makes. */
+static inline int cj_tess_zip_outer(const double *tout, int a, int k, const double *tin, int b,
+                                    int L) {
+    if (a == k) return 0;
+    if (b == L) return 1;
+    return tout[a] + tout[a + 1] < tin[b] + tin[b + 1];
+}
+
 static inline int same_pos(const double *a, const double *b) {
     return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
 }
